@@ -1,0 +1,36 @@
+# seacable: two commands on a fresh machine with only python3 -- `make demo` and `make test`.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: demo test test-all lint bench clean
+
+$(VENV)/bin/python:
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+
+$(STAMP): pyproject.toml $(VENV)/bin/python
+	$(PY) -m pip install -q -e ".[test]"
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(VENV)/bin/seacable run examples/thesis_6_1_sim6_submerged_60_links_forced.yaml -o results/demo.nc
+	$(VENV)/bin/seacable plot results/demo.nc -o results/demo.png --every 1.0
+	@echo "demo: results/demo.nc and results/demo.png written"
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff format --check src tests benchmarks
+	$(VENV)/bin/ruff check src tests benchmarks
+
+test: lint
+	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -m "not slow"
+
+test-all: lint
+	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
+
+bench: $(STAMP)
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/thesis_timings.py
+
+clean:
+	rm -rf $(VENV) results build *.egg-info src/*.egg-info

@@ -1,0 +1,385 @@
+"""The case-file schema: frozen, validated pydantic models. Units are given for every field.
+
+Conventions (see docs/conventions.md): SI units, z up with z = 0 at the still-water surface,
+angles in the case file in degrees (keys end in ``_deg``), radians everywhere inside.
+"""
+
+import csv
+import math
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import numpy as np
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+
+Pos = Annotated[float, Field(gt=0)]
+NonNeg = Annotated[float, Field(ge=0)]
+Point = tuple[float, float]
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# ---- time functions ------------------------------------------------------------------------------
+class Constant(_Model):
+    """f(t) = value."""
+
+    kind: Literal["constant"] = "constant"
+    value: float
+
+
+class Sine(_Model):
+    """f(t) = offset + amplitude sin(omega t + phase); give exactly one of period [s] or
+    angular_frequency [rad/s]; phase [rad]."""
+
+    kind: Literal["sine"]
+    amplitude: float
+    period: Pos | None = None
+    angular_frequency: Pos | None = None
+    phase: float = 0.0
+    offset: float = 0.0
+
+    @model_validator(mode="after")
+    def _one_frequency(self):
+        if (self.period is None) == (self.angular_frequency is None):
+            raise ValueError(
+                "give exactly one of 'period' [s] or 'angular_frequency' [rad/s] "
+                f"(got period={self.period}, angular_frequency={self.angular_frequency})"
+            )
+        return self
+
+
+class Ramp(_Model):
+    """Linear from start_value at start_time [s] to end_value at end_time, constant outside."""
+
+    kind: Literal["ramp"]
+    start_time: float
+    end_time: float
+    start_value: float = 0.0
+    end_value: float
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        if not self.end_time > self.start_time:
+            raise ValueError(
+                f"end_time ({self.end_time} s) must be later than start_time ({self.start_time} s)"
+            )
+        return self
+
+
+class AccelerationPhase(_Model):
+    duration: Pos  # [s]
+    acceleration: float  # [m/s^2] (or the unit of the quantity per s^2)
+
+
+class AccelerationProfile(_Model):
+    """A motion built from phases of constant acceleration; gives position, velocity and
+    acceleration exactly. After the last phase the acceleration is zero."""
+
+    kind: Literal["acceleration_profile"]
+    initial_position: float = 0.0  # [m]
+    initial_velocity: float = 0.0  # [m/s]
+    start_time: float = 0.0  # [s]
+    phases: list[AccelerationPhase] = Field(min_length=1)
+
+
+class Table(_Model):
+    """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
+    clamped cubic spline; held constant outside the table. ``file`` is relative to the case."""
+
+    kind: Literal["table"]
+    file: str
+    interpolation: Literal["linear", "cubic"] = "linear"
+
+    def load(self, base_dir=None):
+        path = Path(self.file)
+        if base_dir is not None and not path.is_absolute():
+            path = Path(base_dir) / path
+        if not path.exists():
+            raise ValueError(f"table file '{path}' does not exist")
+        rows = []
+        with open(path, newline="") as fh:
+            for row in csv.reader(fh):
+                if not row or row[0].strip().startswith("#"):
+                    continue
+                try:
+                    rows.append((float(row[0]), float(row[1])))
+                except (ValueError, IndexError):
+                    if rows:  # a header is allowed only on the first line
+                        raise ValueError(f"table file '{path}': bad row {row!r}") from None
+        data = np.array(rows, dtype=float)
+        if data.shape[0] < 2 or not np.all(np.diff(data[:, 0]) > 0):
+            raise ValueError(
+                f"table file '{path}' needs at least 2 rows with strictly increasing times"
+            )
+        return data[:, 0], data[:, 1]
+
+
+def _number_is_constant(value: Any) -> Any:
+    """Allow a plain number where a time function is expected."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return {"kind": "constant", "value": value}
+    return value
+
+
+TimeFunction = Annotated[
+    Constant | Sine | Ramp | AccelerationProfile | Table,
+    Field(discriminator="kind"),
+    BeforeValidator(_number_is_constant),
+]
+
+
+# ---- environment ---------------------------------------------------------------------------------
+class Current(_Model):
+    """Current along +x: either a uniform ``velocity`` [m/s] or a ``profile`` of
+    [elevation z (m, negative below the surface), velocity (m/s)] pairs, linearly interpolated
+    and held constant beyond the first and last point."""
+
+    velocity: float | None = None
+    profile: list[Point] | None = None
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.velocity is None) == (self.profile is None):
+            raise ValueError("give exactly one of 'velocity' [m/s] or 'profile' [[z, u], ...]")
+        if self.profile is not None:
+            if len(self.profile) < 2:
+                raise ValueError("a current profile needs at least 2 points")
+        return self
+
+    def arrays(self):
+        if self.profile is None:
+            return np.array([0.0]), np.array([float(self.velocity)])
+        data = np.array(sorted(self.profile), dtype=float)
+        if np.any(np.diff(data[:, 0]) <= 0):
+            raise ValueError("current profile elevations must be distinct")
+        return data[:, 0].copy(), data[:, 1].copy()
+
+
+class Environment(_Model):
+    gravity: Pos = 9.81  # [m/s^2]
+    water_density: Pos = 1025.0  # [kg/m^3]
+    water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
+    current: Current | None = None
+    in_air: bool = False  # true: no buoyancy, no drag, no added mass
+
+
+# ---- cable ----------------------------------------------------------------------------------------
+class FixedTop(_Model):
+    """Top attachment fixed at ``position`` [x, z] (m)."""
+
+    type: Literal["fixed"]
+    position: Point = (0.0, 0.0)
+
+
+class ImposedTop(_Model):
+    """Top attachment moved by time functions x(t), z(t) [m]; velocities and accelerations are
+    their exact derivatives."""
+
+    type: Literal["imposed"]
+    x: TimeFunction = Constant(value=0.0)
+    z: TimeFunction = Constant(value=0.0)
+
+
+
+class FloatingStructureTop(_Model):
+    """Floating structure moving in heave only: mass-spring-damper with an applied force u(t).
+
+    ``position`` [x, z] (m) is where the heave spring is unloaded; the structure's weight equals
+    its buoyancy there unless ``net_weight`` [N] (weight minus buoyancy, positive down) is given.
+    """
+
+    type: Literal["floating_structure"]
+    position: Point = (0.0, 0.0)
+    mass: Pos  # [kg]
+    added_mass: NonNeg = 0.0  # heave added mass [kg]
+    heave_stiffness: NonNeg  # [N/m]
+    heave_damping: NonNeg = 0.0  # [N s/m]
+    net_weight: float = 0.0  # [N], positive down
+    force: TimeFunction = Constant(value=0.0)  # u(t), vertical, positive up [N]
+    initial_heave: float = 0.0  # initial z offset from `position` [m]
+    initial_heave_velocity: float = 0.0  # [m/s]
+
+
+
+class Tie(_Model):
+    """Elastic ties holding the bottom body near ``rest_position`` [x, z] (m): spring-dampers
+    along x and z. Without rest_position the ties are unloaded at the initial end position."""
+
+    stiffness_x: NonNeg = 0.0  # [N/m]
+    damping_x: NonNeg = 0.0  # [N s/m]
+    stiffness_z: NonNeg = 0.0  # [N/m]
+    damping_z: NonNeg = 0.0  # [N s/m]
+    rest_position: Point | None = None
+
+
+class Body(_Model):
+    """Point body at the free end (a terminal mass, clump weight or buoy)."""
+
+    mass: NonNeg = 0.0  # [kg]
+    volume: NonNeg = 0.0  # displaced volume [m^3] (buoyancy)
+    added_mass: NonNeg = 0.0  # [kg], isotropic
+    drag_coefficient: NonNeg = 0.0  # Cd on drag_area (force 0.5 rho Cd A |v| v)
+    drag_area: NonNeg = 0.0  # [m^2]
+    force_x: TimeFunction = Constant(value=0.0)  # applied force [N]
+    force_z: TimeFunction = Constant(value=0.0)  # applied force [N], positive up
+
+
+
+class FreeBottom(_Model):
+    """Free end, optionally carrying a body and held by elastic ties."""
+
+    type: Literal["free"]
+    body: Body = Body()
+    tie: Tie | None = None
+
+
+class FloatingStructureBottom(_Model):
+    """Second floating structure at the lower end: a body of ``mass`` held by heave and surge
+    spring-dampers around ``rest_position`` (default: initial end position); weight equals
+    buoyancy. ``force`` is a vertical applied force u(t) [N]."""
+
+    type: Literal["floating_structure"]
+    mass: Pos  # [kg]
+    heave_stiffness: NonNeg  # [N/m]
+    heave_damping: NonNeg = 0.0  # [N s/m]
+    surge_stiffness: NonNeg  # [N/m]
+    surge_damping: NonNeg = 0.0  # [N s/m]
+    force: TimeFunction = Constant(value=0.0)
+    rest_position: Point | None = None
+
+
+
+class PinnedBottom(_Model):
+    """End pinned to an anchor (exact constraint). The anchor is the end of the initial shape;
+    if ``anchor`` [x, z] (m) is given it must agree with that end within 1 mm."""
+
+    type: Literal["pinned"]
+    anchor: Point | None = None
+
+
+class InitialShape(_Model):
+    """Initial link angles from the downward vertical, positive towards +x [deg]:
+    ``arc`` varies linearly from top_angle_deg (first link) to bottom_angle_deg (last link);
+    ``angles`` gives one angle per link. The cable starts at rest unless the top moves."""
+
+    shape: Literal["arc", "angles"] = "arc"
+    top_angle_deg: float = 0.0
+    bottom_angle_deg: float | None = None
+    angles_deg: list[float] | None = None
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.shape == "angles" and self.angles_deg is None:
+            raise ValueError("shape 'angles' needs 'angles_deg': one angle per link [deg]")
+        if self.shape == "arc" and self.angles_deg is not None:
+            raise ValueError("'angles_deg' goes with shape 'angles', not 'arc'")
+        return self
+
+    def angles(self, n: int) -> np.ndarray:
+        if self.shape == "angles":
+            if len(self.angles_deg) != n:
+                raise ValueError(f"angles_deg has {len(self.angles_deg)} values; the cable has {n}")
+            return np.radians(np.asarray(self.angles_deg, dtype=float))
+        bottom = self.top_angle_deg if self.bottom_angle_deg is None else self.bottom_angle_deg
+        return np.radians(np.linspace(self.top_angle_deg, bottom, n))
+
+
+class Cable(_Model):
+    """A planar cable of rigid links joined by torsional spring-dampers."""
+
+    name: str = "cable"
+    model: Literal["rigid_links"] = "rigid_links"
+    links: int = Field(ge=1, le=100_000)  # number of rigid links
+    length: Pos | None = None  # total length [m], equal links
+    link_lengths: list[Pos] | None = None  # [m], one per link
+    diameter: Pos  # hydrodynamic and buoyancy diameter [m]
+    mass_per_length: Pos | None = None  # [kg/m]
+    density: Pos | None = None  # material density [kg/m^3]: mass = density * pi d^2/4 * l
+    joint_stiffness: NonNeg | list[NonNeg] | None = None  # [N m/rad], scalar or one per joint
+    bending_stiffness: NonNeg | None = None  # EI [N m^2] -> joint stiffness EI / l
+    joint_damping: NonNeg | list[NonNeg] = 0.0  # [N m s/rad], scalar or one per joint
+    drag_coefficient_normal: NonNeg = 1.2  # Cd on the projected area d l
+    drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
+    top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
+    top: FixedTop | ImposedTop | FloatingStructureTop = Field(discriminator="type")
+    bottom: FreeBottom | FloatingStructureBottom | PinnedBottom = Field(discriminator="type")
+    initial: InitialShape = InitialShape()
+
+    @model_validator(mode="after")
+    def _exactly_one_each(self):
+        if (self.length is None) == (self.link_lengths is None):
+            raise ValueError("give exactly one of 'length' [m] or 'link_lengths' [m, one per link]")
+        if self.link_lengths is not None and len(self.link_lengths) != self.links:
+            raise ValueError(
+                f"link_lengths has {len(self.link_lengths)} values but links = {self.links}"
+            )
+        if (self.mass_per_length is None) == (self.density is None):
+            raise ValueError("give exactly one of 'mass_per_length' [kg/m] or 'density' [kg/m^3]")
+        if self.joint_stiffness is not None and self.bending_stiffness is not None:
+            raise ValueError("give at most one of 'joint_stiffness' or 'bending_stiffness'")
+        for key in ("joint_stiffness", "joint_damping"):
+            value = getattr(self, key)
+            if isinstance(value, list) and len(value) != self.links:
+                raise ValueError(f"{key} has {len(value)} values but links = {self.links}")
+        if self.initial.shape == "angles" and len(self.initial.angles_deg) != self.links:
+            raise ValueError(
+                f"initial.angles_deg has {len(self.initial.angles_deg)} values "
+                f"but links = {self.links}"
+            )
+        if abs(self.top_reference_angle_deg) > 360 or abs(self.initial.top_angle_deg) > 360:
+            raise ValueError("angles are in degrees and should lie within [-360, 360]")
+        return self
+
+    def lengths(self) -> np.ndarray:
+        if self.link_lengths is not None:
+            return np.asarray(self.link_lengths, dtype=float)
+        return np.full(self.links, self.length / self.links)
+
+    def per_length_mass(self) -> float:
+        if self.mass_per_length is not None:
+            return self.mass_per_length
+        return self.density * math.pi * self.diameter**2 / 4
+
+
+# ---- simulation ----------------------------------------------------------------------------------
+class Simulation(_Model):
+    duration: Pos  # [s]
+    output_interval: Pos  # [s]
+    integrator: Literal["rk4", "dopri5"] = "rk4"
+    time_step: Pos | None = None  # rk4 step [s] (default: output_interval / ceil(...) <= 0.01 s)
+    rtol: Pos = 1e-6  # dopri5 relative tolerance
+    atol: Pos = 1e-8  # dopri5 absolute tolerance
+    max_step: Pos | None = None  # dopri5 largest step [s]
+    initial_step: Pos = 1e-3  # dopri5 first step [s]
+    constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        if self.output_interval > self.duration:
+            raise ValueError(
+                f"output_interval ({self.output_interval} s) is longer than duration "
+                f"({self.duration} s)"
+            )
+        return self
+
+
+class Case(_Model):
+    """A complete simulation case."""
+
+    name: str = "case"
+    description: str = ""
+    environment: Environment = Environment()
+    cables: list[Cable] = Field(min_length=1)
+    simulation: Simulation
+
+    @field_validator("cables")
+    @classmethod
+    def _one_cable(cls, cables):
+        if len(cables) != 1:
+            raise ValueError(
+                f"the planar rigid-link model simulates one cable per case; got {len(cables)}. "
+                "Split the system into one case per cable"
+            )
+        return cables

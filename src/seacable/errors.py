@@ -1,0 +1,28 @@
+"""The exception family of seacable: every error a user can meet derives from SeacableError."""
+
+
+class SeacableError(Exception):
+    """Base class of every seacable error."""
+
+
+class CaseError(SeacableError, ValueError):
+    """A case file or case object is invalid; the message names the field, value and fix."""
+
+
+class SimulationDiverged(SeacableError, RuntimeError):
+    """The integration produced a non-finite or singular state.
+
+    ``results`` holds what was computed before the failure (status ``diverged``).
+    """
+
+    def __init__(self, message: str, results=None):
+        super().__init__(message)
+        self.results = results
+
+
+class SimulationInterrupted(SeacableError, KeyboardInterrupt):
+    """The run was interrupted (Ctrl-C); ``results`` holds what was computed."""
+
+    def __init__(self, message: str, results=None):
+        super().__init__(message)
+        self.results = results

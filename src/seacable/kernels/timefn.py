@@ -1,0 +1,54 @@
+"""Compiled evaluation of time functions.
+
+Every time function of a case (constant, sine, ramp, acceleration profile, table) is compiled by
+``seacable.case.timefunctions`` into one representation that numba can evaluate fast:
+
+    f(t) = p_k(t - b_k) + A sin(omega t + phi)       for b_k <= t < b_{k+1}
+
+where ``p_k`` is a cubic with coefficients ``coefs[k] = (c0, c1, c2, c3)`` on breakpoint ``b_k``.
+A case holds several such functions ("channels"), stacked in arrays:
+
+- ``breaks``  (C, K)    float64: breakpoints of channel c (first ``count[c]`` are used, ascending)
+- ``coefs``   (C, K, 4) float64: cubic coefficients per piece
+- ``count``   (C,)      int64  : number of pieces of channel c
+- ``sine``    (C, 3)    float64: amplitude, angular frequency [rad/s], phase [rad]
+
+The first breakpoint is a large negative sentinel with a constant piece, so evaluation never
+extrapolates a non-constant polynomial backwards.
+"""
+
+import math
+
+from numba import njit
+
+
+@njit(cache=True)
+def evaluate(breaks, coefs, count, sine, channel, t):
+    """Value, first and second time derivative of channel ``channel`` at time ``t`` [s]."""
+    k_count = count[channel]
+    lo = 0
+    hi = k_count - 1
+    # binary search for the last breakpoint <= t
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if breaks[channel, mid] <= t:
+            lo = mid
+        else:
+            hi = mid - 1
+    dt = t - breaks[channel, lo]
+    c0 = coefs[channel, lo, 0]
+    c1 = coefs[channel, lo, 1]
+    c2 = coefs[channel, lo, 2]
+    c3 = coefs[channel, lo, 3]
+    f = c0 + dt * (c1 + dt * (c2 + dt * c3))
+    df = c1 + dt * (2.0 * c2 + 3.0 * c3 * dt)
+    ddf = 2.0 * c2 + 6.0 * c3 * dt
+    amplitude = sine[channel, 0]
+    if amplitude != 0.0:
+        omega = sine[channel, 1]
+        arg = omega * t + sine[channel, 2]
+        s = math.sin(arg)
+        f += amplitude * s
+        df += amplitude * omega * math.cos(arg)
+        ddf -= amplitude * omega * omega * s
+    return f, df, ddf

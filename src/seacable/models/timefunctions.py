@@ -1,0 +1,117 @@
+"""Turn validated time-function specifications into the compiled piecewise-cubic + sine form.
+
+See ``seacable.kernels.timefn`` for the representation. Every builder returns a
+:class:`Piecewise` (breakpoints, cubic coefficients, sine term); :func:`stack` packs several into
+the arrays the kernels take.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from seacable.case import schema
+
+SENTINEL = -1.0e30  # first breakpoint: a constant piece that covers all earlier times
+
+
+@dataclass(frozen=True)
+class Piecewise:
+    """f(t) = sum over pieces of cubic in (t - break) + amplitude sin(omega t + phase)."""
+
+    breaks: np.ndarray
+    coefs: np.ndarray  # (K, 4)
+    sine: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0))
+
+
+def constant(value: float) -> Piecewise:
+    return Piecewise(np.array([SENTINEL]), np.array([[float(value), 0.0, 0.0, 0.0]]))
+
+
+def _sine(spec: schema.Sine) -> Piecewise:
+    omega = spec.angular_frequency if spec.angular_frequency is not None else 2 * np.pi / spec.period
+    base = constant(spec.offset)
+    return Piecewise(base.breaks, base.coefs, (spec.amplitude, omega, spec.phase))
+
+
+def _ramp(spec: schema.Ramp) -> Piecewise:
+    slope = (spec.end_value - spec.start_value) / (spec.end_time - spec.start_time)
+    breaks = np.array([SENTINEL, spec.start_time, spec.end_time])
+    coefs = np.array(
+        [
+            [spec.start_value, 0.0, 0.0, 0.0],
+            [spec.start_value, slope, 0.0, 0.0],
+            [spec.end_value, 0.0, 0.0, 0.0],
+        ]
+    )
+    return Piecewise(breaks, coefs)
+
+
+def _acceleration_profile(spec: schema.AccelerationProfile) -> Piecewise:
+    """Exact position from piecewise-constant accelerations (zero after the last phase)."""
+    x = spec.initial_position
+    v = spec.initial_velocity
+    t = spec.start_time
+    # before the profile starts the motion is uniform at the initial velocity (for a million
+    # seconds back, then held), so derivatives are exact at the start
+    lead = 1.0e6
+    breaks = [SENTINEL, t - lead, t]
+    coefs = [[x - v * lead, 0.0, 0.0, 0.0], [x - v * lead, v, 0.0, 0.0]]
+    for phase in spec.phases:
+        coefs.append([x, v, 0.5 * phase.acceleration, 0.0])
+        x += v * phase.duration + 0.5 * phase.acceleration * phase.duration**2
+        v += phase.acceleration * phase.duration
+        t += phase.duration
+        breaks.append(t)
+    coefs.append([x, v, 0.0, 0.0])
+    return Piecewise(np.array(breaks), np.array(coefs))
+
+
+def _table(spec: schema.Table, base_dir) -> Piecewise:
+    times, values = spec.load(base_dir)
+    first = [values[0], 0.0, 0.0, 0.0]
+    last = [values[-1], 0.0, 0.0, 0.0]
+    if spec.interpolation == "linear":
+        slopes = np.diff(values) / np.diff(times)
+        middle = np.column_stack([values[:-1], slopes, np.zeros_like(slopes), np.zeros_like(slopes)])
+    else:
+        spline = CubicSpline(times, values, bc_type="clamped")
+        c = spline.c  # (4, K) highest power first
+        middle = np.column_stack([c[3], c[2], c[1], c[0]])
+    breaks = np.concatenate([[SENTINEL], times])
+    coefs = np.vstack([first, middle, last])
+    return Piecewise(breaks, coefs)
+
+
+def build(spec, base_dir=None) -> Piecewise:
+    """Compile one validated time-function specification (or None for zero)."""
+    if spec is None:
+        return constant(0.0)
+    if isinstance(spec, schema.Constant):
+        return constant(spec.value)
+    if isinstance(spec, schema.Sine):
+        return _sine(spec)
+    if isinstance(spec, schema.Ramp):
+        return _ramp(spec)
+    if isinstance(spec, schema.AccelerationProfile):
+        return _acceleration_profile(spec)
+    if isinstance(spec, schema.Table):
+        return _table(spec, base_dir)
+    raise TypeError(f"unknown time function {type(spec).__name__}")
+
+
+def stack(functions: list[Piecewise]):
+    """Pack compiled functions into (breaks, coefs, count, sine) arrays for the kernels."""
+    n_channels = len(functions)
+    k_max = max(len(f.breaks) for f in functions)
+    breaks = np.full((n_channels, k_max), np.inf)
+    coefs = np.zeros((n_channels, k_max, 4))
+    count = np.zeros(n_channels, dtype=np.int64)
+    sine = np.zeros((n_channels, 3))
+    for c, f in enumerate(functions):
+        k = len(f.breaks)
+        breaks[c, :k] = f.breaks
+        coefs[c, :k] = f.coefs
+        count[c] = k
+        sine[c] = f.sine
+    return breaks, coefs, count, sine

@@ -1,0 +1,166 @@
+"""Compiled time integrators for the planar rigid-link cable.
+
+Contract shared by every integrator here (a new one must follow it):
+
+1. It advances the flat state ``y`` in place over a *chunk* of ``n_outputs`` output intervals of
+   length ``output_interval`` and writes the state at the end of each interval in ``states[j]``
+   and its time in ``times[j]``; the whole chunk runs in compiled code.
+2. It returns ``(completed, status, work)`` where ``completed`` is the number of output rows
+   written, ``status`` a kernel status code (0 = sound) and ``work`` a length-4 int64 array of
+   counters added to in place: accepted steps, rejected steps, right-hand-side evaluations,
+   failed (non-finite) evaluations.
+3. On a non-finite or singular evaluation it stops at once, leaves ``y`` at the last sound
+   state of the completed rows and reports the status; it never raises.
+4. Output times are hit exactly (fixed-step: an integer number of steps per interval; adaptive:
+   the step is clipped at each output time).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.planar_chain import NON_FINITE, OK, rhs
+
+WORK_NAMES = ("accepted_steps", "rejected_steps", "rhs_evaluations", "failed_evaluations")
+
+
+@njit(cache=True)
+def _all_finite(y):
+    total = 0.0
+    for v in y:
+        total += v
+    return math.isfinite(total)
+
+
+@njit(cache=True)
+def rk4_chunk(t0, y, dt, steps_per_output, n_outputs, p, w, states, times, work):
+    """Classical 4th-order Runge-Kutta with a fixed step ``dt`` [s]."""
+    ny = y.shape[0]
+    k1 = np.empty(ny)
+    k2 = np.empty(ny)
+    k3 = np.empty(ny)
+    k4 = np.empty(ny)
+    tmp = np.empty(ny)
+    step = 0
+    for j in range(n_outputs):
+        for _ in range(steps_per_output):
+            t = t0 + step * dt
+            status = rhs(t, y, p, w, k1)
+            for i in range(ny):
+                tmp[i] = y[i] + 0.5 * dt * k1[i]
+            status |= rhs(t + 0.5 * dt, tmp, p, w, k2)
+            for i in range(ny):
+                tmp[i] = y[i] + 0.5 * dt * k2[i]
+            status |= rhs(t + 0.5 * dt, tmp, p, w, k3)
+            for i in range(ny):
+                tmp[i] = y[i] + dt * k3[i]
+            status |= rhs(t + dt, tmp, p, w, k4)
+            work[2] += 4
+            for i in range(ny):
+                tmp[i] = y[i] + dt / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i])
+            if status != OK or not _all_finite(tmp):
+                work[3] += 1
+                return j, (status if status != OK else NON_FINITE)
+            y[:] = tmp
+            work[0] += 1
+            step += 1
+        states[j, :] = y
+        times[j] = t0 + step * dt
+    return n_outputs, OK
+
+
+# Dormand-Prince 5(4) coefficients
+_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+_A = np.array(
+    [
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1 / 5, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3 / 40, 9 / 40, 0.0, 0.0, 0.0, 0.0],
+        [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0, 0.0],
+        [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0, 0.0],
+        [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0.0],
+        [35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84],
+    ]
+)
+_E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+
+
+@njit(cache=True)
+def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
+    """One Dormand-Prince step from (t, y) with k[0] = f(t, y) given; fills k[1..6], ynew."""
+    ny = y.shape[0]
+    status = OK
+    for s in range(1, 7):
+        for i in range(ny):
+            acc = 0.0
+            for r in range(s):
+                acc += _A[s, r] * k[r, i]
+            ytmp[i] = y[i] + h * acc
+        if s == 6:
+            ynew[:] = ytmp
+        status |= rhs(t + _C[s] * h, ytmp, p, w, k[s])
+    return status
+
+
+@njit(cache=True)
+def dopri5_chunk(
+    t0, y, output_interval, n_outputs, h, rtol, atol, max_step, p, w, states, times, work
+):
+    """Adaptive Dormand-Prince 5(4) with error control; returns (completed, status, next_h)."""
+    ny = y.shape[0]
+    k = np.empty((7, ny))
+    ytmp = np.empty(ny)
+    ynew = np.empty(ny)
+    t = t0
+    status = rhs(t, y, p, w, k[0])
+    work[2] += 1
+    if status != OK:
+        work[3] += 1
+        return 0, status, h
+    min_step = 1e-12 * max(1.0, output_interval)
+    for j in range(n_outputs):
+        t_target = t0 + (j + 1) * output_interval
+        while t < t_target:
+            h = min(h, max_step)
+            h_try = h
+            last = False
+            if t + h_try >= t_target - 1e-12 * output_interval:
+                h_try = t_target - t
+                last = True
+            st = _dopri_step(t, y, h_try, p, w, k, ytmp, ynew)
+            work[2] += 6
+            err = 0.0
+            for i in range(ny):
+                e = 0.0
+                for r in range(7):
+                    e += _E[r] * k[r, i]
+                sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
+                err += (h_try * e / sc) ** 2
+            err = math.sqrt(err / ny)
+            if st != OK or not math.isfinite(err):
+                work[3] += 1
+                h = 0.25 * h_try
+                if h < min_step:
+                    return j, (st if st != OK else NON_FINITE), h
+                continue
+            if err <= 1.0:
+                t = t_target if last else t + h_try
+                y[:] = ynew
+                k[0, :] = k[6, :]
+                work[0] += 1
+                if last:
+                    # a step clipped at an output time keeps the unclipped proposal unless the
+                    # (unclamped) error estimate says it is too long
+                    if err > 0.0:
+                        h = min(h, 0.9 * h_try * err ** (-0.2))
+                else:
+                    h = h_try * (5.0 if err == 0.0 else min(5.0, 0.9 * err ** (-0.2)))
+            else:
+                work[1] += 1
+                h = h_try * max(0.2, 0.9 * err ** (-0.2))
+                if h < min_step:
+                    return j, NON_FINITE, h
+        states[j, :] = y
+        times[j] = t
+    return n_outputs, OK, h
