@@ -1,0 +1,28 @@
+"""seacable: dynamics of marine cables and the bodies they connect.
+
+Public API::
+
+    case = seacable.load_case("examples/thesis_6_1_sim6_submerged_60_links_forced.yaml")
+    results = seacable.simulate(case, output="run.nc")
+    results.dataset["tension"]
+"""
+
+from seacable.case.loader import load_case
+from seacable.case.schema import Case
+from seacable.errors import CaseError, SeacableError, SimulationDiverged, SimulationInterrupted
+from seacable.results import Results
+from seacable.simulate import simulate
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Case",
+    "CaseError",
+    "Results",
+    "SeacableError",
+    "SimulationDiverged",
+    "SimulationInterrupted",
+    "__version__",
+    "load_case",
+    "simulate",
+]

@@ -10,7 +10,15 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    PrivateAttr,
+    field_validator,
+    model_validator,
+)
 
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
@@ -373,6 +381,8 @@ class Case(_Model):
     environment: Environment = Environment()
     cables: list[Cable] = Field(min_length=1)
     simulation: Simulation
+    _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
+    _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
 
     @field_validator("cables")
     @classmethod

@@ -455,3 +455,14 @@ def outputs(t, y, p, w, node_x, node_z, tension, scalars):
     else:
         scalars[9] = 0.0
     return status
+
+
+@njit(cache=True)
+def outputs_chunk(times, states, p, w, node_x, node_z, tension, scalars):
+    """``outputs`` for every row of a chunk; returns the first non-zero status (or 0)."""
+    status = OK
+    for j in range(times.shape[0]):
+        st = outputs(times[j], states[j], p, w, node_x[j], node_z[j], tension[j], scalars[j])
+        if st != OK and status == OK:
+            status = st
+    return status

@@ -1,0 +1,171 @@
+"""Read a YAML case file (never evaluating its text) into a validated, immutable Case."""
+
+import types
+import typing
+from pathlib import Path
+from typing import Any
+
+import yaml
+from pydantic import BaseModel, ValidationError
+
+from seacable.case.schema import Case
+from seacable.errors import CaseError
+
+_TAGS = ("type", "kind")
+
+
+def load_case(source: str | Path | dict) -> Case:
+    """Load and validate a case from a YAML file path, a YAML string or a dict.
+
+    Raises
+    ------
+    CaseError
+        With one line per problem: the path in the file (``cables[0].links``), the value, what
+        is allowed and, for unknown keys, the valid keys.
+    """
+    base_dir = None
+    text = None
+    if isinstance(source, dict):
+        data = source
+    else:
+        path = Path(source) if not (isinstance(source, str) and "\n" in source) else None
+        if path is not None and path.suffix.lower() in (".yaml", ".yml") and not path.exists():
+            raise CaseError(f"case file '{path}' does not exist")
+        if path is not None and path.exists():
+            text = path.read_text()
+            base_dir = path.resolve().parent
+        else:
+            text = str(source)
+        try:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            raise CaseError(f"case file is not valid YAML: {exc}") from None
+    if not isinstance(data, dict):
+        raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
+    try:
+        case = Case.model_validate(data)
+    except ValidationError as exc:
+        raise CaseError(format_errors(exc)) from None
+    case._source_text = text if text is not None else yaml.safe_dump(data, sort_keys=False)
+    case._base_dir = None if base_dir is None else str(base_dir)
+    return case
+
+
+def case_text(case: Case) -> str:
+    """The YAML text a case was loaded from (or a dump of it when built in Python)."""
+    text = case._source_text
+    if text is None:
+        text = yaml.safe_dump(case.model_dump(mode="json"), sort_keys=False)
+    return text
+
+
+def case_base_dir(case: Case):
+    """Directory that relative file names in the case refer to (None: current directory)."""
+    return case._base_dir
+
+
+def format_errors(exc: ValidationError) -> str:
+    lines = [f"invalid case ({exc.error_count()} problem{'s' * (exc.error_count() > 1)}):"]
+    for error in exc.errors():
+        path, model = _walk(error["loc"])
+        where = path or "(top level)"
+        if error["type"] == "extra_forbidden":
+            key = error["loc"][-1]
+            parent_path, parent = _walk(error["loc"][:-1])
+            valid = ", ".join(parent.model_fields) if parent is not None else "?"
+            lines.append(
+                f"- {parent_path or '(top level)'}: unknown key '{key}'. Valid keys: {valid}. "
+                "Check the spelling or remove it"
+            )
+            continue
+        message = error["msg"].removeprefix("Value error, ")
+        if error["type"] == "missing":
+            lines.append(f"- {where}: required key is missing")
+            continue
+        value = error.get("input")
+        shown = repr(value) if not isinstance(value, dict) else "{...}"
+        if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
+            ctx = error.get("ctx", {})
+            key = ctx.get("discriminator", "'type'").strip("'")
+            allowed = ctx.get("expected_tags") or ", ".join(
+                repr(t) for t in _tag_values(_annotation_at(error["loc"]))
+            )
+            if "tag" in ctx:
+                lines.append(
+                    f"- {where}.{key}: value {ctx['tag']!r} is not allowed; allowed: {allowed}"
+                )
+            else:
+                lines.append(f"- {where}.{key}: required key is missing; allowed: {allowed}")
+            continue
+        lines.append(f"- {where}: {message} (got {shown})")
+    return "\n".join(lines)
+
+
+def _walk(loc) -> tuple[str, type[BaseModel] | None]:
+    """Readable path for a pydantic location and the model found at its end (tags dropped)."""
+    text = ""
+    annotation: Any = Case
+    for item in loc:
+        model = _as_model(annotation, item)
+        if model is not None and item in _tag_values(annotation):
+            annotation = model
+            continue
+        if isinstance(item, int):
+            text += f"[{item}]"
+            annotation = _item_type(annotation)
+            continue
+        text += ("." if text else "") + str(item)
+        model = _as_model(annotation)
+        if model is not None and item in model.model_fields:
+            annotation = model.model_fields[item].annotation
+        else:
+            annotation = None
+    return text, _as_model(annotation)
+
+
+def _annotation_at(loc):
+    """Annotation of the field at ``loc`` (for listing the allowed tags of a union)."""
+    parent_path, parent = _walk(loc[:-1])
+    if parent is None or loc[-1] not in parent.model_fields:
+        return None
+    return parent.model_fields[loc[-1]].annotation
+
+
+def _members(annotation) -> list:
+    origin = typing.get_origin(annotation)
+    if origin is typing.Annotated:
+        return _members(typing.get_args(annotation)[0])
+    if origin in (typing.Union, types.UnionType):
+        out = []
+        for arg in typing.get_args(annotation):
+            out.extend(_members(arg))
+        return out
+    return [annotation]
+
+
+def _tag_values(annotation) -> dict:
+    tags = {}
+    for member in _members(annotation):
+        if isinstance(member, type) and issubclass(member, BaseModel):
+            for tag in _TAGS:
+                field = member.model_fields.get(tag)
+                if field is not None:
+                    for value in typing.get_args(field.annotation):
+                        tags[value] = member
+    return tags
+
+
+def _as_model(annotation, tag=None):
+    if tag is not None:
+        return _tag_values(annotation).get(tag)
+    for member in _members(annotation):
+        if isinstance(member, type) and issubclass(member, BaseModel):
+            return member
+    return None
+
+
+def _item_type(annotation):
+    for member in _members(annotation):
+        if typing.get_origin(member) is list:
+            return typing.get_args(member)[0]
+    return None

@@ -1,0 +1,92 @@
+"""The ``seacable`` command line: parse, call the public API, write. Nothing else."""
+
+import logging
+import sys
+from pathlib import Path
+
+import click
+
+import seacable
+from seacable import viz
+
+
+def _fail(message: str, code: int = 1):
+    click.echo(f"error: {message}", err=True)
+    sys.exit(code)
+
+
+@click.group()
+@click.version_option(seacable.__version__, prog_name="seacable")
+@click.option("-v", "--verbose", is_flag=True, help="Show debug messages.")
+def main(verbose: bool) -> None:
+    """Simulate marine cables and the bodies they connect."""
+    logging.basicConfig(
+        level=logging.DEBUG if verbose else logging.INFO, format="%(levelname)s: %(message)s"
+    )
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--progress/--no-progress", default=True, help="Progress bar on long runs.")
+def run(case_file: str, output: str | None, progress: bool) -> None:
+    """Run CASE_FILE and write its results (default: CASE_FILE with .nc)."""
+    output = output or str(Path(case_file).with_suffix(".nc"))
+    try:
+        case = seacable.load_case(case_file)
+        results = seacable.simulate(case, output=output, progress=progress)
+    except seacable.CaseError as exc:
+        _fail(str(exc), 2)
+    except seacable.SimulationDiverged as exc:
+        _fail(f"{exc}\npartial results (status 'diverged'): {output}", 3)
+    except seacable.SimulationInterrupted as exc:
+        _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 130)
+    click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+def validate(case_file: str) -> None:
+    """Check CASE_FILE without running it."""
+    try:
+        case = seacable.load_case(case_file)
+    except seacable.CaseError as exc:
+        _fail(str(exc), 2)
+    cable = case.cables[0]
+    click.echo(
+        f"ok: case '{case.name}': cable '{cable.name}' of {cable.links} links, top "
+        f"{cable.top.type}, bottom {cable.bottom.type}, {case.simulation.duration:g} s with "
+        f"{case.simulation.integrator}"
+    )
+
+
+@main.command()
+@click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Picture (default .png).")
+@click.option("--every", type=float, default=None, help="Seconds between cable snapshots.")
+def plot(results_file: str, output: str | None, every: float | None) -> None:
+    """Draw cable snapshots and time series from RESULTS_FILE."""
+    output = output or str(Path(results_file).with_suffix(".png"))
+    results = seacable.Results.open(results_file)
+    viz.plot_results(results.dataset, output, every=every)
+    click.echo(f"picture written: {output}")
+
+
+@main.command()
+@click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Animation file: .gif (always) or .mp4 (needs ffmpeg).")  # fmt: skip
+@click.option("--fps", type=int, default=20, help="Frames per second.")
+@click.option("--speed", type=float, default=1.0, help="Simulated seconds per second of video.")
+def animate(results_file: str, output: str, fps: int, speed: float) -> None:
+    """Animate the cable of RESULTS_FILE."""
+    results = seacable.Results.open(results_file)
+    try:
+        viz.animate_results(results.dataset, output, fps=fps, speed=speed)
+    except ValueError as exc:
+        _fail(str(exc), 2)
+    click.echo(f"animation written: {output}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,165 @@
+"""Results of a run: an xarray Dataset, written to NetCDF as the run goes.
+
+Dimensions: ``time``, ``segment`` (one per link), ``node`` (links + 1, node 0 at the top).
+Every variable carries ``units`` and ``long_name``; the attributes carry provenance and the
+``status`` of the run (``complete``, ``diverged``, ``interrupted``, or ``incomplete`` while it
+runs or if the process died) with its ``status_message``.
+"""
+
+import datetime as _dt
+from pathlib import Path
+
+import h5netcdf
+import numpy as np
+import xarray as xr
+
+STATUS_COMPLETE = "complete"
+STATUS_DIVERGED = "diverged"
+STATUS_INTERRUPTED = "interrupted"
+STATUS_INCOMPLETE = "incomplete"
+
+# name: (dims, units, long_name)
+VARIABLES = {
+    "angle": (("time", "segment"), "rad", "link angle from the downward vertical, positive to +x"),
+    "angular_velocity": (("time", "segment"), "rad/s", "link angular velocity"),
+    "node_x": (("time", "node"), "m", "node position x"),
+    "node_z": (("time", "node"), "m", "node elevation z (up, 0 at the still-water surface)"),
+    "tension": (("time", "segment"), "N", "axial tension at the link centre (positive pulling)"),
+    "top_force_x": (("time",), "N", "force of the cable on its top attachment, x"),
+    "top_force_z": (("time",), "N", "force of the cable on its top attachment, z"),
+    "bottom_force_x": (("time",), "N", "force of the cable on its bottom body or anchor, x"),
+    "bottom_force_z": (("time",), "N", "force of the cable on its bottom body or anchor, z"),
+    "top_heave": (("time",), "m", "elevation of the top attachment (floating structure heave)"),
+    "top_heave_velocity": (("time",), "m/s", "vertical velocity of the top attachment"),
+    "kinetic_energy": (("time",), "J", "kinetic energy of links, bodies and structure"),
+    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
+    "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+    "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
+}
+
+
+def provenance(case_text: str, solver: dict) -> dict:
+    from seacable import __version__
+
+    attrs = {
+        "title": "seacable simulation results",
+        "seacable_version": __version__,
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "case": case_text,
+        "status": STATUS_INCOMPLETE,
+        "status_message": "the run has not finished (still running, or the process was killed)",
+        "conventions": "SI units; x horizontal, z up, z = 0 at the still-water surface",
+    }
+    attrs.update({f"solver_{k}": v for k, v in solver.items()})
+    return attrs
+
+
+class Results:
+    """The outcome of :func:`seacable.simulate`: the dataset, its status and message."""
+
+    def __init__(self, dataset: xr.Dataset, path: Path | None = None):
+        self.dataset = dataset
+        self.path = path
+
+    @property
+    def status(self) -> str:
+        return self.dataset.attrs.get("status", STATUS_INCOMPLETE)
+
+    @property
+    def message(self) -> str:
+        return self.dataset.attrs.get("status_message", "")
+
+    @property
+    def complete(self) -> bool:
+        return self.status == STATUS_COMPLETE
+
+    def __getitem__(self, name):
+        return self.dataset[name]
+
+    def __repr__(self) -> str:
+        where = f", path={str(self.path)!r}" if self.path else ""
+        return f"Results(status={self.status!r}, times={self.dataset.sizes.get('time', 0)}{where})"
+
+    def to_netcdf(self, path) -> None:
+        self.dataset.to_netcdf(path, engine="h5netcdf")
+
+    @classmethod
+    def open(cls, path) -> "Results":
+        """Read results written by seacable (complete or not)."""
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return cls(ds.load(), Path(path))
+
+
+class _Sink:
+    """Where output rows go: in memory, or also appended to a NetCDF file as they come."""
+
+    def __init__(self, path, n_links: int, coords: dict, attrs: dict):
+        self.path = None if path is None else Path(path)
+        self.n_links = n_links
+        self.coords = coords
+        self.attrs = dict(attrs)
+        self.chunks = {name: [] for name in ("time", *VARIABLES)}
+        self.rows = 0
+        self._file = None
+        if self.path is not None:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._file = self._create()
+
+    def _create(self):
+        f = h5netcdf.File(self.path, "w")
+        f.dimensions = {"time": None, "segment": self.n_links, "node": self.n_links + 1}
+        for name, (values, units, long_name) in self.coords.items():
+            dim = "segment" if len(values) == self.n_links else "node"
+            v = f.create_variable(name, (dim,), float, data=values)
+            v.attrs.update(units=units, long_name=long_name)
+        t = f.create_variable("time", ("time",), float, chunks=(1024,))
+        t.attrs.update(units="s", long_name="time", standard_name="time")
+        for name, (dims, units, long_name) in VARIABLES.items():
+            shape = tuple(1024 if d == "time" else (self.n_links + (d == "node")) for d in dims)
+            v = f.create_variable(name, dims, float, chunks=tuple(min(s, 1024) for s in shape))
+            v.attrs.update(units=units, long_name=long_name)
+        f.attrs.update(self.attrs)
+        f.flush()
+        return f
+
+    def write(self, rows: dict) -> None:
+        count = len(rows["time"])
+        if count == 0:
+            return
+        for name, values in rows.items():
+            self.chunks[name].append(np.array(values, copy=True))
+        if self._file is not None:
+            start = self.rows
+            self._file.resize_dimension("time", start + count)
+            for name, values in rows.items():
+                self._file.variables[name][start : start + count, ...] = values
+            self._file.flush()
+        self.rows += count
+
+    def finish(self, status: str, message: str, extra: dict) -> Results:
+        self.attrs.update(status=status, status_message=message, **extra)
+        if self._file is not None:
+            self._file.attrs.update(status=status, status_message=message, **extra)
+            self._file.close()
+            self._file = None
+        return Results(self._dataset(), self.path)
+
+    def _dataset(self) -> xr.Dataset:
+        data = {}
+        for name, (dims, units, long_name) in VARIABLES.items():
+            values = _join(self.chunks[name], dims, self.n_links)
+            data[name] = xr.Variable(dims, values, {"units": units, "long_name": long_name})
+        coords = {"time": xr.Variable(("time",), _join(self.chunks["time"], ("time",), 0))}
+        coords["time"].attrs.update(units="s", long_name="time")
+        for name, (values, units, long_name) in self.coords.items():
+            dim = "segment" if len(values) == self.n_links else "node"
+            coords[name] = xr.Variable((dim,), values, {"units": units, "long_name": long_name})
+        return xr.Dataset(data, coords=coords, attrs=self.attrs)
+
+
+def _join(chunks, dims, n_links):
+    if chunks:
+        return np.concatenate(chunks)
+    shape = tuple(0 if d == "time" else n_links + (d == "node") for d in dims)
+    return np.zeros(shape)

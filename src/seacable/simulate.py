@@ -1,0 +1,272 @@
+"""Run a case: assemble the system, integrate in compiled chunks, stream results."""
+
+import logging
+import math
+import time as _time
+
+import numpy as np
+
+from seacable.case import loader, schema
+from seacable.errors import SimulationDiverged, SimulationInterrupted
+from seacable.kernels import planar_chain as pc
+from seacable.models import planar_rigid_links
+from seacable.numerics import integrators
+from seacable.results import (
+    STATUS_COMPLETE,
+    STATUS_DIVERGED,
+    STATUS_INTERRUPTED,
+    Results,
+    _Sink,
+    provenance,
+)
+
+log = logging.getLogger(__name__)
+
+DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
+_CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
+
+
+def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
+    """The rk4 step actually used [s] and the number of steps per output interval."""
+    wanted = sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
+    steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
+    return sim.output_interval / steps, steps
+
+
+def fastest_frequency(system: planar_rigid_links.PlanarSystem) -> tuple[float, str]:
+    """A rough upper estimate of the fastest natural frequency [rad/s] and what sets it.
+
+    Used to warn before an explicit run whose step cannot follow the fastest motion.
+    """
+    p = system.params
+    link_rot = p.inertia + p.mass * p.length**2 / 4.0  # a link swinging about one end
+    candidates = []
+    joint_k = p.joint_stiffness
+    if np.any(joint_k > 0):
+        j_min = np.minimum(link_rot, np.roll(link_rot, 1))
+        w = np.sqrt(4.0 * joint_k / j_min)
+        i = int(np.argmax(w))
+        candidates.append((float(w[i]), f"joint {i} spring ({joint_k[i]:.4g} N m/rad)"))
+    # pendulum/tension waves: tension at most the whole apparent weight, carried by short links
+    weight = float(np.sum(np.abs(p.wet_weight))) + abs(p.body_wet_weight)
+    per_length = p.mass / p.length
+    w = 2.0 * np.sqrt(weight / (per_length * p.length**2))
+    i = int(np.argmin(p.length))
+    candidates.append((float(w[i]), f"transverse waves on link {i} ({p.length[i]:.3g} m)"))
+    if p.bottom_kind == pc.BOTTOM_FREE and p.body_mass > 0:
+        k = max(p.tie_kx, p.tie_kz)
+        if k > 0:
+            candidates.append((math.sqrt(k / p.body_mass), f"bottom ties ({k:.4g} N/m)"))
+    if p.top_kind == pc.TOP_HEAVE and p.top_stiffness > 0:
+        candidates.append((math.sqrt(p.top_stiffness / p.top_mass), "floating structure heave"))
+    return max(candidates)
+
+
+def _solver_settings(sim: schema.Simulation) -> dict:
+    settings = {
+        "integrator": sim.integrator,
+        "duration": sim.duration,
+        "output_interval": sim.output_interval,
+        "constraint_stabilization_frequency": sim.constraint_stabilization_frequency,
+    }
+    if sim.integrator == "rk4":
+        settings["time_step"] = rk4_step(sim)[0]
+    else:
+        settings.update(rtol=sim.rtol, atol=sim.atol, initial_step=sim.initial_step)
+        settings["max_step"] = sim.max_step if sim.max_step is not None else sim.output_interval
+    return settings
+
+
+def _coords(system: planar_rigid_links.PlanarSystem) -> dict:
+    lengths = system.params.length
+    arc = np.concatenate([[0.0], np.cumsum(lengths)])
+    return {
+        "segment": (np.arange(system.n_links, dtype=float), "1", "link index (0 at the top)"),
+        "node": (np.arange(system.n_links + 1, dtype=float), "1", "node index (0 at the top)"),
+        "arc_length": (arc, "m", "unstretched arc length of the node from the top"),
+        "link_length": (lengths.copy(), "m", "link length"),
+    }
+
+
+class _Run:
+    """One integration: holds the compiled state and writes rows to the sink."""
+
+    def __init__(self, case: schema.Case, system, sink: _Sink):
+        self.sim = case.simulation
+        self.system = system
+        self.p = system.params
+        self.sink = sink
+        self.y = system.y0.copy()
+        self.t = 0.0
+        self.w = pc.make_workspace(system.n_links)
+        self.work = np.zeros(4, dtype=np.int64)
+        self.h = self.sim.initial_step
+        self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
+        self.done = 0
+
+    def emit(self, times, states) -> int:
+        n = self.system.n_links
+        m = len(times)
+        node_x = np.empty((m, n + 1))
+        node_z = np.empty((m, n + 1))
+        tension = np.empty((m, n))
+        scalars = np.empty((m, pc.N_SCALARS))
+        status = pc.outputs_chunk(times, states, self.p, self.w, node_x, node_z, tension, scalars)
+        rows = {
+            "time": times,
+            "angle": states[:, :n],
+            "angular_velocity": states[:, n + 1 : 2 * n + 1],
+            "node_x": node_x,
+            "node_z": node_z,
+            "tension": tension,
+        }
+        for k, name in enumerate(pc.SCALAR_NAMES):
+            rows[name] = scalars[:, k]
+        rows["total_energy"] = scalars[:, 6] + scalars[:, 7] + scalars[:, 8]
+        self.sink.write(rows)
+        return status
+
+    def advance(self, count: int) -> int:
+        """Integrate ``count`` output intervals; returns the kernel status."""
+        ny = self.y.shape[0]
+        states = np.empty((count, ny))
+        times = np.empty(count)
+        sim = self.sim
+        if sim.integrator == "rk4":
+            dt, steps = rk4_step(sim)
+            step0 = self.done * steps
+            completed, status = integrators.rk4_chunk(
+                step0 * dt, self.y, dt, steps, count, self.p, self.w, states, times, self.work
+            )
+        else:
+            max_step = sim.max_step if sim.max_step is not None else sim.output_interval
+            completed, status, self.h = integrators.dopri5_chunk(
+                self.t, self.y, sim.output_interval, count, self.h, sim.rtol, sim.atol, max_step,
+                self.p, self.w, states, times, self.work,
+            )  # fmt: skip
+        if completed:
+            self.t = times[completed - 1]
+            self.done += completed
+            out_status = self.emit(times[:completed], states[:completed])
+            status = status or out_status
+        return status
+
+
+def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
+    """Run ``case`` and return its :class:`Results`.
+
+    Parameters
+    ----------
+    case
+        A validated case (:func:`seacable.load_case`).
+    output
+        Optional NetCDF path; results are appended to it as the run goes, so a run that diverges
+        or is interrupted leaves a readable file whose ``status`` attribute says so.
+    progress
+        Show a progress bar when the run lasts more than about two seconds.
+
+    Raises
+    ------
+    SimulationDiverged
+        The state became non-finite (or a pinned end could not be closed); the exception's
+        ``results`` hold everything computed before.
+    SimulationInterrupted
+        Ctrl-C; ``results`` hold everything computed before.
+    """
+    system = planar_rigid_links.build(case, loader.case_base_dir(case))
+    sim = case.simulation
+    settings = _solver_settings(sim)
+    warning = _step_warning(sim, system)
+    if warning:
+        log.warning(warning)
+        settings["warning"] = warning
+    attrs = provenance(loader.case_text(case), settings)
+    sink = _Sink(output, system.n_links, _coords(system), attrs)
+    run = _Run(case, system, sink)
+    bar = _progress_bar(progress, run.n_outputs, sim.output_interval)
+    try:
+        run.emit(np.array([0.0]), system.y0[None, :].copy())
+        status = _loop(run, bar)
+    except KeyboardInterrupt:
+        results = sink.finish(
+            STATUS_INTERRUPTED,
+            f"interrupted by the user at t = {run.t:.6g} s; results up to that time are kept",
+            _work(run),
+        )
+        raise SimulationInterrupted(results.message, results) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    if status != pc.OK:
+        message = _divergence_message(run, status, settings)
+        results = sink.finish(STATUS_DIVERGED, message, _work(run))
+        raise SimulationDiverged(message, results)
+    return sink.finish(STATUS_COMPLETE, "the run reached its duration", _work(run))
+
+
+def _loop(run: _Run, bar) -> int:
+    chunk = 1
+    while run.done < run.n_outputs:
+        count = min(chunk, run.n_outputs - run.done)
+        start = _time.perf_counter()
+        before = run.done
+        status = run.advance(count)
+        if bar is not None:
+            bar.update(run.done - before)
+        if status != pc.OK:
+            return status
+        elapsed = _time.perf_counter() - start
+        rate = count / max(elapsed, 1e-6)
+        chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))
+    return pc.OK
+
+
+def _progress_bar(progress: bool, total: int, interval: float):
+    if not progress:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="out", delay=2.0, desc=f"simulating ({interval:g} s per output)")
+
+
+def _work(run: _Run) -> dict:
+    return {f"solver_{name}": int(v) for name, v in zip(integrators.WORK_NAMES, run.work, strict=True)}
+
+
+def _step_warning(sim: schema.Simulation, system) -> str | None:
+    if sim.integrator != "rk4":
+        return None
+    dt, _ = rk4_step(sim)
+    omega, what = fastest_frequency(system)
+    if omega * dt > 2.5:  # RK4 is stable up to about 2.78 on the imaginary axis
+        return (
+            f"simulation.time_step {dt:.4g} s is likely too long for rk4: the fastest motion "
+            f"({what}) has a frequency near {omega:.4g} rad/s, and rk4 needs time_step below "
+            f"about {2.5 / omega:.3g} s. Use a smaller time_step or integrator: dopri5"
+        )
+    return None
+
+
+def _divergence_message(run: _Run, status: int, settings: dict) -> str:
+    n = run.system.n_links
+    rates = np.abs(run.y[n + 1 : 2 * n + 1])
+    worst = int(np.nanargmax(rates)) if np.any(np.isfinite(rates)) else 0
+    what = (
+        "the pinned end could not be closed (the cable is pulled straight between its ends, "
+        "where a rigid-link model has no unique tension)"
+        if status == pc.SINGULAR_CLOSURE
+        else "the state became non-finite"
+    )
+    where = f"link {worst} (angular rate {rates[worst]:.4g} rad/s in the last sound state)"
+    if settings["integrator"] == "rk4":
+        advice = (
+            f"reduce simulation.time_step (now {settings['time_step']:.4g} s) or use "
+            "integrator: dopri5"
+        )
+    else:
+        advice = "tighten rtol/atol or set max_step"
+    return (
+        f"simulation diverged after t = {run.t:.6g} s: {what}; fastest motion at {where}. Try: "
+        f"{advice}; add joint damping; check very stiff ties or springs. Results up to "
+        f"t = {run.t:.6g} s are kept."
+    )

@@ -1,0 +1,137 @@
+"""Pictures of results: cable snapshots in one frame (as in the thesis), time series, animation.
+
+matplotlib is imported lazily with the non-interactive Agg backend, so importing seacable
+configures nothing.
+"""
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _snapshot_indices(times: np.ndarray, every: float | None) -> np.ndarray:
+    if len(times) == 0:
+        return np.array([], dtype=int)
+    if every is None:
+        every = max((times[-1] - times[0]) / 30.0, 1e-12)
+    targets = np.arange(times[0], times[-1] + 1e-9, every)
+    return np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+
+
+def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
+    times = ds["time"].values
+    idx = _snapshot_indices(times, every)
+    cmap = plt.get_cmap("viridis")
+    for k, i in enumerate(idx):
+        color = cmap(k / max(len(idx) - 1, 1))
+        ax.plot(ds["node_x"].values[i], ds["node_z"].values[i], "-", color=color, lw=1.0)
+    if len(idx):
+        first, last = idx[0], idx[-1]
+        ax.plot(ds["node_x"].values[first, -1], ds["node_z"].values[first, -1], "ko", ms=5)
+        ax.plot(ds["node_x"].values[last, -1], ds["node_z"].values[last, -1], "kx", ms=7)
+    ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    status = ds.attrs.get("status", "?")
+    ax.set_title(f"cable every {every or (times[-1] - times[0]) / 30:.3g} s (o start, x end)"
+                 + ("" if status == "complete" else f" [{status}]"))  # fmt: skip
+    sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
+    plt.colorbar(sm, ax=ax, label="time [s]")
+
+
+def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
+    """Four panels: snapshots of the cable, end positions, tensions, attachment forces."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
+    _draw_snapshots(axes[0, 0], ds, every, plt)
+    t = ds["time"].values
+    ax = axes[0, 1]
+    ax.plot(t, ds["node_x"].values[:, -1], label="bottom end x")
+    ax.plot(t, ds["node_z"].values[:, -1], label="bottom end z")
+    ax.plot(t, ds["top_heave"].values, label="top z")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("[m]")
+    ax.set_title("end positions")
+    ax.legend()
+    ax = axes[1, 0]
+    tension = ds["tension"].values
+    ax.plot(t, tension[:, 0], label="top link")
+    ax.plot(t, tension[:, tension.shape[1] // 2], label="middle link")
+    ax.plot(t, tension[:, -1], label="bottom link")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("tension [N]")
+    ax.set_title("tension")
+    ax.legend()
+    ax = axes[1, 1]
+    for name in ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z"):
+        ax.plot(t, ds[name].values, label=name)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("[N]")
+    ax.set_title("force of the cable on its attachments")
+    ax.legend()
+    fig.suptitle(_title(ds))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _title(ds: xr.Dataset) -> str:
+    case = ds.attrs.get("case", "")
+    for line in case.splitlines():
+        if line.startswith("name:"):
+            return line.split(":", 1)[1].strip()
+    return "seacable results"
+
+
+def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> Path:
+    """Animate the cable to a GIF (Pillow) or MP4 (needs ffmpeg on the PATH)."""
+    plt = _pyplot()
+    from matplotlib import animation
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ValueError(f"animation file '{path}': use a .gif or .mp4 name")
+    if suffix == ".mp4" and shutil.which("ffmpeg") is None:
+        raise ValueError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
+    times = ds["time"].values
+    frame_times = np.arange(times[0], times[-1] + 1e-9, speed / fps)
+    frames = np.searchsorted(times, frame_times - 1e-9).clip(0, len(times) - 1)
+    x = ds["node_x"].values
+    z = ds["node_z"].values
+    fig, ax = plt.subplots(figsize=(7, 6))
+    pad = 0.05 * max(np.ptp(x), np.ptp(z), 1.0)
+    ax.set_xlim(x.min() - pad, x.max() + pad)
+    ax.set_ylim(z.min() - pad, max(z.max(), 0.0) + pad)
+    ax.set_aspect("equal")
+    ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    (line,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
+    label = ax.set_title("")
+
+    def draw(i):
+        line.set_data(x[i], z[i])
+        label.set_text(f"{_title(ds)}  t = {times[i]:.2f} s")
+        return line, label
+
+    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    writer = animation.PillowWriter(fps=fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
+    anim.save(path, writer=writer)
+    plt.close(fig)
+    return path
