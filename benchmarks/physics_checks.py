@@ -1,0 +1,62 @@
+"""Print the figures behind the physics tests: energy drift, heavy-chain frequencies, the three
+models of a seabed-fixed end. Run: python benchmarks/physics_checks.py"""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+from scipy.special import jn_zeros
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+
+import seacable  # noqa: E402
+from helpers import chain_case, run  # noqa: E402
+from seacable.analysis import linear_modes  # noqa: E402
+from test_chain_physics import _seabed_case  # noqa: E402
+
+
+def energy_drift():
+    print("energy drift (no damping, in air; max |E - E0| / kinetic-energy swing)")
+    for dt in (0.002, 0.001, 0.0005):
+        data = chain_case(
+            n=30, initial={"shape": "arc", "top_angle_deg": 60.0},
+            bottom={"type": "free", "body": {"mass": 2.0}}, joint_stiffness=5.0,
+            simulation={"duration": 5.0, "output_interval": 0.05, "time_step": dt},
+        )  # fmt: skip
+        res = run(data)
+        e = res["total_energy"].values
+        print(f"  rk4 dt = {dt:<7g} s: {np.max(np.abs(e - e[0])) / np.ptp(res['kinetic_energy'].values):.3e}")
+    data["simulation"] = {"duration": 5.0, "output_interval": 0.05, "integrator": "dopri5",
+                          "rtol": 1e-9, "atol": 1e-11}  # fmt: skip
+    res = run(data)
+    e = res["total_energy"].values
+    print(f"  dopri5 rtol 1e-9     : {np.max(np.abs(e - e[0])) / np.ptp(res['kinetic_energy'].values):.3e}")
+
+
+def frequencies():
+    exact = jn_zeros(0, 4) / 2 * np.sqrt(9.81 / 10.0)
+    print("hanging chain, 10 m: omega_k / heavy-chain value - 1 (modes 1..4)")
+    print("  exact [rad/s]:", np.array2string(exact, precision=5))
+    for n in (10, 25, 50, 100, 200):
+        f, _, _ = linear_modes(seacable.load_case(chain_case(n=n)))
+        print(f"  n = {n:4d}:", np.array2string(f[:4] / exact - 1, precision=3))
+
+
+def seabed():
+    pinned = run(_seabed_case({"type": "pinned"}))
+    huge = run(_seabed_case({"type": "free", "body": {"mass": 8e8, "volume": 8e5}}))
+    ties = run(_seabed_case({"type": "free", "body": {"mass": 60.0},
+                             "tie": {"stiffness_x": 1.2e6, "damping_x": 2e4,
+                                     "stiffness_z": 1.2e6, "damping_z": 2e4}}))  # fmt: skip
+    print("seabed-fixed end, 100 m cable, 8 s: largest node-position gap to the exact pin")
+    for name, r in (("huge mass", huge), ("stiff ties", ties)):
+        gap = np.max(np.hypot(pinned["node_x"].values - r["node_x"].values,
+                              pinned["node_z"].values - r["node_z"].values))  # fmt: skip
+        print(f"  {name:10s}: {gap * 1000:.3f} mm")
+    print(f"  pin constraint error: {np.max(pinned['constraint_error'].values):.2e} m")
+
+
+if __name__ == "__main__":
+    energy_drift()
+    frequencies()
+    seabed()
