@@ -33,9 +33,12 @@ class SymbolicChain:
         nodes = [(x0, z0)]
         for i in range(n):
             xi, zi = nodes[-1]
-            nodes.append((xi + float(p.length[i]) * sp.sin(th[i]), zi - float(p.length[i]) * sp.cos(th[i])))
+            nodes.append(
+                (xi + float(p.length[i]) * sp.sin(th[i]), zi - float(p.length[i]) * sp.cos(th[i]))
+            )
         centres = [
-            ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2) for a, b in zip(nodes[:-1], nodes[1:], strict=True)
+            ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
+            for a, b in zip(nodes[:-1], nodes[1:], strict=True)
         ]
 
         def vel(point):
@@ -77,7 +80,9 @@ class SymbolicChain:
             potential += float(p.body_wet_weight) * end[1]
             potential += sp.Rational(1, 2) * float(p.tie_kx) * (end[0] - float(p.tie_x0)) ** 2
             potential += sp.Rational(1, 2) * float(p.tie_kz) * (end[1] - float(p.tie_z0)) ** 2
-            dissipation += sp.Rational(1, 2) * (float(p.tie_cx) * ve[0] ** 2 + float(p.tie_cz) * ve[1] ** 2)
+            dissipation += sp.Rational(1, 2) * (
+                float(p.tie_cx) * ve[0] ** 2 + float(p.tie_cz) * ve[1] ** 2
+            )
             vrx = ve[0] - (u0 + u1 * end[1])
             speed = sp.sqrt(vrx**2 + ve[1] ** 2)
             fx = -float(p.body_drag) * speed * vrx + forces.get("body_fx", 0)
@@ -87,7 +92,9 @@ class SymbolicChain:
         if heave:
             zs = qf[n]
             kinetic += sp.Rational(1, 2) * float(p.top_mass) * sp.diff(zs, t) ** 2
-            potential += sp.Rational(1, 2) * float(p.top_stiffness) * (zs - float(p.top_rest_z)) ** 2
+            potential += (
+                sp.Rational(1, 2) * float(p.top_stiffness) * (zs - float(p.top_rest_z)) ** 2
+            )
             potential += float(p.top_net_weight) * zs
             dissipation += sp.Rational(1, 2) * float(p.top_damping) * sp.diff(zs, t) ** 2
             virtual[n] += forces.get("top_force", 0)
@@ -126,7 +133,9 @@ class SymbolicChain:
         if pinned:
             phi = sp.Matrix([end[0], end[1]])
             jac = sp.Matrix([[plain(sp.diff(c, qf[j])) for j in range(nq)] for c in phi])
-            phi_t = sp.Matrix([plain(sp.diff(c, t)) - (jac * sp.Matrix(vs))[k] for k, c in enumerate(phi)])
+            phi_t = sp.Matrix(
+                [plain(sp.diff(c, t)) - (jac * sp.Matrix(vs))[k] for k, c in enumerate(phi)]
+            )
             gamma = sp.Matrix([plain(sp.diff(c, t, 2)).subs({a: 0 for a in accs}) for c in phi])
             self._jac = sp.lambdify(args, jac, "numpy")
             self._phi_t = sp.lambdify(args, phi_t, "numpy")

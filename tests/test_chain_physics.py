@@ -32,8 +32,12 @@ def test_energy_is_conserved_with_heaving_structure_and_ties():
     data = chain_case(
         n=12,
         top={"type": "floating_structure", "mass": 20.0, "heave_stiffness": 300.0},
-        bottom={"type": "floating_structure", "mass": 3.0, "heave_stiffness": 50.0,
-                "surge_stiffness": 80.0},  # fmt: skip
+        bottom={
+            "type": "floating_structure",
+            "mass": 3.0,
+            "heave_stiffness": 50.0,
+            "surge_stiffness": 80.0,
+        },  # fmt: skip
         initial={"shape": "arc", "top_angle_deg": 30.0, "bottom_angle_deg": 120.0},
         joint_stiffness=2.0,
         simulation={"duration": 4.0, "output_interval": 0.05, "time_step": 0.0005},

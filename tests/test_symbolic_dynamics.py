@@ -151,4 +151,6 @@ def test_accelerations_match_symbolic_euler_lagrange(n, top, bottom):
         if sym.heave:
             got = np.append(got, ydot[2 * n + 1])
         scale = np.max(np.abs(expected)) + 1e-300
-        np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9 * scale, err_msg=f"trial {trial}")
+        np.testing.assert_allclose(
+            got, expected, rtol=0, atol=1e-9 * scale, err_msg=f"trial {trial}"
+        )

@@ -131,7 +131,9 @@ def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> 
 
     anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
     path.parent.mkdir(parents=True, exist_ok=True)
-    writer = animation.PillowWriter(fps=fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
+    writer = (
+        animation.PillowWriter(fps=fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
+    )
     anim.save(path, writer=writer)
     plt.close(fig)
     return path

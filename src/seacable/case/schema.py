@@ -173,7 +173,7 @@ class Environment(_Model):
     in_air: bool = False  # true: no buoyancy, no drag, no added mass
 
 
-# ---- cable ----------------------------------------------------------------------------------------
+# ---- cable -------------------------------------------------------------------------------------
 class FixedTop(_Model):
     """Top attachment fixed at ``position`` [x, z] (m)."""
 
@@ -188,7 +188,6 @@ class ImposedTop(_Model):
     type: Literal["imposed"]
     x: TimeFunction = Constant(value=0.0)
     z: TimeFunction = Constant(value=0.0)
-
 
 
 class FloatingStructureTop(_Model):
@@ -208,7 +207,6 @@ class FloatingStructureTop(_Model):
     force: TimeFunction = Constant(value=0.0)  # u(t), vertical, positive up [N]
     initial_heave: float = 0.0  # initial z offset from `position` [m]
     initial_heave_velocity: float = 0.0  # [m/s]
-
 
 
 class Tie(_Model):
@@ -234,7 +232,6 @@ class Body(_Model):
     force_z: TimeFunction = Constant(value=0.0)  # applied force [N], positive up
 
 
-
 class FreeBottom(_Model):
     """Free end, optionally carrying a body and held by elastic ties."""
 
@@ -256,7 +253,6 @@ class FloatingStructureBottom(_Model):
     surge_damping: NonNeg = 0.0  # [N s/m]
     force: TimeFunction = Constant(value=0.0)
     rest_position: Point | None = None
-
 
 
 class PinnedBottom(_Model):

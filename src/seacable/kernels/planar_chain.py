@@ -19,8 +19,8 @@ part below it. A backward sweep finds, for every node, the articulated relation
 ``lam_k = M_k A_k + b_k`` between that force and the node acceleration ``A_k`` (``M_k`` a symmetric
 2x2 matrix); a forward sweep from the known (or solved) top acceleration then gives every angular
 acceleration. A bottom end pinned to the seabed closes the loop: the unknown reaction ``L`` enters
-``b`` linearly, its 2x2 sensitivity is carried through both sweeps and ``L`` is fixed by requiring the
-end node acceleration to be the Baumgarte-stabilised value. Every sweep is O(n).
+``b`` linearly, its 2x2 sensitivity is carried through both sweeps and ``L`` is fixed by requiring
+the end node acceleration to be the Baumgarte-stabilised value. Every sweep is O(n).
 """
 
 import math

@@ -29,7 +29,9 @@ def constant(value: float) -> Piecewise:
 
 
 def _sine(spec: schema.Sine) -> Piecewise:
-    omega = spec.angular_frequency if spec.angular_frequency is not None else 2 * np.pi / spec.period
+    omega = (
+        spec.angular_frequency if spec.angular_frequency is not None else 2 * np.pi / spec.period
+    )
     base = constant(spec.offset)
     return Piecewise(base.breaks, base.coefs, (spec.amplitude, omega, spec.phase))
 
@@ -73,7 +75,9 @@ def _table(spec: schema.Table, base_dir) -> Piecewise:
     last = [values[-1], 0.0, 0.0, 0.0]
     if spec.interpolation == "linear":
         slopes = np.diff(values) / np.diff(times)
-        middle = np.column_stack([values[:-1], slopes, np.zeros_like(slopes), np.zeros_like(slopes)])
+        middle = np.column_stack(
+            [values[:-1], slopes, np.zeros_like(slopes), np.zeros_like(slopes)]
+        )
     else:
         spline = CubicSpline(times, values, bc_type="clamped")
         c = spline.c  # (4, K) highest power first

@@ -28,7 +28,9 @@ _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C,
 
 def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     """The rk4 step actually used [s] and the number of steps per output interval."""
-    wanted = sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
+    wanted = (
+        sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
+    )
     steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
     return sim.output_interval / steps, steps
 
@@ -230,7 +232,9 @@ def _progress_bar(progress: bool, total: int, interval: float):
 
 
 def _work(run: _Run) -> dict:
-    return {f"solver_{name}": int(v) for name, v in zip(integrators.WORK_NAMES, run.work, strict=True)}
+    return {
+        f"solver_{name}": int(v) for name, v in zip(integrators.WORK_NAMES, run.work, strict=True)
+    }
 
 
 def _step_warning(sim: schema.Simulation, system) -> str | None:

@@ -1,0 +1,134 @@
+"""Bad case files give errors that name the path, the value and what is allowed."""
+
+import pytest
+
+import seacable
+from helpers import chain_case
+from seacable import CaseError
+
+
+def _load(mutate):
+    data = chain_case(n=5)
+    mutate(data)
+    return seacable.load_case(data)
+
+
+def test_unknown_key_lists_valid_keys():
+    with pytest.raises(
+        CaseError, match=r"cables\[0\]: unknown key 'lenght'\. Valid keys: .*length"
+    ):
+        _load(lambda d: d["cables"][0].update(lenght=3.0))
+
+
+def test_unknown_top_level_key():
+    with pytest.raises(CaseError, match=r"\(top level\): unknown key 'solver'.*simulation"):
+        _load(lambda d: d.update(solver={}))
+
+
+def test_value_out_of_range_names_path_and_value():
+    with pytest.raises(
+        CaseError, match=r"cables\[0\]\.links: .*greater than or equal to 1 \(got 0\)"
+    ):
+        _load(lambda d: d["cables"][0].update(links=0))
+
+
+def test_negative_mass_of_floating_structure():
+    def mutate(d):
+        d["cables"][0]["top"] = {"type": "floating_structure", "mass": -5, "heave_stiffness": 1}
+
+    with pytest.raises(CaseError, match=r"cables\[0\]\.top\.mass: .*greater than 0 \(got -5\)"):
+        _load(mutate)
+
+
+def test_bad_end_type_lists_allowed():
+    with pytest.raises(
+        CaseError, match=r"bottom\.type: value 'glued' is not allowed; allowed: 'free'"
+    ):
+        _load(lambda d: d["cables"][0].update(bottom={"type": "glued"}))
+
+
+def test_missing_required_key():
+    with pytest.raises(CaseError, match=r"cables\[0\]\.diameter: required key is missing"):
+        _load(lambda d: d["cables"][0].pop("diameter"))
+
+
+def test_exactly_one_of_length_keys():
+    with pytest.raises(CaseError, match=r"exactly one of 'length' \[m\] or 'link_lengths'"):
+        _load(lambda d: d["cables"][0].update(link_lengths=[2.0] * 5))
+
+
+def test_link_lengths_count_must_match():
+    def mutate(d):
+        d["cables"][0].pop("length")
+        d["cables"][0]["link_lengths"] = [1.0, 2.0]
+
+    with pytest.raises(CaseError, match=r"link_lengths has 2 values but links = 5"):
+        _load(mutate)
+
+
+def test_sine_needs_one_frequency():
+    def mutate(d):
+        d["cables"][0]["top"] = {"type": "imposed", "x": {"kind": "sine", "amplitude": 1.0}}
+
+    with pytest.raises(CaseError, match=r"top\.x.*exactly one of 'period'"):
+        _load(mutate)
+
+
+def test_time_function_kind_must_be_known():
+    def mutate(d):
+        d["cables"][0]["top"] = {"type": "imposed", "x": {"kind": "cosine", "amplitude": 1.0}}
+
+    with pytest.raises(CaseError, match=r"top\.x\.kind: value 'cosine' is not allowed.*'sine'"):
+        _load(mutate)
+
+
+def test_angle_that_looks_like_radians_mistake():
+    with pytest.raises(CaseError, match=r"degrees"):
+        _load(lambda d: d["cables"][0].update(initial={"shape": "arc", "top_angle_deg": 700.0}))
+
+
+def test_pinned_anchor_must_match_initial_shape():
+    def mutate(d):
+        d["cables"][0]["bottom"] = {"type": "pinned", "anchor": [3.0, -4.0]}
+        d["cables"][0]["initial"] = {"shape": "arc", "top_angle_deg": 30, "bottom_angle_deg": 90}
+
+    case = _load(mutate)
+    with pytest.raises(
+        CaseError, match=r"bottom\.anchor: value \[3\.0, -4\.0\] is .* m from the end"
+    ):
+        seacable.simulate(case)
+
+
+def test_more_than_one_cable_is_refused_with_reason():
+    with pytest.raises(CaseError, match=r"one cable per case; got 2"):
+        _load(lambda d: d["cables"].append(d["cables"][0]))
+
+
+def test_output_interval_longer_than_duration():
+    with pytest.raises(CaseError, match=r"output_interval \(5\.0 s\) is longer than duration"):
+        _load(lambda d: d.update(simulation={"duration": 1.0, "output_interval": 5.0}))
+
+
+def test_yaml_syntax_error(tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_text("cables: [\n")
+    with pytest.raises(CaseError, match=r"not valid YAML"):
+        seacable.load_case(path)
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(CaseError, match=r"does not exist"):
+        seacable.load_case(tmp_path / "nope.yaml")
+
+
+def test_yaml_is_never_evaluated(tmp_path):
+    path = tmp_path / "evil.yaml"
+    path.write_text("name: !!python/object/apply:os.system ['echo hacked']\n")
+    with pytest.raises(CaseError, match=r"not valid YAML"):
+        seacable.load_case(path)
+
+
+def test_case_is_immutable():
+    case = _load(lambda d: None)
+    with pytest.raises(Exception, match="frozen"):
+        case.cables[0].links = 3

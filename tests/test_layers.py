@@ -1,0 +1,91 @@
+"""The layers of docs/architecture.md: imports point one way, top to bottom."""
+
+import ast
+from pathlib import Path
+
+PACKAGE = Path(__file__).parent.parent / "src" / "seacable"
+
+# module (or subpackage) -> seacable modules it may import
+LAYER = {
+    "cli": 7,
+    "viz": 6,
+    "__init__": 6,
+    "simulation": 5, "analysis": 5,
+    "case.loader": 4, "results": 4,
+    "models": 3,
+    "case.schema": 2,
+    "numerics": 1,
+    "kernels": 0,
+    "errors": 0,
+}  # fmt: skip
+SUBPACKAGES_BY_MODULE = {"case"}  # units inside these are their modules
+ALLOWED_UP = {("results", "__init__")}  # results reads the version number only
+
+
+def _unit(path: Path) -> str:
+    rel = path.relative_to(PACKAGE)
+    if len(rel.parts) == 1:
+        return rel.stem
+    if rel.parts[0] in SUBPACKAGES_BY_MODULE:
+        return f"{rel.parts[0]}.{rel.stem}"
+    return rel.parts[0]
+
+
+def _target(dotted: str) -> str | None:
+    """The layer unit of an imported dotted name (None when it is not ours)."""
+    parts = dotted.split(".")
+    if parts[0] != "seacable":
+        return None
+    if len(parts) == 1:
+        return "__init__"
+    if parts[1] in SUBPACKAGES_BY_MODULE and len(parts) > 2:
+        return f"{parts[1]}.{parts[2]}"
+    if parts[1] not in LAYER and parts[1] not in SUBPACKAGES_BY_MODULE:
+        return "__init__"  # a name re-exported by the package
+    return parts[1]
+
+
+def _imports(path: Path):
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            yield from (alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            yield from (f"{node.module}.{alias.name}" for alias in node.names)
+
+
+def test_imports_follow_layers():
+    problems = []
+    for path in PACKAGE.rglob("*.py"):
+        unit = _unit(path)
+        for name in _imports(path):
+            target = _target(name)
+            if target is None:
+                continue
+            if target == unit or (unit, target) in ALLOWED_UP:
+                continue
+            if LAYER[target] > LAYER[unit] or (LAYER[target] == LAYER[unit] and target != "errors"):
+                problems.append(f"{path.relative_to(PACKAGE)} imports {name}")
+    assert not problems, "imports against the layers:\n" + "\n".join(problems)
+
+
+def test_kernels_import_nothing_of_ours_but_kernels():
+    for path in (PACKAGE / "kernels").glob("*.py"):
+        for name in _imports(path):
+            if name.startswith("seacable"):
+                assert name.startswith("seacable.kernels"), f"{path.name} imports {name}"
+
+
+def test_no_import_inside_functions_except_lazy_optional():
+    lazy_ok = {"matplotlib", "matplotlib.pyplot", "tqdm", "seacable", "matplotlib.animation"}
+    for path in PACKAGE.rglob("*.py"):
+        tree = ast.parse(path.read_text())
+        for func in ast.walk(tree):
+            if isinstance(func, ast.FunctionDef):
+                for node in ast.walk(func):
+                    if isinstance(node, ast.Import | ast.ImportFrom):
+                        if isinstance(node, ast.Import):
+                            names = [a.name for a in node.names]
+                        else:
+                            names = [node.module]
+                        assert set(names) <= lazy_ok, f"{path.name}:{func.name} imports {names}"

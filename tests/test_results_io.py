@@ -1,0 +1,91 @@
+"""Results: NetCDF written as the run goes, units on every variable, status kept on failure."""
+
+import numpy as np
+import pytest
+
+import seacable
+from helpers import chain_case
+from seacable import simulation as simulate_module
+
+
+def _swing(**simulation):
+    return chain_case(
+        n=10,
+        initial={"shape": "arc", "top_angle_deg": 45.0},
+        simulation={"duration": 1.0, "output_interval": 0.1, **simulation},
+    )
+
+
+def test_netcdf_has_units_long_names_and_provenance(tmp_path):
+    path = tmp_path / "out.nc"
+    results = seacable.simulate(seacable.load_case(_swing()), output=path)
+    assert results.status == "complete"
+    reread = seacable.Results.open(path)
+    ds = reread.dataset
+    assert ds.sizes == {"time": 11, "segment": 10, "node": 11}
+    for name, var in ds.variables.items():
+        assert "units" in var.attrs and "long_name" in var.attrs, name
+    assert ds.attrs["status"] == "complete"
+    assert ds.attrs["seacable_version"] == seacable.__version__
+    assert "links: 10" in ds.attrs["case"]
+    assert ds.attrs["solver_integrator"] == "rk4"
+    np.testing.assert_allclose(ds["tension"].values, results["tension"].values)
+
+
+def test_diverging_run_keeps_partial_results_marked(tmp_path, caplog):
+    data = _swing(time_step=0.05, duration=5.0)
+    data["cables"][0]["bottom"] = {
+        "type": "free",
+        "body": {"mass": 0.01},
+        "tie": {"stiffness_x": 1e7, "stiffness_z": 1e7},
+    }
+    path = tmp_path / "diverged.nc"
+    with pytest.raises(seacable.SimulationDiverged) as info:
+        seacable.simulate(seacable.load_case(data), output=path)
+    message = str(info.value)
+    assert "simulation diverged after t =" in message
+    assert "reduce simulation.time_step" in message
+    assert "link" in message
+    assert "too long for rk4" in caplog.text  # warned before the run
+    on_disk = seacable.Results.open(path)
+    assert on_disk.status == "diverged"
+    assert on_disk.dataset.sizes["time"] >= 1
+    assert np.all(np.isfinite(on_disk["node_x"].values))
+    assert info.value.results.status == "diverged"
+
+
+def test_interrupted_run_keeps_partial_results(tmp_path, monkeypatch):
+    original = simulate_module._Run.advance
+    calls = {"n": 0}
+
+    def interrupt_later(self, count):
+        calls["n"] += 1
+        if calls["n"] > 2:
+            raise KeyboardInterrupt
+        return original(self, count)
+
+    monkeypatch.setattr(simulate_module._Run, "advance", interrupt_later)
+    path = tmp_path / "interrupted.nc"
+    with pytest.raises(seacable.SimulationInterrupted):
+        seacable.simulate(seacable.load_case(_swing(duration=10.0)), output=path)
+    on_disk = seacable.Results.open(path)
+    assert on_disk.status == "interrupted"
+    assert 1 < on_disk.dataset.sizes["time"] < 101
+
+
+def test_file_is_readable_while_running(tmp_path, monkeypatch):
+    """Rows are flushed chunk by chunk: a reader mid-run sees them, status 'incomplete'."""
+    seen = []
+    original = simulate_module._Run.advance
+    path = tmp_path / "live.nc"
+
+    def peek(self, count):
+        status = original(self, count)
+        if not seen:
+            seen.append(seacable.Results.open(path))
+        return status
+
+    monkeypatch.setattr(simulate_module._Run, "advance", peek)
+    seacable.simulate(seacable.load_case(_swing(duration=2.0)), output=path)
+    assert seen[0].status == "incomplete"
+    assert seen[0].dataset.sizes["time"] >= 2
