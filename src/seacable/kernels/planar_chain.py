@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import evaluate as tf_evaluate
 
 # ---- named integer codes shared with the model layer --------------------------------------------
@@ -67,7 +68,7 @@ N_SCALARS = len(SCALAR_NAMES)
 
 # ---- workspace rows (each of length n + 1) ------------------------------------------------------
 _PX, _PZ, _VX, _VZ, _EX, _EZ, _FX, _FZ, _Q = 0, 1, 2, 3, 4, 5, 6, 7, 8
-_D, _HX, _HZ, _U, _RSX, _RSZ = 9, 10, 11, 12, 13, 14
+_D, _HX, _HZ, _U, _RSX, _RSZ = 9, 10, 11, 12, 13, 14  # _D holds 1 / D
 _M11, _M12, _M22, _BX, _BZ = 15, 16, 17, 18, 19
 _S11, _S12, _S21, _S22 = 20, 21, 22, 23
 _THC, _THLX, _THLZ, _AX, _AZ, _THDD = 24, 25, 26, 27, 28, 29
@@ -125,14 +126,19 @@ def make_workspace(n):
     return np.zeros((N_WORK_ROWS, n + 1))
 
 
-@njit(cache=True)
-def _current(p, z):
-    if p.current_z.shape[0] == 1:
-        return p.current_u[0]
-    return np.interp(z, p.current_z, p.current_u)
+@njit(**JIT)
+def _current(current_z, current_u, z):
+    """Current velocity along x at elevation z [m/s].
+
+    Takes the two arrays, not the parameter tuple: passing the whole tuple to a function called
+    once per link costs more than the rest of the link's work.
+    """
+    if current_z.shape[0] == 1:
+        return current_u[0]
+    return np.interp(z, current_z, current_u)
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _top_motion(t, y, p):
     """Top node position, velocity and (for imposed motion) acceleration."""
     n = p.n
@@ -143,10 +149,12 @@ def _top_motion(t, y, p):
     return x, z, vx, vz, ax, az
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _kinematics_and_loads(t, y, p, w):
     """Node positions/velocities, link unit vectors, link forces and torques."""
     n = p.n
+    current_z = p.current_z
+    current_u = p.current_u
     x0, z0, vx0, vz0, _, _ = _top_motion(t, y, p)
     w[_PX, 0] = x0
     w[_PZ, 0] = z0
@@ -166,7 +174,7 @@ def _kinematics_and_loads(t, y, p, w):
         w[_VZ, i + 1] = w[_VZ, i] + li * om * s
         # loads at the link centre: apparent weight and quadratic drag on the relative velocity
         zc = 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
-        vrx = 0.5 * (w[_VX, i] + w[_VX, i + 1]) - _current(p, zc)
+        vrx = 0.5 * (w[_VX, i] + w[_VX, i + 1]) - _current(current_z, current_u, zc)
         vrz = 0.5 * (w[_VZ, i] + w[_VZ, i + 1])
         vn = vrx * c + vrz * s
         vt = vrx * s - vrz * c
@@ -190,7 +198,7 @@ def _kinematics_and_loads(t, y, p, w):
             w[_Q, i - 1] += torque
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _bottom_body_force(t, p, w):
     """Force on the bottom point body (excluding the cable): weight, drag, applied, ties."""
     n = p.n
@@ -202,7 +210,7 @@ def _bottom_body_force(t, p, w):
     fz, _, _ = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_BODY_FZ, t)
     fz -= p.body_wet_weight
     if p.body_drag != 0.0:
-        vrx = vx - _current(p, zn)
+        vrx = vx - _current(p.current_z, p.current_u, zn)
         speed = math.sqrt(vrx * vrx + vz * vz)
         fx -= p.body_drag * speed * vrx
         fz -= p.body_drag * speed * vz
@@ -211,7 +219,7 @@ def _bottom_body_force(t, p, w):
     return fx, fz
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _backward_sweep(t, y, p, w):
     """Articulated 2x2 inertias M_k, biases b_k and (pinned) reaction sensitivities S_k."""
     n = p.n
@@ -240,21 +248,23 @@ def _backward_sweep(t, y, p, w):
         mez = m12 * ex + m22 * ez
         n_m_n = nx * mnx + nz * mnz
         n_m_e = nx * mex + nz * mez
-        d = p.inertia[i] + 0.25 * mi * li * li + li * li * n_m_n
+        inv_d = 1.0 / (p.inertia[i] + 0.25 * mi * li * li + li * li * n_m_n)
         hx = li * (0.5 * mi * nx + mnx)
         hz = li * (0.5 * mi * nz + mnz)
         n_f = nx * w[_FX, i] + nz * w[_FZ, i]
         u = w[_Q, i] - 0.5 * li * (-2.0 * li * om * om * n_m_e + 2.0 * (nx * bx + nz * bz) - n_f)
-        w[_D, i] = d
+        w[_D, i] = inv_d  # stored as the reciprocal of D
         w[_HX, i] = hx
         w[_HZ, i] = hz
         w[_U, i] = u
         w2 = li * om * om
-        new_bx = bx - w[_FX, i] + hx * u / d - w2 * (0.5 * mi * ex + mex)
-        new_bz = bz - w[_FZ, i] + hz * u / d - w2 * (0.5 * mi * ez + mez)
-        m11 = mi + m11 - hx * hx / d
-        m12 = m12 - hx * hz / d
-        m22 = mi + m22 - hz * hz / d
+        hx_d = hx * inv_d
+        hz_d = hz * inv_d
+        new_bx = bx - w[_FX, i] + hx_d * u - w2 * (0.5 * mi * ex + mex)
+        new_bz = bz - w[_FZ, i] + hz_d * u - w2 * (0.5 * mi * ez + mez)
+        m11 = mi + m11 - hx * hx_d
+        m12 = m12 - hx * hz_d
+        m22 = mi + m22 - hz * hz_d
         bx = new_bx
         bz = new_bz
         if pinned:
@@ -263,15 +273,15 @@ def _backward_sweep(t, y, p, w):
             rsz = -li * (nx * s12 + nz * s22)
             w[_RSX, i] = rsx
             w[_RSZ, i] = rsz
-            s11 += hx * rsx / d
-            s12 += hx * rsz / d
-            s21 += hz * rsx / d
-            s22 += hz * rsz / d
+            s11 += hx_d * rsx
+            s12 += hx_d * rsz
+            s21 += hz_d * rsx
+            s22 += hz_d * rsz
         w[_M11, i], w[_M12, i], w[_M22, i], w[_BX, i], w[_BZ, i] = m11, m12, m22, bx, bz
         w[_S11, i], w[_S12, i], w[_S21, i], w[_S22, i] = s11, s12, s21, s22
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _top_acceleration(t, y, p, w):
     """Top node acceleration as an affine function of the pinned reaction L.
 
@@ -291,7 +301,7 @@ def _top_acceleration(t, y, p, w):
     return ax, az, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(**JIT)
 def solve(t, y, p, w):
     """Fill ``w`` with the kinematics, loads and accelerations at (t, y).
 
@@ -313,16 +323,16 @@ def solve(t, y, p, w):
         ez = w[_EZ, i]
         nx = -ez
         nz = ex
-        d = w[_D, i]
+        inv_d = w[_D, i]
         hx = w[_HX, i]
         hz = w[_HZ, i]
-        thc = (w[_U, i] - hx * acx - hz * acz) / d
+        thc = (w[_U, i] - hx * acx - hz * acz) * inv_d
         w[_THC, i] = thc
         acx += li * (thc * nx - om * om * ex)
         acz += li * (thc * nz - om * om * ez)
         if pinned:
-            thlx = (w[_RSX, i] - hx * alxx - hz * alzx) / d
-            thlz = (w[_RSZ, i] - hx * alxz - hz * alzz) / d
+            thlx = (w[_RSX, i] - hx * alxx - hz * alzx) * inv_d
+            thlz = (w[_RSZ, i] - hx * alxz - hz * alzz) * inv_d
             w[_THLX, i] = thlx
             w[_THLZ, i] = thlz
             alxx += li * nx * thlx
@@ -365,7 +375,7 @@ def solve(t, y, p, w):
     return status, top_acc, lx, lz
 
 
-@njit(cache=True)
+@njit(**JIT)
 def rhs(t, y, p, w, ydot):
     """Time derivative of the state; returns a status code (0 when the evaluation is sound)."""
     n = p.n
@@ -381,7 +391,7 @@ def rhs(t, y, p, w, ydot):
     return status
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _node_force(w, k, lx, lz, pinned):
     """Force lam_k that the part above node k exerts on the part below it [N]."""
     fx = w[_M11, k] * w[_AX, k] + w[_M12, k] * w[_AZ, k] + w[_BX, k]
@@ -392,7 +402,7 @@ def _node_force(w, k, lx, lz, pinned):
     return fx, fz
 
 
-@njit(cache=True)
+@njit(**JIT)
 def _energies(y, p, w):
     n = p.n
     kinetic = 0.0
@@ -420,7 +430,7 @@ def _energies(y, p, w):
     return kinetic, gravity, elastic
 
 
-@njit(cache=True)
+@njit(**JIT)
 def outputs(t, y, p, w, node_x, node_z, tension, scalars):
     """Derived outputs at one instant, written into the given rows; returns a status code."""
     n = p.n
@@ -457,7 +467,7 @@ def outputs(t, y, p, w, node_x, node_z, tension, scalars):
     return status
 
 
-@njit(cache=True)
+@njit(**JIT)
 def outputs_chunk(times, states, p, w, node_x, node_z, tension, scalars):
     """``outputs`` for every row of a chunk; returns the first non-zero status (or 0)."""
     status = OK

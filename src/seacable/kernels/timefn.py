@@ -21,8 +21,13 @@ import math
 
 from numba import njit
 
+# compiled once and cached; the numpy error model drops per-division zero checks and the safe
+# fastmath flags allow fused multiply-adds and reciprocals but keep NaN/inf semantics (the
+# divergence checks rely on them)
+JIT = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
-@njit(cache=True)
+
+@njit(**JIT)
 def evaluate(breaks, coefs, count, sine, channel, t):
     """Value, first and second time derivative of channel ``channel`` at time ``t`` [s]."""
     k_count = count[channel]
