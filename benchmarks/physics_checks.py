@@ -12,7 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 import seacable  # noqa: E402
 from helpers import chain_case, run  # noqa: E402
 from seacable.analysis import linear_modes  # noqa: E402
-from test_chain_physics import _seabed_case  # noqa: E402
+from test_chain_physics import SEABED_BOTTOMS, _seabed_case  # noqa: E402
 
 
 def _drift(res):
@@ -44,15 +44,16 @@ def frequencies():
 
 
 def seabed():
-    pinned = run(_seabed_case({"type": "pinned"}))
-    huge = run(_seabed_case({"type": "free", "body": {"mass": 8e8, "volume": 8e5}}))
-    ties = run(_seabed_case({"type": "free", "body": {"mass": 60.0},
-                             "tie": {"stiffness_x": 1.2e6, "damping_x": 2e4,
-                                     "stiffness_z": 1.2e6, "damping_z": 2e4}}))  # fmt: skip
+    runs = {name: run(_seabed_case(bottom)) for name, bottom in SEABED_BOTTOMS.items()}
+    pinned = runs.pop("pinned")
     print("seabed-fixed end, 100 m cable, 8 s: largest node-position gap to the exact pin")
-    for name, r in (("huge mass", huge), ("stiff ties", ties)):
-        gap = np.max(np.hypot(pinned["node_x"].values - r["node_x"].values,
-                              pinned["node_z"].values - r["node_z"].values))  # fmt: skip
+    for name, r in runs.items():
+        gap = np.max(
+            np.hypot(
+                pinned["node_x"].values - r["node_x"].values,
+                pinned["node_z"].values - r["node_z"].values,
+            )
+        )
         print(f"  {name:10s}: {gap * 1000:.3f} mm")
     print(f"  pin constraint error: {np.max(pinned['constraint_error'].values):.2e} m")
 

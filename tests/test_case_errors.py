@@ -132,3 +132,18 @@ def test_case_is_immutable():
     case = _load(lambda d: None)
     with pytest.raises(Exception, match="frozen"):
         case.cables[0].links = 3
+
+
+def test_mass_keys_are_exclusive_and_counted():
+    with pytest.raises(
+        CaseError,
+        match=r"exactly one of 'mass_per_length'.*got \['mass_per_length', 'link_masses'\]",
+    ):
+        _load(lambda d: d["cables"][0].update(link_masses=[1.0] * 5))
+
+    def mutate(d):
+        d["cables"][0].pop("mass_per_length")
+        d["cables"][0]["link_masses"] = [1.0, 2.0]
+
+    with pytest.raises(CaseError, match=r"link_masses has 2 values but links = 5"):
+        _load(mutate)

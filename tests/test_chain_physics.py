@@ -131,13 +131,21 @@ def _seabed_case(bottom):
     }
 
 
+# the seabed-fixed end three ways: exact pin, the thesis's huge mass, the thesis's stiff ties
+SEABED_BOTTOMS = {
+    "pinned": {"type": "pinned"},
+    "huge mass": {"type": "free", "body": {"mass": 8e8, "volume": 8e5}},
+    "stiff ties": {
+        "type": "free",
+        "body": {"mass": 60.0},
+        "tie": {"stiffness_x": 1.2e6, "damping_x": 2e4, "stiffness_z": 1.2e6, "damping_z": 2e4},
+    },
+}
+
+
 def test_seabed_fixed_end_three_ways_agree():
     """Exact pin, huge terminal mass (the thesis's first way) and stiff ties (its second)."""
-    pinned = run(_seabed_case({"type": "pinned"}))
-    huge = run(_seabed_case({"type": "free", "body": {"mass": 8e8, "volume": 8e5}}))
-    ties = run(_seabed_case({"type": "free", "body": {"mass": 60.0},
-                             "tie": {"stiffness_x": 1.2e6, "damping_x": 2e4,
-                                     "stiffness_z": 1.2e6, "damping_z": 2e4}}))  # fmt: skip
+    pinned, huge, ties = (run(_seabed_case(bottom)) for bottom in SEABED_BOTTOMS.values())
     scale = 100.0
     gap_huge = np.max(np.abs(pinned["node_z"].values - huge["node_z"].values)) / scale
     gap_ties = np.max(np.abs(pinned["node_z"].values - ties["node_z"].values)) / scale
@@ -147,3 +155,19 @@ def test_seabed_fixed_end_three_ways_agree():
     t_pin = pinned["bottom_force_z"].values
     t_huge = huge["bottom_force_z"].values
     assert np.max(np.abs(t_pin - t_huge)) < 1e-3 * np.max(np.abs(t_pin)) + 1.0
+
+
+def test_static_tension_with_unequal_links_and_masses():
+    """Links of different lengths and masses: tension at rest = weight hanging below."""
+    lengths = [1.0, 2.5, 0.5, 3.0, 1.5]
+    masses = [2.0, 0.5, 4.0, 1.0, 3.0]
+    data = chain_case(n=5, bottom={"type": "free", "body": {"mass": 1.5}})
+    cable = data["cables"][0]
+    cable.pop("length")
+    cable.pop("mass_per_length")
+    cable.update(link_lengths=lengths, link_masses=masses)
+    results = run(data | {"simulation": {"duration": 0.2, "output_interval": 0.1}})
+    below = np.concatenate([np.cumsum(masses[::-1])[::-1][1:], [0.0]])
+    expected = 9.81 * (1.5 + below + 0.5 * np.array(masses))
+    np.testing.assert_allclose(results["tension"].values[-1], expected, rtol=1e-9)
+    np.testing.assert_allclose(results["node_z"].values[-1, -1], -sum(lengths), rtol=1e-12)

@@ -36,6 +36,8 @@ VARIABLES = {
     "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
     "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
+    "bottom_velocity_x": (("time",), "m/s", "velocity of the bottom end (its body), x"),
+    "bottom_velocity_z": (("time",), "m/s", "velocity of the bottom end (its body), z"),
 }
 
 

@@ -123,7 +123,9 @@ class _Run:
         }
         for k, name in enumerate(pc.SCALAR_NAMES):
             rows[name] = scalars[:, k]
-        rows["total_energy"] = scalars[:, 6] + scalars[:, 7] + scalars[:, 8]
+        rows["total_energy"] = (
+            rows["kinetic_energy"] + rows["gravity_potential_energy"] + rows["elastic_energy"]
+        )
         self.sink.write(rows)
         return status
 

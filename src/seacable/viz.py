@@ -52,41 +52,55 @@ def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
 
 
 def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
-    """Four panels: snapshots of the cable, end positions, tensions, attachment forces."""
+    """Six panels: cable snapshots, link angles, end positions, tensions, attachment forces and
+    energies over time."""
     plt = _pyplot()
-    fig, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
+    fig, axes = plt.subplots(2, 3, figsize=(18, 9), constrained_layout=True)
     _draw_snapshots(axes[0, 0], ds, every, plt)
+    _draw_angles(axes[0, 1], ds)
     t = ds["time"].values
-    ax = axes[0, 1]
+    ax = axes[0, 2]
     ax.plot(t, ds["node_x"].values[:, -1], label="bottom end x")
     ax.plot(t, ds["node_z"].values[:, -1], label="bottom end z")
     ax.plot(t, ds["top_heave"].values, label="top z")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("[m]")
-    ax.set_title("end positions")
-    ax.legend()
+    _finish(ax, "end positions", "[m]")
     ax = axes[1, 0]
     tension = ds["tension"].values
     ax.plot(t, tension[:, 0], label="top link")
     ax.plot(t, tension[:, tension.shape[1] // 2], label="middle link")
     ax.plot(t, tension[:, -1], label="bottom link")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("tension [N]")
-    ax.set_title("tension")
-    ax.legend()
+    _finish(ax, "tension", "tension [N]")
     ax = axes[1, 1]
     for name in ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z"):
         ax.plot(t, ds[name].values, label=name)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("[N]")
-    ax.set_title("force of the cable on its attachments")
-    ax.legend()
+    _finish(ax, "force of the cable on its attachments", "[N]")
+    ax = axes[1, 2]
+    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
+        ax.plot(t, ds[name].values, label=name.replace("_", " "))
+    _finish(ax, "energy", "[J]")
     fig.suptitle(_title(ds))
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
+
+
+def _draw_angles(ax, ds: xr.Dataset) -> None:
+    """Every link's angle for short cables (as the thesis's figure 6.1), else a selection."""
+    angles = np.degrees(ds["angle"].values)
+    n = angles.shape[1]
+    links = range(n) if n <= 12 else np.unique(np.linspace(0, n - 1, 7).round().astype(int))
+    for i in links:
+        ax.plot(ds["time"].values, angles[:, i], lw=1.0, label=f"link {i}")
+    _finish(ax, "link angles from the downward vertical", "[deg]")
+
+
+def _finish(ax, title: str, ylabel: str) -> None:
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
 
 
 def _title(ds: xr.Dataset) -> str:

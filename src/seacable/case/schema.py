@@ -301,6 +301,7 @@ class Cable(_Model):
     diameter: Pos  # hydrodynamic and buoyancy diameter [m]
     mass_per_length: Pos | None = None  # [kg/m]
     density: Pos | None = None  # material density [kg/m^3]: mass = density * pi d^2/4 * l
+    link_masses: list[Pos] | None = None  # [kg], one per link (instead of the two above)
     joint_stiffness: NonNeg | list[NonNeg] | None = None  # [N m/rad], scalar or one per joint
     bending_stiffness: NonNeg | None = None  # EI [N m^2] -> joint stiffness EI / l
     joint_damping: NonNeg | list[NonNeg] = 0.0  # [N m s/rad], scalar or one per joint
@@ -319,8 +320,16 @@ class Cable(_Model):
             raise ValueError(
                 f"link_lengths has {len(self.link_lengths)} values but links = {self.links}"
             )
-        if (self.mass_per_length is None) == (self.density is None):
-            raise ValueError("give exactly one of 'mass_per_length' [kg/m] or 'density' [kg/m^3]")
+        given = [k for k in ("mass_per_length", "density", "link_masses") if getattr(self, k)]
+        if len(given) != 1:
+            raise ValueError(
+                "give exactly one of 'mass_per_length' [kg/m], 'density' [kg/m^3] or "
+                f"'link_masses' [kg, one per link] (got {given or 'none'})"
+            )
+        if self.link_masses is not None and len(self.link_masses) != self.links:
+            raise ValueError(
+                f"link_masses has {len(self.link_masses)} values but links = {self.links}"
+            )
         if self.joint_stiffness is not None and self.bending_stiffness is not None:
             raise ValueError("give at most one of 'joint_stiffness' or 'bending_stiffness'")
         for key in ("joint_stiffness", "joint_damping"):
@@ -341,10 +350,13 @@ class Cable(_Model):
             return np.asarray(self.link_lengths, dtype=float)
         return np.full(self.links, self.length / self.links)
 
-    def per_length_mass(self) -> float:
+    def masses(self) -> np.ndarray:
+        """Mass of each link [kg]."""
+        if self.link_masses is not None:
+            return np.asarray(self.link_masses, dtype=float)
         if self.mass_per_length is not None:
-            return self.mass_per_length
-        return self.density * math.pi * self.diameter**2 / 4
+            return self.mass_per_length * self.lengths()
+        return self.density * math.pi * self.diameter**2 / 4 * self.lengths()
 
 
 # ---- simulation ----------------------------------------------------------------------------------

@@ -63,6 +63,8 @@ SCALAR_NAMES = (
     "gravity_potential_energy",
     "elastic_energy",
     "constraint_error",
+    "bottom_velocity_x",
+    "bottom_velocity_z",
 )
 N_SCALARS = len(SCALAR_NAMES)
 
@@ -464,6 +466,8 @@ def outputs(t, y, p, w, node_x, node_z, tension, scalars):
         scalars[9] = math.hypot(w[_PX, n] - p.pin_x, w[_PZ, n] - p.pin_z)
     else:
         scalars[9] = 0.0
+    scalars[10] = w[_VX, n]
+    scalars[11] = w[_VZ, n]
     return status
 
 
