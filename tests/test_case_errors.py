@@ -147,3 +147,10 @@ def test_mass_keys_are_exclusive_and_counted():
 
     with pytest.raises(CaseError, match=r"link_masses has 2 values but links = 5"):
         _load(mutate)
+
+
+def test_duration_must_be_whole_number_of_outputs():
+    with pytest.raises(
+        CaseError, match=r"not a whole number of output intervals.*use duration 0\.9 or 1\.2"
+    ):
+        _load(lambda d: d.update(simulation={"duration": 1.0, "output_interval": 0.3}))

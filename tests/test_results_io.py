@@ -58,11 +58,11 @@ def test_interrupted_run_keeps_partial_results(tmp_path, monkeypatch):
     original = simulate_module._Run.advance
     calls = {"n": 0}
 
-    def interrupt_later(self, count, **kwargs):
-        calls["n"] += count > 0
+    def interrupt_later(self, count):
+        calls["n"] += 1
         if calls["n"] > 2:
             raise KeyboardInterrupt
-        return original(self, count, **kwargs)
+        return original(self, count)
 
     monkeypatch.setattr(simulate_module._Run, "advance", interrupt_later)
     path = tmp_path / "interrupted.nc"
@@ -79,9 +79,9 @@ def test_file_is_readable_while_running(tmp_path, monkeypatch):
     original = simulate_module._Run.advance
     path = tmp_path / "live.nc"
 
-    def peek(self, count, **kwargs):
-        status = original(self, count, **kwargs)
-        if count and not seen:
+    def peek(self, count):
+        status = original(self, count)
+        if not seen:
             seen.append(seacable.Results.open(path))
         return status
 

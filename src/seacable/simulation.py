@@ -133,17 +133,23 @@ class _Run:
         """Compile (or load from the cache) the kernels this run uses, before any timing or
         progress display: a zero-length chunk does nothing but dispatch."""
         empty = np.empty((0, self.y.shape[0]))
-        self.advance(0, states=empty, times=np.empty(0))
+        y, work, sim = self.y.copy(), np.zeros_like(self.work), self.sim
+        if sim.integrator == "rk4":
+            integrators.rk4_chunk(0.0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
+        else:
+            integrators.dopri5_chunk(
+                0.0, y, 1.0, 0, 1.0, 1.0, 1.0, 1.0, self.p, self.w, empty, np.empty(0), work
+            )
         pc.outputs_chunk(
             np.empty(0), empty, self.p, self.w, np.empty((0, 1)), np.empty((0, 1)),
             np.empty((0, 1)), np.empty((0, pc.N_SCALARS)),
         )  # fmt: skip
 
-    def advance(self, count: int, states=None, times=None) -> int:
+    def advance(self, count: int) -> int:
         """Integrate ``count`` output intervals; returns the kernel status."""
         ny = self.y.shape[0]
-        states = np.empty((count, ny)) if states is None else states
-        times = np.empty(count) if times is None else times
+        states = np.empty((count, ny))
+        times = np.empty(count)
         sim = self.sim
         if sim.integrator == "rk4":
             dt, steps = rk4_step(sim)

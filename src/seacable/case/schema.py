@@ -378,6 +378,14 @@ class Simulation(_Model):
                 f"output_interval ({self.output_interval} s) is longer than duration "
                 f"({self.duration} s)"
             )
+        count = self.duration / self.output_interval
+        if abs(count - round(count)) > 1e-6 * count:
+            below = math.floor(count) * self.output_interval
+            raise ValueError(
+                f"duration ({self.duration} s) is not a whole number of output intervals "
+                f"({self.output_interval} s): use duration {below:g} or "
+                f"{below + self.output_interval:g}, or another output_interval"
+            )
         return self
 
 
