@@ -154,3 +154,14 @@ def test_duration_must_be_whole_number_of_outputs():
         CaseError, match=r"not a whole number of output intervals.*use duration 0\.9 or 1\.2"
     ):
         _load(lambda d: d.update(simulation={"duration": 1.0, "output_interval": 0.3}))
+
+
+def test_missing_table_file_names_the_field(tmp_path):
+    def mutate(d):
+        d["cables"][0]["top"] = {"type": "imposed", "x": {"kind": "table", "file": "nope.csv"}}
+
+    case = _load(mutate)
+    with pytest.raises(
+        CaseError, match=r"cables\[0\]\.top\.x: table file 'nope.csv' does not exist"
+    ):
+        seacable.simulate(case)

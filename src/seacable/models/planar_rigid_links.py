@@ -56,7 +56,7 @@ def _initial_nodes(top: tuple[float, float], angles: np.ndarray, lengths: np.nda
     return x, z
 
 
-def _top(cable: schema.Cable, base_dir, initial_angles, lengths):
+def _top(cable: schema.Cable, base_dir):
     """Top-end parameters, channels and the initial top position/heave state."""
     top = cable.top
     fields = dict(top_x=0.0, top_mass=1.0, top_stiffness=0.0, top_damping=0.0, top_rest_z=0.0)
@@ -68,7 +68,10 @@ def _top(cable: schema.Cable, base_dir, initial_angles, lengths):
         position = top.position
     elif isinstance(top, schema.ImposedTop):
         kind = pc.TOP_IMPOSED
-        channels = (tfn.build(top.x, base_dir), tfn.build(top.z, base_dir))
+        channels = (
+            _channel(top.x, base_dir, "cables[0].top.x"),
+            _channel(top.z, base_dir, "cables[0].top.z"),
+        )
         position = None
     else:
         kind = pc.TOP_HEAVE
@@ -83,7 +86,7 @@ def _top(cable: schema.Cable, base_dir, initial_angles, lengths):
         )
         heave = (top.position[1] + top.initial_heave, top.initial_heave_velocity)
         position = (top.position[0], heave[0])
-    force = tfn.build(getattr(top, "force", None), base_dir)
+    force = _channel(getattr(top, "force", None), base_dir, "cables[0].top.force")
     return kind, fields, channels, force, heave, position
 
 
@@ -126,7 +129,12 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
             tie_x0=rest[0],
             tie_z0=rest[1],
         )
-        return pc.BOTTOM_FREE, fields, fx, tfn.build(bottom.force, base_dir)
+        return (
+            pc.BOTTOM_FREE,
+            fields,
+            fx,
+            _channel(bottom.force, base_dir, "cables[0].bottom.force"),
+        )
     body = bottom.body
     fields.update(
         body_mass=body.mass + (0.0 if env.in_air else body.added_mass),
@@ -143,8 +151,8 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
             tie_x0=rest[0],
             tie_z0=rest[1],
         )
-    fx = tfn.build(body.force_x, base_dir)
-    fz = tfn.build(body.force_z, base_dir)
+    fx = _channel(body.force_x, base_dir, "cables[0].bottom.body.force_x")
+    fz = _channel(body.force_z, base_dir, "cables[0].bottom.body.force_z")
     return pc.BOTTOM_FREE, fields, fx, fz
 
 
@@ -158,9 +166,7 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
     rho = 0.0 if env.in_air else env.water_density
     area = math.pi * cable.diameter**2 / 4
     angles = cable.initial.angles(n)
-    top_kind, top_fields, top_channels, top_force, heave, top_pos = _top(
-        cable, base_dir, angles, lengths
-    )
+    top_kind, top_fields, top_channels, top_force, heave, top_pos = _top(cable, base_dir)
     if top_pos is None:  # imposed motion: start where the time functions put the top at t = 0
         top_pos = (float(_eval0(top_channels[0])), float(_eval0(top_channels[1])))
     node_x, node_z = _initial_nodes(top_pos, angles, lengths)
@@ -204,6 +210,14 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
     y0[n] = heave[0]
     y0[2 * n + 1] = heave[1]
     return PlanarSystem(params=params, y0=y0, n_links=n, diameter=cable.diameter)
+
+
+def _channel(spec, base_dir, where: str) -> tfn.Piecewise:
+    """Compile a time function; a table that cannot be read becomes a CaseError naming it."""
+    try:
+        return tfn.build(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None
 
 
 def _eval0(piecewise: tfn.Piecewise) -> float:
