@@ -18,28 +18,6 @@ STATUS_DIVERGED = "diverged"
 STATUS_INTERRUPTED = "interrupted"
 STATUS_INCOMPLETE = "incomplete"
 
-# name: (dims, units, long_name)
-VARIABLES = {
-    "angle": (("time", "segment"), "rad", "link angle from the downward vertical, positive to +x"),
-    "angular_velocity": (("time", "segment"), "rad/s", "link angular velocity"),
-    "node_x": (("time", "node"), "m", "node position x"),
-    "node_z": (("time", "node"), "m", "node elevation z (up, 0 at the still-water surface)"),
-    "tension": (("time", "segment"), "N", "axial tension at the link centre (positive pulling)"),
-    "top_force_x": (("time",), "N", "force of the cable on its top attachment, x"),
-    "top_force_z": (("time",), "N", "force of the cable on its top attachment, z"),
-    "bottom_force_x": (("time",), "N", "force of the cable on its bottom body or anchor, x"),
-    "bottom_force_z": (("time",), "N", "force of the cable on its bottom body or anchor, z"),
-    "top_heave": (("time",), "m", "elevation of the top attachment (floating structure heave)"),
-    "top_heave_velocity": (("time",), "m/s", "vertical velocity of the top attachment"),
-    "kinetic_energy": (("time",), "J", "kinetic energy of links, bodies and structure"),
-    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
-    "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
-    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
-    "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
-    "bottom_velocity_x": (("time",), "m/s", "velocity of the bottom end (its body), x"),
-    "bottom_velocity_z": (("time",), "m/s", "velocity of the bottom end (its body), z"),
-}
-
 
 def provenance(case_text: str, solver: dict) -> dict:
     from seacable import __version__
@@ -96,12 +74,14 @@ class Results:
 class _Sink:
     """Where output rows go: in memory, or also appended to a NetCDF file as they come."""
 
-    def __init__(self, path, n_links: int, coords: dict, attrs: dict):
+    def __init__(self, path, n_links: int, coords: dict, variables: dict, attrs: dict):
+        """``variables`` maps name -> (dims, units, long_name), as the model declares them."""
         self.path = None if path is None else Path(path)
         self.n_links = n_links
         self.coords = coords
+        self.variables = variables
         self.attrs = dict(attrs)
-        self.chunks = {name: [] for name in ("time", *VARIABLES)}
+        self.chunks = {name: [] for name in ("time", *variables)}
         self.rows = 0
         self._file = None
         if self.path is not None:
@@ -117,7 +97,7 @@ class _Sink:
             v.attrs.update(units=units, long_name=long_name)
         t = f.create_variable("time", ("time",), float, chunks=(1024,))
         t.attrs.update(units="s", long_name="time", standard_name="time")
-        for name, (dims, units, long_name) in VARIABLES.items():
+        for name, (dims, units, long_name) in self.variables.items():
             shape = tuple(1024 if d == "time" else (self.n_links + (d == "node")) for d in dims)
             v = f.create_variable(name, dims, float, chunks=tuple(min(s, 1024) for s in shape))
             v.attrs.update(units=units, long_name=long_name)
@@ -149,7 +129,7 @@ class _Sink:
 
     def _dataset(self) -> xr.Dataset:
         data = {}
-        for name, (dims, units, long_name) in VARIABLES.items():
+        for name, (dims, units, long_name) in self.variables.items():
             values = _join(self.chunks[name], dims, self.n_links)
             data[name] = xr.Variable(dims, values, {"units": units, "long_name": long_name})
         coords = {"time": xr.Variable(("time",), _join(self.chunks["time"], ("time",), 0))}

@@ -9,7 +9,7 @@ import numpy as np
 from seacable.case import loader, schema
 from seacable.errors import SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
-from seacable.models import planar_rigid_links
+from seacable.models import planar_rigid_links, rigid_segments_3d
 from seacable.numerics import integrators
 from seacable.results import (
     STATUS_COMPLETE,
@@ -35,32 +35,25 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     return sim.output_interval / steps, steps
 
 
-def fastest_frequency(system: planar_rigid_links.PlanarSystem) -> tuple[float, str]:
-    """An estimate of the fastest natural frequency [rad/s] and what sets it.
+MODELS = {"rigid_links": planar_rigid_links, "rigid_segments_3d": rigid_segments_3d}
 
-    The fastest motion of a rigid-link chain is the zigzag mode, each link turning about its
-    centre against its two joint springs and the tension: omega_i^2 = (2 (k_i + k_{i+1})
-    + T l_i) / J_i, with T bounded by the whole apparent weight. Used to warn before an explicit
-    run whose step cannot follow it (RK4 is stable up to about 2.8 / omega).
-    """
-    p = system.params
-    joint_k = p.joint_stiffness
-    k_next = np.append(joint_k[1:], 0.0)
-    tension = float(np.sum(np.abs(p.wet_weight))) + abs(p.body_wet_weight)
-    if p.top_kind == pc.TOP_HEAVE:
-        tension += abs(p.top_net_weight)
-    w = np.sqrt((2.0 * (joint_k + k_next) + tension * p.length) / p.inertia)
-    i = int(np.argmax(w))
-    candidates = [
-        (float(w[i]), f"zigzag of link {i} ({p.length[i]:.3g} m, joint springs and tension)")
-    ]
-    if p.bottom_kind == pc.BOTTOM_FREE and p.body_mass > 0:
-        k = max(p.tie_kx, p.tie_kz)
-        if k > 0:
-            candidates.append((math.sqrt(k / p.body_mass), f"bottom ties ({k:.4g} N/m)"))
-    if p.top_kind == pc.TOP_HEAVE and p.top_stiffness > 0:
-        candidates.append((math.sqrt(p.top_stiffness / p.top_mass), "floating structure heave"))
-    return max(candidates)
+
+def model_of(case: schema.Case):
+    """The model module of the case's cable (build, VARIABLES, rows, rates, ...)."""
+    return MODELS[case.cables[0].model]
+
+
+def build_system(case: schema.Case):
+    """The model's system (parameters, initial state) for ``case``."""
+    return model_of(case).build(case, loader.case_base_dir(case))
+
+
+def fastest_frequency(system) -> tuple[float, str]:
+    """Estimate of the fastest natural frequency of a built system [rad/s], and what sets it."""
+    module = (
+        rigid_segments_3d if isinstance(system, rigid_segments_3d.System3D) else planar_rigid_links
+    )
+    return module.fastest_frequency(system)
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
@@ -78,54 +71,25 @@ def _solver_settings(sim: schema.Simulation) -> dict:
     return settings
 
 
-def _coords(system: planar_rigid_links.PlanarSystem) -> dict:
-    lengths = system.params.length
-    arc = np.concatenate([[0.0], np.cumsum(lengths)])
-    return {
-        "segment": (np.arange(system.n_links, dtype=float), "1", "link index (0 at the top)"),
-        "node": (np.arange(system.n_links + 1, dtype=float), "1", "node index (0 at the top)"),
-        "arc_length": (arc, "m", "unstretched arc length of the node from the top"),
-        "link_length": (lengths.copy(), "m", "link length"),
-    }
-
-
 class _Run:
     """One integration: holds the compiled state and writes rows to the sink."""
 
-    def __init__(self, case: schema.Case, system, sink: _Sink):
+    def __init__(self, case: schema.Case, model, system, sink: _Sink):
         self.sim = case.simulation
+        self.model = model
         self.system = system
         self.p = system.params
         self.sink = sink
         self.y = system.y0.copy()
         self.t = 0.0
-        self.w = pc.make_workspace(system.n_links)
+        self.w = model.make_workspace(system.n_links)
         self.work = np.zeros(4, dtype=np.int64)
         self.h = self.sim.initial_step
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
         self.done = 0
 
     def emit(self, times, states) -> int:
-        n = self.system.n_links
-        m = len(times)
-        node_x = np.empty((m, n + 1))
-        node_z = np.empty((m, n + 1))
-        tension = np.empty((m, n))
-        scalars = np.empty((m, pc.N_SCALARS))
-        status = pc.outputs_chunk(times, states, self.p, self.w, node_x, node_z, tension, scalars)
-        rows = {
-            "time": times,
-            "angle": states[:, :n],
-            "angular_velocity": states[:, n + 1 : 2 * n + 1],
-            "node_x": node_x,
-            "node_z": node_z,
-            "tension": tension,
-        }
-        for k, name in enumerate(pc.SCALAR_NAMES):
-            rows[name] = scalars[:, k]
-        rows["total_energy"] = (
-            rows["kinetic_energy"] + rows["gravity_potential_energy"] + rows["elastic_energy"]
-        )
+        rows, status = self.model.rows(times, states, self.system, self.w)
         self.sink.write(rows)
         return status
 
@@ -140,10 +104,7 @@ class _Run:
             integrators.dopri5_chunk(
                 0.0, y, 1.0, 0, 1.0, 1.0, 1.0, 1.0, self.p, self.w, empty, np.empty(0), work
             )
-        pc.outputs_chunk(
-            np.empty(0), empty, self.p, self.w, np.empty((0, 1)), np.empty((0, 1)),
-            np.empty((0, 1)), np.empty((0, pc.N_SCALARS)),
-        )  # fmt: skip
+        self.model.rows(np.empty(0), empty, self.system, self.w)
 
     def advance(self, count: int) -> int:
         """Integrate ``count`` output intervals; returns the kernel status."""
@@ -192,7 +153,8 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
     SimulationInterrupted
         Ctrl-C; ``results`` hold everything computed before.
     """
-    system = planar_rigid_links.build(case, loader.case_base_dir(case))
+    model = model_of(case)
+    system = model.build(case, loader.case_base_dir(case))
     sim = case.simulation
     settings = _solver_settings(sim)
     warning = _step_warning(sim, system)
@@ -200,8 +162,8 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
-    sink = _Sink(output, system.n_links, _coords(system), attrs)
-    run = _Run(case, system, sink)
+    sink = _Sink(output, system.n_links, model.coords(system), model.VARIABLES, attrs)
+    run = _Run(case, model, system, sink)
     start = _time.perf_counter()
     run.compile()
     log.debug("kernels ready in %.2f s (compiled on a first run, cached afterwards)",
@@ -275,8 +237,7 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
 
 
 def _divergence_message(run: _Run, status: int, settings: dict) -> str:
-    n = run.system.n_links
-    rates = np.abs(run.y[n + 1 : 2 * n + 1])
+    rates = run.model.rates(run.system, run.y)
     worst = int(np.nanargmax(rates)) if np.any(np.isfinite(rates)) else 0
     what = (
         "the pinned end could not be closed (the cable is pulled straight between its ends, "

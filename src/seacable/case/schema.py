@@ -22,7 +22,21 @@ from pydantic import (
 
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
-Point = tuple[float, float]
+Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x, y, z], m
+PerAxis = NonNeg | tuple[NonNeg, NonNeg, NonNeg]  # one value, or one per global axis x, y, z
+
+
+def xyz(point) -> tuple[float, float, float]:
+    """(x, y, z) of a point given as [x, z] or [x, y, z]."""
+    if len(point) == 2:
+        return (float(point[0]), 0.0, float(point[1]))
+    return (float(point[0]), float(point[1]), float(point[2]))
+
+
+def per_axis(value) -> tuple[float, float, float]:
+    if isinstance(value, tuple | list):
+        return tuple(float(v) for v in value)
+    return (float(value),) * 3
 
 
 class _Model(BaseModel):
@@ -140,12 +154,13 @@ TimeFunction = Annotated[
 
 # ---- environment ---------------------------------------------------------------------------------
 class Current(_Model):
-    """Current along +x: either a uniform ``velocity`` [m/s] or a ``profile`` of
-    [elevation z (m, negative below the surface), velocity (m/s)] pairs, linearly interpolated
-    and held constant beyond the first and last point."""
+    """Current flowing towards ``direction_deg`` (from +x towards +y; 0 = along +x): either a
+    uniform ``velocity`` [m/s] or a ``profile`` of [elevation z (m, negative below the surface),
+    speed (m/s)] pairs, linearly interpolated and held constant beyond the end points."""
 
     velocity: float | None = None
-    profile: list[Point] | None = None
+    profile: list[tuple[float, float]] | None = None
+    direction_deg: float = 0.0
 
     @model_validator(mode="after")
     def _one(self):
@@ -187,6 +202,7 @@ class ImposedTop(_Model):
 
     type: Literal["imposed"]
     x: TimeFunction = Constant(value=0.0)
+    y: TimeFunction = Constant(value=0.0)  # 3D model only
     z: TimeFunction = Constant(value=0.0)
 
 
@@ -209,27 +225,62 @@ class FloatingStructureTop(_Model):
     initial_heave_velocity: float = 0.0  # [m/s]
 
 
+class Turn(_Model):
+    """A turning circle: from ``start_time`` [s] the ship follows a circle of ``radius`` [m]
+    turning to the ``side`` given (left: towards +y when heading along +x)."""
+
+    start_time: NonNeg
+    radius: Pos
+    side: Literal["left", "right"] = "left"
+
+
+class TowingShipTop(_Model):
+    """Tow point on a ship (3D model): starts at ``position`` [x, y, z] (m) heading
+    ``heading_deg`` (from +x towards +y) and moves along a straight track, then optionally a
+    turning circle. Give a constant ``speed`` [m/s] or the ``distance`` travelled [m] as a time
+    function (an acceleration_profile gives speed changes with exact accelerations)."""
+
+    type: Literal["towing_ship"]
+    position: Point = (0.0, 0.0, 0.0)
+    heading_deg: float = 0.0
+    speed: float | None = None
+    distance: TimeFunction | None = None
+    turn: Turn | None = None
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.speed is None) == (self.distance is None):
+            raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
+        return self
+
+
 class Tie(_Model):
     """Elastic ties holding the bottom body near ``rest_position`` [x, z] (m): spring-dampers
     along x and z. Without rest_position the ties are unloaded at the initial end position."""
 
     stiffness_x: NonNeg = 0.0  # [N/m]
     damping_x: NonNeg = 0.0  # [N s/m]
+    stiffness_y: NonNeg = 0.0  # [N/m] (3D model)
+    damping_y: NonNeg = 0.0  # [N s/m] (3D model)
     stiffness_z: NonNeg = 0.0  # [N/m]
     damping_z: NonNeg = 0.0  # [N s/m]
     rest_position: Point | None = None
 
 
 class Body(_Model):
-    """Point body at the free end (a terminal mass, clump weight or buoy)."""
+    """Point body at the free end (a terminal mass, towed body, clump weight or buoy).
+
+    Added mass and drag area take one value or one per global axis [x, y, z]: a very large
+    added mass along an axis restrains the body's motion along it (as Jacquot & Marichal do)."""
 
     mass: NonNeg = 0.0  # [kg]
     volume: NonNeg = 0.0  # displaced volume [m^3] (buoyancy)
-    added_mass: NonNeg = 0.0  # [kg], isotropic
-    drag_coefficient: NonNeg = 0.0  # Cd on drag_area (force 0.5 rho Cd A |v| v)
-    drag_area: NonNeg = 0.0  # [m^2]
-    force_x: TimeFunction = Constant(value=0.0)  # applied force [N]
-    force_z: TimeFunction = Constant(value=0.0)  # applied force [N], positive up
+    added_mass: PerAxis = 0.0  # [kg]
+    drag_coefficient: NonNeg = 0.0  # Cd on drag_area (force 0.5 rho Cd A |v| v_k per axis k)
+    drag_area: PerAxis = 0.0  # [m^2]
+    force_x: TimeFunction = Constant(value=0.0)  # applied force (a thrust) [N]
+    force_y: TimeFunction = Constant(value=0.0)  # [N], 3D model only
+    force_z: TimeFunction = Constant(value=0.0)  # [N], positive up
 
 
 class FreeBottom(_Model):
@@ -255,6 +306,18 @@ class FloatingStructureBottom(_Model):
     rest_position: Point | None = None
 
 
+class PointBody(_Model):
+    """A float or clump weight at a joint (3D model): ``node`` counts joints from the top
+    (1 = between the first and second segments). Drag as a sphere: 0.5 rho Cd A |v| v."""
+
+    node: int = Field(ge=1)
+    mass: NonNeg = 0.0  # [kg]
+    volume: NonNeg = 0.0  # [m^3]
+    added_mass: PerAxis = 0.0  # [kg]
+    drag_coefficient: NonNeg = 0.5
+    drag_area: NonNeg = 0.0  # [m^2]
+
+
 class PinnedBottom(_Model):
     """End pinned to an anchor (exact constraint). The anchor is the end of the initial shape;
     if ``anchor`` [x, z] (m) is given it must agree with that end within 1 mm."""
@@ -266,12 +329,15 @@ class PinnedBottom(_Model):
 class InitialShape(_Model):
     """Initial link angles from the downward vertical, positive towards +x [deg]:
     ``arc`` varies linearly from top_angle_deg (first link) to bottom_angle_deg (last link);
-    ``angles`` gives one angle per link. The cable starts at rest unless the top moves."""
+    ``angles`` gives one angle per link; ``static`` (3D model) starts from the static
+    equilibrium for the motion the top has at t = 0 (towing at constant speed, or hanging).
+    The cable starts at rest (or, from ``static``, moving steadily with the top)."""
 
-    shape: Literal["arc", "angles"] = "arc"
+    shape: Literal["arc", "angles", "static"] = "arc"
     top_angle_deg: float = 0.0
     bottom_angle_deg: float | None = None
     angles_deg: list[float] | None = None
+    azimuth_deg: float = 0.0  # 3D: plane of the initial shape, from +x towards +y
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -294,7 +360,7 @@ class Cable(_Model):
     """A planar cable of rigid links joined by torsional spring-dampers."""
 
     name: str = "cable"
-    model: Literal["rigid_links"] = "rigid_links"
+    model: Literal["rigid_links", "rigid_segments_3d"] = "rigid_links"
     links: int = Field(ge=1, le=100_000)  # number of rigid links
     length: Pos | None = None  # total length [m], equal links
     link_lengths: list[Pos] | None = None  # [m], one per link
@@ -307,8 +373,11 @@ class Cable(_Model):
     joint_damping: NonNeg | list[NonNeg] = 0.0  # [N m s/rad], scalar or one per joint
     drag_coefficient_normal: NonNeg = 1.2  # Cd on the projected area d l
     drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
+    friction_coefficient: NonNeg = 0.0  # Richtmyer f: 0.5 rho f Cd_n d l (V cos phi)^2
+    added_mass_coefficient: NonNeg | None = None  # Ca, normal only; 3D default 1.0
+    point_bodies: list[PointBody] = []  # floats and clump weights at joints (3D)
     top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
-    top: FixedTop | ImposedTop | FloatingStructureTop = Field(discriminator="type")
+    top: FixedTop | ImposedTop | FloatingStructureTop | TowingShipTop = Field(discriminator="type")
     bottom: FreeBottom | FloatingStructureBottom | PinnedBottom = Field(discriminator="type")
     initial: InitialShape = InitialShape()
 
@@ -343,6 +412,40 @@ class Cable(_Model):
             )
         if abs(self.top_reference_angle_deg) > 360 or abs(self.initial.top_angle_deg) > 360:
             raise ValueError("angles are in degrees and should lie within [-360, 360]")
+        return self
+
+    @model_validator(mode="after")
+    def _planar_limits(self):
+        if self.model != "rigid_links":
+            return self
+        fix = "use model: rigid_segments_3d"
+        if isinstance(self.top, TowingShipTop):
+            raise ValueError(f"top type 'towing_ship' needs the 3D model: {fix}")
+        points = [getattr(self.top, "position", None)]
+        points += [
+            getattr(self.bottom, "anchor", None),
+            getattr(self.bottom, "rest_position", None),
+        ]
+        tie = getattr(self.bottom, "tie", None)
+        points.append(tie.rest_position if tie is not None else None)
+        for point in points:
+            if point is not None and len(point) == 3 and point[1] != 0.0:
+                raise ValueError(
+                    f"the planar model lies in the x-z plane; got y = {point[1]}: {fix}"
+                )
+        if isinstance(self.top, ImposedTop) and self.top.y != Constant(value=0.0):
+            raise ValueError(f"the planar model has no y motion (top.y): {fix}")
+        body = getattr(self.bottom, "body", None)
+        if body is not None and body.force_y != Constant(value=0.0):
+            raise ValueError(f"the planar model has no y force (bottom.body.force_y): {fix}")
+        if self.point_bodies:
+            raise ValueError(f"point_bodies are supported by the 3D model only: {fix}")
+        if self.added_mass_coefficient:
+            raise ValueError(
+                f"the planar model has no link added mass (added_mass_coefficient): {fix}"
+            )
+        if self.initial.shape == "static":
+            raise ValueError(f"initial shape 'static' is computed by the 3D model: {fix}")
         return self
 
     def lengths(self) -> np.ndarray:

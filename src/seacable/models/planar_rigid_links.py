@@ -14,6 +14,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
+from seacable.models import common
 from seacable.models import timefunctions as tfn
 
 
@@ -31,25 +32,6 @@ class PlanarSystem:
         return pc.state_size(self.n_links)
 
 
-def _per_joint(value, n) -> np.ndarray:
-    if isinstance(value, list):
-        return np.asarray(value, dtype=float)
-    return np.full(n, float(value))
-
-
-def _joint_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
-    n = len(lengths)
-    if cable.joint_stiffness is not None:
-        return _per_joint(cable.joint_stiffness, n)
-    if cable.bending_stiffness is not None:
-        # a joint stands for the bending of the cable over the mean length of its two links
-        spans = np.empty(n)
-        spans[0] = lengths[0]
-        spans[1:] = 0.5 * (lengths[1:] + lengths[:-1])
-        return cable.bending_stiffness / spans
-    return np.zeros(n)
-
-
 def _initial_nodes(top: tuple[float, float], angles: np.ndarray, lengths: np.ndarray):
     x = top[0] + np.concatenate([[0.0], np.cumsum(lengths * np.sin(angles))])
     z = top[1] + np.concatenate([[0.0], np.cumsum(-lengths * np.cos(angles))])
@@ -64,29 +46,31 @@ def _top(cable: schema.Cable, base_dir):
     heave = (0.0, 0.0)
     if isinstance(top, schema.FixedTop):
         kind = pc.TOP_IMPOSED
-        channels = (tfn.constant(top.position[0]), tfn.constant(top.position[1]))
-        position = top.position
+        x, _, z = schema.xyz(top.position)
+        channels = (tfn.constant(x), tfn.constant(z))
+        position = (x, z)
     elif isinstance(top, schema.ImposedTop):
         kind = pc.TOP_IMPOSED
         channels = (
-            _channel(top.x, base_dir, "cables[0].top.x"),
-            _channel(top.z, base_dir, "cables[0].top.z"),
+            common.channel(top.x, base_dir, "cables[0].top.x"),
+            common.channel(top.z, base_dir, "cables[0].top.z"),
         )
         position = None
     else:
         kind = pc.TOP_HEAVE
-        channels = (tfn.constant(top.position[0]), tfn.constant(top.position[1]))
+        x, _, z = schema.xyz(top.position)
+        channels = (tfn.constant(x), tfn.constant(z))
         fields.update(
-            top_x=top.position[0],
+            top_x=x,
             top_mass=top.mass + top.added_mass,
             top_stiffness=top.heave_stiffness,
             top_damping=top.heave_damping,
-            top_rest_z=top.position[1],
+            top_rest_z=z,
             top_net_weight=top.net_weight,
         )
-        heave = (top.position[1] + top.initial_heave, top.initial_heave_velocity)
-        position = (top.position[0], heave[0])
-    force = _channel(getattr(top, "force", None), base_dir, "cables[0].top.force")
+        heave = (z + top.initial_heave, top.initial_heave_velocity)
+        position = (x, heave[0])
+    force = common.channel(getattr(top, "force", None), base_dir, "cables[0].top.force")
     return kind, fields, channels, force, heave, position
 
 
@@ -110,7 +94,8 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
     fx = fz = tfn.constant(0.0)
     if isinstance(bottom, schema.PinnedBottom):
         if bottom.anchor is not None:
-            gap = math.hypot(bottom.anchor[0] - end_xz[0], bottom.anchor[1] - end_xz[1])
+            ax, _, az = schema.xyz(bottom.anchor)
+            gap = math.hypot(ax - end_xz[0], az - end_xz[1])
             if gap > 1e-3:
                 raise CaseError(
                     f"cables[0].bottom.anchor: value {list(bottom.anchor)} is {gap:.3f} m from the "
@@ -119,7 +104,7 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
                 )
         return pc.BOTTOM_PINNED, fields, fx, fz
     if isinstance(bottom, schema.FloatingStructureBottom):
-        rest = bottom.rest_position or end_xz
+        rest = _xz(bottom.rest_position) or end_xz
         fields.update(
             body_mass=bottom.mass,
             tie_kx=bottom.surge_stiffness,
@@ -133,16 +118,24 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
             pc.BOTTOM_FREE,
             fields,
             fx,
-            _channel(bottom.force, base_dir, "cables[0].bottom.force"),
+            common.channel(bottom.force, base_dir, "cables[0].bottom.force"),
         )
     body = bottom.body
+    added = schema.per_axis(body.added_mass)
+    area = schema.per_axis(body.drag_area)
+    if added[0] != added[2] or area[0] != area[2]:
+        raise CaseError(
+            "cables[0].bottom.body: the planar model takes one added_mass and one drag_area "
+            f"for x and z (got {body.added_mass}, {body.drag_area}); use model: rigid_segments_3d "
+            "for direction-dependent values"
+        )
     fields.update(
-        body_mass=body.mass + (0.0 if env.in_air else body.added_mass),
+        body_mass=body.mass + (0.0 if env.in_air else added[0]),
         body_wet_weight=(body.mass - rho * body.volume) * env.gravity,
-        body_drag=0.5 * rho * body.drag_coefficient * body.drag_area,
+        body_drag=0.5 * rho * body.drag_coefficient * area[0],
     )
     if bottom.tie is not None:
-        rest = bottom.tie.rest_position or end_xz
+        rest = _xz(bottom.tie.rest_position) or end_xz
         fields.update(
             tie_kx=bottom.tie.stiffness_x,
             tie_cx=bottom.tie.damping_x,
@@ -151,8 +144,8 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
             tie_x0=rest[0],
             tie_z0=rest[1],
         )
-    fx = _channel(body.force_x, base_dir, "cables[0].bottom.body.force_x")
-    fz = _channel(body.force_z, base_dir, "cables[0].bottom.body.force_z")
+    fx = common.channel(body.force_x, base_dir, "cables[0].bottom.body.force_x")
+    fz = common.channel(body.force_z, base_dir, "cables[0].bottom.body.force_z")
     return pc.BOTTOM_FREE, fields, fx, fz
 
 
@@ -168,14 +161,15 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
     angles = cable.initial.angles(n)
     top_kind, top_fields, top_channels, top_force, heave, top_pos = _top(cable, base_dir)
     if top_pos is None:  # imposed motion: start where the time functions put the top at t = 0
-        top_pos = (float(_eval0(top_channels[0])), float(_eval0(top_channels[1])))
+        top_pos = (tfn.evaluate(top_channels[0], 0.0)[0], tfn.evaluate(top_channels[1], 0.0)[0])
     node_x, node_z = _initial_nodes(top_pos, angles, lengths)
     bottom_kind, bottom_fields, fx, fz = _bottom(cable, env, base_dir, (node_x[-1], node_z[-1]))
-    current_z, current_u = (
-        env.current.arrays() if env.current is not None else (np.zeros(1), np.zeros(1))
-    )
-    if env.in_air:
-        current_u = np.zeros_like(current_u)
+    current_z, current_u, current_v = common.current_arrays(env)
+    if np.any(np.abs(current_v) > 1e-12 * (1.0 + np.abs(current_u))):
+        raise CaseError(
+            "environment.current.direction_deg: the planar model needs a current along x "
+            "(0 or 180 deg); use model: rigid_segments_3d for other directions"
+        )
     breaks, coefs, count, sine = tfn.stack([*top_channels, top_force, fx, fz])
     params = _typed(
         n=n,
@@ -184,14 +178,9 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
         inertia=mass * lengths**2 / 12.0,
         wet_weight=(mass - rho * area * lengths) * env.gravity,
         drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
-        drag_tangential=0.5
-        * rho
-        * cable.drag_coefficient_tangential
-        * math.pi
-        * cable.diameter
-        * lengths,
-        joint_stiffness=_joint_stiffness(cable, lengths),
-        joint_damping=_per_joint(cable.joint_damping, n),
+        drag_tangential=common.tangential_drag(cable, rho, lengths),
+        joint_stiffness=common.joint_stiffness(cable, lengths),
+        joint_damping=common.per_joint(cable.joint_damping, n),
         top_reference_angle=math.radians(cable.top_reference_angle_deg),
         current_z=current_z,
         current_u=current_u,
@@ -212,17 +201,11 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
     return PlanarSystem(params=params, y0=y0, n_links=n, diameter=cable.diameter)
 
 
-def _channel(spec, base_dir, where: str) -> tfn.Piecewise:
-    """Compile a time function; a table that cannot be read becomes a CaseError naming it."""
-    try:
-        return tfn.build(spec, base_dir)
-    except ValueError as exc:
-        raise CaseError(f"{where}: {exc}") from None
-
-
-def _eval0(piecewise: tfn.Piecewise) -> float:
-    breaks, coefs, count, sine = tfn.stack([piecewise])
-    return pc.tf_evaluate(breaks, coefs, count, sine, 0, 0.0)[0]
+def _xz(point):
+    if point is None:
+        return None
+    x, _, z = schema.xyz(point)
+    return (x, z)
 
 
 def _typed(**fields) -> pc.ChainParams:
@@ -240,3 +223,101 @@ def _typed(**fields) -> pc.ChainParams:
         else:
             typed[name] = np.ascontiguousarray(value, dtype=np.float64)
     return pc.ChainParams(**typed)
+
+
+# ---- what a run of this model records (names, dims, units, long names) ---------------------------
+VARIABLES = {
+    "angle": (("time", "segment"), "rad", "link angle from the downward vertical, positive to +x"),
+    "angular_velocity": (("time", "segment"), "rad/s", "link angular velocity"),
+    "node_x": (("time", "node"), "m", "node position x"),
+    "node_z": (("time", "node"), "m", "node elevation z (up, 0 at the still-water surface)"),
+    "tension": (("time", "segment"), "N", "axial tension at the link centre (positive pulling)"),
+    "top_force_x": (("time",), "N", "force of the cable on its top attachment, x"),
+    "top_force_z": (("time",), "N", "force of the cable on its top attachment, z"),
+    "bottom_force_x": (("time",), "N", "force of the cable on its bottom body or anchor, x"),
+    "bottom_force_z": (("time",), "N", "force of the cable on its bottom body or anchor, z"),
+    "top_heave": (("time",), "m", "elevation of the top attachment (floating structure heave)"),
+    "top_heave_velocity": (("time",), "m/s", "vertical velocity of the top attachment"),
+    "kinetic_energy": (("time",), "J", "kinetic energy of links, bodies and structure"),
+    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
+    "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+    "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
+    "bottom_velocity_x": (("time",), "m/s", "velocity of the bottom end (its body), x"),
+    "bottom_velocity_z": (("time",), "m/s", "velocity of the bottom end (its body), z"),
+}
+
+make_workspace = pc.make_workspace
+
+
+def rows(times, states, system: PlanarSystem, w) -> tuple[dict, int]:
+    """Output rows for the given states (compiled), and the first non-zero kernel status."""
+    n = system.n_links
+    m = len(times)
+    node_x = np.empty((m, n + 1))
+    node_z = np.empty((m, n + 1))
+    tension = np.empty((m, n))
+    scalars = np.empty((m, pc.N_SCALARS))
+    status = pc.outputs_chunk(times, states, system.params, w, node_x, node_z, tension, scalars)
+    out = {
+        "time": times,
+        "angle": states[:, :n],
+        "angular_velocity": states[:, n + 1 : 2 * n + 1],
+        "node_x": node_x,
+        "node_z": node_z,
+        "tension": tension,
+    }
+    for k, name in enumerate(pc.SCALAR_NAMES):
+        out[name] = scalars[:, k]
+    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
+    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
+    return out, status
+
+
+def rates(system: PlanarSystem, y) -> np.ndarray:
+    """Angular rate of every link [rad/s]."""
+    n = system.n_links
+    return np.abs(y[n + 1 : 2 * n + 1])
+
+
+def fastest_frequency(system: PlanarSystem) -> tuple[float, str]:
+    """An estimate of the fastest natural frequency [rad/s] and what sets it.
+
+    The fastest motion of a rigid-link chain is the zigzag mode, each link turning about its
+    centre against its two joint springs and the tension: omega_i^2 = (2 (k_i + k_{i+1})
+    + T l_i) / J_i, with T bounded by the whole apparent weight. Used to warn before an explicit
+    run whose step cannot follow it (RK4 is stable up to about 2.8 / omega).
+    """
+    p = system.params
+    tension = float(np.sum(np.abs(p.wet_weight))) + abs(p.body_wet_weight)
+    if p.top_kind == pc.TOP_HEAVE:
+        tension += abs(p.top_net_weight)
+    ties = (p.tie_kx, p.tie_kz) if p.bottom_kind == pc.BOTTOM_FREE else (0.0, 0.0)
+    heave = p.top_stiffness / p.top_mass if p.top_kind == pc.TOP_HEAVE else 0.0
+    return zigzag_frequency(p, tension, max(ties), p.body_mass, heave)
+
+
+def zigzag_frequency(p, tension, tie_k, body_mass, heave_rate) -> tuple[float, str]:
+    """Shared by the cable models: the zigzag estimate plus ties and heave."""
+    joint_k = p.joint_stiffness
+    k_next = np.append(joint_k[1:], 0.0)
+    w = np.sqrt((2.0 * (joint_k + k_next) + tension * p.length) / p.inertia)
+    i = int(np.argmax(w))
+    what = f"zigzag of link {i} ({p.length[i]:.3g} m, joint springs and tension)"
+    candidates = [(float(w[i]), what)]
+    if tie_k > 0 and body_mass > 0:
+        candidates.append((math.sqrt(tie_k / body_mass), f"bottom ties ({tie_k:.4g} N/m)"))
+    if heave_rate > 0:
+        candidates.append((math.sqrt(heave_rate), "floating structure heave"))
+    return max(candidates)
+
+
+def coords(system: PlanarSystem) -> dict:
+    lengths = system.params.length
+    arc = np.concatenate([[0.0], np.cumsum(lengths)])
+    return {
+        "segment": (np.arange(system.n_links, dtype=float), "1", "link index (0 at the top)"),
+        "node": (np.arange(system.n_links + 1, dtype=float), "1", "node index (0 at the top)"),
+        "arc_length": (arc, "m", "unstretched arc length of the node from the top"),
+        "link_length": (lengths.copy(), "m", "link length"),
+    }

@@ -11,6 +11,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from seacable.case import schema
+from seacable.kernels.timefn import evaluate as _evaluate
 
 SENTINEL = -1.0e30  # first breakpoint: a constant piece that covers all earlier times
 
@@ -119,3 +120,8 @@ def stack(functions: list[Piecewise]):
         count[c] = k
         sine[c] = f.sine
     return breaks, coefs, count, sine
+
+
+def evaluate(function: Piecewise, time: float) -> tuple[float, float, float]:
+    """Value and first two derivatives of a compiled time function at ``time`` [s]."""
+    return _evaluate(*stack([function]), 0, float(time))

@@ -2,6 +2,8 @@
 
 Contract shared by every integrator here (a new one must follow it):
 
+0. It calls the model only through ``numerics.dispatch`` (``model_rhs``, ``model_project``),
+   and projects the state after every accepted step.
 1. It advances the flat state ``y`` in place over a *chunk* of ``n_outputs`` output intervals of
    length ``output_interval`` and writes the state at the end of each interval in ``states[j]``
    and its time in ``times[j]``; the whole chunk runs in compiled code.
@@ -20,8 +22,9 @@ import math
 import numpy as np
 from numba import njit
 
-from seacable.kernels.planar_chain import NON_FINITE, OK, rhs
+from seacable.kernels.planar_chain import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
+from seacable.numerics.dispatch import model_project, model_projects, model_rhs
 
 WORK_NAMES = ("accepted_steps", "rejected_steps", "rhs_evaluations", "failed_evaluations")
 
@@ -61,7 +64,7 @@ def rk4_chunk(t0, y, dt, steps_per_output, n_outputs, p, w, states, times, work)
                     h = _RK4_NODES[s] * dt
                     for i in range(ny):
                         stage[i] = y[i] + h * k[s - 1, i]
-                status |= rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
+                status |= model_rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
             work[2] += 4
             for i in range(ny):
                 acc[i] = y[i] + dt * (
@@ -73,6 +76,7 @@ def rk4_chunk(t0, y, dt, steps_per_output, n_outputs, p, w, states, times, work)
             if status != OK or not _all_finite(acc):
                 work[3] += 1
                 return j, (status if status != OK else NON_FINITE)
+            model_project(acc, p)
             y[:] = acc
             work[0] += 1
             step += 1
@@ -110,7 +114,7 @@ def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
             ytmp[i] = y[i] + h * acc
         if s == 6:
             ynew[:] = ytmp
-        status |= rhs(t + _C[s] * h, ytmp, p, w, k[s])
+        status |= model_rhs(t + _C[s] * h, ytmp, p, w, k[s])
     return status
 
 
@@ -124,7 +128,7 @@ def dopri5_chunk(
     ytmp = np.empty(ny)
     ynew = np.empty(ny)
     t = t0
-    status = rhs(t, y, p, w, k[0])
+    status = model_rhs(t, y, p, w, k[0])
     work[2] += 1
     if status != OK:
         work[3] += 1
@@ -157,8 +161,15 @@ def dopri5_chunk(
                 continue
             if err <= 1.0:
                 t = t_target if last else t + h_try
+                model_project(ynew, p)
                 y[:] = ynew
-                k[0, :] = k[6, :]
+                if model_projects(p):
+                    work[2] += 1
+                    if model_rhs(t, y, p, w, k[0]) != OK:
+                        work[3] += 1
+                        return j, NON_FINITE, h
+                else:
+                    k[0, :] = k[6, :]
                 work[0] += 1
                 if last:
                     # a step clipped at an output time keeps the unclipped proposal unless the

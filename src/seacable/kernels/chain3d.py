@@ -1,0 +1,796 @@
+"""Three-dimensional chain of rigid cylindrical segments: O(n) dynamics, loads, outputs (numba).
+
+Frame: x, y horizontal, z up. Segment ``i`` joins node ``i`` (top) to node ``i + 1``; its
+orientation is the unit **director** ``e_i`` (top -> bottom) and its rate ``u_i = de_i/dt`` with
+``u_i . e_i = 0``. Directors have no singular direction (unlike the two Euler angles of
+Jacquot & Marichal, singular along one axis); rotation about the segment's own axis carries no
+inertia or stiffness for an axisymmetric slender cylinder and is not a degree of freedom.
+
+State layout (flat float64, length ``6 n + 2``)::
+
+    y = [e_0 (3) .. e_{n-1} (3), z_top, u_0 (3) .. u_{n-1} (3), zdot_top]
+
+After every integration step the state is projected back (|e| = 1, u . e = 0):
+:func:`project`.
+
+Method: the articulated recursion of ``planar_chain`` in 3D. ``lam_k = M_k A_k + b_k`` with a
+symmetric 3x3 ``M_k``; each segment solves a 2x2 system in the plane normal to its director
+(any orthonormal basis of that plane: it is a computation device, not a state). A segment's
+translational inertia is ``m I + m_a (I - e e^T)`` (added mass normal to the axis only, none
+axially) and its rotational inertia about the centre ``m l^2/12 + m_a l^2/12``. Point bodies at
+nodes (floats, clump weights) join the articulated inertia of the part below them.
+"""
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.planar_chain import (
+    BOTTOM_FREE,
+    BOTTOM_PINNED,
+    NON_FINITE,
+    OK,
+    SINGULAR_CLOSURE,
+    TOP_HEAVE,
+    TOP_IMPOSED,
+)
+from seacable.kernels.timefn import JIT
+from seacable.kernels.timefn import evaluate as tf_evaluate
+
+__all__ = ["BOTTOM_FREE", "BOTTOM_PINNED", "TOP_HEAVE", "TOP_IMPOSED", "TOP_TRACK"]
+
+TOP_TRACK = 2  # towing ship on a track: straight, then optionally a circle; s(t) from a channel
+
+CH_TOP_X, CH_TOP_Y, CH_TOP_Z, CH_TOP_FORCE = 0, 1, 2, 3
+CH_BODY_FX, CH_BODY_FY, CH_BODY_FZ = 4, 5, 6
+CH_TRACK_S = 7  # distance travelled along the track [m]
+N_CHANNELS = 8
+
+SCALAR_NAMES = (
+    "top_force_x",
+    "top_force_y",
+    "top_force_z",
+    "bottom_force_x",
+    "bottom_force_y",
+    "bottom_force_z",
+    "top_velocity_x",
+    "top_velocity_y",
+    "top_velocity_z",
+    "bottom_velocity_x",
+    "bottom_velocity_y",
+    "bottom_velocity_z",
+    "kinetic_energy",
+    "gravity_potential_energy",
+    "elastic_energy",
+    "constraint_error",
+)
+N_SCALARS = len(SCALAR_NAMES)
+
+# workspace rows, each of length n + 1
+_P, _V, _E, _U, _F, _TQ = 0, 3, 6, 9, 12, 15  # 3 rows each: node pos, node vel, e, u, F, torque
+_T1, _T2 = 18, 21  # basis of the plane normal to e (3 rows each)
+_ID11, _ID12, _ID22 = 24, 25, 26  # inverse of the 2x2 D
+_H = 27  # 6 rows: H (3x2), row-major H[r, c] at _H + 2 r + c
+_W = 33  # 2 rows
+_RS = 35  # 6 rows: dw/dL (2x3), row-major at _RS + 3 r + c
+_M = 41  # 6 rows: symmetric M (11, 12, 13, 22, 23, 33)
+_B = 47  # 3 rows
+_S = 50  # 9 rows: S (3x3) row-major
+_XC = 59  # 2 rows: xi constant part
+_XL = 61  # 6 rows: d xi / d L (2x3)
+_A = 67  # 3 rows: node acceleration
+_EDD = 70  # 3 rows: director acceleration
+N_WORK_ROWS = 73
+
+
+class Chain3DParams(NamedTuple):
+    """Flat parameters of one 3D rigid-segment cable and its end conditions (SI units)."""
+
+    n: int
+    length: np.ndarray  # (n,) [m]
+    mass: np.ndarray  # (n,) structural mass [kg]
+    added_mass: np.ndarray  # (n,) normal added mass [kg]
+    inertia: np.ndarray  # (n,) rotational inertia about the centre, added included [kg m^2]
+    wet_weight: np.ndarray  # (n,) apparent weight, positive down [N]
+    drag_normal: np.ndarray  # (n,) 0.5 rho Cd d l [N s^2/m^2]
+    drag_tangential: np.ndarray  # (n,) 0.5 rho f Cd d l (Richtmyer) [N s^2/m^2]
+    joint_stiffness: np.ndarray  # (n,) [N m/rad]; joint i between segment i-1 (or top) and i
+    joint_damping: np.ndarray  # (n,) [N m s/rad]
+    top_reference: np.ndarray  # (3,) direction the top joint spring is unloaded at
+    current_z: np.ndarray  # (K,) ascending elevations [m]
+    current_u: np.ndarray  # (K,) current along x [m/s]
+    current_v: np.ndarray  # (K,) current along y [m/s]
+    node_mass: np.ndarray  # (n+1, 3) point-body mass + added mass per axis at nodes [kg]
+    node_wet_weight: np.ndarray  # (n+1,) point-body apparent weight, positive down [N]
+    node_drag: np.ndarray  # (n+1,) point-body 0.5 rho Cd A (sphere) [N s^2/m^2]
+    top_kind: int
+    top_x: float  # heaving structure x, y [m]
+    top_y: float
+    top_mass: float
+    top_stiffness: float
+    top_damping: float
+    top_rest_z: float
+    top_net_weight: float
+    track_origin: np.ndarray  # (3,) tow point at s = 0 [m]
+    track_heading: float  # initial heading from +x towards +y [rad]
+    track_turn_at: float  # distance along the track where the turn starts [m]
+    track_radius: float  # signed turning radius (+ turns towards +y/left), 0: no turn [m]
+    bottom_kind: int
+    body_mass: np.ndarray  # (3,) mass + added mass per axis [kg]
+    body_wet_weight: float
+    body_drag: np.ndarray  # (3,) 0.5 rho Cd A per axis [N s^2/m^2]
+    tie_k: np.ndarray  # (3,) [N/m]
+    tie_c: np.ndarray  # (3,) [N s/m]
+    tie_rest: np.ndarray  # (3,)
+    pin: np.ndarray  # (3,)
+    stabilization_frequency: float
+    tf_breaks: np.ndarray
+    tf_coefs: np.ndarray
+    tf_count: np.ndarray
+    tf_sine: np.ndarray
+
+
+def state_size(n):
+    return 6 * n + 2
+
+
+def make_workspace(n):
+    return np.zeros((N_WORK_ROWS, n + 1))
+
+
+@njit(**JIT)
+def _current(current_z, current_u, current_v, z):
+    if current_z.shape[0] == 1:
+        return current_u[0], current_v[0]
+    return np.interp(z, current_z, current_u), np.interp(z, current_z, current_v)
+
+
+@njit(**JIT)
+def _tf(p, channel, t):
+    return tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, channel, t)
+
+
+@njit(**JIT)
+def top_motion(t, y, p):
+    """Top position (3), velocity (3), acceleration (3) (zero acceleration for heave)."""
+    n = p.n
+    pos = np.zeros(3)
+    vel = np.zeros(3)
+    acc = np.zeros(3)
+    if p.top_kind == TOP_HEAVE:
+        pos[0] = p.top_x
+        pos[1] = p.top_y
+        pos[2] = y[3 * n]
+        vel[2] = y[6 * n + 1]
+        return pos, vel, acc
+    if p.top_kind == TOP_TRACK:
+        s, sd, sdd = _tf(p, CH_TRACK_S, t)
+        c0 = math.cos(p.track_heading)
+        s0 = math.sin(p.track_heading)
+        if p.track_radius == 0.0 or s <= p.track_turn_at:
+            pos[0] = p.track_origin[0] + s * c0
+            pos[1] = p.track_origin[1] + s * s0
+            vel[0] = sd * c0
+            vel[1] = sd * s0
+            acc[0] = sdd * c0
+            acc[1] = sdd * s0
+        else:
+            r = p.track_radius
+            phi = (s - p.track_turn_at) / r  # heading change (signed with r)
+            heading = p.track_heading + phi
+            ch = math.cos(heading)
+            sh = math.sin(heading)
+            # centre of the circle: left of the track for r > 0
+            cx = p.track_origin[0] + p.track_turn_at * c0 - r * s0
+            cy = p.track_origin[1] + p.track_turn_at * s0 + r * c0
+            pos[0] = cx + r * sh
+            pos[1] = cy - r * ch
+            vel[0] = sd * ch
+            vel[1] = sd * sh
+            kappa = sd * sd / r
+            acc[0] = sdd * ch - kappa * sh
+            acc[1] = sdd * sh + kappa * ch
+        pos[2] = p.track_origin[2]
+        return pos, vel, acc
+    pos[0], vel[0], acc[0] = _tf(p, CH_TOP_X, t)
+    pos[1], vel[1], acc[1] = _tf(p, CH_TOP_Y, t)
+    pos[2], vel[2], acc[2] = _tf(p, CH_TOP_Z, t)
+    return pos, vel, acc
+
+
+@njit(**JIT)
+def _joint_torques(y, p, w):
+    """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity."""
+    n = p.n
+    u0 = 3 * n + 1
+    for i in range(n):
+        w[_TQ, i] = 0.0
+        w[_TQ + 1, i] = 0.0
+        w[_TQ + 2, i] = 0.0
+    for i in range(n):
+        bx, by, bz = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        if i == 0:
+            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
+            wax, way, waz = 0.0, 0.0, 0.0
+        else:
+            ax, ay, az = y[3 * i - 3], y[3 * i - 2], y[3 * i - 1]
+            uax, uay, uaz = y[u0 + 3 * i - 3], y[u0 + 3 * i - 2], y[u0 + 3 * i - 1]
+            wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
+        ubx, uby, ubz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
+        wbx, wby, wbz = by * ubz - bz * uby, bz * ubx - bx * ubz, bx * uby - by * ubx
+        cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx  # e_a x e_b
+        sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
+        cos_phi = ax * bx + ay * by + az * bz
+        phi = math.atan2(sin_phi, cos_phi)
+        factor = phi / sin_phi if sin_phi > 1e-12 else 1.0
+        k = p.joint_stiffness[i] * factor
+        c = p.joint_damping[i]
+        tx = k * cx + c * (wbx - wax)  # moment the joint exerts on segment a; -t on segment b
+        ty = k * cy + c * (wby - way)
+        tz = k * cz + c * (wbz - waz)
+        w[_TQ, i] -= tx
+        w[_TQ + 1, i] -= ty
+        w[_TQ + 2, i] -= tz
+        if i > 0:
+            w[_TQ, i - 1] += tx
+            w[_TQ + 1, i - 1] += ty
+            w[_TQ + 2, i - 1] += tz
+
+
+@njit(**JIT)
+def _kinematics_and_loads(t, y, p, w):
+    n = p.n
+    u0 = 3 * n + 1
+    cz_, cu_, cv_ = p.current_z, p.current_u, p.current_v
+    pos, vel, _ = top_motion(t, y, p)
+    for k in range(3):
+        w[_P + k, 0] = pos[k]
+        w[_V + k, 0] = vel[k]
+    for i in range(n):
+        li = p.length[i]
+        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        ux, uy, uz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
+        w[_E, i], w[_E + 1, i], w[_E + 2, i] = ex, ey, ez
+        w[_U, i], w[_U + 1, i], w[_U + 2, i] = ux, uy, uz
+        w[_P, i + 1] = w[_P, i] + li * ex
+        w[_P + 1, i + 1] = w[_P + 1, i] + li * ey
+        w[_P + 2, i + 1] = w[_P + 2, i] + li * ez
+        w[_V, i + 1] = w[_V, i] + li * ux
+        w[_V + 1, i + 1] = w[_V + 1, i] + li * uy
+        w[_V + 2, i + 1] = w[_V + 2, i] + li * uz
+        zc = w[_P + 2, i] + 0.5 * li * ez
+        cu, cv = _current(cz_, cu_, cv_, zc)
+        rx = w[_V, i] + 0.5 * li * ux - cu
+        ry = w[_V + 1, i] + 0.5 * li * uy - cv
+        rz = w[_V + 2, i] + 0.5 * li * uz
+        vt = rx * ex + ry * ey + rz * ez
+        nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
+        vn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        cn = -p.drag_normal[i] * vn
+        ct = -p.drag_tangential[i] * abs(vt) * vt
+        w[_F, i] = cn * nx + ct * ex
+        w[_F + 1, i] = cn * ny + ct * ey
+        w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
+    _joint_torques(y, p, w)
+
+
+@njit(**JIT)
+def _point_force(p, k, w, t):
+    """Force on the point body at node k (not the cable): weight, drag (and at the bottom,
+    applied forces and ties)."""
+    vx, vy, vz = w[_V, k], w[_V + 1, k], w[_V + 2, k]
+    cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
+    rx, ry, rz = vx - cu, vy - cv, vz
+    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    if k < p.n:
+        c = p.node_drag[k] * speed
+        return -c * rx, -c * ry, -c * rz - p.node_wet_weight[k]
+    fx, _, _ = _tf(p, CH_BODY_FX, t)
+    fy, _, _ = _tf(p, CH_BODY_FY, t)
+    fz, _, _ = _tf(p, CH_BODY_FZ, t)
+    fx -= p.body_drag[0] * speed * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
+    fy -= (
+        p.body_drag[1] * speed * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
+    )
+    fz -= (
+        p.body_drag[2] * speed * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
+    )
+    return fx, fy, fz - p.body_wet_weight
+
+
+@njit(**JIT)
+def _basis(ex, ey, ez):
+    """Orthonormal t1, t2 normal to e (t1 built from the axis least aligned with e)."""
+    ax, ay, az = abs(ex), abs(ey), abs(ez)
+    if ax <= ay and ax <= az:
+        t1x, t1y, t1z = 0.0, ez, -ey  # -(x_hat x e): any vector normal to e will do
+    elif ay <= az:
+        t1x, t1y, t1z = -ez, 0.0, ex
+    else:
+        t1x, t1y, t1z = ey, -ex, 0.0
+    norm = 1.0 / math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z)
+    t1x *= norm
+    t1y *= norm
+    t1z *= norm
+    t2x = ey * t1z - ez * t1y
+    t2y = ez * t1x - ex * t1z
+    t2z = ex * t1y - ey * t1x
+    return t1x, t1y, t1z, t2x, t2y, t2z
+
+
+@njit(**JIT)
+def _store_node(w, k, m, b, s):
+    for r in range(6):
+        w[_M + r, k] = m[r]
+    for r in range(3):
+        w[_B + r, k] = b[r]
+    for r in range(9):
+        w[_S + r, k] = s[r]
+
+
+@njit(**JIT)
+def _sym_mul(m, x0, x1, x2):
+    """M x for M stored as (11, 12, 13, 22, 23, 33)."""
+    return (
+        m[0] * x0 + m[1] * x1 + m[2] * x2,
+        m[1] * x0 + m[3] * x1 + m[4] * x2,
+        m[2] * x0 + m[4] * x1 + m[5] * x2,
+    )
+
+
+@njit(**JIT)
+def _backward_sweep(t, y, p, w):
+    n = p.n
+    pinned = p.bottom_kind == BOTTOM_PINNED
+    m = np.zeros(6)
+    b = np.zeros(3)
+    s = np.zeros(9)
+    if pinned:
+        s[0] = s[4] = s[8] = 1.0
+    else:
+        fx, fy, fz = _point_force(p, n, w, t)
+        m[0], m[3], m[5] = p.body_mass[0], p.body_mass[1], p.body_mass[2]
+        b[0], b[1], b[2] = -fx, -fy, -fz
+    _store_node(w, n, m, b, s)
+    for i in range(n - 1, -1, -1):
+        li = p.length[i]
+        mi = p.mass[i]
+        ma = p.added_mass[i]
+        mt = mi + ma
+        ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+        u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
+        t1x, t1y, t1z, t2x, t2y, t2z = _basis(ex, ey, ez)
+        a1x, a1y, a1z = _sym_mul(m, t1x, t1y, t1z)
+        a2x, a2y, a2z = _sym_mul(m, t2x, t2y, t2z)
+        mex, mey, mez = _sym_mul(m, ex, ey, ez)
+        base = p.inertia[i] + 0.25 * mt * li * li
+        d11 = base + li * li * (t1x * a1x + t1y * a1y + t1z * a1z)
+        d12 = li * li * (t1x * a2x + t1y * a2y + t1z * a2z)
+        d22 = base + li * li * (t2x * a2x + t2y * a2y + t2z * a2z)
+        inv_det = 1.0 / (d11 * d22 - d12 * d12)
+        i11, i12, i22 = d22 * inv_det, -d12 * inv_det, d11 * inv_det
+        h1x, h1y, h1z = (
+            li * (0.5 * mt * t1x + a1x),
+            li * (0.5 * mt * t1y + a1y),
+            li * (0.5 * mt * t1z + a1z),
+        )
+        h2x, h2y, h2z = (
+            li * (0.5 * mt * t2x + a2x),
+            li * (0.5 * mt * t2y + a2y),
+            li * (0.5 * mt * t2z + a2z),
+        )
+        # generalised director force G = -e x torque
+        tqx, tqy, tqz = w[_TQ, i], w[_TQ + 1, i], w[_TQ + 2, i]
+        gx, gy, gz = -(ey * tqz - ez * tqy), -(ez * tqx - ex * tqz), -(ex * tqy - ey * tqx)
+        qx = -2.0 * li * u2 * mex + 2.0 * b[0] - w[_F, i]
+        qy = -2.0 * li * u2 * mey + 2.0 * b[1] - w[_F + 1, i]
+        qz = -2.0 * li * u2 * mez + 2.0 * b[2] - w[_F + 2, i]
+        w1 = t1x * gx + t1y * gy + t1z * gz - 0.5 * li * (t1x * qx + t1y * qy + t1z * qz)
+        w2 = t2x * gx + t2y * gy + t2z * gz - 0.5 * li * (t2x * qx + t2y * qy + t2z * qz)
+        k1x, k1y, k1z = i11 * h1x + i12 * h2x, i11 * h1y + i12 * h2y, i11 * h1z + i12 * h2z
+        k2x, k2y, k2z = i12 * h1x + i22 * h2x, i12 * h1y + i22 * h2y, i12 * h1z + i22 * h2z
+        if pinned:
+            # rows of dw/dL = -l T^T S
+            r1 = np.empty(3)
+            r2 = np.empty(3)
+            for c in range(3):
+                r1[c] = -li * (t1x * s[c] + t1y * s[3 + c] + t1z * s[6 + c])
+                r2[c] = -li * (t2x * s[c] + t2y * s[3 + c] + t2z * s[6 + c])
+                w[_RS + c, i] = r1[c]
+                w[_RS + 3 + c, i] = r2[c]
+            kk = (k1x, k1y, k1z, k2x, k2y, k2z)
+            for r in range(3):
+                for c in range(3):
+                    s[3 * r + c] += kk[r] * r1[c] + kk[3 + r] * r2[c]
+        w[_T1, i], w[_T1 + 1, i], w[_T1 + 2, i] = t1x, t1y, t1z
+        w[_T2, i], w[_T2 + 1, i], w[_T2 + 2, i] = t2x, t2y, t2z
+        w[_ID11, i], w[_ID12, i], w[_ID22, i] = i11, i12, i22
+        w[_H, i], w[_H + 1, i] = h1x, h2x
+        w[_H + 2, i], w[_H + 3, i] = h1y, h2y
+        w[_H + 4, i], w[_H + 5, i] = h1z, h2z
+        w[_W, i], w[_W + 1, i] = w1, w2
+        # b <- b - F + K w - l u^2 (m/2 e + M e)
+        b[0] += -w[_F, i] + k1x * w1 + k2x * w2 - li * u2 * (0.5 * mi * ex + mex)
+        b[1] += -w[_F + 1, i] + k1y * w1 + k2y * w2 - li * u2 * (0.5 * mi * ey + mey)
+        b[2] += -w[_F + 2, i] + k1z * w1 + k2z * w2 - li * u2 * (0.5 * mi * ez + mez)
+        # M <- m_t I - m_a e e^T + M - K H^T
+        m[0] += mt - ma * ex * ex - (k1x * h1x + k2x * h2x)
+        m[1] += -ma * ex * ey - (k1x * h1y + k2x * h2y)
+        m[2] += -ma * ex * ez - (k1x * h1z + k2x * h2z)
+        m[3] += mt - ma * ey * ey - (k1y * h1y + k2y * h2y)
+        m[4] += -ma * ey * ez - (k1y * h1z + k2y * h2z)
+        m[5] += mt - ma * ez * ez - (k1z * h1z + k2z * h2z)
+        if i > 0:  # a point body at the top node of this segment joins the part below it
+            nm = p.node_mass[i]
+            if nm[0] != 0.0 or nm[1] != 0.0 or nm[2] != 0.0 or p.node_wet_weight[i] != 0.0:
+                fx, fy, fz = _point_force(p, i, w, t)
+                m[0] += nm[0]
+                m[3] += nm[1]
+                m[5] += nm[2]
+                b[0] -= fx
+                b[1] -= fy
+                b[2] -= fz
+        _store_node(w, i, m, b, s)
+
+
+@njit(**JIT)
+def _solve3(a, r):
+    """Solve the 3x3 system a x = r (a row-major, 9 values); returns x and the determinant."""
+    c00 = a[4] * a[8] - a[5] * a[7]
+    c01 = a[5] * a[6] - a[3] * a[8]
+    c02 = a[3] * a[7] - a[4] * a[6]
+    det = a[0] * c00 + a[1] * c01 + a[2] * c02
+    x = np.zeros(3)
+    if det == 0.0:
+        return x, det
+    inv = 1.0 / det
+    x[0] = (
+        c00 * r[0] + (a[2] * a[7] - a[1] * a[8]) * r[1] + (a[1] * a[5] - a[2] * a[4]) * r[2]
+    ) * inv
+    x[1] = (
+        c01 * r[0] + (a[0] * a[8] - a[2] * a[6]) * r[1] + (a[2] * a[3] - a[0] * a[5]) * r[2]
+    ) * inv
+    x[2] = (
+        c02 * r[0] + (a[1] * a[6] - a[0] * a[7]) * r[1] + (a[0] * a[4] - a[1] * a[3]) * r[2]
+    ) * inv
+    return x, det
+
+
+@njit(**JIT)
+def _top_acceleration(t, y, p, w, ac, al):
+    """Top node acceleration, affine in the pinned reaction L: A0 = ac + al L (al row-major)."""
+    n = p.n
+    if p.top_kind == TOP_HEAVE:
+        u, _, _ = _tf(p, CH_TOP_FORCE, t)
+        f_structure = -p.top_stiffness * (y[3 * n] - p.top_rest_z) - p.top_damping * y[6 * n + 1]
+        den = p.top_mass + w[_M + 5, 0]
+        ac[2] = (f_structure + u - p.top_net_weight - w[_B + 2, 0]) / den
+        for c in range(3):
+            al[6 + c] = -w[_S + 6 + c, 0] / den
+    else:
+        _, _, acc = top_motion(t, y, p)
+        ac[:] = acc
+
+
+@njit(**JIT)
+def _forward_sweep(y, p, w, ac, al, pinned):
+    """Director accelerations, affine in L; leaves the end acceleration in (ac, al)."""
+    n = p.n
+    u0 = 3 * n + 1
+    for i in range(n):
+        li = p.length[i]
+        u2 = y[u0 + 3 * i] ** 2 + y[u0 + 3 * i + 1] ** 2 + y[u0 + 3 * i + 2] ** 2
+        h1 = (w[_H, i], w[_H + 2, i], w[_H + 4, i])
+        h2 = (w[_H + 1, i], w[_H + 3, i], w[_H + 5, i])
+        i11, i12, i22 = w[_ID11, i], w[_ID12, i], w[_ID22, i]
+        r1 = w[_W, i] - (h1[0] * ac[0] + h1[1] * ac[1] + h1[2] * ac[2])
+        r2 = w[_W + 1, i] - (h2[0] * ac[0] + h2[1] * ac[1] + h2[2] * ac[2])
+        x1 = i11 * r1 + i12 * r2
+        x2 = i12 * r1 + i22 * r2
+        w[_XC, i] = x1
+        w[_XC + 1, i] = x2
+        for k in range(3):
+            ac[k] += li * (x1 * w[_T1 + k, i] + x2 * w[_T2 + k, i] - u2 * y[3 * i + k])
+        if pinned:
+            for c in range(3):
+                q1 = w[_RS + c, i] - (h1[0] * al[c] + h1[1] * al[3 + c] + h1[2] * al[6 + c])
+                q2 = w[_RS + 3 + c, i] - (h2[0] * al[c] + h2[1] * al[3 + c] + h2[2] * al[6 + c])
+                xl1 = i11 * q1 + i12 * q2
+                xl2 = i12 * q1 + i22 * q2
+                w[_XL + c, i] = xl1
+                w[_XL + 3 + c, i] = xl2
+                for k in range(3):
+                    al[3 * k + c] += li * (xl1 * w[_T1 + k, i] + xl2 * w[_T2 + k, i])
+
+
+@njit(**JIT)
+def _closure(p, w, ac, al):
+    """Reaction L at a pinned end: end acceleration = Baumgarte-stabilised target."""
+    n = p.n
+    omega = p.stabilization_frequency
+    target = np.empty(3)
+    for k in range(3):
+        target[k] = -2.0 * omega * w[_V + k, n] - omega * omega * (w[_P + k, n] - p.pin[k]) - ac[k]
+    reaction, det = _solve3(al, target)
+    scale = 0.0
+    for v in al:
+        scale = max(scale, abs(v))
+    return reaction, abs(det) > 1e-12 * scale**3
+
+
+@njit(**JIT)
+def _final_accelerations(y, p, w, acc_top, al_top, reaction, pinned):
+    n = p.n
+    u0 = 3 * n + 1
+    for k in range(3):
+        w[_A + k, 0] = acc_top[k] + (
+            al_top[3 * k] * reaction[0] + al_top[3 * k + 1] * reaction[1]
+            + al_top[3 * k + 2] * reaction[2]
+        )  # fmt: skip
+    for i in range(n):
+        li = p.length[i]
+        u2 = y[u0 + 3 * i] ** 2 + y[u0 + 3 * i + 1] ** 2 + y[u0 + 3 * i + 2] ** 2
+        x1 = w[_XC, i]
+        x2 = w[_XC + 1, i]
+        if pinned:
+            for c in range(3):
+                x1 += w[_XL + c, i] * reaction[c]
+                x2 += w[_XL + 3 + c, i] * reaction[c]
+        for k in range(3):
+            edd = x1 * w[_T1 + k, i] + x2 * w[_T2 + k, i] - u2 * y[3 * i + k]
+            w[_EDD + k, i] = edd
+            w[_A + k, i + 1] = w[_A + k, i] + li * edd
+
+
+@njit(**JIT)
+def solve(t, y, p, w):
+    """Kinematics, loads and accelerations at (t, y) into ``w``.
+
+    Returns (status, top_heave_acceleration, L) with L the pinned-end reaction (3,).
+    """
+    n = p.n
+    pinned = p.bottom_kind == BOTTOM_PINNED
+    _kinematics_and_loads(t, y, p, w)
+    _backward_sweep(t, y, p, w)
+    ac = np.zeros(3)
+    al = np.zeros(9)
+    _top_acceleration(t, y, p, w, ac, al)
+    acc_top = ac.copy()
+    al_top = al.copy()
+    _forward_sweep(y, p, w, ac, al, pinned)
+    reaction = np.zeros(3)
+    if pinned:
+        reaction, sound = _closure(p, w, ac, al)
+        if not sound:
+            return SINGULAR_CLOSURE, 0.0, reaction
+    _final_accelerations(y, p, w, acc_top, al_top, reaction, pinned)
+    status = OK
+    if not math.isfinite(w[_A, n] + w[_A + 1, n] + w[_A + 2, n] + w[_A + 2, 0]):
+        status = NON_FINITE
+    top_acc = w[_A + 2, 0] if p.top_kind == TOP_HEAVE else 0.0
+    return status, top_acc, reaction
+
+
+@njit(**JIT)
+def rhs(t, y, p, w, ydot):
+    """Time derivative of the state; returns a status code."""
+    n = p.n
+    status, top_acc, _ = solve(t, y, p, w)
+    u0 = 3 * n + 1
+    for i in range(n):
+        for k in range(3):
+            ydot[3 * i + k] = y[u0 + 3 * i + k]
+            ydot[u0 + 3 * i + k] = w[_EDD + k, i]
+    ydot[3 * n] = y[6 * n + 1] if p.top_kind == TOP_HEAVE else 0.0
+    ydot[6 * n + 1] = top_acc
+    return status
+
+
+@njit(**JIT)
+def project(y, p):
+    """Put the state back on its manifold: unit directors, rates normal to them."""
+    n = p.n
+    u0 = 3 * n + 1
+    for i in range(n):
+        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
+        ex *= inv
+        ey *= inv
+        ez *= inv
+        y[3 * i], y[3 * i + 1], y[3 * i + 2] = ex, ey, ez
+        dot = y[u0 + 3 * i] * ex + y[u0 + 3 * i + 1] * ey + y[u0 + 3 * i + 2] * ez
+        y[u0 + 3 * i] -= dot * ex
+        y[u0 + 3 * i + 1] -= dot * ey
+        y[u0 + 3 * i + 2] -= dot * ez
+
+
+@njit(**JIT)
+def _node_force(w, k, reaction, pinned):
+    m = w[_M : _M + 6, k]
+    f = np.empty(3)
+    ax, ay, az = w[_A, k], w[_A + 1, k], w[_A + 2, k]
+    mx, my, mz = _sym_mul(m, ax, ay, az)
+    f[0] = mx + w[_B, k]
+    f[1] = my + w[_B + 1, k]
+    f[2] = mz + w[_B + 2, k]
+    if pinned:
+        for r in range(3):
+            for c in range(3):
+                f[r] += w[_S + 3 * r + c, k] * reaction[c]
+    return f
+
+
+@njit(**JIT)
+def _energies(y, p, w):
+    n = p.n
+    kinetic = 0.0
+    gravity = 0.0
+    elastic = 0.0
+    for i in range(n):
+        li = p.length[i]
+        ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+        vx = 0.5 * (w[_V, i] + w[_V, i + 1])
+        vy = 0.5 * (w[_V + 1, i] + w[_V + 1, i + 1])
+        vz = 0.5 * (w[_V + 2, i] + w[_V + 2, i + 1])
+        va = vx * ex + vy * ey + vz * ez
+        v2 = vx * vx + vy * vy + vz * vz
+        u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
+        kinetic += 0.5 * p.mass[i] * v2 + 0.5 * p.added_mass[i] * (v2 - va * va)
+        kinetic += 0.5 * p.inertia[i] * u2
+        gravity += p.wet_weight[i] * (w[_P + 2, i] + 0.5 * li * ez)
+        if i == 0:
+            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
+        else:
+            ax, ay, az = w[_E, i - 1], w[_E + 1, i - 1], w[_E + 2, i - 1]
+        cx, cy, cz = ay * ez - az * ey, az * ex - ax * ez, ax * ey - ay * ex
+        phi = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ax * ex + ay * ey + az * ez)
+        elastic += 0.5 * p.joint_stiffness[i] * phi * phi
+    for k in range(1, n):
+        nm = p.node_mass[k]
+        kinetic += 0.5 * (nm[0] * w[_V, k] ** 2 + nm[1] * w[_V + 1, k] ** 2)
+        kinetic += 0.5 * nm[2] * w[_V + 2, k] ** 2
+        gravity += p.node_wet_weight[k] * w[_P + 2, k]
+    if p.bottom_kind == BOTTOM_FREE:
+        for k in range(3):
+            kinetic += 0.5 * p.body_mass[k] * w[_V + k, n] ** 2
+            d = w[_P + k, n] - p.tie_rest[k]
+            elastic += 0.5 * p.tie_k[k] * d * d
+        gravity += p.body_wet_weight * w[_P + 2, n]
+    if p.top_kind == TOP_HEAVE:
+        kinetic += 0.5 * p.top_mass * y[6 * n + 1] ** 2
+        gravity += p.top_net_weight * y[3 * n]
+        d = y[3 * n] - p.top_rest_z
+        elastic += 0.5 * p.top_stiffness * d * d
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def outputs(t, y, p, w, node_pos, tension, scalars):
+    """Derived outputs at one instant: node_pos (n+1, 3), tension (n,), scalars (N_SCALARS,)."""
+    n = p.n
+    pinned = p.bottom_kind == BOTTOM_PINNED
+    status, _, reaction = solve(t, y, p, w)
+    for k in range(n + 1):
+        for c in range(3):
+            node_pos[k, c] = w[_P + c, k]
+    f_prev = _node_force(w, 0, reaction, pinned)
+    top = -f_prev
+    for i in range(n):
+        f_next = _node_force(w, i + 1, reaction, pinned)
+        e0, e1, e2 = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+        t_top = -(e0 * f_prev[0] + e1 * f_prev[1] + e2 * f_prev[2])
+        t_bottom = -(e0 * f_next[0] + e1 * f_next[1] + e2 * f_next[2])
+        tension[i] = 0.5 * (t_top + t_bottom)
+        f_prev = f_next
+    kinetic, gravity, elastic = _energies(y, p, w)
+    for c in range(3):
+        scalars[c] = top[c]
+        scalars[3 + c] = f_prev[c]
+        scalars[6 + c] = w[_V + c, 0]
+        scalars[9 + c] = w[_V + c, n]
+    scalars[12] = kinetic
+    scalars[13] = gravity
+    scalars[14] = elastic
+    if pinned:
+        d2 = 0.0
+        for c in range(3):
+            d2 += (w[_P + c, n] - p.pin[c]) ** 2
+        scalars[15] = math.sqrt(d2)
+    else:
+        scalars[15] = 0.0
+    return status
+
+
+@njit(**JIT)
+def outputs_chunk(times, states, p, w, node_pos, tension, scalars):
+    status = OK
+    for j in range(times.shape[0]):
+        st = outputs(times[j], states[j], p, w, node_pos[j], tension[j], scalars[j])
+        if st != OK and status == OK:
+            status = st
+    return status
+
+
+# ---- statics: shooting from the lower end ----------------------------------------------------
+@njit(**JIT)
+def _static_link_force(p, i, ex, ey, ez, zc, vel):
+    """Steady load on segment i with director e, centre at elevation zc, moving at vel."""
+    cu, cv = _current(p.current_z, p.current_u, p.current_v, zc)
+    rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]
+    vt = rx * ex + ry * ey + rz * ez
+    nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
+    vn = math.sqrt(nx * nx + ny * ny + nz * nz)
+    cn = -p.drag_normal[i] * vn
+    ct = -p.drag_tangential[i] * abs(vt) * vt
+    return cn * nx + ct * ex, cn * ny + ct * ey, cn * nz + ct * ez - p.wet_weight[i]
+
+
+@njit(**JIT)
+def _static_point_force(p, k, z, vel, t):
+    """Steady force on the point body at node k (the bottom body when k == n), no ties."""
+    cu, cv = _current(p.current_z, p.current_u, p.current_v, z)
+    rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]
+    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    if k < p.n:
+        c = p.node_drag[k] * speed
+        return -c * rx, -c * ry, -c * rz - p.node_wet_weight[k]
+    fx, _, _ = _tf(p, CH_BODY_FX, t)
+    fy, _, _ = _tf(p, CH_BODY_FY, t)
+    fz, _, _ = _tf(p, CH_BODY_FZ, t)
+    fx -= p.body_drag[0] * speed * rx
+    fy -= p.body_drag[1] * speed * ry
+    fz -= p.body_drag[2] * speed * rz
+    return fx, fy, fz - p.body_wet_weight
+
+
+@njit(**JIT)
+def static_shoot(p, bottom_force, node_z, vel, t, directors, forces):
+    """Steady shape of a cable with perfect joints, built from its lower end upwards.
+
+    ``bottom_force`` is the force of the cable on whatever holds its lower end (the anchor
+    reaction for a pinned end; for a free end pass NaN and the bottom body's own steady load is
+    used). ``node_z`` are elevations of the nodes used for the current profile (from the last
+    iterate). Fills ``directors`` (n, 3) and ``forces`` (n+1, 3): the force that the part above
+    each node exerts on the part below it. Returns the number of segments whose direction did
+    not converge (0 when all did).
+    """
+    n = p.n
+    if math.isnan(bottom_force[0]):
+        fx, fy, fz = _static_point_force(p, n, node_z[n], vel, t)
+        lx, ly, lz = -fx, -fy, -fz
+    else:
+        lx, ly, lz = bottom_force[0], bottom_force[1], bottom_force[2]
+    forces[n, 0], forces[n, 1], forces[n, 2] = lx, ly, lz
+    failures = 0
+    ex, ey, ez = 0.0, 0.0, -1.0
+    for i in range(n - 1, -1, -1):
+        zc = 0.5 * (node_z[i] + node_z[i + 1])
+        # moment balance about the top node: e parallel to -(lam_below - F(e) / 2)
+        converged = False
+        for it in range(400):
+            fx, fy, fz = _static_link_force(p, i, ex, ey, ez, zc, vel)
+            gx, gy, gz = -(lx - 0.5 * fx), -(ly - 0.5 * fy), -(lz - 0.5 * fz)
+            norm = math.sqrt(gx * gx + gy * gy + gz * gz)
+            if norm == 0.0:
+                break
+            gx, gy, gz = gx / norm, gy / norm, gz / norm
+            change = abs(gx - ex) + abs(gy - ey) + abs(gz - ez)
+            relax = 1.0 if it < 20 else 0.5
+            ex, ey, ez = ex + relax * (gx - ex), ey + relax * (gy - ey), ez + relax * (gz - ez)
+            inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
+            ex, ey, ez = ex * inv, ey * inv, ez * inv
+            if change < 1e-14:
+                converged = True
+                break
+        if not converged:
+            failures += 1
+        directors[i, 0], directors[i, 1], directors[i, 2] = ex, ey, ez
+        fx, fy, fz = _static_link_force(p, i, ex, ey, ez, zc, vel)
+        lx, ly, lz = lx - fx, ly - fy, lz - fz
+        if i > 0:
+            bx, by, bz = _static_point_force(p, i, node_z[i], vel, t)
+            lx, ly, lz = lx - bx, ly - by, lz - bz
+        forces[i, 0], forces[i, 1], forces[i, 2] = lx, ly, lz
+    return failures

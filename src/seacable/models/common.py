@@ -1,0 +1,52 @@
+"""Helpers shared by the cable models: joint properties, current, drag, time-function channels."""
+
+import math
+
+import numpy as np
+
+from seacable.case import schema
+from seacable.errors import CaseError
+from seacable.models import timefunctions as tfn
+
+
+def per_joint(value, n) -> np.ndarray:
+    if isinstance(value, list):
+        return np.asarray(value, dtype=float)
+    return np.full(n, float(value))
+
+
+def joint_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
+    n = len(lengths)
+    if cable.joint_stiffness is not None:
+        return per_joint(cable.joint_stiffness, n)
+    if cable.bending_stiffness is not None:
+        # a joint stands for the bending of the cable over the mean length of its two links
+        spans = np.empty(n)
+        spans[0] = lengths[0]
+        spans[1:] = 0.5 * (lengths[1:] + lengths[:-1])
+        return cable.bending_stiffness / spans
+    return np.zeros(n)
+
+
+def current_arrays(env: schema.Environment):
+    """Current profile as (z, u, v) arrays [m, m/s, m/s]; zero current in air."""
+    if env.current is None or env.in_air:
+        return np.zeros(1), np.zeros(1), np.zeros(1)
+    z, speed = env.current.arrays()
+    heading = math.radians(env.current.direction_deg)
+    return z, speed * math.cos(heading), speed * math.sin(heading)
+
+
+def tangential_drag(cable: schema.Cable, rho: float, lengths: np.ndarray) -> np.ndarray:
+    """0.5 rho (pi Cd_t + f Cd_n) d l: skin friction on the wetted area plus Richtmyer's law."""
+    coefficient = math.pi * cable.drag_coefficient_tangential
+    coefficient += cable.friction_coefficient * cable.drag_coefficient_normal
+    return 0.5 * rho * coefficient * cable.diameter * lengths
+
+
+def channel(spec, base_dir, where: str) -> tfn.Piecewise:
+    """Compile a time function; a table that cannot be read becomes a CaseError naming it."""
+    try:
+        return tfn.build(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None

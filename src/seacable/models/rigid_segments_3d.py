@@ -1,0 +1,376 @@
+"""Three-dimensional rigid-segment cable (Jacquot & Marichal 1993): parameters and initial state.
+
+Segments are rigid uniform cylinders (orientation: unit directors, see ``kernels.chain3d``).
+Hydrodynamic loads at each segment centre on the velocity relative to the current: Landweber's
+normal pressure drag 0.5 rho Cd d l |V_N| V_N (Cd 1.8 by default, as the paper argues from vortex
+shedding), Richtmyer's tangential friction f 0.5 rho Cd d l (V cos phi)^2 (plus an optional skin
+friction Cd_t on pi d l), normal added mass Ca rho pi d^2/4 l (none axially; Ca = 1 for a
+circular cylinder) with its rotational part Ca rho pi d^2/4 l^3/12, and apparent weight.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from seacable.case import schema
+from seacable.errors import CaseError
+from seacable.kernels import chain3d as c3
+from seacable.models import statics
+from seacable.models import timefunctions as tfn
+from seacable.models.common import channel as _channel
+from seacable.models.common import current_arrays, joint_stiffness, per_joint, tangential_drag
+from seacable.models.planar_rigid_links import coords, zigzag_frequency
+
+DEFAULT_DRAG_COEFFICIENT = 1.8  # Jacquot & Marichal: vortex-induced vibration raises Cd
+
+
+@dataclass(frozen=True)
+class System3D:
+    params: c3.Chain3DParams
+    y0: np.ndarray
+    n_links: int
+    diameter: float
+
+    @property
+    def state_size(self) -> int:
+        return c3.state_size(self.n_links)
+
+
+def directors_from_angles(angles: np.ndarray, azimuth: float) -> np.ndarray:
+    """Unit directors of segments at ``angles`` from the downward vertical in the vertical
+    plane at ``azimuth`` (from +x towards +y)."""
+    s = np.sin(angles)
+    return np.column_stack([s * math.cos(azimuth), s * math.sin(azimuth), -np.cos(angles)])
+
+
+def _track_fields(top: schema.TowingShipTop, base_dir):
+    if top.speed is not None:
+        spec = schema.AccelerationProfile(
+            kind="acceleration_profile",
+            initial_velocity=top.speed,
+            phases=[schema.AccelerationPhase(duration=1.0, acceleration=0.0)],
+        )
+        distance = tfn.build(spec)
+    else:
+        distance = _channel(top.distance, base_dir, "cables[0].top.distance")
+    turn_at, radius = 0.0, 0.0
+    if top.turn is not None:
+        turn_at = tfn.evaluate(distance, top.turn.start_time)[0]
+        radius = top.turn.radius * (1.0 if top.turn.side == "left" else -1.0)
+    fields = dict(
+        track_origin=np.array(schema.xyz(top.position)),
+        track_heading=math.radians(top.heading_deg),
+        track_turn_at=turn_at,
+        track_radius=radius,
+    )
+    return fields, distance
+
+
+def _top(cable: schema.Cable, base_dir):
+    """Top kind, fields, channels (x, y, z, force, distance) and the heave state."""
+    top = cable.top
+    zero = tfn.constant(0.0)
+    fields = dict(top_x=0.0, top_y=0.0, top_mass=1.0, top_stiffness=0.0, top_damping=0.0)
+    fields.update(top_rest_z=0.0, top_net_weight=0.0, track_origin=np.zeros(3))
+    fields.update(track_heading=0.0, track_turn_at=0.0, track_radius=0.0)
+    heave = (0.0, 0.0)
+    force = distance = zero
+    if isinstance(top, schema.FixedTop):
+        kind = c3.TOP_IMPOSED
+        channels = tuple(tfn.constant(v) for v in schema.xyz(top.position))
+    elif isinstance(top, schema.ImposedTop):
+        kind = c3.TOP_IMPOSED
+        channels = tuple(
+            _channel(getattr(top, axis), base_dir, f"cables[0].top.{axis}") for axis in "xyz"
+        )
+    elif isinstance(top, schema.TowingShipTop):
+        kind = c3.TOP_TRACK
+        channels = (zero, zero, zero)
+        track, distance = _track_fields(top, base_dir)
+        fields.update(track)
+    else:
+        kind = c3.TOP_HEAVE
+        x, y, z = schema.xyz(top.position)
+        channels = (tfn.constant(x), tfn.constant(y), tfn.constant(z))
+        fields.update(
+            top_x=x,
+            top_y=y,
+            top_mass=top.mass + top.added_mass,
+            top_stiffness=top.heave_stiffness,
+            top_damping=top.heave_damping,
+            top_rest_z=z,
+            top_net_weight=top.net_weight,
+        )
+        heave = (z + top.initial_heave, top.initial_heave_velocity)
+        force = _channel(top.force, base_dir, "cables[0].top.force")
+    return kind, fields, (*channels, force, distance), heave
+
+
+def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
+    """Bottom kind, fields (rest positions filled in later) and channels (fx, fy, fz)."""
+    bottom = cable.bottom
+    rho = 0.0 if env.in_air else env.water_density
+    zero = tfn.constant(0.0)
+    fields = dict(
+        body_mass=np.zeros(3),
+        body_wet_weight=0.0,
+        body_drag=np.zeros(3),
+        tie_k=np.zeros(3),
+        tie_c=np.zeros(3),
+    )
+    if isinstance(bottom, schema.PinnedBottom):
+        return c3.BOTTOM_PINNED, fields, (zero, zero, zero)
+    if isinstance(bottom, schema.FloatingStructureBottom):
+        fields.update(
+            body_mass=np.full(3, bottom.mass),
+            tie_k=np.array(
+                [bottom.surge_stiffness, bottom.surge_stiffness, bottom.heave_stiffness]
+            ),
+            tie_c=np.array([bottom.surge_damping, bottom.surge_damping, bottom.heave_damping]),
+        )
+        return (
+            c3.BOTTOM_FREE,
+            fields,
+            (zero, zero, _channel(bottom.force, base_dir, "cables[0].bottom.force")),
+        )
+    body = bottom.body
+    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
+    fields.update(
+        body_mass=body.mass + added,
+        body_wet_weight=(body.mass - rho * body.volume) * env.gravity,
+        body_drag=0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area)),
+    )
+    if bottom.tie is not None:
+        tie = bottom.tie
+        fields.update(
+            tie_k=np.array([tie.stiffness_x, tie.stiffness_y, tie.stiffness_z]),
+            tie_c=np.array([tie.damping_x, tie.damping_y, tie.damping_z]),
+        )
+    channels = tuple(
+        _channel(getattr(body, f"force_{a}"), base_dir, f"cables[0].bottom.body.force_{a}")
+        for a in "xyz"
+    )
+    return c3.BOTTOM_FREE, fields, channels
+
+
+def _point_bodies(cable: schema.Cable, env: schema.Environment, n: int):
+    rho = 0.0 if env.in_air else env.water_density
+    node_mass = np.zeros((n + 1, 3))
+    node_weight = np.zeros(n + 1)
+    node_drag = np.zeros(n + 1)
+    for k, body in enumerate(cable.point_bodies):
+        if body.node >= n:
+            raise CaseError(
+                f"cables[0].point_bodies[{k}].node: value {body.node} is not a joint of a cable "
+                f"of {n} segments; allowed 1 to {n - 1} (the end body goes in 'bottom')"
+            )
+        added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
+        node_mass[body.node] += body.mass + added
+        node_weight[body.node] += (body.mass - rho * body.volume) * env.gravity
+        node_drag[body.node] += 0.5 * rho * body.drag_coefficient * body.drag_area
+    return node_mass, node_weight, node_drag
+
+
+def build(case: schema.Case, base_dir=None) -> System3D:
+    """Assemble the 3D system of the (single) cable of ``case``."""
+    cable = case.cables[0]
+    env = case.environment
+    n = cable.links
+    lengths = cable.lengths()
+    mass = cable.masses()
+    rho = 0.0 if env.in_air else env.water_density
+    area = math.pi * cable.diameter**2 / 4
+    ca = 1.0 if cable.added_mass_coefficient is None else cable.added_mass_coefficient
+    added = ca * rho * area * lengths
+    top_kind, top_fields, channels, heave = _top(cable, base_dir)
+    bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir)
+    node_mass, node_weight, node_drag = _point_bodies(cable, env, n)
+    current_z, current_u, current_v = current_arrays(env)
+    breaks, coefs, count, sine = tfn.stack([*channels[:4], *body_channels, channels[4]])
+    fields = dict(
+        n=n,
+        length=lengths,
+        mass=mass,
+        added_mass=added,
+        inertia=(mass + added) * lengths**2 / 12.0,
+        wet_weight=(mass - rho * area * lengths) * env.gravity,
+        drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
+        drag_tangential=tangential_drag(cable, rho, lengths),
+        joint_stiffness=joint_stiffness(cable, lengths),
+        joint_damping=per_joint(cable.joint_damping, n),
+        top_reference=_top_reference(cable),
+        current_z=current_z,
+        current_u=current_u,
+        current_v=current_v,
+        node_mass=node_mass,
+        node_wet_weight=node_weight,
+        node_drag=node_drag,
+        top_kind=top_kind,
+        bottom_kind=bottom_kind,
+        tie_rest=np.zeros(3),
+        pin=np.zeros(3),
+        stabilization_frequency=case.simulation.constraint_stabilization_frequency,
+        tf_breaks=breaks,
+        tf_coefs=coefs,
+        tf_count=count,
+        tf_sine=sine,
+        **top_fields,
+        **bottom_fields,
+    )
+    params = typed(fields)
+    y0 = np.zeros(c3.state_size(n))
+    y0[3 * n] = heave[0]
+    y0[6 * n + 1] = heave[1]
+    directors = _initial_directors(case, params, y0)
+    y0[: 3 * n] = directors.ravel()
+    params = _fill_rest_positions(cable, params, y0)
+    return System3D(params=params, y0=y0, n_links=n, diameter=cable.diameter)
+
+
+def _initial_directors(case, params, y0) -> np.ndarray:
+    cable = case.cables[0]
+    if cable.initial.shape == "static":
+        return statics.static_directors(params, y0, time=0.0)
+    angles = cable.initial.angles(cable.links)
+    return directors_from_angles(angles, math.radians(cable.initial.azimuth_deg))
+
+
+def end_position(params: c3.Chain3DParams, y: np.ndarray, time: float = 0.0) -> np.ndarray:
+    """Position of the bottom node of state ``y`` [m]."""
+    n = params.n
+    top, _, _ = c3.top_motion(time, y, params)
+    directors = y[: 3 * n].reshape(n, 3)
+    return top + (params.length[:, None] * directors).sum(axis=0)
+
+
+def _fill_rest_positions(cable: schema.Cable, params, y0):
+    end = end_position(params, y0)
+    bottom = cable.bottom
+    rest = end
+    if isinstance(bottom, schema.FloatingStructureBottom) and bottom.rest_position is not None:
+        rest = np.array(schema.xyz(bottom.rest_position))
+    tie = getattr(bottom, "tie", None)
+    if tie is not None and tie.rest_position is not None:
+        rest = np.array(schema.xyz(tie.rest_position))
+    if isinstance(bottom, schema.PinnedBottom) and bottom.anchor is not None:
+        anchor = np.array(schema.xyz(bottom.anchor))
+        gap = float(np.linalg.norm(anchor - end))
+        if gap > 1e-3:
+            raise CaseError(
+                f"cables[0].bottom.anchor: value {list(bottom.anchor)} is {gap:.3f} m from the end "
+                f"of the initial shape at {np.round(end, 3).tolist()}. A pinned end must start at "
+                "its anchor: change the initial shape, use initial: {shape: static}, or remove "
+                "'anchor'"
+            )
+        end = anchor
+    return params._replace(tie_rest=np.asarray(rest, float), pin=np.asarray(end, float))
+
+
+def _top_reference(cable: schema.Cable) -> np.ndarray:
+    angle = math.radians(cable.top_reference_angle_deg)
+    azimuth = math.radians(cable.initial.azimuth_deg)
+    return directors_from_angles(np.array([angle]), azimuth)[0]
+
+
+def _top_reference(cable: schema.Cable) -> np.ndarray:
+    angle = math.radians(cable.top_reference_angle_deg)
+    azimuth = math.radians(cable.initial.azimuth_deg)
+    return directors_from_angles(np.array([angle]), azimuth)[0]
+
+
+def typed(fields: dict) -> c3.Chain3DParams:
+    """Chain3DParams with every field of the exact type the compiled kernels were built for."""
+    out = {}
+    for name, annotation in c3.Chain3DParams.__annotations__.items():
+        value = fields[name]
+        if annotation is int:
+            out[name] = int(value)
+        elif annotation is float:
+            out[name] = float(value)
+        elif name == "tf_count":
+            out[name] = np.ascontiguousarray(value, dtype=np.int64)
+        else:
+            out[name] = np.ascontiguousarray(value, dtype=np.float64)
+    return c3.Chain3DParams(**out)
+
+
+# ---- what a run of this model records ------------------------------------------------------------
+def _xyz_variables(prefix: str, dims, units: str, what: str) -> dict:
+    return {f"{prefix}_{a}": (dims, units, f"{what}, {a}") for a in "xyz"}
+
+
+VARIABLES = {
+    **_xyz_variables("direction", ("time", "segment"), "1", "unit vector along the segment"),
+    **_xyz_variables("node", ("time", "node"), "m", "node position (z up, 0 at the surface)"),
+    "tension": (("time", "segment"), "N", "axial tension at the segment centre (positive pulling)"),
+    **_xyz_variables(
+        "top_force",
+        ("time",),
+        "N",
+        "force of the cable on its top attachment "
+        "(the tow force needed at the tow point is its opposite)",
+    ),  # fmt: skip
+    **_xyz_variables(
+        "bottom_force", ("time",), "N", "force of the cable on its bottom body or anchor"
+    ),
+    **_xyz_variables("top_velocity", ("time",), "m/s", "velocity of the top attachment"),
+    **_xyz_variables("bottom_velocity", ("time",), "m/s", "velocity of the bottom end (its body)"),
+    "angular_rate": (("time", "segment"), "rad/s", "rate of turn of the segment"),
+    "kinetic_energy": (("time",), "J", "kinetic energy (added mass included)"),
+    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
+    "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+    "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
+}
+
+make_workspace = c3.make_workspace
+
+
+def rows(times, states, system: System3D, w) -> tuple[dict, int]:
+    """Output rows for the given states (compiled), and the first non-zero kernel status."""
+    n = system.n_links
+    m = len(times)
+    nodes = np.empty((m, n + 1, 3))
+    tension = np.empty((m, n))
+    scalars = np.empty((m, c3.N_SCALARS))
+    status = c3.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
+    directors = states[:, : 3 * n].reshape(m, n, 3)
+    rates_ = states[:, 3 * n + 1 : 6 * n + 1].reshape(m, n, 3)
+    out = {"time": times, "tension": tension}
+    for k, a in enumerate("xyz"):
+        out[f"direction_{a}"] = directors[:, :, k]
+        out[f"node_{a}"] = nodes[:, :, k]
+    for k, name in enumerate(c3.SCALAR_NAMES):
+        out[name] = scalars[:, k]
+    out["angular_rate"] = np.linalg.norm(rates_, axis=2)
+    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
+    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
+    return out, status
+
+
+def rates(system: System3D, y) -> np.ndarray:
+    n = system.n_links
+    return np.linalg.norm(y[3 * n + 1 : 6 * n + 1].reshape(n, 3), axis=1)
+
+
+def fastest_frequency(system: System3D) -> tuple[float, str]:
+    """The zigzag estimate of the planar model (see its docstring), with added inertia."""
+    p = system.params
+    tension = float(np.sum(np.abs(p.wet_weight)) + np.sum(np.abs(p.node_wet_weight)))
+    tension += abs(p.body_wet_weight)
+    tension += 0.5 * float(np.sum(p.drag_normal)) * _speed_scale(p) ** 2
+    tie_k = float(p.tie_k.max()) if p.bottom_kind == c3.BOTTOM_FREE else 0.0
+    heave = p.top_stiffness / p.top_mass if p.top_kind == c3.TOP_HEAVE else 0.0
+    return zigzag_frequency(p, tension, tie_k, float(p.body_mass.min()), heave)
+
+
+def _speed_scale(p) -> float:
+    """A speed for the drag part of the tension bound: current plus tow speed at t = 0."""
+    speed = float(np.max(np.hypot(p.current_u, p.current_v)))
+    if p.top_kind == c3.TOP_TRACK:
+        speed += abs(c3.top_motion(0.0, np.zeros(c3.state_size(p.n)), p)[1]).max()
+    return speed
+
+
+__all__ = ["System3D", "build", "coords", "fastest_frequency", "rates", "rows"]

@@ -1,0 +1,61 @@
+"""Which compiled model functions an integrator calls, chosen at compile time by the type of
+the parameter tuple (``numba.extending.overload``). This keeps one integrator for every model
+and keeps numba's on-disk cache working (passing functions as arguments would defeat it).
+
+A model joins by adding a branch to each overload: ``rhs(t, y, p, w, ydot) -> status`` and
+``project(y, p)`` (put the state back on its constraint manifold after a step; a no-op for
+models without constraints in their state).
+"""
+
+from numba import types
+from numba.extending import overload
+
+from seacable.kernels import chain3d, planar_chain
+from seacable.kernels.timefn import JIT
+
+
+def model_rhs(t, y, p, w, ydot):
+    """Right-hand side of the model whose parameters are ``p`` (compiled code only)."""
+    raise NotImplementedError("model_rhs is only callable from compiled code")
+
+
+def model_project(y, p):
+    """Projection of the state of the model whose parameters are ``p`` (compiled code only)."""
+    raise NotImplementedError("model_project is only callable from compiled code")
+
+
+def _is(p, cls):
+    return isinstance(p, types.BaseNamedTuple) and p.instance_class is cls
+
+
+@overload(model_rhs, jit_options=JIT)
+def _model_rhs(t, y, p, w, ydot):
+    if _is(p, planar_chain.ChainParams):
+        return lambda t, y, p, w, ydot: planar_chain.rhs(t, y, p, w, ydot)
+    if _is(p, chain3d.Chain3DParams):
+        return lambda t, y, p, w, ydot: chain3d.rhs(t, y, p, w, ydot)
+    return None
+
+
+@overload(model_project, jit_options=JIT)
+def _model_project(y, p):
+    if _is(p, planar_chain.ChainParams):
+        return lambda y, p: None
+    if _is(p, chain3d.Chain3DParams):
+        return lambda y, p: chain3d.project(y, p)
+    return None
+
+
+def model_projects(p):
+    """True when the model's projection changes the state (then a first-same-as-last stage
+    cannot be reused after a step)."""
+    raise NotImplementedError("model_projects is only callable from compiled code")
+
+
+@overload(model_projects, jit_options=JIT)
+def _model_projects(p):
+    if _is(p, planar_chain.ChainParams):
+        return lambda p: False
+    if _is(p, chain3d.Chain3DParams):
+        return lambda p: True
+    return None
