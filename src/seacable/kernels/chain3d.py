@@ -623,6 +623,21 @@ def _node_force(w, k, reaction, pinned):
 
 
 @njit(**JIT)
+def _below_point_body(p, w, k, t, force_above):
+    """Force on the segment below node k, given the force the part above exerts at node k: the
+    point body there (if any) takes its share, m a - F (its inertia less its own loads)."""
+    nm = p.node_mass[k]
+    if nm[0] == 0.0 and nm[1] == 0.0 and nm[2] == 0.0 and p.node_wet_weight[k] == 0.0:
+        return force_above
+    fx, fy, fz = _point_force(p, k, w, t)
+    out = np.empty(3)
+    out[0] = force_above[0] + fx - nm[0] * w[_A, k]
+    out[1] = force_above[1] + fy - nm[1] * w[_A + 1, k]
+    out[2] = force_above[2] + fz - nm[2] * w[_A + 2, k]
+    return out
+
+
+@njit(**JIT)
 def _energies(y, p, w):
     n = p.n
     kinetic = 0.0
@@ -678,6 +693,8 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     f_prev = _node_force(w, 0, reaction, pinned)
     top = -f_prev
     for i in range(n):
+        if i > 0:
+            f_prev = _below_point_body(p, w, i, t, f_prev)
         f_next = _node_force(w, i + 1, reaction, pinned)
         e0, e1, e2 = w[_E, i], w[_E + 1, i], w[_E + 2, i]
         t_top = -(e0 * f_prev[0] + e1 * f_prev[1] + e2 * f_prev[2])
@@ -746,6 +763,20 @@ def _static_point_force(p, k, z, vel, t):
 
 
 @njit(**JIT)
+def _moment_residual(p, i, ex, ey, ez, t1x, t1y, t1z, t2x, t2y, t2z, lx, ly, lz, zc, vel):
+    """Components along t1, t2 of h(e) = -(lam_below - F(e)/2) (zero when e is parallel to h),
+    and h . e (the segment's tension, which must be positive)."""
+    inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
+    ex, ey, ez = ex * inv, ey * inv, ez * inv
+    fx, fy, fz = _static_link_force(p, i, ex, ey, ez, zc, vel)
+    hx, hy, hz = -(lx - 0.5 * fx), -(ly - 0.5 * fy), -(lz - 0.5 * fz)
+    tension = hx * ex + hy * ey + hz * ez
+    # the part of h normal to e, in the fixed basis
+    px, py, pz = hx - tension * ex, hy - tension * ey, hz - tension * ez
+    return t1x * px + t1y * py + t1z * pz, t2x * px + t2y * py + t2z * pz, tension
+
+
+@njit(**JIT)
 def static_shoot(p, bottom_force, node_z, vel, t, directors, forces):
     """Steady shape of a cable with perfect joints, built from its lower end upwards.
 
@@ -767,23 +798,82 @@ def static_shoot(p, bottom_force, node_z, vel, t, directors, forces):
     ex, ey, ez = 0.0, 0.0, -1.0
     for i in range(n - 1, -1, -1):
         zc = 0.5 * (node_z[i] + node_z[i + 1])
-        # moment balance about the top node: e parallel to -(lam_below - F(e) / 2)
+        # moment balance about the top node: e parallel to h(e) = -(lam_below - F(e) / 2);
+        # Newton on the two components of h normal to e (in a fixed basis), damped
         converged = False
-        for it in range(400):
-            fx, fy, fz = _static_link_force(p, i, ex, ey, ez, zc, vel)
-            gx, gy, gz = -(lx - 0.5 * fx), -(ly - 0.5 * fy), -(lz - 0.5 * fz)
-            norm = math.sqrt(gx * gx + gy * gy + gz * gz)
-            if norm == 0.0:
-                break
-            gx, gy, gz = gx / norm, gy / norm, gz / norm
-            change = abs(gx - ex) + abs(gy - ey) + abs(gz - ez)
-            relax = 1.0 if it < 20 else 0.5
-            ex, ey, ez = ex + relax * (gx - ex), ey + relax * (gy - ey), ez + relax * (gz - ez)
-            inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
-            ex, ey, ez = ex * inv, ey * inv, ez * inv
-            if change < 1e-14:
+        for _ in range(60):
+            t1x, t1y, t1z, t2x, t2y, t2z = _basis(ex, ey, ez)
+            r1, r2, tens = _moment_residual(p, i, ex, ey, ez, t1x, t1y, t1z, t2x, t2y, t2z,
+                                            lx, ly, lz, zc, vel)  # fmt: skip
+            scale = abs(tens) + 1e-300
+            if abs(r1) + abs(r2) < 1e-14 * scale and tens > 0.0:
                 converged = True
                 break
+            eps = 1e-7
+            j11, j21, _ = _moment_residual(
+                p,
+                i,
+                ex + eps * t1x,
+                ey + eps * t1y,
+                ez + eps * t1z,
+                t1x,
+                t1y,
+                t1z,
+                t2x,
+                t2y,
+                t2z,
+                lx,
+                ly,
+                lz,
+                zc,
+                vel,
+            )
+            j12, j22, _ = _moment_residual(
+                p,
+                i,
+                ex + eps * t2x,
+                ey + eps * t2y,
+                ez + eps * t2z,
+                t1x,
+                t1y,
+                t1z,
+                t2x,
+                t2y,
+                t2z,
+                lx,
+                ly,
+                lz,
+                zc,
+                vel,
+            )
+            j11, j21, j12, j22 = (
+                (j11 - r1) / eps,
+                (j21 - r2) / eps,
+                (j12 - r1) / eps,
+                (j22 - r2) / eps,
+            )
+            det = j11 * j22 - j12 * j21
+            if det == 0.0 or tens <= 0.0:
+                # no useful Newton step: follow the transmitted force instead
+                fx, fy, fz = _static_link_force(p, i, ex, ey, ez, zc, vel)
+                gx, gy, gz = -(lx - 0.5 * fx), -(ly - 0.5 * fy), -(lz - 0.5 * fz)
+                norm = math.sqrt(gx * gx + gy * gy + gz * gz)
+                if norm == 0.0:
+                    break
+                ex, ey, ez = gx / norm, gy / norm, gz / norm
+                continue
+            da = -(j22 * r1 - j12 * r2) / det
+            db = -(-j21 * r1 + j11 * r2) / det
+            step = math.sqrt(da * da + db * db)
+            if step > 0.3:
+                da, db = 0.3 * da / step, 0.3 * db / step
+            ex, ey, ez = (
+                ex + da * t1x + db * t2x,
+                ey + da * t1y + db * t2y,
+                ez + da * t1z + db * t2z,
+            )
+            inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
+            ex, ey, ez = ex * inv, ey * inv, ez * inv
         if not converged:
             failures += 1
         directors[i, 0], directors[i, 1], directors[i, 2] = ex, ey, ez

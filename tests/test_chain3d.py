@@ -1,0 +1,301 @@
+"""The 3D rigid-segment cable: agreement with the planar model, invariants, statics against the
+closed-form critical angle, tow force against the sum of loads, convergence, restricted bodies."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.kernels import chain3d as c3
+from seacable.numerics import integrators
+from seacable.simulation import build_system
+
+EXAMPLES = Path(__file__).parent.parent / "examples"
+RHO = 1025.0
+
+
+def _as_3d(case, **update):
+    cable = case.cables[0].model_copy(
+        update={"model": "rigid_segments_3d", "added_mass_coefficient": 0.0, **update}
+    )
+    out = case.model_copy(update={"cables": [cable]})
+    out._base_dir = case._base_dir
+    return out
+
+
+@pytest.mark.parametrize(
+    "example",
+    [
+        "thesis_6_1_sim6_submerged_60_links_forced",
+        "thesis_6_2_pinned_exact_60_links",
+        "thesis_6_3_sim3_two_floating_structures",
+        "thesis_6_4_sim2_end_forces",
+        "crane_tip_lowering_imposed_motion",
+    ],
+)
+def test_planar_motion_agrees_with_planar_model(example):
+    base = seacable.load_case(EXAMPLES / f"{example}.yaml")
+    short = base.simulation.model_copy(update={"duration": 2.0})
+    planar = base.model_copy(update={"simulation": short})
+    planar._base_dir = base._base_dir
+    a = seacable.simulate(planar)
+    b = seacable.simulate(_as_3d(planar))
+    scale = 240.0
+    assert np.max(np.abs(a["node_x"].values - b["node_x"].values)) < 1e-9 * scale
+    assert np.max(np.abs(a["node_z"].values - b["node_z"].values)) < 1e-9 * scale
+    assert np.max(np.abs(b["node_y"].values)) == 0.0
+    np.testing.assert_allclose(b["tension"].values, a["tension"].values, rtol=1e-7, atol=1e-6)
+
+
+def towing_case(n=40, body=True, speed=2.5, friction=0.02, **top):
+    bottom = {"type": "free"}
+    if body:
+        bottom["body"] = {"mass": 150.0, "volume": 0.05, "added_mass": 30.0,
+                          "drag_coefficient": 1.0, "drag_area": 0.1}  # fmt: skip
+    return seacable.load_case(
+        {
+            "environment": {"water_density": RHO},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": n,
+                    "length": 500.0,
+                    "diameter": 0.02,
+                    "mass_per_length": 1.47,
+                    "drag_coefficient_normal": 1.8,
+                    "friction_coefficient": friction,
+                    "top": {"type": "towing_ship", "speed": speed, **top},
+                    "bottom": bottom,
+                    "initial": {"shape": "static"},
+                }
+            ],
+            "simulation": {"duration": 5.0, "output_interval": 0.5, "time_step": 0.01},
+        }
+    )
+
+
+def critical_angle(speed=2.5):
+    """Closed form: normal drag balances the normal part of the apparent weight."""
+    w = (1.47 - RHO * math.pi * 0.01**2) * 9.81
+    r = 0.5 * RHO * 1.8 * 0.02 * speed**2 / w
+    return math.degrees(math.acos((math.sqrt(1 + 4 * r * r) - 1) / (2 * r)))
+
+
+def _angles(system):
+    n = system.n_links
+    e = system.y0[: 3 * n].reshape(n, 3)
+    return np.degrees(np.arctan2(-e[:, 2], -e[:, 0]))
+
+
+@pytest.mark.parametrize("friction", [0.0, 0.02])
+def test_towed_cable_without_body_lies_at_the_critical_angle(friction):
+    angles = _angles(build_system(towing_case(n=50, body=False, friction=friction)))
+    np.testing.assert_allclose(angles, critical_angle(), atol=1e-9)
+
+
+def test_towed_cable_with_body_approaches_critical_angle_upwards():
+    angles = _angles(build_system(towing_case(n=100)))
+    gaps = np.abs(angles - critical_angle())
+    assert gaps[0] < 1e-4 and gaps[-1] > 10.0
+    assert np.all(np.diff(gaps) >= -1e-12)  # the shape relaxes monotonically towards it
+
+
+def test_steady_tow_force_equals_sum_of_loads():
+    """Towed steadily from the static shape: nothing moves relative to the ship, and the force
+    at the tow point balances every load on cable and body (computed here independently)."""
+    results = seacable.simulate(towing_case(n=40))
+    ds = results.dataset
+    force = np.array([ds[f"top_force_{a}"].values for a in "xyz"])
+    assert np.ptp(force, axis=1).max() < 1e-6 * np.abs(force).max()
+    nodes = np.stack([ds[f"node_{a}"].values[-1] for a in "xyz"], axis=1)
+    e = np.diff(nodes, axis=0)
+    length = np.linalg.norm(e, axis=1)
+    e /= length[:, None]
+    v = np.array([2.5, 0.0, 0.0])
+    vt = e @ v
+    vn = v - vt[:, None] * e
+    w = (1.47 - RHO * math.pi * 1e-4) * 9.81 * length
+    drag_n = -0.5 * RHO * 1.8 * 0.02 * length[:, None] * np.linalg.norm(vn, axis=1)[:, None] * vn
+    drag_t = -0.5 * RHO * 0.02 * 1.8 * 0.02 * length[:, None] * (np.abs(vt) * vt)[:, None] * e
+    loads = (drag_n + drag_t).sum(axis=0) + np.array([0.0, 0.0, -w.sum()])
+    body = -0.5 * RHO * 1.0 * 0.1 * 2.5 * v + np.array([0.0, 0.0, -(150.0 - RHO * 0.05) * 9.81])
+    np.testing.assert_allclose(force[:, -1], loads + body, rtol=1e-9)
+
+
+def test_static_shape_converges_with_segments():
+    ends = []
+    for n in (25, 50, 100, 200):
+        system = build_system(towing_case(n=n))
+        ends.append(np.sum(system.params.length[:, None] * system.y0[: 3 * n].reshape(n, 3), 0))
+    gaps = [np.linalg.norm(a - b) for a, b in zip(ends[:-1], ends[1:], strict=True)]
+    assert gaps[2] < 0.1  # m, on a 500 m cable
+    orders = [math.log2(a / b) for a, b in zip(gaps[:-1], gaps[1:], strict=True)]
+    assert orders[0] > 1.4 and orders[1] > 1.8, (gaps, orders)  # second order as n grows
+
+
+def test_turning_circle_runs_through_every_direction():
+    """A towed cable in a full turn: every horizontal direction, no singularity."""
+    case = towing_case(n=20, turn={"start_time": 5.0, "radius": 150.0, "side": "right"})
+    case = case.model_copy(
+        update={
+            "simulation": case.simulation.model_copy(
+                update={"duration": 400.0, "output_interval": 5.0, "time_step": 0.02}
+            )
+        }  # fmt: skip
+    )
+    results = seacable.simulate(case)
+    ds = results.dataset
+    heading = np.degrees(np.arctan2(ds["direction_y"].values[:, 0], ds["direction_x"].values[:, 0]))
+    covered = np.unique(np.floor((heading % 360) / 30))
+    assert len(covered) == 12, covered  # the top segment pointed through every 30 deg sector
+    directions = np.stack([ds[f"direction_{a}"].values for a in "xyz"], axis=-1)
+    np.testing.assert_allclose(np.linalg.norm(directions, axis=-1), 1.0, atol=1e-12)
+
+
+def _hanging_3d(n=12, **cable):
+    return seacable.load_case(
+        {
+            "environment": {"in_air": True},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": n,
+                    "length": 10.0,
+                    "diameter": 0.01,
+                    "mass_per_length": 1.0,
+                    "top": {"type": "fixed"},
+                    "bottom": {
+                        "type": "free",
+                        "body": {
+                            "mass": 2.0,
+                            "force_y": {
+                                "kind": "ramp",
+                                "start_time": 0.0,
+                                "end_time": 0.5,
+                                "start_value": 30.0,
+                                "end_value": 0.0,
+                            },
+                        },
+                    },
+                    "initial": {"shape": "arc", "top_angle_deg": 40.0, "bottom_angle_deg": 70.0},
+                    **cable,
+                }
+            ],
+            "simulation": {"duration": 4.0, "output_interval": 0.05, "time_step": 5e-4},
+        }
+    )
+
+
+def test_energy_is_conserved_in_3d_without_drag():
+    """After a sideways push ends (t > 0.5 s) the swinging chain conserves energy."""
+    results = seacable.simulate(_hanging_3d(joint_stiffness=3.0))
+    ds = results.dataset.sel(time=slice(0.5, None))
+    energy = ds["total_energy"].values
+    assert np.max(np.abs(ds["node_y"].values)) > 0.5  # it really moves in 3D
+    drift = np.max(np.abs(energy - energy[0])) / np.ptp(ds["kinetic_energy"].values)
+    assert drift < 1e-6, drift
+
+
+def test_vertical_angular_momentum_is_conserved():
+    """Fixed top, no drag, no joint springs: gravity and the top force have no moment about the
+    vertical through the top, so the angular momentum about it is constant."""
+    system = build_system(_hanging_3d(joint_stiffness=0.0))
+    p = system.params
+    n = system.n_links
+    y = system.y0.copy()
+    w = c3.make_workspace(n)
+    states = np.empty((40, y.size))
+    times = np.empty(40)
+    work = np.zeros(4, dtype=np.int64)
+    integrators.rk4_chunk(0.0, y, 5e-4, 100, 40, p, w, states, times, work)
+
+    def lz(state):
+        e = state[: 3 * n].reshape(n, 3)
+        u = state[3 * n + 1 : 6 * n + 1].reshape(n, 3)
+        nodes = np.vstack([np.zeros(3), np.cumsum(p.length[:, None] * e, axis=0)])
+        vel = np.vstack([np.zeros(3), np.cumsum(p.length[:, None] * u, axis=0)])
+        centre = 0.5 * (nodes[:-1] + nodes[1:])
+        vc = 0.5 * (vel[:-1] + vel[1:])
+        total = np.sum(p.mass * np.cross(centre, vc)[:, 2])
+        total += np.sum(p.inertia * np.cross(e, u)[:, 2])
+        return total + p.body_mass[0] * np.cross(nodes[-1], vel[-1])[2]
+
+    after = [lz(s) for s, t in zip(states, times, strict=True) if t > 0.5]
+    assert abs(after[0]) > 1.0
+    assert np.ptp(after) < 1e-8 * abs(after[0])
+
+
+def _rising_body(added_horizontal):
+    return seacable.load_case(
+        {
+            "environment": {"water_density": RHO},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": 20,
+                    "length": 30.0,
+                    "diameter": 0.02,
+                    "mass_per_length": 1.0,
+                    "drag_coefficient_normal": 1.8,
+                    "top": {"type": "fixed", "position": [0.0, 0.0, -60.0]},
+                    "bottom": {
+                        "type": "free",
+                        "body": {
+                            "mass": 100.0,
+                            "volume": 0.3,
+                            "added_mass": [added_horizontal, added_horizontal, 50.0],
+                            "drag_coefficient": 1.0,
+                            "drag_area": 0.5,
+                        },
+                    },  # fmt: skip
+                    "initial": {"shape": "arc", "top_angle_deg": 150.0, "bottom_angle_deg": 100.0},
+                }
+            ],
+            "simulation": {"duration": 10.0, "output_interval": 0.5, "time_step": 0.005},
+        }
+    )
+
+
+def test_restricted_body_moves_only_vertically():
+    """A very large added mass in x and y (Jacquot & Marichal's trick) restrains the body to a
+    vertical track; what is left of its sideways motion shrinks as 1 / that added mass."""
+    drift = {}
+    for added in (1e7, 1e9):
+        ds = seacable.simulate(_rising_body(added)).dataset
+        drift[added] = np.max(
+            np.hypot(
+                ds["node_x"].values[:, -1] - ds["node_x"].values[0, -1],
+                ds["node_y"].values[:, -1] - ds["node_y"].values[0, -1],
+            )
+        )
+        rise = ds["node_z"].values[-1, -1] - ds["node_z"].values[0, -1]
+        assert rise > 1.0
+    assert drift[1e9] < 1e-4 * rise
+    assert 80 < drift[1e7] / drift[1e9] < 120
+
+
+def test_float_at_a_joint_changes_tension_by_its_net_buoyancy():
+    case = seacable.load_case(
+        {
+            "environment": {"water_density": RHO},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": 10,
+                    "length": 20.0,
+                    "diameter": 0.02,
+                    "mass_per_length": 2.0,
+                    "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": 50.0}},
+                    "point_bodies": [{"node": 4, "mass": 5.0, "volume": 0.02, "drag_area": 0.1}],
+                }
+            ],
+            "simulation": {"duration": 0.1, "output_interval": 0.1},
+        }
+    )
+    tension = seacable.simulate(case)["tension"].values[-1]
+    link_weight = (2.0 * 2.0 - RHO * math.pi * 1e-4 * 2.0) * 9.81
+    jump = tension[3] - tension[4] - link_weight
+    np.testing.assert_allclose(jump, (5.0 - RHO * 0.02) * 9.81, rtol=1e-9)
