@@ -3,6 +3,7 @@
 import numpy as np
 
 from seacable.case import loader, schema
+from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
 from seacable.models import planar_rigid_links
 
@@ -24,6 +25,11 @@ def linear_modes(case: schema.Case, state=None, time: float = 0.0, step: float =
     shapes : ndarray
         Position part of each mode (columns), normalised to unit largest component.
     """
+    if case.cables[0].model != "rigid_links":
+        raise CaseError(
+            "linear_modes covers the planar rigid-link model; the 3D model's directors need a "
+            "tangent-space linearisation that is not implemented yet"
+        )
     system = planar_rigid_links.build(case, loader.case_base_dir(case))
     y0 = system.y0.copy() if state is None else np.asarray(state, dtype=float).copy()
     n = system.n_links

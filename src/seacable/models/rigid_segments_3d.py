@@ -222,6 +222,14 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     y0 = np.zeros(c3.state_size(n))
     y0[3 * n] = heave[0]
     y0[6 * n + 1] = heave[1]
+    bottom = cable.bottom
+    if isinstance(bottom, schema.PinnedBottom) and bottom.anchor is not None:
+        params = params._replace(pin=np.array(schema.xyz(bottom.anchor), dtype=float))
+    elif isinstance(bottom, schema.PinnedBottom) and cable.initial.shape == "static":
+        raise CaseError(
+            "cables[0].bottom.anchor: a pinned end started from initial shape 'static' needs "
+            "its 'anchor' [x, y, z] (m)"
+        )
     directors = _initial_directors(case, params, y0)
     y0[: 3 * n] = directors.ravel()
     params = _fill_rest_positions(cable, params, y0)

@@ -67,8 +67,9 @@ def _catenary_guess(params, top, anchor):
     if horizontal < 1e-9 * length:
         return np.array([0.0, 0.0, 0.0])
     target = math.sqrt(length**2 - rise**2)
+    # 2 a sinh(h / 2a) falls from +inf to h as a grows: bracket where sinh stays finite
     a = brentq(lambda a: 2 * a * math.sinh(horizontal / (2 * a)) - target,
-               horizontal * 1e-6, horizontal * 1e6)  # fmt: skip
+               horizontal / 1400.0, horizontal * 1e6)  # fmt: skip
     x_low = horizontal / 2 - a * math.asinh(rise / (2 * a * math.sinh(horizontal / (2 * a))))
     h = a * weight
     slope = math.sinh(-x_low / a)
