@@ -62,3 +62,38 @@ def test_run_reports_divergence(tmp_path):
     assert result.exit_code == 3
     assert "diverged" in result.output and "partial results" in result.output
     assert out.exists()
+
+
+def test_3d_run_plot_animate(tmp_path):
+    data = {
+        "environment": {"water_density": 1025.0, "current": {"velocity": 0.3, "direction_deg": 90}},
+        "cables": [
+            {
+                "model": "rigid_segments_3d",
+                "links": 10,
+                "length": 50.0,
+                "diameter": 0.02,
+                "mass_per_length": 1.47,
+                "drag_coefficient_normal": 1.8,
+                "top": {"type": "towing_ship", "speed": 1.5,
+                        "turn": {"start_time": 1.0, "radius": 30.0, "side": "right"}},
+                "bottom": {"type": "free", "body": {"mass": 20.0, "volume": 0.005}},
+                "initial": {"shape": "static"},
+            }
+        ],
+        "simulation": {"duration": 3.0, "output_interval": 0.5, "time_step": 0.01},
+    }  # fmt: skip
+    case = tmp_path / "tow.yaml"
+    case.write_text(yaml.safe_dump(data))
+    runner = CliRunner()
+    out = tmp_path / "tow.nc"
+    result = runner.invoke(main, ["run", str(case), "-o", str(out), "--no-progress"])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(main, ["plot", str(out), "-o", str(tmp_path / "tow.png")])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(
+        main, ["animate", str(out), "-o", str(tmp_path / "tow.gif"), "--fps", "2"]
+    )
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(main, ["validate", str(case)])
+    assert "rigid_segments_3d" in result.output or "ok: case" in result.output

@@ -54,7 +54,7 @@ def validate(case_file: str) -> None:
         _fail(str(exc), 2)
     cable = case.cables[0]
     click.echo(
-        f"ok: case '{case.name}': cable '{cable.name}' of {cable.links} links, top "
+        f"ok: case '{case.name}': cable '{cable.name}' ({cable.model}) of {cable.links} links, top "
         f"{cable.top.type}, bottom {cable.bottom.type}, {case.simulation.duration:g} s with "
         f"{case.simulation.integrator}"
     )

@@ -53,7 +53,9 @@ def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
 
 def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     """Six panels: cable snapshots, link angles, end positions, tensions, attachment forces and
-    energies over time."""
+    energies over time (3D results: plan and side views instead of snapshots and angles)."""
+    if "node_y" in ds:
+        return _plot_3d(ds, path, every)
     plt = _pyplot()
     fig, axes = plt.subplots(2, 3, figsize=(18, 9), constrained_layout=True)
     _draw_snapshots(axes[0, 0], ds, every, plt)
@@ -77,6 +79,54 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     ax = axes[1, 2]
     for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
         ax.plot(t, ds[name].values, label=name.replace("_", " "))
+    _finish(ax, "energy", "[J]")
+    fig.suptitle(_title(ds))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
+    plt = _pyplot()
+    fig, axes = plt.subplots(2, 3, figsize=(18, 10), constrained_layout=True)
+    times = ds["time"].values
+    idx = _snapshot_indices(times, every)
+    cmap = plt.get_cmap("viridis")
+    x, y, z = (ds[f"node_{a}"].values for a in "xyz")
+    for ax, (h, v, hl, vl, title) in zip(
+        axes[0, :2],
+        ((x, y, "x [m]", "y [m]", "plan view (ship track dashed)"),
+         (x, z, "x [m]", "z [m]", "side view")),
+        strict=True,
+    ):  # fmt: skip
+        for k, i in enumerate(idx):
+            ax.plot(h[i], v[i], "-", color=cmap(k / max(len(idx) - 1, 1)), lw=1.0)
+        ax.plot(h[:, 0], v[:, 0], "k--", lw=0.8)
+        ax.set_xlabel(hl)
+        ax.set_ylabel(vl)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(title)
+    sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
+    plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
+    ax = axes[0, 2]
+    for a in "xyz":
+        ax.plot(times, -ds[f"top_force_{a}"].values, label=f"tow force {a}")
+    _finish(ax, "force needed at the tow point (on the cable)", "[N]")
+    ax = axes[1, 0]
+    tension = ds["tension"].values
+    for label, j in (("top", 0), ("middle", tension.shape[1] // 2), ("bottom", -1)):
+        ax.plot(times, tension[:, j], label=f"{label} segment")
+    _finish(ax, "tension", "tension [N]")
+    ax = axes[1, 1]
+    ax.plot(times, z[:, -1], label="bottom end z")
+    speed = np.linalg.norm(np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0)
+    ax.plot(times, speed, label="tow speed [m/s]")
+    _finish(ax, "bottom end depth and tow speed", "[m], [m/s]")
+    ax = axes[1, 2]
+    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
+        ax.plot(times, ds[name].values, label=name.replace("_", " "))
     _finish(ax, "energy", "[J]")
     fig.suptitle(_title(ds))
     path = Path(path)
@@ -125,23 +175,31 @@ def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> 
     times = ds["time"].values
     frame_times = np.arange(times[0], times[-1] + 1e-9, speed / fps)
     frames = np.searchsorted(times, frame_times - 1e-9).clip(0, len(times) - 1)
-    x = ds["node_x"].values
-    z = ds["node_z"].values
-    fig, ax = plt.subplots(figsize=(7, 6))
-    pad = 0.05 * max(np.ptp(x), np.ptp(z), 1.0)
-    ax.set_xlim(x.min() - pad, x.max() + pad)
-    ax.set_ylim(z.min() - pad, max(z.max(), 0.0) + pad)
-    ax.set_aspect("equal")
-    ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("z [m]")
-    (line,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
-    label = ax.set_title("")
+    views = [("node_x", "node_z", "x [m]", "z [m]")]
+    if "node_y" in ds:
+        views = [("node_x", "node_y", "x [m]", "y [m]"), *views]
+    fig, axes = plt.subplots(1, len(views), figsize=(7 * len(views), 6), squeeze=False)
+    lines = []
+    for ax, (hn, vn, hl, vl) in zip(axes[0], views, strict=True):
+        h = ds[hn].values
+        v = ds[vn].values
+        pad = 0.05 * max(np.ptp(h), np.ptp(v), 1.0)
+        ax.set_xlim(h.min() - pad, h.max() + pad)
+        ax.set_ylim(v.min() - pad, max(v.max(), 0.0 if vn == "node_z" else v.max()) + pad)
+        ax.set_aspect("equal")
+        if vn == "node_z":
+            ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+        ax.set_xlabel(hl)
+        ax.set_ylabel(vl)
+        (line,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
+        lines.append((line, h, v))
+    label = fig.suptitle("")
 
     def draw(i):
-        line.set_data(x[i], z[i])
+        for line, h, v in lines:
+            line.set_data(h[i], v[i])
         label.set_text(f"{_title(ds)}  t = {times[i]:.2f} s")
-        return line, label
+        return [line for line, _, _ in lines] + [label]
 
     anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
     path.parent.mkdir(parents=True, exist_ok=True)
