@@ -299,3 +299,101 @@ def test_float_at_a_joint_changes_tension_by_its_net_buoyancy():
     link_weight = (2.0 * 2.0 - RHO * math.pi * 1e-4 * 2.0) * 9.81
     jump = tension[3] - tension[4] - link_weight
     np.testing.assert_allclose(jump, (5.0 - RHO * 0.02) * 9.81, rtol=1e-9)
+
+
+def _single_segment(top, initial_deg, ca=1.0):
+    return seacable.load_case(
+        {
+            "environment": {"water_density": RHO},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": 1,
+                    "length": 2.0,
+                    "diameter": 0.1,
+                    "mass_per_length": 20.0,
+                    "drag_coefficient_normal": 0.0,
+                    "added_mass_coefficient": ca,
+                    "top": top,
+                    "bottom": {"type": "free"},
+                    "initial": {"shape": "arc", "top_angle_deg": initial_deg},
+                }
+            ],
+            "simulation": {"duration": 20.0, "output_interval": 0.01, "time_step": 0.001},
+        }
+    )
+
+
+@pytest.mark.parametrize("ca", [0.0, 1.0])
+def test_normal_added_mass_slows_a_swinging_segment(ca):
+    """Small swings of one submerged segment about its top: omega^2 = W (l/2) / ((m + m_a) l^2/3)
+    with m_a = Ca rho pi d^2/4 l (the added mass acts on every point's normal motion)."""
+    ds = seacable.simulate(_single_segment({"type": "fixed"}, 2.0, ca)).dataset
+    x = ds["node_x"].values[:, -1]
+    t = ds["time"].values
+    crossings = t[1:][np.diff(np.sign(x)) != 0]
+    period = 2 * np.mean(np.diff(crossings))
+    area = math.pi * 0.1**2 / 4
+    m, ma = 40.0, ca * RHO * area * 2.0
+    weight = (m - RHO * area * 2.0) * 9.81
+    omega = math.sqrt(weight * 1.0 / ((m + ma) * 4.0 / 3.0))
+    assert abs(2 * math.pi / period / omega - 1) < 2e-3
+
+
+def test_no_added_mass_along_the_axis():
+    """A vertical segment moved up and down along its axis: the top force is m a + W only."""
+    motion = {"kind": "sine", "amplitude": 0.5, "period": 2.0}
+    ds = seacable.simulate(_single_segment({"type": "imposed", "z": motion}, 0.0)).dataset
+    t = ds["time"].values
+    acc = -0.5 * (math.pi) ** 2 * np.sin(math.pi * t)
+    area = math.pi * 0.1**2 / 4
+    weight = (40.0 - RHO * area * 2.0) * 9.81
+    expected = -(40.0 * acc + weight)  # force of the cable on its top, z
+    np.testing.assert_allclose(ds["top_force_z"].values, expected, rtol=1e-9, atol=1e-6)
+
+
+@pytest.mark.parametrize("stiffness", [50.0, 500.0])
+def test_static_start_is_steady_with_elastic_joints(stiffness):
+    case = towing_case(n=30)
+    cable = case.cables[0].model_copy(update={"joint_stiffness": stiffness})
+    case = case.model_copy(update={"cables": [cable]})
+    ds = seacable.simulate(case).dataset
+    force = ds["top_force_x"].values
+    assert np.ptp(force) < 1e-8 * abs(force[0])
+    assert np.ptp(ds["node_z"].values[:, -1]) < 1e-8
+
+
+def test_static_start_with_heaving_structure_and_tied_end():
+    """A cable between a floating structure and a tied end starts at rest in equilibrium."""
+    case = seacable.load_case(
+        {
+            "environment": {"water_density": RHO, "current": {"velocity": 0.5}},
+            "cables": [
+                {
+                    "model": "rigid_segments_3d",
+                    "links": 20,
+                    "length": 100.0,
+                    "diameter": 0.05,
+                    "mass_per_length": 5.0,
+                    "drag_coefficient_normal": 1.8,
+                    "joint_stiffness": 20.0,
+                    "top": {"type": "floating_structure", "mass": 5000.0, "heave_stiffness": 2e4},
+                    "bottom": {
+                        "type": "free",
+                        "body": {"mass": 80.0, "volume": 0.01},
+                        "tie": {
+                            "stiffness_x": 500.0,
+                            "stiffness_y": 500.0,
+                            "rest_position": [20.0, 5.0, -90.0],
+                        },
+                    },  # fmt: skip
+                    "initial": {"shape": "static"},
+                }
+            ],
+            "simulation": {"duration": 5.0, "output_interval": 1.0, "time_step": 0.005},
+        }
+    )
+    ds = seacable.simulate(case).dataset
+    assert np.max(np.abs(ds["angular_rate"].values)) < 1e-8
+    assert np.ptp(ds["node_z"].values[:, 0]) < 1e-8  # the structure does not heave
+    assert ds["node_z"].values[0, 0] < -0.01  # it has settled under the cable's weight

@@ -230,7 +230,14 @@ def build(case: schema.Case, base_dir=None) -> System3D:
             "cables[0].bottom.anchor: a pinned end started from initial shape 'static' needs "
             "its 'anchor' [x, y, z] (m)"
         )
-    directors = _initial_directors(case, params, y0)
+    explicit_rest = _explicit_rest(cable)
+    if explicit_rest is not None:
+        params = params._replace(tie_rest=explicit_rest)
+        directors = _initial_directors(case, params, y0)
+    else:
+        # ties unloaded at the initial end: the static shape is that of a free end
+        free = params._replace(tie_k=np.zeros(3))
+        directors = _initial_directors(case, free, y0)
     y0[: 3 * n] = directors.ravel()
     params = _fill_rest_positions(cable, params, y0)
     return System3D(params=params, y0=y0, n_links=n, diameter=cable.diameter)
@@ -252,15 +259,23 @@ def end_position(params: c3.Chain3DParams, y: np.ndarray, time: float = 0.0) -> 
     return top + (params.length[:, None] * directors).sum(axis=0)
 
 
+def _explicit_rest(cable: schema.Cable):
+    """Rest position of the bottom ties when the case gives one (else None)."""
+    bottom = cable.bottom
+    if isinstance(bottom, schema.FloatingStructureBottom) and bottom.rest_position is not None:
+        return np.array(schema.xyz(bottom.rest_position), dtype=float)
+    tie = getattr(bottom, "tie", None)
+    if tie is not None and tie.rest_position is not None:
+        return np.array(schema.xyz(tie.rest_position), dtype=float)
+    return None
+
+
 def _fill_rest_positions(cable: schema.Cable, params, y0):
     end = end_position(params, y0)
     bottom = cable.bottom
-    rest = end
-    if isinstance(bottom, schema.FloatingStructureBottom) and bottom.rest_position is not None:
-        rest = np.array(schema.xyz(bottom.rest_position))
-    tie = getattr(bottom, "tie", None)
-    if tie is not None and tie.rest_position is not None:
-        rest = np.array(schema.xyz(tie.rest_position))
+    rest = _explicit_rest(cable)
+    if rest is None:
+        rest = end
     if isinstance(bottom, schema.PinnedBottom) and bottom.anchor is not None:
         anchor = np.array(schema.xyz(bottom.anchor))
         gap = float(np.linalg.norm(anchor - end))

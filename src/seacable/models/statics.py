@@ -116,20 +116,102 @@ def _pinned(params, top, vel, time):
 
 
 def static_state(params, y0, time: float = 0.0):
-    """Directors (n, 3) and node forces (n+1, 3) of the steady shape for the motion of the top
-    at ``time`` (its velocity is taken as steady)."""
+    """Directors (n, 3) and the heave of a floating top, for the steady shape under the motion
+    the top has at ``time`` (its velocity is taken as steady)."""
     top, vel, _ = c3.top_motion(time, y0, params)
-    if np.any(params.joint_stiffness > 0):
-        raise StaticsError(
-            "the static solver handles perfect joints only (joint_stiffness and "
-            "bending_stiffness zero); start from an 'arc' or remove the joint stiffness"
-        )
+    needs_polish = bool(
+        np.any(params.joint_stiffness > 0)
+        or (params.bottom_kind == c3.BOTTOM_FREE and np.any(params.tie_k > 0))
+        or params.top_kind == c3.TOP_HEAVE
+    )
     if params.bottom_kind == c3.BOTTOM_PINNED:
-        return _pinned(params, top, vel, time)
-    if np.any(params.tie_k > 0):
-        raise StaticsError("the static solver does not handle tied ends; start from an 'arc'")
-    return _free(params, top, vel, time)
+        directors, forces = _pinned(params, top, vel, time)
+    else:
+        # a tied end is first shot as if free; the polish below adds the ties
+        directors, forces = _free(params._replace(tie_k=np.zeros(3)), top, vel, time)
+    heave = y0[3 * params.n]
+    if params.top_kind == c3.TOP_HEAVE and params.top_stiffness > 0:
+        u = float(c3._tf(params, c3.CH_TOP_FORCE, time)[0])
+        heave = (
+            params.top_rest_z + (u - params.top_net_weight - forces[0, 2]) / params.top_stiffness
+        )
+    if needs_polish:
+        directors, heave = _polish(params, y0, directors, heave, time)
+    return directors, heave
 
 
 def static_directors(params, y0, time: float = 0.0) -> np.ndarray:
-    return static_state(params, y0, time)[0]
+    """Directors of the steady shape; the heave of a floating top is written into ``y0``."""
+    directors, heave = static_state(params, y0, time)
+    y0[3 * params.n] = heave
+    return directors
+
+
+def _basis(e):
+    """Two unit vectors normal to each row of e (rows of the returned arrays)."""
+    axis = np.zeros_like(e)
+    axis[np.arange(len(e)), np.argmin(np.abs(e), axis=1)] = 1.0
+    t1 = np.cross(axis, e)
+    t1 /= np.linalg.norm(t1, axis=1)[:, None]
+    return t1, np.cross(e, t1)
+
+
+def _polish(params, y0, directors, heave, time, max_iterations=30):
+    """Newton iterations on the dynamic residual: zero director and heave accelerations with
+    every node moving with the top (elastic joints, ties, a heaving top)."""
+    n = params.n
+    heaving = params.top_kind == c3.TOP_HEAVE
+    w = c3.make_workspace(n)
+    ydot = np.zeros(c3.state_size(n))
+
+    def state(d, z):
+        y = np.zeros(c3.state_size(n))
+        y[: 3 * n] = (d / np.linalg.norm(d, axis=1)[:, None]).ravel()
+        y[3 * n] = z
+        return y
+
+    def residual(d, z, t1, t2):
+        status = c3.rhs(time, state(d, z), params, w, ydot)
+        if status != c3.OK:
+            return None
+        edd = ydot[3 * n + 1 : 6 * n + 1].reshape(n, 3) * params.length[:, None]
+        r = np.concatenate([(edd * t1).sum(axis=1), (edd * t2).sum(axis=1)])
+        return np.append(r, ydot[6 * n + 1]) if heaving else r
+
+    scale = 9.81 * float(params.length.max())
+    for _ in range(max_iterations):
+        t1, t2 = _basis(directors)
+        r = residual(directors, heave, t1, t2)
+        if r is None:
+            break
+        if np.max(np.abs(r)) < 1e-11 * scale:
+            return directors, heave
+        size = 2 * n + (1 if heaving else 0)
+        jac = np.empty((len(r), size))
+        eps = 1e-7
+        for k in range(size):
+            d, z = directors.copy(), heave
+            if k < 2 * n:
+                d[k % n] += eps * (t1 if k < n else t2)[k % n]
+            else:
+                z += eps * max(1.0, abs(heave))
+            step = eps if k < 2 * n else eps * max(1.0, abs(heave))
+            rk = residual(d, z, t1, t2)
+            if rk is None:
+                raise StaticsError("the static residual could not be evaluated near the solution")
+            jac[:, k] = (rk - r) / step
+        delta = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        for damping in (1.0, 0.5, 0.25, 0.1):
+            d = directors + damping * (delta[:n, None] * t1 + delta[n : 2 * n, None] * t2)
+            z = heave + (damping * delta[-1] if heaving else 0.0)
+            d /= np.linalg.norm(d, axis=1)[:, None]
+            rn = residual(d, z, t1, t2)
+            if rn is not None and np.linalg.norm(rn) < np.linalg.norm(r):
+                directors, heave = d, z
+                break
+        else:
+            break
+    raise StaticsError(
+        "the static shape with elastic joints, ties or a heaving top did not converge; "
+        "start from an 'arc' and let the dynamics settle, or reduce the joint stiffness"
+    )
