@@ -12,7 +12,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 import seacable  # noqa: E402
 from helpers import chain_case, run  # noqa: E402
 from seacable.analysis import linear_modes  # noqa: E402
+from seacable.simulation import build_system  # noqa: E402
+from test_chain3d import _angles, critical_angle, towing_case  # noqa: E402
 from test_chain_physics import SEABED_BOTTOMS, _seabed_case  # noqa: E402
+from test_moorpy_catenary import _case, _moorpy, _ours  # noqa: E402
 
 
 def _drift(res):
@@ -58,7 +61,22 @@ def seabed():
     print(f"  pin constraint error: {np.max(pinned['constraint_error'].values):.2e} m")
 
 
+def towing_statics():
+    print(f"towed 500 m cable at 2.5 m/s: critical angle (closed form) {critical_angle():.6f} deg")
+    angles = _angles(build_system(towing_case(n=100, body=False)))
+    gap = np.abs(angles - critical_angle()).max()
+    print(f"  no body, 100 segments: max |angle - closed form| = {gap:.1e} deg")
+    angles = _angles(build_system(towing_case(n=100)))
+    print(f"  with a towed body: top segment {angles[0]:.6f} deg, bottom {angles[-1]:.3f} deg")
+    expected = np.abs(_moorpy((60.0, 20.0, -10.0)))
+    print("catenary between two points against MoorPy (max relative end-tension difference):")
+    for n in (25, 50, 100, 200):
+        error = np.max(np.abs(_ours(seacable.simulate(_case(n))) / expected - 1))
+        print(f"  {n:4d} segments: {error:.2e}")
+
+
 if __name__ == "__main__":
     energy_drift()
     frequencies()
     seabed()
+    towing_statics()
