@@ -154,10 +154,16 @@ def test_turning_circle_runs_through_every_direction():
     np.testing.assert_allclose(np.linalg.norm(directions, axis=-1), 1.0, atol=1e-12)
 
 
-def _hanging_3d(n=12, **cable):
+STILL_WATER = {"water_density": RHO}  # with drag and added mass off below
+IN_AIR = {"in_air": True}
+
+
+def _hanging_3d(n=12, environment=None, **cable):
+    if environment is not None and not environment.get("in_air"):
+        cable = {"drag_coefficient_normal": 0.0, "added_mass_coefficient": 0.0, **cable}
     return seacable.load_case(
         {
-            "environment": {"in_air": True},
+            "environment": environment or IN_AIR,
             "cables": [
                 {
                     "model": "rigid_segments_3d",
@@ -188,9 +194,10 @@ def _hanging_3d(n=12, **cable):
     )
 
 
-def test_energy_is_conserved_in_3d_without_drag():
+@pytest.mark.parametrize("environment", [IN_AIR, STILL_WATER], ids=["air", "still_water"])
+def test_energy_is_conserved_in_3d_without_drag(environment):
     """After a sideways push ends (t > 0.5 s) the swinging chain conserves energy."""
-    results = seacable.simulate(_hanging_3d(joint_stiffness=3.0))
+    results = seacable.simulate(_hanging_3d(environment=environment, joint_stiffness=3.0))
     ds = results.dataset.sel(time=slice(0.5, None))
     energy = ds["total_energy"].values
     assert np.max(np.abs(ds["node_y"].values)) > 0.5  # it really moves in 3D
@@ -198,10 +205,11 @@ def test_energy_is_conserved_in_3d_without_drag():
     assert drift < 1e-6, drift
 
 
-def test_vertical_angular_momentum_is_conserved():
+@pytest.mark.parametrize("environment", [IN_AIR, STILL_WATER], ids=["air", "still_water"])
+def test_vertical_angular_momentum_is_conserved(environment):
     """Fixed top, no drag, no joint springs: gravity and the top force have no moment about the
     vertical through the top, so the angular momentum about it is constant."""
-    system = build_system(_hanging_3d(joint_stiffness=0.0))
+    system = build_system(_hanging_3d(environment=environment, joint_stiffness=0.0))
     p = system.params
     n = system.n_links
     y = system.y0.copy()
