@@ -75,6 +75,7 @@ class _Run:
     """One integration: holds the compiled state and writes rows to the sink."""
 
     def __init__(self, case: schema.Case, model, system, sink: _Sink):
+        self.case = case
         self.sim = case.simulation
         self.model = model
         self.system = system
@@ -92,6 +93,13 @@ class _Run:
         rows, status = self.model.rows(times, states, self.system, self.w)
         self.sink.write(rows)
         return status
+
+    def refresh_every(self) -> int:
+        """Output intervals between calls of the model's ``refresh`` (0: never)."""
+        interval = getattr(self.model, "refresh_interval", lambda case: None)(self.case)
+        if not interval:
+            return 0
+        return max(1, round(interval / self.sim.output_interval))
 
     def compile(self) -> None:
         """Compile (or load from the cache) the kernels this run uses, before any timing or
@@ -191,8 +199,11 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
 
 def _loop(run: _Run, bar) -> int:
     chunk = 1
+    refresh = run.refresh_every()
     while run.done < run.n_outputs:
         count = min(chunk, run.n_outputs - run.done)
+        if refresh:
+            count = min(count, refresh - run.done % refresh)
         start = _time.perf_counter()
         before = run.done
         status = run.advance(count)
@@ -200,6 +211,8 @@ def _loop(run: _Run, bar) -> int:
             bar.update(run.done - before)
         if status != pc.OK:
             return status
+        if refresh and run.done % refresh == 0 and run.done < run.n_outputs:
+            run.p = run.model.refresh(run.case, run.p, run.t, run.y)
         elapsed = _time.perf_counter() - start
         rate = count / max(elapsed, 1e-6)
         chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))

@@ -284,11 +284,14 @@ class Body(_Model):
 
 
 class FreeBottom(_Model):
-    """Free end, optionally carrying a body and held by elastic ties."""
+    """Free end, optionally carrying a body and held by elastic ties. ``hold_axes`` (3D model)
+    holds the end exactly at its initial coordinate along the axes listed: ``[x, y]`` is a
+    vertical guide (the exact alternative to a very large added mass across the guide)."""
 
     type: Literal["free"]
     body: Body = Body()
     tie: Tie | None = None
+    hold_axes: list[Literal["x", "y", "z"]] = []
 
 
 class FloatingStructureBottom(_Model):
@@ -304,6 +307,36 @@ class FloatingStructureBottom(_Model):
     surge_damping: NonNeg = 0.0  # [N s/m]
     force: TimeFunction = Constant(value=0.0)
     rest_position: Point | None = None
+
+
+class Servo(_Model):
+    """Jacquot & Marichal's trajectory servo: the force on the cable end is corrected every
+    ``step`` [s] by dF = K (a dE - b dt dE'), with dE the target minus the end position and K the
+    stiffness of the cable end from static equilibria with the end on a sphere of
+    ``sphere_radius`` [m] around its nominal position. ``recompute_interval`` [s] refreshes K
+    about the current target during the motion (the paper suggests it)."""
+
+    gain: Annotated[float, Field(gt=0, le=2)] = 1.0  # a
+    rate_gain: Annotated[float, Field(ge=0, lt=1)] = 0.0  # b
+    step: Pos | None = None  # dt of the correction; default: the integration step
+    sphere_radius: Pos = 1.0  # [m]
+    recompute_interval: Pos | None = None  # [s]
+
+
+class TrajectoryBottom(_Model):
+    """Lower end carried by a vehicle along a prescribed path (3D model): x(t), y(t), z(t) [m],
+    offsets from the top attachment when ``relative_to_top`` (the vehicle's motion relative to
+    the ship) or absolute. ``method`` exact: the end force that imposes the path exactly;
+    stiffness_servo: the paper's servo (see Servo). Outputs the force of the cable on the vehicle
+    and the tracking error."""
+
+    type: Literal["trajectory"]
+    x: TimeFunction = Constant(value=0.0)
+    y: TimeFunction = Constant(value=0.0)
+    z: TimeFunction = Constant(value=0.0)
+    relative_to_top: bool = True
+    method: Literal["exact", "stiffness_servo"] = "exact"
+    servo: Servo = Servo()
 
 
 class PointBody(_Model):
@@ -378,7 +411,9 @@ class Cable(_Model):
     point_bodies: list[PointBody] = []  # floats and clump weights at joints (3D)
     top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
     top: FixedTop | ImposedTop | FloatingStructureTop | TowingShipTop = Field(discriminator="type")
-    bottom: FreeBottom | FloatingStructureBottom | PinnedBottom = Field(discriminator="type")
+    bottom: FreeBottom | FloatingStructureBottom | PinnedBottom | TrajectoryBottom = Field(
+        discriminator="type"
+    )
     initial: InitialShape = InitialShape()
 
     @model_validator(mode="after")
@@ -440,6 +475,10 @@ class Cable(_Model):
             raise ValueError(f"the planar model has no y force (bottom.body.force_y): {fix}")
         if self.point_bodies:
             raise ValueError(f"point_bodies are supported by the 3D model only: {fix}")
+        if isinstance(self.bottom, TrajectoryBottom):
+            raise ValueError(f"bottom type 'trajectory' needs the 3D model: {fix}")
+        if getattr(self.bottom, "hold_axes", []):
+            raise ValueError(f"bottom.hold_axes needs the 3D model: {fix}")
         if self.added_mass_coefficient:
             raise ValueError(
                 f"the planar model has no link added mass (added_mass_coefficient): {fix}"

@@ -6,9 +6,12 @@ orientation is the unit **director** ``e_i`` (top -> bottom) and its rate ``u_i 
 Jacquot & Marichal, singular along one axis); rotation about the segment's own axis carries no
 inertia or stiffness for an axisymmetric slender cylinder and is not a degree of freedom.
 
-State layout (flat float64, length ``6 n + 2``)::
+State layout (flat float64, length ``6 n + 5``)::
 
-    y = [e_0 (3) .. e_{n-1} (3), z_top, u_0 (3) .. u_{n-1} (3), zdot_top]
+    y = [e_0 (3) .. e_{n-1} (3), z_top, u_0 (3) .. u_{n-1} (3), zdot_top, F_servo (3)]
+
+The servo force (the force a trajectory-following vehicle applies to the cable end, updated by
+the stiffness-matrix servo of Jacquot & Marichal) is zero unless the lower end is a servo end.
 
 After every integration step the state is projected back (|e| = 1, u . e = 0):
 :func:`project`.
@@ -40,13 +43,17 @@ from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import evaluate as tf_evaluate
 
 __all__ = ["BOTTOM_FREE", "BOTTOM_PINNED", "TOP_HEAVE", "TOP_IMPOSED", "TOP_TRACK"]
+SERVO_STATES = 3  # the servo force, at the end of every state vector (zero when unused)
 
 TOP_TRACK = 2  # towing ship on a track: straight, then optionally a circle; s(t) from a channel
+BOTTOM_TRAJECTORY = 2  # lower end held on a moving target (exact end force), all axes
+BOTTOM_SERVO = 3  # free lower end pulled by a force the stiffness-matrix servo updates
 
 CH_TOP_X, CH_TOP_Y, CH_TOP_Z, CH_TOP_FORCE = 0, 1, 2, 3
 CH_BODY_FX, CH_BODY_FY, CH_BODY_FZ = 4, 5, 6
 CH_TRACK_S = 7  # distance travelled along the track [m]
-N_CHANNELS = 8
+CH_TARGET_X, CH_TARGET_Y, CH_TARGET_Z = 8, 9, 10  # target of the lower end (trajectory, servo)
+N_CHANNELS = 11
 
 SCALAR_NAMES = (
     "top_force_x",
@@ -65,6 +72,13 @@ SCALAR_NAMES = (
     "gravity_potential_energy",
     "elastic_energy",
     "constraint_error",
+    "target_x",
+    "target_y",
+    "target_z",
+    "tracking_error",
+    "servo_force_x",
+    "servo_force_y",
+    "servo_force_z",
 )
 N_SCALARS = len(SCALAR_NAMES)
 
@@ -125,6 +139,12 @@ class Chain3DParams(NamedTuple):
     tie_c: np.ndarray  # (3,) [N s/m]
     tie_rest: np.ndarray  # (3,)
     pin: np.ndarray  # (3,)
+    constrained: np.ndarray  # (3,) 1.0 on the axes a closed lower end holds, 0.0 where it is free
+    target_relative: int  # 1: target channels are offsets from the top attachment
+    servo_stiffness: np.ndarray  # (3, 3) K: force on the end per displacement [N/m]
+    servo_gain: float  # a
+    servo_rate_gain: float  # b
+    servo_step: float  # the update interval Delta t of the servo [s]
     stabilization_frequency: float
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
@@ -133,7 +153,7 @@ class Chain3DParams(NamedTuple):
 
 
 def state_size(n):
-    return 6 * n + 2
+    return 6 * n + 2 + SERVO_STATES
 
 
 def make_workspace(n):
@@ -197,6 +217,32 @@ def top_motion(t, y, p):
     pos[0], vel[0], acc[0] = _tf(p, CH_TOP_X, t)
     pos[1], vel[1], acc[1] = _tf(p, CH_TOP_Y, t)
     pos[2], vel[2], acc[2] = _tf(p, CH_TOP_Z, t)
+    return pos, vel, acc
+
+
+@njit(**JIT)
+def is_closed(p):
+    """True when the lower end is held (pinned, guided or on a trajectory): a closed loop."""
+    return p.bottom_kind == BOTTOM_PINNED or p.bottom_kind == BOTTOM_TRAJECTORY
+
+
+@njit(**JIT)
+def target_motion(t, y, p):
+    """Position, velocity and acceleration (3 each) the lower end is to follow."""
+    pos = np.empty(3)
+    vel = np.zeros(3)
+    acc = np.zeros(3)
+    if p.bottom_kind == BOTTOM_PINNED:
+        pos[:] = p.pin
+        return pos, vel, acc
+    pos[0], vel[0], acc[0] = _tf(p, CH_TARGET_X, t)
+    pos[1], vel[1], acc[1] = _tf(p, CH_TARGET_Y, t)
+    pos[2], vel[2], acc[2] = _tf(p, CH_TARGET_Z, t)
+    if p.target_relative == 1:
+        tp, tv, ta = top_motion(t, y, p)
+        pos += tp
+        vel += tv
+        acc += ta
     return pos, vel, acc
 
 
@@ -343,16 +389,20 @@ def _sym_mul(m, x0, x1, x2):
 @njit(**JIT)
 def _backward_sweep(t, y, p, w):
     n = p.n
-    pinned = p.bottom_kind == BOTTOM_PINNED
+    pinned = is_closed(p)
     m = np.zeros(6)
     b = np.zeros(3)
     s = np.zeros(9)
-    if pinned:
+    fx, fy, fz = _point_force(p, n, w, t)
+    if p.bottom_kind == BOTTOM_SERVO:
+        servo = 6 * n + 2
+        fx += y[servo]
+        fy += y[servo + 1]
+        fz += y[servo + 2]
+    m[0], m[3], m[5] = p.body_mass[0], p.body_mass[1], p.body_mass[2]
+    b[0], b[1], b[2] = -fx, -fy, -fz
+    if pinned:  # the holding force L adds to the force below the end node: S = I
         s[0] = s[4] = s[8] = 1.0
-    else:
-        fx, fy, fz = _point_force(p, n, w, t)
-        m[0], m[3], m[5] = p.body_mass[0], p.body_mass[1], p.body_mass[2]
-        b[0], b[1], b[2] = -fx, -fy, -fz
     _store_node(w, n, m, b, s)
     for i in range(n - 1, -1, -1):
         li = p.length[i]
@@ -506,15 +556,26 @@ def _forward_sweep(y, p, w, ac, al, pinned):
 
 
 @njit(**JIT)
-def _closure(p, w, ac, al):
-    """Reaction L at a pinned end: end acceleration = Baumgarte-stabilised target."""
+def _closure(t, y, p, w, ac, al):
+    """Holding force L at a closed lower end: on each held axis the end acceleration equals the
+    Baumgarte-stabilised target; on a free axis L is zero."""
     n = p.n
     omega = p.stabilization_frequency
-    target = np.empty(3)
+    pos, vel, acc = target_motion(t, y, p)
+    system = np.zeros(9)
+    rhs_ = np.zeros(3)
     for k in range(3):
-        target[k] = -2.0 * omega * w[_V + k, n] - omega * omega * (w[_P + k, n] - p.pin[k]) - ac[k]
-    reaction, det = _solve3(al, target)
-    scale = 0.0
+        if p.constrained[k] != 0.0:
+            for c in range(3):
+                system[3 * k + c] = al[3 * k + c]
+            rhs_[k] = (
+                acc[k] - 2.0 * omega * (w[_V + k, n] - vel[k])
+                - omega * omega * (w[_P + k, n] - pos[k]) - ac[k]
+            )  # fmt: skip
+        else:
+            system[3 * k + k] = 1.0
+    reaction, det = _solve3(system, rhs_)
+    scale = 1.0
     for v in al:
         scale = max(scale, abs(v))
     return reaction, abs(det) > 1e-12 * scale**3
@@ -551,7 +612,7 @@ def solve(t, y, p, w):
     Returns (status, top_heave_acceleration, L) with L the pinned-end reaction (3,).
     """
     n = p.n
-    pinned = p.bottom_kind == BOTTOM_PINNED
+    pinned = is_closed(p)
     _kinematics_and_loads(t, y, p, w)
     _backward_sweep(t, y, p, w)
     ac = np.zeros(3)
@@ -562,7 +623,7 @@ def solve(t, y, p, w):
     _forward_sweep(y, p, w, ac, al, pinned)
     reaction = np.zeros(3)
     if pinned:
-        reaction, sound = _closure(p, w, ac, al)
+        reaction, sound = _closure(t, y, p, w, ac, al)
         if not sound:
             return SINGULAR_CLOSURE, 0.0, reaction
     _final_accelerations(y, p, w, acc_top, al_top, reaction, pinned)
@@ -585,6 +646,20 @@ def rhs(t, y, p, w, ydot):
             ydot[u0 + 3 * i + k] = w[_EDD + k, i]
     ydot[3 * n] = y[6 * n + 1] if p.top_kind == TOP_HEAVE else 0.0
     ydot[6 * n + 1] = top_acc
+    servo = 6 * n + 2
+    for c in range(3):
+        ydot[servo + c] = 0.0
+    if p.bottom_kind == BOTTOM_SERVO:
+        # the paper's per-step correction dF = K (a dE - b dt dE') as a rate over its step dt
+        pos, vel, _ = target_motion(t, y, p)
+        for r in range(3):
+            rate = 0.0
+            for c in range(3):
+                error = pos[c] - w[_P + c, n]
+                error_rate = vel[c] - w[_V + c, n]
+                k = p.servo_stiffness[r, c]
+                rate += k * (p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate)
+            ydot[servo + r] = rate
     return status
 
 
@@ -667,12 +742,12 @@ def _energies(y, p, w):
         kinetic += 0.5 * (nm[0] * w[_V, k] ** 2 + nm[1] * w[_V + 1, k] ** 2)
         kinetic += 0.5 * nm[2] * w[_V + 2, k] ** 2
         gravity += p.node_wet_weight[k] * w[_P + 2, k]
-    if p.bottom_kind == BOTTOM_FREE:
-        for k in range(3):
-            kinetic += 0.5 * p.body_mass[k] * w[_V + k, n] ** 2
+    for k in range(3):
+        kinetic += 0.5 * p.body_mass[k] * w[_V + k, n] ** 2
+        if p.bottom_kind == BOTTOM_FREE:
             d = w[_P + k, n] - p.tie_rest[k]
             elastic += 0.5 * p.tie_k[k] * d * d
-        gravity += p.body_wet_weight * w[_P + 2, n]
+    gravity += p.body_wet_weight * w[_P + 2, n]
     if p.top_kind == TOP_HEAVE:
         kinetic += 0.5 * p.top_mass * y[6 * n + 1] ** 2
         gravity += p.top_net_weight * y[3 * n]
@@ -685,7 +760,7 @@ def _energies(y, p, w):
 def outputs(t, y, p, w, node_pos, tension, scalars):
     """Derived outputs at one instant: node_pos (n+1, 3), tension (n,), scalars (N_SCALARS,)."""
     n = p.n
-    pinned = p.bottom_kind == BOTTOM_PINNED
+    pinned = is_closed(p)
     status, _, reaction = solve(t, y, p, w)
     for k in range(n + 1):
         for c in range(3):
@@ -710,13 +785,23 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     scalars[12] = kinetic
     scalars[13] = gravity
     scalars[14] = elastic
-    if pinned:
+    scalars[15] = 0.0
+    for k in range(16, N_SCALARS):
+        scalars[k] = np.nan
+    if pinned or p.bottom_kind == BOTTOM_SERVO:
+        pos, _, _ = target_motion(t, y, p)
         d2 = 0.0
+        held = 0.0
         for c in range(3):
-            d2 += (w[_P + c, n] - p.pin[c]) ** 2
-        scalars[15] = math.sqrt(d2)
-    else:
-        scalars[15] = 0.0
+            scalars[16 + c] = pos[c]
+            d2 += (w[_P + c, n] - pos[c]) ** 2
+            held += p.constrained[c] * (w[_P + c, n] - pos[c]) ** 2
+        scalars[19] = math.sqrt(d2)
+        if pinned:
+            scalars[15] = math.sqrt(held)
+    if p.bottom_kind == BOTTOM_SERVO:
+        for c in range(3):
+            scalars[20 + c] = y[6 * n + 2 + c]
     return status
 
 

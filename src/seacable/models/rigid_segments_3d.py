@@ -108,7 +108,7 @@ def _top(cable: schema.Cable, base_dir):
 
 
 def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
-    """Bottom kind, fields (rest positions filled in later) and channels (fx, fy, fz)."""
+    """Bottom kind, fields (positions filled in later) and channels (fx, fy, fz, target x, y, z)."""
     bottom = cable.bottom
     rho = 0.0 if env.in_air else env.water_density
     zero = tfn.constant(0.0)
@@ -118,9 +118,25 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
         body_drag=np.zeros(3),
         tie_k=np.zeros(3),
         tie_c=np.zeros(3),
+        constrained=np.ones(3),
+        target_relative=0,
+        servo_stiffness=np.zeros((3, 3)),
+        servo_gain=0.0,
+        servo_rate_gain=0.0,
+        servo_step=1.0,
     )
+    targets = (zero, zero, zero)
     if isinstance(bottom, schema.PinnedBottom):
-        return c3.BOTTOM_PINNED, fields, (zero, zero, zero)
+        return c3.BOTTOM_PINNED, fields, (zero, zero, zero, *targets)
+    if isinstance(bottom, schema.TrajectoryBottom):
+        targets = tuple(
+            _channel(getattr(bottom, a), base_dir, f"cables[0].bottom.{a}") for a in "xyz"
+        )
+        fields.update(target_relative=int(bottom.relative_to_top))
+        if bottom.method == "exact":
+            return c3.BOTTOM_TRAJECTORY, fields, (zero, zero, zero, *targets)
+        fields.update(servo_gain=bottom.servo.gain, servo_rate_gain=bottom.servo.rate_gain)
+        return c3.BOTTOM_SERVO, fields, (zero, zero, zero, *targets)
     if isinstance(bottom, schema.FloatingStructureBottom):
         fields.update(
             body_mass=np.full(3, bottom.mass),
@@ -129,11 +145,8 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
             ),
             tie_c=np.array([bottom.surge_damping, bottom.surge_damping, bottom.heave_damping]),
         )
-        return (
-            c3.BOTTOM_FREE,
-            fields,
-            (zero, zero, _channel(bottom.force, base_dir, "cables[0].bottom.force")),
-        )
+        force = _channel(bottom.force, base_dir, "cables[0].bottom.force")
+        return c3.BOTTOM_FREE, fields, (zero, zero, force, *targets)
     body = bottom.body
     added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
     fields.update(
@@ -147,11 +160,14 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
             tie_k=np.array([tie.stiffness_x, tie.stiffness_y, tie.stiffness_z]),
             tie_c=np.array([tie.damping_x, tie.damping_y, tie.damping_z]),
         )
-    channels = tuple(
+    forces = tuple(
         _channel(getattr(body, f"force_{a}"), base_dir, f"cables[0].bottom.body.force_{a}")
         for a in "xyz"
     )
-    return c3.BOTTOM_FREE, fields, channels
+    if bottom.hold_axes:
+        fields.update(constrained=np.array([float(a in bottom.hold_axes) for a in "xyz"]))
+        return c3.BOTTOM_PINNED, fields, (*forces, *targets)
+    return c3.BOTTOM_FREE, fields, (*forces, *targets)
 
 
 def _point_bodies(cable: schema.Cable, env: schema.Environment, n: int):
@@ -187,7 +203,9 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir)
     node_mass, node_weight, node_drag = _point_bodies(cable, env, n)
     current_z, current_u, current_v = current_arrays(env)
-    breaks, coefs, count, sine = tfn.stack([*channels[:4], *body_channels, channels[4]])
+    breaks, coefs, count, sine = tfn.stack(
+        [*channels[:4], *body_channels[:3], channels[4], *body_channels[3:]]
+    )
     fields = dict(
         n=n,
         length=lengths,
@@ -240,7 +258,44 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         directors = _initial_directors(case, free, y0)
     y0[: 3 * n] = directors.ravel()
     params = _fill_rest_positions(cable, params, y0)
+    if params.bottom_kind == c3.BOTTOM_SERVO:
+        params, y0 = _start_servo(case, params, y0)
     return System3D(params=params, y0=y0, n_links=n, diameter=cable.diameter)
+
+
+def servo_step(case: schema.Case) -> float:
+    servo = case.cables[0].bottom.servo
+    if servo.step is not None:
+        return servo.step
+    sim = case.simulation
+    return sim.time_step if sim.time_step is not None else min(0.01, sim.output_interval)
+
+
+def refresh_interval(case: schema.Case) -> float | None:
+    """How often [s] the run must call :func:`refresh` between compiled chunks (None: never)."""
+    bottom = case.cables[0].bottom
+    if isinstance(bottom, schema.TrajectoryBottom) and bottom.method == "stiffness_servo":
+        return bottom.servo.recompute_interval
+    return None
+
+
+def refresh(case: schema.Case, params, time: float, y):
+    """Parameters for the next stretch of the run: the servo's stiffness K recomputed about the
+    target at ``time`` (the top's current velocity taken as steady)."""
+    radius = case.cables[0].bottom.servo.sphere_radius
+    stiffness, _ = statics.end_stiffness(params, y, time, radius)
+    return params._replace(servo_stiffness=np.ascontiguousarray(stiffness))
+
+
+def _start_servo(case, params, y0):
+    servo = case.cables[0].bottom.servo
+    stiffness, force = statics.end_stiffness(params, y0, 0.0, servo.sphere_radius)
+    y0 = y0.copy()
+    y0[6 * params.n + 2 :] = force
+    params = params._replace(
+        servo_stiffness=np.ascontiguousarray(stiffness), servo_step=servo_step(case)
+    )
+    return params, y0
 
 
 def _initial_directors(case, params, y0) -> np.ndarray:
@@ -276,6 +331,15 @@ def _fill_rest_positions(cable: schema.Cable, params, y0):
     rest = _explicit_rest(cable)
     if rest is None:
         rest = end
+    if isinstance(bottom, schema.TrajectoryBottom):
+        target = np.asarray(c3.target_motion(0.0, y0, params)[0], float)
+        gap = float(np.linalg.norm(target - end))
+        if gap > 1e-3:
+            raise CaseError(
+                f"cables[0].bottom: the trajectory starts {gap:.3f} m from the end of the initial "
+                "shape; use initial: {shape: static} (the steady shape ending on the target)"
+            )
+        end = target
     if isinstance(bottom, schema.PinnedBottom) and bottom.anchor is not None:
         anchor = np.array(schema.xyz(bottom.anchor))
         gap = float(np.linalg.norm(anchor - end))
@@ -344,7 +408,10 @@ VARIABLES = {
     "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
     "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
-    "constraint_error": (("time",), "m", "distance of a pinned end from its anchor"),
+    "constraint_error": (("time",), "m", "distance of a held end from its target (held axes)"),
+    **_xyz_variables("target", ("time",), "m", "target of the lower end (trajectory, guide)"),
+    "tracking_error": (("time",), "m", "distance of the lower end from its target"),
+    **_xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
 }
 
 make_workspace = c3.make_workspace

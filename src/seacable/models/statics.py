@@ -76,10 +76,10 @@ def _catenary_guess(params, top, anchor):
     return h * direction + np.array([0.0, 0.0, h * slope])
 
 
-def _pinned(params, top, vel, time):
+def _pinned_newton(params, top, vel, time, reaction, iterations=60):
+    """Newton iterations on the anchor reaction; returns (directors, forces, reaction) or None."""
     anchor = params.pin
     n = params.n
-    reaction = _catenary_guess(params, top, anchor)
     directors = np.zeros((n, 3))
     forces = np.zeros((n + 1, 3))
     z = np.linspace(anchor[2], top[2], n + 1)[::-1]
@@ -93,26 +93,56 @@ def _pinned(params, top, vel, time):
         return start - top
 
     error = mismatch(reaction)
-    for _ in range(60):
+    for _ in range(iterations):
+        if not np.all(np.isfinite(error)):
+            return None
         if np.linalg.norm(error) < 1e-9 * (1.0 + params.length.sum()):
-            return directors.copy(), forces.copy()
+            return directors.copy(), forces.copy(), reaction
         jac = np.empty((3, 3))
-        step = 1e-6 * scale
+        step = 1e-6 * (scale + np.linalg.norm(reaction))
         for k in range(3):
             trial = reaction.copy()
             trial[k] += step
             jac[:, k] = (mismatch(trial) - error) / step
         delta = np.linalg.lstsq(jac, -error, rcond=None)[0]
-        for damping in (1.0, 0.5, 0.25, 0.125, 0.0625):
+        for damping in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125):
             candidate = reaction + damping * delta
             candidate_error = mismatch(candidate)
             if np.linalg.norm(candidate_error) < np.linalg.norm(error):
                 break
+        else:
+            return None
         reaction, error = candidate, candidate_error
-    raise StaticsError(
-        f"the pinned static shape did not converge (top missed by {np.linalg.norm(error):.3g} m "
-        "after 60 Newton steps); check that the anchor is reachable, or start from 'arc'"
-    )
+    return None
+
+
+def _pinned(params, top, vel, time):
+    """Pinned lower end: Newton on the anchor reaction from the catenary guess; in a strong flow,
+    continuation from still water (the relative flow raised step by step)."""
+    guess = _catenary_guess(params, top, params.pin)
+    found = _pinned_newton(params, top, vel, time, guess)
+    if found is not None:
+        return found[0], found[1]
+    reaction = guess
+    fraction, step = 0.0, 0.1
+    while fraction < 1.0:
+        trial = min(1.0, fraction + step)
+        scaled = params._replace(
+            current_u=params.current_u * trial, current_v=params.current_v * trial
+        )
+        found = _pinned_newton(scaled, top, np.asarray(vel) * trial, time, reaction)
+        if found is None:
+            step /= 2.0
+            if step < 1e-3:
+                raise StaticsError(
+                    "the pinned static shape did not converge, even raising the flow step by "
+                    f"step (stuck at {100 * fraction:.1f} % of it); check that the anchor is "
+                    "reachable, or start from 'arc'"
+                )
+            continue
+        fraction, reaction = trial, found[2]
+        step = min(0.25, 1.5 * step)
+    return found[0], found[1]
 
 
 def static_state(params, y0, time: float = 0.0):
@@ -124,7 +154,14 @@ def static_state(params, y0, time: float = 0.0):
         or (params.bottom_kind == c3.BOTTOM_FREE and np.any(params.tie_k > 0))
         or params.top_kind == c3.TOP_HEAVE
     )
+    if params.bottom_kind in (c3.BOTTOM_TRAJECTORY, c3.BOTTOM_SERVO):
+        params = held_at(params, c3.target_motion(time, y0, params)[0])
     if params.bottom_kind == c3.BOTTOM_PINNED:
+        if np.any(params.constrained == 0.0):
+            raise StaticsError(
+                "a static start cannot hold only some axes of the lower end (hold_axes); "
+                "start from an 'arc'"
+            )
         directors, forces = _pinned(params, top, vel, time)
     else:
         # a tied end is first shot as if free; the polish below adds the ties
@@ -138,6 +175,36 @@ def static_state(params, y0, time: float = 0.0):
     if needs_polish:
         directors, heave = _polish(params, y0, directors, heave, time)
     return directors, heave
+
+
+def held_at(params, point):
+    """The same cable with its lower end pinned at ``point`` (all axes)."""
+    return params._replace(
+        bottom_kind=c3.BOTTOM_PINNED, pin=np.asarray(point, float), constrained=np.ones(3)
+    )
+
+
+def end_force(params, y0, point, time: float = 0.0) -> np.ndarray:
+    """Force a holder must apply to the cable's lower end to keep it at ``point`` in the
+    steady state of the top's motion at ``time`` [N]."""
+    top, vel, _ = c3.top_motion(time, y0, params)
+    _, forces = _pinned(held_at(params, point), top, vel, time)
+    return -forces[-1]
+
+
+def end_stiffness(params, y0, time: float, radius: float):
+    """Stiffness K [N/m] of the cable's lower end and the force F0 holding it at its target:
+    static equilibria with the end on a sphere of ``radius`` [m] around the target, linearised
+    by least squares (Jacquot & Marichal, section 4)."""
+    centre = np.asarray(c3.target_motion(time, y0, params)[0], float)
+    f0 = end_force(params, y0, centre, time)
+    directions = [np.eye(3)[k] * sign for k in range(3) for sign in (1.0, -1.0)]
+    directions += [np.array([a, b, c]) / math.sqrt(3.0)
+                   for a in (1, -1) for b in (1, -1) for c in (1, -1)]  # fmt: skip
+    displacements = radius * np.array(directions)
+    forces = np.array([end_force(params, y0, centre + d, time) for d in displacements]) - f0
+    k_transposed, *_ = np.linalg.lstsq(displacements, forces, rcond=None)
+    return k_transposed.T, f0
 
 
 def static_directors(params, y0, time: float = 0.0) -> np.ndarray:
