@@ -120,14 +120,32 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
         ax.plot(times, tension[:, j], label=f"{label} segment")
     _finish(ax, "tension", "tension [N]")
     ax = axes[1, 1]
-    ax.plot(times, z[:, -1], label="bottom end z")
-    speed = np.linalg.norm(np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0)
-    ax.plot(times, speed, label="tow speed [m/s]")
-    _finish(ax, "bottom end depth and tow speed", "[m], [m/s]")
-    ax = axes[1, 2]
-    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
-        ax.plot(times, ds[name].values, label=name.replace("_", " "))
-    _finish(ax, "energy", "[J]")
+    if "tracking_error" in ds and np.any(np.isfinite(ds["tracking_error"].values)):
+        for a in "xyz":
+            ax.plot(times, ds[f"bottom_force_{a}"].values, label=f"force {a}")
+        _finish(ax, "force of the cable on the vehicle (lower end)", "[N]")
+        ax = axes[1, 2]
+        relative = np.stack(
+            [ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"]
+        )
+        largest = max(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)), 1e-12)
+        ax.semilogy(times, np.maximum(ds["tracking_error"].values / largest, 1e-16),
+                    label=f"largest displacement {largest:.3g} m")  # fmt: skip
+        _finish(ax, "position error / largest displacement", "[-]")
+    else:
+        ax.plot(times, z[:, -1], label="bottom end z")
+        speed = np.linalg.norm(np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0)
+        ax.plot(times, speed, label="tow speed [m/s]")
+        _finish(ax, "bottom end depth and tow speed", "[m], [m/s]")
+        ax = axes[1, 2]
+        for name in (
+            "kinetic_energy",
+            "gravity_potential_energy",
+            "elastic_energy",
+            "total_energy",
+        ):
+            ax.plot(times, ds[name].values, label=name.replace("_", " "))
+        _finish(ax, "energy", "[J]")
     fig.suptitle(_title(ds))
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
