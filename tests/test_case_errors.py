@@ -99,8 +99,10 @@ def test_pinned_anchor_must_match_initial_shape():
         seacable.simulate(case)
 
 
-def test_more_than_one_cable_is_refused_with_reason():
-    with pytest.raises(CaseError, match=r"one cable per case; got 2"):
+def test_several_cables_need_a_shared_body():
+    with pytest.raises(
+        CaseError, match=r"several cables \(2\) must all be attached to one shared body"
+    ):
         _load(lambda d: d["cables"].append(d["cables"][0]))
 
 

@@ -74,10 +74,11 @@ class Results:
 class _Sink:
     """Where output rows go: in memory, or also appended to a NetCDF file as they come."""
 
-    def __init__(self, path, n_links: int, coords: dict, variables: dict, attrs: dict):
-        """``variables`` maps name -> (dims, units, long_name), as the model declares them."""
+    def __init__(self, path, sizes: dict, coords: dict, variables: dict, attrs: dict):
+        """``sizes`` maps each dimension but time to its length; ``coords`` maps name ->
+        (dim, values, units, long_name); ``variables`` maps name -> (dims, units, long_name)."""
         self.path = None if path is None else Path(path)
-        self.n_links = n_links
+        self.sizes = sizes
         self.coords = coords
         self.variables = variables
         self.attrs = dict(attrs)
@@ -90,15 +91,14 @@ class _Sink:
 
     def _create(self):
         f = h5netcdf.File(self.path, "w")
-        f.dimensions = {"time": None, "segment": self.n_links, "node": self.n_links + 1}
-        for name, (values, units, long_name) in self.coords.items():
-            dim = "segment" if len(values) == self.n_links else "node"
+        f.dimensions = {"time": None, **self.sizes}
+        for name, (dim, values, units, long_name) in self.coords.items():
             v = f.create_variable(name, (dim,), float, data=values)
             v.attrs.update(units=units, long_name=long_name)
         t = f.create_variable("time", ("time",), float, chunks=(1024,))
         t.attrs.update(units="s", long_name="time", standard_name="time")
         for name, (dims, units, long_name) in self.variables.items():
-            shape = tuple(1024 if d == "time" else (self.n_links + (d == "node")) for d in dims)
+            shape = tuple(1024 if d == "time" else self.sizes[d] for d in dims)
             v = f.create_variable(name, dims, float, chunks=tuple(min(s, 1024) for s in shape))
             v.attrs.update(units=units, long_name=long_name)
         f.attrs.update(self.attrs)
@@ -130,18 +130,17 @@ class _Sink:
     def _dataset(self) -> xr.Dataset:
         data = {}
         for name, (dims, units, long_name) in self.variables.items():
-            values = _join(self.chunks[name], dims, self.n_links)
+            values = _join(self.chunks[name], dims, self.sizes)
             data[name] = xr.Variable(dims, values, {"units": units, "long_name": long_name})
-        coords = {"time": xr.Variable(("time",), _join(self.chunks["time"], ("time",), 0))}
+        coords = {"time": xr.Variable(("time",), _join(self.chunks["time"], ("time",), {}))}
         coords["time"].attrs.update(units="s", long_name="time")
-        for name, (values, units, long_name) in self.coords.items():
-            dim = "segment" if len(values) == self.n_links else "node"
+        for name, (dim, values, units, long_name) in self.coords.items():
             coords[name] = xr.Variable((dim,), values, {"units": units, "long_name": long_name})
         return xr.Dataset(data, coords=coords, attrs=self.attrs)
 
 
-def _join(chunks, dims, n_links):
+def _join(chunks, dims, sizes):
     if chunks:
         return np.concatenate(chunks)
-    shape = tuple(0 if d == "time" else n_links + (d == "node") for d in dims)
+    shape = tuple(0 if d == "time" else sizes[d] for d in dims)
     return np.zeros(shape)

@@ -9,7 +9,7 @@ import numpy as np
 from seacable.case import loader, schema
 from seacable.errors import SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
-from seacable.models import planar_rigid_links, rigid_segments_3d
+from seacable.models import planar_rigid_links, rigid_segments_3d, star_3d
 from seacable.numerics import integrators
 from seacable.results import (
     STATUS_COMPLETE,
@@ -39,7 +39,10 @@ MODELS = {"rigid_links": planar_rigid_links, "rigid_segments_3d": rigid_segments
 
 
 def model_of(case: schema.Case):
-    """The model module of the case's cable (build, VARIABLES, rows, rates, ...)."""
+    """The model module of the case (build, VARIABLES, rows, rates, ...): several cables on a
+    shared body form a star of 3D cables, else the one cable's model."""
+    if case.bodies:
+        return star_3d
     return MODELS[case.cables[0].model]
 
 
@@ -48,12 +51,16 @@ def build_system(case: schema.Case):
     return model_of(case).build(case, loader.case_base_dir(case))
 
 
+SYSTEM_MODELS = {
+    planar_rigid_links.PlanarSystem: planar_rigid_links,
+    rigid_segments_3d.System3D: rigid_segments_3d,
+    star_3d.StarSystem: star_3d,
+}
+
+
 def fastest_frequency(system) -> tuple[float, str]:
     """Estimate of the fastest natural frequency of a built system [rad/s], and what sets it."""
-    module = (
-        rigid_segments_3d if isinstance(system, rigid_segments_3d.System3D) else planar_rigid_links
-    )
-    return module.fastest_frequency(system)
+    return SYSTEM_MODELS[type(system)].fastest_frequency(system)
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
@@ -83,7 +90,7 @@ class _Run:
         self.sink = sink
         self.y = system.y0.copy()
         self.t = 0.0
-        self.w = model.make_workspace(system.n_links)
+        self.w = model.workspace(system)
         self.work = np.zeros(4, dtype=np.int64)
         self.h = self.sim.initial_step
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
@@ -170,7 +177,7 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
-    sink = _Sink(output, system.n_links, model.coords(system), model.VARIABLES, attrs)
+    sink = _Sink(output, model.sizes(system), model.coords(system), model.VARIABLES, attrs)
     run = _Run(case, model, system, sink)
     start = _time.perf_counter()
     run.compile()

@@ -112,8 +112,10 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
     plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
     ax = axes[0, 2]
     for a in "xyz":
-        ax.plot(times, -ds[f"top_force_{a}"].values, label=f"tow force {a}")
-    _finish(ax, "force needed at the tow point (on the cable)", "[N]")
+        ax.plot(times, -ds[f"top_force_{a}"].values, label=f"force {a}")
+    magnitude = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
+    ax.plot(times, magnitude, "k:", label="magnitude (tension at the top)")
+    _finish(ax, "force at the top attachment on the cable (tow point, anchor)", "[N]")
     ax = axes[1, 0]
     tension = ds["tension"].values
     for label, j in (("top", 0), ("middle", tension.shape[1] // 2), ("bottom", -1)):
@@ -133,10 +135,12 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
                     label=f"largest displacement {largest:.3g} m")  # fmt: skip
         _finish(ax, "position error / largest displacement", "[-]")
     else:
-        ax.plot(times, z[:, -1], label="bottom end z")
+        ax.plot(times, z[:, -1], label="bottom end z [m]")
+        ax.plot(times, ds["bottom_velocity_z"].values, label="bottom end vertical speed [m/s]")
         speed = np.linalg.norm(np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0)
-        ax.plot(times, speed, label="tow speed [m/s]")
-        _finish(ax, "bottom end depth and tow speed", "[m], [m/s]")
+        if np.any(speed > 0):
+            ax.plot(times, speed, label="tow speed [m/s]")
+        _finish(ax, "lower end: elevation and speed", "[m], [m/s]")
         ax = axes[1, 2]
         for name in (
             "kinetic_energy",

@@ -16,7 +16,6 @@ from pydantic import (
     ConfigDict,
     Field,
     PrivateAttr,
-    field_validator,
     model_validator,
 )
 
@@ -339,6 +338,28 @@ class TrajectoryBottom(_Model):
     servo: Servo = Servo()
 
 
+class AttachedBottom(_Model):
+    """Lower end attached to a body of the case's ``bodies`` list, by name (3D model): several
+    cables attached to one body form a star, e.g. a buoy held by four anchored cables."""
+
+    type: Literal["attached"]
+    body: str
+
+
+class SharedBody(_Model):
+    """A point body that several cables attach to (3D model). ``position`` [x, y, z] (m) is where
+    it starts: every attached cable's initial shape must end there (within 1 mm). Added mass and
+    drag area take one value or one per global axis."""
+
+    name: str
+    position: Point
+    mass: Pos  # [kg]
+    volume: NonNeg = 0.0  # [m^3]
+    added_mass: PerAxis = 0.0  # [kg]
+    drag_coefficient: NonNeg = 0.0
+    drag_area: PerAxis = 0.0  # [m^2]
+
+
 class PointBody(_Model):
     """A float or clump weight at a joint (3D model): ``node`` counts joints from the top
     (1 = between the first and second segments). Drag as a sphere: 0.5 rho Cd A |v| v."""
@@ -411,9 +432,9 @@ class Cable(_Model):
     point_bodies: list[PointBody] = []  # floats and clump weights at joints (3D)
     top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
     top: FixedTop | ImposedTop | FloatingStructureTop | TowingShipTop = Field(discriminator="type")
-    bottom: FreeBottom | FloatingStructureBottom | PinnedBottom | TrajectoryBottom = Field(
-        discriminator="type"
-    )
+    bottom: (
+        FreeBottom | FloatingStructureBottom | PinnedBottom | TrajectoryBottom | AttachedBottom
+    ) = Field(discriminator="type")
     initial: InitialShape = InitialShape()
 
     @model_validator(mode="after")
@@ -475,8 +496,8 @@ class Cable(_Model):
             raise ValueError(f"the planar model has no y force (bottom.body.force_y): {fix}")
         if self.point_bodies:
             raise ValueError(f"point_bodies are supported by the 3D model only: {fix}")
-        if isinstance(self.bottom, TrajectoryBottom):
-            raise ValueError(f"bottom type 'trajectory' needs the 3D model: {fix}")
+        if isinstance(self.bottom, TrajectoryBottom | AttachedBottom):
+            raise ValueError(f"bottom type '{self.bottom.type}' needs the 3D model: {fix}")
         if getattr(self.bottom, "hold_axes", []):
             raise ValueError(f"bottom.hold_axes needs the 3D model: {fix}")
         if self.added_mass_coefficient:
@@ -538,16 +559,36 @@ class Case(_Model):
     description: str = ""
     environment: Environment = Environment()
     cables: list[Cable] = Field(min_length=1)
+    bodies: list[SharedBody] = []
     simulation: Simulation
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
 
-    @field_validator("cables")
-    @classmethod
-    def _one_cable(cls, cables):
-        if len(cables) != 1:
+    @model_validator(mode="after")
+    def _cables_and_bodies(self):
+        attached = [c for c in self.cables if isinstance(c.bottom, AttachedBottom)]
+        names = [b.name for b in self.bodies]
+        if len(set(names)) != len(names):
+            raise ValueError(f"bodies: names must be unique (got {names})")
+        for k, cable in enumerate(attached):
+            if cable.bottom.body not in names:
+                raise ValueError(
+                    f"cables[{k}].bottom.body: no body named '{cable.bottom.body}'; "
+                    f"bodies are {names or 'none'}"
+                )
+        if attached and len(attached) != len(self.cables):
             raise ValueError(
-                f"the planar rigid-link model simulates one cable per case; got {len(cables)}. "
-                "Split the system into one case per cable"
+                "either every cable is attached to the shared body (a star) or there is one cable"
             )
-        return cables
+        if len({c.bottom.body for c in attached}) > 1:
+            raise ValueError("all attached cables must share one body (several bodies: not yet)")
+        if not attached and len(self.cables) != 1:
+            raise ValueError(
+                f"several cables ({len(self.cables)}) must all be attached to one shared body "
+                "(bottom: {type: attached, body: NAME}); otherwise split them into one case each"
+            )
+        if attached and len({c.links for c in self.cables}) != 1:
+            raise ValueError("cables attached to one body must have the same number of links")
+        if self.bodies and not attached:
+            raise ValueError("bodies are given but no cable is attached to them")
+        return self

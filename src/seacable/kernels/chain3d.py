@@ -759,9 +759,16 @@ def _energies(y, p, w):
 @njit(**JIT)
 def outputs(t, y, p, w, node_pos, tension, scalars):
     """Derived outputs at one instant: node_pos (n+1, 3), tension (n,), scalars (N_SCALARS,)."""
+    status, _, reaction = solve(t, y, p, w)
+    outputs_from_solution(t, y, p, w, reaction, node_pos, tension, scalars)
+    return status
+
+
+@njit(**JIT)
+def outputs_from_solution(t, y, p, w, reaction, node_pos, tension, scalars):
+    """``outputs`` once ``w`` holds a solution (with ``reaction`` at a closed lower end)."""
     n = p.n
     pinned = is_closed(p)
-    status, _, reaction = solve(t, y, p, w)
     for k in range(n + 1):
         for c in range(3):
             node_pos[k, c] = w[_P + c, k]
@@ -802,7 +809,6 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     if p.bottom_kind == BOTTOM_SERVO:
         for c in range(3):
             scalars[20 + c] = y[6 * n + 2 + c]
-    return status
 
 
 @njit(**JIT)

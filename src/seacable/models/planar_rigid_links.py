@@ -247,7 +247,14 @@ VARIABLES = {
     "bottom_velocity_z": (("time",), "m/s", "velocity of the bottom end (its body), z"),
 }
 
-make_workspace = pc.make_workspace
+
+def workspace(system: PlanarSystem):
+    """Scratch arrays the compiled kernels fill during a run."""
+    return pc.make_workspace(system.n_links)
+
+
+def sizes(system) -> dict:
+    return {"segment": system.n_links, "node": system.n_links + 1}
 
 
 def rows(times, states, system: PlanarSystem, w) -> tuple[dict, int]:
@@ -316,8 +323,18 @@ def coords(system: PlanarSystem) -> dict:
     lengths = system.params.length
     arc = np.concatenate([[0.0], np.cumsum(lengths)])
     return {
-        "segment": (np.arange(system.n_links, dtype=float), "1", "link index (0 at the top)"),
-        "node": (np.arange(system.n_links + 1, dtype=float), "1", "node index (0 at the top)"),
-        "arc_length": (arc, "m", "unstretched arc length of the node from the top"),
-        "link_length": (lengths.copy(), "m", "link length"),
+        "segment": (
+            "segment",
+            np.arange(system.n_links, dtype=float),
+            "1",
+            "link index (0 at the top)",
+        ),
+        "node": (
+            "node",
+            np.arange(system.n_links + 1, dtype=float),
+            "1",
+            "node index (0 at the top)",
+        ),
+        "arc_length": ("node", arc, "m", "unstretched arc length of the node from the top"),
+        "link_length": ("segment", lengths.copy(), "m", "link length"),
     }

@@ -20,7 +20,7 @@ from seacable.models import statics
 from seacable.models import timefunctions as tfn
 from seacable.models.common import channel as _channel
 from seacable.models.common import current_arrays, joint_stiffness, per_joint, tangential_drag
-from seacable.models.planar_rigid_links import coords, zigzag_frequency
+from seacable.models.planar_rigid_links import coords, sizes, zigzag_frequency
 
 DEFAULT_DRAG_COEFFICIENT = 1.8  # Jacquot & Marichal: vortex-induced vibration raises Cd
 
@@ -414,7 +414,10 @@ VARIABLES = {
     **_xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
 }
 
-make_workspace = c3.make_workspace
+
+def workspace(system: System3D):
+    """Scratch arrays the compiled kernels fill during a run."""
+    return c3.make_workspace(system.n_links)
 
 
 def rows(times, states, system: System3D, w) -> tuple[dict, int]:
@@ -463,4 +466,13 @@ def _speed_scale(p) -> float:
     return speed
 
 
-__all__ = ["System3D", "build", "coords", "fastest_frequency", "rates", "rows"]
+__all__ = [
+    "System3D",
+    "build",
+    "coords",
+    "fastest_frequency",
+    "rates",
+    "rows",
+    "sizes",
+    "workspace",
+]

@@ -10,7 +10,7 @@ models without constraints in their state).
 from numba import types
 from numba.extending import overload
 
-from seacable.kernels import chain3d, planar_chain
+from seacable.kernels import chain3d, planar_chain, star3d
 from seacable.kernels.timefn import JIT
 
 
@@ -34,6 +34,8 @@ def _model_rhs(t, y, p, w, ydot):
         return lambda t, y, p, w, ydot: planar_chain.rhs(t, y, p, w, ydot)
     if _is(p, chain3d.Chain3DParams):
         return lambda t, y, p, w, ydot: chain3d.rhs(t, y, p, w, ydot)
+    if _is(p, star3d.StarParams):
+        return lambda t, y, p, w, ydot: star3d.rhs(t, y, p, w, ydot)
     return None
 
 
@@ -43,6 +45,8 @@ def _model_project(y, p):
         return lambda y, p: None
     if _is(p, chain3d.Chain3DParams):
         return lambda y, p: chain3d.project(y, p)
+    if _is(p, star3d.StarParams):
+        return lambda y, p: star3d.project(y, p)
     return None
 
 
@@ -56,6 +60,6 @@ def model_projects(p):
 def _model_projects(p):
     if _is(p, planar_chain.ChainParams):
         return lambda p: False
-    if _is(p, chain3d.Chain3DParams):
+    if _is(p, chain3d.Chain3DParams) or _is(p, star3d.StarParams):
         return lambda p: True
     return None
