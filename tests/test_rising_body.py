@@ -1,0 +1,86 @@
+"""The rising buoyant body of Jacquot & Marichal (section 5): one symmetric cable with an exact
+vertical guide or a very large transverse added mass, and the full four-cable system."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import seacable
+
+EXAMPLES = Path(__file__).parent.parent / "examples"
+
+
+def _run(name, duration=None, **updates):
+    case = seacable.load_case(EXAMPLES / f"{name}.yaml")
+    if duration is not None:
+        sim = case.simulation.model_copy(update={"duration": duration})
+        case = case.model_copy(update={"simulation": sim})
+    if updates:
+        case = seacable.load_case(_patched(case, **updates))
+    return seacable.simulate(case).dataset
+
+
+def _patched(case, neutral=False):
+    data = case.model_dump(mode="json", exclude_none=True)
+    if neutral:
+        rho = data["environment"]["water_density"]
+        for body in data.get("bodies", []):
+            body["volume"] = body["mass"] / rho
+        for cable in data["cables"]:
+            area = np.pi * cable["diameter"] ** 2 / 4
+            cable["mass_per_length"] = rho * area
+            cable["point_bodies"] = []
+            if isinstance(cable["bottom"].get("body"), dict):
+                cable["bottom"]["body"]["volume"] = cable["bottom"]["body"]["mass"] / rho
+    return data
+
+
+@pytest.fixture(scope="module")
+def rises():
+    return {
+        "guided": _run("rising_body_single_cable_guided"),
+        "added_mass": _run("rising_body_single_cable_added_mass"),
+        "four_cables": _run("rising_body_four_cables"),
+    }
+
+
+def test_rise_time_laws_agree(rises):
+    guided = rises["guided"]["node_z"].values[:, -1]
+    added = rises["added_mass"]["node_z"].values[:, -1]
+    four = rises["four_cables"]["body_z"].values
+    assert guided[-1] - guided[0] > 90.0  # it rises from the seabed to the surface
+    assert np.max(np.abs(added - guided)) < 1e-3
+    assert np.max(np.abs(four - guided)) < 1e-3
+
+
+def test_body_stays_on_its_vertical(rises):
+    assert np.max(np.abs(rises["guided"]["node_x"].values[:, -1])) < 1e-3
+    assert np.max(np.abs(rises["added_mass"]["node_x"].values[:, -1])) < 1e-3
+    four = rises["four_cables"]
+    assert np.max(np.hypot(four["body_x"].values, four["body_y"].values)) < 1e-9
+
+
+def test_four_cables_share_the_load_symmetrically(rises):
+    ds = rises["four_cables"]
+    tension = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
+    assert tension.max() > 100.0
+    np.testing.assert_allclose(tension, tension[:, :1] * np.ones((1, 4)), rtol=1e-6, atol=1e-6)
+    single = rises["guided"]
+    anchor = np.linalg.norm(np.stack([single[f"top_force_{a}"].values for a in "xyz"]), axis=0)
+    np.testing.assert_allclose(tension[:, 0], anchor, rtol=1e-3, atol=1.0)
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "rising_body_single_cable_guided",
+        "rising_body_single_cable_added_mass",
+        "rising_body_four_cables",
+    ],  # fmt: skip
+)
+def test_neutrally_buoyant_system_does_not_move(name):
+    ds = _run(name, duration=5.0, neutral=True)
+    z = ds["body_z"].values if "body_z" in ds else ds["node_z"].values[:, -1]
+    assert np.ptp(z) < 1e-9
+    assert np.max(ds["angular_rate"].values) < 1e-9
