@@ -97,3 +97,16 @@ def test_3d_run_plot_animate(tmp_path):
     assert result.exit_code == 0, result.output
     result = runner.invoke(main, ["validate", str(case)])
     assert "rigid_segments_3d" in result.output or "ok: case" in result.output
+
+
+def test_star_run_and_plot(tmp_path):
+    text = (Path(__file__).parent.parent / "examples" / "rising_body_four_cables.yaml").read_text()
+    case = tmp_path / "four.yaml"
+    case.write_text(text.replace("duration: 28.0", "duration: 1.0"))
+    runner = CliRunner()
+    out = tmp_path / "four.nc"
+    result = runner.invoke(main, ["run", str(case), "-o", str(out), "--no-progress"])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(main, ["plot", str(out), "-o", str(tmp_path / "four.png")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "four.png").stat().st_size > 10_000

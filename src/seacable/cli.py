@@ -53,9 +53,12 @@ def validate(case_file: str) -> None:
     except seacable.CaseError as exc:
         _fail(str(exc), 2)
     cable = case.cables[0]
+    what = f"{len(case.cables)} cables on body '{case.bodies[0].name}'" if case.bodies else (
+        f"cable '{cable.name}' ({cable.model}) of {cable.links} links, top {cable.top.type}, "
+        f"bottom {cable.bottom.type}"
+    )  # fmt: skip
     click.echo(
-        f"ok: case '{case.name}': cable '{cable.name}' ({cable.model}) of {cable.links} links, top "
-        f"{cable.top.type}, bottom {cable.bottom.type}, {case.simulation.duration:g} s with "
+        f"ok: case '{case.name}': {what}, {case.simulation.duration:g} s with "
         f"{case.simulation.integrator}"
     )
 

@@ -54,6 +54,8 @@ def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
 def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     """Six panels: cable snapshots, link angles, end positions, tensions, attachment forces and
     energies over time (3D results: plan and side views instead of snapshots and angles)."""
+    if "cable" in ds.dims:
+        return _plot_star(ds, path, every)
     if "node_y" in ds:
         return _plot_3d(ds, path, every)
     plt = _pyplot()
@@ -158,6 +160,48 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
     return path
 
 
+def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
+    """Several cables on a shared body: side and plan views, the body's rise, anchor tensions."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(2, 2, figsize=(14, 10), constrained_layout=True)
+    times = ds["time"].values
+    idx = _snapshot_indices(times, every)
+    cmap = plt.get_cmap("viridis")
+    x, y, z = (ds[f"node_{a}"].values for a in "xyz")  # (time, cable, node)
+    for ax, (h, v, hl, vl, title) in zip(
+        axes[0],
+        ((x, z, "x [m]", "z [m]", "side view: successive shapes"),
+         (x, y, "x [m]", "y [m]", "plan view")),
+        strict=True,
+    ):  # fmt: skip
+        for k, i in enumerate(idx):
+            color = cmap(k / max(len(idx) - 1, 1))
+            for c in range(h.shape[1]):
+                ax.plot(h[i, c], v[i, c], "-", color=color, lw=0.9)
+        ax.set_xlabel(hl)
+        ax.set_ylabel(vl)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(title)
+    axes[0, 0].axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+    sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
+    plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
+    ax = axes[1, 0]
+    ax.plot(times, ds["body_z"].values, label="body elevation z [m]")
+    ax.plot(times, ds["body_velocity_z"].values, label="body vertical speed [m/s]")
+    _finish(ax, "time law of the body", "[m], [m/s]")
+    ax = axes[1, 1]
+    tension = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
+    for c in range(tension.shape[1]):
+        ax.plot(times, tension[:, c], label=f"cable {c}")
+    _finish(ax, "tension at the anchors (top ends)", "[N]")
+    fig.suptitle(_title(ds))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
 def _draw_angles(ax, ds: xr.Dataset) -> None:
     """Every link's angle for short cables (as the thesis's figure 6.1), else a selection."""
     angles = np.degrees(ds["angle"].values)
@@ -197,6 +241,8 @@ def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> 
     times = ds["time"].values
     frame_times = np.arange(times[0], times[-1] + 1e-9, speed / fps)
     frames = np.searchsorted(times, frame_times - 1e-9).clip(0, len(times) - 1)
+    if "cable" in ds.dims:
+        raise ValueError("animations of several cables are not available yet; use 'plot'")
     views = [("node_x", "node_z", "x [m]", "z [m]")]
     if "node_y" in ds:
         views = [("node_x", "node_y", "x [m]", "y [m]"), *views]
