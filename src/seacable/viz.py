@@ -78,16 +78,8 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     for name in ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z"):
         ax.plot(t, ds[name].values, label=name)
     _finish(ax, "force of the cable on its attachments", "[N]")
-    ax = axes[1, 2]
-    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
-        ax.plot(t, ds[name].values, label=name.replace("_", " "))
-    _finish(ax, "energy", "[J]")
-    fig.suptitle(_title(ds))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    _draw_energy(axes[1, 2], ds)
+    return _save(fig, ds, path, plt)
 
 
 def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -143,21 +135,8 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
         if np.any(speed > 0):
             ax.plot(times, speed, label="tow speed [m/s]")
         _finish(ax, "lower end: elevation and speed", "[m], [m/s]")
-        ax = axes[1, 2]
-        for name in (
-            "kinetic_energy",
-            "gravity_potential_energy",
-            "elastic_energy",
-            "total_energy",
-        ):
-            ax.plot(times, ds[name].values, label=name.replace("_", " "))
-        _finish(ax, "energy", "[J]")
-    fig.suptitle(_title(ds))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+        _draw_energy(axes[1, 2], ds)
+    return _save(fig, ds, path, plt)
 
 
 def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -194,12 +173,7 @@ def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
     for c in range(tension.shape[1]):
         ax.plot(times, tension[:, c], label=f"cable {c}")
     _finish(ax, "tension at the anchors (top ends)", "[N]")
-    fig.suptitle(_title(ds))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return _save(fig, ds, path, plt)
 
 
 def _draw_angles(ax, ds: xr.Dataset) -> None:
@@ -217,6 +191,21 @@ def _finish(ax, title: str, ylabel: str) -> None:
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.legend(fontsize=8)
+
+
+def _save(fig, ds: xr.Dataset, path, plt) -> Path:
+    fig.suptitle(_title(ds))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def _draw_energy(ax, ds: xr.Dataset) -> None:
+    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
+        ax.plot(ds["time"].values, ds[name].values, label=name.replace("_", " "))
+    _finish(ax, "energy", "[J]")
 
 
 def _title(ds: xr.Dataset) -> str:

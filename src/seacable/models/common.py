@@ -50,3 +50,20 @@ def channel(spec, base_dir, where: str) -> tfn.Piecewise:
         return tfn.build(spec, base_dir)
     except ValueError as exc:
         raise CaseError(f"{where}: {exc}") from None
+
+
+def typed(cls, fields: dict):
+    """An instance of the NamedTuple ``cls`` with every field of the exact type its compiled
+    kernels were built for (a float given as an int would trigger a new compilation)."""
+    out = {}
+    for name, annotation in cls.__annotations__.items():
+        value = fields[name]
+        if annotation is int:
+            out[name] = int(value)
+        elif annotation is float:
+            out[name] = float(value)
+        elif name == "tf_count":
+            out[name] = np.ascontiguousarray(value, dtype=np.int64)
+        else:
+            out[name] = np.ascontiguousarray(value, dtype=np.float64)
+    return cls(**out)

@@ -171,28 +171,31 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
             "(0 or 180 deg); use model: rigid_segments_3d for other directions"
         )
     breaks, coefs, count, sine = tfn.stack([*top_channels, top_force, fx, fz])
-    params = _typed(
-        n=n,
-        length=lengths,
-        mass=mass,
-        inertia=mass * lengths**2 / 12.0,
-        wet_weight=(mass - rho * area * lengths) * env.gravity,
-        drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
-        drag_tangential=common.tangential_drag(cable, rho, lengths),
-        joint_stiffness=common.joint_stiffness(cable, lengths),
-        joint_damping=common.per_joint(cable.joint_damping, n),
-        top_reference_angle=math.radians(cable.top_reference_angle_deg),
-        current_z=current_z,
-        current_u=current_u,
-        top_kind=top_kind,
-        bottom_kind=bottom_kind,
-        stabilization_frequency=case.simulation.constraint_stabilization_frequency,
-        tf_breaks=breaks,
-        tf_coefs=coefs,
-        tf_count=count,
-        tf_sine=sine,
-        **top_fields,
-        **bottom_fields,
+    params = common.typed(
+        pc.ChainParams,
+        dict(
+            n=n,
+            length=lengths,
+            mass=mass,
+            inertia=mass * lengths**2 / 12.0,
+            wet_weight=(mass - rho * area * lengths) * env.gravity,
+            drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
+            drag_tangential=common.tangential_drag(cable, rho, lengths),
+            joint_stiffness=common.joint_stiffness(cable, lengths),
+            joint_damping=common.per_joint(cable.joint_damping, n),
+            top_reference_angle=math.radians(cable.top_reference_angle_deg),
+            current_z=current_z,
+            current_u=current_u,
+            top_kind=top_kind,
+            bottom_kind=bottom_kind,
+            stabilization_frequency=case.simulation.constraint_stabilization_frequency,
+            tf_breaks=breaks,
+            tf_coefs=coefs,
+            tf_count=count,
+            tf_sine=sine,
+            **top_fields,
+            **bottom_fields,
+        ),
     )
     y0 = np.zeros(pc.state_size(n))
     y0[:n] = angles
@@ -206,23 +209,6 @@ def _xz(point):
         return None
     x, _, z = schema.xyz(point)
     return (x, z)
-
-
-def _typed(**fields) -> pc.ChainParams:
-    """ChainParams with every field of the exact type the compiled kernels were built for
-    (a float given as int would trigger a new compilation)."""
-    typed = {}
-    for name, annotation in pc.ChainParams.__annotations__.items():
-        value = fields[name]
-        if annotation is int:
-            typed[name] = int(value)
-        elif annotation is float:
-            typed[name] = float(value)
-        elif name == "tf_count":
-            typed[name] = np.ascontiguousarray(value, dtype=np.int64)
-        else:
-            typed[name] = np.ascontiguousarray(value, dtype=np.float64)
-    return pc.ChainParams(**typed)
 
 
 # ---- what a run of this model records (names, dims, units, long names) ---------------------------

@@ -19,7 +19,13 @@ from seacable.kernels import chain3d as c3
 from seacable.models import statics
 from seacable.models import timefunctions as tfn
 from seacable.models.common import channel as _channel
-from seacable.models.common import current_arrays, joint_stiffness, per_joint, tangential_drag
+from seacable.models.common import (
+    current_arrays,
+    joint_stiffness,
+    per_joint,
+    tangential_drag,
+    typed,
+)
 from seacable.models.planar_rigid_links import coords, sizes, zigzag_frequency
 
 DEFAULT_DRAG_COEFFICIENT = 1.8  # Jacquot & Marichal: vortex-induced vibration raises Cd
@@ -236,7 +242,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         **top_fields,
         **bottom_fields,
     )
-    params = typed(fields)
+    params = typed(c3.Chain3DParams, fields)
     y0 = np.zeros(c3.state_size(n))
     y0[3 * n] = heave[0]
     y0[6 * n + 1] = heave[1]
@@ -364,22 +370,6 @@ def _top_reference(cable: schema.Cable) -> np.ndarray:
     angle = math.radians(cable.top_reference_angle_deg)
     azimuth = math.radians(cable.initial.azimuth_deg)
     return directors_from_angles(np.array([angle]), azimuth)[0]
-
-
-def typed(fields: dict) -> c3.Chain3DParams:
-    """Chain3DParams with every field of the exact type the compiled kernels were built for."""
-    out = {}
-    for name, annotation in c3.Chain3DParams.__annotations__.items():
-        value = fields[name]
-        if annotation is int:
-            out[name] = int(value)
-        elif annotation is float:
-            out[name] = float(value)
-        elif name == "tf_count":
-            out[name] = np.ascontiguousarray(value, dtype=np.int64)
-        else:
-            out[name] = np.ascontiguousarray(value, dtype=np.float64)
-    return c3.Chain3DParams(**out)
 
 
 # ---- what a run of this model records ------------------------------------------------------------
