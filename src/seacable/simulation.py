@@ -9,7 +9,7 @@ import numpy as np
 from seacable.case import loader, schema
 from seacable.errors import SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
-from seacable.models import planar_rigid_links, rigid_segments_3d, star_3d
+from seacable.models import lumped_mass, planar_rigid_links, rigid_segments_3d, star_3d
 from seacable.numerics import integrators
 from seacable.results import (
     STATUS_COMPLETE,
@@ -35,7 +35,11 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     return sim.output_interval / steps, steps
 
 
-MODELS = {"rigid_links": planar_rigid_links, "rigid_segments_3d": rigid_segments_3d}
+MODELS = {
+    "rigid_links": planar_rigid_links,
+    "rigid_segments_3d": rigid_segments_3d,
+    "lumped_mass": lumped_mass,
+}
 
 
 def model_of(case: schema.Case):
@@ -55,6 +59,7 @@ SYSTEM_MODELS = {
     planar_rigid_links.PlanarSystem: planar_rigid_links,
     rigid_segments_3d.System3D: rigid_segments_3d,
     star_3d.StarSystem: star_3d,
+    lumped_mass.LumpedSystem: lumped_mass,
 }
 
 

@@ -179,12 +179,24 @@ class Current(_Model):
         return data[:, 0].copy(), data[:, 1].copy()
 
 
+class Seabed(_Model):
+    """Seabed contact of lumped-mass cables: per metre of line, a vertical ``stiffness``
+    [N/m per m of line] and ``damping`` [N s/m per m] while a node is below the seabed, and
+    Coulomb friction along it (``friction_coefficient``, regularised below ``slip_speed``)."""
+
+    stiffness: Pos = 1.0e5
+    damping: NonNeg = 0.0
+    friction_coefficient: NonNeg = 0.0
+    slip_speed: Pos = 0.01  # [m/s]
+
+
 class Environment(_Model):
     gravity: Pos = 9.81  # [m/s^2]
     water_density: Pos = 1025.0  # [kg/m^3]
     water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
     current: Current | None = None
     in_air: bool = False  # true: no buoyancy, no drag, no added mass
+    seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
 
 
 # ---- cable -------------------------------------------------------------------------------------
@@ -385,9 +397,11 @@ class InitialShape(_Model):
     ``arc`` varies linearly from top_angle_deg (first link) to bottom_angle_deg (last link);
     ``angles`` gives one angle per link; ``static`` (3D model) starts from the static
     equilibrium for the motion the top has at t = 0 (towing at constant speed, or hanging).
-    The cable starts at rest (or, from ``static``, moving steadily with the top)."""
+    The cable starts at rest (or, from ``static``, moving steadily with the top).
+    ``catenary`` (lumped-mass model, pinned lower end): the elastic catenary between the top and
+    the anchor, lying on the seabed where it reaches it."""
 
-    shape: Literal["arc", "angles", "static"] = "arc"
+    shape: Literal["arc", "angles", "static", "catenary"] = "arc"
     top_angle_deg: float = 0.0
     bottom_angle_deg: float | None = None
     angles_deg: list[float] | None = None
@@ -414,7 +428,7 @@ class Cable(_Model):
     """A planar cable of rigid links joined by torsional spring-dampers."""
 
     name: str = "cable"
-    model: Literal["rigid_links", "rigid_segments_3d"] = "rigid_links"
+    model: Literal["rigid_links", "rigid_segments_3d", "lumped_mass"] = "rigid_links"
     links: int = Field(ge=1, le=100_000)  # number of rigid links
     length: Pos | None = None  # total length [m], equal links
     link_lengths: list[Pos] | None = None  # [m], one per link
@@ -429,6 +443,8 @@ class Cable(_Model):
     drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
     friction_coefficient: NonNeg = 0.0  # Richtmyer f: 0.5 rho f Cd_n d l (V cos phi)^2
     added_mass_coefficient: NonNeg | None = None  # Ca, normal only; 3D default 1.0
+    axial_stiffness: Pos | None = None  # EA [N] (lumped_mass: required)
+    axial_damping_time: NonNeg = 0.0  # alpha [s]: N = EA (eps + alpha d eps/dt)
     point_bodies: list[PointBody] = []  # floats and clump weights at joints (3D)
     top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
     top: FixedTop | ImposedTop | FloatingStructureTop | TowingShipTop = Field(discriminator="type")

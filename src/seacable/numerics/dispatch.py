@@ -10,7 +10,7 @@ models without constraints in their state).
 from numba import types
 from numba.extending import overload
 
-from seacable.kernels import chain3d, planar_chain, star3d
+from seacable.kernels import chain3d, lumped, planar_chain, star3d
 from seacable.kernels.timefn import JIT
 
 
@@ -36,6 +36,8 @@ def _model_rhs(t, y, p, w, ydot):
         return lambda t, y, p, w, ydot: chain3d.rhs(t, y, p, w, ydot)
     if _is(p, star3d.StarParams):
         return lambda t, y, p, w, ydot: star3d.rhs(t, y, p, w, ydot)
+    if _is(p, lumped.LumpedParams):
+        return lambda t, y, p, w, ydot: lumped.rhs(t, y, p, w, ydot)
     return None
 
 
@@ -47,6 +49,8 @@ def _model_project(y, p):
         return lambda y, p: chain3d.project(y, p)
     if _is(p, star3d.StarParams):
         return lambda y, p: star3d.project(y, p)
+    if _is(p, lumped.LumpedParams):
+        return lambda y, p: None
     return None
 
 
@@ -58,7 +62,7 @@ def model_projects(p):
 
 @overload(model_projects, jit_options=JIT)
 def _model_projects(p):
-    if _is(p, planar_chain.ChainParams):
+    if _is(p, planar_chain.ChainParams) or _is(p, lumped.LumpedParams):
         return lambda p: False
     if _is(p, chain3d.Chain3DParams) or _is(p, star3d.StarParams):
         return lambda p: True

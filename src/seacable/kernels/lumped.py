@@ -1,0 +1,296 @@
+"""Extensible lumped-mass cable in 3D (Poth's displacement variables): numba kernels.
+
+Nodes 0..n carry the mass of half of each adjacent segment; segment i joins node i to node i+1.
+Axial law (Kelvin-Voigt, no compression): N_i = max(0, EA (eps_i + alpha d eps_i / dt)),
+eps_i = |r_{i+1} - r_i| / l_i - 1. Per segment, on the velocity of its centre relative to the
+current: normal drag 0.5 rho Cd_n d l |v_n| v_n, tangential drag, normal added mass
+Ca rho pi d^2/4 l (I - t t^T), apparent weight; each shared half and half by its nodes. Seabed
+contact per node below z = -depth: a vertical spring-damper and Coulomb friction (regularised)
+along the seabed. Every step is O(n): each free node solves its own 3x3 mass matrix.
+
+State: ``y = [r_0 .. r_n (3 each), v_0 .. v_n (3 each)]``; node 0 follows the top motion, node n
+is free (with a body) or pinned (its derivative zero).
+"""
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels import chain3d as c3
+from seacable.kernels.timefn import JIT
+
+BOTTOM_FREE = c3.BOTTOM_FREE
+BOTTOM_PINNED = c3.BOTTOM_PINNED
+
+SCALAR_NAMES = (
+    "top_force_x",
+    "top_force_y",
+    "top_force_z",
+    "bottom_force_x",
+    "bottom_force_y",
+    "bottom_force_z",
+    "kinetic_energy",
+    "gravity_potential_energy",
+    "elastic_energy",
+)
+N_SCALARS = len(SCALAR_NAMES)
+
+# workspace rows (length n + 1)
+_F = 0  # 3 rows: force on each node (without inertia)
+_MA = 3  # 6 rows: symmetric added-mass matrix of each node (11, 12, 13, 22, 23, 33)
+_T = 9  # segment tension
+_TX = 10  # 3 rows: unit tangent of each segment
+N_WORK_ROWS = 13
+
+
+class LumpedParams(NamedTuple):
+    """Flat parameters of one lumped-mass cable (SI units). Field names shared with
+    ``Chain3DParams`` let the top motion and time functions of ``chain3d`` serve both."""
+
+    n: int
+    length: np.ndarray  # (n,) unstretched segment length [m]
+    node_mass: np.ndarray  # (n+1,) structural mass lumped at nodes [kg]
+    added_mass: np.ndarray  # (n,) normal added mass of each segment [kg]
+    wet_weight: np.ndarray  # (n,) apparent weight of each segment, positive down [N]
+    axial_stiffness: float  # EA [N]
+    axial_damping: float  # alpha [s]
+    drag_normal: np.ndarray  # (n,) 0.5 rho Cd_n d l [N s^2/m^2]
+    drag_tangential: np.ndarray  # (n,) [N s^2/m^2]
+    current_z: np.ndarray
+    current_u: np.ndarray
+    current_v: np.ndarray
+    seabed_z: float  # elevation of the seabed [m] (-inf: none)
+    seabed_stiffness: np.ndarray  # (n+1,) vertical stiffness per node [N/m]
+    seabed_damping: np.ndarray  # (n+1,) [N s/m]
+    seabed_friction: float  # Coulomb coefficient
+    seabed_slip_speed: float  # regularisation speed of friction [m/s]
+    top_kind: int
+    top_x: float
+    top_y: float
+    track_origin: np.ndarray
+    track_heading: float
+    track_turn_at: float
+    track_radius: float
+    bottom_kind: int
+    body_mass: np.ndarray  # (3,) [kg]
+    body_wet_weight: float
+    body_drag: np.ndarray  # (3,)
+    pin: np.ndarray  # (3,)
+    tf_breaks: np.ndarray
+    tf_coefs: np.ndarray
+    tf_count: np.ndarray
+    tf_sine: np.ndarray
+
+
+def state_size(n):
+    return 6 * (n + 1)
+
+
+def make_workspace(n):
+    return np.zeros((N_WORK_ROWS, n + 1))
+
+
+@njit(**JIT)
+def _segment_forces(t, y, p, w):
+    """Tension, tangent, hydrodynamic and weight loads of every segment, shared to its nodes."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    for k in range(n + 1):
+        for c in range(3):
+            w[_F + c, k] = 0.0
+        for c in range(6):
+            w[_MA + c, k] = 0.0
+    for i in range(n):
+        a = 3 * i
+        b = 3 * (i + 1)
+        dx, dy, dz = y[b] - y[a], y[b + 1] - y[a + 1], y[b + 2] - y[a + 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        tx, ty, tz = dx / length, dy / length, dz / length
+        dvx, dvy, dvz = (
+            y[v0 + b] - y[v0 + a],
+            y[v0 + b + 1] - y[v0 + a + 1],
+            y[v0 + b + 2] - y[v0 + a + 2],
+        )
+        l0 = p.length[i]
+        strain = length / l0 - 1.0
+        strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
+        tension = p.axial_stiffness * (strain + p.axial_damping * strain_rate)
+        if tension < 0.0:
+            tension = 0.0
+        w[_T, i] = tension
+        w[_TX, i], w[_TX + 1, i], w[_TX + 2, i] = tx, ty, tz
+        # loads at the segment centre on the relative velocity
+        zc = 0.5 * (y[a + 2] + y[b + 2])
+        cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
+        rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
+        ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
+        rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
+        vt = rx * tx + ry * ty + rz * tz
+        nx, ny, nz = rx - vt * tx, ry - vt * ty, rz - vt * tz
+        vn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        cn = -p.drag_normal[i] * vn
+        ct = -p.drag_tangential[i] * abs(vt) * vt
+        fx = 0.5 * (cn * nx + ct * tx)
+        fy = 0.5 * (cn * ny + ct * ty)
+        fz = 0.5 * (cn * nz + ct * tz - p.wet_weight[i])
+        for k, sign in ((i, 1.0), (i + 1, -1.0)):
+            w[_F, k] += fx + sign * tension * tx
+            w[_F + 1, k] += fy + sign * tension * ty
+            w[_F + 2, k] += fz + sign * tension * tz
+            ma = 0.5 * p.added_mass[i]
+            w[_MA, k] += ma * (1.0 - tx * tx)
+            w[_MA + 1, k] -= ma * tx * ty
+            w[_MA + 2, k] -= ma * tx * tz
+            w[_MA + 3, k] += ma * (1.0 - ty * ty)
+            w[_MA + 4, k] -= ma * ty * tz
+            w[_MA + 5, k] += ma * (1.0 - tz * tz)
+
+
+@njit(**JIT)
+def _seabed(y, p, w):
+    n = p.n
+    v0 = 3 * (n + 1)
+    for k in range(n + 1):
+        depth = p.seabed_z - y[3 * k + 2]
+        if depth <= 0.0:
+            continue
+        vz = y[v0 + 3 * k + 2]
+        normal = p.seabed_stiffness[k] * depth - p.seabed_damping[k] * vz
+        if normal < 0.0:
+            normal = 0.0
+        w[_F + 2, k] += normal
+        vx, vy = y[v0 + 3 * k], y[v0 + 3 * k + 1]
+        speed = math.sqrt(vx * vx + vy * vy + p.seabed_slip_speed**2)
+        w[_F, k] -= p.seabed_friction * normal * vx / speed
+        w[_F + 1, k] -= p.seabed_friction * normal * vy / speed
+
+
+@njit(**JIT)
+def _body_force(t, y, p, w):
+    n = p.n
+    v0 = 3 * (n + 1)
+    cu, cv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
+    rx, ry, rz = y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cv, y[v0 + 3 * n + 2]
+    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    fx, _, _ = c3._tf(p, c3.CH_BODY_FX, t)
+    fy, _, _ = c3._tf(p, c3.CH_BODY_FY, t)
+    fz, _, _ = c3._tf(p, c3.CH_BODY_FZ, t)
+    w[_F, n] += fx - p.body_drag[0] * speed * rx
+    w[_F + 1, n] += fy - p.body_drag[1] * speed * ry
+    w[_F + 2, n] += fz - p.body_drag[2] * speed * rz - p.body_wet_weight
+
+
+@njit(**JIT)
+def _node_mass(p, w, k):
+    """The 3x3 mass matrix of node k, row-major."""
+    m = p.node_mass[k]
+    a = np.empty(9)
+    a[0] = m + w[_MA, k]
+    a[1] = a[3] = w[_MA + 1, k]
+    a[2] = a[6] = w[_MA + 2, k]
+    a[4] = m + w[_MA + 3, k]
+    a[5] = a[7] = w[_MA + 4, k]
+    a[8] = m + w[_MA + 5, k]
+    if k == p.n:
+        a[0] += p.body_mass[0]
+        a[4] += p.body_mass[1]
+        a[8] += p.body_mass[2]
+    return a
+
+
+@njit(**JIT)
+def rhs(t, y, p, w, ydot):
+    n = p.n
+    v0 = 3 * (n + 1)
+    _segment_forces(t, y, p, w)
+    _seabed(y, p, w)
+    if p.bottom_kind == BOTTOM_FREE:
+        _body_force(t, y, p, w)
+    pos, vel, acc = c3.top_motion(t, y, p)
+    status = c3.OK
+    for k in range(n + 1):
+        for c in range(3):
+            ydot[3 * k + c] = y[v0 + 3 * k + c]
+        if k == 0:
+            for c in range(3):
+                ydot[c] = vel[c]
+                ydot[v0 + c] = acc[c]
+            continue
+        if k == n and p.bottom_kind == BOTTOM_PINNED:
+            for c in range(3):
+                ydot[3 * k + c] = 0.0
+                ydot[v0 + 3 * k + c] = 0.0
+            continue
+        force = np.array([w[_F, k], w[_F + 1, k], w[_F + 2, k]])
+        a, det = c3._solve3(_node_mass(p, w, k), force)
+        if det == 0.0:
+            status = c3.NON_FINITE
+        for c in range(3):
+            ydot[v0 + 3 * k + c] = a[c]
+    if not math.isfinite(ydot[v0 + 3 * n] + ydot[v0 + 3 * n + 2]):
+        status = c3.NON_FINITE
+    return status
+
+
+@njit(**JIT)
+def outputs(t, y, p, w, node_pos, tension, scalars):
+    n = p.n
+    v0 = 3 * (n + 1)
+    ydot = np.empty_like(y)
+    status = rhs(t, y, p, w, ydot)
+    for k in range(n + 1):
+        for c in range(3):
+            node_pos[k, c] = y[3 * k + c]
+    for i in range(n):
+        tension[i] = w[_T, i]
+    # force of the cable on the top attachment: the node's loads less its inertia
+    a0 = _node_mass(p, w, 0)
+    for c in range(3):
+        inertia = a0[3 * c] * ydot[v0] + a0[3 * c + 1] * ydot[v0 + 1] + a0[3 * c + 2] * ydot[v0 + 2]
+        scalars[c] = w[_F + c, 0] - inertia
+    for c in range(3):
+        if p.bottom_kind == BOTTOM_PINNED:
+            scalars[3 + c] = w[_F + c, n]
+        else:
+            # the pull of the last segment on the body
+            scalars[3 + c] = -w[_T, n - 1] * w[_TX + c, n - 1]
+    kinetic = 0.0
+    gravity = 0.0
+    elastic = 0.0
+    for k in range(n + 1):
+        a = _node_mass(p, w, k)
+        vx, vy, vz = y[v0 + 3 * k], y[v0 + 3 * k + 1], y[v0 + 3 * k + 2]
+        kinetic += 0.5 * (
+            vx * (a[0] * vx + a[1] * vy + a[2] * vz)
+            + vy * (a[3] * vx + a[4] * vy + a[5] * vz)
+            + vz * (a[6] * vx + a[7] * vy + a[8] * vz)
+        )
+        depth = p.seabed_z - y[3 * k + 2]
+        if depth > 0.0:
+            elastic += 0.5 * p.seabed_stiffness[k] * depth * depth
+    for i in range(n):
+        gravity += p.wet_weight[i] * 0.5 * (y[3 * i + 2] + y[3 * i + 5])
+        dx = y[3 * i + 3] - y[3 * i]
+        dy = y[3 * i + 4] - y[3 * i + 1]
+        dz = y[3 * i + 5] - y[3 * i + 2]
+        strain = math.sqrt(dx * dx + dy * dy + dz * dz) / p.length[i] - 1.0
+        if strain > 0.0:
+            elastic += 0.5 * p.axial_stiffness * p.length[i] * strain * strain
+    if p.bottom_kind == BOTTOM_FREE:
+        gravity += p.body_wet_weight * y[3 * n + 2]
+    scalars[6] = kinetic
+    scalars[7] = gravity
+    scalars[8] = elastic
+    return status
+
+
+@njit(**JIT)
+def outputs_chunk(times, states, p, w, node_pos, tension, scalars):
+    status = c3.OK
+    for j in range(times.shape[0]):
+        st = outputs(times[j], states[j], p, w, node_pos[j], tension[j], scalars[j])
+        if st != c3.OK and status == c3.OK:
+            status = st
+    return status

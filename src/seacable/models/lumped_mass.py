@@ -1,0 +1,248 @@
+"""Extensible lumped-mass cable (Poth 2002, displacement variables): parameters, initial state,
+outputs. See ``kernels.lumped`` for the equations."""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from seacable.case import schema
+from seacable.errors import CaseError
+from seacable.kernels import chain3d as c3
+from seacable.kernels import lumped as lk
+from seacable.models import catenary
+from seacable.models import rigid_segments_3d as seg
+from seacable.models import timefunctions as tfn
+from seacable.models.common import current_arrays, tangential_drag, typed
+
+
+@dataclass(frozen=True)
+class LumpedSystem:
+    params: lk.LumpedParams
+    y0: np.ndarray
+    n_links: int
+    diameter: float
+
+
+def _check(cable: schema.Cable) -> None:
+    where = "cables[0]"
+    if cable.axial_stiffness is None:
+        raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
+    if isinstance(cable.top, schema.FloatingStructureTop):
+        raise CaseError(
+            f"{where}.top: a lumped-mass cable takes fixed, imposed or towing_ship tops"
+        )
+    allowed = (schema.FreeBottom, schema.PinnedBottom)
+    if not isinstance(cable.bottom, allowed) or getattr(cable.bottom, "tie", None) is not None \
+            or getattr(cable.bottom, "hold_axes", []):  # fmt: skip
+        raise CaseError(
+            f"{where}.bottom: a lumped-mass cable takes a free end (with a body, no ties) or a "
+            "pinned end for now"
+        )
+    if cable.point_bodies:
+        raise CaseError(f"{where}.point_bodies: not supported by the lumped-mass model yet")
+    if cable.joint_stiffness or cable.bending_stiffness:
+        raise CaseError(f"{where}: bending stiffness is not in the lumped-mass model yet")
+    if cable.initial.shape == "static":
+        raise CaseError(f"{where}.initial: use shape 'catenary' for a lumped-mass cable")
+    if cable.initial.shape == "catenary" and not isinstance(cable.bottom, schema.PinnedBottom):
+        raise CaseError(f"{where}.initial: shape 'catenary' needs a pinned bottom with an anchor")
+
+
+def build(case: schema.Case, base_dir=None) -> LumpedSystem:
+    cable = case.cables[0]
+    _check(cable)
+    env = case.environment
+    n = cable.links
+    lengths = cable.lengths()
+    mass = cable.masses()
+    rho = 0.0 if env.in_air else env.water_density
+    area = math.pi * cable.diameter**2 / 4
+    ca = 1.0 if cable.added_mass_coefficient is None else cable.added_mass_coefficient
+    node_mass = np.zeros(n + 1)
+    node_mass[:-1] += 0.5 * mass
+    node_mass[1:] += 0.5 * mass
+    node_length = np.zeros(n + 1)
+    node_length[:-1] += 0.5 * lengths
+    node_length[1:] += 0.5 * lengths
+    seabed = env.seabed
+    depth = env.water_depth
+    if seabed is not None and depth is None:
+        raise CaseError("environment.seabed: give environment.water_depth [m] for the seabed")
+    top_kind, top_fields, channels, _ = seg._top(cable, base_dir)
+    bottom_fields = dict(body_mass=np.zeros(3), body_wet_weight=0.0, body_drag=np.zeros(3))
+    zero = tfn.constant(0.0)
+    body_channels = (zero, zero, zero)
+    if isinstance(cable.bottom, schema.FreeBottom):
+        kind, fields, body_channels = seg._bottom(cable, env, base_dir)
+        bottom_fields = {k: fields[k] for k in bottom_fields}
+        body_channels = body_channels[:3]
+        bottom_kind = lk.BOTTOM_FREE
+    else:
+        bottom_kind = lk.BOTTOM_PINNED
+    breaks, coefs, count, sine = tfn.stack(
+        [*channels[:4], *body_channels, channels[4], zero, zero, zero]
+    )
+    current_z, current_u, current_v = current_arrays(env)
+    params = typed(
+        lk.LumpedParams,
+        dict(
+            n=n,
+            length=lengths,
+            node_mass=node_mass,
+            added_mass=ca * rho * area * lengths,
+            wet_weight=(mass - rho * area * lengths) * env.gravity,
+            axial_stiffness=cable.axial_stiffness,
+            axial_damping=cable.axial_damping_time,
+            drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
+            drag_tangential=tangential_drag(cable, rho, lengths),
+            current_z=current_z,
+            current_u=current_u,
+            current_v=current_v,
+            seabed_z=-depth if (seabed is not None) else -1e30,
+            seabed_stiffness=(seabed.stiffness if seabed else 0.0) * node_length,
+            seabed_damping=(seabed.damping if seabed else 0.0) * node_length,
+            seabed_friction=seabed.friction_coefficient if seabed else 0.0,
+            seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
+            top_kind=top_kind,
+            top_x=top_fields["top_x"],
+            top_y=top_fields["top_y"],
+            track_origin=top_fields["track_origin"],
+            track_heading=top_fields["track_heading"],
+            track_turn_at=top_fields["track_turn_at"],
+            track_radius=top_fields["track_radius"],
+            bottom_kind=bottom_kind,
+            pin=np.zeros(3),
+            tf_breaks=breaks,
+            tf_coefs=coefs,
+            tf_count=count,
+            tf_sine=sine,
+            **bottom_fields,
+        ),
+    )
+    y0, params = _initial_state(case, params)
+    return LumpedSystem(params=params, y0=y0, n_links=n, diameter=cable.diameter)
+
+
+def _initial_state(case, params):
+    cable = case.cables[0]
+    n = params.n
+    top, vel, _ = c3.top_motion(0.0, np.zeros(lk.state_size(n)), params)
+    y0 = np.zeros(lk.state_size(n))
+    if cable.initial.shape == "catenary":
+        if cable.bottom.anchor is None:
+            raise CaseError("cables[0].bottom.anchor: shape 'catenary' needs the anchor [x, y, z]")
+        anchor = np.array(schema.xyz(cable.bottom.anchor), float)
+        nodes = catenary_nodes(params, top, anchor, case.environment)
+    else:
+        angles = cable.initial.angles(n)
+        directors = seg.directors_from_angles(angles, math.radians(cable.initial.azimuth_deg))
+        nodes = np.vstack([top, top + np.cumsum(params.length[:, None] * directors, axis=0)])
+        if isinstance(cable.bottom, schema.PinnedBottom) and cable.bottom.anchor is not None:
+            gap = float(np.linalg.norm(np.array(schema.xyz(cable.bottom.anchor)) - nodes[-1]))
+            if gap > 1e-3:
+                raise CaseError(
+                    f"cables[0].bottom.anchor: {gap:.3f} m from the end of the initial shape; "
+                    "use initial: {shape: catenary}"
+                )
+    y0[: 3 * (n + 1)] = nodes.ravel()
+    y0[3 * (n + 1) :] = np.tile(vel, n + 1)
+    if isinstance(cable.bottom, schema.PinnedBottom):
+        y0[3 * (n + 1) + 3 * n :] = 0.0
+    return y0, params._replace(pin=np.ascontiguousarray(nodes[-1]))
+
+
+def catenary_nodes(params, top, anchor, env) -> np.ndarray:
+    """Node positions (top first) on the elastic catenary from ``anchor`` to ``top``."""
+    length = float(params.length.sum())
+    w = float(params.wet_weight.sum()) / length
+    seabed = env.seabed is not None and env.water_depth is not None
+    on_seabed = seabed and abs(anchor[2] + env.water_depth) < 1e-6
+    span_vector = top[:2] - anchor[:2]
+    span = float(np.hypot(*span_vector))
+    rise = float(top[2] - anchor[2])
+    try:
+        h, v_f = catenary.solve(span, rise, length, w, params.axial_stiffness, on_seabed)
+    except catenary.CatenaryError as exc:
+        raise CaseError(f"cables[0].initial: {exc}") from None
+    s_top = np.concatenate([[0.0], np.cumsum(params.length)])
+    x, z = catenary.profile(length - s_top, h, v_f, length, w, params.axial_stiffness, on_seabed)
+    direction = span_vector / span if span > 0 else np.zeros(2)
+    nodes = np.empty((params.n + 1, 3))
+    nodes[:, 0] = anchor[0] + x * direction[0]
+    nodes[:, 1] = anchor[1] + x * direction[1]
+    nodes[:, 2] = anchor[2] + z
+    if on_seabed:
+        # nodes lying on the seabed start at the penetration that carries their weight
+        sink = w / env.seabed.stiffness
+        lying = (np.abs(z) < 1e-9) & (np.arange(params.n + 1) < params.n)
+        nodes[lying, 2] -= sink
+    return nodes
+
+
+VARIABLES = {
+    **{f"node_{a}": (("time", "node"), "m", f"node position, {a}") for a in "xyz"},
+    "tension": (("time", "segment"), "N", "axial tension of the segment (no compression)"),
+    **{
+        f"top_force_{a}": (("time",), "N", f"force of the cable on its top attachment, {a}")
+        for a in "xyz"
+    },  # fmt: skip
+    **{
+        f"bottom_force_{a}": (
+            ("time",),
+            "N",
+            f"force of the cable on its bottom body or anchor, {a}",
+        )
+        for a in "xyz"
+    },  # fmt: skip
+    "kinetic_energy": (("time",), "J", "kinetic energy (added mass included)"),
+    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights"),
+    "elastic_energy": (("time",), "J", "axial strain energy and seabed springs"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+}
+
+
+def workspace(system: LumpedSystem):
+    return lk.make_workspace(system.n_links)
+
+
+def sizes(system) -> dict:
+    return {"segment": system.n_links, "node": system.n_links + 1}
+
+
+def coords(system) -> dict:
+    return seg.coords(system)
+
+
+def rows(times, states, system: LumpedSystem, w) -> tuple[dict, int]:
+    n = system.n_links
+    m = len(times)
+    nodes = np.empty((m, n + 1, 3))
+    tension = np.empty((m, n))
+    scalars = np.empty((m, lk.N_SCALARS))
+    status = lk.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
+    out = {"time": times, "tension": tension}
+    for c, a in enumerate("xyz"):
+        out[f"node_{a}"] = nodes[:, :, c]
+    for k, name in enumerate(lk.SCALAR_NAMES):
+        out[name] = scalars[:, k]
+    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
+    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
+    return out, status
+
+
+def rates(system: LumpedSystem, y) -> np.ndarray:
+    """Speed of every node but the top [m/s] (the 'where' of a divergence message)."""
+    n = system.n_links
+    return np.linalg.norm(y[3 * (n + 1) :].reshape(n + 1, 3), axis=1)[1:]
+
+
+def fastest_frequency(system: LumpedSystem) -> tuple[float, str]:
+    """Fastest axial mode of the shortest segment between two nodes: 2 sqrt(EA / (m l))."""
+    p = system.params
+    mass = np.minimum(p.node_mass[:-1], p.node_mass[1:]) + 0.5 * p.added_mass
+    omega = 2.0 * np.sqrt(p.axial_stiffness / (mass * p.length))
+    i = int(np.argmax(omega))
+    return float(
+        omega[i]
+    ), f"axial waves on segment {i} ({p.length[i]:.3g} m, EA {p.axial_stiffness:.3g} N)"

@@ -1,0 +1,164 @@
+"""The extensible lumped-mass cable: closed-form elastic catenary (against MoorPy), a mooring
+line started from it, energy, the axial natural frequency, no compression."""
+
+import math
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.models import catenary
+
+moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
+
+RHO = 1025.0
+W = (126.0 - RHO * math.pi * 0.137**2 / 4) * 9.81  # chain apparent weight [N/m]
+EA = 5.8e8
+
+
+@pytest.mark.parametrize("span", [80.0, 100.0, 120.0, 140.0, 155.0])
+def test_closed_form_catenary_matches_moorpy(span):
+    h, v = catenary.solve(span, 190.0, 250.0, W, EA, seabed=True)
+    fa_h, fa_v, fb_h, fb_v, _ = moorpy_catenary(span, 190.0, 250.0, EA, W, CB=0.0)
+    np.testing.assert_allclose([h, v], [-fb_h, -fb_v], rtol=1e-8)
+    x, z = catenary.profile([0.0, 250.0], h, v, 250.0, W, EA, seabed=True)
+    np.testing.assert_allclose([x[-1], z[-1]], [span, 190.0], atol=1e-6)
+
+
+def mooring(n=40, duration=20.0, top=None, **simulation):
+    return seacable.load_case(
+        {
+            "environment": {
+                "water_density": RHO,
+                "water_depth": 200.0,
+                "seabed": {"stiffness": 3.0e5, "damping": 3.0e3},
+            },  # fmt: skip
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": n,
+                    "length": 250.0,
+                    "diameter": 0.137,
+                    "mass_per_length": 126.0,
+                    "axial_stiffness": EA,
+                    "axial_damping_time": 0.002,
+                    "drag_coefficient_normal": 1.2,
+                    "drag_coefficient_tangential": 0.1,
+                    "top": top or {"type": "fixed", "position": [0.0, 0.0, -10.0]},
+                    "bottom": {"type": "pinned", "anchor": [-100.0, 0.0, -200.0]},
+                    "initial": {"shape": "catenary"},
+                }
+            ],
+            "simulation": {
+                "duration": duration,
+                "output_interval": 0.5,
+                "integrator": "dopri5",
+                "rtol": 1e-6,
+                "atol": 1e-8,
+                **simulation,
+            },  # fmt: skip
+        }
+    )
+
+
+def test_mooring_line_settles_on_its_closed_form_catenary():
+    h, v = catenary.solve(100.0, 190.0, 250.0, W, EA, seabed=True)
+    ds = seacable.simulate(mooring(duration=40.0)).dataset
+    tension = np.hypot(ds["top_force_x"].values, ds["top_force_z"].values)
+    settled = tension[ds["time"].values > 20.0]
+    # the chords through the continuous catenary are shorter than its arc where it bends at
+    # touchdown, so the line starts with a transient; it settles on the closed form within 0.5 %
+    assert abs(np.mean(settled) / math.hypot(h, v) - 1) < 5e-3
+    on_seabed = np.sum(ds["node_z"].values[-1] < -199.9) * 250.0 / 40
+    assert abs(on_seabed - (250.0 - v / W)) < 2 * 250.0 / 40  # within two segments
+    assert np.all(ds["tension"].values >= 0.0)
+
+
+def test_energy_is_conserved_without_damping():
+    case = seacable.load_case(
+        {
+            "environment": {"in_air": True},
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": 20,
+                    "length": 10.0,
+                    "diameter": 0.01,
+                    "mass_per_length": 1.0,
+                    "axial_stiffness": 2.0e4,
+                    "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": 1.0}},
+                    "initial": {"shape": "arc", "top_angle_deg": 50.0},
+                }
+            ],
+            "simulation": {
+                "duration": 3.0,
+                "output_interval": 0.02,
+                "integrator": "dopri5",
+                "rtol": 1e-10,
+                "atol": 1e-12,
+            },  # fmt: skip
+        }
+    )
+    ds = seacable.simulate(case).dataset
+    energy = ds["total_energy"].values
+    drift = np.max(np.abs(energy - energy[0])) / np.ptp(ds["kinetic_energy"].values)
+    assert drift < 1e-6, drift
+
+
+def test_axial_frequency_of_a_hanging_mass():
+    """A light elastic line with a heavy end mass bounces at omega = sqrt(EA / (L (M + m/3)))."""
+    length, ea, end_mass, line_mass = 20.0, 1.0e6, 500.0, 5.0
+    case = seacable.load_case(
+        {
+            "environment": {"in_air": True},
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": 20,
+                    "length": length,
+                    "diameter": 0.01,
+                    "mass_per_length": line_mass / length,
+                    "axial_stiffness": ea,
+                    "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": end_mass}},
+                    "initial": {"shape": "arc", "top_angle_deg": 0.0},
+                }
+            ],
+            "simulation": {
+                "duration": 4.0,
+                "output_interval": 0.001,
+                "integrator": "dopri5",
+                "rtol": 1e-9,
+                "atol": 1e-11,
+            },  # fmt: skip
+        }
+    )
+    ds = seacable.simulate(case).dataset
+    z = ds["node_z"].values[:, -1]
+    t = ds["time"].values
+    centre = 0.5 * (z.max() + z.min())
+    crossings = t[1:][np.diff(np.sign(z - centre)) > 0]
+    period = np.mean(np.diff(crossings))
+    expected = 2 * math.pi / math.sqrt(ea / (length * (end_mass + line_mass / 3)))
+    assert abs(period / expected - 1) < 2e-3
+    assert np.all(ds["tension"].values >= 0.0)  # it never pushes
+
+
+def test_lumped_model_needs_axial_stiffness():
+    data = {
+        "cables": [
+            {
+                "model": "lumped_mass",
+                "links": 5,
+                "length": 10.0,
+                "diameter": 0.01,
+                "mass_per_length": 1.0,
+                "top": {"type": "fixed"},
+                "bottom": {"type": "free"},
+            }
+        ],
+        "simulation": {"duration": 1.0, "output_interval": 0.5},
+    }
+    with pytest.raises(seacable.CaseError, match=r"axial_stiffness: a lumped-mass cable needs EA"):
+        seacable.simulate(seacable.load_case(data))
