@@ -61,17 +61,18 @@ def mooring(n=40, duration=20.0, top=None, **simulation):
     )
 
 
-def test_mooring_line_settles_on_its_closed_form_catenary():
+def test_mooring_line_starts_in_discrete_equilibrium_near_the_closed_form():
+    """The catenary start is polished to the discrete line's equilibrium (the chords through the
+    continuous curve are short where it bends): the line then stays still, its fairlead tension
+    within 0.1 % of the closed-form elastic catenary with 40 segments."""
     h, v = catenary.solve(100.0, 190.0, 250.0, W, EA, seabed=True)
-    ds = seacable.simulate(mooring(duration=40.0)).dataset
+    ds = seacable.simulate(mooring(duration=20.0)).dataset
     tension = np.hypot(ds["top_force_x"].values, ds["top_force_z"].values)
-    settled = tension[ds["time"].values > 20.0]
-    # the chords through the continuous catenary are shorter than its arc where it bends at
-    # touchdown, so the line starts with a transient; it settles on the closed form within 0.5 %
-    assert abs(np.mean(settled) / math.hypot(h, v) - 1) < 5e-3
+    assert np.ptp(tension) < 1e-6 * tension[0]
+    assert abs(tension[0] / math.hypot(h, v) - 1) < 1e-3
     on_seabed = np.sum(ds["node_z"].values[-1] < -199.9) * 250.0 / 40
     assert abs(on_seabed - (250.0 - v / W)) < 2 * 250.0 / 40  # within two segments
-    assert np.all(ds["tension"].values >= 0.0)
+    assert np.all(ds["tension"].values > 0.0)
 
 
 def test_energy_is_conserved_without_damping():

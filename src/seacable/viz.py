@@ -130,10 +130,14 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
         _finish(ax, "position error / largest displacement", "[-]")
     else:
         ax.plot(times, z[:, -1], label="bottom end z [m]")
-        ax.plot(times, ds["bottom_velocity_z"].values, label="bottom end vertical speed [m/s]")
-        speed = np.linalg.norm(np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0)
-        if np.any(speed > 0):
-            ax.plot(times, speed, label="tow speed [m/s]")
+        if "bottom_velocity_z" in ds:
+            ax.plot(times, ds["bottom_velocity_z"].values, label="bottom end vertical speed [m/s]")
+        if "top_velocity_x" in ds:
+            speed = np.linalg.norm(
+                np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0
+            )
+            if np.any(speed > 0):
+                ax.plot(times, speed, label="tow speed [m/s]")
         _finish(ax, "lower end: elevation and speed", "[m], [m/s]")
         _draw_energy(axes[1, 2], ds)
     return _save(fig, ds, path, plt)

@@ -56,6 +56,7 @@ class LumpedParams(NamedTuple):
     wet_weight: np.ndarray  # (n,) apparent weight of each segment, positive down [N]
     axial_stiffness: float  # EA [N]
     axial_damping: float  # alpha [s]
+    slack_allowed: int  # 1: no compression (the physical law); 0: linear (smooth static solves)
     drag_normal: np.ndarray  # (n,) 0.5 rho Cd_n d l [N s^2/m^2]
     drag_tangential: np.ndarray  # (n,) [N s^2/m^2]
     current_z: np.ndarray
@@ -117,7 +118,7 @@ def _segment_forces(t, y, p, w):
         strain = length / l0 - 1.0
         strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
         tension = p.axial_stiffness * (strain + p.axial_damping * strain_rate)
-        if tension < 0.0:
+        if tension < 0.0 and p.slack_allowed == 1:
             tension = 0.0
         w[_T, i] = tension
         w[_TX, i], w[_TX + 1, i], w[_TX + 2, i] = tx, ty, tz

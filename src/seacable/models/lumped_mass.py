@@ -94,6 +94,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             wet_weight=(mass - rho * area * lengths) * env.gravity,
             axial_stiffness=cable.axial_stiffness,
             axial_damping=cable.axial_damping_time,
+            slack_allowed=1,
             drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
             drag_tangential=tangential_drag(cable, rho, lengths),
             current_z=current_z,
@@ -149,7 +150,52 @@ def _initial_state(case, params):
     y0[3 * (n + 1) :] = np.tile(vel, n + 1)
     if isinstance(cable.bottom, schema.PinnedBottom):
         y0[3 * (n + 1) + 3 * n :] = 0.0
-    return y0, params._replace(pin=np.ascontiguousarray(nodes[-1]))
+    params = params._replace(pin=np.ascontiguousarray(nodes[-1]))
+    if cable.initial.shape == "catenary":
+        y0 = discrete_equilibrium(params, y0)
+    return y0, params
+
+
+def discrete_equilibrium(params, y0, iterations=30):
+    """Newton iterations on the free node positions until every node is at rest in balance:
+    the chords through the continuous catenary are a little short where it bends, so the
+    discrete line's equilibrium differs slightly from it."""
+    n = params.n
+    # the linear law (compression allowed) makes the problem smooth; a catenary's equilibrium
+    # has every segment in tension, so it is also the equilibrium of the slack law
+    params = params._replace(slack_allowed=0)
+    free = n if params.bottom_kind == lk.BOTTOM_PINNED else n + 1
+    index = np.arange(3, 3 * free)  # node 0 is held by the top
+    w = lk.make_workspace(n)
+    ydot = np.zeros_like(y0)
+    v0 = 3 * (n + 1)
+
+    def residual(y):
+        lk.rhs(0.0, y, params, w, ydot)
+        return ydot[v0 + index].copy()
+
+    y = y0.copy()
+    r = residual(y)
+    scale = float(np.abs(r).max()) + 1.0
+    for _ in range(iterations):
+        if np.abs(r).max() < 1e-9 * scale:
+            break
+        jac = np.empty((len(index), len(index)))
+        for k, i in enumerate(index):
+            trial = y.copy()
+            trial[i] += 1e-7
+            jac[:, k] = (residual(trial) - r) / 1e-7
+        step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        for damping in (1.0, 0.5, 0.25, 0.1):
+            trial = y.copy()
+            trial[index] += damping * step
+            rt = residual(trial)
+            if np.linalg.norm(rt) < np.linalg.norm(r):
+                y, r = trial, rt
+                break
+        else:
+            break
+    return y
 
 
 def catenary_nodes(params, top, anchor, env) -> np.ndarray:
