@@ -67,3 +67,11 @@ def typed(cls, fields: dict):
         else:
             out[name] = np.ascontiguousarray(value, dtype=np.float64)
     return cls(**out)
+
+
+def add_total_energy(rows: dict) -> dict:
+    """Add ``total_energy`` = kinetic + gravity potential + elastic to output rows."""
+    rows["total_energy"] = (
+        rows["kinetic_energy"] + rows["gravity_potential_energy"] + rows["elastic_energy"]
+    )
+    return rows

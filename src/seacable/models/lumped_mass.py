@@ -10,10 +10,10 @@ from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
-from seacable.models import catenary
+from seacable.models import catenary, planar_rigid_links
 from seacable.models import rigid_segments_3d as seg
 from seacable.models import timefunctions as tfn
-from seacable.models.common import current_arrays, tangential_drag, typed
+from seacable.models.common import add_total_energy, current_arrays, tangential_drag, typed
 
 
 @dataclass(frozen=True)
@@ -248,12 +248,11 @@ VARIABLES = {
 }
 
 
+sizes = planar_rigid_links.sizes  # the same dimensions: segment, node
+
+
 def workspace(system: LumpedSystem):
     return lk.make_workspace(system.n_links)
-
-
-def sizes(system) -> dict:
-    return {"segment": system.n_links, "node": system.n_links + 1}
 
 
 def coords(system) -> dict:
@@ -272,9 +271,7 @@ def rows(times, states, system: LumpedSystem, w) -> tuple[dict, int]:
         out[f"node_{a}"] = nodes[:, :, c]
     for k, name in enumerate(lk.SCALAR_NAMES):
         out[name] = scalars[:, k]
-    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
-    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
-    return out, status
+    return add_total_energy(out), status
 
 
 def rates(system: LumpedSystem, y) -> np.ndarray:

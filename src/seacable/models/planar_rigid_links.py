@@ -16,6 +16,7 @@ from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
 from seacable.models import common
 from seacable.models import timefunctions as tfn
+from seacable.models.common import add_total_energy
 
 
 @dataclass(frozen=True)
@@ -262,9 +263,7 @@ def rows(times, states, system: PlanarSystem, w) -> tuple[dict, int]:
     }
     for k, name in enumerate(pc.SCALAR_NAMES):
         out[name] = scalars[:, k]
-    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
-    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
-    return out, status
+    return add_total_energy(out), status
 
 
 def rates(system: PlanarSystem, y) -> np.ndarray:

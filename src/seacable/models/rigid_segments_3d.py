@@ -18,14 +18,15 @@ from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
 from seacable.models import statics
 from seacable.models import timefunctions as tfn
-from seacable.models.common import channel as _channel
 from seacable.models.common import (
+    add_total_energy,
     current_arrays,
     joint_stiffness,
     per_joint,
     tangential_drag,
     typed,
 )
+from seacable.models.common import channel as _channel
 from seacable.models.planar_rigid_links import coords, sizes, zigzag_frequency
 
 DEFAULT_DRAG_COEFFICIENT = 1.8  # Jacquot & Marichal: vortex-induced vibration raises Cd
@@ -427,9 +428,7 @@ def rows(times, states, system: System3D, w) -> tuple[dict, int]:
     for k, name in enumerate(c3.SCALAR_NAMES):
         out[name] = scalars[:, k]
     out["angular_rate"] = np.linalg.norm(rates_, axis=2)
-    out["total_energy"] = out["kinetic_energy"] + out["gravity_potential_energy"]
-    out["total_energy"] = out["total_energy"] + out["elastic_energy"]
-    return out, status
+    return add_total_energy(out), status
 
 
 def rates(system: System3D, y) -> np.ndarray:
