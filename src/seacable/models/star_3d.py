@@ -36,6 +36,11 @@ def build(case: schema.Case, base_dir=None) -> StarSystem:
     position = np.array(schema.xyz(body.position), dtype=float)
     chains, states = [], []
     for k, cable in enumerate(case.cables):
+        if cable.model != "rigid_segments_3d":
+            raise CaseError(
+                f"cables[{k}].model: value '{cable.model}'; cables attached to a shared body "
+                "must be rigid_segments_3d for now"
+            )
         held = cable.model_copy(update={"bottom": schema.PinnedBottom(type="pinned")})
         single = case.model_copy(update={"cables": [held], "bodies": []})
         single._base_dir = base_dir
