@@ -1,6 +1,7 @@
 """Helpers shared by the cable models: joint properties, current, drag, time-function channels."""
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -75,3 +76,33 @@ def add_total_energy(rows: dict) -> dict:
         rows["kinetic_energy"] + rows["gravity_potential_energy"] + rows["elastic_energy"]
     )
     return rows
+
+
+@dataclass(frozen=True)
+class Section:
+    """Per-segment properties of the case's first cable, shared by every cable model (SI)."""
+
+    lengths: np.ndarray  # [m]
+    mass: np.ndarray  # [kg]
+    rho: float  # water density, 0 in air [kg/m^3]
+    area: float  # cross-section pi d^2 / 4 [m^2]
+    wet_weight: np.ndarray  # apparent weight, positive down [N]
+    added_mass: np.ndarray  # normal added mass Ca rho A l [kg] (Ca default 1)
+
+
+def section(case: schema.Case) -> Section:
+    cable = case.cables[0]
+    env = case.environment
+    lengths = cable.lengths()
+    mass = cable.masses()
+    rho = 0.0 if env.in_air else env.water_density
+    area = math.pi * cable.diameter**2 / 4
+    ca = 1.0 if cable.added_mass_coefficient is None else cable.added_mass_coefficient
+    return Section(
+        lengths=lengths,
+        mass=mass,
+        rho=rho,
+        area=area,
+        wet_weight=(mass - rho * area * lengths) * env.gravity,
+        added_mass=ca * rho * area * lengths,
+    )

@@ -13,7 +13,13 @@ from seacable.kernels import lumped as lk
 from seacable.models import catenary, planar_rigid_links
 from seacable.models import rigid_segments_3d as seg
 from seacable.models import timefunctions as tfn
-from seacable.models.common import add_total_energy, current_arrays, tangential_drag, typed
+from seacable.models.common import (
+    add_total_energy,
+    current_arrays,
+    section,
+    tangential_drag,
+    typed,
+)
 
 
 @dataclass(frozen=True)
@@ -54,11 +60,8 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     _check(cable)
     env = case.environment
     n = cable.links
-    lengths = cable.lengths()
-    mass = cable.masses()
-    rho = 0.0 if env.in_air else env.water_density
-    area = math.pi * cable.diameter**2 / 4
-    ca = 1.0 if cable.added_mass_coefficient is None else cable.added_mass_coefficient
+    props = section(case)
+    lengths, mass, rho = props.lengths, props.mass, props.rho
     node_mass = np.zeros(n + 1)
     node_mass[:-1] += 0.5 * mass
     node_mass[1:] += 0.5 * mass
@@ -90,8 +93,8 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             n=n,
             length=lengths,
             node_mass=node_mass,
-            added_mass=ca * rho * area * lengths,
-            wet_weight=(mass - rho * area * lengths) * env.gravity,
+            added_mass=props.added_mass,
+            wet_weight=props.wet_weight,
             axial_stiffness=cable.axial_stiffness,
             axial_damping=cable.axial_damping_time,
             slack_allowed=1,

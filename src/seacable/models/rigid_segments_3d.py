@@ -23,6 +23,7 @@ from seacable.models.common import (
     current_arrays,
     joint_stiffness,
     per_joint,
+    section,
     tangential_drag,
     typed,
 )
@@ -200,12 +201,8 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     cable = case.cables[0]
     env = case.environment
     n = cable.links
-    lengths = cable.lengths()
-    mass = cable.masses()
-    rho = 0.0 if env.in_air else env.water_density
-    area = math.pi * cable.diameter**2 / 4
-    ca = 1.0 if cable.added_mass_coefficient is None else cable.added_mass_coefficient
-    added = ca * rho * area * lengths
+    props = section(case)
+    lengths, mass, rho, added = props.lengths, props.mass, props.rho, props.added_mass
     top_kind, top_fields, channels, heave = _top(cable, base_dir)
     bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir)
     node_mass, node_weight, node_drag = _point_bodies(cable, env, n)
@@ -219,7 +216,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         mass=mass,
         added_mass=added,
         inertia=(mass + added) * lengths**2 / 12.0,
-        wet_weight=(mass - rho * area * lengths) * env.gravity,
+        wet_weight=props.wet_weight,
         drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
         drag_tangential=tangential_drag(cable, rho, lengths),
         joint_stiffness=joint_stiffness(cable, lengths),
