@@ -216,7 +216,7 @@ def test_vertical_angular_momentum_is_conserved(environment):
     w = c3.make_workspace(n)
     states = np.empty((40, y.size))
     times = np.empty(40)
-    work = np.zeros(4, dtype=np.int64)
+    work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
     integrators.rk4_chunk(0.0, y, 5e-4, 100, 40, p, w, states, times, work)
 
     def lz(state):

@@ -7,10 +7,10 @@ import time as _time
 import numpy as np
 
 from seacable.case import loader, schema
-from seacable.errors import SimulationDiverged, SimulationInterrupted
+from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
 from seacable.models import lumped_mass, planar_rigid_links, rigid_segments_3d, star_3d
-from seacable.numerics import integrators
+from seacable.numerics import implicit, integrators
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -26,8 +26,15 @@ DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
 _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
 
 
+# fixed-step implicit schemes of ``numerics.implicit`` (models with a block-tridiagonal Newton
+# matrix: those whose module sets NEWTON = True)
+IMPLICIT = ("implicit_euler", "theta", "newmark", "generalized_alpha")
+FIXED_STEP = ("rk4", *IMPLICIT)
+
+
 def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
-    """The rk4 step actually used [s] and the number of steps per output interval."""
+    """The fixed step actually used (rk4 and the implicit schemes) [s] and the number of steps
+    per output interval."""
     wanted = (
         sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
     )
@@ -75,12 +82,40 @@ def _solver_settings(sim: schema.Simulation) -> dict:
         "output_interval": sim.output_interval,
         "constraint_stabilization_frequency": sim.constraint_stabilization_frequency,
     }
-    if sim.integrator == "rk4":
+    if sim.integrator in FIXED_STEP:
         settings["time_step"] = rk4_step(sim)[0]
+        if sim.integrator in IMPLICIT:
+            settings.update(
+                newton_tolerance=sim.newton_tolerance,
+                max_newton_iterations=sim.max_newton_iterations,
+            )
+            names = ("pa", "b", "gamma", "alpha_m", "alpha_f")
+            settings.update(
+                {f"scheme_{k}": float(v) for k, v in zip(names, _scheme(sim), strict=True)}
+            )
     else:
         settings.update(rtol=sim.rtol, atol=sim.atol, initial_step=sim.initial_step)
         settings["max_step"] = sim.max_step if sim.max_step is not None else sim.output_interval
     return settings
+
+
+def _scheme(sim: schema.Simulation) -> np.ndarray:
+    return implicit.scheme(
+        sim.integrator,
+        theta=sim.theta,
+        gamma=sim.newmark_gamma,
+        beta=sim.newmark_beta,
+        spectral_radius=sim.spectral_radius,
+    )
+
+
+def _check_integrator(case: schema.Case, model) -> None:
+    integrator = case.simulation.integrator
+    if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
+        raise CaseError(
+            f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal Newton "
+            f"matrix (lumped_mass); the {case.cables[0].model} model runs with rk4 or dopri5"
+        )
 
 
 class _Run:
@@ -96,8 +131,9 @@ class _Run:
         self.y = system.y0.copy()
         self.t = 0.0
         self.w = model.workspace(system)
-        self.work = np.zeros(4, dtype=np.int64)
+        self.work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         self.h = self.sim.initial_step
+        self.acc = np.zeros(self.y.shape[0] // 2)  # implicit schemes: the acceleration a0
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
         self.done = 0
 
@@ -120,11 +156,23 @@ class _Run:
         y, work, sim = self.y.copy(), np.zeros_like(self.work), self.sim
         if sim.integrator == "rk4":
             integrators.rk4_chunk(0.0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
+        elif sim.integrator in IMPLICIT:
+            if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != pc.OK:
+                self.acc[:] = 0.0
+            self._newmark(0.0, y, 1.0, 1, 0, empty, np.empty(0), work)
         else:
             integrators.dopri5_chunk(
                 0.0, y, 1.0, 0, 1.0, 1.0, 1.0, 1.0, self.p, self.w, empty, np.empty(0), work
             )
         self.model.rows(np.empty(0), empty, self.system, self.w)
+
+    def _newmark(self, t0, y, dt, steps, count, states, times, work):
+        sim = self.sim
+        tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
+        return implicit.newmark_chunk(
+            t0, y, self.acc, dt, steps, count, _scheme(sim), tol, sim.max_newton_iterations,
+            self.p, self.w, states, times, work,
+        )  # fmt: skip
 
     def advance(self, count: int) -> int:
         """Integrate ``count`` output intervals; returns the kernel status."""
@@ -132,12 +180,17 @@ class _Run:
         states = np.empty((count, ny))
         times = np.empty(count)
         sim = self.sim
-        if sim.integrator == "rk4":
+        if sim.integrator in FIXED_STEP:
             dt, steps = rk4_step(sim)
             step0 = self.done * steps
-            completed, status = integrators.rk4_chunk(
-                step0 * dt, self.y, dt, steps, count, self.p, self.w, states, times, self.work
-            )
+            if sim.integrator == "rk4":
+                completed, status = integrators.rk4_chunk(
+                    step0 * dt, self.y, dt, steps, count, self.p, self.w, states, times, self.work
+                )
+            else:
+                completed, status = self._newmark(
+                    step0 * dt, self.y, dt, steps, count, states, times, self.work
+                )
         else:
             max_step = sim.max_step if sim.max_step is not None else sim.output_interval
             completed, status, self.h = integrators.dopri5_chunk(
@@ -174,6 +227,7 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
         Ctrl-C; ``results`` hold everything computed before.
     """
     model = model_of(case)
+    _check_integrator(case, model)
     system = model.build(case, loader.case_base_dir(case))
     sim = case.simulation
     settings = _solver_settings(sim)
@@ -264,14 +318,26 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
 def _divergence_message(run: _Run, status: int, settings: dict) -> str:
     rates = run.model.rates(run.system, run.y)
     worst = int(np.nanargmax(rates)) if np.any(np.isfinite(rates)) else 0
-    what = (
-        "the pinned end could not be closed (the cable is pulled straight between its ends, "
-        "where a rigid-link model has no unique tension)"
-        if status == pc.SINGULAR_CLOSURE
-        else "the state became non-finite"
-    )
-    where = f"link {worst} (angular rate {rates[worst]:.4g} rad/s in the last sound state)"
-    if settings["integrator"] == "rk4":
+    if status == pc.SINGULAR_CLOSURE:
+        what = (
+            "the pinned end could not be closed (the cable is pulled straight between its ends, "
+            "where a rigid-link model has no unique tension)"
+        )
+    elif status == pc.NEWTON_FAILED:
+        what = (
+            f"the implicit step's Newton iteration did not converge in "
+            f"{settings['max_newton_iterations']} iterations"
+        )
+    else:
+        what = "the state became non-finite"
+    thing, rate, unit, first = getattr(run.model, "RATE_WHAT", ("link", "angular rate", "rad/s", 0))
+    where = f"{thing} {worst + first} ({rate} {rates[worst]:.4g} {unit} in the last sound state)"
+    if settings["integrator"] in IMPLICIT:
+        advice = (
+            f"reduce simulation.time_step (now {settings['time_step']:.4g} s), raise "
+            "max_newton_iterations or loosen newton_tolerance"
+        )
+    elif settings["integrator"] == "rk4":
         advice = (
             f"reduce simulation.time_step (now {settings['time_step']:.4g} s) or use "
             "integrator: dopri5"

@@ -542,8 +542,20 @@ class Cable(_Model):
 class Simulation(_Model):
     duration: Pos  # [s]
     output_interval: Pos  # [s]
-    integrator: Literal["rk4", "dopri5"] = "rk4"
-    time_step: Pos | None = None  # rk4 step [s] (default: output_interval / ceil(...) <= 0.01 s)
+    integrator: Literal[
+        "rk4", "dopri5", "implicit_euler", "theta", "newmark", "generalized_alpha"
+    ] = "rk4"
+    # fixed step [s] of rk4 and the implicit schemes (default: output_interval / ceil(...) <=
+    # 0.01 s)
+    time_step: Pos | None = None
+    theta: float = Field(0.5, ge=0.5, le=1.0)  # theta-method weight (1/2: trapezoidal, 1: Euler)
+    newmark_gamma: float = Field(0.5, ge=0.5, le=1.0)  # Newmark gamma
+    newmark_beta: float = Field(0.25, gt=0.0, le=0.5)  # Newmark beta
+    spectral_radius: float = Field(0.8, ge=0.0, le=1.0)  # generalized-alpha rho_infinity
+    # implicit schemes: Newton stops when its last correction of every node position is below
+    # this fraction of the shortest segment (a strain)
+    newton_tolerance: Pos = 1e-9
+    max_newton_iterations: int = Field(10, ge=1, le=100)
     rtol: Pos = 1e-6  # dopri5 relative tolerance
     atol: Pos = 1e-8  # dopri5 absolute tolerance
     max_step: Pos | None = None  # dopri5 largest step [s]
@@ -552,6 +564,16 @@ class Simulation(_Model):
 
     @model_validator(mode="after")
     def _ordered(self):
+        if (
+            self.integrator == "newmark"
+            and self.newmark_beta < 0.25 * (self.newmark_gamma + 0.5) ** 2 - 1e-12
+        ):
+            raise ValueError(
+                f"newmark_beta ({self.newmark_beta}) is below (gamma + 1/2)^2 / 4 = "
+                f"{0.25 * (self.newmark_gamma + 0.5) ** 2:g} for newmark_gamma "
+                f"{self.newmark_gamma}: the scheme would not be unconditionally stable; raise "
+                "newmark_beta (0.25 with gamma 0.5 is the average-acceleration rule)"
+            )
         if self.output_interval > self.duration:
             raise ValueError(
                 f"output_interval ({self.output_interval} s) is longer than duration "

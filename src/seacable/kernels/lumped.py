@@ -295,3 +295,180 @@ def outputs_chunk(times, states, p, w, node_pos, tension, scalars):
         if st != c3.OK and status == c3.OK:
             status = st
     return status
+
+
+# ---- implicit integration: the Newton system of one step ----------------------------------------
+@njit(**JIT)
+def _add_block(blocks, k, g, scale):
+    """blocks[k] += scale * g (3x3 row-major, 9 values)."""
+    for c in range(9):
+        blocks[k, c] += scale * g[c]
+
+
+@njit(**JIT)
+def _segment_jacobians(y, p, i, gx, gv, gd):
+    """Derivatives for segment i of its tension pull N t with respect to d = r_{i+1} - r_i (gx)
+    and to d' (gv), and of its drag force on its centre's relative velocity (gd); 3x3 each."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    a = 3 * i
+    b = 3 * (i + 1)
+    d = np.empty(3)
+    dv = np.empty(3)
+    for c in range(3):
+        d[c] = y[b + c] - y[a + c]
+        dv[c] = y[v0 + b + c] - y[v0 + a + c]
+    length = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+    t = d / length
+    l0 = p.length[i]
+    ea = p.axial_stiffness
+    rate = (dv[0] * t[0] + dv[1] * t[1] + dv[2] * t[2]) / l0
+    tension = ea * (length / l0 - 1.0 + p.axial_damping * rate)
+    slack = tension < 0.0 and p.slack_allowed == 1
+    # dv projected normal to the tangent: how the strain rate turns with the segment
+    pdv = dv - (rate * l0) * t
+    for r in range(3):
+        for c in range(3):
+            tt = t[r] * t[c]
+            if slack:
+                gx[3 * r + c] = 0.0
+                gv[3 * r + c] = 0.0
+            else:
+                eye = 1.0 if r == c else 0.0
+                gx[3 * r + c] = (
+                    ea / l0 * tt
+                    + tension / length * (eye - tt)
+                    + ea * p.axial_damping / (l0 * length) * t[r] * pdv[c]
+                )
+                gv[3 * r + c] = ea * p.axial_damping / l0 * tt
+    # drag on the relative velocity of the centre
+    zc = 0.5 * (y[a + 2] + y[b + 2])
+    cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
+    rel = np.empty(3)
+    rel[0] = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
+    rel[1] = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
+    rel[2] = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
+    vt = rel[0] * t[0] + rel[1] * t[1] + rel[2] * t[2]
+    rn = rel - vt * t
+    vn = math.sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2])
+    for r in range(3):
+        for c in range(3):
+            eye = 1.0 if r == c else 0.0
+            tt = t[r] * t[c]
+            normal = vn * (eye - tt)
+            if vn > 0.0:
+                normal += rn[r] * rn[c] / vn
+            gd[3 * r + c] = -p.drag_normal[i] * normal - 2.0 * p.drag_tangential[i] * abs(vt) * tt
+
+
+@njit(**JIT)
+def _seabed_jacobian(y, p, k, cx, cv, diag):
+    """diag[k] -= cx dF/dx + cv dF/dv of the seabed's normal and friction force on node k."""
+    depth = p.seabed_z - y[3 * k + 2]
+    if depth <= 0.0:
+        return
+    v0 = 3 * (p.n + 1)
+    vx, vy, vz = y[v0 + 3 * k], y[v0 + 3 * k + 1], y[v0 + 3 * k + 2]
+    stiff, damp = p.seabed_stiffness[k], p.seabed_damping[k]
+    normal = stiff * depth - damp * vz
+    if normal <= 0.0:
+        return
+    s = math.sqrt(vx * vx + vy * vy + p.seabed_slip_speed**2)
+    mu = p.seabed_friction
+    # dFz/dz = -k, dFz/dvz = -c; Fx = -mu N vx / s
+    diag[k, 8] += cx * stiff + cv * damp
+    s3 = s * s * s
+    diag[k, 0] += cv * mu * normal * (1.0 / s - vx * vx / s3)
+    diag[k, 1] += cv * mu * normal * (-vx * vy / s3)
+    diag[k, 3] += cv * mu * normal * (-vx * vy / s3)
+    diag[k, 4] += cv * mu * normal * (1.0 / s - vy * vy / s3)
+    # through the normal force: dFx/dz = mu k vx / s, dFx/dvz = mu c vx / s
+    diag[k, 2] -= (cx * stiff + cv * damp) * mu * vx / s
+    diag[k, 5] -= (cx * stiff + cv * damp) * mu * vy / s
+
+
+@njit(**JIT)
+def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+    """Residual and matrix of an implicit step's Newton iteration, in force units, per node.
+
+    ``y`` is the state where the forces are evaluated, ``a_alpha`` the accelerations the scheme
+    asks for. ``res[k] = M_k (a_alpha_k - a_k(t, y))`` and the block-tridiagonal matrix is
+    ``cm M - cx dF/dx - cv dF/dv`` (``diag`` (n+1, 9); ``upper[k]`` couples node k to k+1 and
+    ``lower[k]`` node k+1 to k, (n, 9) each). Nodes the model prescribes (the top, a pin) get an
+    identity row and a zero residual. The added mass's dependence on the tangent is left out of
+    the matrix (a quasi-Newton iteration). Returns the kernel status of the right-hand side.
+    """
+    n = p.n
+    v0 = 3 * (n + 1)
+    status = rhs(t, y, p, w, ydot)
+    gx = np.empty(9)
+    gv = np.empty(9)
+    gd = np.empty(9)
+    for k in range(n + 1):
+        m = _node_mass(p, w, k)
+        for c in range(9):
+            diag[k, c] = cm * m[c]
+        for r in range(3):
+            acc = 0.0
+            for c in range(3):
+                acc += m[3 * r + c] * (a_alpha[3 * k + c] - ydot[v0 + 3 * k + c])
+            res[3 * k + r] = acc
+    for i in range(n):
+        _segment_jacobians(y, p, i, gx, gv, gd)
+        for c in range(9):
+            # the pull on node i is +N t, on node i+1 is -N t, with d = r_{i+1} - r_i; drag is
+            # shared half and half on the mean velocity of the two nodes
+            g = cx * gx[c] + cv * gv[c]
+            dd = -0.25 * cv * gd[c]
+            diag[i, c] += g + dd
+            diag[i + 1, c] += g + dd
+            upper[i, c] = -g + dd
+            lower[i, c] = -g + dd
+    for k in range(n + 1):
+        _seabed_jacobian(y, p, k, cx, cv, diag)
+    if p.bottom_kind == BOTTOM_FREE:
+        cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
+        r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])
+        speed = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+        for a in range(3):
+            for b in range(3):
+                term = r[a] * r[b] / speed if speed > 0.0 else 0.0
+                if a == b:
+                    term += speed
+                diag[n, 3 * a + b] += cv * p.body_drag[a] * term
+    _prescribed_rows(p, diag, upper, lower, res, 0)
+    if p.bottom_kind == BOTTOM_PINNED:
+        _prescribed_rows(p, diag, upper, lower, res, n)
+    return status
+
+
+@njit(**JIT)
+def _prescribed_rows(p, diag, upper, lower, res, k):
+    for c in range(9):
+        diag[k, c] = 1.0 if c in (0, 4, 8) else 0.0
+        if k < p.n:
+            upper[k, c] = 0.0
+            lower[k, c] = 0.0
+        if k > 0:
+            upper[k - 1, c] = 0.0
+            lower[k - 1, c] = 0.0
+    for c in range(3):
+        res[3 * k + c] = 0.0
+
+
+@njit(**JIT)
+def prescribe(t, y, acc, p):
+    """Put the prescribed nodes (the top; a pinned end) at their exact position, velocity and
+    acceleration at time t."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    pos, vel, a = c3.top_motion(t, y, p)
+    for c in range(3):
+        y[c] = pos[c]
+        y[v0 + c] = vel[c]
+        acc[c] = a[c]
+    if p.bottom_kind == BOTTOM_PINNED:
+        for c in range(3):
+            y[3 * n + c] = p.pin[c]
+            y[v0 + 3 * n + c] = 0.0
+            acc[3 * n + c] = 0.0

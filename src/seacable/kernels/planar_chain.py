@@ -50,6 +50,7 @@ N_CHANNELS = 5
 OK = 0
 NON_FINITE = 1
 SINGULAR_CLOSURE = 2
+NEWTON_FAILED = 4  # an implicit step's Newton iteration did not converge
 
 # ---- scalar outputs (columns of the ``scalars`` output array) -----------------------------------
 SCALAR_NAMES = (

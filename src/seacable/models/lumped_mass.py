@@ -251,6 +251,14 @@ VARIABLES = {
 }
 
 
+RATE_WHAT = ("node", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
+NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+
+
+def shortest_segment(system: LumpedSystem) -> float:
+    return float(system.params.length.min())
+
+
 sizes = planar_rigid_links.sizes  # the same dimensions: segment, node
 
 

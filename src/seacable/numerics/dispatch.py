@@ -67,3 +67,31 @@ def _model_projects(p):
     if _is(p, chain3d.Chain3DParams) or _is(p, star3d.StarParams):
         return lambda p: True
     return None
+
+
+def model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+    """Residual and block-tridiagonal matrix of an implicit step's Newton iteration (compiled
+    code only; second-order models with node blocks, see ``kernels.lumped.newton_system``)."""
+    raise NotImplementedError("model_newton is only callable from compiled code")
+
+
+def model_prescribe(t, y, acc, p):
+    """Write the prescribed nodes' exact motion at time t into the state and accelerations
+    (compiled code only)."""
+    raise NotImplementedError("model_prescribe is only callable from compiled code")
+
+
+@overload(model_newton, jit_options=JIT)
+def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+    if _is(p, lumped.LumpedParams):
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res: (
+            lumped.newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res)
+        )
+    return None
+
+
+@overload(model_prescribe, jit_options=JIT)
+def _model_prescribe(t, y, acc, p):
+    if _is(p, lumped.LumpedParams):
+        return lambda t, y, acc, p: lumped.prescribe(t, y, acc, p)
+    return None

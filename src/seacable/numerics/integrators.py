@@ -26,7 +26,14 @@ from seacable.kernels.planar_chain import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import model_project, model_projects, model_rhs
 
-WORK_NAMES = ("accepted_steps", "rejected_steps", "rhs_evaluations", "failed_evaluations")
+WORK_NAMES = (
+    "accepted_steps",
+    "rejected_steps",
+    "rhs_evaluations",
+    "failed_evaluations",
+    "jacobian_evaluations",
+    "linear_solves",
+)
 
 
 @njit(**JIT)

@@ -1,0 +1,233 @@
+"""Fixed-step implicit integrators for second-order models with a block-tridiagonal Newton
+matrix (the lumped-mass cable): implicit Euler, the theta-method, Newmark (gamma, beta) and the
+generalized-alpha method of Chung and Hulbert (1993), as in WHOI Cable.
+
+Every scheme is written for ``M(x) a = F(t, x, v)`` with the acceleration of the step's end,
+``a1``, as the unknown:
+
+    x1 = x0 + h v0 + h^2 (pa a0 + b a1),     v1 = v0 + h ((1 - g) a0 + g a1),
+    M [(1 - am) a1 + am a0] = F(t0 + (1 - af) h, (1 - af) x1 + af x0, (1 - af) v1 + af v0)
+
+    scheme              pa               b               g                am, af
+    implicit Euler      0                1               1                0, 0
+    theta-method        theta(1-theta)   theta^2         theta            0, 0
+    Newmark             1/2 - beta       beta            gamma            0, 0
+    generalized-alpha   1/2 - beta       beta            1/2 - am + af    (2r-1)/(r+1), r/(r+1)
+
+(generalized-alpha: beta = (1 - am + af)^2 / 4, r the spectral radius at infinite frequency).
+The theta-method with theta = 1/2 (the trapezoidal rule) and Newmark's average acceleration
+(beta = 1/4, gamma = 1/2) are the same scheme here.
+
+Newton's iterations solve for ``a1`` with the model's block-tridiagonal matrix
+``(1 - am) M - (1 - af) (b h^2 dF/dx + g h dF/dv)``, factorised by block Thomas elimination:
+O(n) per iteration. The integrator follows the contract of ``numerics.integrators``; its work
+counters add Newton iterations (one matrix and one linear solve each) to the four there.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
+from seacable.kernels.timefn import JIT
+from seacable.numerics.dispatch import model_newton, model_prescribe, model_rhs
+
+# coefficient vector layout: pa, b, g, am, af
+SCHEME_SIZE = 5
+
+
+def scheme(name: str, theta=0.5, gamma=0.5, beta=0.25, spectral_radius=0.8) -> np.ndarray:
+    """The coefficients (pa, b, g, am, af) of a named scheme (see the module docstring)."""
+    if name == "implicit_euler":
+        return np.array([0.0, 1.0, 1.0, 0.0, 0.0])
+    if name == "theta":
+        return np.array([theta * (1.0 - theta), theta * theta, theta, 0.0, 0.0])
+    if name == "newmark":
+        return np.array([0.5 - beta, beta, gamma, 0.0, 0.0])
+    if name == "generalized_alpha":
+        r = spectral_radius
+        am = (2.0 * r - 1.0) / (r + 1.0)
+        af = r / (r + 1.0)
+        b = 0.25 * (1.0 - am + af) ** 2
+        return np.array([0.5 - b, b, 0.5 - am + af, am, af])
+    raise ValueError(f"unknown implicit scheme {name!r}")
+
+
+@njit(**JIT)
+def _inverse3(a, out):
+    """out = inverse of the 3x3 row-major ``a``; returns the determinant (0: singular)."""
+    c00 = a[4] * a[8] - a[5] * a[7]
+    c01 = a[5] * a[6] - a[3] * a[8]
+    c02 = a[3] * a[7] - a[4] * a[6]
+    det = a[0] * c00 + a[1] * c01 + a[2] * c02
+    if det == 0.0 or not math.isfinite(det):
+        return 0.0
+    inv = 1.0 / det
+    out[0] = c00 * inv
+    out[1] = (a[2] * a[7] - a[1] * a[8]) * inv
+    out[2] = (a[1] * a[5] - a[2] * a[4]) * inv
+    out[3] = c01 * inv
+    out[4] = (a[0] * a[8] - a[2] * a[6]) * inv
+    out[5] = (a[2] * a[3] - a[0] * a[5]) * inv
+    out[6] = c02 * inv
+    out[7] = (a[1] * a[6] - a[0] * a[7]) * inv
+    out[8] = (a[0] * a[4] - a[1] * a[3]) * inv
+    return det
+
+
+@njit(**JIT)
+def _matmul3(a, b, out):
+    for r in range(3):
+        for c in range(3):
+            out[3 * r + c] = a[3 * r] * b[c] + a[3 * r + 1] * b[3 + c] + a[3 * r + 2] * b[6 + c]
+
+
+@njit(**JIT)
+def block_tridiagonal_solve(diag, upper, lower, rhs, x):
+    """Solve the block-tridiagonal system with 3x3 blocks (row-major, 9 values each):
+    ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k). Block
+    Thomas elimination, O(n); ``diag`` is overwritten with the inverted pivots. Returns False
+    when a pivot is singular."""
+    m = diag.shape[0]
+    inv = np.empty(9)
+    factor = np.empty(9)
+    tmp = np.empty(9)
+    for k in range(m):
+        for c in range(3):
+            x[3 * k + c] = rhs[3 * k + c]
+    for k in range(m):
+        if k > 0:
+            # factor = lower[k-1] diag[k-1]^-1 (stored inverted); diag[k] -= factor upper[k-1]
+            _matmul3(lower[k - 1], diag[k - 1], factor)
+            _matmul3(factor, upper[k - 1], tmp)
+            for c in range(9):
+                diag[k, c] -= tmp[c]
+            for r in range(3):
+                x[3 * k + r] -= (
+                    factor[3 * r] * x[3 * k - 3]
+                    + factor[3 * r + 1] * x[3 * k - 2]
+                    + factor[3 * r + 2] * x[3 * k - 1]
+                )
+        if _inverse3(diag[k], inv) == 0.0:
+            return False
+        for c in range(9):
+            diag[k, c] = inv[c]
+    for k in range(m - 1, -1, -1):
+        r0, r1, r2 = x[3 * k], x[3 * k + 1], x[3 * k + 2]
+        if k < m - 1:
+            u = upper[k]
+            n0, n1, n2 = x[3 * k + 3], x[3 * k + 4], x[3 * k + 5]
+            r0 -= u[0] * n0 + u[1] * n1 + u[2] * n2
+            r1 -= u[3] * n0 + u[4] * n1 + u[5] * n2
+            r2 -= u[6] * n0 + u[7] * n1 + u[8] * n2
+        d = diag[k]
+        x[3 * k] = d[0] * r0 + d[1] * r1 + d[2] * r2
+        x[3 * k + 1] = d[3] * r0 + d[4] * r1 + d[5] * r2
+        x[3 * k + 2] = d[6] * r0 + d[7] * r1 + d[8] * r2
+    return True
+
+
+@njit(**JIT)
+def initial_acceleration(t, y, p, w, acc):
+    """The model's acceleration at (t, y): the a0 a run starts from. Returns the status."""
+    ydot = np.empty_like(y)
+    status = model_rhs(t, y, p, w, ydot)
+    nq = y.shape[0] // 2
+    acc[:] = ydot[nq:]
+    return status
+
+
+@njit(**JIT)
+def _stage(y0, a0, a1, h, coef, y1, nq):
+    """End state y1 = (x1, v1) of the step from the end acceleration a1."""
+    pa, b, g = coef[0], coef[1], coef[2]
+    for i in range(nq):
+        x1 = y0[i] + h * y0[nq + i] + h * h * (pa * a0[i] + b * a1[i])
+        v1 = y0[nq + i] + h * ((1.0 - g) * a0[i] + g * a1[i])
+        y1[i] = x1
+        y1[nq + i] = v1
+
+
+@njit(**JIT)
+def _alpha_point(y0, y1, a0, a1, coef, ya, aa, nq):
+    am, af = coef[3], coef[4]
+    for i in range(nq):
+        ya[i] = (1.0 - af) * y1[i] + af * y0[i]
+        ya[nq + i] = (1.0 - af) * y1[nq + i] + af * y0[nq + i]
+        aa[i] = (1.0 - am) * a1[i] + am * a0[i]
+
+
+@njit(**JIT)
+def newmark_chunk(
+    t0, y, acc, dt, steps_per_output, n_outputs, coef, tol, max_iter, p, w, states, times, work
+):
+    """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps ``dt``.
+
+    ``acc`` holds the scheme's acceleration a0 at the start (the model's acceleration at the
+    first call; the algorithmic one after), and is updated. ``tol`` [m] bounds the last Newton
+    correction of the positions (b h^2 |da|). Returns (completed, status); ``work`` gets
+    [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations,
+    linear solves] (one of each per Newton iteration)."""
+    ny = y.shape[0]
+    nq = ny // 2
+    nodes = nq // 3
+    y1 = np.empty(ny)
+    ya = np.empty(ny)
+    aa = np.empty(nq)
+    a1 = np.empty(nq)
+    da = np.empty(nq)
+    res = np.empty(nq)
+    ydot = np.empty(ny)
+    diag = np.empty((nodes, 9))
+    upper = np.empty((max(nodes - 1, 1), 9))
+    lower = np.empty((max(nodes - 1, 1), 9))
+    b, g, am, af = coef[1], coef[2], coef[3], coef[4]
+    cm = 1.0 - am
+    step = 0
+    for j in range(n_outputs):
+        for _ in range(steps_per_output):
+            t = t0 + step * dt
+            t1 = t + dt
+            ta = t + (1.0 - af) * dt
+            a1[:] = acc  # predictor: the last acceleration
+            converged = False
+            for _it in range(max_iter):
+                _stage(y, acc, a1, dt, coef, y1, nq)
+                model_prescribe(t1, y1, a1, p)
+                _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
+                status = model_newton(
+                    ta, ya, aa, p, w, ydot, cm, (1.0 - af) * b * dt * dt,
+                    (1.0 - af) * g * dt, diag, upper, lower, res,
+                )  # fmt: skip
+                work[2] += 1
+                work[4] += 1
+                if status != OK:
+                    work[3] += 1
+                    return j, status
+                work[5] += 1
+                if not block_tridiagonal_solve(diag, upper, lower, res, da):
+                    work[3] += 1
+                    return j, NON_FINITE
+                largest = 0.0
+                for i in range(nq):
+                    a1[i] -= da[i]
+                    largest = max(largest, abs(da[i]))
+                if not math.isfinite(largest):
+                    work[3] += 1
+                    return j, NON_FINITE
+                if b * dt * dt * largest <= tol:
+                    converged = True
+                    break
+            if not converged:
+                work[1] += 1
+                return j, NEWTON_FAILED
+            _stage(y, acc, a1, dt, coef, y1, nq)
+            model_prescribe(t1, y1, a1, p)
+            y[:] = y1
+            acc[:] = a1
+            work[0] += 1
+            step += 1
+        states[j, :] = y
+        times[j] = t0 + step * dt
+    return n_outputs, OK

@@ -1,0 +1,180 @@
+"""Fixed-step implicit schemes (implicit Euler, theta, Newmark, generalized-alpha) on the
+lumped-mass cable: the block-tridiagonal solver, convergence orders on an exact solution,
+agreement with an adaptive explicit reference on a mooring line, work counters, errors."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.errors import CaseError
+from seacable.kernels import lumped as lk
+from seacable.numerics import implicit
+from seacable.simulation import build_system
+
+
+def test_block_tridiagonal_solve_matches_a_dense_solve():
+    rng = np.random.default_rng(3)
+    m = 7
+    diag = rng.normal(size=(m, 9)) + 6.0 * np.tile(np.eye(3).ravel(), (m, 1))
+    upper = rng.normal(size=(m - 1, 9))
+    lower = rng.normal(size=(m - 1, 9))
+    dense = np.zeros((3 * m, 3 * m))
+    for k in range(m):
+        dense[3 * k : 3 * k + 3, 3 * k : 3 * k + 3] = diag[k].reshape(3, 3)
+        if k < m - 1:
+            dense[3 * k : 3 * k + 3, 3 * k + 3 : 3 * k + 6] = upper[k].reshape(3, 3)
+            dense[3 * k + 3 : 3 * k + 6, 3 * k : 3 * k + 3] = lower[k].reshape(3, 3)
+    b = rng.normal(size=3 * m)
+    x = np.empty(3 * m)
+    assert implicit.block_tridiagonal_solve(diag.copy(), upper, lower, b, x)
+    np.testing.assert_allclose(x, np.linalg.solve(dense, b), rtol=1e-12, atol=1e-12)
+
+
+# A mass on a massless-ish elastic line, hanging in air from a fixed point, released stretched
+# 1.5 times its static stretch: z(t) = -L - d - 0.5 d cos(omega t), omega^2 = k / M, never slack.
+LENGTH, EA, BODY, LINE = 10.0, 2.0e5, 50.0, 1.0
+G = 9.81
+
+
+def _bouncing_mass():
+    case = seacable.load_case(
+        {
+            "environment": {"in_air": True, "gravity": G},
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": 1,
+                    "length": LENGTH,
+                    "diameter": 0.01,
+                    "mass_per_length": LINE / LENGTH,
+                    "axial_stiffness": EA,
+                    "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": BODY}},
+                    "initial": {"shape": "arc", "top_angle_deg": 0.0},
+                }
+            ],
+            "simulation": {"duration": 1.0, "output_interval": 1.0},
+        }
+    )
+    system = build_system(case)
+    mass = BODY + 0.5 * LINE
+    k = EA / LENGTH
+    static = mass * G / k
+    y0 = system.y0.copy()
+    y0[5] = -LENGTH - 1.5 * static  # the end node
+    omega = math.sqrt(k / mass)
+
+    def exact(t):
+        return -LENGTH - static - 0.5 * static * math.cos(omega * t)
+
+    return dataclasses.replace(system, y0=y0), exact, static
+
+
+def _run(system, name, dt, duration, **kwargs):
+    p = system.params
+    y = system.y0.copy()
+    w = lk.make_workspace(p.n)
+    acc = np.empty(y.size // 2)
+    assert implicit.initial_acceleration(0.0, y, p, w, acc) == 0
+    work = np.zeros(6, dtype=np.int64)
+    steps = int(round(duration / dt))
+    states, times = np.empty((1, y.size)), np.empty(1)
+    done, status = implicit.newmark_chunk(
+        0.0, y, acc, dt, steps, 1, implicit.scheme(name, **kwargs), 1e-13, 20, p, w, states,
+        times, work,
+    )  # fmt: skip
+    assert (done, status) == (1, 0)
+    return y, work
+
+
+@pytest.mark.parametrize(
+    ("name", "kwargs", "order"),
+    [
+        ("implicit_euler", {}, 1),
+        ("theta", {"theta": 0.7}, 1),
+        ("theta", {"theta": 0.5}, 2),
+        ("newmark", {"gamma": 0.5, "beta": 0.25}, 2),
+        ("newmark", {"gamma": 0.6, "beta": 0.3025}, 1),
+        ("generalized_alpha", {"spectral_radius": 0.8}, 2),
+        ("generalized_alpha", {"spectral_radius": 0.0}, 2),
+    ],
+)
+def test_convergence_order_on_the_exact_bouncing_mass(name, kwargs, order):
+    system, exact, static = _bouncing_mass()
+    duration = 0.5
+    steps = [2e-3, 1e-3, 5e-4]
+    errors = [
+        abs(_run(system, name, dt, duration, **kwargs)[0][5] - exact(duration)) for dt in steps
+    ]
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(rates - order) < 0.15), (errors, rates)
+    assert errors[-1] < 0.05 * static
+
+
+def test_newton_converges_in_few_iterations_and_counts_its_work():
+    system, _, _ = _bouncing_mass()
+    _, work = _run(system, "generalized_alpha", 1e-3, 0.2)
+    accepted, rejected, rhs, failed, jacobians, solves = work
+    assert (accepted, rejected, failed) == (200, 0, 0)
+    assert jacobians == solves == rhs
+    assert rhs <= 3 * accepted  # a linear spring: Newton's first correction is exact
+
+
+def _mooring(integrator, duration=6.0, **simulation):
+    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    sim = case.simulation.model_copy(
+        update={"integrator": integrator, "duration": duration, **simulation}
+    )
+    return seacable.simulate(case.model_copy(update={"simulation": sim})).dataset
+
+
+def test_implicit_steps_far_beyond_the_explicit_limit_agree_with_dopri5():
+    """40-segment chain with part on the seabed, fairlead surging: generalized-alpha at 20 ms
+    (six times the rk4 stability limit, omega dt = 2.8) against dopri5 at rtol 1e-6."""
+    reference = _mooring("dopri5")
+    for integrator, dt in (("generalized_alpha", 0.02), ("newmark", 0.01)):
+        ds = _mooring(integrator, time_step=dt)
+        tension = np.hypot(ds["top_force_x"], ds["top_force_z"]).values
+        expected = np.hypot(reference["top_force_x"], reference["top_force_z"]).values
+        assert np.max(np.abs(tension / expected - 1)) < 2e-3, integrator
+        assert ds.attrs["solver_jacobian_evaluations"] == ds.attrs["solver_linear_solves"] > 0
+        assert ds.attrs["solver_rhs_evaluations"] <= 3 * ds.attrs["solver_accepted_steps"]
+    # the rk4 warning names the axial waves at that step
+    omega, what = seacable.simulation.fastest_frequency(
+        build_system(seacable.load_case("examples/catenary_mooring_line_surge.yaml"))
+    )
+    assert omega * 0.02 > 6 * 2.8 and "axial" in what
+
+
+def test_implicit_scheme_needs_a_model_with_a_newton_matrix():
+    case = seacable.load_case("examples/thesis_6_1_sim1_air_12_links.yaml")
+    sim = case.simulation.model_copy(update={"integrator": "newmark"})
+    with pytest.raises(CaseError, match=r"simulation.integrator: 'newmark' .*lumped_mass"):
+        seacable.simulate(case.model_copy(update={"simulation": sim}))
+
+
+def test_unstable_newmark_parameters_are_refused():
+    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    data = case.model_dump(mode="json", exclude_unset=True)
+    data["simulation"].update(integrator="newmark", newmark_gamma=0.7, newmark_beta=0.25)
+    with pytest.raises(CaseError, match=r"newmark_beta \(0.25\) is below"):
+        seacable.load_case(data)
+
+
+def test_a_newton_failure_stops_with_advice_and_keeps_results(tmp_path):
+    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    sim = case.simulation.model_copy(
+        update={
+            "integrator": "newmark",
+            "time_step": 0.05,
+            "max_newton_iterations": 1,
+            "duration": 1.0,
+        }  # fmt: skip
+    )
+    with pytest.raises(seacable.SimulationDiverged, match="Newton iteration did not converge") as e:
+        seacable.simulate(case.model_copy(update={"simulation": sim}), output=tmp_path / "r.nc")
+    assert "max_newton_iterations" in str(e.value)
+    assert e.value.results.dataset.attrs["status"] == "diverged"
