@@ -20,6 +20,7 @@ from seacable.models.common import (
     tangential_drag,
     typed,
 )
+from seacable.numerics import implicit
 
 
 @dataclass(frozen=True)
@@ -160,22 +161,26 @@ def _initial_state(case, params):
 
 
 def discrete_equilibrium(params, y0, iterations=30):
-    """Newton iterations on the free node positions until every node is at rest in balance:
-    the chords through the continuous catenary are a little short where it bends, so the
-    discrete line's equilibrium differs slightly from it."""
+    """Newton iterations on the node positions until every node is at rest in balance: the
+    chords through the continuous catenary are a little short where it bends, so the discrete
+    line's equilibrium differs slightly from it. Each iteration solves the block-tridiagonal
+    stiffness system of the implicit integrators (O(n))."""
     n = params.n
     # the linear law (compression allowed) makes the problem smooth; a catenary's equilibrium
     # has every segment in tension, so it is also the equilibrium of the slack law
     params = params._replace(slack_allowed=0)
-    free = n if params.bottom_kind == lk.BOTTOM_PINNED else n + 1
-    index = np.arange(3, 3 * free)  # node 0 is held by the top
     w = lk.make_workspace(n)
     ydot = np.zeros_like(y0)
-    v0 = 3 * (n + 1)
+    nq = 3 * (n + 1)
+    at_rest = np.zeros(nq)
+    diag, upper, lower = np.empty((n + 1, 9)), np.empty((n, 9)), np.empty((n, 9))
+    res, step = np.empty(nq), np.empty(nq)
 
     def residual(y):
-        lk.rhs(0.0, y, params, w, ydot)
-        return ydot[v0 + index].copy()
+        # with zero wanted acceleration, res = -F per node (prescribed nodes: 0); the matrix
+        # (cm = 0, cx = 1, cv = 0) is -dF/dx
+        lk.newton_system(0.0, y, at_rest, params, w, ydot, 0.0, 1.0, 0.0, diag, upper, lower, res)
+        return res.copy()
 
     y = y0.copy()
     r = residual(y)
@@ -183,21 +188,18 @@ def discrete_equilibrium(params, y0, iterations=30):
     for _ in range(iterations):
         if np.abs(r).max() < 1e-9 * scale:
             break
-        jac = np.empty((len(index), len(index)))
-        for k, i in enumerate(index):
-            trial = y.copy()
-            trial[i] += 1e-7
-            jac[:, k] = (residual(trial) - r) / 1e-7
-        step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        if not implicit.block_tridiagonal_solve(diag, upper, lower, r, step):
+            break
         for damping in (1.0, 0.5, 0.25, 0.1):
             trial = y.copy()
-            trial[index] += damping * step
+            trial[:nq] -= damping * step
             rt = residual(trial)
             if np.linalg.norm(rt) < np.linalg.norm(r):
                 y, r = trial, rt
                 break
         else:
             break
+        residual(y)  # the matrix at the accepted point
     return y
 
 

@@ -158,6 +158,54 @@ def _alpha_point(y0, y1, a0, a1, coef, ya, aa, nq):
         aa[i] = (1.0 - am) * a1[i] + am * a0[i]
 
 
+MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
+
+
+@njit(**JIT)
+def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper, lower, work):
+    """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
+    Returns the status (NEWTON_FAILED when Newton's iteration does not converge)."""
+    nq = q.shape[1]
+    y1, ya, ydot = vec[0], vec[1], vec[2]
+    aa, a1, da, res = q[0], q[1], q[2], q[3]
+    b, g, am, af = coef[1], coef[2], coef[3], coef[4]
+    t1 = t + h
+    ta = t + (1.0 - af) * h
+    a1[:] = acc  # predictor: the last acceleration
+    for _it in range(max_iter):
+        _stage(y, acc, a1, h, coef, y1, nq)
+        model_prescribe(t1, y1, a1, p)
+        _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
+        status = model_newton(
+            ta, ya, aa, p, w, ydot, 1.0 - am, (1.0 - af) * b * h * h, (1.0 - af) * g * h,
+            diag, upper, lower, res,
+        )  # fmt: skip
+        work[2] += 1
+        work[4] += 1
+        if status != OK:
+            work[3] += 1
+            return status
+        work[5] += 1
+        if not block_tridiagonal_solve(diag, upper, lower, res, da):
+            work[3] += 1
+            return NON_FINITE
+        largest = 0.0
+        for i in range(nq):
+            a1[i] -= da[i]
+            largest = max(largest, abs(da[i]))
+        if not math.isfinite(largest):
+            work[3] += 1
+            return NON_FINITE
+        if b * h * h * largest <= tol:
+            _stage(y, acc, a1, h, coef, y1, nq)
+            model_prescribe(t1, y1, a1, p)
+            y[:] = y1
+            acc[:] = a1
+            work[0] += 1
+            return OK
+    return NEWTON_FAILED
+
+
 @njit(**JIT)
 def newmark_chunk(
     t0, y, acc, dt, steps_per_output, n_outputs, coef, tol, max_iter, p, w, states, times, work
@@ -166,67 +214,46 @@ def newmark_chunk(
 
     ``acc`` holds the scheme's acceleration a0 at the start (the model's acceleration at the
     first call; the algorithmic one after), and is updated. ``tol`` [m] bounds the last Newton
-    correction of the positions (b h^2 |da|). Returns (completed, status); ``work`` gets
-    [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations,
-    linear solves] (one of each per Newton iteration)."""
+    correction of the positions (b h^2 |da|). A step whose iteration fails (regularised seabed
+    friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS equal
+    parts, each retry counted as a rejected step. Returns (completed, status); ``work`` gets
+    [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations, linear
+    solves] (one rhs, Jacobian and solve per Newton iteration; accepted counts substeps)."""
     ny = y.shape[0]
     nq = ny // 2
     nodes = nq // 3
-    y1 = np.empty(ny)
-    ya = np.empty(ny)
-    aa = np.empty(nq)
-    a1 = np.empty(nq)
-    da = np.empty(nq)
-    res = np.empty(nq)
-    ydot = np.empty(ny)
+    vec = np.empty((3, ny))
+    q = np.empty((4, nq))
     diag = np.empty((nodes, 9))
     upper = np.empty((max(nodes - 1, 1), 9))
     lower = np.empty((max(nodes - 1, 1), 9))
-    b, g, am, af = coef[1], coef[2], coef[3], coef[4]
-    cm = 1.0 - am
+    y_saved = np.empty(ny)
+    acc_saved = np.empty(nq)
     step = 0
     for j in range(n_outputs):
         for _ in range(steps_per_output):
             t = t0 + step * dt
-            t1 = t + dt
-            ta = t + (1.0 - af) * dt
-            a1[:] = acc  # predictor: the last acceleration
-            converged = False
-            for _it in range(max_iter):
-                _stage(y, acc, a1, dt, coef, y1, nq)
-                model_prescribe(t1, y1, a1, p)
-                _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
-                status = model_newton(
-                    ta, ya, aa, p, w, ydot, cm, (1.0 - af) * b * dt * dt,
-                    (1.0 - af) * g * dt, diag, upper, lower, res,
-                )  # fmt: skip
-                work[2] += 1
-                work[4] += 1
-                if status != OK:
-                    work[3] += 1
-                    return j, status
-                work[5] += 1
-                if not block_tridiagonal_solve(diag, upper, lower, res, da):
-                    work[3] += 1
-                    return j, NON_FINITE
-                largest = 0.0
-                for i in range(nq):
-                    a1[i] -= da[i]
-                    largest = max(largest, abs(da[i]))
-                if not math.isfinite(largest):
-                    work[3] += 1
-                    return j, NON_FINITE
-                if b * dt * dt * largest <= tol:
-                    converged = True
+            y_saved[:] = y
+            acc_saved[:] = acc
+            parts = 1
+            while True:
+                status = OK
+                h = dt / parts
+                for k in range(parts):
+                    status = _step(
+                        t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper,
+                        lower, work,
+                    )  # fmt: skip
+                    if status != OK:
+                        break
+                if status == OK:
                     break
-            if not converged:
                 work[1] += 1
-                return j, NEWTON_FAILED
-            _stage(y, acc, a1, dt, coef, y1, nq)
-            model_prescribe(t1, y1, a1, p)
-            y[:] = y1
-            acc[:] = a1
-            work[0] += 1
+                y[:] = y_saved
+                acc[:] = acc_saved
+                if parts >= MAX_SUBSTEPS:
+                    return j, status
+                parts *= 2
             step += 1
         states[j, :] = y
         times[j] = t0 + step * dt
