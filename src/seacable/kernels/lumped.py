@@ -186,19 +186,50 @@ def _body_force(t, y, p, w):
 @njit(**JIT)
 def _node_mass(p, w, k):
     """The 3x3 mass matrix of node k, row-major."""
-    m = p.node_mass[k]
     a = np.empty(9)
+    _node_mass_into(p.node_mass[k], p.body_mass if k == p.n else np.zeros(3), w, k, a)
+    return a
+
+
+@njit(**JIT)
+def _node_mass_into(m, body, w, k, a):
     a[0] = m + w[_MA, k]
     a[1] = a[3] = w[_MA + 1, k]
     a[2] = a[6] = w[_MA + 2, k]
     a[4] = m + w[_MA + 3, k]
     a[5] = a[7] = w[_MA + 4, k]
     a[8] = m + w[_MA + 5, k]
-    if k == p.n:
-        a[0] += p.body_mass[0]
-        a[4] += p.body_mass[1]
-        a[8] += p.body_mass[2]
-    return a
+    a[0] += body[0]
+    a[4] += body[1]
+    a[8] += body[2]
+
+
+@njit(**JIT)
+def _node_acceleration(m, body, w, k):
+    """Solve node k's symmetric 3x3 mass matrix (structural mass m, added mass from the
+    workspace, ``body`` the end body's masses or None) against its force. Scalars only, and no
+    parameter tuple: per-node helpers that take the whole tuple copy it at every call.
+    Returns ax, ay, az and False when singular."""
+    a00, a01, a02 = m + w[_MA, k], w[_MA + 1, k], w[_MA + 2, k]
+    a11, a12, a22 = m + w[_MA + 3, k], w[_MA + 4, k], m + w[_MA + 5, k]
+    a00 += body[0]
+    a11 += body[1]
+    a22 += body[2]
+    fx, fy, fz = w[_F, k], w[_F + 1, k], w[_F + 2, k]
+    c00 = a11 * a22 - a12 * a12
+    c01 = a12 * a02 - a01 * a22
+    c02 = a01 * a12 - a11 * a02
+    det = a00 * c00 + a01 * c01 + a02 * c02
+    if det == 0.0:
+        return 0.0, 0.0, 0.0, False
+    inv = 1.0 / det
+    c11 = a00 * a22 - a02 * a02
+    c12 = a02 * a01 - a00 * a12
+    c22 = a00 * a11 - a01 * a01
+    ax = (c00 * fx + c01 * fy + c02 * fz) * inv
+    ay = (c01 * fx + c11 * fy + c12 * fz) * inv
+    az = (c02 * fx + c12 * fy + c22 * fz) * inv
+    return ax, ay, az, True
 
 
 @njit(**JIT)
@@ -211,6 +242,7 @@ def rhs(t, y, p, w, ydot):
         _body_force(t, y, p, w)
     pos, vel, acc = c3.top_motion(t, y, p)
     status = c3.OK
+    no_body = np.zeros(3)
     for k in range(n + 1):
         for c in range(3):
             ydot[3 * k + c] = y[v0 + 3 * k + c]
@@ -224,12 +256,13 @@ def rhs(t, y, p, w, ydot):
                 ydot[3 * k + c] = 0.0
                 ydot[v0 + 3 * k + c] = 0.0
             continue
-        force = np.array([w[_F, k], w[_F + 1, k], w[_F + 2, k]])
-        a, det = c3._solve3(_node_mass(p, w, k), force)
-        if det == 0.0:
+        body = p.body_mass if k == n else no_body
+        ax, ay, az, ok = _node_acceleration(p.node_mass[k], body, w, k)
+        if not ok:
             status = c3.NON_FINITE
-        for c in range(3):
-            ydot[v0 + 3 * k + c] = a[c]
+        ydot[v0 + 3 * k] = ax
+        ydot[v0 + 3 * k + 1] = ay
+        ydot[v0 + 3 * k + 2] = az
     if not math.isfinite(ydot[v0 + 3 * n] + ydot[v0 + 3 * n + 2]):
         status = c3.NON_FINITE
     return status
@@ -306,75 +339,65 @@ def _add_block(blocks, k, g, scale):
 
 
 @njit(**JIT)
-def _segment_jacobians(y, p, i, gx, gv, gd):
+def _segment_jacobians(y, v0, i, l0, ea, alpha, slack_allowed, c_n, c_t2, cz, cu_, cv_, g):
     """Derivatives for segment i of its tension pull N t with respect to d = r_{i+1} - r_i (gx)
-    and to d' (gv), and of its drag force on its centre's relative velocity (gd); 3x3 each."""
-    n = p.n
-    v0 = 3 * (n + 1)
+    and to d' (gv), and of its drag force on its centre's relative velocity (gd); 3x3 each,
+    row-major, in g[0], g[1], g[2]. Scalars and tuples only: no heap allocation and no
+    parameter tuple per segment (``c_t2`` is twice the tangential drag factor)."""
+    gx, gv, gd = g[0], g[1], g[2]
     a = 3 * i
     b = 3 * (i + 1)
-    d = np.empty(3)
-    dv = np.empty(3)
-    for c in range(3):
-        d[c] = y[b + c] - y[a + c]
-        dv[c] = y[v0 + b + c] - y[v0 + a + c]
-    length = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-    t = d / length
-    l0 = p.length[i]
-    ea = p.axial_stiffness
-    rate = (dv[0] * t[0] + dv[1] * t[1] + dv[2] * t[2]) / l0
-    tension = ea * (length / l0 - 1.0 + p.axial_damping * rate)
-    slack = tension < 0.0 and p.slack_allowed == 1
+    dx, dy, dz = y[b] - y[a], y[b + 1] - y[a + 1], y[b + 2] - y[a + 2]
+    dvx = y[v0 + b] - y[v0 + a]
+    dvy = y[v0 + b + 1] - y[v0 + a + 1]
+    dvz = y[v0 + b + 2] - y[v0 + a + 2]
+    length = math.sqrt(dx * dx + dy * dy + dz * dz)
+    t = (dx / length, dy / length, dz / length)
+    rate = (dvx * t[0] + dvy * t[1] + dvz * t[2]) / l0
+    tension = ea * (length / l0 - 1.0 + alpha * rate)
+    slack = tension < 0.0 and slack_allowed == 1
     # dv projected normal to the tangent: how the strain rate turns with the segment
-    pdv = dv - (rate * l0) * t
+    s = rate * l0
+    pdv = (dvx - s * t[0], dvy - s * t[1], dvz - s * t[2])
+    kt = ea / l0
+    kn = tension / length
+    kd = ea * alpha / (l0 * length)
+    cd = ea * alpha / l0
+    # drag on the relative velocity of the centre
+    zc = 0.5 * (y[a + 2] + y[b + 2])
+    cu, cv = c3._current(cz, cu_, cv_, zc)
+    rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
+    ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
+    rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
+    vt = rx * t[0] + ry * t[1] + rz * t[2]
+    rn = (rx - vt * t[0], ry - vt * t[1], rz - vt * t[2])
+    vn = math.sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2])
+    inv_vn = 1.0 / vn if vn > 0.0 else 0.0
+    c_t = c_t2 * abs(vt)
     for r in range(3):
         for c in range(3):
             tt = t[r] * t[c]
+            eye = 1.0 if r == c else 0.0
             if slack:
                 gx[3 * r + c] = 0.0
                 gv[3 * r + c] = 0.0
             else:
-                eye = 1.0 if r == c else 0.0
-                gx[3 * r + c] = (
-                    ea / l0 * tt
-                    + tension / length * (eye - tt)
-                    + ea * p.axial_damping / (l0 * length) * t[r] * pdv[c]
-                )
-                gv[3 * r + c] = ea * p.axial_damping / l0 * tt
-    # drag on the relative velocity of the centre
-    zc = 0.5 * (y[a + 2] + y[b + 2])
-    cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
-    rel = np.empty(3)
-    rel[0] = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
-    rel[1] = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
-    rel[2] = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
-    vt = rel[0] * t[0] + rel[1] * t[1] + rel[2] * t[2]
-    rn = rel - vt * t
-    vn = math.sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2])
-    for r in range(3):
-        for c in range(3):
-            eye = 1.0 if r == c else 0.0
-            tt = t[r] * t[c]
-            normal = vn * (eye - tt)
-            if vn > 0.0:
-                normal += rn[r] * rn[c] / vn
-            gd[3 * r + c] = -p.drag_normal[i] * normal - 2.0 * p.drag_tangential[i] * abs(vt) * tt
+                gx[3 * r + c] = kt * tt + kn * (eye - tt) + kd * t[r] * pdv[c]
+                gv[3 * r + c] = cd * tt
+            gd[3 * r + c] = -c_n * (vn * (eye - tt) + rn[r] * rn[c] * inv_vn) - c_t * tt
 
 
 @njit(**JIT)
-def _seabed_jacobian(y, p, k, cx, cv, diag):
+def _seabed_jacobian(y, v0, k, seabed_z, stiff, damp, slip, mu, cx, cv, diag):
     """diag[k] -= cx dF/dx + cv dF/dv of the seabed's normal and friction force on node k."""
-    depth = p.seabed_z - y[3 * k + 2]
+    depth = seabed_z - y[3 * k + 2]
     if depth <= 0.0:
         return
-    v0 = 3 * (p.n + 1)
     vx, vy, vz = y[v0 + 3 * k], y[v0 + 3 * k + 1], y[v0 + 3 * k + 2]
-    stiff, damp = p.seabed_stiffness[k], p.seabed_damping[k]
     normal = stiff * depth - damp * vz
     if normal <= 0.0:
         return
-    s = math.sqrt(vx * vx + vy * vy + p.seabed_slip_speed**2)
-    mu = p.seabed_friction
+    s = math.sqrt(vx * vx + vy * vy + slip * slip)
     # dFz/dz = -k, dFz/dvz = -c; Fx = -mu N vx / s
     diag[k, 8] += cx * stiff + cv * damp
     s3 = s * s * s
@@ -401,31 +424,38 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     n = p.n
     v0 = 3 * (n + 1)
     status = rhs(t, y, p, w, ydot)
-    gx = np.empty(9)
-    gv = np.empty(9)
-    gd = np.empty(9)
+    g = np.empty((3, 9))
+    no_body = np.zeros(3)
     for k in range(n + 1):
-        m = _node_mass(p, w, k)
-        for c in range(9):
-            diag[k, c] = cm * m[c]
+        _node_mass_into(p.node_mass[k], p.body_mass if k == n else no_body, w, k, diag[k])
         for r in range(3):
             acc = 0.0
             for c in range(3):
-                acc += m[3 * r + c] * (a_alpha[3 * k + c] - ydot[v0 + 3 * k + c])
+                acc += diag[k, 3 * r + c] * (a_alpha[3 * k + c] - ydot[v0 + 3 * k + c])
             res[3 * k + r] = acc
+        for c in range(9):
+            diag[k, c] *= cm
     for i in range(n):
-        _segment_jacobians(y, p, i, gx, gv, gd)
+        _segment_jacobians(
+            y, v0, i, p.length[i], p.axial_stiffness, p.axial_damping, p.slack_allowed,
+            p.drag_normal[i], 2.0 * p.drag_tangential[i], p.current_z, p.current_u, p.current_v,
+            g,
+        )  # fmt: skip
+        gx, gv, gd = g[0], g[1], g[2]
         for c in range(9):
             # the pull on node i is +N t, on node i+1 is -N t, with d = r_{i+1} - r_i; drag is
             # shared half and half on the mean velocity of the two nodes
-            g = cx * gx[c] + cv * gv[c]
+            pull = cx * gx[c] + cv * gv[c]
             dd = -0.25 * cv * gd[c]
-            diag[i, c] += g + dd
-            diag[i + 1, c] += g + dd
-            upper[i, c] = -g + dd
-            lower[i, c] = -g + dd
+            diag[i, c] += pull + dd
+            diag[i + 1, c] += pull + dd
+            upper[i, c] = -pull + dd
+            lower[i, c] = -pull + dd
     for k in range(n + 1):
-        _seabed_jacobian(y, p, k, cx, cv, diag)
+        _seabed_jacobian(
+            y, v0, k, p.seabed_z, p.seabed_stiffness[k], p.seabed_damping[k],
+            p.seabed_slip_speed, p.seabed_friction, cx, cv, diag,
+        )  # fmt: skip
     if p.bottom_kind == BOTTOM_FREE:
         cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
         r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])

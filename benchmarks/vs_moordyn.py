@@ -1,0 +1,292 @@
+"""seacable against MoorDyn (PyPI ``moordyn``, MoorDyn-C v2) on one catenary mooring line.
+
+200 m water depth; a 250 m studless chain (126 kg/m, EA 5.8e8 N, d 0.137 m) from an anchor on
+the seabed 100 m from the fairlead, about 40 m of it lying on the seabed; the fairlead, 10 m
+below the surface, surges 5 - 5 cos(2 pi t / 12) m. Both codes run in this process, with the same
+line properties, axial damping (BA = EA x 0.002 s), drag and added-mass coefficients and seabed
+spring-damper, and no seabed friction (MoorDyn's default). For 20, 40, 80 and 160 segments:
+
+* MoorDyn (its default RK2 scheme) runs at the largest step of a halving ladder at which it stays
+  stable over 12 s (no error, finite and bounded tension);
+* seacable runs generalized-alpha (implicit, O(n) Newton per iteration) at the largest step of
+  its ladder whose fairlead-tension error against its own converged solution (dopri5, rtol 1e-9)
+  stays within the larger of MoorDyn's own time-discretisation error (its stable step against
+  half of it) and 1e-3 of the peak tension: equal accuracy.
+
+It prints both fairlead tensions at a few times, their largest relative difference after the
+start-up (t >= 6 s), and the wall time per simulated second of each code (seacable: the whole
+``simulate`` call with its start-up equilibrium and NetCDF-free output, kernels compiled before
+timing; MoorDyn: its Step calls after Init). Run: ``python benchmarks/vs_moordyn.py [--quick]``.
+"""
+
+import argparse
+import contextlib
+import math
+import os
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import seacable
+
+DEPTH, LENGTH, DIAMETER, MASS, EA, DAMPING_TIME = 200.0, 250.0, 0.137, 126.0, 5.8e8, 0.002
+ANCHOR = (-100.0, 0.0, -200.0)
+FAIRLEAD_Z = -10.0
+SEABED_K, SEABED_C = 3.0e5, 3.0e3  # per metre of chain [N/m/m], [N s/m/m]
+CD_N, CD_T, CA = 1.2, 0.1, 1.0
+PERIOD, AMPLITUDE = 12.0, 5.0
+OUTPUT = 0.05  # [s] both codes report the fairlead force at this interval
+COUPLING = 0.01  # [s] MoorDyn's coupling step (its Step calls)
+SETTLED = 6.0  # [s] start-up excluded from the comparison
+
+
+def fairlead_x(t):
+    w = 2 * math.pi / PERIOD
+    return AMPLITUDE - AMPLITUDE * math.cos(w * t), AMPLITUDE * w * math.sin(w * t)
+
+
+# ---- MoorDyn -------------------------------------------------------------------------------------
+def _moordyn_file(path, segments, dt):
+    text = f"""--------------------- MoorDyn Input File ------------------------------------
+seacable benchmark: catenary chain, fairlead surge
+---------------------- LINE TYPES -------------------------------------------
+TypeName  Diam   Mass/m  EA    BA/-zeta  EI    Cd    Ca    CdAx  CaAx
+(name)    (m)    (kg/m)  (N)   (N-s/-)   (N-m^2) (-) (-)   (-)   (-)
+chain {DIAMETER} {MASS} {EA} {EA * DAMPING_TIME} 0.0 {CD_N} {CA} {CD_T} 0.0
+---------------------- POINTS -----------------------------------------------
+ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
+(#) (-)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)
+1  Fixed  {ANCHOR[0]}  {ANCHOR[1]}  {ANCHOR[2]}  0  0  0  0
+2  Coupled  0.0  0.0  {FAIRLEAD_Z}  0  0  0  0
+---------------------- LINES ------------------------------------------------
+ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#) (name) (#) (#) (m) (-) (-)
+1  chain  1  2  {LENGTH}  {segments}  -
+---------------------- OPTIONS ----------------------------------------------
+{dt}  dtM
+RK2  tScheme
+{SEABED_K / DIAMETER}  kbot
+{SEABED_C / DIAMETER}  cbot
+{DEPTH}  WtrDpth
+1025.0  rhoW
+9.81  g
+1.0  dtIC
+100.0  TmaxIC
+4.0  CdScaleIC
+0.0001  threshIC
+0  writeLog
+------------------------- need this line ------------------------------------
+"""
+    with open(path, "w") as f:
+        f.write(text)
+
+
+@contextlib.contextmanager
+def _quiet():
+    """MoorDyn-C writes its progress and errors to the C stdout and stderr: silence them."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = os.dup(1), os.dup(2)
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 1)
+    os.dup2(null, 2)
+    try:
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        os.close(null)
+        os.close(saved[0])
+        os.close(saved[1])
+
+
+def run_moordyn(segments, dt, duration):
+    """Fairlead tension every OUTPUT seconds and the wall time of the Step calls (None on
+    failure). MoorDyn moves a coupled point from the position it is given with the velocity it
+    is given over each coupling step: the secant velocity keeps it on the exact path, and a
+    coupling step of COUPLING seconds keeps the velocity jumps between steps small (at 50 ms the
+    jumps shake the stiff chain and move the tension range by 0.7 %). MoorDyn's coupled-point
+    force leaves out the inertia of the point's mass (the line's end node), which it reports
+    separately for the host to add; that inertia is taken off here, as seacable's top force
+    includes it."""
+    import moordyn
+
+    per_output = int(round(OUTPUT / COUPLING))
+    with tempfile.TemporaryDirectory() as folder, _quiet():
+        path = os.path.join(folder, "line.txt")
+        _moordyn_file(path, segments, dt)
+        system = moordyn.Create(path)
+        moordyn.Init(system, [0.0, 0.0, FAIRLEAD_Z], [0.0, 0.0, 0.0])
+        point = moordyn.GetPoint(system, 2)
+        steps = int(round(duration / COUPLING))
+        tension = np.empty(steps // per_output)
+        start = time.perf_counter()
+        try:
+            for k in range(steps):
+                x, _ = fairlead_x(k * COUPLING)
+                v = (fairlead_x((k + 1) * COUPLING)[0] - x) / COUPLING
+                position, velocity = [x, 0.0, FAIRLEAD_Z], [v, 0.0, 0.0]
+                force = moordyn.Step(system, position, velocity, k * COUPLING, COUPLING)
+                if (k + 1) % per_output == 0:
+                    w = 2 * math.pi / PERIOD
+                    ax = AMPLITUDE * w * w * math.cos(w * (k + 1) * COUPLING)
+                    mass = moordyn.GetPointM(point)
+                    inertia = [mass[c][0] * ax for c in range(3)]
+                    tension[k // per_output] = math.dist(force, inertia)
+        except Exception:  # MoorDyn raises on NaN node positions
+            return None, None
+        finally:
+            wall = time.perf_counter() - start
+            moordyn.Close(system)
+    return tension, wall
+
+
+def moordyn_stable_step(segments, reference_peak, probe=12.0):
+    dt = 4e-3
+    while dt > 1e-6:
+        tension, _ = run_moordyn(segments, dt, probe)
+        if tension is not None and np.all(np.isfinite(tension)):
+            if tension.max() < 2.0 * reference_peak:
+                return dt
+        dt /= 2
+    raise RuntimeError("MoorDyn found no stable step")
+
+
+# ---- seacable ------------------------------------------------------------------------------------
+def case(segments, duration, integrator, time_step=None, **simulation):
+    return seacable.load_case(
+        {
+            "name": f"benchmark chain, {segments} segments",
+            "environment": {
+                "water_density": 1025.0,
+                "water_depth": DEPTH,
+                "seabed": {"stiffness": SEABED_K, "damping": SEABED_C, "friction_coefficient": 0},
+            },
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": segments,
+                    "length": LENGTH,
+                    "diameter": DIAMETER,
+                    "mass_per_length": MASS,
+                    "axial_stiffness": EA,
+                    "axial_damping_time": DAMPING_TIME,
+                    "drag_coefficient_normal": CD_N,
+                    "drag_coefficient_tangential": CD_T,
+                    "added_mass_coefficient": CA,
+                    "top": {
+                        "type": "imposed",
+                        "x": {
+                            "kind": "sine",
+                            "amplitude": AMPLITUDE,
+                            "period": PERIOD,
+                            "phase": -math.pi / 2,
+                            "offset": AMPLITUDE,
+                        },
+                        "z": FAIRLEAD_Z,
+                    },
+                    "bottom": {"type": "pinned", "anchor": list(ANCHOR)},
+                    "initial": {"shape": "catenary"},
+                }
+            ],
+            "simulation": {
+                "duration": duration,
+                "output_interval": OUTPUT,
+                "integrator": integrator,
+                **({"time_step": time_step} if time_step else {}),
+                **simulation,
+            },
+        }
+    )
+
+
+def run_seacable(segments, duration, integrator, time_step=None, **simulation):
+    c = case(segments, duration, integrator, time_step, **simulation)
+    warm = c.model_copy(update={"simulation": c.simulation.model_copy(update={"duration": OUTPUT})})
+    seacable.simulate(warm)  # compile (or load from the cache) first
+    start = time.perf_counter()
+    ds = seacable.simulate(c).dataset
+    wall = time.perf_counter() - start
+    force = np.sqrt(ds["top_force_x"] ** 2 + ds["top_force_y"] ** 2 + ds["top_force_z"] ** 2)
+    return force.values[1:], wall, ds.attrs  # drop t = 0: MoorDyn reports from the first step
+
+
+def _error(tension, reference, times):
+    late = times >= SETTLED
+    return float(np.max(np.abs(tension[late] - reference[late])) / np.max(reference))
+
+
+def race(segments, duration, ladder):
+    times = np.arange(1, int(round(duration / OUTPUT)) + 1) * OUTPUT
+    reference, _, _ = run_seacable(segments, duration, "dopri5", rtol=1e-9, atol=1e-9)
+    md_dt = moordyn_stable_step(segments, reference.max())
+    md, md_wall = run_moordyn(segments, md_dt, duration)
+    md_half, _ = run_moordyn(segments, md_dt / 2, duration)
+    md_error = _error(md, md_half, times)
+    target = max(md_error, 1e-3)
+    chosen = None
+    for dt in ladder:
+        tension, wall, attrs = run_seacable(segments, duration, "generalized_alpha", dt)
+        error = _error(tension, reference, times)
+        if error <= target:
+            chosen = (dt, tension, wall, error, attrs)
+            break
+    if chosen is None:
+        raise RuntimeError(f"no seacable step within {target:.2e} at {segments} segments")
+    dt, tension, wall, error, attrs = chosen
+    return dict(
+        segments=segments,
+        times=times,
+        moordyn=md,
+        seacable=tension,
+        md_dt=md_dt,
+        md_per_s=md_wall / duration,
+        md_error=md_error,
+        sc_dt=dt,
+        sc_per_s=wall / duration,
+        sc_error=error,
+        newton=attrs["solver_linear_solves"] / max(attrs["solver_accepted_steps"], 1),
+        difference=_error(tension, md, times),
+    )
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="20 and 40 segments, 12 s")
+    args = parser.parse_args(argv)
+    sizes = (20, 40) if args.quick else (20, 40, 80, 160)
+    duration = 12.0 if args.quick else 30.0
+    ladder = (0.05, 0.025, 0.0125, 0.00625, 0.003125, 0.0015625)
+    rows = [race(n, duration, ladder) for n in sizes]
+    print(f"fairlead tension [kN], {sizes[-1]} segments")
+    last = rows[-1]
+    print(f"{'t [s]':>7} {'MoorDyn':>10} {'seacable':>10}")
+    for t in (3.0, 6.0, 9.0, 12.0, 18.0, 24.0, 30.0):
+        k = int(round(t / OUTPUT)) - 1
+        if k < len(last["times"]):
+            print(f"{t:7.1f} {last['moordyn'][k] / 1e3:10.3f} {last['seacable'][k] / 1e3:10.3f}")
+    print()
+    header = (
+        f"{'segs':>4} | {'MoorDyn dt':>10} {'s/s':>8} {'err':>8} | {'seacable dt':>11} "
+        f"{'s/s':>8} {'err':>8} {'Newton':>6} | {'speed-up':>8} | {'max |dT|/T':>10}"
+    )
+    print(header)
+    print("-" * len(header))
+    for r in rows:
+        print(
+            f"{r['segments']:4d} | {r['md_dt']:10.3g} {r['md_per_s']:8.4f} {r['md_error']:8.1e} | "
+            f"{r['sc_dt']:11.4g} {r['sc_per_s']:8.4f} {r['sc_error']:8.1e} {r['newton']:6.2f} | "
+            f"{r['md_per_s'] / r['sc_per_s']:7.1f}x | {r['difference']:10.2e}"
+        )
+    print(
+        "\ns/s: wall seconds per simulated second; err: largest fairlead-tension error after "
+        f"t = {SETTLED:g} s against the code's own converged run, relative to the peak tension; "
+        "Newton: iterations per step; max |dT|/T: largest difference between the codes after "
+        f"t = {SETTLED:g} s, relative to the peak tension."
+    )
+
+
+if __name__ == "__main__":
+    main()
