@@ -9,7 +9,13 @@ import numpy as np
 from seacable.case import loader, schema
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
-from seacable.models import lumped_mass, planar_rigid_links, rigid_segments_3d, star_3d
+from seacable.models import (
+    lumped_mass,
+    natural_string,
+    planar_rigid_links,
+    rigid_segments_3d,
+    star_3d,
+)
 from seacable.numerics import implicit, integrators
 from seacable.results import (
     STATUS_COMPLETE,
@@ -46,6 +52,7 @@ MODELS = {
     "rigid_links": planar_rigid_links,
     "rigid_segments_3d": rigid_segments_3d,
     "lumped_mass": lumped_mass,
+    "natural_string": natural_string,
 }
 
 
@@ -67,6 +74,7 @@ SYSTEM_MODELS = {
     rigid_segments_3d.System3D: rigid_segments_3d,
     star_3d.StarSystem: star_3d,
     lumped_mass.LumpedSystem: lumped_mass,
+    natural_string.NaturalSystem: natural_string,
 }
 
 

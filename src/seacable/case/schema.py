@@ -428,7 +428,11 @@ class Cable(_Model):
     """A planar cable of rigid links joined by torsional spring-dampers."""
 
     name: str = "cable"
-    model: Literal["rigid_links", "rigid_segments_3d", "lumped_mass"] = "rigid_links"
+    model: Literal["rigid_links", "rigid_segments_3d", "lumped_mass", "natural_string"] = (
+        "rigid_links"
+    )
+    # natural_string: how the tangent is parametrised, (eps, phi) or (eps, t_x, t_z)
+    tangent: Literal["angle", "cartesian"] = "angle"
     links: int = Field(ge=1, le=100_000)  # number of rigid links
     length: Pos | None = None  # total length [m], equal links
     link_lengths: list[Pos] | None = None  # [m], one per link

@@ -10,7 +10,7 @@ models without constraints in their state).
 from numba import types
 from numba.extending import overload
 
-from seacable.kernels import chain3d, lumped, planar_chain, star3d
+from seacable.kernels import chain3d, lumped, natural, planar_chain, star3d
 from seacable.kernels.timefn import JIT
 
 
@@ -38,6 +38,8 @@ def _model_rhs(t, y, p, w, ydot):
         return lambda t, y, p, w, ydot: star3d.rhs(t, y, p, w, ydot)
     if _is(p, lumped.LumpedParams):
         return lambda t, y, p, w, ydot: lumped.rhs(t, y, p, w, ydot)
+    if _is(p, natural.NaturalParams):
+        return lambda t, y, p, w, ydot: natural.rhs(t, y, p, w, ydot)
     return None
 
 
@@ -51,6 +53,8 @@ def _model_project(y, p):
         return lambda y, p: star3d.project(y, p)
     if _is(p, lumped.LumpedParams):
         return lambda y, p: None
+    if _is(p, natural.NaturalParams):
+        return lambda y, p: natural.project(y, p)
     return None
 
 
@@ -66,6 +70,8 @@ def _model_projects(p):
         return lambda p: False
     if _is(p, chain3d.Chain3DParams) or _is(p, star3d.StarParams):
         return lambda p: True
+    if _is(p, natural.NaturalParams):
+        return lambda p: p.cartesian == 1
     return None
 
 
