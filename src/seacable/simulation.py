@@ -16,7 +16,7 @@ from seacable.models import (
     rigid_segments_3d,
     star_3d,
 )
-from seacable.numerics import implicit, integrators
+from seacable.numerics import implicit, integrators, stiff
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -142,6 +142,8 @@ class _Run:
         self.work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         self.h = self.sim.initial_step
         self.acc = np.zeros(self.y.shape[0] // 2)  # implicit schemes: the acceleration a0
+        self.stepper = None  # SciPy / SUNDIALS integrators
+        self.stiff_failure = None
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
         self.done = 0
 
@@ -164,6 +166,8 @@ class _Run:
         y, work, sim = self.y.copy(), np.zeros_like(self.work), self.sim
         if sim.integrator == "rk4":
             integrators.rk4_chunk(0.0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
+        elif sim.integrator in stiff.STIFF:
+            integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT:
             if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != pc.OK:
                 self.acc[:] = 0.0
@@ -173,6 +177,37 @@ class _Run:
                 0.0, y, 1.0, 0, 1.0, 1.0, 1.0, 1.0, self.p, self.w, empty, np.empty(0), work
             )
         self.model.rows(np.empty(0), empty, self.system, self.w)
+
+    def _stiff_stepper(self) -> stiff.StiffStepper:
+        sim = self.sim
+        p, w = self.p, self.w
+        ydot = np.empty_like(self.y)
+
+        def fun(t, y):
+            status = integrators.evaluate_rhs(t, y, p, w, ydot)
+            if status != pc.OK or not np.isfinite(ydot).all():
+                raise FloatingPointError(f"status {status} at t = {t:.6g} s")
+            return ydot.copy()
+
+        block = getattr(self.model, "node_block", lambda system: None)(self.system)
+        return stiff.StiffStepper(
+            sim.integrator, fun, self.t, self.y,
+            rtol=sim.rtol, atol=sim.atol,
+            max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
+            first_step=sim.initial_step, block=block, nodes=len(self.y) // (2 * block or 1),
+        )  # fmt: skip
+
+    def _advance_stiff(self, count, states, times):
+        if self.stepper is None:
+            self.stepper = self._stiff_stepper()
+        targets = (self.done + 1 + np.arange(count)) * self.sim.output_interval
+        done, failure = self.stepper.advance(targets, states)
+        times[:done] = targets[:done]
+        if done:
+            self.y = states[done - 1].copy()
+        self.work[:] = self.stepper.work()
+        self.stiff_failure = failure
+        return done, (pc.OK if failure is None else pc.NON_FINITE)
 
     def _newmark(self, t0, y, dt, steps, count, states, times, work):
         sim = self.sim
@@ -199,6 +234,8 @@ class _Run:
                 completed, status = self._newmark(
                     step0 * dt, self.y, dt, steps, count, states, times, self.work
                 )
+        elif sim.integrator in stiff.STIFF:
+            completed, status = self._advance_stiff(count, states, times)
         else:
             max_step = sim.max_step if sim.max_step is not None else sim.output_interval
             completed, status, self.h = integrators.dopri5_chunk(
@@ -336,6 +373,8 @@ def _divergence_message(run: _Run, status: int, settings: dict) -> str:
             f"the implicit step's Newton iteration did not converge in "
             f"{settings['max_newton_iterations']} iterations"
         )
+    elif run.stiff_failure is not None:
+        what = f"the {settings['integrator']} solver failed ({run.stiff_failure})"
     else:
         what = "the state became non-finite"
     thing, rate, unit, first = getattr(run.model, "RATE_WHAT", ("link", "angular rate", "rad/s", 0))

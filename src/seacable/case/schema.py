@@ -546,9 +546,13 @@ class Cable(_Model):
 class Simulation(_Model):
     duration: Pos  # [s]
     output_interval: Pos  # [s]
+    # rk4, dopri5: compiled explicit; implicit_euler, theta, newmark, generalized_alpha:
+    # compiled fixed-step implicit (models with a node-block Newton matrix); bdf, radau, lsoda
+    # (SciPy) and cvode (SUNDIALS): adaptive stiff, with structured finite-difference Jacobians
     integrator: Literal[
-        "rk4", "dopri5", "implicit_euler", "theta", "newmark", "generalized_alpha"
-    ] = "rk4"
+        "rk4", "dopri5", "implicit_euler", "theta", "newmark", "generalized_alpha",
+        "bdf", "radau", "lsoda", "cvode",
+    ] = "rk4"  # fmt: skip
     # fixed step [s] of rk4 and the implicit schemes (default: output_interval / ceil(...) <=
     # 0.01 s)
     time_step: Pos | None = None
@@ -560,10 +564,10 @@ class Simulation(_Model):
     # this fraction of the shortest segment (a strain)
     newton_tolerance: Pos = 1e-9
     max_newton_iterations: int = Field(10, ge=1, le=100)
-    rtol: Pos = 1e-6  # dopri5 relative tolerance
-    atol: Pos = 1e-8  # dopri5 absolute tolerance
-    max_step: Pos | None = None  # dopri5 largest step [s]
-    initial_step: Pos = 1e-3  # dopri5 first step [s]
+    rtol: Pos = 1e-6  # adaptive integrators' relative tolerance
+    atol: Pos = 1e-8  # adaptive integrators' absolute tolerance
+    max_step: Pos | None = None  # adaptive integrators' largest step [s]
+    initial_step: Pos = 1e-3  # adaptive integrators' first step [s]
     constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
 
     @model_validator(mode="after")

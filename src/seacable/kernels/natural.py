@@ -97,17 +97,17 @@ def rhs(t, y, p, w, ydot):
     b = 3 if p.cartesian == 1 else 2
     v0 = b * (n + 1)
     _fields(y, p, w)
-    k, l = float(n), p.length
-    c = k * k / (p.mu * l * l)
+    k, span = float(n), p.length
+    c = k * k / (p.mu * span * span)
     for i in range(n + 1):
         for j in range(2):
             f = w[4 + j, i]
             if i == 0:
                 acc = 2.0 * c * (w[4 + j, 1] - f)
                 if j == 1:
-                    acc -= 2.0 * (k / l) * p.gravity
+                    acc -= 2.0 * (k / span) * p.gravity
             elif i == n:
-                acc = -2.0 * c * (f - w[4 + j, n - 1]) - 2.0 * (k / (p.end_mass * l)) * f
+                acc = -2.0 * c * (f - w[4 + j, n - 1]) - 2.0 * (k / (p.end_mass * span)) * f
             else:
                 acc = c * (w[4 + j, i + 1] - 2.0 * f + w[4 + j, i - 1])
             w[7 + j, i] = acc
@@ -211,3 +211,59 @@ def outputs_chunk(times, states, p, w, node_pos, strain, tension, scalars):
     for j in range(times.shape[0]):
         outputs(times[j], states[j], p, w, node_pos[j], strain[j], tension[j], scalars[j])
     return OK
+
+
+# ---- implicit integration: coloured finite-difference Newton system ------------------------------
+@njit(**JIT)
+def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+    """Residual and block-tridiagonal matrix of an implicit step (see
+    ``kernels.lumped.newton_system``), in acceleration units (the mass matrix is the identity in
+    these variables), with the Jacobian of the accelerations from coloured finite differences:
+    a node's acceleration depends on its neighbours only, so perturbing every third node at once
+    gives a whole block column per evaluation, 6 B + 1 evaluations per matrix (B variables per
+    node). Blocks are 3x3; with two variables per node the third row and column are the
+    identity. Returns the status of the right-hand side."""
+    n = p.n
+    b = 3 if p.cartesian == 1 else 2
+    nodes = n + 1
+    nq = b * nodes
+    status = rhs(t, y, p, w, ydot)
+    for i in range(nodes):
+        for c in range(9):
+            diag[i, c] = 0.0
+            if i < nodes - 1:
+                upper[i, c] = 0.0
+                lower[i, c] = 0.0
+        for j in range(3):
+            if j < b:
+                res[3 * i + j] = a_alpha[b * i + j] - ydot[nq + b * i + j]
+                diag[i, 4 * j] = cm
+            else:
+                res[3 * i + j] = 0.0
+                diag[i, 4 * j] = 1.0
+    trial = y.copy()
+    perturbed = np.empty_like(y)
+    for part in range(2):
+        coef = cx if part == 0 else cv
+        for colour in range(3):
+            for j in range(b):
+                for i in range(colour, nodes, 3):
+                    k = part * nq + b * i + j
+                    trial[k] = y[k] + 1e-7 * max(1.0, abs(y[k]))
+                status |= rhs(t, trial, p, w, perturbed)
+                for i in range(colour, nodes, 3):
+                    k = part * nq + b * i + j
+                    delta = trial[k] - y[k]
+                    trial[k] = y[k]
+                    for m in range(max(0, i - 1), min(nodes, i + 2)):
+                        for r in range(b):
+                            entry = -coef * (perturbed[nq + b * m + r] - ydot[nq + b * m + r])
+                            entry /= delta
+                            if m == i:
+                                diag[i, 3 * r + j] += entry
+                            elif m == i - 1:
+                                upper[i - 1, 3 * r + j] += entry
+                            else:
+                                lower[i, 3 * r + j] += entry
+    rhs(t, y, p, w, ydot)  # leave the workspace at the unperturbed state
+    return status

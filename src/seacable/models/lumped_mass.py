@@ -302,3 +302,8 @@ def fastest_frequency(system: LumpedSystem) -> tuple[float, str]:
     return float(
         omega[i]
     ), f"axial waves on segment {i} ({p.length[i]:.3g} m, EA {p.axial_stiffness:.3g} N)"
+
+
+def node_block(system: LumpedSystem) -> int:
+    """Variables per node: the stiff integrators' Jacobian is node-neighbour structured."""
+    return 3

@@ -96,6 +96,12 @@ VARIABLES = {
 }
 
 RATE_WHAT = ("node", "strain rate", "1/s", 0)
+NEWTON = True  # the implicit schemes of numerics.implicit serve this model (coloured FD)
+
+
+def shortest_segment(system: NaturalSystem) -> float:
+    """Newton's tolerance is a strain here (the variables are strains and directions)."""
+    return 1.0
 
 
 def sizes(system: NaturalSystem) -> dict:
@@ -141,7 +147,7 @@ def rows(times, states, system: NaturalSystem, w) -> tuple[dict, int]:
 def rates(system: NaturalSystem, y) -> np.ndarray:
     b = nk.block(system.params)
     v0 = b * (system.n_links + 1)
-    return np.abs(y[v0 :: b])
+    return np.abs(y[v0::b])
 
 
 def fastest_frequency(system: NaturalSystem) -> tuple[float, str]:
@@ -149,3 +155,8 @@ def fastest_frequency(system: NaturalSystem) -> tuple[float, str]:
     p = system.params
     omega = 2.0 * p.n / p.length * math.sqrt(p.axial_stiffness / p.mu)
     return omega, f"axial waves on the {p.n}-element grid (EA {p.axial_stiffness:.3g} N)"
+
+
+def node_block(system: NaturalSystem) -> int:
+    """Variables per node: the stiff integrators' Jacobian is node-neighbour structured."""
+    return nk.block(system.params)

@@ -93,6 +93,24 @@ def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res: (
             lumped.newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res)
         )
+    if _is(p, natural.NaturalParams):
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res: (
+            natural.newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res)
+        )
+    return None
+
+
+def model_block(p):
+    """Variables per node of a model with a node-block Newton matrix (compiled code only)."""
+    raise NotImplementedError("model_block is only callable from compiled code")
+
+
+@overload(model_block, jit_options=JIT)
+def _model_block(p):
+    if _is(p, lumped.LumpedParams):
+        return lambda p: 3
+    if _is(p, natural.NaturalParams):
+        return lambda p: 3 if p.cartesian == 1 else 2
     return None
 
 
@@ -100,4 +118,21 @@ def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
 def _model_prescribe(t, y, acc, p):
     if _is(p, lumped.LumpedParams):
         return lambda t, y, acc, p: lumped.prescribe(t, y, acc, p)
+    if _is(p, natural.NaturalParams):
+        return lambda t, y, acc, p: None  # every node is free
+    return None
+
+
+def model_newton_cost(p):
+    """Right-hand-side evaluations in one ``model_newton`` call (compiled code only)."""
+    raise NotImplementedError("model_newton_cost is only callable from compiled code")
+
+
+@overload(model_newton_cost, jit_options=JIT)
+def _model_newton_cost(p):
+    if _is(p, lumped.LumpedParams):
+        return lambda p: 1  # analytic Jacobian
+    if _is(p, natural.NaturalParams):
+        # coloured differences: 3 colours x B variables x (positions, velocities), + 2
+        return lambda p: 6 * (3 if p.cartesian == 1 else 2) + 2
     return None

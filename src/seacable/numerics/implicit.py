@@ -31,7 +31,14 @@ from numba import njit
 
 from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
-from seacable.numerics.dispatch import model_newton, model_prescribe, model_rhs
+from seacable.numerics.dispatch import (
+    model_block,
+    model_newton,
+    model_newton_cost,
+    model_prescribe,
+    model_project,
+    model_rhs,
+)
 
 # coefficient vector layout: pa, b, g, am, af
 SCHEME_SIZE = 5
@@ -162,12 +169,15 @@ MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to thi
 
 
 @njit(**JIT)
-def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper, lower, work):
+def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, work):
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
-    Returns the status (NEWTON_FAILED when Newton's iteration does not converge)."""
+    Returns the status (NEWTON_FAILED when Newton's iteration does not converge). ``da`` and
+    ``res`` hold three entries per node whatever the model's variables per node (the solver's
+    blocks are 3x3)."""
     nq = q.shape[1]
+    b_node = model_block(p)
     y1, ya, ydot = vec[0], vec[1], vec[2]
-    aa, a1, da, res = q[0], q[1], q[2], q[3]
+    aa, a1 = q[0], q[1]
     b, g, am, af = coef[1], coef[2], coef[3], coef[4]
     t1 = t + h
     ta = t + (1.0 - af) * h
@@ -180,7 +190,7 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper, lower, w
             ta, ya, aa, p, w, ydot, 1.0 - am, (1.0 - af) * b * h * h, (1.0 - af) * g * h,
             diag, upper, lower, res,
         )  # fmt: skip
-        work[2] += 1
+        work[2] += model_newton_cost(p)
         work[4] += 1
         if status != OK:
             work[3] += 1
@@ -191,14 +201,16 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper, lower, w
             return NON_FINITE
         largest = 0.0
         for i in range(nq):
-            a1[i] -= da[i]
-            largest = max(largest, abs(da[i]))
+            d = da[3 * (i // b_node) + i % b_node]
+            a1[i] -= d
+            largest = max(largest, abs(d))
         if not math.isfinite(largest):
             work[3] += 1
             return NON_FINITE
         if b * h * h * largest <= tol:
             _stage(y, acc, a1, h, coef, y1, nq)
             model_prescribe(t1, y1, a1, p)
+            model_project(y1, p)
             y[:] = y1
             acc[:] = a1
             work[0] += 1
@@ -221,9 +233,11 @@ def newmark_chunk(
     solves] (one rhs, Jacobian and solve per Newton iteration; accepted counts substeps)."""
     ny = y.shape[0]
     nq = ny // 2
-    nodes = nq // 3
+    nodes = nq // model_block(p)
     vec = np.empty((3, ny))
-    q = np.empty((4, nq))
+    q = np.empty((2, nq))
+    da = np.empty(3 * nodes)
+    res = np.empty(3 * nodes)
     diag = np.empty((nodes, 9))
     upper = np.empty((max(nodes - 1, 1), 9))
     lower = np.empty((max(nodes - 1, 1), 9))
@@ -241,8 +255,8 @@ def newmark_chunk(
                 h = dt / parts
                 for k in range(parts):
                     status = _step(
-                        t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, diag, upper,
-                        lower, work,
+                        t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag,
+                        upper, lower, work,
                     )  # fmt: skip
                     if status != OK:
                         break
