@@ -119,8 +119,10 @@ def test_newton_converges_in_few_iterations_and_counts_its_work():
     _, work = _run(system, "generalized_alpha", 1e-3, 0.2)
     accepted, rejected, rhs, failed, jacobians, solves = work
     assert (accepted, rejected, failed) == (200, 0, 0)
-    assert jacobians == solves == rhs
-    assert rhs <= 3 * accepted  # a linear spring: Newton's first correction is exact
+    # modified Newton: one matrix per step, then residuals only; a linear spring converges at
+    # the first correction, the second confirms it
+    assert jacobians == accepted
+    assert solves == rhs <= 2 * accepted
 
 
 def _mooring(integrator, duration=6.0, **simulation):
@@ -140,8 +142,9 @@ def test_implicit_steps_far_beyond_the_explicit_limit_agree_with_dopri5():
         tension = np.hypot(ds["top_force_x"], ds["top_force_z"]).values
         expected = np.hypot(reference["top_force_x"], reference["top_force_z"]).values
         assert np.max(np.abs(tension / expected - 1)) < 2e-3, integrator
-        assert ds.attrs["solver_jacobian_evaluations"] == ds.attrs["solver_linear_solves"] > 0
-        assert ds.attrs["solver_rhs_evaluations"] <= 3 * ds.attrs["solver_accepted_steps"]
+        attrs = ds.attrs
+        assert 0 < attrs["solver_jacobian_evaluations"] <= attrs["solver_linear_solves"]
+        assert attrs["solver_rhs_evaluations"] <= 3 * attrs["solver_accepted_steps"]
     # the rk4 warning names the axial waves at that step
     omega, what = seacable.simulation.fastest_frequency(
         build_system(seacable.load_case("examples/catenary_mooring_line_surge.yaml"))

@@ -136,17 +136,24 @@ def _segment_forces(t, y, p, w):
         fx = 0.5 * (cn * nx + ct * tx)
         fy = 0.5 * (cn * ny + ct * ty)
         fz = 0.5 * (cn * nz + ct * tz - p.wet_weight[i])
-        for k, sign in ((i, 1.0), (i + 1, -1.0)):
-            w[_F, k] += fx + sign * tension * tx
-            w[_F + 1, k] += fy + sign * tension * ty
-            w[_F + 2, k] += fz + sign * tension * tz
-            ma = 0.5 * p.added_mass[i]
-            w[_MA, k] += ma * (1.0 - tx * tx)
-            w[_MA + 1, k] -= ma * tx * ty
-            w[_MA + 2, k] -= ma * tx * tz
-            w[_MA + 3, k] += ma * (1.0 - ty * ty)
-            w[_MA + 4, k] -= ma * ty * tz
-            w[_MA + 5, k] += ma * (1.0 - tz * tz)
+        # the pull N t on node i, -N t on node i + 1; loads and added mass half and half
+        px, py, pz = tension * tx, tension * ty, tension * tz
+        w[_F, i] += fx + px
+        w[_F + 1, i] += fy + py
+        w[_F + 2, i] += fz + pz
+        w[_F, i + 1] += fx - px
+        w[_F + 1, i + 1] += fy - py
+        w[_F + 2, i + 1] += fz - pz
+        ma = 0.5 * p.added_mass[i]
+        m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
+        m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
+        for k in (i, i + 1):
+            w[_MA, k] += m00
+            w[_MA + 1, k] += m01
+            w[_MA + 2, k] += m02
+            w[_MA + 3, k] += m11
+            w[_MA + 4, k] += m12
+            w[_MA + 5, k] += m22
 
 
 @njit(**JIT)
@@ -411,30 +418,11 @@ def _seabed_jacobian(y, v0, k, seabed_z, stiff, damp, slip, mu, cx, cv, diag):
 
 
 @njit(**JIT)
-def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
-    """Residual and matrix of an implicit step's Newton iteration, in force units, per node.
-
-    ``y`` is the state where the forces are evaluated, ``a_alpha`` the accelerations the scheme
-    asks for. ``res[k] = M_k (a_alpha_k - a_k(t, y))`` and the block-tridiagonal matrix is
-    ``cm M - cx dF/dx - cv dF/dv`` (``diag`` (n+1, 9); ``upper[k]`` couples node k to k+1 and
-    ``lower[k]`` node k+1 to k, (n, 9) each). Nodes the model prescribes (the top, a pin) get an
-    identity row and a zero residual. The added mass's dependence on the tangent is left out of
-    the matrix (a quasi-Newton iteration). Returns the kernel status of the right-hand side.
-    """
+def _jacobian(y, p, cx, cv, diag, upper, lower):
+    """Add -cx dF/dx - cv dF/dv of the segments, the seabed and the end body's drag."""
     n = p.n
     v0 = 3 * (n + 1)
-    status = rhs(t, y, p, w, ydot)
     g = np.empty((3, 9))
-    no_body = np.zeros(3)
-    for k in range(n + 1):
-        _node_mass_into(p.node_mass[k], p.body_mass if k == n else no_body, w, k, diag[k])
-        for r in range(3):
-            acc = 0.0
-            for c in range(3):
-                acc += diag[k, 3 * r + c] * (a_alpha[3 * k + c] - ydot[v0 + 3 * k + c])
-            res[3 * k + r] = acc
-        for c in range(9):
-            diag[k, c] *= cm
     for i in range(n):
         _segment_jacobians(
             y, v0, i, p.length[i], p.axial_stiffness, p.axial_damping, p.slack_allowed,
@@ -466,6 +454,42 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 if a == b:
                     term += speed
                 diag[n, 3 * a + b] += cv * p.body_drag[a] * term
+
+
+@njit(**JIT)
+def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix=True):
+    """Residual and matrix of an implicit step's Newton iteration, in force units, per node.
+
+    ``y`` is the state where the forces are evaluated, ``a_alpha`` the accelerations the scheme
+    asks for. ``res[k] = M_k (a_alpha_k - a_k(t, y))`` and the block-tridiagonal matrix is
+    ``cm M - cx dF/dx - cv dF/dv`` (``diag`` (n+1, 9); ``upper[k]`` couples node k to k+1 and
+    ``lower[k]`` node k+1 to k, (n, 9) each). Nodes the model prescribes (the top, a pin) get an
+    identity row and a zero residual. The added mass's dependence on the tangent is left out of
+    the matrix (a quasi-Newton iteration). With ``matrix`` False only the residual is formed.
+    Returns the kernel status of the right-hand side.
+    """
+    n = p.n
+    v0 = 3 * (n + 1)
+    status = rhs(t, y, p, w, ydot)
+    no_body = np.zeros(3)
+    mass = np.empty(9)  # not diag: without ``matrix`` it holds the caller's factors
+    for k in range(n + 1):
+        _node_mass_into(p.node_mass[k], p.body_mass if k == n else no_body, w, k, mass)
+        for r in range(3):
+            acc = 0.0
+            for c in range(3):
+                acc += mass[3 * r + c] * (a_alpha[3 * k + c] - ydot[v0 + 3 * k + c])
+            res[3 * k + r] = acc
+        if matrix:
+            for c in range(9):
+                diag[k, c] = cm * mass[c]
+    if not matrix:
+        for c in range(3):
+            res[c] = 0.0  # the top is prescribed
+            if p.bottom_kind == BOTTOM_PINNED:
+                res[3 * n + c] = 0.0
+        return status
+    _jacobian(y, p, cx, cv, diag, upper, lower)
     _prescribed_rows(p, diag, upper, lower, res, 0)
     if p.bottom_kind == BOTTOM_PINNED:
         _prescribed_rows(p, diag, upper, lower, res, n)

@@ -215,32 +215,13 @@ def outputs_chunk(times, states, p, w, node_pos, strain, tension, scalars):
 
 # ---- implicit integration: coloured finite-difference Newton system ------------------------------
 @njit(**JIT)
-def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
-    """Residual and block-tridiagonal matrix of an implicit step (see
-    ``kernels.lumped.newton_system``), in acceleration units (the mass matrix is the identity in
-    these variables), with the Jacobian of the accelerations from coloured finite differences:
-    a node's acceleration depends on its neighbours only, so perturbing every third node at once
-    gives a whole block column per evaluation, 6 B + 1 evaluations per matrix (B variables per
-    node). Blocks are 3x3; with two variables per node the third row and column are the
-    identity. Returns the status of the right-hand side."""
+def _fd_jacobian(t, y, p, w, ydot, cx, cv, diag, upper, lower):
+    """Add -cx da/dx - cv da/dv by coloured differences (every third node at once)."""
     n = p.n
     b = 3 if p.cartesian == 1 else 2
     nodes = n + 1
     nq = b * nodes
-    status = rhs(t, y, p, w, ydot)
-    for i in range(nodes):
-        for c in range(9):
-            diag[i, c] = 0.0
-            if i < nodes - 1:
-                upper[i, c] = 0.0
-                lower[i, c] = 0.0
-        for j in range(3):
-            if j < b:
-                res[3 * i + j] = a_alpha[b * i + j] - ydot[nq + b * i + j]
-                diag[i, 4 * j] = cm
-            else:
-                res[3 * i + j] = 0.0
-                diag[i, 4 * j] = 1.0
+    status = OK
     trial = y.copy()
     perturbed = np.empty_like(y)
     for part in range(2):
@@ -265,5 +246,38 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                                 upper[i - 1, 3 * r + j] += entry
                             else:
                                 lower[i, 3 * r + j] += entry
+    return status
+
+
+@njit(**JIT)
+def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix=True):
+    """Residual and block-tridiagonal matrix of an implicit step (see
+    ``kernels.lumped.newton_system``), in acceleration units (the mass matrix is the identity in
+    these variables), with the Jacobian of the accelerations from coloured finite differences:
+    a node's acceleration depends on its neighbours only, so perturbing every third node at once
+    gives a whole block column per evaluation, 6 B + 1 evaluations per matrix (B variables per
+    node). Blocks are 3x3; with two variables per node the third row and column are the
+    identity. With ``matrix`` False only the residual is formed. Returns the status of the
+    right-hand side."""
+    n = p.n
+    b = 3 if p.cartesian == 1 else 2
+    nodes = n + 1
+    nq = b * nodes
+    status = rhs(t, y, p, w, ydot)
+    for i in range(nodes):
+        for j in range(3):
+            inside = j < b
+            res[3 * i + j] = a_alpha[b * i + j] - ydot[nq + b * i + j] if inside else 0.0
+    if not matrix:
+        return status  # diag, upper and lower hold the caller's factors
+    for i in range(nodes):
+        for c in range(9):
+            diag[i, c] = 0.0
+            if i < nodes - 1:
+                upper[i, c] = 0.0
+                lower[i, c] = 0.0
+        for j in range(3):
+            diag[i, 4 * j] = cm if j < b else 1.0
+    status |= _fd_jacobian(t, y, p, w, ydot, cx, cv, diag, upper, lower)
     rhs(t, y, p, w, ydot)  # leave the workspace at the unperturbed state
     return status

@@ -75,7 +75,7 @@ def _model_projects(p):
     return None
 
 
-def model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+def model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix):
     """Residual and block-tridiagonal matrix of an implicit step's Newton iteration (compiled
     code only; second-order models with node blocks, see ``kernels.lumped.newton_system``)."""
     raise NotImplementedError("model_newton is only callable from compiled code")
@@ -88,14 +88,18 @@ def model_prescribe(t, y, acc, p):
 
 
 @overload(model_newton, jit_options=JIT)
-def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res):
+def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix):
     if _is(p, lumped.LumpedParams):
-        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res: (
-            lumped.newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res)
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
+            lumped.newton_system(
+                t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
+            )
         )
     if _is(p, natural.NaturalParams):
-        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res: (
-            natural.newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res)
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
+            natural.newton_system(
+                t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
+            )
         )
     return None
 

@@ -19,9 +19,10 @@ The theta-method with theta = 1/2 (the trapezoidal rule) and Newmark's average a
 (beta = 1/4, gamma = 1/2) are the same scheme here.
 
 Newton's iterations solve for ``a1`` with the model's block-tridiagonal matrix
-``(1 - am) M - (1 - af) (b h^2 dF/dx + g h dF/dv)``, factorised by block Thomas elimination:
-O(n) per iteration. The integrator follows the contract of ``numerics.integrators``; its work
-counters add Newton iterations (one matrix and one linear solve each) to the four there.
+``(1 - am) M - (1 - af) (b h^2 dF/dx + g h dF/dv)``, factorised by block Thomas elimination
+(O(n)) at the first iteration of a step and reused by the next ones (modified Newton). The
+integrator follows the contract of ``numerics.integrators``; its work counters add Jacobian
+evaluations (matrices built and factorised) and linear solves (Newton iterations).
 """
 
 import math
@@ -91,35 +92,41 @@ def _matmul3(a, b, out):
 
 
 @njit(**JIT)
-def block_tridiagonal_solve(diag, upper, lower, rhs, x):
-    """Solve the block-tridiagonal system with 3x3 blocks (row-major, 9 values each):
-    ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k). Block
-    Thomas elimination, O(n); ``diag`` is overwritten with the inverted pivots. Returns False
-    when a pivot is singular."""
+def block_tridiagonal_factor(diag, upper, lower, factor):
+    """Block LU (Thomas) of the block-tridiagonal matrix with 3x3 blocks (row-major, 9 values
+    each): ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k).
+    Overwrites ``diag`` with the inverted pivots and fills ``factor[k - 1] = lower[k - 1]
+    pivot[k - 1]^-1``; O(n). Returns False when a pivot is singular."""
     m = diag.shape[0]
     inv = np.empty(9)
-    factor = np.empty(9)
     tmp = np.empty(9)
     for k in range(m):
-        for c in range(3):
-            x[3 * k + c] = rhs[3 * k + c]
-    for k in range(m):
         if k > 0:
-            # factor = lower[k-1] diag[k-1]^-1 (stored inverted); diag[k] -= factor upper[k-1]
-            _matmul3(lower[k - 1], diag[k - 1], factor)
-            _matmul3(factor, upper[k - 1], tmp)
+            _matmul3(lower[k - 1], diag[k - 1], factor[k - 1])
+            _matmul3(factor[k - 1], upper[k - 1], tmp)
             for c in range(9):
                 diag[k, c] -= tmp[c]
-            for r in range(3):
-                x[3 * k + r] -= (
-                    factor[3 * r] * x[3 * k - 3]
-                    + factor[3 * r + 1] * x[3 * k - 2]
-                    + factor[3 * r + 2] * x[3 * k - 1]
-                )
         if _inverse3(diag[k], inv) == 0.0:
             return False
         for c in range(9):
             diag[k, c] = inv[c]
+    return True
+
+
+@njit(**JIT)
+def block_tridiagonal_apply(diag, upper, factor, rhs, x):
+    """Solve with the factors of ``block_tridiagonal_factor`` (forward, then back
+    substitution); O(n)."""
+    m = diag.shape[0]
+    for k in range(m):
+        r0, r1, r2 = rhs[3 * k], rhs[3 * k + 1], rhs[3 * k + 2]
+        if k > 0:
+            f = factor[k - 1]
+            p0, p1, p2 = x[3 * k - 3], x[3 * k - 2], x[3 * k - 1]
+            r0 -= f[0] * p0 + f[1] * p1 + f[2] * p2
+            r1 -= f[3] * p0 + f[4] * p1 + f[5] * p2
+            r2 -= f[6] * p0 + f[7] * p1 + f[8] * p2
+        x[3 * k], x[3 * k + 1], x[3 * k + 2] = r0, r1, r2
     for k in range(m - 1, -1, -1):
         r0, r1, r2 = x[3 * k], x[3 * k + 1], x[3 * k + 2]
         if k < m - 1:
@@ -132,6 +139,16 @@ def block_tridiagonal_solve(diag, upper, lower, rhs, x):
         x[3 * k] = d[0] * r0 + d[1] * r1 + d[2] * r2
         x[3 * k + 1] = d[3] * r0 + d[4] * r1 + d[5] * r2
         x[3 * k + 2] = d[6] * r0 + d[7] * r1 + d[8] * r2
+
+
+@njit(**JIT)
+def block_tridiagonal_solve(diag, upper, lower, rhs, x):
+    """Solve the block-tridiagonal system (see ``block_tridiagonal_factor``; ``diag`` is
+    overwritten). Returns False when a pivot is singular."""
+    factor = np.empty((max(diag.shape[0] - 1, 1), 9))
+    if not block_tridiagonal_factor(diag, upper, lower, factor):
+        return False
+    block_tridiagonal_apply(diag, upper, factor, rhs, x)
     return True
 
 
@@ -168,12 +185,20 @@ def _alpha_point(y0, y1, a0, a1, coef, ya, aa, nq):
 MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
 
 
+REFRESH = 3  # modified Newton: the matrix is rebuilt and refactorised every REFRESH iterations
+
+
 @njit(**JIT)
-def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, work):
+def _step(
+    t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, factor, work
+):
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
-    Returns the status (NEWTON_FAILED when Newton's iteration does not converge). ``da`` and
-    ``res`` hold three entries per node whatever the model's variables per node (the solver's
-    blocks are 3x3)."""
+    Returns the status (NEWTON_FAILED when Newton's iteration does not converge).
+
+    A modified Newton iteration: the matrix is built and factorised at the first iteration
+    (and every REFRESH), the later ones only evaluate the residual and reuse the factors.
+    ``da`` and ``res`` hold three entries per node whatever the model's variables per node
+    (the solver's blocks are 3x3)."""
     nq = q.shape[1]
     b_node = model_block(p)
     y1, ya, ydot = vec[0], vec[1], vec[2]
@@ -182,23 +207,26 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper,
     t1 = t + h
     ta = t + (1.0 - af) * h
     a1[:] = acc  # predictor: the last acceleration
-    for _it in range(max_iter):
+    for it in range(max_iter):
         _stage(y, acc, a1, h, coef, y1, nq)
         model_prescribe(t1, y1, a1, p)
         _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
+        matrix = it % REFRESH == 0
         status = model_newton(
             ta, ya, aa, p, w, ydot, 1.0 - am, (1.0 - af) * b * h * h, (1.0 - af) * g * h,
-            diag, upper, lower, res,
+            diag, upper, lower, res, matrix,
         )  # fmt: skip
-        work[2] += model_newton_cost(p)
-        work[4] += 1
+        work[2] += model_newton_cost(p) if matrix else 1
         if status != OK:
             work[3] += 1
             return status
+        if matrix:
+            work[4] += 1
+            if not block_tridiagonal_factor(diag, upper, lower, factor):
+                work[3] += 1
+                return NON_FINITE
         work[5] += 1
-        if not block_tridiagonal_solve(diag, upper, lower, res, da):
-            work[3] += 1
-            return NON_FINITE
+        block_tridiagonal_apply(diag, upper, factor, res, da)
         largest = 0.0
         for i in range(nq):
             d = da[3 * (i // b_node) + i % b_node]
@@ -230,7 +258,8 @@ def newmark_chunk(
     friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS equal
     parts, each retry counted as a rejected step. Returns (completed, status); ``work`` gets
     [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations, linear
-    solves] (one rhs, Jacobian and solve per Newton iteration; accepted counts substeps)."""
+    solves] (a Jacobian costs one rhs when analytic, more with finite differences; accepted
+    counts substeps)."""
     ny = y.shape[0]
     nq = ny // 2
     nodes = nq // model_block(p)
@@ -241,6 +270,7 @@ def newmark_chunk(
     diag = np.empty((nodes, 9))
     upper = np.empty((max(nodes - 1, 1), 9))
     lower = np.empty((max(nodes - 1, 1), 9))
+    factor = np.empty((max(nodes - 1, 1), 9))
     y_saved = np.empty(ny)
     acc_saved = np.empty(nq)
     step = 0
@@ -256,7 +286,7 @@ def newmark_chunk(
                 for k in range(parts):
                     status = _step(
                         t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag,
-                        upper, lower, work,
+                        upper, lower, factor, work,
                     )  # fmt: skip
                     if status != OK:
                         break
