@@ -4,7 +4,8 @@
 the seabed 100 m from the fairlead, about 40 m of it lying on the seabed; the fairlead, 10 m
 below the surface, surges 5 - 5 cos(2 pi t / 12) m. Both codes run in this process, with the same
 line properties, axial damping (BA = EA x 0.002 s), drag and added-mass coefficients and seabed
-spring-damper (MoorDyn's defaults), and no seabed friction (MoorDyn's default). For 20, 40, 80 and 160 segments:
+spring-damper (MoorDyn's defaults), and no seabed friction (MoorDyn's default). For 20, 40, 80
+and 160 segments:
 
 * MoorDyn (its default RK2 scheme) runs at the largest step of a halving ladder at which it stays
   stable over 12 s (no error, finite and bounded tension);
