@@ -58,6 +58,8 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
         return _plot_star(ds, path, every)
     if "node_y" in ds:
         return _plot_3d(ds, path, every)
+    if "strain" in ds:
+        return _plot_string(ds, path, every)
     plt = _pyplot()
     fig, axes = plt.subplots(2, 3, figsize=(18, 9), constrained_layout=True)
     _draw_snapshots(axes[0, 0], ds, every, plt)
@@ -79,6 +81,27 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
         ax.plot(t, ds[name].values, label=name)
     _finish(ax, "force of the cable on its attachments", "[N]")
     _draw_energy(axes[1, 2], ds)
+    return _save(fig, ds, path, plt)
+
+
+def _plot_string(ds: xr.Dataset, path, every: float | None) -> Path:
+    """Natural-variables string: snapshots, the end mass's path, strain and energy."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
+    _draw_snapshots(axes[0, 0], ds, every, plt)
+    ax = axes[0, 1]
+    ax.plot(ds["end_x"].values, ds["end_z"].values, "k-", lw=1.0)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_title("path of the end mass")
+    ax = axes[1, 0]
+    t = ds["time"].values
+    strain = ds["strain"].values
+    for label, j in (("pivot", 0), ("middle", strain.shape[1] // 2), ("end mass", -1)):
+        ax.plot(t, strain[:, j], label=label)
+    _finish(ax, "axial strain", "[-]")
+    _draw_energy(axes[1, 1], ds)
     return _save(fig, ds, path, plt)
 
 

@@ -1,0 +1,111 @@
+"""Poth's string pendulum in natural variables: the (eps, phi) and (eps, t) parametrisations
+agree, they agree with the displacement form (lumped mass) as the grid is refined, the stiff
+integrators agree with the compiled ones, and the model refuses what it does not describe."""
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.errors import CaseError
+
+
+def _pendulum(model="natural_string", tangent="angle", k=20, ea=1e5, **simulation):
+    cable = {
+        "model": model,
+        "links": k,
+        "length": 10.0,
+        "diameter": 0.01,
+        "mass_per_length": 1.0,
+        "axial_stiffness": ea,
+        "axial_damping_time": 1e-3,
+        "top": {"type": "fixed"},
+        "bottom": {"type": "free", "body": {"mass": 10.0}},
+        "initial": {"shape": "arc", "top_angle_deg": 90.0, "bottom_angle_deg": 90.0},
+    }
+    if model == "natural_string":
+        cable["tangent"] = tangent
+    sim = {"duration": 1.0, "output_interval": 0.1, "integrator": "dopri5", "rtol": 1e-9}
+    sim["atol"] = 1e-9
+    sim.update(simulation)
+    return seacable.load_case(
+        {"environment": {"in_air": True}, "cables": [cable], "simulation": sim}
+    )
+
+
+def _end(ds):
+    return np.array([ds["node_x"].values[-1, -1], ds["node_z"].values[-1, -1]])
+
+
+def test_angle_and_cartesian_tangents_give_the_same_motion():
+    angle = seacable.simulate(_pendulum(tangent="angle")).dataset
+    cartesian = seacable.simulate(_pendulum(tangent="cartesian")).dataset
+    assert np.max(np.abs(angle["node_x"].values - cartesian["node_x"].values)) < 1e-6
+    np.testing.assert_allclose(angle["tension"], cartesian["tension"], rtol=1e-5, atol=1e-3)
+    assert np.allclose(_end(angle), angle[["end_x", "end_z"]].to_array().values[:, -1])
+
+
+def test_natural_and_displacement_forms_converge_to_each_other():
+    """The two space discretisations differ at O(1/k^2): the gap of the end mass shrinks about
+    fourfold per doubling of k."""
+    gaps = []
+    for k in (10, 20, 40):
+        natural = _end(seacable.simulate(_pendulum(k=k)).dataset)
+        displacement = _end(seacable.simulate(_pendulum(model="lumped_mass", k=k)).dataset)
+        gaps.append(float(np.linalg.norm(natural - displacement)))
+    rates = np.log2(np.array(gaps[:-1]) / np.array(gaps[1:]))
+    assert gaps[-1] < 5e-3, gaps
+    assert np.all(rates > 1.6), (gaps, rates)
+
+
+def test_the_string_falls_like_a_pendulum_at_first():
+    """Released horizontal, the whole string first falls freely: the end mass drops g t^2 / 2
+    while the string is slack."""
+    ds = seacable.simulate(_pendulum(duration=0.1, output_interval=0.05)).dataset
+    drop = ds["end_z"].values[1]
+    assert abs(drop + 0.5 * 9.81 * 0.05**2) < 1e-3
+
+
+@pytest.mark.parametrize("integrator", ["cvode", "bdf", "radau", "lsoda"])
+def test_stiff_integrators_agree_with_dopri5(integrator):
+    reference = _end(seacable.simulate(_pendulum(ea=1e6)).dataset)
+    ds = seacable.simulate(_pendulum(ea=1e6, integrator=integrator, rtol=1e-8, atol=1e-8)).dataset
+    assert np.linalg.norm(_end(ds) - reference) < 1e-4
+    assert ds.attrs["solver_rhs_evaluations"] > 0
+    assert ds.attrs["solver_jacobian_evaluations"] > 0
+
+
+@pytest.mark.parametrize("integrator", ["newmark", "generalized_alpha"])
+@pytest.mark.parametrize("tangent", ["angle", "cartesian"])
+def test_fixed_step_schemes_on_natural_variables(integrator, tangent):
+    """Second order in time through the coloured finite-difference Newton matrix."""
+    reference = _end(seacable.simulate(_pendulum(tangent=tangent)).dataset)
+    errors = []
+    for dt in (0.01, 0.005, 0.0025):
+        ds = seacable.simulate(
+            _pendulum(tangent=tangent, integrator=integrator, time_step=dt, newton_tolerance=1e-10)
+        ).dataset
+        errors.append(float(np.linalg.norm(_end(ds) - reference)))
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(rates > 1.6), (errors, rates)
+
+
+def test_energy_decreases_with_damping_and_is_nearly_kept_without():
+    damped = seacable.simulate(_pendulum()).dataset["total_energy"].values
+    assert damped[-1] < damped[0]
+    case = _pendulum(ea=1e4)
+    data = case.model_dump(mode="json", exclude_unset=True)
+    data["cables"][0]["axial_damping_time"] = 0.0
+    energy = seacable.simulate(seacable.load_case(data)).dataset["total_energy"].values
+    swing = 10.0 * 9.81 * 10.0  # the end mass falls about its string's length
+    assert np.max(np.abs(energy - energy[0])) < 0.02 * swing
+
+
+def test_natural_string_refuses_water_and_a_missing_end_mass():
+    data = _pendulum().model_dump(mode="json", exclude_unset=True)
+    data["environment"]["in_air"] = False
+    with pytest.raises(CaseError, match="in air"):
+        seacable.simulate(seacable.load_case(data))
+    data = _pendulum().model_dump(mode="json", exclude_unset=True)
+    data["cables"][0]["bottom"] = {"type": "free"}
+    with pytest.raises(CaseError, match="end mass"):
+        seacable.simulate(seacable.load_case(data))
