@@ -163,3 +163,40 @@ def test_lumped_model_needs_axial_stiffness():
     }
     with pytest.raises(seacable.CaseError, match=r"axial_stiffness: a lumped-mass cable needs EA"):
         seacable.simulate(seacable.load_case(data))
+
+
+def test_clump_weight_adds_its_weight_to_the_tension_above_it():
+    """A vertical line in air settles (strong axial damping) with a 5 kg clump weight at node 5:
+    the tension steps by the clump's weight plus one segment's across it, and every segment
+    carries what hangs below it."""
+    g, mu, body, clump = 9.81, 1.0, 10.0, 5.0
+    case = seacable.load_case(
+        {
+            "environment": {"in_air": True, "gravity": g},
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": 10,
+                    "length": 10.0,
+                    "diameter": 0.01,
+                    "mass_per_length": mu,
+                    "axial_stiffness": 1e5,
+                    "axial_damping_time": 0.05,
+                    "point_bodies": [{"node": 5, "mass": clump}],
+                    "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": body}},
+                    "initial": {"shape": "arc", "top_angle_deg": 0.0},
+                }
+            ],
+            "simulation": {
+                "duration": 3.0,
+                "output_interval": 0.5,
+                "integrator": "generalized_alpha",
+                "time_step": 0.005,
+            },  # fmt: skip
+        }
+    )
+    tension = seacable.simulate(case).dataset["tension"].values[-1]
+    # each segment carries the nodes below its centre: the body, the half segments and clump
+    expected = g * (body + mu * (9 - np.arange(10)) + 0.5 * mu + clump * (np.arange(10) < 5))
+    assert np.allclose(tension, expected, rtol=1e-4), (tension, expected)

@@ -76,6 +76,9 @@ class LumpedParams(NamedTuple):
     track_radius: float
     bottom_kind: int
     body_mass: np.ndarray  # (3,) [kg]
+    point_mass: np.ndarray  # (n+1, 3) floats and clump weights (+ added mass) per node [kg]
+    point_weight: np.ndarray  # (n+1,) their apparent weight, positive down [N]
+    point_drag: np.ndarray  # (n+1,) their 0.5 rho Cd A (sphere) [N s^2/m^2]
     body_wet_weight: float
     body_drag: np.ndarray  # (3,)
     pin: np.ndarray  # (3,)
@@ -176,6 +179,25 @@ def _seabed(y, p, w):
 
 
 @njit(**JIT)
+def _point_forces(y, p, w):
+    """Apparent weight and sphere drag of the floats and clump weights."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    for k in range(n + 1):
+        weight, drag = p.point_weight[k], p.point_drag[k]
+        if weight == 0.0 and drag == 0.0:
+            continue
+        w[_F + 2, k] -= weight
+        if drag > 0.0:
+            cu, cv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * k + 2])
+            rx, ry, rz = y[v0 + 3 * k] - cu, y[v0 + 3 * k + 1] - cv, y[v0 + 3 * k + 2]
+            c = drag * math.sqrt(rx * rx + ry * ry + rz * rz)
+            w[_F, k] -= c * rx
+            w[_F + 1, k] -= c * ry
+            w[_F + 2, k] -= c * rz
+
+
+@njit(**JIT)
 def _body_force(t, y, p, w):
     n = p.n
     v0 = 3 * (n + 1)
@@ -194,7 +216,7 @@ def _body_force(t, y, p, w):
 def _node_mass(p, w, k):
     """The 3x3 mass matrix of node k, row-major."""
     a = np.empty(9)
-    _node_mass_into(p.node_mass[k], p.body_mass if k == p.n else np.zeros(3), w, k, a)
+    _node_mass_into(p.node_mass[k], p.point_mass[k], w, k, a)
     return a
 
 
@@ -245,11 +267,11 @@ def rhs(t, y, p, w, ydot):
     v0 = 3 * (n + 1)
     _segment_forces(t, y, p, w)
     _seabed(y, p, w)
+    _point_forces(y, p, w)
     if p.bottom_kind == BOTTOM_FREE:
         _body_force(t, y, p, w)
     pos, vel, acc = c3.top_motion(t, y, p)
     status = c3.OK
-    no_body = np.zeros(3)
     for k in range(n + 1):
         for c in range(3):
             ydot[3 * k + c] = y[v0 + 3 * k + c]
@@ -263,8 +285,7 @@ def rhs(t, y, p, w, ydot):
                 ydot[3 * k + c] = 0.0
                 ydot[v0 + 3 * k + c] = 0.0
             continue
-        body = p.body_mass if k == n else no_body
-        ax, ay, az, ok = _node_acceleration(p.node_mass[k], body, w, k)
+        ax, ay, az, ok = _node_acceleration(p.node_mass[k], p.point_mass[k], w, k)
         if not ok:
             status = c3.NON_FINITE
         ydot[v0 + 3 * k] = ax
@@ -321,6 +342,8 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
             elastic += 0.5 * p.axial_stiffness * p.length[i] * strain * strain
     if p.bottom_kind == BOTTOM_FREE:
         gravity += p.body_wet_weight * y[3 * n + 2]
+    for k in range(n + 1):
+        gravity += p.point_weight[k] * y[3 * k + 2]
     scalars[6] = kinetic
     scalars[7] = gravity
     scalars[8] = elastic
@@ -418,6 +441,20 @@ def _seabed_jacobian(y, v0, k, seabed_z, stiff, damp, slip, mu, cx, cv, diag):
 
 
 @njit(**JIT)
+def _sphere_drag_jacobian(y, v0, k, drag, cz, cu_, cv_, cv, diag):
+    """diag[k] += cv d(drag |r| r)/dr of a point body's sphere drag."""
+    cu, cvv = c3._current(cz, cu_, cv_, y[3 * k + 2])
+    r = (y[v0 + 3 * k] - cu, y[v0 + 3 * k + 1] - cvv, y[v0 + 3 * k + 2])
+    speed = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+    if speed == 0.0:
+        return
+    for a in range(3):
+        for b in range(3):
+            term = r[a] * r[b] / speed + (speed if a == b else 0.0)
+            diag[k, 3 * a + b] += cv * drag * term
+
+
+@njit(**JIT)
 def _jacobian(y, p, cx, cv, diag, upper, lower):
     """Add -cx dF/dx - cv dF/dv of the segments, the seabed and the end body's drag."""
     n = p.n
@@ -444,6 +481,10 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
             y, v0, k, p.seabed_z, p.seabed_stiffness[k], p.seabed_damping[k],
             p.seabed_slip_speed, p.seabed_friction, cx, cv, diag,
         )  # fmt: skip
+    for k in range(n + 1):
+        if p.point_drag[k] > 0.0:
+            _sphere_drag_jacobian(y, v0, k, p.point_drag[k], p.current_z, p.current_u,
+                                  p.current_v, cv, diag)  # fmt: skip
     if p.bottom_kind == BOTTOM_FREE:
         cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
         r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])
@@ -471,10 +512,9 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     n = p.n
     v0 = 3 * (n + 1)
     status = rhs(t, y, p, w, ydot)
-    no_body = np.zeros(3)
     mass = np.empty(9)  # not diag: without ``matrix`` it holds the caller's factors
     for k in range(n + 1):
-        _node_mass_into(p.node_mass[k], p.body_mass if k == n else no_body, w, k, mass)
+        _node_mass_into(p.node_mass[k], p.point_mass[k], w, k, mass)
         for r in range(3):
             acc = 0.0
             for c in range(3):

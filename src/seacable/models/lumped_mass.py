@@ -46,8 +46,6 @@ def _check(cable: schema.Cable) -> None:
             f"{where}.bottom: a lumped-mass cable takes a free end (with a body, no ties) or a "
             "pinned end for now"
         )
-    if cable.point_bodies:
-        raise CaseError(f"{where}.point_bodies: not supported by the lumped-mass model yet")
     if cable.joint_stiffness or cable.bending_stiffness:
         raise CaseError(f"{where}: bending stiffness is not in the lumped-mass model yet")
     if cable.initial.shape == "static":
@@ -88,6 +86,8 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
         [*channels[:4], *body_channels, channels[4], zero, zero, zero]
     )
     current_z, current_u, current_v = current_arrays(env)
+    point_mass, point_weight, point_drag = seg._point_bodies(cable, env, n)
+    point_mass[n] += bottom_fields["body_mass"]
     params = typed(
         lk.LumpedParams,
         dict(
@@ -118,6 +118,9 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             track_radius=top_fields["track_radius"],
             bottom_kind=bottom_kind,
             pin=np.zeros(3),
+            point_mass=point_mass,
+            point_weight=point_weight,
+            point_drag=point_drag,
             tf_breaks=breaks,
             tf_coefs=coefs,
             tf_count=count,
