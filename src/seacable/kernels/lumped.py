@@ -42,7 +42,8 @@ _F = 0  # 3 rows: force on each node (without inertia)
 _MA = 3  # 6 rows: symmetric added-mass matrix of each node (11, 12, 13, 22, 23, 33)
 _T = 9  # segment tension
 _TX = 10  # 3 rows: unit tangent of each segment
-N_WORK_ROWS = 13
+_L = 13  # stretched length of each segment
+N_WORK_ROWS = 14
 
 
 class LumpedParams(NamedTuple):
@@ -79,6 +80,7 @@ class LumpedParams(NamedTuple):
     point_mass: np.ndarray  # (n+1, 3) floats and clump weights (+ added mass) per node [kg]
     point_weight: np.ndarray  # (n+1,) their apparent weight, positive down [N]
     point_drag: np.ndarray  # (n+1,) their 0.5 rho Cd A (sphere) [N s^2/m^2]
+    bend_stiffness: np.ndarray  # (n+1,) EI / mean span at interior nodes, 0 at the ends [N m]
     body_wet_weight: float
     body_drag: np.ndarray  # (3,)
     pin: np.ndarray  # (3,)
@@ -125,6 +127,7 @@ def _segment_forces(t, y, p, w):
             tension = 0.0
         w[_T, i] = tension
         w[_TX, i], w[_TX + 1, i], w[_TX + 2, i] = tx, ty, tz
+        w[_L, i] = length
         # loads at the segment centre on the relative velocity
         zc = 0.5 * (y[a + 2] + y[b + 2])
         cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
@@ -176,6 +179,44 @@ def _seabed(y, p, w):
         speed = math.sqrt(vx * vx + vy * vy + p.seabed_slip_speed**2)
         w[_F, k] -= p.seabed_friction * normal * vx / speed
         w[_F + 1, k] -= p.seabed_friction * normal * vy / speed
+
+
+@njit(**JIT)
+def _bend_angle(w, i):
+    """Angle phi between the tangents of segments i - 1 and i, and phi / sin(phi)."""
+    ax, ay, az = w[_TX, i - 1], w[_TX + 1, i - 1], w[_TX + 2, i - 1]
+    bx, by, bz = w[_TX, i], w[_TX + 1, i], w[_TX + 2, i]
+    cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+    sine = math.sqrt(cx * cx + cy * cy + cz * cz)
+    cosine = ax * bx + ay * by + az * bz
+    phi = math.atan2(sine, cosine)
+    ratio = phi / sine if sine > 1e-12 else 1.0
+    return phi, ratio, cosine
+
+
+@njit(**JIT)
+def _bending(n, stiffness, w):
+    """Bending moment k phi at each interior node, from V = k phi^2 / 2 with phi the angle
+    between the two segments' tangents: the forces are -k phi dphi/dr on the three nodes,
+    dphi/d(d_a) = -u_a / L_a with u_a the unit normal to t_a towards t_b (and the same for b)."""
+    for i in range(1, n):
+        k = stiffness[i]
+        if k == 0.0:
+            continue
+        phi, ratio, cosine = _bend_angle(w, i)
+        if phi == 0.0:
+            continue
+        la, lb = w[_L, i - 1], w[_L, i]
+        for c in range(3):
+            ta, tb = w[_TX + c, i - 1], w[_TX + c, i]
+            # k phi u_a = k (phi / sin) (t_b - cos t_a)
+            ua = k * ratio * (tb - cosine * ta)
+            ub = k * ratio * (ta - cosine * tb)
+            fa = -ua / la  # on node i - 1
+            fb = ub / lb  # on node i + 1
+            w[_F + c, i - 1] += fa
+            w[_F + c, i + 1] += fb
+            w[_F + c, i] -= fa + fb
 
 
 @njit(**JIT)
@@ -266,6 +307,7 @@ def rhs(t, y, p, w, ydot):
     n = p.n
     v0 = 3 * (n + 1)
     _segment_forces(t, y, p, w)
+    _bending(p.n, p.bend_stiffness, w)
     _seabed(y, p, w)
     _point_forces(y, p, w)
     if p.bottom_kind == BOTTOM_FREE:
@@ -344,6 +386,10 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
         gravity += p.body_wet_weight * y[3 * n + 2]
     for k in range(n + 1):
         gravity += p.point_weight[k] * y[3 * k + 2]
+    for k in range(1, n):
+        if p.bend_stiffness[k] > 0.0:
+            phi, _, _ = _bend_angle(w, k)
+            elastic += 0.5 * p.bend_stiffness[k] * phi * phi
     scalars[6] = kinetic
     scalars[7] = gravity
     scalars[8] = elastic

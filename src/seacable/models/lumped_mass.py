@@ -16,6 +16,7 @@ from seacable.models import timefunctions as tfn
 from seacable.models.common import (
     add_total_energy,
     current_arrays,
+    joint_stiffness,
     section,
     tangential_drag,
     typed,
@@ -46,8 +47,11 @@ def _check(cable: schema.Cable) -> None:
             f"{where}.bottom: a lumped-mass cable takes a free end (with a body, no ties) or a "
             "pinned end for now"
         )
-    if cable.joint_stiffness or cable.bending_stiffness:
-        raise CaseError(f"{where}: bending stiffness is not in the lumped-mass model yet")
+    if cable.joint_damping:
+        raise CaseError(
+            f"{where}.joint_damping: the lumped-mass model has bending stiffness but no bending "
+            "damping; remove joint_damping (axial_damping_time damps the axial law)"
+        )
     if cable.initial.shape == "static":
         raise CaseError(f"{where}.initial: use shape 'catenary' for a lumped-mass cable")
     if cable.initial.shape == "catenary" and not isinstance(cable.bottom, schema.PinnedBottom):
@@ -121,6 +125,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             point_mass=point_mass,
             point_weight=point_weight,
             point_drag=point_drag,
+            bend_stiffness=_bend_stiffness(cable, lengths),
             tf_breaks=breaks,
             tf_coefs=coefs,
             tf_count=count,
@@ -130,6 +135,14 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     )
     y0, params = _initial_state(case, params)
     return LumpedSystem(params=params, y0=y0, n_links=n, diameter=cable.diameter)
+
+
+def _bend_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
+    """k_i = EI / mean span at interior nodes 1..n-1 (joint_stiffness: its entries 1..n-1;
+    the top and the end are pins)."""
+    k = np.zeros(len(lengths) + 1)
+    k[1:-1] = joint_stiffness(cable, lengths)[1:]
+    return k
 
 
 def _initial_state(case, params):
