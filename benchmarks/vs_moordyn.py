@@ -109,8 +109,9 @@ def _quiet():
 
 
 def run_moordyn(segments, dt, duration):
-    """Fairlead tension every OUTPUT seconds and the wall time of the Step calls (None on
-    failure). MoorDyn moves a coupled point from the position it is given with the velocity it
+    """Fairlead tension every OUTPUT seconds, the wall time of the Step calls and of Create and
+    Init (its start-up: reading the file and its own initial-condition solve), or None on
+    failure. MoorDyn moves a coupled point from the position it is given with the velocity it
     is given over each coupling step: the secant velocity keeps it on the exact path, and a
     coupling step of COUPLING seconds keeps the velocity jumps between steps small (at 50 ms the
     jumps shake the stiff chain and move the tension range by 0.7 %). MoorDyn's coupled-point
@@ -123,8 +124,10 @@ def run_moordyn(segments, dt, duration):
     with tempfile.TemporaryDirectory() as folder, _quiet():
         path = os.path.join(folder, "line.txt")
         _moordyn_file(path, segments, dt)
+        start = time.perf_counter()
         system = moordyn.Create(path)
         moordyn.Init(system, [0.0, 0.0, FAIRLEAD_Z], [0.0, 0.0, 0.0])
+        startup = time.perf_counter() - start
         point = moordyn.GetPoint(system, 2)
         steps = int(round(duration / COUPLING))
         tension = np.empty(steps // per_output)
@@ -142,17 +145,17 @@ def run_moordyn(segments, dt, duration):
                     inertia = [mass[c][0] * ax for c in range(3)]
                     tension[k // per_output] = math.dist(force, inertia)
         except Exception:  # MoorDyn raises on NaN node positions
-            return None, None
+            return None, None, None
         finally:
             wall = time.perf_counter() - start
             moordyn.Close(system)
-    return tension, wall
+    return tension, wall, startup
 
 
 def moordyn_stable_step(segments, reference_peak, probe=12.0):
     dt = COUPLING
     while dt > 1e-6:
-        tension, _ = run_moordyn(segments, dt, probe)
+        tension, _, _ = run_moordyn(segments, dt, probe)
         if tension is not None and np.all(np.isfinite(tension)):
             if tension.max() < 2.0 * reference_peak:
                 return dt
@@ -209,14 +212,21 @@ def case(segments, duration, integrator, time_step=None, **simulation):
 
 
 def run_seacable(segments, duration, integrator, time_step=None, **simulation):
+    """Fairlead tension every OUTPUT seconds, the wall time of the stepping and of the start-up
+    (building the line and its equilibrium, a run of one output interval, kernels compiled
+    beforehand), and the work attributes."""
     c = case(segments, duration, integrator, time_step, **simulation)
     warm = c.model_copy(update={"simulation": c.simulation.model_copy(update={"duration": OUTPUT})})
     seacable.simulate(warm)  # compile (or load from the cache) first
     start = time.perf_counter()
+    seacable.simulate(warm)
+    startup = time.perf_counter() - start
+    start = time.perf_counter()
     ds = seacable.simulate(c).dataset
     wall = time.perf_counter() - start
     force = np.sqrt(ds["top_force_x"] ** 2 + ds["top_force_y"] ** 2 + ds["top_force_z"] ** 2)
-    return force.values[1:], wall, ds.attrs  # drop t = 0: MoorDyn reports from the first step
+    # drop t = 0: MoorDyn reports from the first step
+    return force.values[1:], max(wall - startup, 1e-9), startup, ds.attrs
 
 
 def _error(tension, reference, times):
@@ -225,21 +235,20 @@ def _error(tension, reference, times):
 
 
 def _seacable_candidates(segments, duration, reference, times, target):
-    """(wall, integrator, dt, tension, error, attrs) of the fastest seacable run within the
-    target: generalized-alpha at the largest step of the ladder within it, and rk4 at the
-    largest step of the ladder at which it is stable and within it."""
+    """The fastest seacable run within the target, and every run found: generalized-alpha at
+    the largest step of the ladder within it, and rk4 at the largest step of the ladder at
+    which it is stable and within it. Rows: (stepping wall, integrator, dt, tension, error,
+    start-up wall)."""
     found = []
     for integrator in ("generalized_alpha", "rk4"):
         dt = 0.05
         while dt > 2e-4:
             try:
-                tension, wall, attrs = run_seacable(segments, duration, integrator, dt)
+                tension, wall, startup, _ = run_seacable(segments, duration, integrator, dt)
             except seacable.SimulationDiverged:
                 tension = None
-            if tension is not None and _error(tension, reference, times) <= target:
-                found.append(
-                    (wall, integrator, dt, tension, _error(tension, reference, times), attrs)
-                )
+            if tension is not None and (error := _error(tension, reference, times)) <= target:
+                found.append((wall, integrator, dt, tension, error, startup))
                 break
             dt /= 2
     if not found:
@@ -249,14 +258,14 @@ def _seacable_candidates(segments, duration, reference, times, target):
 
 def race(segments, duration):
     times = np.arange(1, int(round(duration / OUTPUT)) + 1) * OUTPUT
-    reference, _, _ = run_seacable(segments, duration, "dopri5", rtol=1e-9, atol=1e-9)
+    reference, _, _, _ = run_seacable(segments, duration, "dopri5", rtol=1e-9, atol=1e-9)
     md_dt = moordyn_stable_step(segments, reference.max())
-    md, md_wall = run_moordyn(segments, md_dt, duration)
-    md_half, _ = run_moordyn(segments, md_dt / 2, duration)
+    md, md_wall, md_startup = run_moordyn(segments, md_dt, duration)
+    md_half, _, _ = run_moordyn(segments, md_dt / 2, duration)
     md_error = _error(md, md_half, times)
     target = max(md_error, 1e-3)
     best, found = _seacable_candidates(segments, duration, reference, times, target)
-    wall, integrator, dt, tension, error, attrs = best
+    wall, integrator, dt, tension, error, startup = best
     return dict(
         segments=segments,
         times=times,
@@ -264,11 +273,14 @@ def race(segments, duration):
         seacable=tension,
         md_dt=md_dt,
         md_per_s=md_wall / duration,
+        md_startup=md_startup,
         md_error=md_error,
         sc_integrator=integrator,
         sc_dt=dt,
         sc_per_s=wall / duration,
+        sc_startup=startup,
         sc_error=error,
+        whole=(md_startup + md_wall) / (startup + wall),
         others={row[1]: (row[2], row[0] / duration) for row in found},
         difference=_error(tension, md, times),
     )
@@ -291,8 +303,9 @@ def main(argv=None):
             print(f"{t:7.1f} {last['moordyn'][k] / 1e3:10.3f} {last['seacable'][k] / 1e3:10.3f}")
     print()
     header = (
-        f"{'segs':>4} | {'MoorDyn dt':>10} {'s/s':>8} {'err':>8} | {'seacable':>17} {'dt':>8} "
-        f"{'s/s':>8} {'err':>8} | {'speed-up':>8} | {'max |dT|/T':>10} | other seacable runs"
+        f"{'segs':>4} | {'MoorDyn dt':>10} {'s/s':>8} {'err':>8} {'start':>7} | {'seacable':>17} "
+        f"{'dt':>8} {'s/s':>8} {'err':>8} {'start':>7} | {'stepping':>8} {'whole':>7} | "
+        f"{'max |dT|/T':>10} | other seacable runs"
     )
     print(header)
     print("-" * len(header))
@@ -301,13 +314,18 @@ def main(argv=None):
             f"{name} {dt:.3g} s: {per_s:.4f} s/s" for name, (dt, per_s) in r["others"].items()
         )
         print(
-            f"{r['segments']:4d} | {r['md_dt']:10.3g} {r['md_per_s']:8.4f} {r['md_error']:8.1e} | "
-            f"{r['sc_integrator']:>17} {r['sc_dt']:8.4g} {r['sc_per_s']:8.4f} "
-            f"{r['sc_error']:8.1e} | {r['md_per_s'] / r['sc_per_s']:7.1f}x | "
+            f"{r['segments']:4d} | {r['md_dt']:10.3g} {r['md_per_s']:8.4f} {r['md_error']:8.1e} "
+            f"{r['md_startup']:7.3f} | {r['sc_integrator']:>17} {r['sc_dt']:8.4g} "
+            f"{r['sc_per_s']:8.4f} {r['sc_error']:8.1e} {r['sc_startup']:7.3f} | "
+            f"{r['md_per_s'] / r['sc_per_s']:7.1f}x {r['whole']:6.1f}x | "
             f"{r['difference']:10.2e} | {others}"
         )
     print(
-        "\ns/s: wall seconds per simulated second; err: largest fairlead-tension error after "
+        "\ns/s: wall seconds per simulated second of stepping; start: start-up wall time [s] "
+        "(MoorDyn: Create and Init, its initial-condition solve run to a 1e-4 threshold; seacable: "
+        "building the line and its equilibrium); stepping: speed-up of the stepping; whole: "
+        f"speed-up of the whole {duration:g} s run, start-up included; err: largest "
+        "fairlead-tension error after "
         f"t = {SETTLED:g} s against the code's own converged run, relative to the peak tension; "
         "max |dT|/T: largest difference between the codes after "
         f"t = {SETTLED:g} s, relative to the peak tension."
