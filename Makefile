@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test test-all lint bench clean
+.PHONY: demo test test-all lint bench clean clean-cache
 
 $(VENV)/bin/python:
 	$(PYTHON) -m venv $(VENV)
@@ -31,6 +31,9 @@ test-all: lint
 
 bench: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/thesis_timings.py
+
+clean-cache:
+	find src -name "*.nbi" -delete; find src -name "*.nbc" -delete
 
 clean:
 	rm -rf $(VENV) results build *.egg-info src/*.egg-info
