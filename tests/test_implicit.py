@@ -229,3 +229,17 @@ def test_adaptive_integrators_converge_with_their_tolerance(integrator):
         assert ds.attrs["solver_rhs_evaluations"] > 0
     assert errors[1] < 1e-2 * errors[0] or errors[1] < 1e-9, errors
     assert errors[1] < 1e-5 * static
+
+
+@pytest.mark.parametrize("integrator", ["cvode", "bdf"])
+def test_stiff_integrators_run_rigid_link_models_with_a_dense_jacobian(integrator):
+    case = seacable.load_case("examples/thesis_6_1_sim2_submerged_12_links.yaml")
+    reference = case.simulation.model_copy(
+        update={"integrator": "dopri5", "duration": 2.0, "rtol": 1e-9, "atol": 1e-11}
+    )
+    expected = seacable.simulate(case.model_copy(update={"simulation": reference})).dataset
+    sim = reference.model_copy(update={"integrator": integrator, "rtol": 1e-8, "atol": 1e-10})
+    ds = seacable.simulate(case.model_copy(update={"simulation": sim})).dataset
+    gap = np.abs(ds["node_x"].values - expected["node_x"].values).max()
+    assert gap < 1e-5, gap
+    assert ds.attrs["solver_jacobian_evaluations"] > 0

@@ -194,7 +194,7 @@ class _Run:
             sim.integrator, fun, self.t, self.y,
             rtol=sim.rtol, atol=sim.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
-            first_step=sim.initial_step, block=block, nodes=len(self.y) // (2 * block or 1),
+            first_step=sim.initial_step, block=block, nodes=len(self.y) // (2 * (block or 1)),
         )  # fmt: skip
 
     def _advance_stiff(self, count, states, times):
@@ -345,6 +345,14 @@ def _work(run: _Run) -> dict:
 
 
 def _step_warning(sim: schema.Simulation, system) -> str | None:
+    model = SYSTEM_MODELS[type(system)]
+    size = len(system.y0)
+    if sim.integrator in stiff.STIFF and getattr(model, "node_block", None) is None and size > 200:
+        return (
+            f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "
+            f"({size} states: {size} right-hand sides and a dense factorisation per Jacobian); "
+            "it is slow beyond a few dozen links. Use dopri5 or rk4 for rigid-link cables"
+        )
     if sim.integrator != "rk4":
         return None
     dt, _ = rk4_step(sim)
