@@ -501,6 +501,40 @@ def _sphere_drag_jacobian(y, v0, k, drag, cz, cu_, cv_, cv, diag):
 
 
 @njit(**JIT)
+def _bending_jacobian(n, stiffness, w, cx, diag, upper, lower):
+    """Add cx times a block-tridiagonal stand-in for the bending Hessian: near a straight line,
+    V = k phi^2 / 2 with phi = (w_{i+1} - w_i) / l_b - (w_i - w_{i-1}) / l_a for the transverse
+    displacements w, so the Hessian is k g g^T P, g = (1/l_a, -(1/l_a + 1/l_b), 1/l_b), P the
+    projector normal to the mean tangent. Its corner (i-1, i+1) falls outside the three block
+    diagonals: it is moved onto the two diagonal blocks, which keeps the stand-in positive."""
+    for i in range(1, n):
+        k = stiffness[i]
+        if k == 0.0:
+            continue
+        tx = w[_TX, i - 1] + w[_TX, i]
+        ty = w[_TX + 1, i - 1] + w[_TX + 1, i]
+        tz = w[_TX + 2, i - 1] + w[_TX + 2, i]
+        norm = math.sqrt(tx * tx + ty * ty + tz * tz)
+        if norm == 0.0:
+            continue
+        t = (tx / norm, ty / norm, tz / norm)
+        ga, gb = 1.0 / w[_L, i - 1], 1.0 / w[_L, i]
+        gm = -(ga + gb)
+        corner = k * ga * gb
+        for r in range(3):
+            for c in range(3):
+                proj = (1.0 if r == c else 0.0) - t[r] * t[c]
+                e = 3 * r + c
+                diag[i - 1, e] += cx * (k * ga * ga + corner) * proj
+                diag[i, e] += cx * k * gm * gm * proj
+                diag[i + 1, e] += cx * (k * gb * gb + corner) * proj
+                upper[i - 1, e] += cx * k * ga * gm * proj
+                lower[i - 1, e] += cx * k * ga * gm * proj
+                upper[i, e] += cx * k * gm * gb * proj
+                lower[i, e] += cx * k * gm * gb * proj
+
+
+@njit(**JIT)
 def _jacobian(y, p, cx, cv, diag, upper, lower):
     """Add -cx dF/dx - cv dF/dv of the segments, the seabed and the end body's drag."""
     n = p.n
@@ -576,6 +610,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 res[3 * n + c] = 0.0
         return status
     _jacobian(y, p, cx, cv, diag, upper, lower)
+    _bending_jacobian(n, p.bend_stiffness, w, cx, diag, upper, lower)
     _prescribed_rows(p, diag, upper, lower, res, 0)
     if p.bottom_kind == BOTTOM_PINNED:
         _prescribed_rows(p, diag, upper, lower, res, n)
