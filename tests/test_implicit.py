@@ -39,8 +39,8 @@ LENGTH, EA, BODY, LINE = 10.0, 2.0e5, 50.0, 1.0
 G = 9.81
 
 
-def _bouncing_mass():
-    case = seacable.load_case(
+def _bouncing_case(**simulation):
+    return seacable.load_case(
         {
             "environment": {"in_air": True, "gravity": G},
             "cables": [
@@ -56,9 +56,13 @@ def _bouncing_mass():
                     "initial": {"shape": "arc", "top_angle_deg": 0.0},
                 }
             ],
-            "simulation": {"duration": 1.0, "output_interval": 1.0},
+            "simulation": {"duration": 1.0, "output_interval": 1.0, **simulation},
         }
     )
+
+
+def _bouncing_mass():
+    case = _bouncing_case()
     system = build_system(case)
     mass = BODY + 0.5 * LINE
     k = EA / LENGTH
@@ -197,31 +201,8 @@ def test_adaptive_integrators_converge_with_their_tolerance(integrator):
     omega = math.sqrt(k / mass)
     errors = []
     for tol in (1e-5, 1e-8):
-        case = seacable.load_case(
-            {
-                "environment": {"in_air": True, "gravity": G},
-                "cables": [
-                    {
-                        "model": "lumped_mass",
-                        "links": 1,
-                        "length": LENGTH,
-                        "diameter": 0.01,
-                        "mass_per_length": LINE / LENGTH,
-                        "axial_stiffness": EA,
-                        "top": {"type": "fixed"},
-                        "bottom": {"type": "free", "body": {"mass": BODY}},
-                        "initial": {"shape": "arc", "top_angle_deg": 0.0},
-                    }
-                ],
-                "simulation": {
-                    "duration": 1.0,
-                    "output_interval": 0.5,
-                    "integrator": integrator,
-                    "rtol": tol,
-                    "atol": tol * 1e-2,
-                    "max_step": 0.05,
-                },  # fmt: skip
-            }
+        case = _bouncing_case(
+            output_interval=0.5, integrator=integrator, rtol=tol, atol=tol * 1e-2, max_step=0.05
         )
         ds = seacable.simulate(case).dataset
         exact = -LENGTH - static * (1 - math.cos(omega * 1.0))
