@@ -122,7 +122,8 @@ def _check_integrator(case: schema.Case, model) -> None:
     if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
         raise CaseError(
             f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal Newton "
-            f"matrix (lumped_mass); the {case.cables[0].model} model runs with rk4 or dopri5"
+            f"matrix (lumped_mass, natural_string); the {case.cables[0].model} model runs with rk4, "
+            "dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, cvode)"
         )
 
 

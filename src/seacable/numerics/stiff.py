@@ -2,9 +2,9 @@
 (BDF, the successor of DASSL) through scikit-sundae.
 
 They call the model's compiled right-hand side from Python once per evaluation. Their Newton
-matrices come from finite differences that exploit the Jacobian's structure, so that a Jacobian
-costs O(n) right-hand sides... O(1) of them, in fact, for the cable models whose nodes only
-talk to their neighbours:
+matrices come from finite differences that exploit the Jacobian's structure: for the cable
+models whose nodes only talk to their neighbours a Jacobian costs a fixed number of right-hand
+sides (O(n) work) and its factorisation is O(n):
 
 * SciPy: ``jac_sparsity`` (the node-neighbour pattern) makes SciPy group independent columns
   (coloured finite differences) and factorise with sparse LU;
@@ -16,8 +16,6 @@ Models without that structure (rigid links: the inverse mass matrix couples ever
 dense Jacobian. Work counters follow ``numerics.integrators.WORK_NAMES``; a count the solver
 does not report (CVODE's steps, SciPy's rejected steps) is -1.
 """
-
-import math
 
 import numpy as np
 from scipy import integrate, sparse
@@ -159,8 +157,3 @@ class StiffStepper:
         steps = -1 if self.name == "cvode" else self.steps
         solves = -1 if self.name == "cvode" else self.nlu
         return np.array([steps, -1, self.nfev, 0, self.njev, solves], dtype=np.int64)
-
-
-def finite_check(ydot: np.ndarray) -> None:
-    if not math.isfinite(float(np.sum(ydot))):
-        raise FloatingPointError("non-finite state derivative")
