@@ -121,9 +121,9 @@ def _check_integrator(case: schema.Case, model) -> None:
     integrator = case.simulation.integrator
     if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
         raise CaseError(
-            f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal Newton "
-            f"matrix (lumped_mass, natural_string); the {case.cables[0].model} model runs with rk4, "
-            "dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, cvode)"
+            f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal "
+            f"Newton matrix (lumped_mass, natural_string); the {case.cables[0].model} model runs "
+            "with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, cvode)"
         )
 
 
