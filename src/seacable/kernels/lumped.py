@@ -71,6 +71,11 @@ class LumpedParams(NamedTuple):
     top_kind: int
     top_x: float
     top_y: float
+    top_mass: float  # floating structure: mass + heave added mass [kg]
+    top_stiffness: float  # [N/m]
+    top_damping: float  # [N s/m]
+    top_rest_z: float  # [m]
+    top_net_weight: float  # [N], positive down
     track_origin: np.ndarray
     track_heading: float
     track_turn_at: float
@@ -303,6 +308,29 @@ def _node_acceleration(m, body, w, k):
 
 
 @njit(**JIT)
+def top_state(t, y, p):
+    """Top node position, velocity and acceleration (3 each). A floating structure is node 0
+    itself, free in heave (its acceleration comes from the dynamics: zero here), held in x, y."""
+    if p.top_kind == c3.TOP_HEAVE:
+        v0 = 3 * (p.n + 1)
+        pos = np.array([p.top_x, p.top_y, y[2]])
+        vel = np.array([0.0, 0.0, y[v0 + 2]])
+        return pos, vel, np.zeros(3)
+    return c3.top_motion(t, y, p)
+
+
+@njit(**JIT)
+def _structure_force(t, y, p):
+    """Vertical force on a floating structure besides the cable: spring, damper, u(t), net
+    weight."""
+    v0 = 3 * (p.n + 1)
+    u, _, _ = c3._tf(p, c3.CH_TOP_FORCE, t)
+    return (
+        -p.top_stiffness * (y[2] - p.top_rest_z) - p.top_damping * y[v0 + 2] + u - p.top_net_weight
+    )
+
+
+@njit(**JIT)
 def rhs(t, y, p, w, ydot):
     n = p.n
     v0 = 3 * (n + 1)
@@ -312,7 +340,8 @@ def rhs(t, y, p, w, ydot):
     _point_forces(y, p, w)
     if p.bottom_kind == BOTTOM_FREE:
         _body_force(t, y, p, w)
-    pos, vel, acc = c3.top_motion(t, y, p)
+    pos, vel, acc = top_state(t, y, p)
+    heave = p.top_kind == c3.TOP_HEAVE
     status = c3.OK
     for k in range(n + 1):
         for c in range(3):
@@ -321,6 +350,10 @@ def rhs(t, y, p, w, ydot):
             for c in range(3):
                 ydot[c] = vel[c]
                 ydot[v0 + c] = acc[c]
+            if heave:
+                # held in x and y: the vertical equation alone, the structure's mass added
+                mass = p.node_mass[0] + p.point_mass[0, 2] + w[_MA + 5, 0] + p.top_mass
+                ydot[v0 + 2] = (w[_F + 2, 0] + _structure_force(t, y, p)) / mass
             continue
         if k == n and p.bottom_kind == BOTTOM_PINNED:
             for c in range(3):
@@ -339,27 +372,11 @@ def rhs(t, y, p, w, ydot):
 
 
 @njit(**JIT)
-def outputs(t, y, p, w, node_pos, tension, scalars):
+def _energies(y, p, w):
+    """Kinetic (added mass included), gravity potential and elastic (axial, seabed, bending,
+    a floating structure's spring) energies at y (w filled by rhs)."""
     n = p.n
     v0 = 3 * (n + 1)
-    ydot = np.empty_like(y)
-    status = rhs(t, y, p, w, ydot)
-    for k in range(n + 1):
-        for c in range(3):
-            node_pos[k, c] = y[3 * k + c]
-    for i in range(n):
-        tension[i] = w[_T, i]
-    # force of the cable on the top attachment: the node's loads less its inertia
-    a0 = _node_mass(p, w, 0)
-    for c in range(3):
-        inertia = a0[3 * c] * ydot[v0] + a0[3 * c + 1] * ydot[v0 + 1] + a0[3 * c + 2] * ydot[v0 + 2]
-        scalars[c] = w[_F + c, 0] - inertia
-    for c in range(3):
-        if p.bottom_kind == BOTTOM_PINNED:
-            scalars[3 + c] = w[_F + c, n]
-        else:
-            # the pull of the last segment on the body
-            scalars[3 + c] = -w[_T, n - 1] * w[_TX + c, n - 1]
     kinetic = 0.0
     gravity = 0.0
     elastic = 0.0
@@ -386,10 +403,43 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
         gravity += p.body_wet_weight * y[3 * n + 2]
     for k in range(n + 1):
         gravity += p.point_weight[k] * y[3 * k + 2]
+    if p.top_kind == c3.TOP_HEAVE:
+        vz = y[v0 + 2]
+        kinetic += 0.5 * p.top_mass * vz * vz
+        gravity += p.top_net_weight * y[2]
+        d = y[2] - p.top_rest_z
+        elastic += 0.5 * p.top_stiffness * d * d
     for k in range(1, n):
         if p.bend_stiffness[k] > 0.0:
             phi, _, _ = _bend_angle(w, k)
             elastic += 0.5 * p.bend_stiffness[k] * phi * phi
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def outputs(t, y, p, w, node_pos, tension, scalars):
+    n = p.n
+    v0 = 3 * (n + 1)
+    ydot = np.empty_like(y)
+    status = rhs(t, y, p, w, ydot)
+    for k in range(n + 1):
+        for c in range(3):
+            node_pos[k, c] = y[3 * k + c]
+    for i in range(n):
+        tension[i] = w[_T, i]
+    # force of the cable on the top attachment: the node's loads less its inertia (the node's
+    # own mass only: a floating structure's mass and spring are not the cable's)
+    a0 = _node_mass(p, w, 0)
+    for c in range(3):
+        inertia = a0[3 * c] * ydot[v0] + a0[3 * c + 1] * ydot[v0 + 1] + a0[3 * c + 2] * ydot[v0 + 2]
+        scalars[c] = w[_F + c, 0] - inertia
+    for c in range(3):
+        if p.bottom_kind == BOTTOM_PINNED:
+            scalars[3 + c] = w[_F + c, n]
+        else:
+            # the pull of the last segment on the body
+            scalars[3 + c] = -w[_T, n - 1] * w[_TX + c, n - 1]
+    kinetic, gravity, elastic = _energies(y, p, w)
     scalars[6] = kinetic
     scalars[7] = gravity
     scalars[8] = elastic
@@ -595,6 +645,8 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     mass = np.empty(9)  # not diag: without ``matrix`` it holds the caller's factors
     for k in range(n + 1):
         _node_mass_into(p.node_mass[k], p.point_mass[k], w, k, mass)
+        if k == 0 and p.top_kind == c3.TOP_HEAVE:
+            mass[8] += p.top_mass
         for r in range(3):
             acc = 0.0
             for c in range(3):
@@ -605,16 +657,34 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 diag[k, c] = cm * mass[c]
     if not matrix:
         for c in range(3):
-            res[c] = 0.0  # the top is prescribed
+            if c < 2 or p.top_kind != c3.TOP_HEAVE:
+                res[c] = 0.0  # the top is prescribed (a floating structure: in x and y)
             if p.bottom_kind == BOTTOM_PINNED:
                 res[3 * n + c] = 0.0
         return status
     _jacobian(y, p, cx, cv, diag, upper, lower)
     _bending_jacobian(n, p.bend_stiffness, w, cx, diag, upper, lower)
-    _prescribed_rows(p, diag, upper, lower, res, 0)
+    if p.top_kind == c3.TOP_HEAVE:
+        _heave_rows(p, cx, cv, diag, upper, lower, res)
+    else:
+        _prescribed_rows(p, diag, upper, lower, res, 0)
     if p.bottom_kind == BOTTOM_PINNED:
         _prescribed_rows(p, diag, upper, lower, res, n)
     return status
+
+
+@njit(**JIT)
+def _heave_rows(p, cx, cv, diag, upper, lower, res):
+    """A floating structure: node 0 held in x and y (identity rows, zero residual), free in z
+    with the structure's mass (already in the residual's mass), spring and damper."""
+    for r in range(2):
+        for c in range(3):
+            diag[0, 3 * r + c] = 1.0 if r == c else 0.0
+            diag[0, 3 * c + r] = 1.0 if r == c else 0.0
+            upper[0, 3 * r + c] = 0.0
+            lower[0, 3 * c + r] = 0.0
+        res[r] = 0.0
+    diag[0, 8] += cx * p.top_stiffness + cv * p.top_damping
 
 
 @njit(**JIT)
@@ -637,8 +707,8 @@ def prescribe(t, y, acc, p):
     acceleration at time t."""
     n = p.n
     v0 = 3 * (n + 1)
-    pos, vel, a = c3.top_motion(t, y, p)
-    for c in range(3):
+    pos, vel, a = top_state(t, y, p)
+    for c in range(2 if p.top_kind == c3.TOP_HEAVE else 3):
         y[c] = pos[c]
         y[v0 + c] = vel[c]
         acc[c] = a[c]

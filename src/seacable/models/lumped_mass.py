@@ -8,7 +8,6 @@ import numpy as np
 
 from seacable.case import schema
 from seacable.errors import CaseError
-from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.models import catenary, planar_rigid_links
 from seacable.models import rigid_segments_3d as seg
@@ -36,10 +35,6 @@ def _check(cable: schema.Cable) -> None:
     where = "cables[0]"
     if cable.axial_stiffness is None:
         raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
-    if isinstance(cable.top, schema.FloatingStructureTop):
-        raise CaseError(
-            f"{where}.top: a lumped-mass cable takes fixed, imposed or towing_ship tops"
-        )
     allowed = (schema.FreeBottom, schema.PinnedBottom)
     if not isinstance(cable.bottom, allowed) or getattr(cable.bottom, "tie", None) is not None \
             or getattr(cable.bottom, "hold_axes", []):  # fmt: skip
@@ -75,7 +70,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     depth = env.water_depth
     if seabed is not None and depth is None:
         raise CaseError("environment.seabed: give environment.water_depth [m] for the seabed")
-    top_kind, top_fields, channels, _ = seg._top(cable, base_dir)
+    top_kind, top_fields, channels, heave = seg._top(cable, base_dir)
     bottom_fields = dict(body_mass=np.zeros(3), body_wet_weight=0.0, body_drag=np.zeros(3))
     zero = tfn.constant(0.0)
     body_channels = (zero, zero, zero)
@@ -114,8 +109,8 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             seabed_friction=seabed.friction_coefficient if seabed else 0.0,
             seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
             top_kind=top_kind,
-            top_x=top_fields["top_x"],
-            top_y=top_fields["top_y"],
+            **{k: top_fields[k] for k in ("top_x", "top_y", "top_mass", "top_stiffness")},
+            **{k: top_fields[k] for k in ("top_damping", "top_rest_z", "top_net_weight")},
             track_origin=top_fields["track_origin"],
             track_heading=top_fields["track_heading"],
             track_turn_at=top_fields["track_turn_at"],
@@ -133,7 +128,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             **bottom_fields,
         ),
     )
-    y0, params = _initial_state(case, params)
+    y0, params = _initial_state(case, params, heave)
     return LumpedSystem(params=params, y0=y0, n_links=n, diameter=cable.diameter)
 
 
@@ -145,10 +140,12 @@ def _bend_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
     return k
 
 
-def _initial_state(case, params):
+def _initial_state(case, params, heave):
     cable = case.cables[0]
     n = params.n
-    top, vel, _ = c3.top_motion(0.0, np.zeros(lk.state_size(n)), params)
+    y = np.zeros(lk.state_size(n))
+    y[2], y[3 * (n + 1) + 2] = heave  # a floating structure's initial heave (else unused)
+    top, vel, _ = lk.top_state(0.0, y, params)
     y0 = np.zeros(lk.state_size(n))
     if cable.initial.shape == "catenary":
         if cable.bottom.anchor is None:
