@@ -88,6 +88,9 @@ class LumpedParams(NamedTuple):
     bend_stiffness: np.ndarray  # (n+1,) EI / mean span at interior nodes, 0 at the ends [N m]
     body_wet_weight: float
     body_drag: np.ndarray  # (3,)
+    tie_k: np.ndarray  # (3,) elastic ties (or a second structure's springs) at the end [N/m]
+    tie_c: np.ndarray  # (3,) [N s/m]
+    tie_rest: np.ndarray  # (3,) where the ties are unloaded [m]
     pin: np.ndarray  # (3,)
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
@@ -256,6 +259,8 @@ def _body_force(t, y, p, w):
     w[_F, n] += fx - p.body_drag[0] * speed * rx
     w[_F + 1, n] += fy - p.body_drag[1] * speed * ry
     w[_F + 2, n] += fz - p.body_drag[2] * speed * rz - p.body_wet_weight
+    for c in range(3):
+        w[_F + c, n] -= p.tie_k[c] * (y[3 * n + c] - p.tie_rest[c]) + p.tie_c[c] * y[v0 + 3 * n + c]
 
 
 @njit(**JIT)
@@ -403,6 +408,10 @@ def _energies(y, p, w):
         gravity += p.body_wet_weight * y[3 * n + 2]
     for k in range(n + 1):
         gravity += p.point_weight[k] * y[3 * k + 2]
+    if p.bottom_kind == BOTTOM_FREE:
+        for c in range(3):
+            d = y[3 * n + c] - p.tie_rest[c]
+            elastic += 0.5 * p.tie_k[c] * d * d
     if p.top_kind == c3.TOP_HEAVE:
         vz = y[v0 + 2]
         kinetic += 0.5 * p.top_mass * vz * vz
@@ -625,6 +634,8 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
                 if a == b:
                     term += speed
                 diag[n, 3 * a + b] += cv * p.body_drag[a] * term
+        for a in range(3):
+            diag[n, 4 * a] += cx * p.tie_k[a] + cv * p.tie_c[a]
 
 
 @njit(**JIT)

@@ -35,12 +35,12 @@ def _check(cable: schema.Cable) -> None:
     where = "cables[0]"
     if cable.axial_stiffness is None:
         raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
-    allowed = (schema.FreeBottom, schema.PinnedBottom)
-    if not isinstance(cable.bottom, allowed) or getattr(cable.bottom, "tie", None) is not None \
-            or getattr(cable.bottom, "hold_axes", []):  # fmt: skip
+    allowed = (schema.FreeBottom, schema.PinnedBottom, schema.FloatingStructureBottom)
+    if not isinstance(cable.bottom, allowed) or getattr(cable.bottom, "hold_axes", []):
         raise CaseError(
-            f"{where}.bottom: a lumped-mass cable takes a free end (with a body, no ties) or a "
-            "pinned end for now"
+            f"{where}.bottom: a lumped-mass cable takes a free end (a body, elastic ties), a "
+            "second floating structure or a pinned end; trajectories, held axes and shared "
+            "bodies need model: rigid_segments_3d"
         )
     if cable.joint_damping:
         raise CaseError(
@@ -72,9 +72,10 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
         raise CaseError("environment.seabed: give environment.water_depth [m] for the seabed")
     top_kind, top_fields, channels, heave = seg._top(cable, base_dir)
     bottom_fields = dict(body_mass=np.zeros(3), body_wet_weight=0.0, body_drag=np.zeros(3))
+    bottom_fields.update(tie_k=np.zeros(3), tie_c=np.zeros(3))
     zero = tfn.constant(0.0)
     body_channels = (zero, zero, zero)
-    if isinstance(cable.bottom, schema.FreeBottom):
+    if isinstance(cable.bottom, schema.FreeBottom | schema.FloatingStructureBottom):
         kind, fields, body_channels = seg._bottom(cable, env, base_dir)
         bottom_fields = {k: fields[k] for k in bottom_fields}
         body_channels = body_channels[:3]
@@ -117,6 +118,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             track_radius=top_fields["track_radius"],
             bottom_kind=bottom_kind,
             pin=np.zeros(3),
+            tie_rest=np.zeros(3),
             point_mass=point_mass,
             point_weight=point_weight,
             point_drag=point_drag,
@@ -168,6 +170,8 @@ def _initial_state(case, params, heave):
     if isinstance(cable.bottom, schema.PinnedBottom):
         y0[3 * (n + 1) + 3 * n :] = 0.0
     params = params._replace(pin=np.ascontiguousarray(nodes[-1]))
+    rest = seg._explicit_rest(cable)
+    params = params._replace(tie_rest=np.ascontiguousarray(nodes[-1] if rest is None else rest))
     if cable.initial.shape == "catenary":
         y0 = discrete_equilibrium(params, y0)
     return y0, params
