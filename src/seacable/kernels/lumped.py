@@ -81,7 +81,7 @@ class LumpedParams(NamedTuple):
     track_turn_at: float
     track_radius: float
     bottom_kind: int
-    body_mass: np.ndarray  # (3,) [kg]
+    body_mass: np.ndarray  # (3,) [kg]; the kernel uses point_mass[n], which includes it
     point_mass: np.ndarray  # (n+1, 3) floats and clump weights (+ added mass) per node [kg]
     point_weight: np.ndarray  # (n+1,) their apparent weight, positive down [N]
     point_drag: np.ndarray  # (n+1,) their 0.5 rho Cd A (sphere) [N s^2/m^2]
