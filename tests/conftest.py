@@ -1,0 +1,35 @@
+"""Test-session set-up: never run on a stale numba cache.
+
+numba keys an on-disk cached function by its own source file only, so a cached integrator keeps
+an old copy of a kernel it inlined after the kernel's file is edited (a stale, possibly wrong
+build). Before the tests import seacable, the package's sources are hashed; when the hash differs
+from the one recorded with the cache, the cached builds are deleted and compiled afresh.
+"""
+
+import hashlib
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parents[1] / "src" / "seacable"
+STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
+
+
+def _sources_hash() -> str:
+    digest = hashlib.sha256()
+    for path in sorted(PACKAGE.rglob("*.py")):
+        digest.update(str(path.relative_to(PACKAGE)).encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def _drop_stale_numba_cache() -> None:
+    current = _sources_hash()
+    if STAMP.exists() and STAMP.read_text() == current:
+        return
+    for pattern in ("*.nbi", "*.nbc"):
+        for cached in PACKAGE.rglob(pattern):
+            cached.unlink(missing_ok=True)
+    STAMP.parent.mkdir(exist_ok=True)
+    STAMP.write_text(current)
+
+
+_drop_stale_numba_cache()
