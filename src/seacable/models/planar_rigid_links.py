@@ -264,6 +264,14 @@ def rows(times, states, system: PlanarSystem, w) -> tuple[dict, int]:
     return add_total_energy(out), status
 
 
+NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+
+
+def shortest_segment(system: PlanarSystem) -> float:
+    """Shortest link [m]: scales the Newton tolerance of implicit steps."""
+    return float(np.min(system.params.length))
+
+
 def rates(system: PlanarSystem, y) -> np.ndarray:
     """Angular rate of every link [rad/s]."""
     n = system.n_links

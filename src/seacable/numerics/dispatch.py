@@ -7,7 +7,7 @@ A model joins by adding a branch to each overload: ``rhs(t, y, p, w, ydot) -> st
 models without constraints in their state).
 """
 
-from numba import types
+from numba import njit, types
 from numba.extending import overload
 
 from seacable.kernels import chain3d, lumped, natural, planar_chain, star3d
@@ -95,6 +95,12 @@ def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
+    if _is(p, planar_chain.ChainParams):
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
+            planar_chain.newton_system(
+                t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
+            )
+        )
     if _is(p, natural.NaturalParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
             natural.newton_system(
@@ -122,8 +128,8 @@ def _model_block(p):
 def _model_prescribe(t, y, acc, p):
     if _is(p, lumped.LumpedParams):
         return lambda t, y, acc, p: lumped.prescribe(t, y, acc, p)
-    if _is(p, natural.NaturalParams):
-        return lambda t, y, acc, p: None  # every node is free
+    if _is(p, natural.NaturalParams) or _is(p, planar_chain.ChainParams):
+        return lambda t, y, acc, p: None  # no prescribed variables (or kept by the kernel)
     return None
 
 
@@ -134,9 +140,53 @@ def model_newton_cost(p):
 
 @overload(model_newton_cost, jit_options=JIT)
 def _model_newton_cost(p):
-    if _is(p, lumped.LumpedParams):
+    if _is(p, lumped.LumpedParams) or _is(p, planar_chain.ChainParams):
         return lambda p: 1  # analytic Jacobian
     if _is(p, natural.NaturalParams):
         # coloured differences: 3 colours x B variables x (positions, velocities), + 2
         return lambda p: 6 * (3 if p.cartesian == 1 else 2) + 2
+    return None
+
+
+def model_solver(p, nq):
+    """(blocks, block size) of the model's block-tridiagonal Newton system for ``nq``
+    accelerations (compiled code only)."""
+    raise NotImplementedError("model_solver is only callable from compiled code")
+
+
+@overload(model_solver, jit_options=JIT)
+def _model_solver(p, nq):
+    if _is(p, lumped.LumpedParams):
+        return lambda p, nq: (nq // 3, 3)
+    if _is(p, natural.NaturalParams):
+        return lambda p, nq: (nq // (3 if p.cartesian == 1 else 2), 3)
+    if _is(p, planar_chain.ChainParams):
+        return lambda p, nq: (p.n + 1, planar_chain.NEWTON_BLOCK)
+    return None
+
+
+def model_correct(p, da, a1):
+    """Subtract the Newton correction ``da`` (the solver's unknowns) from the accelerations
+    ``a1``; returns the largest correction as a length per squared second (compiled code
+    only)."""
+    raise NotImplementedError("model_correct is only callable from compiled code")
+
+
+@njit(**JIT)
+def _correct_nodes(b_node, da, a1):
+    """Node-block models: the solver holds three entries per node, the first b_node used."""
+    largest = 0.0
+    for i in range(a1.shape[0]):
+        d = da[3 * (i // b_node) + i % b_node]
+        a1[i] -= d
+        largest = max(largest, abs(d))
+    return largest
+
+
+@overload(model_correct, jit_options=JIT)
+def _model_correct(p, da, a1):
+    if _is(p, lumped.LumpedParams) or _is(p, natural.NaturalParams):
+        return lambda p, da, a1: _correct_nodes(model_block(p), da, a1)
+    if _is(p, planar_chain.ChainParams):
+        return lambda p, da, a1: planar_chain.newton_correct(p.length, da, a1)
     return None

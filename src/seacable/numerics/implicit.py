@@ -33,12 +33,13 @@ from numba import njit
 from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
-    model_block,
+    model_correct,
     model_newton,
     model_newton_cost,
     model_prescribe,
     model_project,
     model_rhs,
+    model_solver,
 )
 
 # coefficient vector layout: pa, b, g, am, af
@@ -153,6 +154,105 @@ def block_tridiagonal_solve(diag, upper, lower, rhs, x):
 
 
 @njit(**JIT)
+def _lu(a, piv, bs):
+    """In-place LU with partial pivoting of the bs x bs row-major block ``a`` (row swaps in
+    ``piv``); returns False when it is singular."""
+    for c in range(bs):
+        best = c
+        for r in range(c + 1, bs):
+            if abs(a[r * bs + c]) > abs(a[best * bs + c]):
+                best = r
+        piv[c] = best
+        if best != c:
+            for k in range(bs):
+                tmp = a[c * bs + k]
+                a[c * bs + k] = a[best * bs + k]
+                a[best * bs + k] = tmp
+        pivot = a[c * bs + c]
+        if pivot == 0.0 or not math.isfinite(pivot):
+            return False
+        for r in range(c + 1, bs):
+            f = a[r * bs + c] / pivot
+            a[r * bs + c] = f
+            for k in range(c + 1, bs):
+                a[r * bs + k] -= f * a[c * bs + k]
+    return True
+
+
+@njit(**JIT)
+def _lu_solve(a, piv, bs, x, stride, columns):
+    """Solve with the factors of ``_lu`` for ``columns`` right-hand sides stored row-major in
+    ``x`` (row r, column j at x[r * stride + j]), in place."""
+    for j in range(columns):
+        for c in range(bs):
+            r = piv[c]
+            if r != c:
+                tmp = x[c * stride + j]
+                x[c * stride + j] = x[r * stride + j]
+                x[r * stride + j] = tmp
+        for r in range(1, bs):
+            acc = x[r * stride + j]
+            for k in range(r):
+                acc -= a[r * bs + k] * x[k * stride + j]
+            x[r * stride + j] = acc
+        for r in range(bs - 1, -1, -1):
+            acc = x[r * stride + j]
+            for k in range(r + 1, bs):
+                acc -= a[r * bs + k] * x[k * stride + j]
+            x[r * stride + j] = acc / a[r * bs + r]
+
+
+@njit(**JIT)
+def block_lu_factor(diag, upper, lower, factor, piv):
+    """Block Thomas elimination for any block size bs (``diag`` of shape (m, bs * bs), blocks
+    row-major; ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k)), for systems whose pivot
+    blocks need row pivoting (saddle points: accelerations with constraint forces).
+    ``diag[k]`` becomes the LU factors of the k-th Schur complement (row swaps in ``piv[k]``)
+    and ``factor[k] = pivot[k]^-1 upper[k]``; O(m bs^3). Returns False on a singular pivot."""
+    m = diag.shape[0]
+    bs = piv.shape[1]
+    for k in range(m):
+        if k > 0:
+            g = factor[k - 1]
+            low = lower[k - 1]
+            for r in range(bs):
+                for c in range(bs):
+                    acc = 0.0
+                    for j in range(bs):
+                        acc += low[r * bs + j] * g[j * bs + c]
+                    diag[k, r * bs + c] -= acc
+        if not _lu(diag[k], piv[k], bs):
+            return False
+        if k < m - 1:
+            factor[k, :] = upper[k]
+            _lu_solve(diag[k], piv[k], bs, factor[k], bs, bs)
+    return True
+
+
+@njit(**JIT)
+def block_lu_apply(diag, lower, factor, piv, rhs, x):
+    """Solve with the factors of ``block_lu_factor``; O(m bs^2)."""
+    m = diag.shape[0]
+    bs = piv.shape[1]
+    for k in range(m):
+        for r in range(bs):
+            acc = rhs[k * bs + r]
+            if k > 0:
+                low = lower[k - 1]
+                for j in range(bs):
+                    acc -= low[r * bs + j] * x[(k - 1) * bs + j]
+            x[k * bs + r] = acc
+        _lu_solve(diag[k], piv[k], bs, x[k * bs : (k + 1) * bs], 1, 1)
+    for k in range(m - 2, -1, -1):
+        g = factor[k]
+        for r in range(bs):
+            acc = 0.0
+            for j in range(bs):
+                acc += g[r * bs + j] * x[(k + 1) * bs + j]
+            x[k * bs + r] -= acc
+
+
+@njit(**JIT)
 def initial_acceleration(t, y, p, w, acc):
     """The model's acceleration at (t, y): the a0 a run starts from. Returns the status."""
     ydot = np.empty_like(y)
@@ -190,17 +290,19 @@ REFRESH = 3  # modified Newton: the matrix is rebuilt and refactorised every REF
 
 @njit(**JIT)
 def _step(
-    t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, factor, work
-):
+    t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, factor, piv,
+    work,
+):  # fmt: skip
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     Returns the status (NEWTON_FAILED when Newton's iteration does not converge).
 
     A modified Newton iteration: the matrix is built and factorised at the first iteration
     (and every REFRESH), the later ones only evaluate the residual and reuse the factors.
     ``da`` and ``res`` hold three entries per node whatever the model's variables per node
-    (the solver's blocks are 3x3)."""
+    (the solver's blocks are 3x3) or, for the rigid-link models, the solver's own unknowns
+    (``model_correct`` maps them back onto the accelerations)."""
     nq = q.shape[1]
-    b_node = model_block(p)
+    pivoted = diag.shape[1] != 9
     y1, ya, ydot = vec[0], vec[1], vec[2]
     aa, a1 = q[0], q[1]
     b, g, am, af = coef[1], coef[2], coef[3], coef[4]
@@ -222,16 +324,19 @@ def _step(
             return status
         if matrix:
             work[4] += 1
-            if not block_tridiagonal_factor(diag, upper, lower, factor):
+            if pivoted:
+                factored = block_lu_factor(diag, upper, lower, factor, piv)
+            else:
+                factored = block_tridiagonal_factor(diag, upper, lower, factor)
+            if not factored:
                 work[3] += 1
                 return NON_FINITE
         work[5] += 1
-        block_tridiagonal_apply(diag, upper, factor, res, da)
-        largest = 0.0
-        for i in range(nq):
-            d = da[3 * (i // b_node) + i % b_node]
-            a1[i] -= d
-            largest = max(largest, abs(d))
+        if pivoted:
+            block_lu_apply(diag, lower, factor, piv, res, da)
+        else:
+            block_tridiagonal_apply(diag, upper, factor, res, da)
+        largest = model_correct(p, da, a1)
         if not math.isfinite(largest):
             work[3] += 1
             return NON_FINITE
@@ -262,15 +367,16 @@ def newmark_chunk(
     counts substeps)."""
     ny = y.shape[0]
     nq = ny // 2
-    nodes = nq // model_block(p)
+    blocks, bs = model_solver(p, nq)
     vec = np.empty((3, ny))
     q = np.empty((2, nq))
-    da = np.empty(3 * nodes)
-    res = np.empty(3 * nodes)
-    diag = np.empty((nodes, 9))
-    upper = np.empty((max(nodes - 1, 1), 9))
-    lower = np.empty((max(nodes - 1, 1), 9))
-    factor = np.empty((max(nodes - 1, 1), 9))
+    da = np.empty(bs * blocks)
+    res = np.empty(bs * blocks)
+    diag = np.empty((blocks, bs * bs))
+    upper = np.empty((max(blocks - 1, 1), bs * bs))
+    lower = np.empty((max(blocks - 1, 1), bs * bs))
+    factor = np.empty((max(blocks - 1, 1), bs * bs))
+    piv = np.empty((blocks, bs), dtype=np.int64)
     y_saved = np.empty(ny)
     acc_saved = np.empty(nq)
     step = 0
@@ -286,7 +392,7 @@ def newmark_chunk(
                 for k in range(parts):
                     status = _step(
                         t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag,
-                        upper, lower, factor, work,
+                        upper, lower, factor, piv, work,
                     )  # fmt: skip
                     if status != OK:
                         break
