@@ -122,8 +122,9 @@ def _check_integrator(case: schema.Case, model) -> None:
     if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
         raise CaseError(
             f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal "
-            f"Newton matrix (lumped_mass, natural_string); the {case.cables[0].model} model runs "
-            "with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, cvode)"
+            f"Newton matrix (rigid_links, lumped_mass, natural_string); the "
+            f"{case.cables[0].model} model runs with rk4, dopri5 or the adaptive stiff "
+            "integrators (bdf, radau, lsoda, cvode)"
         )
 
 
@@ -352,7 +353,8 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
         return (
             f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "
             f"({size} states: {size} right-hand sides and a dense factorisation per Jacobian); "
-            "it is slow beyond a few dozen links. Use dopri5 or rk4 for rigid-link cables"
+            "it is slow beyond a few dozen links. Use dopri5 or rk4 (or, for the planar "
+            "rigid_links model, newmark or generalized_alpha, which solve in O(n))"
         )
     if sim.integrator != "rk4":
         return None

@@ -539,18 +539,19 @@ def _body_jacobian(p, w):
 
 
 @njit(**JIT)
-def _link_rows(p_arrays, n, y, a_alpha, w, i, lam, cm, cx, cv, diag, upper, lower):
+def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
     """Matrix rows of link i: kinematics and rotation (block i + 1), translation (block i)."""
     length, mass, inertia, joint_k, joint_c, drag_n, drag_t, current_z, current_u = p_arrays
     li = length[i]
     om = y[n + 1 + i]
     ex, ez = w[_EX, i], w[_EZ, i]
     nx, nz = -ez, ex
-    a = a_alpha[i]
+    a = w[_THDD, i]  # the Jacobian of the reduced residual linearises about the dynamics
     b = i + 1
-    # kinematics A_{i+1} - A_i - l (s n - om^2 e) = 0
-    kx = cm * li * nx + cx * li * (a * ex + om * om * nx) + cv * 2.0 * li * om * ex
-    kz = cm * li * nz + cx * li * (a * ez + om * om * nz) + cv * 2.0 * li * om * ez
+    # kinematics A_{i+1} - A_i - l (s n - om^2 e) = 0; d/dtheta = l (s e + om^2 n),
+    # d/domega = 2 l om e
+    kx = cm * li * nx - cx * li * (a * ex + om * om * nx) - cv * 2.0 * li * om * ex
+    kz = cm * li * nz - cx * li * (a * ez + om * om * nz) - cv * 2.0 * li * om * ez
     _put(diag, upper, lower, b, 0, b, 1, 1.0)
     _put(diag, upper, lower, b, 1, b, 2, 1.0)
     _put(diag, upper, lower, b, 0, i, 1, -1.0)
@@ -679,7 +680,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         p.drag_tangential, p.current_z, p.current_u,
     )  # fmt: skip
     for i in range(n):
-        _link_rows(arrays, n, y, a_alpha, w, i, lam, cm, cx, cv, diag, upper, lower)
+        _link_rows(arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower)
     _end_rows(p, w, cm, cx, cv, diag)
     return OK
 

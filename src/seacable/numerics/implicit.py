@@ -28,7 +28,7 @@ evaluations (matrices built and factorised) and linear solves (Newton iterations
 import math
 
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
@@ -157,6 +157,7 @@ def block_tridiagonal_solve(diag, upper, lower, rhs, x):
 def _lu(a, piv, bs):
     """In-place LU with partial pivoting of the bs x bs row-major block ``a`` (row swaps in
     ``piv``); returns False when it is singular."""
+    literally(bs)
     for c in range(bs):
         best = c
         for r in range(c + 1, bs):
@@ -183,6 +184,7 @@ def _lu(a, piv, bs):
 def _lu_solve(a, piv, bs, x, stride, columns):
     """Solve with the factors of ``_lu`` for ``columns`` right-hand sides stored row-major in
     ``x`` (row r, column j at x[r * stride + j]), in place."""
+    literally(bs)
     for j in range(columns):
         for c in range(bs):
             r = piv[c]
@@ -203,14 +205,15 @@ def _lu_solve(a, piv, bs, x, stride, columns):
 
 
 @njit(**JIT)
-def block_lu_factor(diag, upper, lower, factor, piv):
+def block_lu_factor(diag, upper, lower, factor, piv, bs):
     """Block Thomas elimination for any block size bs (``diag`` of shape (m, bs * bs), blocks
     row-major; ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k)), for systems whose pivot
     blocks need row pivoting (saddle points: accelerations with constraint forces).
     ``diag[k]`` becomes the LU factors of the k-th Schur complement (row swaps in ``piv[k]``)
-    and ``factor[k] = pivot[k]^-1 upper[k]``; O(m bs^3). Returns False on a singular pivot."""
+    and ``factor[k] = pivot[k]^-1 upper[k]``; O(m bs^3). Returns False on a singular pivot.
+    ``bs`` is compiled as a constant (``numba.literally``): the loops unroll, twice as fast."""
+    literally(bs)
     m = diag.shape[0]
-    bs = piv.shape[1]
     for k in range(m):
         if k > 0:
             g = factor[k - 1]
@@ -230,10 +233,10 @@ def block_lu_factor(diag, upper, lower, factor, piv):
 
 
 @njit(**JIT)
-def block_lu_apply(diag, lower, factor, piv, rhs, x):
+def block_lu_apply(diag, lower, factor, piv, rhs, x, bs):
     """Solve with the factors of ``block_lu_factor``; O(m bs^2)."""
+    literally(bs)
     m = diag.shape[0]
-    bs = piv.shape[1]
     for k in range(m):
         for r in range(bs):
             acc = rhs[k * bs + r]
@@ -250,6 +253,24 @@ def block_lu_apply(diag, lower, factor, piv, rhs, x):
             for j in range(bs):
                 acc += g[r * bs + j] * x[(k + 1) * bs + j]
             x[k * bs + r] -= acc
+
+
+PIVOTED_SIZES = (5,)  # block sizes compiled for the pivoting solver (planar rigid links: 5)
+
+
+@njit(**JIT)
+def pivoted_factor(diag, upper, lower, factor, piv):
+    """``block_lu_factor`` for the block size of ``piv``; False when it is not compiled."""
+    if piv.shape[1] == 5:
+        return block_lu_factor(diag, upper, lower, factor, piv, 5)
+    return False
+
+
+@njit(**JIT)
+def pivoted_apply(diag, lower, factor, piv, rhs, x):
+    """``block_lu_apply`` for the block size of ``piv``."""
+    if piv.shape[1] == 5:
+        block_lu_apply(diag, lower, factor, piv, rhs, x, 5)
 
 
 @njit(**JIT)
@@ -285,19 +306,22 @@ def _alpha_point(y0, y1, a0, a1, coef, ya, aa, nq):
 MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
 
 
-REFRESH = 3  # modified Newton: the matrix is rebuilt and refactorised every REFRESH iterations
+REFRESH = 3  # modified Newton: the matrix is rebuilt after REFRESH iterations without converging
+SLOW = 0.5  # ... or as soon as a correction is larger than SLOW times the one before
 
 
 @njit(**JIT)
 def _step(
     t, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag, upper, lower, factor, piv,
-    work,
+    fresh, work,
 ):  # fmt: skip
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     Returns the status (NEWTON_FAILED when Newton's iteration does not converge).
 
-    A modified Newton iteration: the matrix is built and factorised at the first iteration
-    (and every REFRESH), the later ones only evaluate the residual and reuse the factors.
+    A modified Newton iteration: the factorised matrix is kept from step to step while it
+    serves (``fresh`` = [1, h] while the factors belong to the step length h) and rebuilt when
+    the iteration takes REFRESH iterations on one matrix or contracts slower than SLOW; the
+    other iterations only evaluate the residual and reuse the factors.
     ``da`` and ``res`` hold three entries per node whatever the model's variables per node
     (the solver's blocks are 3x3) or, for the rigid-link models, the solver's own unknowns
     (``model_correct`` maps them back onto the accelerations)."""
@@ -309,11 +333,13 @@ def _step(
     t1 = t + h
     ta = t + (1.0 - af) * h
     a1[:] = acc  # predictor: the last acceleration
-    for it in range(max_iter):
+    uses = 0  # iterations on the current factors in this step
+    previous = math.inf
+    for _ in range(max_iter):
         _stage(y, acc, a1, h, coef, y1, nq)
         model_prescribe(t1, y1, a1, p)
         _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
-        matrix = it % REFRESH == 0
+        matrix = fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH
         status = model_newton(
             ta, ya, aa, p, w, ydot, 1.0 - am, (1.0 - af) * b * h * h, (1.0 - af) * g * h,
             diag, upper, lower, res, matrix,
@@ -325,21 +351,30 @@ def _step(
         if matrix:
             work[4] += 1
             if pivoted:
-                factored = block_lu_factor(diag, upper, lower, factor, piv)
+                factored = pivoted_factor(diag, upper, lower, factor, piv)
             else:
                 factored = block_tridiagonal_factor(diag, upper, lower, factor)
             if not factored:
                 work[3] += 1
+                fresh[0] = 0.0
                 return NON_FINITE
+            fresh[0], fresh[1] = 1.0, h
+            uses = 0
+            previous = math.inf
+        uses += 1
         work[5] += 1
         if pivoted:
-            block_lu_apply(diag, lower, factor, piv, res, da)
+            pivoted_apply(diag, lower, factor, piv, res, da)
         else:
             block_tridiagonal_apply(diag, upper, factor, res, da)
         largest = model_correct(p, da, a1)
         if not math.isfinite(largest):
             work[3] += 1
+            fresh[0] = 0.0
             return NON_FINITE
+        if largest > SLOW * previous:
+            uses = REFRESH  # factors that no longer serve: rebuild at the next iteration
+        previous = largest
         if b * h * h * largest <= tol:
             _stage(y, acc, a1, h, coef, y1, nq)
             model_prescribe(t1, y1, a1, p)
@@ -348,6 +383,7 @@ def _step(
             acc[:] = a1
             work[0] += 1
             return OK
+    fresh[0] = 0.0
     return NEWTON_FAILED
 
 
@@ -377,6 +413,7 @@ def newmark_chunk(
     lower = np.empty((max(blocks - 1, 1), bs * bs))
     factor = np.empty((max(blocks - 1, 1), bs * bs))
     piv = np.empty((blocks, bs), dtype=np.int64)
+    fresh = np.zeros(2)  # [factors valid, their step length]: kept from step to step
     y_saved = np.empty(ny)
     acc_saved = np.empty(nq)
     step = 0
@@ -392,7 +429,7 @@ def newmark_chunk(
                 for k in range(parts):
                     status = _step(
                         t + k * h, y, acc, h, coef, tol, max_iter, p, w, vec, q, da, res, diag,
-                        upper, lower, factor, piv, work,
+                        upper, lower, factor, piv, fresh, work,
                     )  # fmt: skip
                     if status != OK:
                         break
