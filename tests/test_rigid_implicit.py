@@ -194,3 +194,140 @@ def test_orders_of_implicit_euler_and_newmark_on_the_rigid_chain():
         errors = [np.linalg.norm(end_at(scheme, dt) - exact) for dt in (0.01, 0.005, 0.0025)]
         rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
         assert np.all(rates > order - 0.25), (scheme, errors, rates)
+
+
+# ---- the 3D chain ---------------------------------------------------------------------------
+def _case_3d(n, top, bottom, **simulation):
+    data = chain_case(
+        n=n,
+        top=top,
+        bottom=bottom,
+        initial={"shape": "arc", "top_angle_deg": 50.0, "bottom_angle_deg": -30.0},
+        environment={
+            "water_depth": 100.0,
+            "current": {"velocity": 0.4, "direction_deg": 30.0},
+        },
+        simulation={"duration": 2.0, "output_interval": 0.05, **simulation},
+        model="rigid_segments_3d",
+        joint_stiffness=15.0,
+        joint_damping=0.4,
+        drag_coefficient_normal=1.2,
+        drag_coefficient_tangential=0.02,
+        added_mass_coefficient=1.0,
+        point_bodies=[{"node": n // 2, "mass": 0.5, "volume": 0.004, "drag_area": 0.03}],
+    )
+    return data
+
+
+CASES_3D = {
+    "heave top, free body": (
+        {**HEAVE_TOP, "position": [0.0, 0.0, 0.0]},
+        {
+            "type": "free",
+            "body": {"mass": 5.0, "volume": 0.001, "drag_coefficient": 1.0, "drag_area": 0.02},
+            "tie": {"stiffness_x": 30.0, "stiffness_y": 10.0, "damping_z": 5.0},
+        },
+    ),
+    "moving top, pinned end": (
+        {"type": "imposed", "y": {"kind": "sine", "amplitude": 0.5, "period": 3.0}},
+        {"type": "pinned"},
+    ),
+    "guided end": (
+        {"type": "fixed"},
+        {"type": "free", "body": {"mass": 2.0, "volume": 0.004}, "hold_axes": ["x", "y"]},
+    ),
+}
+
+
+@pytest.mark.parametrize("name", CASES_3D)
+def test_3d_newton_step_matches_a_dense_finite_difference_newton_step(name):
+    from seacable.kernels import chain3d as c3
+
+    top, bottom = CASES_3D[name]
+    system = build_system(seacable.load_case(_case_3d(8, top, bottom)))
+    p, n = system.params, system.params.n
+    y0 = system.y0.copy()
+    u0 = 3 * n + 1
+    rng = np.random.default_rng(2)
+    for i in range(n):  # rates normal to the directors
+        e = y0[3 * i : 3 * i + 3]
+        r = rng.normal(scale=0.2, size=3)
+        y0[u0 + 3 * i : u0 + 3 * i + 3] = r - (r @ e) * e
+    heave = top["type"] == "floating_structure"
+    if heave:
+        y0[6 * n + 1] = 0.1
+    w = c3.make_workspace(n)
+    ydot = np.empty_like(y0)
+    t, h = 0.5, 0.02
+    cx, cv = 0.25 * h * h, 0.5 * h
+    nq = 3 * n + 1
+    assert c3.rhs(t, y0, p, w, ydot) == c3.OK
+    a = ydot[nq : 2 * nq] + rng.normal(scale=0.5, size=nq)
+    if not heave:
+        a[3 * n] = 0.0
+
+    def state(acc):
+        y = y0.copy()
+        y[:nq] += cx * acc
+        y[nq : 2 * nq] += cv * acc
+        return y
+
+    def residual(acc):
+        out = np.empty_like(y0)
+        c3.rhs(t, state(acc), p, w, out)
+        return acc - out[nq : 2 * nq]
+
+    r0 = residual(a)
+    jac = np.empty((nq, nq))
+    for j in range(nq):
+        e = np.zeros(nq)
+        e[j] = 1e-6
+        jac[:, j] = (residual(a + e) - residual(a - e)) / 2e-6
+    if not heave:
+        jac[3 * n, :] = 0.0
+        jac[:, 3 * n] = 0.0
+        jac[3 * n, 3 * n] = 1.0
+        r0[3 * n] = 0.0
+    dense_step = np.linalg.solve(jac, r0)
+    m, bs = n + 1, c3.NEWTON_BLOCK
+    diag = np.empty((m, bs * bs))
+    upper = np.empty((m - 1, bs * bs))
+    lower = np.empty((m - 1, bs * bs))
+    res = np.empty(bs * m)
+    status = c3.newton_system(
+        t, state(a), a, p, w, ydot, 1.0, cx, cv, diag, upper, lower, res, True
+    )  # fmt: skip
+    assert status == c3.OK
+    factor = np.empty((m - 1, bs * bs))
+    piv = np.empty((m, bs), dtype=np.int64)
+    da = np.empty(bs * m)
+    assert implicit.pivoted_factor(diag, upper, lower, factor, piv)
+    implicit.pivoted_apply(diag, lower, factor, piv, res, da)
+    corrected = a.copy()
+    c3.newton_correct(p.length, da, corrected)
+    gap = np.linalg.norm(a - corrected - dense_step) / np.linalg.norm(dense_step)
+    assert gap < 5e-3, gap  # measured 3e-4, 1.4e-3 and 3e-4
+
+
+@pytest.mark.parametrize("name", CASES_3D)
+def test_3d_implicit_runs_agree_with_a_tight_adaptive_reference(name):
+    top, bottom = CASES_3D[name]
+    ref = run(_case_3d(12, top, bottom, integrator="dopri5", rtol=1e-10, atol=1e-10)).dataset
+
+    def end(ds):
+        return np.stack([ds[f"node_{a}"].values[:, -1] for a in "xyz"], axis=1)
+
+    for scheme in ("newmark", "generalized_alpha"):
+        ds = run(_case_3d(12, top, bottom, integrator=scheme, time_step=0.005)).dataset
+        gap = np.max(np.linalg.norm(end(ds) - end(ref), axis=1))
+        assert gap < 3e-3, (scheme, gap)
+        steps = ds.attrs["solver_accepted_steps"]
+        assert ds.attrs["solver_linear_solves"] <= 5 * steps
+        assert ds.attrs["solver_jacobian_evaluations"] <= steps
+
+
+def test_servo_end_is_refused_by_the_implicit_schemes():
+    case = seacable.load_case("examples/jacquot_marichal_trajectory_servo.yaml")
+    sim = case.simulation.model_copy(update={"integrator": "newmark"})
+    with pytest.raises(seacable.CaseError, match="servo"):
+        seacable.simulate(case.model_copy(update={"simulation": sim}))

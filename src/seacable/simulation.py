@@ -122,10 +122,12 @@ def _check_integrator(case: schema.Case, model) -> None:
     if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
         raise CaseError(
             f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal "
-            f"Newton matrix (rigid_links, lumped_mass, natural_string); the "
-            f"{case.cables[0].model} model runs with rk4, dopri5 or the adaptive stiff "
-            "integrators (bdf, radau, lsoda, cvode)"
+            f"Newton matrix (rigid_links, rigid_segments_3d, lumped_mass, natural_string); "
+            f"this case runs with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, "
+            "lsoda, cvode)"
         )
+    if integrator in IMPLICIT:
+        getattr(model, "check_implicit", lambda case: None)(case)
 
 
 class _Run:
@@ -143,7 +145,8 @@ class _Run:
         self.w = model.workspace(system)
         self.work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         self.h = self.sim.initial_step
-        self.acc = np.zeros(self.y.shape[0] // 2)  # implicit schemes: the acceleration a0
+        positions = getattr(model, "positions", lambda system: len(system.y0) // 2)(system)
+        self.acc = np.zeros(positions)  # implicit schemes: the acceleration a0
         self.stepper = None  # SciPy / SUNDIALS integrators
         self.stiff_failure = None
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))

@@ -428,6 +428,30 @@ def rows(times, states, system: System3D, w) -> tuple[dict, int]:
     return add_total_energy(out), status
 
 
+NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+
+
+def check_implicit(case: schema.Case) -> None:
+    """The implicit schemes advance second-order states only: the servo's force is not one."""
+    bottom = case.cables[0].bottom
+    if isinstance(bottom, schema.TrajectoryBottom) and bottom.method == "stiffness_servo":
+        raise CaseError(
+            f"simulation.integrator: '{case.simulation.integrator}' cannot advance the servo's "
+            "force (a first-order state); use rk4 or dopri5 with method: stiffness_servo, or "
+            "follow the trajectory exactly (cables[0].bottom.method: exact)"
+        )
+
+
+def shortest_segment(system: System3D) -> float:
+    """Shortest segment [m]: scales the Newton tolerance of implicit steps."""
+    return float(np.min(system.params.length))
+
+
+def positions(system: System3D) -> int:
+    """Position variables of the state (directors and heave); the servo force follows."""
+    return 3 * system.n_links + 1
+
+
 def rates(system: System3D, y) -> np.ndarray:
     n = system.n_links
     return np.linalg.norm(y[3 * n + 1 : 6 * n + 1].reshape(n, 3), axis=1)

@@ -95,6 +95,12 @@ def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
+    if _is(p, chain3d.Chain3DParams):
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
+            chain3d.newton_system(
+                t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
+            )
+        )
     if _is(p, planar_chain.ChainParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
             planar_chain.newton_system(
@@ -130,6 +136,8 @@ def _model_prescribe(t, y, acc, p):
         return lambda t, y, acc, p: lumped.prescribe(t, y, acc, p)
     if _is(p, natural.NaturalParams) or _is(p, planar_chain.ChainParams):
         return lambda t, y, acc, p: None  # no prescribed variables (or kept by the kernel)
+    if _is(p, chain3d.Chain3DParams):
+        return lambda t, y, acc, p: None
     return None
 
 
@@ -142,6 +150,8 @@ def model_newton_cost(p):
 def _model_newton_cost(p):
     if _is(p, lumped.LumpedParams) or _is(p, planar_chain.ChainParams):
         return lambda p: 1  # analytic Jacobian
+    if _is(p, chain3d.Chain3DParams):
+        return lambda p: 1  # analytic but for local differences of the joint moments
     if _is(p, natural.NaturalParams):
         # coloured differences: 3 colours x B variables x (positions, velocities), + 2
         return lambda p: 6 * (3 if p.cartesian == 1 else 2) + 2
@@ -162,6 +172,8 @@ def _model_solver(p, nq):
         return lambda p, nq: (nq // (3 if p.cartesian == 1 else 2), 3)
     if _is(p, planar_chain.ChainParams):
         return lambda p, nq: (p.n + 1, planar_chain.NEWTON_BLOCK)
+    if _is(p, chain3d.Chain3DParams):
+        return lambda p, nq: (p.n + 1, chain3d.NEWTON_BLOCK)
     return None
 
 
@@ -189,4 +201,19 @@ def _model_correct(p, da, a1):
         return lambda p, da, a1: _correct_nodes(model_block(p), da, a1)
     if _is(p, planar_chain.ChainParams):
         return lambda p, da, a1: planar_chain.newton_correct(p.length, da, a1)
+    if _is(p, chain3d.Chain3DParams):
+        return lambda p, da, a1: chain3d.newton_correct(p.length, da, a1)
     return None
+
+
+def model_positions(p, ny):
+    """Number of position variables in a state of length ``ny`` (velocities follow them; any
+    further entries are first-order states the implicit schemes keep unchanged)."""
+    raise NotImplementedError("model_positions is only callable from compiled code")
+
+
+@overload(model_positions, jit_options=JIT)
+def _model_positions(p, ny):
+    if _is(p, chain3d.Chain3DParams):
+        return lambda p, ny: 3 * p.n + 1  # directors and heave; the servo force follows
+    return lambda p, ny: ny // 2

@@ -35,6 +35,7 @@ from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
     model_correct,
     model_newton,
+    model_positions,
     model_newton_cost,
     model_prescribe,
     model_project,
@@ -255,7 +256,7 @@ def block_lu_apply(diag, lower, factor, piv, rhs, x, bs):
             x[k * bs + r] -= acc
 
 
-PIVOTED_SIZES = (5,)  # block sizes compiled for the pivoting solver (planar rigid links: 5)
+PIVOTED_SIZES = (5, 9)  # block sizes compiled for the pivoting solver (rigid links: 2D, 3D)
 
 
 @njit(**JIT)
@@ -263,6 +264,8 @@ def pivoted_factor(diag, upper, lower, factor, piv):
     """``block_lu_factor`` for the block size of ``piv``; False when it is not compiled."""
     if piv.shape[1] == 5:
         return block_lu_factor(diag, upper, lower, factor, piv, 5)
+    if piv.shape[1] == 9:
+        return block_lu_factor(diag, upper, lower, factor, piv, 9)
     return False
 
 
@@ -271,6 +274,8 @@ def pivoted_apply(diag, lower, factor, piv, rhs, x):
     """``block_lu_apply`` for the block size of ``piv``."""
     if piv.shape[1] == 5:
         block_lu_apply(diag, lower, factor, piv, rhs, x, 5)
+    elif piv.shape[1] == 9:
+        block_lu_apply(diag, lower, factor, piv, rhs, x, 9)
 
 
 @njit(**JIT)
@@ -278,8 +283,8 @@ def initial_acceleration(t, y, p, w, acc):
     """The model's acceleration at (t, y): the a0 a run starts from. Returns the status."""
     ydot = np.empty_like(y)
     status = model_rhs(t, y, p, w, ydot)
-    nq = y.shape[0] // 2
-    acc[:] = ydot[nq:]
+    nq = acc.shape[0]
+    acc[:] = ydot[nq : 2 * nq]
     return status
 
 
@@ -333,6 +338,8 @@ def _step(
     t1 = t + h
     ta = t + (1.0 - af) * h
     a1[:] = acc  # predictor: the last acceleration
+    y1[:] = y  # first-order states past the velocities (if any) stay as they are
+    ya[:] = y
     uses = 0  # iterations on the current factors in this step
     previous = math.inf
     for _ in range(max_iter):
@@ -402,7 +409,7 @@ def newmark_chunk(
     solves] (a Jacobian costs one rhs when analytic, more with finite differences; accepted
     counts substeps)."""
     ny = y.shape[0]
-    nq = ny // 2
+    nq = model_positions(p, ny)
     blocks, bs = model_solver(p, nq)
     vec = np.empty((3, ny))
     q = np.empty((2, nq))
