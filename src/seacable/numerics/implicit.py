@@ -35,8 +35,8 @@ from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
     model_correct,
     model_newton,
-    model_positions,
     model_newton_cost,
+    model_positions,
     model_prescribe,
     model_project,
     model_rhs,
