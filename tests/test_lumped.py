@@ -344,3 +344,120 @@ def test_two_floating_structures_like_the_rigid_link_model():
             gap = np.abs(lumped[axis].values[:, node] - rigid[axis].values[:, node]).max()
             assert gap < 0.02, (node, axis, gap)
     assert np.ptp(rigid["node_z"].values[:, 0]) > 1.0  # the top structure does heave
+
+
+# ---- held lower ends: trajectories and guides ---------------------------------------------------
+def _held_case(model, bottom, shape, integrator="dopri5", duration=8.0, links=30):
+    cable = {
+        "model": model,
+        "links": links,
+        "length": 100.0,
+        "diameter": 0.03,
+        "mass_per_length": 2.0,
+        "drag_coefficient_normal": 1.2,
+        "top": {"type": "fixed", "position": [0.0, 0.0, 0.0]},
+        "initial": shape,
+        "bottom": bottom,
+    }
+    if model == "lumped_mass":
+        cable.update(axial_stiffness=1e8, axial_damping_time=0.001)
+    simulation = {"duration": duration, "output_interval": 0.1, "integrator": integrator}
+    simulation["time_step"] = 0.005
+    return seacable.load_case(
+        {"environment": {"water_depth": 200.0}, "cables": [cable], "simulation": simulation}
+    )
+
+
+def _trajectory(moving=True):
+    # starts at rest at (40, 0, -80) and moves smoothly in x and y (1 - cos)
+    amp_x, amp_y = (4.0, 3.0) if moving else (0.0, 0.0)
+    phase = -math.pi / 2
+    return {
+        "type": "trajectory",
+        "relative_to_top": False,
+        "x": {"kind": "sine", "amplitude": amp_x, "period": 12.0, "phase": phase,
+              "offset": 40.0 + amp_x},
+        "y": {"kind": "sine", "amplitude": amp_y, "period": 10.0, "phase": phase, "offset": amp_y},
+        "z": {"kind": "constant", "value": -80.0},
+    }  # fmt: skip
+
+
+FORCES = [f"{end}_force_{a}" for end in ("top", "bottom") for a in "xyz"]
+
+
+def test_trajectory_end_starts_in_the_rigid_models_static_equilibrium():
+    # the discrete line's equilibrium polished from the catenary through the target, against the
+    # rigid-segment model's static shape (an inextensible chain: EA = 1e8 stretches it 1e-5)
+    lumped = seacable.simulate(
+        _held_case("lumped_mass", _trajectory(False), {"shape": "catenary"}, duration=0.5)
+    ).dataset
+    rigid = seacable.simulate(
+        _held_case("rigid_segments_3d", _trajectory(False), {"shape": "static"}, duration=0.5)
+    ).dataset
+    for name in FORCES:
+        a, b = lumped[name].values, rigid[name].values
+        assert np.allclose(a, b[0], rtol=2e-3, atol=0.5), (name, a, b)  # static: constant too
+
+
+def test_trajectory_end_follows_its_target_like_the_rigid_model():
+    lumped = seacable.simulate(
+        _held_case("lumped_mass", _trajectory(), {"shape": "catenary"})
+    ).dataset
+    rigid = seacable.simulate(
+        _held_case("rigid_segments_3d", _trajectory(), {"shape": "static"})
+    ).dataset
+    implicit = seacable.simulate(
+        _held_case("lumped_mass", _trajectory(), {"shape": "catenary"}, "generalized_alpha")
+    ).dataset
+    t = lumped["time"].values
+    target_x = 44.0 - 4.0 * np.cos(2 * np.pi * t / 12.0)
+    assert np.abs(lumped["node_x"].values[:, -1] - target_x).max() < 1e-6
+    assert np.abs(implicit["node_x"].values[:, -1] - target_x).max() < 1e-9
+    for a in "xyz":
+        mid = lumped[f"node_{a}"].values[:, 15]
+        assert np.abs(mid - rigid[f"node_{a}"].values[:, 15]).max() < 0.02  # [m], the models
+        assert np.abs(mid - implicit[f"node_{a}"].values[:, 15]).max() < 0.005  # the schemes
+    for name in ("top_force_x", "top_force_z", "bottom_force_x"):
+        a, b = lumped[name].values, rigid[name].values
+        assert np.abs(a - b).max() < 0.08 * np.abs(b).max(), name
+
+
+def test_guided_end_moves_like_the_rigid_model_and_all_axes_hold_like_a_pin():
+    bottom = {
+        "type": "free",
+        "body": {"mass": 20.0, "volume": 0.005, "drag_coefficient": 1.0, "drag_area": 0.2},
+        "hold_axes": ["x", "y"],
+    }
+    arc = {"shape": "arc", "top_angle_deg": 30.0, "bottom_angle_deg": 60.0}
+    cases = {
+        "lumped": _held_case("lumped_mass", bottom, arc),
+        "rigid": _held_case("rigid_segments_3d", bottom, arc),
+        "implicit": _held_case("lumped_mass", bottom, arc, "generalized_alpha"),
+    }
+    runs = {k: seacable.simulate(c).dataset for k, c in cases.items()}
+    end_z = {k: ds["node_z"].values[:, -1] for k, ds in runs.items()}
+    assert np.ptp(end_z["lumped"]) > 0.5  # it moves along its guide
+    assert np.ptp(runs["lumped"]["node_x"].values[:, -1]) == 0.0
+    assert np.abs(end_z["lumped"] - end_z["rigid"]).max() < 5e-3
+    assert np.abs(end_z["lumped"] - end_z["implicit"]).max() < 1e-3
+    everywhere = {**bottom, "hold_axes": ["x", "y", "z"]}
+    held = seacable.simulate(_held_case("lumped_mass", everywhere, arc, duration=2.0)).dataset
+    pinned = seacable.simulate(
+        _held_case("lumped_mass", {"type": "pinned"}, arc, duration=2.0)
+    ).dataset
+    assert np.abs(held["node_x"].values - pinned["node_x"].values).max() < 1e-9
+    for name in FORCES:  # the body's own loads are not the cable's
+        assert np.abs(held[name].values - pinned[name].values).max() < 1e-3, name
+
+
+def test_lumped_refuses_the_servo_and_shared_bodies():
+    servo = {**_trajectory(), "method": "stiffness_servo"}
+    with pytest.raises(seacable.CaseError, match=r"bottom.method: .*exact"):
+        seacable.simulate(_held_case("lumped_mass", servo, {"shape": "catenary"}))
+    data = seacable.load_case("examples/rising_body_four_cables.yaml").model_dump(
+        mode="json", exclude_unset=True
+    )
+    for cable in data["cables"]:
+        cable.update(model="lumped_mass", axial_stiffness=1e7)
+    with pytest.raises(seacable.CaseError, match="shared body"):
+        seacable.simulate(seacable.load_case(data))

@@ -227,8 +227,10 @@ def is_closed(p):
 
 
 @njit(**JIT)
-def target_motion(t, y, p):
-    """Position, velocity and acceleration (3 each) the lower end is to follow."""
+def target_channels(t, p):
+    """The lower end's target as the case gives it (3 each: position, velocity, acceleration):
+    the pin, or the trajectory's channels (offsets from the top when ``target_relative``).
+    Shared with the lumped-mass kernel (same field names)."""
     pos = np.empty(3)
     vel = np.zeros(3)
     acc = np.zeros(3)
@@ -238,12 +240,25 @@ def target_motion(t, y, p):
     pos[0], vel[0], acc[0] = _tf(p, CH_TARGET_X, t)
     pos[1], vel[1], acc[1] = _tf(p, CH_TARGET_Y, t)
     pos[2], vel[2], acc[2] = _tf(p, CH_TARGET_Z, t)
-    if p.target_relative == 1:
-        tp, tv, ta = top_motion(t, y, p)
-        pos += tp
-        vel += tv
-        acc += ta
     return pos, vel, acc
+
+
+@njit(**JIT)
+def target_from(t, p, top_pos, top_vel, top_acc):
+    """``target_channels`` made absolute with the top's motion (given) when relative."""
+    pos, vel, acc = target_channels(t, p)
+    if p.bottom_kind != BOTTOM_PINNED and p.target_relative == 1:
+        pos += top_pos
+        vel += top_vel
+        acc += top_acc
+    return pos, vel, acc
+
+
+@njit(**JIT)
+def target_motion(t, y, p):
+    """Position, velocity and acceleration (3 each) the lower end is to follow."""
+    top_pos, top_vel, top_acc = top_motion(t, y, p)
+    return target_from(t, p, top_pos, top_vel, top_acc)
 
 
 @njit(**JIT)

@@ -9,7 +9,10 @@ contact per node below z = -depth: a vertical spring-damper and Coulomb friction
 along the seabed. Every step is O(n): each free node solves its own 3x3 mass matrix.
 
 State: ``y = [r_0 .. r_n (3 each), v_0 .. v_n (3 each)]``; node 0 follows the top motion, node n
-is free (with a body) or pinned (its derivative zero).
+is free (with a body), or held on the axes of ``constrained``: pinned at ``pin`` (all axes, or
+some of them: a guide), or carried along a trajectory (time functions, all axes). A held axis
+follows its target exactly; the node's free axes obey its equation of motion with the held
+accelerations known.
 """
 
 import math
@@ -22,7 +25,8 @@ from seacable.kernels import chain3d as c3
 from seacable.kernels.timefn import JIT
 
 BOTTOM_FREE = c3.BOTTOM_FREE
-BOTTOM_PINNED = c3.BOTTOM_PINNED
+BOTTOM_PINNED = c3.BOTTOM_PINNED  # held at ``pin`` on the ``constrained`` axes
+BOTTOM_TRAJECTORY = c3.BOTTOM_TRAJECTORY  # held on a moving target (all axes)
 
 SCALAR_NAMES = (
     "top_force_x",
@@ -92,6 +96,8 @@ class LumpedParams(NamedTuple):
     tie_c: np.ndarray  # (3,) [N s/m]
     tie_rest: np.ndarray  # (3,) where the ties are unloaded [m]
     pin: np.ndarray  # (3,)
+    constrained: np.ndarray  # (3,) 1.0 on the axes a held end follows its target
+    target_relative: int  # 1: trajectory channels are offsets from the top node
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
     tf_count: np.ndarray
@@ -247,20 +253,31 @@ def _point_forces(y, p, w):
 
 
 @njit(**JIT)
-def _body_force(t, y, p, w):
+def _body_load(t, y, p):
+    """Force on the end body besides the cable: applied, drag, apparent weight, ties (zero
+    without a body)."""
     n = p.n
     v0 = 3 * (n + 1)
     cu, cv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
     rx, ry, rz = y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cv, y[v0 + 3 * n + 2]
     speed = math.sqrt(rx * rx + ry * ry + rz * rz)
-    fx, _, _ = c3._tf(p, c3.CH_BODY_FX, t)
-    fy, _, _ = c3._tf(p, c3.CH_BODY_FY, t)
-    fz, _, _ = c3._tf(p, c3.CH_BODY_FZ, t)
-    w[_F, n] += fx - p.body_drag[0] * speed * rx
-    w[_F + 1, n] += fy - p.body_drag[1] * speed * ry
-    w[_F + 2, n] += fz - p.body_drag[2] * speed * rz - p.body_wet_weight
+    f = np.empty(3)
+    f[0], _, _ = c3._tf(p, c3.CH_BODY_FX, t)
+    f[1], _, _ = c3._tf(p, c3.CH_BODY_FY, t)
+    f[2], _, _ = c3._tf(p, c3.CH_BODY_FZ, t)
+    f[0] -= p.body_drag[0] * speed * rx
+    f[1] -= p.body_drag[1] * speed * ry
+    f[2] -= p.body_drag[2] * speed * rz + p.body_wet_weight
     for c in range(3):
-        w[_F + c, n] -= p.tie_k[c] * (y[3 * n + c] - p.tie_rest[c]) + p.tie_c[c] * y[v0 + 3 * n + c]
+        f[c] -= p.tie_k[c] * (y[3 * n + c] - p.tie_rest[c]) + p.tie_c[c] * y[v0 + 3 * n + c]
+    return f
+
+
+@njit(**JIT)
+def _body_force(t, y, p, w):
+    f = _body_load(t, y, p)
+    for c in range(3):
+        w[_F + c, p.n] += f[c]
 
 
 @njit(**JIT)
@@ -335,6 +352,42 @@ def _structure_force(t, y, p):
     )
 
 
+is_held = c3.is_closed  # the end node follows a target on some axes (pinned, guided, trajectory)
+
+
+@njit(**JIT)
+def target_state(t, y, p):
+    """Position, velocity and acceleration (3 each) a held end follows."""
+    top_pos, top_vel, top_acc = top_state(t, y, p)
+    return c3.target_from(t, p, top_pos, top_vel, top_acc)
+
+
+@njit(**JIT)
+def _held_end(t, y, p, w, ydot):
+    """Derivatives of the end node held on some axes: those follow the target; the free ones
+    solve the node's equation with the held accelerations known. False when singular."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    _, vel, acc = target_state(t, y, p)
+    mass = _node_mass(p, w, n)
+    system = np.zeros(9)
+    rhs_ = np.zeros(3)
+    for c in range(3):
+        if p.constrained[c] != 0.0:
+            system[4 * c] = 1.0
+            rhs_[c] = acc[c]
+        else:
+            for k in range(3):
+                system[3 * c + k] = mass[3 * c + k]
+            rhs_[c] = w[_F + c, n]
+    a, det = c3._solve3(system, rhs_)
+    for c in range(3):
+        held = p.constrained[c] != 0.0
+        ydot[3 * n + c] = vel[c] if held else y[v0 + 3 * n + c]
+        ydot[v0 + 3 * n + c] = a[c]
+    return det != 0.0
+
+
 @njit(**JIT)
 def rhs(t, y, p, w, ydot):
     n = p.n
@@ -343,8 +396,7 @@ def rhs(t, y, p, w, ydot):
     _bending(p.n, p.bend_stiffness, w)
     _seabed(y, p, w)
     _point_forces(y, p, w)
-    if p.bottom_kind == BOTTOM_FREE:
-        _body_force(t, y, p, w)
+    _body_force(t, y, p, w)  # zero without a body
     pos, vel, acc = top_state(t, y, p)
     heave = p.top_kind == c3.TOP_HEAVE
     status = c3.OK
@@ -360,10 +412,10 @@ def rhs(t, y, p, w, ydot):
                 mass = p.node_mass[0] + p.point_mass[0, 2] + w[_MA + 5, 0] + p.top_mass
                 ydot[v0 + 2] = (w[_F + 2, 0] + _structure_force(t, y, p)) / mass
             continue
-        if k == n and p.bottom_kind == BOTTOM_PINNED:
-            for c in range(3):
-                ydot[3 * k + c] = 0.0
-                ydot[v0 + 3 * k + c] = 0.0
+        if k == n and is_held(p):
+            ok = _held_end(t, y, p, w, ydot)
+            if not ok:
+                status = c3.NON_FINITE
             continue
         ax, ay, az, ok = _node_acceleration(p.node_mass[k], p.point_mass[k], w, k)
         if not ok:
@@ -404,14 +456,12 @@ def _energies(y, p, w):
         strain = math.sqrt(dx * dx + dy * dy + dz * dz) / p.length[i] - 1.0
         if strain > 0.0:
             elastic += 0.5 * p.axial_stiffness * p.length[i] * strain * strain
-    if p.bottom_kind == BOTTOM_FREE:
-        gravity += p.body_wet_weight * y[3 * n + 2]
+    gravity += p.body_wet_weight * y[3 * n + 2]  # zero without a body
     for k in range(n + 1):
         gravity += p.point_weight[k] * y[3 * k + 2]
-    if p.bottom_kind == BOTTOM_FREE:
-        for c in range(3):
-            d = y[3 * n + c] - p.tie_rest[c]
-            elastic += 0.5 * p.tie_k[c] * d * d
+    for c in range(3):  # ties: zero without them
+        d = y[3 * n + c] - p.tie_rest[c]
+        elastic += 0.5 * p.tie_k[c] * d * d
     if p.top_kind == c3.TOP_HEAVE:
         vz = y[v0 + 2]
         kinetic += 0.5 * p.top_mass * vz * vz
@@ -442,9 +492,17 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     for c in range(3):
         inertia = a0[3 * c] * ydot[v0] + a0[3 * c + 1] * ydot[v0 + 1] + a0[3 * c + 2] * ydot[v0 + 2]
         scalars[c] = w[_F + c, 0] - inertia
+    an = _node_mass(p, w, n)
+    body = _body_load(t, y, p)
     for c in range(3):
-        if p.bottom_kind == BOTTOM_PINNED:
-            scalars[3 + c] = w[_F + c, n]
+        if is_held(p) and p.constrained[c] != 0.0:
+            # on a held axis, the cable's share of what holds the end: the end node's loads
+            # less its inertia, the body's excluded
+            inertia = 0.0
+            for k in range(3):
+                inertia += an[3 * c + k] * ydot[v0 + 3 * n + k]
+            inertia -= p.body_mass[c] * ydot[v0 + 3 * n + c]
+            scalars[3 + c] = w[_F + c, n] - body[c] - inertia
         else:
             # the pull of the last segment on the body
             scalars[3 + c] = -w[_T, n - 1] * w[_TX + c, n - 1]
@@ -624,18 +682,18 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
         if p.point_drag[k] > 0.0:
             _sphere_drag_jacobian(y, v0, k, p.point_drag[k], p.current_z, p.current_u,
                                   p.current_v, cv, diag)  # fmt: skip
-    if p.bottom_kind == BOTTOM_FREE:
-        cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
-        r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])
-        speed = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
-        for a in range(3):
-            for b in range(3):
-                term = r[a] * r[b] / speed if speed > 0.0 else 0.0
-                if a == b:
-                    term += speed
-                diag[n, 3 * a + b] += cv * p.body_drag[a] * term
-        for a in range(3):
-            diag[n, 4 * a] += cx * p.tie_k[a] + cv * p.tie_c[a]
+    # the end body's drag and ties (zero without them)
+    cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
+    r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])
+    speed = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+    for a in range(3):
+        for b in range(3):
+            term = r[a] * r[b] / speed if speed > 0.0 else 0.0
+            if a == b:
+                term += speed
+            diag[n, 3 * a + b] += cv * p.body_drag[a] * term
+    for a in range(3):
+        diag[n, 4 * a] += cx * p.tie_k[a] + cv * p.tie_c[a]
 
 
 @njit(**JIT)
@@ -670,7 +728,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         for c in range(3):
             if c < 2 or p.top_kind != c3.TOP_HEAVE:
                 res[c] = 0.0  # the top is prescribed (a floating structure: in x and y)
-            if p.bottom_kind == BOTTOM_PINNED:
+            if is_held(p) and p.constrained[c] != 0.0:
                 res[3 * n + c] = 0.0
         return status
     _jacobian(y, p, cx, cv, diag, upper, lower)
@@ -679,8 +737,8 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         _heave_rows(p, cx, cv, diag, upper, lower, res)
     else:
         _prescribed_rows(p, diag, upper, lower, res, 0)
-    if p.bottom_kind == BOTTOM_PINNED:
-        _prescribed_rows(p, diag, upper, lower, res, n)
+    if is_held(p):
+        _held_rows(p, diag, lower, res)
     return status
 
 
@@ -713,6 +771,19 @@ def _prescribed_rows(p, diag, upper, lower, res, k):
 
 
 @njit(**JIT)
+def _held_rows(p, diag, lower, res):
+    """Identity rows and zero residual for the held axes of the end node."""
+    n = p.n
+    for r in range(3):
+        if p.constrained[r] == 0.0:
+            continue
+        for c in range(3):
+            diag[n, 3 * r + c] = 1.0 if r == c else 0.0
+            lower[n - 1, 3 * r + c] = 0.0
+        res[3 * n + r] = 0.0
+
+
+@njit(**JIT)
 def prescribe(t, y, acc, p):
     """Put the prescribed nodes (the top; a pinned end) at their exact position, velocity and
     acceleration at time t."""
@@ -723,8 +794,10 @@ def prescribe(t, y, acc, p):
         y[c] = pos[c]
         y[v0 + c] = vel[c]
         acc[c] = a[c]
-    if p.bottom_kind == BOTTOM_PINNED:
+    if is_held(p):
+        tpos, tvel, tacc = target_state(t, y, p)
         for c in range(3):
-            y[3 * n + c] = p.pin[c]
-            y[v0 + 3 * n + c] = 0.0
-            acc[3 * n + c] = 0.0
+            if p.constrained[c] != 0.0:
+                y[3 * n + c] = tpos[c]
+                y[v0 + 3 * n + c] = tvel[c]
+                acc[3 * n + c] = tacc[c]

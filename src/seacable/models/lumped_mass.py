@@ -35,12 +35,17 @@ def _check(cable: schema.Cable) -> None:
     where = "cables[0]"
     if cable.axial_stiffness is None:
         raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
-    allowed = (schema.FreeBottom, schema.PinnedBottom, schema.FloatingStructureBottom)
-    if not isinstance(cable.bottom, allowed) or getattr(cable.bottom, "hold_axes", []):
+    bottom = cable.bottom
+    if isinstance(bottom, schema.AttachedBottom):
         raise CaseError(
-            f"{where}.bottom: a lumped-mass cable takes a free end (a body, elastic ties), a "
-            "second floating structure or a pinned end; trajectories, held axes and shared "
-            "bodies need model: rigid_segments_3d"
+            f"{where}.bottom: several cables on a shared body need model: rigid_segments_3d; a "
+            "lumped-mass cable takes a free end (a body, ties, held axes), a second floating "
+            "structure, a pinned end or a trajectory"
+        )
+    if isinstance(bottom, schema.TrajectoryBottom) and bottom.method != "exact":
+        raise CaseError(
+            f"{where}.bottom.method: a lumped-mass cable follows its trajectory exactly; use "
+            "method: exact (the stiffness servo needs model: rigid_segments_3d)"
         )
     if cable.joint_damping:
         raise CaseError(
@@ -49,8 +54,13 @@ def _check(cable: schema.Cable) -> None:
         )
     if cable.initial.shape == "static":
         raise CaseError(f"{where}.initial: use shape 'catenary' for a lumped-mass cable")
-    if cable.initial.shape == "catenary" and not isinstance(cable.bottom, schema.PinnedBottom):
-        raise CaseError(f"{where}.initial: shape 'catenary' needs a pinned bottom with an anchor")
+    if cable.initial.shape == "catenary" and not isinstance(
+        bottom, schema.PinnedBottom | schema.TrajectoryBottom
+    ):
+        raise CaseError(
+            f"{where}.initial: shape 'catenary' needs a pinned bottom with an anchor or a "
+            "trajectory (it ends on the target at t = 0)"
+        )
 
 
 def build(case: schema.Case, base_dir=None) -> LumpedSystem:
@@ -71,19 +81,12 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     if seabed is not None and depth is None:
         raise CaseError("environment.seabed: give environment.water_depth [m] for the seabed")
     top_kind, top_fields, channels, heave = seg._top(cable, base_dir)
-    bottom_fields = dict(body_mass=np.zeros(3), body_wet_weight=0.0, body_drag=np.zeros(3))
-    bottom_fields.update(tie_k=np.zeros(3), tie_c=np.zeros(3))
-    zero = tfn.constant(0.0)
-    body_channels = (zero, zero, zero)
-    if isinstance(cable.bottom, schema.FreeBottom | schema.FloatingStructureBottom):
-        kind, fields, body_channels = seg._bottom(cable, env, base_dir)
-        bottom_fields = {k: fields[k] for k in bottom_fields}
-        body_channels = body_channels[:3]
-        bottom_kind = lk.BOTTOM_FREE
-    else:
-        bottom_kind = lk.BOTTOM_PINNED
+    # the 3D model's reading of the lower end: its kinds and channels are shared
+    bottom_kind, fields, bottom_channels = seg._bottom(cable, env, base_dir)
+    keys = ("body_mass", "body_wet_weight", "body_drag", "tie_k", "tie_c", "constrained")
+    bottom_fields = {k: fields[k] for k in (*keys, "target_relative")}
     breaks, coefs, count, sine = tfn.stack(
-        [*channels[:4], *body_channels, channels[4], zero, zero, zero]
+        [*channels[:4], *bottom_channels[:3], channels[4], *bottom_channels[3:6]]
     )
     current_z, current_u, current_v = current_arrays(env)
     point_mass, point_weight, point_drag = seg._point_bodies(cable, env, n)
@@ -149,10 +152,15 @@ def _initial_state(case, params, heave):
     y[2], y[3 * (n + 1) + 2] = heave  # a floating structure's initial heave (else unused)
     top, vel, _ = lk.top_state(0.0, y, params)
     y0 = np.zeros(lk.state_size(n))
+    trajectory = isinstance(cable.bottom, schema.TrajectoryBottom)
+    target = lk.target_state(0.0, y, params)[0] if trajectory else None
     if cable.initial.shape == "catenary":
-        if cable.bottom.anchor is None:
+        if trajectory:
+            anchor = target
+        elif cable.bottom.anchor is None:
             raise CaseError("cables[0].bottom.anchor: shape 'catenary' needs the anchor [x, y, z]")
-        anchor = np.array(schema.xyz(cable.bottom.anchor), float)
+        else:
+            anchor = np.array(schema.xyz(cable.bottom.anchor), float)
         nodes = catenary_nodes(params, top, anchor, case.environment)
     else:
         angles = cable.initial.angles(n)
@@ -165,11 +173,20 @@ def _initial_state(case, params, heave):
                     f"cables[0].bottom.anchor: {gap:.3f} m from the end of the initial shape; "
                     "use initial: {shape: catenary}"
                 )
+        if trajectory and np.linalg.norm(target - nodes[-1]) > 1e-3:
+            raise CaseError(
+                f"cables[0].bottom: the trajectory starts "
+                f"{np.linalg.norm(target - nodes[-1]):.3f} m from the end of the initial shape "
+                f"at {np.round(nodes[-1], 3).tolist()}; change the shape or use initial: "
+                "{shape: catenary} (it ends on the target)"
+            )
     y0[: 3 * (n + 1)] = nodes.ravel()
     y0[3 * (n + 1) :] = np.tile(vel, n + 1)
-    if isinstance(cable.bottom, schema.PinnedBottom):
-        y0[3 * (n + 1) + 3 * n :] = 0.0
     params = params._replace(pin=np.ascontiguousarray(nodes[-1]))
+    if lk.is_held(params):  # the held axes start with their target's velocity
+        velocity = lk.target_state(0.0, y0, params)[1]
+        held = params.constrained != 0.0
+        y0[3 * (n + 1) + 3 * n :][held] = velocity[held]
     rest = seg._explicit_rest(cable)
     params = params._replace(tie_rest=np.ascontiguousarray(nodes[-1] if rest is None else rest))
     if cable.initial.shape == "catenary":
@@ -181,11 +198,21 @@ def discrete_equilibrium(params, y0, iterations=30):
     """Newton iterations on the node positions until every node is at rest in balance: the
     chords through the continuous catenary are a little short where it bends, so the discrete
     line's equilibrium differs slightly from it. Each iteration solves the block-tridiagonal
-    stiffness system of the implicit integrators (O(n))."""
-    n = params.n
+    stiffness system of the implicit integrators (O(n)). A nearly inextensible line (a large
+    EA) makes Newton's steps erratic, so EA is raised to its value in steps of ten from a
+    thousandth of it, each stage starting from the last one's equilibrium."""
     # the linear law (compression allowed) makes the problem smooth; a catenary's equilibrium
     # has every segment in tension, so it is also the equilibrium of the slack law
-    params = params._replace(slack_allowed=0)
+    target = params.axial_stiffness
+    y = y0.copy()
+    for stiffness in (1e-3 * target, 1e-2 * target, 1e-1 * target, target):
+        stage = params._replace(slack_allowed=0, axial_stiffness=stiffness)
+        y = _newton_equilibrium(stage, y, iterations)
+    return y
+
+
+def _newton_equilibrium(params, y0, iterations):
+    n = params.n
     w = lk.make_workspace(n)
     ydot = np.zeros_like(y0)
     nq = 3 * (n + 1)
@@ -199,25 +226,40 @@ def discrete_equilibrium(params, y0, iterations=30):
         lk.newton_system(0.0, y, at_rest, params, w, ydot, 0.0, 1.0, 0.0, diag, upper, lower, res)
         return res.copy()
 
+    def stretched(y):
+        # the linear law has folded equilibria (a compressed segment between two pulling
+        # ones): a step into compression is not taken
+        chords = np.diff(y[:nq].reshape(n + 1, 3), axis=0)
+        return bool(np.all(np.linalg.norm(chords, axis=1) >= params.length))
+
     y = y0.copy()
     r = residual(y)
     scale = float(np.abs(r).max()) + 1.0
+    best, best_norm = y, np.linalg.norm(r)
     for _ in range(iterations):
         if np.abs(r).max() < 1e-9 * scale:
             break
         if not implicit.block_tridiagonal_solve(diag, upper, lower, r, step):
             break
-        for damping in (1.0, 0.5, 0.25, 0.1):
+        candidates = [(d, True) for d in (1.0, 0.5, 0.25, 0.1)]
+        # when no shorter step lowers the residual (erratic Newton steps on a stiff line), the
+        # longest one that keeps every segment stretched is taken anyway
+        candidates += [(0.5**k, False) for k in range(12)]
+        for damping, must_lower in candidates:
             trial = y.copy()
             trial[:nq] -= damping * step
+            if not stretched(trial):
+                continue
             rt = residual(trial)
-            if np.linalg.norm(rt) < np.linalg.norm(r):
-                y, r = trial, rt
+            if not must_lower or np.linalg.norm(rt) < np.linalg.norm(r):
                 break
         else:
             break
+        y, r = trial, rt
+        if np.linalg.norm(r) < best_norm:
+            best, best_norm = y, np.linalg.norm(r)
         residual(y)  # the matrix at the accepted point
-    return y
+    return best
 
 
 def catenary_nodes(params, top, anchor, env) -> np.ndarray:
