@@ -1035,32 +1035,44 @@ def _put_identity(diag, upper, lower, rb, r0, cb, c0, value):
 
 
 @njit(**JIT)
-def _joint_moment(a, b, ua, ub, k, c):
+def _joint_moment(ax, ay, az, bx, by, bz, uax, uay, uaz, ubx, uby, ubz, k, c):
     """Moment joint (a, b) exerts on segment a (minus it on b): the gradient of k phi^2 / 2 and
-    a damper on the relative angular velocity (as ``_joint_torques``)."""
-    wa = np.cross(a, ua)
-    wb = np.cross(b, ub)
-    cr = np.cross(a, b)
-    sin_phi = math.sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2])
-    phi = math.atan2(sin_phi, a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
-    factor = phi / sin_phi if sin_phi > 1e-12 else 1.0
-    return k * factor * cr + c * (wb - wa)
+    a damper on the relative angular velocity (as ``_joint_torques``). Scalars only: it is
+    called 38 times per segment for each Newton matrix."""
+    wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
+    wbx, wby, wbz = by * ubz - bz * uby, bz * ubx - bx * ubz, bx * uby - by * ubx
+    cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+    sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
+    phi = math.atan2(sin_phi, ax * bx + ay * by + az * bz)
+    kf = k * (phi / sin_phi if sin_phi > 1e-12 else 1.0)
+    return kf * cx + c * (wbx - wax), kf * cy + c * (wby - way), kf * cz + c * (wbz - waz)
 
 
 @njit(**JIT)
-def _director_force(x, ref, k_here, c_here, k_next, c_next, first, last):
-    """G_i = -e_i x (moments on segment i) from the local directors and rates
+def _director_force(x, ref, k_here, c_here, k_next, c_next, first, last, out):
+    """G_i = -e_i x (moments on segment i) into ``out`` from the local directors and rates
     x = [e_{i-1}, e_i, e_{i+1}, u_{i-1}, u_i, u_{i+1}] (18)."""
-    e = x[3:6]
-    u = x[12:15]
-    moment = np.zeros(3)
+    ex, ey, ez = x[3], x[4], x[5]
+    ux, uy, uz = x[12], x[13], x[14]
     if first:  # the top joint: against the fixed reference direction
-        moment -= _joint_moment(ref, e, np.zeros(3), u, k_here, c_here)
+        tx, ty, tz = _joint_moment(
+            ref[0], ref[1], ref[2], ex, ey, ez, 0.0, 0.0, 0.0, ux, uy, uz, k_here, c_here
+        )
     else:
-        moment -= _joint_moment(x[0:3], e, x[9:12], u, k_here, c_here)
+        tx, ty, tz = _joint_moment(
+            x[0], x[1], x[2], ex, ey, ez, x[9], x[10], x[11], ux, uy, uz, k_here, c_here
+        )
+    mx, my, mz = -tx, -ty, -tz
     if not last:
-        moment += _joint_moment(e, x[6:9], u, x[15:18], k_next, c_next)
-    return -np.cross(e, moment)
+        tx, ty, tz = _joint_moment(
+            ex, ey, ez, x[6], x[7], x[8], ux, uy, uz, x[15], x[16], x[17], k_next, c_next
+        )
+        mx += tx
+        my += ty
+        mz += tz
+    out[0] = -(ey * mz - ez * my)
+    out[1] = -(ez * mx - ex * mz)
+    out[2] = -(ex * my - ey * mx)
 
 
 @njit(**JIT)
@@ -1082,7 +1094,8 @@ def _joint_rows(y, p, i, cx, cv, diag, upper, lower, x, g0):
             for c in range(3):
                 x[3 * j + c] = y[3 * seg + c]
                 x[9 + 3 * j + c] = y[u0 + 3 * seg + c]
-    g0[:] = _director_force(x, p.top_reference, k_here, c_here, k_next, c_next, i == 0, last)
+    _director_force(x, p.top_reference, k_here, c_here, k_next, c_next, i == 0, last, g0)
+    g1 = g0[3:6]
     for j in range(3):
         seg = i - 1 + j
         if seg < 0 or seg >= n:
@@ -1094,8 +1107,8 @@ def _joint_rows(y, p, i, cx, cv, diag, upper, lower, x, g0):
                 keep = x[idx]
                 step = 1e-7 * max(1.0, abs(keep))
                 x[idx] = keep + step
-                g1 = _director_force(
-                    x, p.top_reference, k_here, c_here, k_next, c_next, i == 0, last
+                _director_force(
+                    x, p.top_reference, k_here, c_here, k_next, c_next, i == 0, last, g1
                 )
                 x[idx] = keep
                 for r in range(3):
@@ -1322,7 +1335,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     jv = np.empty(9)
     je = np.empty(9)
     x = np.empty(18)
-    g0 = np.empty(3)
+    g0 = np.empty(6)  # the joint force and a perturbed one
     lam_above = _node_force(w, 0, reaction, closed)
     for i in range(n):
         lam_top = _below_point_body(p, w, i, t, lam_above) if i > 0 else lam_above
