@@ -167,12 +167,12 @@ def _current(current_z, current_u, current_v, z):
     return np.interp(z, current_z, current_u), np.interp(z, current_z, current_v)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _tf(p, channel, t):
     return tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, channel, t)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def top_motion(t, y, p):
     """Top position (3), velocity (3), acceleration (3) (zero acceleration for heave)."""
     n = p.n
@@ -220,13 +220,13 @@ def top_motion(t, y, p):
     return pos, vel, acc
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
 def is_closed(p):
     """True when the lower end is held (pinned, guided or on a trajectory): a closed loop."""
     return p.bottom_kind == BOTTOM_PINNED or p.bottom_kind == BOTTOM_TRAJECTORY
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def target_channels(t, p):
     """The lower end's target as the case gives it (3 each: position, velocity, acceleration):
     the pin, or the trajectory's channels (offsets from the top when ``target_relative``).
@@ -243,7 +243,7 @@ def target_channels(t, p):
     return pos, vel, acc
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def target_from(t, p, top_pos, top_vel, top_acc):
     """``target_channels`` made absolute with the top's motion (given) when relative."""
     pos, vel, acc = target_channels(t, p)

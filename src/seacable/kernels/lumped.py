@@ -112,7 +112,7 @@ def make_workspace(n):
     return np.zeros((N_WORK_ROWS, n + 1))
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _segment_forces(t, y, p, w):
     """Tension, tangent, hydrodynamic and weight loads of every segment, shared to its nodes."""
     n = p.n
@@ -176,7 +176,7 @@ def _segment_forces(t, y, p, w):
             w[_MA + 5, k] += m22
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _seabed(y, p, w):
     n = p.n
     v0 = 3 * (n + 1)
@@ -233,7 +233,7 @@ def _bending(n, stiffness, w):
             w[_F + c, i] -= fa + fb
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _point_forces(y, p, w):
     """Apparent weight and sphere drag of the floats and clump weights."""
     n = p.n
@@ -252,7 +252,7 @@ def _point_forces(y, p, w):
             w[_F + 2, k] -= c * rz
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _body_load(t, y, p):
     """Force on the end body besides the cable: applied, drag, apparent weight, ties (zero
     without a body)."""
@@ -273,7 +273,7 @@ def _body_load(t, y, p):
     return f
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _body_force(t, y, p, w):
     f = _body_load(t, y, p)
     for c in range(3):
@@ -329,7 +329,7 @@ def _node_acceleration(m, body, w, k):
     return ax, ay, az, True
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def top_state(t, y, p):
     """Top node position, velocity and acceleration (3 each). A floating structure is node 0
     itself, free in heave (its acceleration comes from the dynamics: zero here), held in x, y."""
@@ -341,7 +341,7 @@ def top_state(t, y, p):
     return c3.top_motion(t, y, p)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _structure_force(t, y, p):
     """Vertical force on a floating structure besides the cable: spring, damper, u(t), net
     weight."""
@@ -355,14 +355,24 @@ def _structure_force(t, y, p):
 is_held = c3.is_closed  # the end node follows a target on some axes (pinned, guided, trajectory)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def target_state(t, y, p):
     """Position, velocity and acceleration (3 each) a held end follows."""
+    if p.bottom_kind != BOTTOM_TRAJECTORY:  # a pin or a guide: at rest (no top needed)
+        return c3.target_channels(t, p)
     top_pos, top_vel, top_acc = top_state(t, y, p)
     return c3.target_from(t, p, top_pos, top_vel, top_acc)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
+def _free_axes(p):
+    """True when the end node moves along some axis (a free end, or a guide)."""
+    if not is_held(p):
+        return True
+    return p.constrained[0] == 0.0 or p.constrained[1] == 0.0 or p.constrained[2] == 0.0
+
+
+@njit(inline="always", **JIT)
 def _held_end(t, y, p, w, ydot):
     """Derivatives of the end node held on some axes: those follow the target; the free ones
     solve the node's equation with the held accelerations known. False when singular."""
@@ -396,7 +406,8 @@ def rhs(t, y, p, w, ydot):
     _bending(p.n, p.bend_stiffness, w)
     _seabed(y, p, w)
     _point_forces(y, p, w)
-    _body_force(t, y, p, w)  # zero without a body
+    if _free_axes(p):  # a body (its loads act on the free axes only)
+        _body_force(t, y, p, w)
     pos, vel, acc = top_state(t, y, p)
     heave = p.top_kind == c3.TOP_HEAVE
     status = c3.OK
@@ -413,8 +424,11 @@ def rhs(t, y, p, w, ydot):
                 ydot[v0 + 2] = (w[_F + 2, 0] + _structure_force(t, y, p)) / mass
             continue
         if k == n and is_held(p):
-            ok = _held_end(t, y, p, w, ydot)
-            if not ok:
+            if p.bottom_kind == BOTTOM_PINNED and not _free_axes(p):  # a pin: at rest
+                for c in range(3):
+                    ydot[3 * n + c] = 0.0
+                    ydot[v0 + 3 * n + c] = 0.0
+            elif not _held_end(t, y, p, w, ydot):
                 status = c3.NON_FINITE
             continue
         ax, ay, az, ok = _node_acceleration(p.node_mass[k], p.point_mass[k], w, k)
@@ -682,6 +696,8 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
         if p.point_drag[k] > 0.0:
             _sphere_drag_jacobian(y, v0, k, p.point_drag[k], p.current_z, p.current_u,
                                   p.current_v, cv, diag)  # fmt: skip
+    if not _free_axes(p):
+        return
     # the end body's drag and ties (zero without them)
     cu, cvv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
     r = np.array([y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cvv, y[v0 + 3 * n + 2]])
@@ -783,7 +799,7 @@ def _held_rows(p, diag, lower, res):
         res[3 * n + r] = 0.0
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def prescribe(t, y, acc, p):
     """Put the prescribed nodes (the top; a pinned end) at their exact position, velocity and
     acceleration at time t."""
@@ -794,10 +810,15 @@ def prescribe(t, y, acc, p):
         y[c] = pos[c]
         y[v0 + c] = vel[c]
         acc[c] = a[c]
-    if is_held(p):
-        tpos, tvel, tacc = target_state(t, y, p)
+    if p.bottom_kind == BOTTOM_PINNED:  # a pin or a guide: at rest on its held axes
         for c in range(3):
             if p.constrained[c] != 0.0:
-                y[3 * n + c] = tpos[c]
-                y[v0 + 3 * n + c] = tvel[c]
-                acc[3 * n + c] = tacc[c]
+                y[3 * n + c] = p.pin[c]
+                y[v0 + 3 * n + c] = 0.0
+                acc[3 * n + c] = 0.0
+    elif p.bottom_kind == BOTTOM_TRAJECTORY:
+        tpos, tvel, tacc = target_state(t, y, p)
+        for c in range(3):
+            y[3 * n + c] = tpos[c]
+            y[v0 + 3 * n + c] = tvel[c]
+            acc[3 * n + c] = tacc[c]

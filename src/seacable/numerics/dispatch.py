@@ -64,7 +64,7 @@ def model_projects(p):
     raise NotImplementedError("model_projects is only callable from compiled code")
 
 
-@overload(model_projects, jit_options=JIT)
+@overload(model_projects, jit_options=JIT, inline="always")
 def _model_projects(p):
     if _is(p, planar_chain.ChainParams) or _is(p, lumped.LumpedParams):
         return lambda p: False
@@ -121,7 +121,7 @@ def model_block(p):
     raise NotImplementedError("model_block is only callable from compiled code")
 
 
-@overload(model_block, jit_options=JIT)
+@overload(model_block, jit_options=JIT, inline="always")
 def _model_block(p):
     if _is(p, lumped.LumpedParams):
         return lambda p: 3
@@ -146,7 +146,7 @@ def model_newton_cost(p):
     raise NotImplementedError("model_newton_cost is only callable from compiled code")
 
 
-@overload(model_newton_cost, jit_options=JIT)
+@overload(model_newton_cost, jit_options=JIT, inline="always")
 def _model_newton_cost(p):
     if _is(p, lumped.LumpedParams) or _is(p, planar_chain.ChainParams):
         return lambda p: 1  # analytic Jacobian
@@ -164,7 +164,7 @@ def model_solver(p, nq):
     raise NotImplementedError("model_solver is only callable from compiled code")
 
 
-@overload(model_solver, jit_options=JIT)
+@overload(model_solver, jit_options=JIT, inline="always")
 def _model_solver(p, nq):
     if _is(p, lumped.LumpedParams):
         return lambda p, nq: (nq // 3, 3)
@@ -195,7 +195,7 @@ def _correct_nodes(b_node, da, a1):
     return largest
 
 
-@overload(model_correct, jit_options=JIT)
+@overload(model_correct, jit_options=JIT, inline="always")
 def _model_correct(p, da, a1):
     if _is(p, lumped.LumpedParams) or _is(p, natural.NaturalParams):
         return lambda p, da, a1: _correct_nodes(model_block(p), da, a1)
@@ -212,8 +212,21 @@ def model_positions(p, ny):
     raise NotImplementedError("model_positions is only callable from compiled code")
 
 
-@overload(model_positions, jit_options=JIT)
+@overload(model_positions, jit_options=JIT, inline="always")
 def _model_positions(p, ny):
     if _is(p, chain3d.Chain3DParams):
         return lambda p, ny: 3 * p.n + 1  # directors and heave; the servo force follows
     return lambda p, ny: ny // 2
+
+
+def model_keeps_matrix(p):
+    """True when the model's Newton matrix is costly enough (against the iterations a stale one
+    adds) to keep from step to step (compiled code only)."""
+    raise NotImplementedError("model_keeps_matrix is only callable from compiled code")
+
+
+@overload(model_keeps_matrix, jit_options=JIT, inline="always")
+def _model_keeps_matrix(p):
+    if _is(p, planar_chain.ChainParams) or _is(p, chain3d.Chain3DParams):
+        return lambda p: True  # 5x5 or 9x9 blocks, joint differences
+    return lambda p: False  # analytic 3x3 blocks: a fresh matrix per step is cheaper

@@ -34,6 +34,7 @@ from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
     model_correct,
+    model_keeps_matrix,
     model_newton,
     model_newton_cost,
     model_positions,
@@ -323,10 +324,12 @@ def _step(
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     Returns the status (NEWTON_FAILED when Newton's iteration does not converge).
 
-    A modified Newton iteration: the factorised matrix is kept from step to step while it
-    serves (``fresh`` = [1, h] while the factors belong to the step length h) and rebuilt when
-    the iteration takes REFRESH iterations on one matrix or contracts slower than SLOW; the
-    other iterations only evaluate the residual and reuse the factors.
+    A modified Newton iteration: models whose matrix is costly (``model_keeps_matrix``: the
+    rigid-link ones) keep the factorised matrix from step to step while it serves (``fresh`` =
+    [1, h] while the factors belong to the step length h); the others build it at each step's
+    first iteration, which saves iterations. Either way it is rebuilt when the iteration takes
+    REFRESH iterations on one matrix or contracts slower than SLOW; the other iterations only
+    evaluate the residual and reuse the factors.
     ``da`` and ``res`` hold three entries per node whatever the model's variables per node
     (the solver's blocks are 3x3) or, for the rigid-link models, the solver's own unknowns
     (``model_correct`` maps them back onto the accelerations)."""
@@ -342,11 +345,12 @@ def _step(
     ya[:] = y
     uses = 0  # iterations on the current factors in this step
     previous = math.inf
-    for _ in range(max_iter):
+    for it in range(max_iter):
         _stage(y, acc, a1, h, coef, y1, nq)
         model_prescribe(t1, y1, a1, p)
         _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
         matrix = fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH
+        matrix = matrix or (it == 0 and not model_keeps_matrix(p))
         status = model_newton(
             ta, ya, aa, p, w, ydot, 1.0 - am, (1.0 - af) * b * h * h, (1.0 - af) * g * h,
             diag, upper, lower, res, matrix,
