@@ -507,7 +507,7 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
         inertia = a0[3 * c] * ydot[v0] + a0[3 * c + 1] * ydot[v0 + 1] + a0[3 * c + 2] * ydot[v0 + 2]
         scalars[c] = w[_F + c, 0] - inertia
     an = _node_mass(p, w, n)
-    body = _body_load(t, y, p)
+    body = _body_load(t, y, p) if _free_axes(p) else np.zeros(3)  # what rhs added
     for c in range(3):
         if is_held(p) and p.constrained[c] != 0.0:
             # on a held axis, the cable's share of what holds the end: the end node's loads
