@@ -38,6 +38,7 @@ from seacable.kernels.planar_chain import (
     SINGULAR_CLOSURE,
     TOP_HEAVE,
     TOP_IMPOSED,
+    put_entry,
 )
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import evaluate as tf_evaluate
@@ -1007,31 +1008,19 @@ NEWTON_BLOCK = 9
 
 
 @njit(**JIT)
-def _put(diag, upper, lower, rb, rl, cb, cl, value):
-    """Add ``value`` at row ``rl`` of block row ``rb``, column ``cl`` of block column ``cb``."""
-    k = rl * NEWTON_BLOCK + cl
-    if cb == rb:
-        diag[rb, k] += value
-    elif cb == rb + 1:
-        upper[rb, k] += value
-    else:
-        lower[cb, k] += value
-
-
-@njit(**JIT)
 def _put3(diag, upper, lower, rb, r0, cb, c0, m, scale):
     """Add ``scale`` times the 3x3 row-major ``m`` at rows r0.., columns c0.. of the blocks."""
     for r in range(3):
         for c in range(3):
             v = m[3 * r + c] * scale
             if v != 0.0:
-                _put(diag, upper, lower, rb, r0 + r, cb, c0 + c, v)
+                put_entry(diag, upper, lower, NEWTON_BLOCK, rb, r0 + r, cb, c0 + c, v)
 
 
 @njit(**JIT)
 def _put_identity(diag, upper, lower, rb, r0, cb, c0, value):
     for r in range(3):
-        _put(diag, upper, lower, rb, r0 + r, cb, c0 + r, value)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, rb, r0 + r, cb, c0 + r, value)
 
 
 @njit(**JIT)
@@ -1114,7 +1103,7 @@ def _joint_rows(y, p, i, cx, cv, diag, upper, lower, x, g0):
                 for r in range(3):
                     d = -(g1[r] - g0[r]) / step * weight
                     if d != 0.0:
-                        _put(diag, upper, lower, i + 1, 3 + r, seg + 1, c, d)
+                        put_entry(diag, upper, lower, NEWTON_BLOCK, i + 1, 3 + r, seg + 1, c, d)
 
 
 @njit(**JIT)
@@ -1193,7 +1182,7 @@ def _segment_rows(t, y, p, w, i, lam_top, lam_bottom, cm, cx, cv, diag, upper, l
                 v = 0.0
                 for k in range(3):
                     v -= m3[3 * r + k] * jv[3 * k + c]
-                _put(diag, upper, lower, b, 3 + r, i, 3 + c, v)
+                put_entry(diag, upper, lower, NEWTON_BLOCK, b, 3 + r, i, 3 + c, v)
     # translation
     ma = p.added_mass[i]
     cu, cv_ = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, i] + 0.5 * li * e[2])

@@ -494,10 +494,12 @@ def outputs_chunk(times, states, p, w, node_x, node_z, tension, scalars):
 NEWTON_BLOCK = 5
 
 
-@njit(**JIT)
-def _put(diag, upper, lower, rb, rl, cb, cl, value):
-    """Add ``value`` at row ``rl`` of block row ``rb``, column ``cl`` of block column ``cb``."""
-    k = rl * NEWTON_BLOCK + cl
+@njit(inline="always", **JIT)
+def put_entry(diag, upper, lower, bs, rb, rl, cb, cl, value):
+    """Add ``value`` at row ``rl`` of block row ``rb``, column ``cl`` of block column ``cb`` of a
+    block-tridiagonal matrix of bs x bs row-major blocks (``upper[k]`` at (k, k+1), ``lower[k]``
+    at (k+1, k)); shared by the rigid-link models' Newton systems."""
+    k = rl * bs + cl
     if cb == rb:
         diag[rb, k] += value
     elif cb == rb + 1:
@@ -552,12 +554,12 @@ def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
     # d/domega = 2 l om e
     kx = cm * li * nx - cx * li * (a * ex + om * om * nx) - cv * 2.0 * li * om * ex
     kz = cm * li * nz - cx * li * (a * ez + om * om * nz) - cv * 2.0 * li * om * ez
-    _put(diag, upper, lower, b, 0, b, 1, 1.0)
-    _put(diag, upper, lower, b, 1, b, 2, 1.0)
-    _put(diag, upper, lower, b, 0, i, 1, -1.0)
-    _put(diag, upper, lower, b, 1, i, 2, -1.0)
-    _put(diag, upper, lower, b, 0, b, 0, -kx)
-    _put(diag, upper, lower, b, 1, b, 0, -kz)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 0, b, 1, 1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 1, b, 2, 1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 0, i, 1, -1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 1, i, 2, -1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 0, b, 0, -kx)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 1, b, 0, -kz)
     # rotation about the centre: J s + l/2 n.(lam_i + lam_{i+1}) - Q = 0
     k_here, c_here = joint_k[i], joint_c[i]
     k_next = joint_k[i + 1] if i + 1 < n else 0.0
@@ -566,14 +568,14 @@ def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
     sum_z = lam[1, i] + lam[1, i + 1]
     geometric = -0.5 * li * (ex * sum_x + ez * sum_z)
     rot = cm * inertia[i] + cx * (geometric + k_here + k_next) + cv * (c_here + c_next)
-    _put(diag, upper, lower, b, 2, b, 0, rot)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, b, 2, b, 0, rot)
     if i > 0:
-        _put(diag, upper, lower, b, 2, i, 0, -(cx * k_here + cv * c_here))
+        put_entry(diag, upper, lower, NEWTON_BLOCK, b, 2, i, 0, -(cx * k_here + cv * c_here))
     if i + 1 < n:
-        _put(diag, upper, lower, b, 2, b + 1, 0, -(cx * k_next + cv * c_next))
+        put_entry(diag, upper, lower, NEWTON_BLOCK, b, 2, b + 1, 0, -(cx * k_next + cv * c_next))
     for blk in (i, b):
-        _put(diag, upper, lower, b, 2, blk, 3, 0.5 * li * nx)
-        _put(diag, upper, lower, b, 2, blk, 4, 0.5 * li * nz)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, b, 2, blk, 3, 0.5 * li * nx)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, b, 2, blk, 4, 0.5 * li * nz)
     # translation: m (A_i + A_{i+1}) / 2 - lam_i + lam_{i+1} - F = 0
     zc = 0.5 * (w[_PZ, i] + w[_PZ, b])
     vx = 0.5 * (w[_VX, i] + w[_VX, b]) - _current(current_z, current_u, zc)
@@ -584,16 +586,16 @@ def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
     half_m = 0.5 * mass[i]
     r = 0.5 * cv / cm
     for blk in (i, b):
-        _put(diag, upper, lower, i, 3, blk, 1, half_m - r * jxx)
-        _put(diag, upper, lower, i, 3, blk, 2, -r * jxz)
-        _put(diag, upper, lower, i, 4, blk, 1, -r * jxz)
-        _put(diag, upper, lower, i, 4, blk, 2, half_m - r * jzz)
-    _put(diag, upper, lower, i, 3, i, 3, -1.0)
-    _put(diag, upper, lower, i, 4, i, 4, -1.0)
-    _put(diag, upper, lower, i, 3, b, 3, 1.0)
-    _put(diag, upper, lower, i, 4, b, 4, 1.0)
-    _put(diag, upper, lower, i, 3, b, 0, -cx * ftx)
-    _put(diag, upper, lower, i, 4, b, 0, -cx * ftz)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, i, 3, blk, 1, half_m - r * jxx)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, i, 3, blk, 2, -r * jxz)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, i, 4, blk, 1, -r * jxz)
+        put_entry(diag, upper, lower, NEWTON_BLOCK, i, 4, blk, 2, half_m - r * jzz)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 3, i, 3, -1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 4, i, 4, -1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 3, b, 3, 1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 4, b, 4, 1.0)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 3, b, 0, -cx * ftx)
+    put_entry(diag, upper, lower, NEWTON_BLOCK, i, 4, b, 0, -cx * ftz)
 
 
 @njit(**JIT)
