@@ -39,6 +39,7 @@ from seacable.kernels.planar_chain import (
     TOP_HEAVE,
     TOP_IMPOSED,
     put_entry,
+    top_rows,
 )
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import evaluate as tf_evaluate
@@ -1235,19 +1236,8 @@ def _end_rows(p, w, cm, cx, cv, diag):
     """Top rows (block 0, rows 0-5) and lower-end rows (block n, rows 6-8)."""
     n = p.n
     bs = NEWTON_BLOCK
-    if p.top_kind == TOP_HEAVE:
-        diag[0, 0 * bs + 1] = 1.0  # unused entries of s_0
-        diag[0, 1 * bs + 2] = 1.0
-        diag[0, 2 * bs + 3] = 1.0  # x, y held
-        diag[0, 3 * bs + 4] = 1.0
-        diag[0, 4 * bs + 5] = 1.0  # A_0z = heave acceleration
-        diag[0, 4 * bs + 0] = -cm
-        diag[0, 5 * bs + 0] = p.top_stiffness * cx + p.top_damping * cv
-        diag[0, 5 * bs + 5] = p.top_mass
-        diag[0, 5 * bs + 8] = 1.0
-    else:
-        for r in range(6):
-            diag[0, r * bs + r] = 1.0
+    spring = p.top_stiffness * cx + p.top_damping * cv
+    top_rows(diag, bs, 3, 3, p.top_kind == TOP_HEAVE, cm, spring, p.top_mass)
     closed = is_closed(p)
     om = p.stabilization_frequency
     ratio = cv / cm

@@ -509,6 +509,33 @@ def put_entry(diag, upper, lower, bs, rb, rl, cb, cl, value):
 
 
 @njit(**JIT)
+def top_rows(diag, bs, s_size, dims, heave, cm, spring, mass):
+    """Rows of the top in block 0 of a rigid-link Newton system, whose unknowns are
+    [s (s_size), A_0 (dims), lam_0 (dims)]: an imposed top holds s and A_0 (identity rows); a
+    heaving structure keeps the unused entries of s and the horizontal axes at zero, ties the
+    vertical acceleration to its heave acceleration s[0] (A_0z = cm s_0) and adds its equation
+    M A_0z + (k cx + c cv) s_0 + lam_0z = ... (``spring`` = k cx + c cv)."""
+    if not heave:
+        for r in range(s_size + dims):
+            diag[0, r * bs + r] = 1.0
+        return
+    row = 0
+    for r in range(1, s_size):  # unused entries of s
+        diag[0, row * bs + r] = 1.0
+        row += 1
+    for a in range(dims - 1):  # horizontal axes held
+        diag[0, row * bs + s_size + a] = 1.0
+        row += 1
+    z = s_size + dims - 1
+    diag[0, row * bs + z] = 1.0  # A_0z = heave acceleration
+    diag[0, row * bs + 0] = -cm
+    row += 1
+    diag[0, row * bs + 0] = spring
+    diag[0, row * bs + z] = mass
+    diag[0, row * bs + z + dims] = 1.0
+
+
+@njit(**JIT)
 def _drag_jacobian(dn, dt, vn, vt, nx, nz, ex, ez):
     """Derivatives of the link drag F = fn n + ft e: (dF/dv as xx, xz, zx, zz; dF/dtheta)."""
     fn = -dn * abs(vn) * vn
@@ -602,16 +629,9 @@ def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
 def _end_rows(p, w, cm, cx, cv, diag):
     """Rows of the top (block 0, rows 0-2) and bottom (block n, rows 3-4) conditions."""
     n = p.n
-    if p.top_kind == TOP_HEAVE:
-        diag[0, 0 * NEWTON_BLOCK + 1] = 1.0  # x held
-        diag[0, 1 * NEWTON_BLOCK + 2] = 1.0  # A_0z = heave acceleration
-        diag[0, 1 * NEWTON_BLOCK + 0] = -cm
-        diag[0, 2 * NEWTON_BLOCK + 0] = p.top_stiffness * cx + p.top_damping * cv
-        diag[0, 2 * NEWTON_BLOCK + 2] = p.top_mass
-        diag[0, 2 * NEWTON_BLOCK + 4] = 1.0
-    else:
-        for r in range(3):
-            diag[0, r * NEWTON_BLOCK + r] = 1.0
+    heave = p.top_kind == TOP_HEAVE
+    spring = p.top_stiffness * cx + p.top_damping * cv
+    top_rows(diag, NEWTON_BLOCK, 1, 2, heave, cm, spring, p.top_mass)
     rx, rz = 3 * NEWTON_BLOCK, 4 * NEWTON_BLOCK
     if p.bottom_kind == BOTTOM_PINNED:
         om = p.stabilization_frequency
