@@ -33,6 +33,33 @@ def test_block_tridiagonal_solve_matches_a_dense_solve():
     np.testing.assert_allclose(x, np.linalg.solve(dense, b), rtol=1e-12, atol=1e-12)
 
 
+def test_star_solve_matches_a_dense_solve():
+    """Three chains of four nodes and a hub: a chain's last node couples to the hub (its upper
+    and lower blocks), never to the next chain's first node."""
+    rng = np.random.default_rng(5)
+    chains, chain = 3, 4
+    m = chains * chain + 1
+    hub = m - 1
+    diag = rng.normal(size=(m, 9)) + 6.0 * np.tile(np.eye(3).ravel(), (m, 1))
+    upper = rng.normal(size=(m - 1, 9))
+    lower = rng.normal(size=(m - 1, 9))
+    dense = np.zeros((3 * m, 3 * m))
+
+    def put(r, c, block):
+        dense[3 * r : 3 * r + 3, 3 * c : 3 * c + 3] = block.reshape(3, 3)
+
+    for k in range(m):
+        put(k, k, diag[k])
+    for k in range(m - 1):
+        nxt = hub if k % chain == chain - 1 else k + 1
+        put(k, nxt, upper[k])
+        put(nxt, k, lower[k])
+    b = rng.normal(size=3 * m)
+    x = np.empty(3 * m)
+    assert implicit.block_tridiagonal_solve(diag.copy(), upper, lower, b, x, chain)
+    np.testing.assert_allclose(x, np.linalg.solve(dense, b), rtol=1e-12, atol=1e-12)
+
+
 # A mass on a massless-ish elastic line, hanging in air from a fixed point, released stretched
 # 1.5 times its static stretch: z(t) = -L - d - 0.5 d cos(omega t), omega^2 = k / M, never slack.
 LENGTH, EA, BODY, LINE = 10.0, 2.0e5, 50.0, 1.0

@@ -450,14 +450,7 @@ def test_guided_end_moves_like_the_rigid_model_and_all_axes_hold_like_a_pin():
         assert np.abs(held[name].values - pinned[name].values).max() < 1e-3, name
 
 
-def test_lumped_refuses_the_servo_and_shared_bodies():
+def test_lumped_refuses_the_servo():
     servo = {**_trajectory(), "method": "stiffness_servo"}
     with pytest.raises(seacable.CaseError, match=r"bottom.method: .*exact"):
         seacable.simulate(_held_case("lumped_mass", servo, {"shape": "catenary"}))
-    data = seacable.load_case("examples/rising_body_four_cables.yaml").model_dump(
-        mode="json", exclude_unset=True
-    )
-    for cable in data["cables"]:
-        cable.update(model="lumped_mass", axial_stiffness=1e7)
-    with pytest.raises(seacable.CaseError, match="shared body"):
-        seacable.simulate(seacable.load_case(data))

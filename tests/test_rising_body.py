@@ -84,12 +84,3 @@ def test_neutrally_buoyant_system_does_not_move(name):
     z = ds["body_z"].values if "body_z" in ds else ds["node_z"].values[:, -1]
     assert np.ptp(z) < 1e-9
     assert np.max(ds["angular_rate"].values) < 1e-9
-
-
-def test_a_star_takes_3d_rigid_segment_cables_only():
-    case = seacable.load_case(EXAMPLES / "rising_body_four_cables.yaml")
-    data = case.model_dump(mode="json", exclude_none=True)
-    data["cables"][1]["model"] = "lumped_mass"
-    data["cables"][1]["axial_stiffness"] = 1e7
-    with pytest.raises(seacable.CaseError, match=r"cables\[1\]\.model: value 'lumped_mass'"):
-        seacable.simulate(seacable.load_case(data))

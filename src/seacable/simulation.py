@@ -11,6 +11,7 @@ from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
 from seacable.models import (
     lumped_mass,
+    lumped_star,
     natural_string,
     planar_rigid_links,
     rigid_segments_3d,
@@ -58,9 +59,10 @@ MODELS = {
 
 def model_of(case: schema.Case):
     """The model module of the case (build, VARIABLES, rows, rates, ...): several cables on a
-    shared body form a star of 3D cables, else the one cable's model."""
+    shared body form a star (of rigid-segment or of lumped-mass cables, as the first cable's
+    model says), else the one cable's model."""
     if case.bodies:
-        return star_3d
+        return lumped_star if case.cables[0].model == "lumped_mass" else star_3d
     return MODELS[case.cables[0].model]
 
 
@@ -73,6 +75,7 @@ SYSTEM_MODELS = {
     planar_rigid_links.PlanarSystem: planar_rigid_links,
     rigid_segments_3d.System3D: rigid_segments_3d,
     star_3d.StarSystem: star_3d,
+    lumped_star.LumpedStarSystem: lumped_star,
     lumped_mass.LumpedSystem: lumped_mass,
     natural_string.NaturalSystem: natural_string,
 }

@@ -36,12 +36,6 @@ def _check(cable: schema.Cable) -> None:
     if cable.axial_stiffness is None:
         raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
     bottom = cable.bottom
-    if isinstance(bottom, schema.AttachedBottom):
-        raise CaseError(
-            f"{where}.bottom: several cables on a shared body need model: rigid_segments_3d; a "
-            "lumped-mass cable takes a free end (a body, ties, held axes), a second floating "
-            "structure, a pinned end or a trajectory"
-        )
     if isinstance(bottom, schema.TrajectoryBottom) and bottom.method != "exact":
         raise CaseError(
             f"{where}.bottom.method: a lumped-mass cable follows its trajectory exactly; use "

@@ -38,8 +38,9 @@ def build(case: schema.Case, base_dir=None) -> StarSystem:
     for k, cable in enumerate(case.cables):
         if cable.model != "rigid_segments_3d":
             raise CaseError(
-                f"cables[{k}].model: value '{cable.model}'; cables attached to a shared body "
-                "must be rigid_segments_3d for now"
+                f"cables[{k}].model: value '{cable.model}'; the cables on one shared body share "
+                f"one model: make it '{case.cables[0].model}' like cables[0] (rigid_segments_3d "
+                "or lumped_mass)"
             )
         held = cable.model_copy(update={"bottom": schema.PinnedBottom(type="pinned")})
         single = case.model_copy(update={"cables": [held], "bodies": []})

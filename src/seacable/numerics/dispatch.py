@@ -10,7 +10,7 @@ models without constraints in their state).
 from numba import njit, types
 from numba.extending import overload
 
-from seacable.kernels import chain3d, lumped, natural, planar_chain, star3d
+from seacable.kernels import chain3d, lumped, lumped_star, natural, planar_chain, star3d
 from seacable.kernels.timefn import JIT
 
 
@@ -38,6 +38,8 @@ def _model_rhs(t, y, p, w, ydot):
         return lambda t, y, p, w, ydot: star3d.rhs(t, y, p, w, ydot)
     if _is(p, lumped.LumpedParams):
         return lambda t, y, p, w, ydot: lumped.rhs(t, y, p, w, ydot)
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda t, y, p, w, ydot: lumped_star.rhs(t, y, p, w, ydot)
     if _is(p, natural.NaturalParams):
         return lambda t, y, p, w, ydot: natural.rhs(t, y, p, w, ydot)
     return None
@@ -51,7 +53,7 @@ def _model_project(y, p):
         return lambda y, p: chain3d.project(y, p)
     if _is(p, star3d.StarParams):
         return lambda y, p: star3d.project(y, p)
-    if _is(p, lumped.LumpedParams):
+    if _is(p, lumped.LumpedParams) or _is(p, lumped_star.LumpedStarParams):
         return lambda y, p: None
     if _is(p, natural.NaturalParams):
         return lambda y, p: natural.project(y, p)
@@ -68,6 +70,8 @@ def model_projects(p):
 def _model_projects(p):
     if _is(p, planar_chain.ChainParams) or _is(p, lumped.LumpedParams):
         return lambda p: False
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda p: False
     if _is(p, chain3d.Chain3DParams) or _is(p, star3d.StarParams):
         return lambda p: True
     if _is(p, natural.NaturalParams):
@@ -81,7 +85,7 @@ def model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res,
     raise NotImplementedError("model_newton is only callable from compiled code")
 
 
-def model_prescribe(t, y, acc, p):
+def model_prescribe(t, y, acc, p, w):
     """Write the prescribed nodes' exact motion at time t into the state and accelerations
     (compiled code only)."""
     raise NotImplementedError("model_prescribe is only callable from compiled code")
@@ -107,6 +111,12 @@ def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
+            lumped_star.newton_system(
+                t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
+            )
+        )
     if _is(p, natural.NaturalParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
             natural.newton_system(
@@ -123,7 +133,7 @@ def model_block(p):
 
 @overload(model_block, jit_options=JIT, inline="always")
 def _model_block(p):
-    if _is(p, lumped.LumpedParams):
+    if _is(p, lumped.LumpedParams) or _is(p, lumped_star.LumpedStarParams):
         return lambda p: 3
     if _is(p, natural.NaturalParams):
         return lambda p: 3 if p.cartesian == 1 else 2
@@ -131,13 +141,15 @@ def _model_block(p):
 
 
 @overload(model_prescribe, jit_options=JIT)
-def _model_prescribe(t, y, acc, p):
+def _model_prescribe(t, y, acc, p, w):
     if _is(p, lumped.LumpedParams):
-        return lambda t, y, acc, p: lumped.prescribe(t, y, acc, p)
+        return lambda t, y, acc, p, w: lumped.prescribe(t, y, acc, p)
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda t, y, acc, p, w: lumped_star.prescribe(t, y, acc, p, w)
     if _is(p, natural.NaturalParams) or _is(p, planar_chain.ChainParams):
-        return lambda t, y, acc, p: None  # no prescribed variables (or kept by the kernel)
+        return lambda t, y, acc, p, w: None  # no prescribed variables (or kept by the kernel)
     if _is(p, chain3d.Chain3DParams):
-        return lambda t, y, acc, p: None
+        return lambda t, y, acc, p, w: None
     return None
 
 
@@ -150,6 +162,8 @@ def model_newton_cost(p):
 def _model_newton_cost(p):
     if _is(p, lumped.LumpedParams) or _is(p, planar_chain.ChainParams):
         return lambda p: 1  # analytic Jacobian
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda p: 1
     if _is(p, chain3d.Chain3DParams):
         return lambda p: 1  # analytic but for local differences of the joint moments
     if _is(p, natural.NaturalParams):
@@ -166,7 +180,7 @@ def model_solver(p, nq):
 
 @overload(model_solver, jit_options=JIT, inline="always")
 def _model_solver(p, nq):
-    if _is(p, lumped.LumpedParams):
+    if _is(p, lumped.LumpedParams) or _is(p, lumped_star.LumpedStarParams):
         return lambda p, nq: (nq // 3, 3)
     if _is(p, natural.NaturalParams):
         return lambda p, nq: (nq // (3 if p.cartesian == 1 else 2), 3)
@@ -199,6 +213,8 @@ def _correct_nodes(b_node, da, a1):
 def _model_correct(p, da, a1):
     if _is(p, lumped.LumpedParams) or _is(p, natural.NaturalParams):
         return lambda p, da, a1: _correct_nodes(model_block(p), da, a1)
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda p, da, a1: _correct_nodes(3, da, a1)
     if _is(p, planar_chain.ChainParams):
         return lambda p, da, a1: planar_chain.newton_correct(p.length, da, a1)
     if _is(p, chain3d.Chain3DParams):
@@ -230,3 +246,16 @@ def _model_keeps_matrix(p):
     if _is(p, planar_chain.ChainParams) or _is(p, chain3d.Chain3DParams):
         return lambda p: True  # 5x5 or 9x9 blocks, joint differences
     return lambda p: False  # analytic 3x3 blocks: a fresh matrix per step is cheaper
+
+
+def model_chain(p):
+    """Nodes per chain of a star-shaped Newton matrix (``kernels.lumped_star``: chains coupled
+    through a last, shared node); 0 for one block-tridiagonal chain (compiled code only)."""
+    raise NotImplementedError("model_chain is only callable from compiled code")
+
+
+@overload(model_chain, jit_options=JIT, inline="always")
+def _model_chain(p):
+    if _is(p, lumped_star.LumpedStarParams):
+        return lambda p: p.n
+    return lambda p: 0

@@ -33,6 +33,7 @@ from numba import literally, njit
 from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
+    model_chain,
     model_correct,
     model_keeps_matrix,
     model_newton,
@@ -95,16 +96,25 @@ def _matmul3(a, b, out):
 
 
 @njit(**JIT)
-def block_tridiagonal_factor(diag, upper, lower, factor):
+def block_tridiagonal_factor(diag, upper, lower, factor, chain=0):
     """Block LU (Thomas) of the block-tridiagonal matrix with 3x3 blocks (row-major, 9 values
     each): ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k).
-    Overwrites ``diag`` with the inverted pivots and fills ``factor[k - 1] = lower[k - 1]
-    pivot[k - 1]^-1``; O(n). Returns False when a pivot is singular."""
+    Overwrites ``diag`` with the inverted pivots and fills ``factor[k] = lower[k] pivot[k]^-1``;
+    O(n). Returns False when a pivot is singular.
+
+    With ``chain`` > 0 the matrix is a star (``kernels.lumped_star``): chains of ``chain`` nodes
+    one after another, then one hub node (the last) coupled to each chain's last node, whose
+    ``upper``/``lower`` entries hold that coupling; chains do not couple to each other. Each
+    chain is eliminated towards the hub, then the hub. ``chain`` = 0: one chain (the plain
+    block-tridiagonal matrix)."""
     m = diag.shape[0]
+    hub = m - 1
+    if chain <= 0:
+        chain = max(hub, 1)
     inv = np.empty(9)
     tmp = np.empty(9)
-    for k in range(m):
-        if k > 0:
+    for k in range(hub):
+        if k % chain > 0:
             _matmul3(lower[k - 1], diag[k - 1], factor[k - 1])
             _matmul3(factor[k - 1], upper[k - 1], tmp)
             for c in range(9):
@@ -113,45 +123,60 @@ def block_tridiagonal_factor(diag, upper, lower, factor):
             return False
         for c in range(9):
             diag[k, c] = inv[c]
+        if k % chain == chain - 1:  # a chain's last node: onto the hub
+            _matmul3(lower[k], diag[k], factor[k])
+            _matmul3(factor[k], upper[k], tmp)
+            for c in range(9):
+                diag[hub, c] -= tmp[c]
+    if _inverse3(diag[hub], inv) == 0.0:
+        return False
+    for c in range(9):
+        diag[hub, c] = inv[c]
     return True
 
 
+@njit(inline="always", **JIT)
+def _less_product(x, k, g, v, j):
+    """x[k] -= g v[j] for 3-vectors at block k of x and j of v and the 3x3 block g."""
+    p0, p1, p2 = v[3 * j], v[3 * j + 1], v[3 * j + 2]
+    x[3 * k] -= g[0] * p0 + g[1] * p1 + g[2] * p2
+    x[3 * k + 1] -= g[3] * p0 + g[4] * p1 + g[5] * p2
+    x[3 * k + 2] -= g[6] * p0 + g[7] * p1 + g[8] * p2
+
+
 @njit(**JIT)
-def block_tridiagonal_apply(diag, upper, factor, rhs, x):
+def block_tridiagonal_apply(diag, upper, factor, rhs, x, chain=0):
     """Solve with the factors of ``block_tridiagonal_factor`` (forward, then back
-    substitution); O(n)."""
+    substitution); O(n). ``chain`` as given to the factorisation."""
     m = diag.shape[0]
-    for k in range(m):
-        r0, r1, r2 = rhs[3 * k], rhs[3 * k + 1], rhs[3 * k + 2]
-        if k > 0:
-            f = factor[k - 1]
-            p0, p1, p2 = x[3 * k - 3], x[3 * k - 2], x[3 * k - 1]
-            r0 -= f[0] * p0 + f[1] * p1 + f[2] * p2
-            r1 -= f[3] * p0 + f[4] * p1 + f[5] * p2
-            r2 -= f[6] * p0 + f[7] * p1 + f[8] * p2
-        x[3 * k], x[3 * k + 1], x[3 * k + 2] = r0, r1, r2
+    hub = m - 1
+    if chain <= 0:
+        chain = max(hub, 1)
+    x[: 3 * m] = rhs[: 3 * m]
+    for k in range(hub):
+        if k % chain > 0:
+            _less_product(x, k, factor[k - 1], x, k - 1)
+        if k % chain == chain - 1:
+            _less_product(x, hub, factor[k], x, k)
     for k in range(m - 1, -1, -1):
-        r0, r1, r2 = x[3 * k], x[3 * k + 1], x[3 * k + 2]
-        if k < m - 1:
-            u = upper[k]
-            n0, n1, n2 = x[3 * k + 3], x[3 * k + 4], x[3 * k + 5]
-            r0 -= u[0] * n0 + u[1] * n1 + u[2] * n2
-            r1 -= u[3] * n0 + u[4] * n1 + u[5] * n2
-            r2 -= u[6] * n0 + u[7] * n1 + u[8] * n2
+        if k < hub:
+            _less_product(x, k, upper[k], x, hub if k % chain == chain - 1 else k + 1)
         d = diag[k]
+        r0, r1, r2 = x[3 * k], x[3 * k + 1], x[3 * k + 2]
         x[3 * k] = d[0] * r0 + d[1] * r1 + d[2] * r2
         x[3 * k + 1] = d[3] * r0 + d[4] * r1 + d[5] * r2
         x[3 * k + 2] = d[6] * r0 + d[7] * r1 + d[8] * r2
 
 
 @njit(**JIT)
-def block_tridiagonal_solve(diag, upper, lower, rhs, x):
-    """Solve the block-tridiagonal system (see ``block_tridiagonal_factor``; ``diag`` is
-    overwritten). Returns False when a pivot is singular."""
+def block_tridiagonal_solve(diag, upper, lower, rhs, x, chain=0):
+    """Solve the block-tridiagonal (or, with ``chain``, star) system (see
+    ``block_tridiagonal_factor``; ``diag`` is overwritten). Returns False when a pivot is
+    singular."""
     factor = np.empty((max(diag.shape[0] - 1, 1), 9))
-    if not block_tridiagonal_factor(diag, upper, lower, factor):
+    if not block_tridiagonal_factor(diag, upper, lower, factor, chain):
         return False
-    block_tridiagonal_apply(diag, upper, factor, rhs, x)
+    block_tridiagonal_apply(diag, upper, factor, rhs, x, chain)
     return True
 
 
@@ -347,7 +372,7 @@ def _step(
     previous = math.inf
     for it in range(max_iter):
         _stage(y, acc, a1, h, coef, y1, nq)
-        model_prescribe(t1, y1, a1, p)
+        model_prescribe(t1, y1, a1, p, w)
         _alpha_point(y, y1, acc, a1, coef, ya, aa, nq)
         matrix = fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH
         matrix = matrix or (it == 0 and not model_keeps_matrix(p))
@@ -364,7 +389,7 @@ def _step(
             if pivoted:
                 factored = pivoted_factor(diag, upper, lower, factor, piv)
             else:
-                factored = block_tridiagonal_factor(diag, upper, lower, factor)
+                factored = block_tridiagonal_factor(diag, upper, lower, factor, model_chain(p))
             if not factored:
                 work[3] += 1
                 fresh[0] = 0.0
@@ -377,7 +402,7 @@ def _step(
         if pivoted:
             pivoted_apply(diag, lower, factor, piv, res, da)
         else:
-            block_tridiagonal_apply(diag, upper, factor, res, da)
+            block_tridiagonal_apply(diag, upper, factor, res, da, model_chain(p))
         largest = model_correct(p, da, a1)
         if not math.isfinite(largest):
             work[3] += 1
@@ -388,7 +413,7 @@ def _step(
         previous = largest
         if b * h * h * largest <= tol:
             _stage(y, acc, a1, h, coef, y1, nq)
-            model_prescribe(t1, y1, a1, p)
+            model_prescribe(t1, y1, a1, p, w)
             model_project(y1, p)
             y[:] = y1
             acc[:] = a1

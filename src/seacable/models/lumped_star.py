@@ -1,0 +1,165 @@
+"""Several lumped-mass cables holding one shared body (a star of extensible cables):
+parameters, state and outputs. See ``kernels.lumped_star`` for the equations.
+
+Each cable is built as a ``lumped_mass`` cable pinned at the body's position (so that its
+initial shape, a catenary or given angles, ends there and starts at rest on that pin), then its
+end is freed and becomes the shared body's node.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from seacable.case import schema
+from seacable.errors import CaseError
+from seacable.kernels import lumped as lk
+from seacable.kernels import lumped_star as ls
+from seacable.models import lumped_mass, star_3d
+from seacable.models.common import add_total_energy
+
+
+@dataclass(frozen=True)
+class LumpedStarSystem:
+    params: ls.LumpedStarParams
+    y0: np.ndarray
+    n_links: int  # segments per cable (all equal)
+    cables: int
+    names: tuple[str, ...]
+
+
+def _chain(case: schema.Case, k: int, body: schema.SharedBody, base_dir):
+    """Cable k as a lumped-mass cable pinned at the body's starting position."""
+    cable = case.cables[k]
+    if cable.model != "lumped_mass":
+        raise CaseError(
+            f"cables[{k}].model: value '{cable.model}'; the cables on one shared body share one "
+            f"model: make it '{case.cables[0].model}' like cables[0] (rigid_segments_3d or "
+            "lumped_mass)"
+        )
+    pinned = schema.PinnedBottom(type="pinned", anchor=body.position)
+    single = case.model_copy(
+        update={"cables": [cable.model_copy(update={"bottom": pinned})], "bodies": []}
+    )
+    try:
+        return lumped_mass.build(single, base_dir)
+    except CaseError as exc:  # name the cable, and the body rather than an anchor
+        text = (
+            str(exc)
+            .replace("cables[0]", f"cables[{k}]")
+            .replace(
+                f"cables[{k}].bottom.anchor",
+                f"cables[{k}].initial (its end, on body '{body.name}')",
+            )
+        )
+        raise CaseError(text) from None
+
+
+def build(case: schema.Case, base_dir=None) -> LumpedStarSystem:
+    """Assemble the star of ``case``: every lumped-mass cable ends on its one shared body."""
+    body = case.bodies[0]
+    position = np.array(schema.xyz(body.position), dtype=float)
+    env = case.environment
+    rho = 0.0 if env.in_air else env.water_density
+    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass), float)
+    chains, positions, velocities = [], [], []
+    for k in range(len(case.cables)):
+        system = _chain(case, k, body, base_dir)
+        p, n = system.params, system.n_links
+        free = dict(bottom_kind=lk.BOTTOM_FREE, constrained=np.zeros(3))
+        if k == 0:  # chain 0's end node carries the body
+            mass = np.ascontiguousarray(body.mass + added, dtype=float)
+            point_mass = p.point_mass.copy()
+            point_mass[n] += mass
+            free.update(
+                body_mass=mass,
+                point_mass=point_mass,
+                body_wet_weight=float((body.mass - rho * body.volume) * env.gravity),
+                body_drag=np.ascontiguousarray(
+                    0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area))
+                ),
+            )
+        chains.append(p._replace(**free))
+        nodes = system.y0[: 3 * (n + 1)]
+        positions.append(nodes[: 3 * n])
+        velocities.append(system.y0[3 * (n + 1) : 3 * (n + 1) + 3 * n])
+    y0 = np.concatenate([*positions, position, *velocities, np.zeros(3)])
+    params = ls.LumpedStarParams(chains=tuple(chains), n=case.cables[0].links)
+    names = tuple(c.name for c in case.cables)
+    return LumpedStarSystem(params, y0, case.cables[0].links, len(chains), names)
+
+
+def _per_cable(what: str, unit: str) -> dict:
+    return {
+        f"{what}_{a}": (("time", "cable"), "N", f"{unit}, {a}") for a in "xyz"
+    }  # fmt: skip
+
+
+VARIABLES = {
+    **{f"node_{a}": (("time", "cable", "node"), "m", f"node position, {a}") for a in "xyz"},
+    "tension": (("time", "cable", "segment"), "N", "axial tension of the segment (no compression)"),
+    **_per_cable("top_force", "force of each cable on its top attachment"),
+    **_per_cable("bottom_force", "force of each cable on the shared body"),
+    **{f"body_{a}": (("time",), "m", f"position of the shared body, {a}") for a in "xyz"},
+    **{
+        f"body_velocity_{a}": (("time",), "m/s", f"velocity of the shared body, {a}") for a in "xyz"
+    },
+    **{
+        f"body_acceleration_{a}": (("time",), "m/s2", f"acceleration of the shared body, {a}")
+        for a in "xyz"
+    },  # fmt: skip
+    "kinetic_energy": (("time",), "J", "kinetic energy of the cables and the body"),
+    "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights"),
+    "elastic_energy": (("time",), "J", "axial strain energy, bending and seabed springs"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+}
+
+RATE_WHAT = ("node (counted over the cables one after another)", "speed", "m/s", 0)
+NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+
+sizes = star_3d.sizes
+coords = star_3d.coords
+
+
+def workspace(system: LumpedStarSystem) -> ls.StarWork:
+    return ls.make_workspace(system.cables, system.n_links)
+
+
+def shortest_segment(system: LumpedStarSystem) -> float:
+    return float(min(c.length.min() for c in system.params.chains))
+
+
+def rows(times, states, system: LumpedStarSystem, w) -> tuple[dict, int]:
+    m, k, n = len(times), system.cables, system.n_links
+    nodes = np.empty((m, k, n + 1, 3))
+    tension = np.empty((m, k, n))
+    scalars = np.empty((m, k, lk.N_SCALARS))
+    body_acc = np.empty((m, 3))
+    status = ls.outputs_chunk(times, states, system.params, w, nodes, tension, scalars, body_acc)
+    out = {"time": times, "tension": tension}
+    nq = states.shape[1] // 2
+    hub = 3 * n * k
+    for c, a in enumerate("xyz"):
+        out[f"node_{a}"] = nodes[:, :, :, c]
+        out[f"top_force_{a}"] = scalars[:, :, c]
+        out[f"bottom_force_{a}"] = scalars[:, :, 3 + c]
+        out[f"body_{a}"] = states[:, hub + c]
+        out[f"body_velocity_{a}"] = states[:, nq + hub + c]
+        out[f"body_acceleration_{a}"] = body_acc[:, c]
+    for j, name in enumerate(("kinetic_energy", "gravity_potential_energy", "elastic_energy")):
+        out[name] = scalars[:, :, 6 + j].sum(axis=1)
+    return add_total_energy(out), status
+
+
+def rates(system: LumpedStarSystem, y) -> np.ndarray:
+    """Speed of every node [m/s] (the tops included), cable after cable, the body last."""
+    return np.linalg.norm(y[len(y) // 2 :].reshape(-1, 3), axis=1)
+
+
+def fastest_frequency(system: LumpedStarSystem) -> tuple[float, str]:
+    best = (0.0, "")
+    for j, chain in enumerate(system.params.chains):
+        single = lumped_mass.LumpedSystem(chain, np.zeros(lk.state_size(chain.n)), chain.n, 0.0)
+        omega, what = lumped_mass.fastest_frequency(single)
+        if omega > best[0]:
+            best = (omega, f"cable {system.names[j]}: {what}")
+    return best
