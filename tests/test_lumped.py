@@ -448,9 +448,3 @@ def test_guided_end_moves_like_the_rigid_model_and_all_axes_hold_like_a_pin():
     assert np.abs(held["node_x"].values - pinned["node_x"].values).max() < 1e-9
     for name in FORCES:  # the body's own loads are not the cable's
         assert np.abs(held[name].values - pinned[name].values).max() < 1e-3, name
-
-
-def test_lumped_refuses_the_servo():
-    servo = {**_trajectory(), "method": "stiffness_servo"}
-    with pytest.raises(seacable.CaseError, match=r"bottom.method: .*exact"):
-        seacable.simulate(_held_case("lumped_mass", servo, {"shape": "catenary"}))

@@ -96,3 +96,63 @@ def test_trajectory_needs_the_static_start():
     }
     with pytest.raises(seacable.CaseError, match=r"trajectory starts .* m from the end .* static"):
         seacable.simulate(seacable.load_case(data))
+
+
+# ---- the same manoeuvre with an extensible lumped-mass cable -------------------------------------
+def _lumped(method, **servo):
+    """The servo example as a lumped-mass cable (EA 1e7 N; started on its towed equilibrium
+    through the target), the servo updating every 10 ms like the rigid model's."""
+    data = _load("jacquot_marichal_trajectory_servo").model_dump(mode="json", exclude_unset=True)
+    cable = data["cables"][0]
+    cable.update(model="lumped_mass", axial_stiffness=1e7, initial={"shape": "catenary"})
+    cable["bottom"]["method"] = method
+    cable["bottom"]["servo"].update(step=0.01, **servo)
+    data["simulation"]["time_step"] = 0.002
+    return seacable.load_case(data)
+
+
+@pytest.fixture(scope="module")
+def lumped():
+    return {
+        "exact": seacable.simulate(_lumped("exact")).dataset,
+        "servo": seacable.simulate(_lumped("stiffness_servo")).dataset,
+    }
+
+
+def test_lumped_servo_starts_with_the_rigid_models_stiffness():
+    """K and the holding force from the discrete line's towed equilibria against the rigid
+    model's static ones (an extensible line of 50 segments: a few per cent apart)."""
+    lumped = build_system(_lumped("stiffness_servo"))
+    rigid = build_system(_load("jacquot_marichal_trajectory_servo"))
+    k_lumped, k_rigid = lumped.params.servo_stiffness, rigid.params.servo_stiffness
+    assert np.abs(k_lumped - k_rigid).max() < 0.03 * np.abs(k_rigid).max()
+    n = lumped.n_links
+    force = lumped.y0[6 * (n + 1) :]
+    _, holding = statics.end_stiffness(rigid.params, rigid.y0, 0.0, 1.0)
+    np.testing.assert_allclose(force, holding, rtol=0.02, atol=1.0)
+
+
+def test_lumped_servo_tracks_and_agrees_with_the_exact_force(lumped):
+    servo, exact = lumped["servo"], lumped["exact"]
+    time = servo["time"].values
+    assert np.max(servo["tracking_error"].values[time <= 10.0]) < 1e-6  # at its equilibrium
+    assert 1e-3 < servo["tracking_error"].values.max() < 2.0
+    assert exact["tracking_error"].values.max() < 1e-9
+    during = (time > 12) & (time < 50)
+    for a in "xz":
+        force_exact = exact[f"bottom_force_{a}"].values[during]
+        force_servo = servo[f"bottom_force_{a}"].values[during]
+        assert np.max(np.abs(force_servo - force_exact)) < 0.05 * np.max(np.abs(force_exact))
+
+
+def test_lumped_servo_error_shrinks_with_a_refreshed_stiffness(lumped):
+    refreshed = seacable.simulate(_lumped("stiffness_servo", recompute_interval=5.0)).dataset
+    error = lumped["servo"]["tracking_error"].values.max()
+    assert refreshed["tracking_error"].values.max() < 0.9 * error
+
+
+def test_lumped_servo_refuses_implicit_schemes():
+    case = _lumped("stiffness_servo")
+    sim = case.simulation.model_copy(update={"integrator": "generalized_alpha"})
+    with pytest.raises(seacable.CaseError, match="servo's force"):
+        seacable.simulate(case.model_copy(update={"simulation": sim}))

@@ -197,7 +197,7 @@ class _Run:
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()
 
-        block = getattr(self.model, "node_block", lambda system: None)(self.system)
+        block = _node_block(self.model, self.system)
         return stiff.StiffStepper(
             sim.integrator, fun, self.t, self.y,
             rtol=sim.rtol, atol=sim.atol,
@@ -352,10 +352,15 @@ def _work(run: _Run) -> dict:
     }
 
 
+def _node_block(model, system) -> int | None:
+    """Variables per node when the model's Jacobian is node-neighbour structured, else None."""
+    return getattr(model, "node_block", lambda system: None)(system)
+
+
 def _step_warning(sim: schema.Simulation, system) -> str | None:
     model = SYSTEM_MODELS[type(system)]
     size = len(system.y0)
-    if sim.integrator in stiff.STIFF and getattr(model, "node_block", None) is None and size > 200:
+    if sim.integrator in stiff.STIFF and _node_block(model, system) is None and size > 200:
         return (
             f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "
             f"({size} states: {size} right-hand sides and a dense factorisation per Jacobian); "

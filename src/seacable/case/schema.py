@@ -335,7 +335,7 @@ class Servo(_Model):
 
 
 class TrajectoryBottom(_Model):
-    """Lower end carried by a vehicle along a prescribed path (3D model): x(t), y(t), z(t) [m],
+    """Lower end carried by a vehicle along a prescribed path (3D models): x(t), y(t), z(t) [m],
     offsets from the top attachment when ``relative_to_top`` (the vehicle's motion relative to
     the ship) or absolute. ``method`` exact: the end force that imposes the path exactly;
     stiffness_servo: the paper's servo (see Servo). Outputs the force of the cable on the vehicle
@@ -351,17 +351,19 @@ class TrajectoryBottom(_Model):
 
 
 class AttachedBottom(_Model):
-    """Lower end attached to a body of the case's ``bodies`` list, by name (3D model): several
-    cables attached to one body form a star, e.g. a buoy held by four anchored cables."""
+    """Lower end attached to a body of the case's ``bodies`` list, by name (3D models:
+    rigid_segments_3d or lumped_mass, the same for every cable): several cables attached to one
+    body form a star, e.g. a buoy held by four anchored cables."""
 
     type: Literal["attached"]
     body: str
 
 
 class SharedBody(_Model):
-    """A point body that several cables attach to (3D model). ``position`` [x, y, z] (m) is where
-    it starts: every attached cable's initial shape must end there (within 1 mm). Added mass and
-    drag area take one value or one per global axis."""
+    """A point body that several cables attach to (3D models). ``position`` [x, y, z] (m) is
+    where it starts: every attached cable's initial shape must end there (within 1 mm; a
+    lumped-mass cable's catenary does). Added mass and drag area take one value or one per
+    global axis."""
 
     name: str
     position: Point

@@ -12,7 +12,10 @@ State: ``y = [r_0 .. r_n (3 each), v_0 .. v_n (3 each)]``; node 0 follows the to
 is free (with a body), or held on the axes of ``constrained``: pinned at ``pin`` (all axes, or
 some of them: a guide), or carried along a trajectory (time functions, all axes). A held axis
 follows its target exactly; the node's free axes obey its equation of motion with the held
-accelerations known.
+accelerations known. A servo end is free, pulled by the force F of Jacquot & Marichal's
+stiffness servo, three more states after the velocities: dF/dt = K (a dE / dt_s - b dE'),
+dE the target less the end's position (the paper's per-step correction as a rate over its
+step dt_s).
 """
 
 import math
@@ -27,6 +30,8 @@ from seacable.kernels.timefn import JIT
 BOTTOM_FREE = c3.BOTTOM_FREE
 BOTTOM_PINNED = c3.BOTTOM_PINNED  # held at ``pin`` on the ``constrained`` axes
 BOTTOM_TRAJECTORY = c3.BOTTOM_TRAJECTORY  # held on a moving target (all axes)
+BOTTOM_SERVO = c3.BOTTOM_SERVO  # free end pulled by the stiffness servo's force (a state)
+SERVO_STATES = 3  # after the velocities, with a servo end only
 
 SCALAR_NAMES = (
     "top_force_x",
@@ -38,6 +43,10 @@ SCALAR_NAMES = (
     "kinetic_energy",
     "gravity_potential_energy",
     "elastic_energy",
+    "tracking_error",
+    "servo_force_x",
+    "servo_force_y",
+    "servo_force_z",
 )
 N_SCALARS = len(SCALAR_NAMES)
 
@@ -98,14 +107,18 @@ class LumpedParams(NamedTuple):
     pin: np.ndarray  # (3,)
     constrained: np.ndarray  # (3,) 1.0 on the axes a held end follows its target
     target_relative: int  # 1: trajectory channels are offsets from the top node
+    servo_stiffness: np.ndarray  # (3, 3) K: holding force on the end per displacement [N/m]
+    servo_gain: float  # a
+    servo_rate_gain: float  # b
+    servo_step: float  # the update interval Delta t of the servo [s]
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
     tf_count: np.ndarray
     tf_sine: np.ndarray
 
 
-def state_size(n):
-    return 6 * (n + 1)
+def state_size(n, servo=False):
+    return 6 * (n + 1) + (SERVO_STATES if servo else 0)
 
 
 def make_workspace(n):
@@ -270,6 +283,9 @@ def _body_load(t, y, p):
     f[2] -= p.body_drag[2] * speed * rz + p.body_wet_weight
     for c in range(3):
         f[c] -= p.tie_k[c] * (y[3 * n + c] - p.tie_rest[c]) + p.tie_c[c] * y[v0 + 3 * n + c]
+    if p.bottom_kind == BOTTOM_SERVO:
+        for c in range(3):
+            f[c] += y[2 * v0 + c]
     return f
 
 
@@ -357,8 +373,8 @@ is_held = c3.is_closed  # the end node follows a target on some axes (pinned, gu
 
 @njit(inline="always", **JIT)
 def target_state(t, y, p):
-    """Position, velocity and acceleration (3 each) a held end follows."""
-    if p.bottom_kind != BOTTOM_TRAJECTORY:  # a pin or a guide: at rest (no top needed)
+    """Position, velocity and acceleration (3 each) a held (or servo) end follows."""
+    if p.bottom_kind == BOTTOM_PINNED:  # a pin or a guide: at rest (no top needed)
         return c3.target_channels(t, p)
     top_pos, top_vel, top_acc = top_state(t, y, p)
     return c3.target_from(t, p, top_pos, top_vel, top_acc)
@@ -437,9 +453,28 @@ def rhs(t, y, p, w, ydot):
         ydot[v0 + 3 * k] = ax
         ydot[v0 + 3 * k + 1] = ay
         ydot[v0 + 3 * k + 2] = az
+    if p.bottom_kind == BOTTOM_SERVO:
+        _servo_rates(t, y, p, ydot)
     if not math.isfinite(ydot[v0 + 3 * n] + ydot[v0 + 3 * n + 2]):
         status = c3.NON_FINITE
     return status
+
+
+@njit(inline="always", **JIT)
+def _servo_rates(t, y, p, ydot):
+    """dF/dt = K (a dE / dt_s - b dE') of the servo's force (the states after the velocities)."""
+    n = p.n
+    v0 = 3 * (n + 1)
+    pos, vel, _ = target_state(t, y, p)
+    for r in range(3):
+        rate = 0.0
+        for c in range(3):
+            error = pos[c] - y[3 * n + c]
+            error_rate = vel[c] - y[v0 + 3 * n + c]
+            rate += p.servo_stiffness[r, c] * (
+                p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate
+            )
+        ydot[2 * v0 + r] = rate
 
 
 @njit(**JIT)
@@ -524,6 +559,17 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     scalars[6] = kinetic
     scalars[7] = gravity
     scalars[8] = elastic
+    scalars[9] = 0.0
+    for c in range(3):
+        scalars[10 + c] = 0.0
+    if p.bottom_kind == BOTTOM_SERVO or p.bottom_kind == BOTTOM_TRAJECTORY:
+        target, _, _ = target_state(t, y, p)
+        error = 0.0
+        for c in range(3):
+            error += (target[c] - y[3 * n + c]) ** 2
+            if p.bottom_kind == BOTTOM_SERVO:
+                scalars[10 + c] = y[2 * v0 + c]
+        scalars[9] = math.sqrt(error)
     return status
 
 

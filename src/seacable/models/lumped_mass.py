@@ -9,7 +9,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
-from seacable.models import catenary, planar_rigid_links
+from seacable.models import catenary, planar_rigid_links, statics
 from seacable.models import rigid_segments_3d as seg
 from seacable.models import timefunctions as tfn
 from seacable.models.common import (
@@ -36,11 +36,6 @@ def _check(cable: schema.Cable) -> None:
     if cable.axial_stiffness is None:
         raise CaseError(f"{where}.axial_stiffness: a lumped-mass cable needs EA [N]")
     bottom = cable.bottom
-    if isinstance(bottom, schema.TrajectoryBottom) and bottom.method != "exact":
-        raise CaseError(
-            f"{where}.bottom.method: a lumped-mass cable follows its trajectory exactly; use "
-            "method: exact (the stiffness servo needs model: rigid_segments_3d)"
-        )
     if cable.joint_damping:
         raise CaseError(
             f"{where}.joint_damping: the lumped-mass model has bending stiffness but no bending "
@@ -78,7 +73,8 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     # the 3D model's reading of the lower end: its kinds and channels are shared
     bottom_kind, fields, bottom_channels = seg._bottom(cable, env, base_dir)
     keys = ("body_mass", "body_wet_weight", "body_drag", "tie_k", "tie_c", "constrained")
-    bottom_fields = {k: fields[k] for k in (*keys, "target_relative")}
+    servo = ("servo_stiffness", "servo_gain", "servo_rate_gain", "servo_step")
+    bottom_fields = {k: fields[k] for k in (*keys, "target_relative", *servo)}
     breaks, coefs, count, sine = tfn.stack(
         [*channels[:4], *bottom_channels[:3], channels[4], *bottom_channels[3:6]]
     )
@@ -140,6 +136,18 @@ def _bend_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
 
 
 def _initial_state(case, params, heave):
+    """The initial state, and the parameters completed from it (the pin, the ties' rest, the
+    servo's step and stiffness)."""
+    y0, params = _initial_nodes(case, params, heave)
+    if params.bottom_kind != lk.BOTTOM_SERVO:
+        return y0, params
+    params = params._replace(servo_step=seg.servo_step(case))
+    stiffness, force = end_stiffness(params, y0, 0.0, case.cables[0].bottom.servo.sphere_radius)
+    params = params._replace(servo_stiffness=np.ascontiguousarray(stiffness))
+    return np.concatenate([y0, force]), params
+
+
+def _initial_nodes(case, params, heave):
     cable = case.cables[0]
     n = params.n
     y = np.zeros(lk.state_size(n))
@@ -184,8 +192,52 @@ def _initial_state(case, params, heave):
     rest = seg._explicit_rest(cable)
     params = params._replace(tie_rest=np.ascontiguousarray(nodes[-1] if rest is None else rest))
     if cable.initial.shape == "catenary":
-        y0 = discrete_equilibrium(params, y0)
+        y0 = discrete_equilibrium(_held(params, 0.0, y0), y0)
     return y0, params
+
+
+def _held(params, time, y):
+    """A servo end's cable held exactly on its target at ``time`` (its static problems);
+    other cables as they are."""
+    if params.bottom_kind != lk.BOTTOM_SERVO:
+        return params
+    held = params._replace(bottom_kind=lk.BOTTOM_PINNED, constrained=np.ones(3))
+    target = lk.target_state(time, y, params)[0]
+    return held._replace(pin=np.ascontiguousarray(target, dtype=float))
+
+
+def end_force(params, y, point, time: float = 0.0):
+    """Force a holder must apply to the end to keep it at ``point`` with every node moving with
+    the top's velocity at ``time`` (the steady state: at rest, or towed), and that state:
+    the line's discrete equilibrium from ``y``'s shape, its end moved to ``point`` with a
+    displacement that grows along the line (strains stay small)."""
+    n = params.n
+    nq = 3 * (n + 1)
+    held = _held(params, time, y)._replace(pin=np.ascontiguousarray(point, dtype=float))
+    if held.bottom_kind != lk.BOTTOM_PINNED:
+        held = held._replace(bottom_kind=lk.BOTTOM_PINNED, constrained=np.ones(3))
+    start = y[: 2 * nq].copy()
+    nodes = start[:nq].reshape(n + 1, 3)
+    arc = np.concatenate([[0.0], np.cumsum(params.length)]) / params.length.sum()
+    nodes += arc[:, None] * (np.asarray(point, float) - nodes[-1])[None, :]
+    start[nq:] = np.tile(lk.top_state(time, start, held)[1], n + 1)
+    state = discrete_equilibrium(held, start)
+    w = lk.make_workspace(n)
+    scalars = np.empty(lk.N_SCALARS)
+    lk.outputs(time, state, held, w, np.empty((n + 1, 3)), np.empty(n), scalars)
+    return -scalars[3:6], state
+
+
+def end_stiffness(params, y, time: float, radius: float):
+    """Stiffness K [N/m] of the end and the force F0 holding it at its target at ``time``:
+    equilibria with the end on a sphere of ``radius`` around the target, linearised by least
+    squares (Jacquot & Marichal, section 4; as ``statics.end_stiffness`` for rigid segments)."""
+    centre = lk.target_state(time, y, params)[0]
+    f0, state = end_force(params, y, centre, time)
+    displacements = radius * statics.sphere_directions()
+    forces = np.array([end_force(params, state, centre + d, time)[0] for d in displacements])
+    k_transposed, *_ = np.linalg.lstsq(displacements, forces - f0, rcond=None)
+    return k_transposed.T, f0
 
 
 def discrete_equilibrium(params, y0, iterations=30):
@@ -303,6 +355,11 @@ VARIABLES = {
     "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights"),
     "elastic_energy": (("time",), "J", "axial strain energy and seabed springs"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+    "tracking_error": (("time",), "m", "distance of a trajectory end from its target"),
+    **{
+        f"servo_force_{a}": (("time",), "N", f"force the servo applies to the cable end, {a}")
+        for a in "xyz"
+    },  # fmt: skip
 }
 
 
@@ -343,7 +400,7 @@ def rows(times, states, system: LumpedSystem, w) -> tuple[dict, int]:
 def rates(system: LumpedSystem, y) -> np.ndarray:
     """Speed of every node but the top [m/s] (the 'where' of a divergence message)."""
     n = system.n_links
-    return np.linalg.norm(y[3 * (n + 1) :].reshape(n + 1, 3), axis=1)[1:]
+    return np.linalg.norm(y[3 * (n + 1) : 6 * (n + 1)].reshape(n + 1, 3), axis=1)[1:]
 
 
 def fastest_frequency(system: LumpedSystem) -> tuple[float, str]:
@@ -357,6 +414,24 @@ def fastest_frequency(system: LumpedSystem) -> tuple[float, str]:
     ), f"axial waves on segment {i} ({p.length[i]:.3g} m, EA {p.axial_stiffness:.3g} N)"
 
 
-def node_block(system: LumpedSystem) -> int:
-    """Variables per node: the stiff integrators' Jacobian is node-neighbour structured."""
-    return 3
+def node_block(system: LumpedSystem) -> int | None:
+    """Variables per node: the stiff integrators' Jacobian is node-neighbour structured (not
+    with a servo's force, which couples to the end: a dense Jacobian)."""
+    return None if system.params.bottom_kind == lk.BOTTOM_SERVO else 3
+
+
+def positions(system: LumpedSystem) -> int:
+    """Position variables of the state; the velocities follow, then a servo's force."""
+    return 3 * (system.n_links + 1)
+
+
+check_implicit = seg.check_implicit  # the implicit schemes cannot advance a servo's force
+refresh_interval = seg.refresh_interval
+
+
+def refresh(case: schema.Case, params, time: float, y):
+    """Parameters for the next stretch of the run: the servo's stiffness K recomputed about the
+    target at ``time``, from the line's current shape."""
+    radius = case.cables[0].bottom.servo.sphere_radius
+    stiffness, _ = end_stiffness(params, y, time, radius)
+    return params._replace(servo_stiffness=np.ascontiguousarray(stiffness))

@@ -192,16 +192,22 @@ def end_force(params, y0, point, time: float = 0.0) -> np.ndarray:
     return -forces[-1]
 
 
+def sphere_directions() -> np.ndarray:
+    """The 14 unit directions the end is moved along to measure its stiffness: the six axis
+    directions and the eight diagonals."""
+    directions = [np.eye(3)[k] * sign for k in range(3) for sign in (1.0, -1.0)]
+    directions += [np.array([a, b, c]) / math.sqrt(3.0)
+                   for a in (1, -1) for b in (1, -1) for c in (1, -1)]  # fmt: skip
+    return np.array(directions)
+
+
 def end_stiffness(params, y0, time: float, radius: float):
     """Stiffness K [N/m] of the cable's lower end and the force F0 holding it at its target:
     static equilibria with the end on a sphere of ``radius`` [m] around the target, linearised
     by least squares (Jacquot & Marichal, section 4)."""
     centre = np.asarray(c3.target_motion(time, y0, params)[0], float)
     f0 = end_force(params, y0, centre, time)
-    directions = [np.eye(3)[k] * sign for k in range(3) for sign in (1.0, -1.0)]
-    directions += [np.array([a, b, c]) / math.sqrt(3.0)
-                   for a in (1, -1) for b in (1, -1) for c in (1, -1)]  # fmt: skip
-    displacements = radius * np.array(directions)
+    displacements = radius * sphere_directions()
     forces = np.array([end_force(params, y0, centre + d, time) for d in displacements]) - f0
     k_transposed, *_ = np.linalg.lstsq(displacements, forces, rcond=None)
     return k_transposed.T, f0

@@ -232,6 +232,8 @@ def model_positions(p, ny):
 def _model_positions(p, ny):
     if _is(p, chain3d.Chain3DParams):
         return lambda p, ny: 3 * p.n + 1  # directors and heave; the servo force follows
+    if _is(p, lumped.LumpedParams):
+        return lambda p, ny: 3 * (p.n + 1)  # nodes; a servo's force follows the velocities
     return lambda p, ny: ny // 2
 
 
