@@ -21,21 +21,27 @@ def _lumped(name, duration=3.0, integrator="rk4", time_step=0.0005):
     return seacable.simulate(seacable.load_case(data)).dataset
 
 
-@pytest.fixture(scope="module")
-def rising():
-    out = {}
-    for integrator, step in (("rk4", 0.0005), ("generalized_alpha", 0.01)):
-        for name in ("rising_body_single_cable_guided", "rising_body_four_cables"):
-            out[integrator, name] = _lumped(name, integrator=integrator, time_step=step)
-    return out
+STEPS = {"rk4": 0.0005, "generalized_alpha": 0.01}
+_RUNS = {}
 
 
-@pytest.mark.parametrize("integrator", ["rk4", "generalized_alpha"])
-def test_star_of_four_is_its_guided_quarter(rising, integrator):
+def _rising(integrator, name):
+    """The rising body's runs, each made once per session."""
+    if (integrator, name) not in _RUNS:
+        _RUNS[integrator, name] = _lumped(name, integrator=integrator, time_step=STEPS[integrator])
+    return _RUNS[integrator, name]
+
+
+# the implicit star's kernels take a minute to compile: its tests run with the slow ones
+IMPLICIT = pytest.param("generalized_alpha", marks=pytest.mark.slow)
+
+
+@pytest.mark.parametrize("integrator", ["rk4", IMPLICIT])
+def test_star_of_four_is_its_guided_quarter(integrator):
     """Symmetry holds the shared body on its vertical: each cable of the star then moves as
     the single cable with a quarter of the body on an exact vertical guide."""
-    one = rising[integrator, "rising_body_single_cable_guided"]
-    four = rising[integrator, "rising_body_four_cables"]
+    one = _rising(integrator, "rising_body_single_cable_guided")
+    four = _rising(integrator, "rising_body_four_cables")
     end = one["node_z"].values[:, -1]
     assert end[-1] - end[0] > 5.0  # it rises
     assert np.abs(four["body_z"].values - end).max() < 1e-8
@@ -52,9 +58,10 @@ def test_star_of_four_is_its_guided_quarter(rising, integrator):
             assert four.attrs[name] == one.attrs[name]
 
 
-def test_implicit_star_follows_the_explicit_one(rising):
-    explicit = rising["rk4", "rising_body_four_cables"]["body_z"].values
-    implicit = rising["generalized_alpha", "rising_body_four_cables"]["body_z"].values
+@pytest.mark.slow
+def test_implicit_star_follows_the_explicit_one():
+    explicit = _rising("rk4", "rising_body_four_cables")["body_z"].values
+    implicit = _rising("generalized_alpha", "rising_body_four_cables")["body_z"].values
     assert np.abs(explicit - implicit).max() < 5e-3
 
 
@@ -100,6 +107,7 @@ def test_asymmetric_star_conserves_energy():
         np.testing.assert_allclose(mass * acc, pull, atol=1e-6 * np.abs(pull).max())
 
 
+@pytest.mark.slow
 def test_asymmetric_star_implicit_agrees_with_rk4():
     explicit = seacable.simulate(_asymmetric()).dataset
     implicit = seacable.simulate(_asymmetric("generalized_alpha", 0.002)).dataset
