@@ -197,12 +197,12 @@ class _Run:
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()
 
-        block = _node_block(self.model, self.system)
+        block, graph = _node_structure(self.model, self.system)
         return stiff.StiffStepper(
             sim.integrator, fun, self.t, self.y,
             rtol=sim.rtol, atol=sim.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
-            first_step=sim.initial_step, block=block, nodes=len(self.y) // (2 * (block or 1)),
+            first_step=sim.initial_step, block=block, graph=graph,
         )  # fmt: skip
 
     def _advance_stiff(self, count, states, times):
@@ -352,15 +352,24 @@ def _work(run: _Run) -> dict:
     }
 
 
-def _node_block(model, system) -> int | None:
-    """Variables per node when the model's Jacobian is node-neighbour structured, else None."""
-    return getattr(model, "node_block", lambda system: None)(system)
+def _node_structure(model, system):
+    """(variables per node, node neighbours) when the model's Jacobian is node-neighbour
+    structured (``node_block``, and ``node_graph`` or one chain), else (None, None)."""
+    block = getattr(model, "node_block", lambda system: None)(system)
+    if block is None:
+        return None, None
+    graph = getattr(model, "node_graph", None)
+    if graph is not None:
+        return block, graph(system)
+    return block, stiff.chain_graph(len(system.y0) // (2 * block))
 
 
 def _step_warning(sim: schema.Simulation, system) -> str | None:
     model = SYSTEM_MODELS[type(system)]
     size = len(system.y0)
-    if sim.integrator in stiff.STIFF and _node_block(model, system) is None and size > 200:
+    _, graph = _node_structure(model, system)
+    dense = graph is None or (sim.integrator == "cvode" and not stiff.banded(graph))
+    if sim.integrator in stiff.STIFF and dense and size > 200:
         return (
             f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "
             f"({size} states: {size} right-hand sides and a dense factorisation per Jacobian); "

@@ -20,7 +20,7 @@ from seacable.models.common import (
     tangential_drag,
     typed,
 )
-from seacable.numerics import implicit
+from seacable.numerics import implicit, stiff
 
 
 @dataclass(frozen=True)
@@ -418,6 +418,13 @@ def node_block(system: LumpedSystem) -> int | None:
     """Variables per node: the stiff integrators' Jacobian is node-neighbour structured (not
     with a servo's force, which couples to the end: a dense Jacobian)."""
     return None if system.params.bottom_kind == lk.BOTTOM_SERVO else 3
+
+
+def node_graph(system: LumpedSystem) -> list[np.ndarray]:
+    """Node neighbours of the stiff integrators' Jacobian: one chain, reaching two nodes with
+    bending (a node's bending force comes from the angles at its neighbours)."""
+    reach = 2 if np.any(system.params.bend_stiffness > 0.0) else 1
+    return stiff.chain_graph(system.n_links + 1, reach)
 
 
 def positions(system: LumpedSystem) -> int:

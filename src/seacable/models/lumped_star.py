@@ -155,6 +155,27 @@ def rates(system: LumpedStarSystem, y) -> np.ndarray:
     return np.linalg.norm(y[len(y) // 2 :].reshape(-1, 3), axis=1)
 
 
+def node_block(system: LumpedStarSystem) -> int:
+    """Variables per node (the stiff integrators' Jacobian follows ``node_graph``)."""
+    return 3
+
+
+def node_graph(system: LumpedStarSystem) -> list[np.ndarray]:
+    """Nodes each node's acceleration depends on: its neighbours along its cable (two with
+    bending), a cable's last nodes and the body each other (SciPy's sparse Jacobian; CVODE's
+    is dense)."""
+    k, n = system.cables, system.n_links
+    body = k * n
+    reach = 2 if any(np.any(c.bend_stiffness > 0.0) for c in system.params.chains) else 1
+    graph = [[] for _ in range(body + 1)]
+    for c in range(k):
+        # cable c's nodes in the star's order, its end being the body
+        order = [*range(c * n, c * n + n), body]
+        for j, i in enumerate(order):
+            graph[i].extend(order[max(0, j - reach) : j + reach + 1])
+    return [np.unique(near) for near in graph]
+
+
 def fastest_frequency(system: LumpedStarSystem) -> tuple[float, str]:
     best = (0.0, "")
     for j, chain in enumerate(system.params.chains):

@@ -361,11 +361,16 @@ def _step(
     nq = q.shape[1]
     pivoted = diag.shape[1] != 9
     y1, ya, ydot = vec[0], vec[1], vec[2]
-    aa, a1 = q[0], q[1]
+    aa, a1, trend = q[0], q[1], q[2]
     b, g, am, af = coef[1], coef[2], coef[3], coef[4]
     t1 = t + h
     ta = t + (1.0 - af) * h
-    a1[:] = acc  # predictor: the last acceleration
+    # predictor: the last acceleration, extrapolated by the last step's change when that step
+    # had the same length (on a smooth motion the first correction is then often the last)
+    a1[:] = acc
+    if fresh[2] == h:
+        for i in range(nq):
+            a1[i] += trend[i]
     y1[:] = y  # first-order states past the velocities (if any) stay as they are
     ya[:] = y
     uses = 0  # iterations on the current factors in this step
@@ -416,10 +421,14 @@ def _step(
             model_prescribe(t1, y1, a1, p, w)
             model_project(y1, p)
             y[:] = y1
+            for i in range(nq):
+                trend[i] = a1[i] - acc[i]
+            fresh[2] = h
             acc[:] = a1
             work[0] += 1
             return OK
     fresh[0] = 0.0
+    fresh[2] = 0.0
     return NEWTON_FAILED
 
 
@@ -441,7 +450,7 @@ def newmark_chunk(
     nq = model_positions(p, ny)
     blocks, bs = model_solver(p, nq)
     vec = np.empty((3, ny))
-    q = np.empty((2, nq))
+    q = np.empty((3, nq))  # the acceleration at the alpha point, a1, the last step's change
     da = np.empty(bs * blocks)
     res = np.empty(bs * blocks)
     diag = np.empty((blocks, bs * bs))
@@ -449,7 +458,9 @@ def newmark_chunk(
     lower = np.empty((max(blocks - 1, 1), bs * bs))
     factor = np.empty((max(blocks - 1, 1), bs * bs))
     piv = np.empty((blocks, bs), dtype=np.int64)
-    fresh = np.zeros(2)  # [factors valid, their step length]: kept from step to step
+    # [factors valid, their step length, the step length of the last step's change in q[2]]:
+    # kept from step to step
+    fresh = np.zeros(3)
     y_saved = np.empty(ny)
     acc_saved = np.empty(nq)
     step = 0

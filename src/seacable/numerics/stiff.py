@@ -9,8 +9,9 @@ sides (O(n) work) and its factorisation is O(n):
 * SciPy: ``jac_sparsity`` (the node-neighbour pattern) makes SciPy group independent columns
   (coloured finite differences) and factorise with sparse LU;
 * CVODE: the state is interleaved node by node ([x_i, v_i] per node), which makes the Jacobian
-  banded with half-bandwidth 4B - 1 (B variables per node), and CVODE's banded difference
-  quotients and banded LU are O(n).
+  banded with half-bandwidth 2B (r + 1) - 1 (B variables per node, r the reach of a node's
+  coupling: 1, or 2 with bending), and CVODE's banded difference quotients and banded LU are
+  O(n). A star of cables (the shared body couples every chain's end) is not banded: dense.
 
 Models without that structure (rigid links: the inverse mass matrix couples every link) get a
 dense Jacobian. Work counters follow ``numerics.integrators.WORK_NAMES``; a count the solver
@@ -23,14 +24,23 @@ from scipy import integrate, sparse
 STIFF = ("bdf", "radau", "lsoda", "cvode")
 
 
-def neighbour_sparsity(nodes: int, block: int):
-    """Jacobian pattern of ``y = [x (block per node), v (block per node)]`` when each node's
-    acceleration depends on its own and its neighbours' positions and velocities."""
+def chain_graph(nodes: int, reach: int = 1) -> list[np.ndarray]:
+    """Node neighbours along one chain: each node's acceleration depends on the nodes within
+    ``reach`` of it (1: axial forces and drag; 2 with bending, whose force on a node comes from
+    the angles at its neighbours)."""
+    return [np.arange(max(0, i - reach), min(nodes, i + reach + 1)) for i in range(nodes)]
+
+
+def graph_sparsity(neighbours, block: int):
+    """Jacobian pattern of ``y = [x (block per node), v (block per node)]``: ``neighbours[i]``
+    the nodes (itself included) whose positions and velocities node i's acceleration depends on
+    (``chain_graph``; a star: each chain's last node and the shared body couple too)."""
+    nodes = len(neighbours)
     nq = nodes * block
     rows, cols = [], []
-    for i in range(nodes):
+    for i, near_nodes in enumerate(neighbours):
         own = np.arange(i * block, (i + 1) * block)
-        near = np.arange(max(0, i - 1) * block, min(nodes, i + 2) * block)
+        near = (np.asarray(near_nodes)[:, None] * block + np.arange(block)[None, :]).ravel()
         # dx/dt = v
         rows.extend(own)
         cols.extend(nq + own)
@@ -52,32 +62,43 @@ def interleave(nodes: int, block: int) -> np.ndarray:
     return np.array(order)
 
 
+MAX_BANDED_REACH = 4  # CVODE: a graph reaching further (a star's body) gets a dense Jacobian
+
+
+def _reach(graph) -> int:
+    """The largest index distance between coupled nodes."""
+    return max(int(np.max(np.abs(np.asarray(near) - i))) for i, near in enumerate(graph))
+
+
+def banded(graph) -> bool:
+    """True when CVODE gets a banded Jacobian for this node graph."""
+    return _reach(graph) <= MAX_BANDED_REACH
+
+
 class StiffStepper:
     """Advance a model with one of STIFF, hitting output times exactly (dense output)."""
 
-    def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, nodes):
+    def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, graph):
         self.name = name
         self.fun = fun  # f(t, y) -> ydot (raises FloatingPointError when non-finite)
         self.t = t0
         self.steps = 0
         self.nfev = self.njev = self.nlu = 0
         if name == "cvode":
-            self._init_cvode(y0, rtol, atol, max_step, first_step, block, nodes)
+            self._init_cvode(y0, rtol, atol, max_step, first_step, block, graph)
         else:
-            self._init_scipy(y0, rtol, atol, max_step, first_step, block, nodes)
+            self._init_scipy(y0, rtol, atol, max_step, first_step, block, graph)
 
     # ---- SciPy ----
-    def _init_scipy(self, y0, rtol, atol, max_step, first_step, block, nodes):
+    def _init_scipy(self, y0, rtol, atol, max_step, first_step, block, graph):
+        """``graph``: the node neighbours of ``graph_sparsity`` (``block`` variables per node);
+        None: a dense Jacobian."""
         solver = {"bdf": integrate.BDF, "radau": integrate.Radau, "lsoda": integrate.LSODA}
         options = dict(rtol=rtol, atol=atol, max_step=max_step, first_step=first_step)
-        if block is not None:
-            sparsity = neighbour_sparsity(nodes, block)
-            if self.name == "lsoda":
-                # LSODA takes a banded Jacobian through lband/uband only for its own FD; the
-                # [x, v] layout is not banded, so it uses its dense finite differences
-                sparsity = None
-            if sparsity is not None:
-                options["jac_sparsity"] = sparsity
+        # LSODA takes a banded Jacobian through lband/uband only for its own FD; the [x, v]
+        # layout is not banded, so it uses its dense finite differences
+        if graph is not None and self.name != "lsoda":
+            options["jac_sparsity"] = graph_sparsity(graph, block)
         self.solver = solver[self.name](self.fun, self.t, y0.copy(), np.inf, **options)
 
     def _advance_scipy(self, targets, states):
@@ -99,7 +120,9 @@ class StiffStepper:
         return done, None
 
     # ---- CVODE ----
-    def _init_cvode(self, y0, rtol, atol, max_step, first_step, block, nodes):
+    def _init_cvode(self, y0, rtol, atol, max_step, first_step, block, graph):
+        """Banded when the graph is a chain (interleaved node by node: half-bandwidth
+        2 B (reach + 1) - 1); dense otherwise (a star, or no structure)."""
         from sksundae.cvode import CVODE
 
         options = dict(
@@ -107,11 +130,13 @@ class StiffStepper:
             max_num_steps=100_000,
         )  # fmt: skip
         fun = self.fun
-        if block is not None:
+        if graph is not None and banded(graph):
+            reach = _reach(graph)
+            nodes = len(graph)
             order = interleave(nodes, block)
             inverse = np.argsort(order)
             self._order, self._inverse = order, inverse
-            half = 4 * block - 1
+            half = 2 * block * (reach + 1) - 1
             options.update(linsolver="band", lband=half, uband=half)
 
             def rhs(t, z, zp):
