@@ -106,3 +106,8 @@ def section(case: schema.Case) -> Section:
         wet_weight=(mass - rho * area * lengths) * env.gravity,
         added_mass=ca * rho * area * lengths,
     )
+
+
+def xyz_variables(prefix: str, dims, units: str, what: str) -> dict:
+    """Three output variables ``prefix_x``, ``_y``, ``_z`` (dims, units, description)."""
+    return {f"{prefix}_{a}": (dims, units, f"{what}, {a}") for a in "xyz"}

@@ -15,16 +15,13 @@ from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_star as ls
 from seacable.models import lumped_mass, star_3d
-from seacable.models.common import add_total_energy
+from seacable.models.common import add_total_energy, xyz_variables
 
 
 @dataclass(frozen=True)
-class LumpedStarSystem:
-    params: ls.LumpedStarParams
-    y0: np.ndarray
-    n_links: int  # segments per cable (all equal)
-    cables: int
-    names: tuple[str, ...]
+class LumpedStarSystem(star_3d.StarSystem):
+    """The star's parameters (``LumpedStarParams``), initial state, segments per cable, number
+    of cables and their names."""
 
 
 def _chain(case: schema.Case, k: int, body: schema.SharedBody, base_dir):
@@ -88,25 +85,14 @@ def build(case: schema.Case, base_dir=None) -> LumpedStarSystem:
     return LumpedStarSystem(params, y0, case.cables[0].links, len(chains), names)
 
 
-def _per_cable(what: str, unit: str) -> dict:
-    return {
-        f"{what}_{a}": (("time", "cable"), "N", f"{unit}, {a}") for a in "xyz"
-    }  # fmt: skip
-
-
 VARIABLES = {
-    **{f"node_{a}": (("time", "cable", "node"), "m", f"node position, {a}") for a in "xyz"},
+    **xyz_variables("node", ("time", "cable", "node"), "m", "node position"),
     "tension": (("time", "cable", "segment"), "N", "axial tension of the segment (no compression)"),
-    **_per_cable("top_force", "force of each cable on its top attachment"),
-    **_per_cable("bottom_force", "force of each cable on the shared body"),
-    **{f"body_{a}": (("time",), "m", f"position of the shared body, {a}") for a in "xyz"},
-    **{
-        f"body_velocity_{a}": (("time",), "m/s", f"velocity of the shared body, {a}") for a in "xyz"
-    },
-    **{
-        f"body_acceleration_{a}": (("time",), "m/s2", f"acceleration of the shared body, {a}")
-        for a in "xyz"
-    },  # fmt: skip
+    **xyz_variables("top_force", ("time", "cable"), "N", "force of each cable on its top"),
+    **xyz_variables("bottom_force", ("time", "cable"), "N", "force of each cable on the body"),
+    **xyz_variables("body", ("time",), "m", "position of the shared body"),
+    **xyz_variables("body_velocity", ("time",), "m/s", "velocity of the shared body"),
+    **xyz_variables("body_acceleration", ("time",), "m/s2", "acceleration of the shared body"),
     "kinetic_energy": (("time",), "J", "kinetic energy of the cables and the body"),
     "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights"),
     "elastic_energy": (("time",), "J", "axial strain energy, bending and seabed springs"),

@@ -26,6 +26,7 @@ from seacable.models.common import (
     section,
     tangential_drag,
     typed,
+    xyz_variables,
 )
 from seacable.models.common import channel as _channel
 from seacable.models.planar_rigid_links import coords, sizes, zigzag_frequency
@@ -371,35 +372,31 @@ def _top_reference(cable: schema.Cable) -> np.ndarray:
 
 
 # ---- what a run of this model records ------------------------------------------------------------
-def _xyz_variables(prefix: str, dims, units: str, what: str) -> dict:
-    return {f"{prefix}_{a}": (dims, units, f"{what}, {a}") for a in "xyz"}
-
-
 VARIABLES = {
-    **_xyz_variables("direction", ("time", "segment"), "1", "unit vector along the segment"),
-    **_xyz_variables("node", ("time", "node"), "m", "node position (z up, 0 at the surface)"),
+    **xyz_variables("direction", ("time", "segment"), "1", "unit vector along the segment"),
+    **xyz_variables("node", ("time", "node"), "m", "node position (z up, 0 at the surface)"),
     "tension": (("time", "segment"), "N", "axial tension at the segment centre (positive pulling)"),
-    **_xyz_variables(
+    **xyz_variables(
         "top_force",
         ("time",),
         "N",
         "force of the cable on its top attachment "
         "(the tow force needed at the tow point is its opposite)",
     ),  # fmt: skip
-    **_xyz_variables(
+    **xyz_variables(
         "bottom_force", ("time",), "N", "force of the cable on its bottom body or anchor"
     ),
-    **_xyz_variables("top_velocity", ("time",), "m/s", "velocity of the top attachment"),
-    **_xyz_variables("bottom_velocity", ("time",), "m/s", "velocity of the bottom end (its body)"),
+    **xyz_variables("top_velocity", ("time",), "m/s", "velocity of the top attachment"),
+    **xyz_variables("bottom_velocity", ("time",), "m/s", "velocity of the bottom end (its body)"),
     "angular_rate": (("time", "segment"), "rad/s", "rate of turn of the segment"),
     "kinetic_energy": (("time",), "J", "kinetic energy (added mass included)"),
     "gravity_potential_energy": (("time",), "J", "potential energy of apparent weights (z = 0)"),
     "elastic_energy": (("time",), "J", "energy stored in joint springs, heave spring and ties"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
     "constraint_error": (("time",), "m", "distance of a held end from its target (held axes)"),
-    **_xyz_variables("target", ("time",), "m", "target of the lower end (trajectory, guide)"),
+    **xyz_variables("target", ("time",), "m", "target of the lower end (trajectory, guide)"),
     "tracking_error": (("time",), "m", "distance of the lower end from its target"),
-    **_xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
+    **xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
 }
 
 

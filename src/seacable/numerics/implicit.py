@@ -99,8 +99,8 @@ def _matmul3(a, b, out):
 def block_tridiagonal_factor(diag, upper, lower, factor, chain=0):
     """Block LU (Thomas) of the block-tridiagonal matrix with 3x3 blocks (row-major, 9 values
     each): ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k).
-    Overwrites ``diag`` with the inverted pivots and fills ``factor[k] = lower[k] pivot[k]^-1``;
-    O(n). Returns False when a pivot is singular.
+    Overwrites ``diag`` with the inverted pivots and fills ``factor[k] = lower[k] pivot[k]^-1``
+    (``factor`` as long as ``lower``); O(n). Returns False when a pivot is singular.
 
     With ``chain`` > 0 the matrix is a star (``kernels.lumped_star``): chains of ``chain`` nodes
     one after another, then one hub node (the last) coupled to each chain's last node, whose
@@ -114,20 +114,16 @@ def block_tridiagonal_factor(diag, upper, lower, factor, chain=0):
     inv = np.empty(9)
     tmp = np.empty(9)
     for k in range(hub):
-        if k % chain > 0:
-            _matmul3(lower[k - 1], diag[k - 1], factor[k - 1])
-            _matmul3(factor[k - 1], upper[k - 1], tmp)
-            for c in range(9):
-                diag[k, c] -= tmp[c]
         if _inverse3(diag[k], inv) == 0.0:
             return False
         for c in range(9):
             diag[k, c] = inv[c]
-        if k % chain == chain - 1:  # a chain's last node: onto the hub
-            _matmul3(lower[k], diag[k], factor[k])
-            _matmul3(factor[k], upper[k], tmp)
-            for c in range(9):
-                diag[hub, c] -= tmp[c]
+        # eliminate node k from the next one's rows (a chain's last node: the hub's)
+        following = hub if k % chain == chain - 1 else k + 1
+        _matmul3(lower[k], diag[k], factor[k])
+        _matmul3(factor[k], upper[k], tmp)
+        for c in range(9):
+            diag[following, c] -= tmp[c]
     if _inverse3(diag[hub], inv) == 0.0:
         return False
     for c in range(9):
@@ -154,10 +150,7 @@ def block_tridiagonal_apply(diag, upper, factor, rhs, x, chain=0):
         chain = max(hub, 1)
     x[: 3 * m] = rhs[: 3 * m]
     for k in range(hub):
-        if k % chain > 0:
-            _less_product(x, k, factor[k - 1], x, k - 1)
-        if k % chain == chain - 1:
-            _less_product(x, hub, factor[k], x, k)
+        _less_product(x, hub if k % chain == chain - 1 else k + 1, factor[k], x, k)
     for k in range(m - 1, -1, -1):
         if k < hub:
             _less_product(x, k, upper[k], x, hub if k % chain == chain - 1 else k + 1)
