@@ -19,6 +19,7 @@ from seacable.models.common import (
     section,
     tangential_drag,
     typed,
+    xyz_variables,
 )
 from seacable.numerics import implicit, stiff
 
@@ -356,10 +357,7 @@ VARIABLES = {
     "elastic_energy": (("time",), "J", "axial strain energy and seabed springs"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
     "tracking_error": (("time",), "m", "distance of a trajectory end from its target"),
-    **{
-        f"servo_force_{a}": (("time",), "N", f"force the servo applies to the cable end, {a}")
-        for a in "xyz"
-    },  # fmt: skip
+    **xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
 }
 
 
