@@ -667,17 +667,25 @@ def rhs(t, y, p, w, ydot):
     for c in range(3):
         ydot[servo + c] = 0.0
     if p.bottom_kind == BOTTOM_SERVO:
-        # the paper's per-step correction dF = K (a dE - b dt dE') as a rate over its step dt
         pos, vel, _ = target_motion(t, y, p)
-        for r in range(3):
-            rate = 0.0
-            for c in range(3):
-                error = pos[c] - w[_P + c, n]
-                error_rate = vel[c] - w[_V + c, n]
-                k = p.servo_stiffness[r, c]
-                rate += k * (p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate)
-            ydot[servo + r] = rate
+        servo_rates(p, pos, vel, w[_P : _P + 3, n], w[_V : _V + 3, n], ydot, servo)
     return status
+
+
+@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
+def servo_rates(p, target_pos, target_vel, end_pos, end_vel, ydot, start):
+    """ydot[start:start + 3] = dF/dt of the servo's force: the paper's per-step correction
+    dF = K (a dE - b dt dE') as a rate over its step dt, dE the target less the end's position
+    (shared with the lumped-mass kernel: same field names)."""
+    for r in range(3):
+        rate = 0.0
+        for c in range(3):
+            error = target_pos[c] - end_pos[c]
+            error_rate = target_vel[c] - end_vel[c]
+            rate += p.servo_stiffness[r, c] * (
+                p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate
+            )
+        ydot[start + r] = rate
 
 
 @njit(**JIT)

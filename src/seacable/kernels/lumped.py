@@ -466,15 +466,8 @@ def _servo_rates(t, y, p, ydot):
     n = p.n
     v0 = 3 * (n + 1)
     pos, vel, _ = target_state(t, y, p)
-    for r in range(3):
-        rate = 0.0
-        for c in range(3):
-            error = pos[c] - y[3 * n + c]
-            error_rate = vel[c] - y[v0 + 3 * n + c]
-            rate += p.servo_stiffness[r, c] * (
-                p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate
-            )
-        ydot[2 * v0 + r] = rate
+    end = 3 * n
+    c3.servo_rates(p, pos, vel, y[end : end + 3], y[v0 + end : v0 + end + 3], ydot, 2 * v0)
 
 
 @njit(**JIT)
