@@ -156,3 +156,29 @@ def test_lumped_servo_refuses_implicit_schemes():
     sim = case.simulation.model_copy(update={"integrator": "generalized_alpha"})
     with pytest.raises(seacable.CaseError, match="servo's force"):
         seacable.simulate(case.model_copy(update={"simulation": sim}))
+
+
+# ---- what a result records -----------------------------------------------------------------------
+TRAJECTORY_NAMES = ("target_x", "target_y", "target_z", "tracking_error")
+SERVO_NAMES = ("servo_force_x", "servo_force_y", "servo_force_z")
+
+
+def _short(case, duration=0.1):
+    sim = case.simulation.model_copy(update={"duration": duration, "output_interval": duration / 2})
+    return case.model_copy(update={"simulation": sim})
+
+
+def test_a_plain_mooring_line_records_no_trajectory_or_servo_variables():
+    case = _short(seacable.load_case(EXAMPLES / "catenary_mooring_line_surge.yaml"))
+    ds = seacable.simulate(case).dataset
+    assert not set(TRAJECTORY_NAMES + SERVO_NAMES) & set(ds.data_vars)
+    assert "tension" in ds
+
+
+@pytest.mark.parametrize("method", ["exact", "stiffness_servo"])
+def test_a_lumped_trajectory_records_its_target(method):
+    ds = seacable.simulate(_short(_lumped(method), duration=0.02)).dataset
+    assert set(TRAJECTORY_NAMES) <= set(ds.data_vars)
+    np.testing.assert_allclose(ds["target_x"].values, ds["node_x"].values[:, -1], atol=1e-6)
+    np.testing.assert_allclose(ds["target_z"].values, ds["node_z"].values[:, -1], atol=1e-6)
+    assert (set(SERVO_NAMES) <= set(ds.data_vars)) == (method == "stiffness_servo")

@@ -106,9 +106,12 @@ class _Sink:
         return f
 
     def write(self, rows: dict) -> None:
+        """Append ``rows`` (name -> values, time first); names the case does not record (a
+        model's rows hold all its variables) are left out."""
         count = len(rows["time"])
         if count == 0:
             return
+        rows = {name: values for name, values in rows.items() if name in self.chunks}
         for name, values in rows.items():
             self.chunks[name].append(np.array(values, copy=True))
         if self._file is not None:

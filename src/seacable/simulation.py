@@ -17,6 +17,7 @@ from seacable.models import (
     rigid_segments_3d,
     star_3d,
 )
+from seacable.models.common import case_variables
 from seacable.numerics import implicit, integrators, stiff
 from seacable.results import (
     STATUS_COMPLETE,
@@ -289,7 +290,8 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
-    sink = _Sink(output, model.sizes(system), model.coords(system), model.VARIABLES, attrs)
+    variables = case_variables(model.VARIABLES, case)
+    sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
     run = _Run(case, model, system, sink)
     start = _time.perf_counter()
     run.compile()

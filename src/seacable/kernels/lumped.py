@@ -44,6 +44,9 @@ SCALAR_NAMES = (
     "gravity_potential_energy",
     "elastic_energy",
     "tracking_error",
+    "target_x",
+    "target_y",
+    "target_z",
     "servo_force_x",
     "servo_force_y",
     "servo_force_z",
@@ -552,16 +555,16 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
     scalars[6] = kinetic
     scalars[7] = gravity
     scalars[8] = elastic
-    scalars[9] = 0.0
-    for c in range(3):
-        scalars[10 + c] = 0.0
+    for k in range(9, N_SCALARS):  # trajectory and servo variables: recorded only with one
+        scalars[k] = np.nan
     if p.bottom_kind == BOTTOM_SERVO or p.bottom_kind == BOTTOM_TRAJECTORY:
         target, _, _ = target_state(t, y, p)
         error = 0.0
         for c in range(3):
             error += (target[c] - y[3 * n + c]) ** 2
+            scalars[10 + c] = target[c]
             if p.bottom_kind == BOTTOM_SERVO:
-                scalars[10 + c] = y[2 * v0 + c]
+                scalars[13 + c] = y[2 * v0 + c]
         scalars[9] = math.sqrt(error)
     return status
 

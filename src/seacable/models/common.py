@@ -111,3 +111,30 @@ def section(case: schema.Case) -> Section:
 def xyz_variables(prefix: str, dims, units: str, what: str) -> dict:
     """Three output variables ``prefix_x``, ``_y``, ``_z`` (dims, units, description)."""
     return {f"{prefix}_{a}": (dims, units, f"{what}, {a}") for a in "xyz"}
+
+
+# variables a model records only when the case has the end they describe
+TRAJECTORY_VARIABLES = ("target_x", "target_y", "target_z", "tracking_error")
+SERVO_VARIABLES = ("servo_force_x", "servo_force_y", "servo_force_z")
+HELD_VARIABLES = ("constraint_error",)
+
+
+def case_variables(variables: dict, case: schema.Case) -> dict:
+    """The entries of a model's ``VARIABLES`` that ``case`` really has: the target and the
+    tracking error with a trajectory end or a guided end (``hold_axes``), the servo's force with
+    a servo end, the constraint error with an end held exactly (pinned, exact trajectory,
+    guided). The one filter every model's records go through (``simulation.simulate``)."""
+    bottoms = [cable.bottom for cable in case.cables]
+    trajectory = [b for b in bottoms if isinstance(b, schema.TrajectoryBottom)]
+    guided = any(getattr(b, "hold_axes", []) for b in bottoms)
+    servo = any(b.method == "stiffness_servo" for b in trajectory)
+    pinned = any(isinstance(b, schema.PinnedBottom) for b in bottoms)
+    held = pinned or guided or any(b.method == "exact" for b in trajectory)
+    absent = set()
+    if not (trajectory or guided):
+        absent.update(TRAJECTORY_VARIABLES)
+    if not servo:
+        absent.update(SERVO_VARIABLES)
+    if not held:
+        absent.update(HELD_VARIABLES)
+    return {name: v for name, v in variables.items() if name not in absent}

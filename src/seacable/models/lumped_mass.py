@@ -357,6 +357,7 @@ VARIABLES = {
     "elastic_energy": (("time",), "J", "axial strain energy and seabed springs"),
     "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
     "tracking_error": (("time",), "m", "distance of a trajectory end from its target"),
+    **xyz_variables("target", ("time",), "m", "target of the lower end (trajectory)"),
     **xyz_variables("servo_force", ("time",), "N", "force the servo applies to the cable end"),
 }
 
