@@ -106,7 +106,7 @@ def _lumped(method, **servo):
     cable = data["cables"][0]
     cable.update(model="lumped_mass", axial_stiffness=1e7, initial={"shape": "catenary"})
     cable["bottom"]["method"] = method
-    cable["bottom"]["servo"].update(step=0.01, **servo)
+    cable["bottom"]["servo"].update({"step": 0.01, **servo})
     data["simulation"]["time_step"] = 0.002
     return seacable.load_case(data)
 
@@ -182,3 +182,46 @@ def test_a_lumped_trajectory_records_its_target(method):
     np.testing.assert_allclose(ds["target_x"].values, ds["node_x"].values[:, -1], atol=1e-6)
     np.testing.assert_allclose(ds["target_z"].values, ds["node_z"].values[:, -1], atol=1e-6)
     assert (set(SERVO_NAMES) <= set(ds.data_vars)) == (method == "stiffness_servo")
+
+
+# ---- the servo's closed loop: unstable gains refused ---------------------------------------------
+def _servo_at(gain, step, duration=None, lumped=False):
+    case = _lumped("stiffness_servo", gain=gain, step=step) if lumped else None
+    if case is None:
+        case = _load("jacquot_marichal_trajectory_servo", gain=gain, step=step)
+        sim = case.simulation.model_copy(update={"time_step": step})
+        case = case.model_copy(update={"simulation": sim})
+    if duration is not None:
+        sim = case.simulation.model_copy(update={"duration": duration})
+        case = case.model_copy(update={"simulation": sim})
+    return case
+
+
+@pytest.mark.parametrize("lumped", [False, True])
+def test_an_unstable_servo_gain_is_refused_with_the_stable_range(lumped):
+    """Gain 2 with a 1 ms servo step: the loop's error grows as exp(5 t) (it was 3.5 m off
+    before the manoeuvre and the run ended 'complete')."""
+    refusal = r"servo\.gain: value 2 .* unstable.* 0 < gain <= 0\.[12]\d+ "
+    with pytest.raises(seacable.CaseError, match=refusal):
+        seacable.simulate(_servo_at(2.0, 0.001, lumped=lumped))
+
+
+def test_the_servo_loop_analysis_predicts_the_runs(monkeypatch):
+    """At rest (the manoeuvre starts at 10 s): outside the stable range the error grows at the
+    predicted rate, inside it stays at round-off."""
+    from seacable import simulation
+    from seacable.models.servo_loop import servo_loop
+
+    case = _servo_at(2.0, 0.001, duration=6.0)
+    system = build_system(case)
+    loop = servo_loop(system.params, system.y0, simulation.model_of(case).workspace(system))
+    predicted = loop.growth_rate(2.0, 0.5, 0.001)
+    largest = loop.largest_stable_gain(0.5, 0.001, 1.0 / 55.0)
+    monkeypatch.setattr(simulation, "check_servo_loop", lambda *args: None)
+    ds = seacable.simulate(case).dataset
+    error, time = ds["tracking_error"].values, ds["time"].values
+    growing = (error > 1e-8) & (error < 1e-2)
+    measured = np.polyfit(time[growing], np.log(error[growing]), 1)[0]
+    assert predicted == pytest.approx(measured, rel=0.05)
+    inside = seacable.simulate(_servo_at(0.9 * largest, 0.001, duration=6.0)).dataset
+    assert inside["tracking_error"].values.max() < 1e-6

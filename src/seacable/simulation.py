@@ -18,6 +18,7 @@ from seacable.models import (
     star_3d,
 )
 from seacable.models.common import case_variables
+from seacable.models.servo_loop import check_servo_loop
 from seacable.numerics import implicit, integrators, stiff
 from seacable.results import (
     STATUS_COMPLETE,
@@ -283,6 +284,7 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
     model = model_of(case)
     _check_integrator(case, model)
     system = model.build(case, loader.case_base_dir(case))
+    check_servo_loop(case, system.params, system.y0, model.workspace(system))
     sim = case.simulation
     settings = _solver_settings(sim)
     warning = _step_warning(sim, system)
