@@ -216,6 +216,8 @@ def test_the_servo_loop_analysis_predicts_the_runs(monkeypatch):
     system = build_system(case)
     loop = servo_loop(system.params, system.y0, simulation.model_of(case).workspace(system))
     predicted = loop.growth_rate(2.0, 0.5, 0.001)
+    # the paper's once-per-step correction: the same loop at this step
+    assert loop.sampled_growth_rate(2.0, 0.5, 0.001) == pytest.approx(predicted, rel=1e-3)
     largest = loop.largest_stable_gain(0.5, 0.001, 1.0 / 55.0)
     monkeypatch.setattr(simulation, "check_servo_loop", lambda *args: None)
     ds = seacable.simulate(case).dataset
