@@ -52,8 +52,10 @@ def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
 
 
 def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
-    """Six panels: cable snapshots, link angles, end positions, tensions, attachment forces and
-    energies over time (3D results: plan and side views instead of snapshots and angles)."""
+    """Cable snapshots and time series of the variables the results hold: link angles, end
+    positions, tensions, attachment forces, energies (3D results: plan and side views instead
+    of snapshots and angles; a trajectory case its tracking error). A panel whose variables a
+    result lacks says so instead of failing."""
     if "cable" in ds.dims:
         return _plot_star(ds, path, every)
     if "node_y" in ds:
@@ -65,23 +67,55 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     _draw_snapshots(axes[0, 0], ds, every, plt)
     _draw_angles(axes[0, 1], ds)
     t = ds["time"].values
-    ax = axes[0, 2]
-    ax.plot(t, ds["node_x"].values[:, -1], label="bottom end x")
-    ax.plot(t, ds["node_z"].values[:, -1], label="bottom end z")
-    ax.plot(t, ds["top_heave"].values, label="top z")
-    _finish(ax, "end positions", "[m]")
-    ax = axes[1, 0]
-    tension = ds["tension"].values
-    ax.plot(t, tension[:, 0], label="top link")
-    ax.plot(t, tension[:, tension.shape[1] // 2], label="middle link")
-    ax.plot(t, tension[:, -1], label="bottom link")
-    _finish(ax, "tension", "tension [N]")
-    ax = axes[1, 1]
-    for name in ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z"):
-        ax.plot(t, ds[name].values, label=name)
-    _finish(ax, "force of the cable on its attachments", "[N]")
+    ends = {"bottom end x": _node(ds, "x", -1), "bottom end z": _node(ds, "z", -1)}
+    ends["top z"] = ds["top_heave"].values if "top_heave" in ds else None
+    _draw_series(axes[0, 2], t, ends, "end positions", "[m]")
+    _draw_tension(axes[1, 0], ds, ("top link", "middle link", "bottom link"))
+    forces = {name: _values(ds, name) for name in
+              ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z")}  # fmt: skip
+    _draw_series(axes[1, 1], t, forces, "force of the cable on its attachments", "[N]")
     _draw_energy(axes[1, 2], ds)
     return _save(fig, ds, path, plt)
+
+
+def _values(ds: xr.Dataset, name: str):
+    """The values of variable ``name``, or None when the results do not hold it."""
+    return ds[name].values if name in ds else None
+
+
+def _node(ds: xr.Dataset, axis: str, node: int):
+    """Coordinate ``axis`` [m] of node ``node`` over time, or None."""
+    name = f"node_{axis}"
+    return ds[name].values[:, node] if name in ds else None
+
+
+def _norm(ds: xr.Dataset, prefix: str):
+    """Magnitude over time of the vector variables ``prefix_x/y/z``, or None if one is absent."""
+    parts = [_values(ds, f"{prefix}_{a}") for a in "xyz"]
+    if any(p is None for p in parts):
+        return None
+    return np.linalg.norm(np.stack(parts), axis=0)
+
+
+def _draw_series(ax, t, series: dict, title: str, ylabel: str) -> None:
+    """Plot the series that exist (None marks an absent variable); say so if none does."""
+    present = {label: v for label, v in series.items() if v is not None}
+    for label, values in present.items():
+        ax.plot(t, values, label=label)
+    _finish(ax, title, ylabel)
+    if not present:
+        ax.text(0.5, 0.5, "not in these results", ha="center", va="center",
+                transform=ax.transAxes)  # fmt: skip
+
+
+def _draw_tension(ax, ds: xr.Dataset, labels) -> None:
+    """Tension [N] of the first, middle and last link or segment."""
+    series = dict.fromkeys(labels)
+    if "tension" in ds:
+        tension = ds["tension"].values
+        for label, j in zip(labels, (0, tension.shape[1] // 2, -1), strict=True):
+            series[label] = tension[:, j]
+    _draw_series(ax, ds["time"].values, series, "tension", "tension [N]")
 
 
 def _plot_string(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -90,19 +124,31 @@ def _plot_string(ds: xr.Dataset, path, every: float | None) -> Path:
     fig, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
     _draw_snapshots(axes[0, 0], ds, every, plt)
     ax = axes[0, 1]
-    ax.plot(ds["end_x"].values, ds["end_z"].values, "k-", lw=1.0)
+    if "end_x" in ds and "end_z" in ds:
+        ax.plot(ds["end_x"].values, ds["end_z"].values, "k-", lw=1.0)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
     ax.set_title("path of the end mass")
-    ax = axes[1, 0]
     t = ds["time"].values
     strain = ds["strain"].values
-    for label, j in (("pivot", 0), ("middle", strain.shape[1] // 2), ("end mass", -1)):
-        ax.plot(t, strain[:, j], label=label)
-    _finish(ax, "axial strain", "[-]")
+    series = {label: strain[:, j] for label, j in
+              (("pivot", 0), ("middle", strain.shape[1] // 2), ("end mass", -1))}  # fmt: skip
+    _draw_series(axes[1, 0], t, series, "axial strain", "[-]")
     _draw_energy(axes[1, 1], ds)
     return _save(fig, ds, path, plt)
+
+
+def _follows_trajectory(ds: xr.Dataset) -> bool:
+    """True when the results are of a case whose lower end follows a target trajectory."""
+    names = ("tracking_error", "target_x", "target_y", "target_z")
+    return all(n in ds for n in names) and bool(np.any(np.isfinite(ds["tracking_error"].values)))
+
+
+def _end_is_fixed(ds: xr.Dataset) -> bool:
+    """True when the lower end does not move (an anchor): its force is then the story."""
+    ends = [ds[f"node_{a}"].values[:, -1] for a in "xyz"]
+    return max(float(np.ptp(e)) for e in ends) < 1e-9 if len(ends[0]) else True
 
 
 def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -114,7 +160,7 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
     x, y, z = (ds[f"node_{a}"].values for a in "xyz")
     for ax, (h, v, hl, vl, title) in zip(
         axes[0, :2],
-        ((x, y, "x [m]", "y [m]", "plan view (ship track dashed)"),
+        ((x, y, "x [m]", "y [m]", "plan view (top end's track dashed)"),
          (x, z, "x [m]", "z [m]", "side view")),
         strict=True,
     ):  # fmt: skip
@@ -127,43 +173,40 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
         ax.set_title(title)
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
     plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
-    ax = axes[0, 2]
-    for a in "xyz":
-        ax.plot(times, -ds[f"top_force_{a}"].values, label=f"force {a}")
-    magnitude = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
-    ax.plot(times, magnitude, "k:", label="magnitude (tension at the top)")
-    _finish(ax, "force at the top attachment on the cable (tow point, anchor)", "[N]")
-    ax = axes[1, 0]
-    tension = ds["tension"].values
-    for label, j in (("top", 0), ("middle", tension.shape[1] // 2), ("bottom", -1)):
-        ax.plot(times, tension[:, j], label=f"{label} segment")
-    _finish(ax, "tension", "tension [N]")
-    ax = axes[1, 1]
-    if "tracking_error" in ds and np.any(np.isfinite(ds["tracking_error"].values)):
-        for a in "xyz":
-            ax.plot(times, ds[f"bottom_force_{a}"].values, label=f"force {a}")
-        _finish(ax, "force of the cable on the vehicle (lower end)", "[N]")
-        ax = axes[1, 2]
-        relative = np.stack(
-            [ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"]
-        )
-        largest = max(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)), 1e-12)
-        ax.semilogy(times, np.maximum(ds["tracking_error"].values / largest, 1e-16),
-                    label=f"largest displacement {largest:.3g} m")  # fmt: skip
-        _finish(ax, "position error / largest displacement", "[-]")
+    top = {f"force {a}": -v if (v := _values(ds, f"top_force_{a}")) is not None else None
+           for a in "xyz"}  # fmt: skip
+    top["magnitude (tension at the top)"] = _norm(ds, "top_force")
+    _draw_series(axes[0, 2], times, top, "force at the top attachment on the cable", "[N]")
+    _draw_tension(axes[1, 0], ds, ("top segment", "middle segment", "bottom segment"))
+    bottom = {f"force {a}": _values(ds, f"bottom_force_{a}") for a in "xyz"}
+    bottom["magnitude"] = _norm(ds, "bottom_force")
+    if _follows_trajectory(ds):
+        _draw_series(axes[1, 1], times, bottom, "force of the cable on the vehicle (lower end)",
+                     "[N]")  # fmt: skip
+        _draw_tracking_error(axes[1, 2], ds)
+        return _save(fig, ds, path, plt)
+    if _end_is_fixed(ds):
+        _draw_series(axes[1, 1], times, bottom, "force of the cable on its anchor (lower end)",
+                     "[N]")  # fmt: skip
     else:
-        ax.plot(times, z[:, -1], label="bottom end z [m]")
-        if "bottom_velocity_z" in ds:
-            ax.plot(times, ds["bottom_velocity_z"].values, label="bottom end vertical speed [m/s]")
-        if "top_velocity_x" in ds:
-            speed = np.linalg.norm(
-                np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0
-            )
-            if np.any(speed > 0):
-                ax.plot(times, speed, label="tow speed [m/s]")
-        _finish(ax, "lower end: elevation and speed", "[m], [m/s]")
-        _draw_energy(axes[1, 2], ds)
+        lower = {"bottom end z [m]": z[:, -1],
+                 "bottom end vertical speed [m/s]": _values(ds, "bottom_velocity_z")}  # fmt: skip
+        speed = _norm(ds, "top_velocity")
+        if speed is not None and np.any(speed > 0):
+            lower["tow speed [m/s]"] = speed
+        _draw_series(axes[1, 1], times, lower, "lower end: elevation and speed", "[m], [m/s]")
+    _draw_energy(axes[1, 2], ds)
     return _save(fig, ds, path, plt)
+
+
+def _draw_tracking_error(ax, ds: xr.Dataset) -> None:
+    """Distance of the lower end from its target over the largest relative displacement."""
+    times = ds["time"].values
+    relative = np.stack([ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"])
+    largest = max(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)), 1e-12)
+    ax.semilogy(times, np.maximum(ds["tracking_error"].values / largest, 1e-16),
+                label=f"largest displacement {largest:.3g} m")  # fmt: skip
+    _finish(ax, "position error / largest displacement", "[-]")
 
 
 def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -191,20 +234,20 @@ def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
     axes[0, 0].axhline(0.0, color="tab:blue", lw=0.8, ls="--")
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
     plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
-    ax = axes[1, 0]
-    ax.plot(times, ds["body_z"].values, label="body elevation z [m]")
-    ax.plot(times, ds["body_velocity_z"].values, label="body vertical speed [m/s]")
-    _finish(ax, "time law of the body", "[m], [m/s]")
-    ax = axes[1, 1]
-    tension = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
-    for c in range(tension.shape[1]):
-        ax.plot(times, tension[:, c], label=f"cable {c}")
-    _finish(ax, "tension at the anchors (top ends)", "[N]")
+    body = {"body elevation z [m]": _values(ds, "body_z"),
+            "body vertical speed [m/s]": _values(ds, "body_velocity_z")}  # fmt: skip
+    _draw_series(axes[1, 0], times, body, "time law of the body", "[m], [m/s]")
+    tension = _norm(ds, "top_force")
+    anchors = {} if tension is None else {f"cable {c}": tension[:, c] for c in range(x.shape[1])}
+    _draw_series(axes[1, 1], times, anchors, "tension at the anchors (top ends)", "[N]")
     return _save(fig, ds, path, plt)
 
 
 def _draw_angles(ax, ds: xr.Dataset) -> None:
     """Every link's angle for short cables (as the thesis's figure 6.1), else a selection."""
+    if "angle" not in ds:
+        _draw_series(ax, ds["time"].values, {}, "link angles from the downward vertical", "[deg]")
+        return
     angles = np.degrees(ds["angle"].values)
     n = angles.shape[1]
     links = range(n) if n <= 12 else np.unique(np.linspace(0, n - 1, 7).round().astype(int))
@@ -217,7 +260,8 @@ def _finish(ax, title: str, ylabel: str) -> None:
     ax.set_xlabel("time [s]")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(fontsize=8)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
 
 
 def _save(fig, ds: xr.Dataset, path, plt) -> Path:
@@ -230,9 +274,9 @@ def _save(fig, ds: xr.Dataset, path, plt) -> Path:
 
 
 def _draw_energy(ax, ds: xr.Dataset) -> None:
-    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
-        ax.plot(ds["time"].values, ds[name].values, label=name.replace("_", " "))
-    _finish(ax, "energy", "[J]")
+    names = ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy")
+    series = {name.replace("_", " "): _values(ds, name) for name in names}
+    _draw_series(ax, ds["time"].values, series, "energy", "[J]")
 
 
 def _title(ds: xr.Dataset) -> str:
