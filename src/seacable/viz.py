@@ -4,11 +4,14 @@ matplotlib is imported lazily with the non-interactive Agg backend, so importing
 configures nothing.
 """
 
+import logging
 import shutil
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
+
+log = logging.getLogger(__name__)
 
 
 def _pyplot():
@@ -287,8 +290,23 @@ def _title(ds: xr.Dataset) -> str:
     return "seacable results"
 
 
-def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> Path:
-    """Animate the cable to a GIF (Pillow) or MP4 (needs ffmpeg on the PATH)."""
+def animate_results(
+    ds: xr.Dataset,
+    path,
+    fps: int = 20,
+    speed: float = 1.0,
+    every: float | None = None,
+    max_frames: int = 600,
+    progress: bool = True,
+) -> Path:
+    """Animate the cable to a GIF (Pillow) or MP4 (needs ffmpeg on the PATH).
+
+    One frame every ``every`` simulated seconds (default ``speed / fps``: ``speed`` simulated
+    seconds per second of video), at most ``max_frames`` frames, taken evenly over the run when
+    more are asked (a log line says so). Frames are drawn and written one at a time, each reading
+    its own time from ``ds``, so memory does not grow with the number of frames and a dataset
+    opened lazily is never read whole. A progress bar on stderr when ``progress``.
+    """
     plt = _pyplot()
     from matplotlib import animation
 
@@ -298,42 +316,116 @@ def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> 
         raise ValueError(f"animation file '{path}': use a .gif or .mp4 name")
     if suffix == ".mp4" and shutil.which("ffmpeg") is None:
         raise ValueError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
-    times = ds["time"].values
-    frame_times = np.arange(times[0], times[-1] + 1e-9, speed / fps)
-    frames = np.searchsorted(times, frame_times - 1e-9).clip(0, len(times) - 1)
     if "cable" in ds.dims:
         raise ValueError("animations of several cables are not available yet; use 'plot'")
+    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
+        raise ValueError(
+            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
+            "give fps and max_frames >= 1, speed and every > 0"
+        )
+    times = ds["time"].values
+    frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     views = [("node_x", "node_z", "x [m]", "z [m]")]
     if "node_y" in ds:
         views = [("node_x", "node_y", "x [m]", "y [m]"), *views]
     fig, axes = plt.subplots(1, len(views), figsize=(7 * len(views), 6), squeeze=False)
     lines = []
     for ax, (hn, vn, hl, vl) in zip(axes[0], views, strict=True):
-        h = ds[hn].values
-        v = ds[vn].values
-        pad = 0.05 * max(np.ptp(h), np.ptp(v), 1.0)
-        ax.set_xlim(h.min() - pad, h.max() + pad)
-        ax.set_ylim(v.min() - pad, max(v.max(), 0.0 if vn == "node_z" else v.max()) + pad)
+        (h_min, h_max), (v_min, v_max) = _extent(ds, hn, frames), _extent(ds, vn, frames)
+        pad = 0.05 * max(h_max - h_min, v_max - v_min, 1.0)
+        ax.set_xlim(h_min - pad, h_max + pad)
+        ax.set_ylim(v_min - pad, max(v_max, 0.0 if vn == "node_z" else v_max) + pad)
         ax.set_aspect("equal")
         if vn == "node_z":
             ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
         ax.set_xlabel(hl)
         ax.set_ylabel(vl)
         (line,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
-        lines.append((line, h, v))
+        lines.append((line, hn, vn))
     label = fig.suptitle("")
-
-    def draw(i):
-        for line, h, v in lines:
-            line.set_data(h[i], v[i])
-        label.set_text(f"{_title(ds)}  t = {times[i]:.2f} s")
-        return [line for line, _, _ in lines] + [label]
-
-    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
+    title = _title(ds)
     path.parent.mkdir(parents=True, exist_ok=True)
-    writer = (
-        animation.PillowWriter(fps=fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
-    )
-    anim.save(path, writer=writer)
+    writer = _gif_stream(fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
+    with writer.saving(fig, path, dpi=100):
+        for i in _progress(frames, progress, path.name):
+            frame = ds.isel(time=int(i))
+            for line, hn, vn in lines:
+                line.set_data(frame[hn].values, frame[vn].values)
+            label.set_text(f"{title}  t = {times[i]:.2f} s")
+            writer.grab_frame()
     plt.close(fig)
     return path
+
+
+def _frame_indices(times: np.ndarray, every: float, max_frames: int) -> np.ndarray:
+    """Output indices of the frames: one per ``every`` seconds, at most ``max_frames`` of them
+    spread evenly over the run (first and last kept)."""
+    if len(times) == 0:
+        raise ValueError("the results hold no time step to animate")
+    targets = np.arange(times[0], times[-1] + 1e-9, every)
+    frames = np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+    if len(frames) > max_frames:
+        kept = frames[np.unique(np.linspace(0, len(frames) - 1, max_frames).round().astype(int))]
+        span = times[-1] - times[0]
+        log.info(
+            "animating %d frames of the %d asked (one every %.3g s of %.3g s simulated); "
+            "raise --max-frames or --every for more or fewer",
+            len(kept), len(frames), span / max(len(kept) - 1, 1), span,
+        )  # fmt: skip
+        frames = kept
+    return frames
+
+
+def _extent(ds: xr.Dataset, name: str, frames: np.ndarray, block: int = 256):
+    """Smallest and largest value [m] of ``name`` over the frames, read a block at a time."""
+    low, high = np.inf, -np.inf
+    for start in range(0, len(frames), block):
+        values = ds[name].isel(time=frames[start : start + block]).values
+        low, high = min(low, float(np.nanmin(values))), max(high, float(np.nanmax(values)))
+    return low, high
+
+
+def _progress(frames: np.ndarray, progress: bool, name: str):
+    """The frames, through a tqdm progress bar on stderr when ``progress``."""
+    if not progress:
+        return frames
+    from tqdm import tqdm
+
+    return tqdm(frames, unit="frame", desc=f"animating {name}", delay=1.0)
+
+
+def _gif_stream(fps: int):
+    """A matplotlib movie writer at ``fps`` frames per second that appends each frame to the GIF
+    file as it is grabbed, all frames in the palette of the first (matplotlib's PillowWriter
+    keeps every frame in memory until the end: 2.5 MB a frame for a 1400 x 600 picture)."""
+    from io import BytesIO
+
+    from matplotlib import animation
+    from PIL import GifImagePlugin, Image
+
+    class GifStream(animation.AbstractMovieWriter):
+        def setup(self, fig, outfile, dpi=None):
+            super().setup(fig, outfile, dpi=dpi)
+            self._file = open(outfile, "wb")  # noqa: SIM115 (closed in finish)
+            self._palette = None
+
+        def grab_frame(self, **savefig_kwargs):
+            buffer = BytesIO()
+            self.fig.savefig(buffer, **{**savefig_kwargs, "format": "rgba", "dpi": self.dpi})
+            rgb = Image.frombuffer("RGBA", self.frame_size, buffer.getbuffer(), "raw", "RGBA", 0, 1)
+            rgb = rgb.convert("RGB")
+            if self._palette is None:
+                self._palette = rgb.quantize(colors=256, dither=Image.Dither.NONE)
+                header, _ = GifImagePlugin.getheader(self._palette, info={"loop": 0})
+                self._file.write(b"".join(header))
+                frame = self._palette
+            else:
+                frame = rgb.quantize(palette=self._palette, dither=Image.Dither.NONE)
+            duration = round(1000 / self.fps)
+            self._file.write(b"".join(GifImagePlugin.getdata(frame, duration=duration)))
+
+        def finish(self):
+            self._file.write(b";")  # GIF trailer
+            self._file.close()
+
+    return GifStream(fps=fps)
