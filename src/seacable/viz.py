@@ -203,11 +203,17 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
 
 
 def _draw_tracking_error(ax, ds: xr.Dataset) -> None:
-    """Distance of the lower end from its target over the largest relative displacement."""
+    """Distance of the lower end from its target over the largest displacement of the target
+    relative to the top end (in metres when the target has not moved relative to it)."""
     times = ds["time"].values
+    error = ds["tracking_error"].values
     relative = np.stack([ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"])
-    largest = max(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)), 1e-12)
-    ax.semilogy(times, np.maximum(ds["tracking_error"].values / largest, 1e-16),
+    largest = float(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)))
+    if largest < 1e-6:
+        ax.semilogy(times, np.maximum(error, 1e-16), label="target fixed relative to the top")
+        _finish(ax, "position error", "[m]")
+        return
+    ax.semilogy(times, np.maximum(error / largest, 1e-16),
                 label=f"largest displacement {largest:.3g} m")  # fmt: skip
     _finish(ax, "position error / largest displacement", "[-]")
 
