@@ -32,6 +32,13 @@ def test_value_out_of_range_names_path_and_value():
         _load(lambda d: d["cables"][0].update(links=0))
 
 
+def test_negative_build_up_names_path_and_value():
+    with pytest.raises(
+        CaseError, match=r"simulation\.build_up: .*greater than or equal to 0 \(got -2\.0\)"
+    ):
+        _load(lambda d: d["simulation"].update(build_up=-2.0))
+
+
 def test_negative_mass_of_floating_structure():
     def mutate(d):
         d["cables"][0]["top"] = {"type": "floating_structure", "mass": -5, "heave_stiffness": 1}

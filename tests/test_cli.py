@@ -1,9 +1,13 @@
 """The command line: run, validate, plot, animate."""
 
+import logging
 from pathlib import Path
 
+import numpy as np
+import xarray as xr
 import yaml
 from click.testing import CliRunner
+from PIL import Image
 
 from helpers import chain_case
 from seacable.cli import main
@@ -110,3 +114,52 @@ def test_star_run_and_plot(tmp_path):
     result = runner.invoke(main, ["plot", str(out), "-o", str(tmp_path / "four.png")])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "four.png").stat().st_size > 10_000
+
+
+def _long_result(path, steps: int, nodes: int = 11):
+    """A result of ``steps`` output times (0.05 s apart): a straight 10 m line swinging in 3D."""
+    times = 0.05 * np.arange(steps)
+    angle = 0.5 * np.sin(0.3 * times)[:, None]
+    s = np.linspace(0.0, 10.0, nodes)[None, :]
+    ds = xr.Dataset(
+        {
+            "node_x": (("time", "node"), s * np.sin(angle)),
+            "node_y": (("time", "node"), 0.1 * s * np.cos(angle)),
+            "node_z": (("time", "node"), -s * np.cos(angle)),
+        },
+        coords={"time": times},
+        attrs={"case": "name: swinging line", "status": "complete"},
+    )
+    ds.to_netcdf(path, engine="h5netcdf")
+
+
+def test_animate_caps_frames_and_streams(tmp_path, caplog):
+    """12,001 outputs (600 s at 20 fps asks 12,000 frames): the GIF holds --max-frames frames
+    spread over the whole run, written one at a time, and a log line says so."""
+    result_file = tmp_path / "long.nc"
+    _long_result(result_file, 12_001)
+    gif = tmp_path / "long.gif"
+    runner = CliRunner()
+    with caplog.at_level(logging.INFO, logger="seacable.viz"):
+        result = runner.invoke(
+            main,
+            ["animate", str(result_file), "-o", str(gif), "--max-frames", "7", "--no-progress"],
+        )
+    assert result.exit_code == 0, result.output + repr(result.exception)
+    assert "animating 7 frames of the 12001 asked (one every 100 s" in caplog.text
+    with Image.open(gif) as picture:
+        assert picture.n_frames == 7
+        first = np.asarray(picture.convert("RGB"))
+        picture.seek(3)
+        middle = np.asarray(picture.convert("RGB"))
+    assert first.shape == (600, 1400, 3)
+    assert np.any(first != middle)  # the line moves from frame to frame
+    # --every below the cap: one frame per 150 s of the 600 s run, no cap
+    result = runner.invoke(
+        main, ["animate", str(result_file), "-o", str(gif), "--every", "150", "--no-progress"]
+    )
+    assert result.exit_code == 0, result.output
+    with Image.open(gif) as picture:
+        assert picture.n_frames == 5
+    result = runner.invoke(main, ["animate", str(result_file), "-o", str(gif), "--fps", "0"])
+    assert result.exit_code == 2 and "give fps and max_frames >= 1" in result.output

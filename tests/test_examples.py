@@ -1,11 +1,13 @@
-"""Every example case runs (shortened to keep the suite fast)."""
+"""Every example case runs (shortened to keep the suite fast) and ``seacable plot`` draws it."""
 
 from pathlib import Path
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
 import seacable
+from seacable.cli import main
 
 EXAMPLES = sorted((Path(__file__).parent.parent / "examples").glob("*.yaml"))
 
@@ -15,14 +17,20 @@ def test_there_are_examples():
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
-def test_example_runs(path):
+def test_example_runs_and_plots(path, tmp_path):
     case = seacable.load_case(path)
     short = case.simulation.model_copy(update={"duration": 1.0})
     case = case.model_copy(update={"simulation": short})
-    results = seacable.simulate(case)
+    output = tmp_path / "results.nc"
+    results = seacable.simulate(case, output=output)
     assert results.status == "complete"
     assert np.all(np.isfinite(results["tension"].values))
     assert results.dataset.sizes["time"] == round(1.0 / short.output_interval) + 1
+    # the picture of every kind of result, from the file as a user would draw it
+    picture = tmp_path / "results.png"
+    outcome = CliRunner().invoke(main, ["plot", str(output), "-o", str(picture)])
+    assert outcome.exit_code == 0, outcome.output + repr(outcome.exception)
+    assert picture.stat().st_size > 10_000
 
 
 @pytest.mark.slow

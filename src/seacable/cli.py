@@ -79,15 +79,38 @@ def plot(results_file: str, output: str | None, every: float | None) -> None:
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Animation file: .gif (always) or .mp4 (needs ffmpeg).")  # fmt: skip
-@click.option("--fps", type=int, default=20, help="Frames per second.")
+@click.option("--fps", type=int, default=20, help="Frames per second of video.")
 @click.option("--speed", type=float, default=1.0, help="Simulated seconds per second of video.")
-def animate(results_file: str, output: str, fps: int, speed: float) -> None:
-    """Animate the cable of RESULTS_FILE."""
-    results = seacable.Results.open(results_file)
+@click.option("--every", type=float, default=None,
+              help="Simulated seconds between frames (default: speed / fps).")  # fmt: skip
+@click.option("--max-frames", type=int, default=600, show_default=True,
+              help="At most this many frames, spread evenly over the run.")  # fmt: skip
+@click.option("--progress/--no-progress", default=True, help="Progress bar on stderr.")
+def animate(
+    results_file: str,
+    output: str,
+    fps: int,
+    speed: float,
+    every: float | None,
+    max_frames: int,
+    progress: bool,
+) -> None:
+    """Animate the cable of RESULTS_FILE, drawing and writing one frame at a time."""
+    results = seacable.Results.open(results_file, lazy=True)
     try:
-        viz.animate_results(results.dataset, output, fps=fps, speed=speed)
+        viz.animate_results(
+            results.dataset,
+            output,
+            fps=fps,
+            speed=speed,
+            every=every,
+            max_frames=max_frames,
+            progress=progress,
+        )
     except ValueError as exc:
         _fail(str(exc), 2)
+    finally:
+        results.dataset.close()
     click.echo(f"animation written: {output}")
 
 

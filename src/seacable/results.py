@@ -65,8 +65,11 @@ class Results:
         self.dataset.to_netcdf(path, engine="h5netcdf")
 
     @classmethod
-    def open(cls, path) -> "Results":
-        """Read results written by seacable (complete or not)."""
+    def open(cls, path, lazy: bool = False) -> "Results":
+        """Read results written by seacable (complete or not). ``lazy`` keeps the file open and
+        reads a variable, or the part of it asked for, only when it is used (long runs)."""
+        if lazy:
+            return cls(xr.open_dataset(path, engine="h5netcdf"), Path(path))
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             return cls(ds.load(), Path(path))
 

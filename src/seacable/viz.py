@@ -4,11 +4,14 @@ matplotlib is imported lazily with the non-interactive Agg backend, so importing
 configures nothing.
 """
 
+import logging
 import shutil
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
+
+log = logging.getLogger(__name__)
 
 
 def _pyplot():
@@ -52,8 +55,10 @@ def _draw_snapshots(ax, ds: xr.Dataset, every: float | None, plt) -> None:
 
 
 def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
-    """Six panels: cable snapshots, link angles, end positions, tensions, attachment forces and
-    energies over time (3D results: plan and side views instead of snapshots and angles)."""
+    """Cable snapshots and time series of the variables the results hold: link angles, end
+    positions, tensions, attachment forces, energies (3D results: plan and side views instead
+    of snapshots and angles; a trajectory case its tracking error). A panel whose variables a
+    result lacks says so instead of failing."""
     if "cable" in ds.dims:
         return _plot_star(ds, path, every)
     if "node_y" in ds:
@@ -65,23 +70,55 @@ def plot_results(ds: xr.Dataset, path, every: float | None = None) -> Path:
     _draw_snapshots(axes[0, 0], ds, every, plt)
     _draw_angles(axes[0, 1], ds)
     t = ds["time"].values
-    ax = axes[0, 2]
-    ax.plot(t, ds["node_x"].values[:, -1], label="bottom end x")
-    ax.plot(t, ds["node_z"].values[:, -1], label="bottom end z")
-    ax.plot(t, ds["top_heave"].values, label="top z")
-    _finish(ax, "end positions", "[m]")
-    ax = axes[1, 0]
-    tension = ds["tension"].values
-    ax.plot(t, tension[:, 0], label="top link")
-    ax.plot(t, tension[:, tension.shape[1] // 2], label="middle link")
-    ax.plot(t, tension[:, -1], label="bottom link")
-    _finish(ax, "tension", "tension [N]")
-    ax = axes[1, 1]
-    for name in ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z"):
-        ax.plot(t, ds[name].values, label=name)
-    _finish(ax, "force of the cable on its attachments", "[N]")
+    ends = {"bottom end x": _node(ds, "x", -1), "bottom end z": _node(ds, "z", -1)}
+    ends["top z"] = ds["top_heave"].values if "top_heave" in ds else None
+    _draw_series(axes[0, 2], t, ends, "end positions", "[m]")
+    _draw_tension(axes[1, 0], ds, ("top link", "middle link", "bottom link"))
+    forces = {name: _values(ds, name) for name in
+              ("top_force_x", "top_force_z", "bottom_force_x", "bottom_force_z")}  # fmt: skip
+    _draw_series(axes[1, 1], t, forces, "force of the cable on its attachments", "[N]")
     _draw_energy(axes[1, 2], ds)
     return _save(fig, ds, path, plt)
+
+
+def _values(ds: xr.Dataset, name: str):
+    """The values of variable ``name``, or None when the results do not hold it."""
+    return ds[name].values if name in ds else None
+
+
+def _node(ds: xr.Dataset, axis: str, node: int):
+    """Coordinate ``axis`` [m] of node ``node`` over time, or None."""
+    name = f"node_{axis}"
+    return ds[name].values[:, node] if name in ds else None
+
+
+def _norm(ds: xr.Dataset, prefix: str):
+    """Magnitude over time of the vector variables ``prefix_x/y/z``, or None if one is absent."""
+    parts = [_values(ds, f"{prefix}_{a}") for a in "xyz"]
+    if any(p is None for p in parts):
+        return None
+    return np.linalg.norm(np.stack(parts), axis=0)
+
+
+def _draw_series(ax, t, series: dict, title: str, ylabel: str) -> None:
+    """Plot the series that exist (None marks an absent variable); say so if none does."""
+    present = {label: v for label, v in series.items() if v is not None}
+    for label, values in present.items():
+        ax.plot(t, values, label=label)
+    _finish(ax, title, ylabel)
+    if not present:
+        ax.text(0.5, 0.5, "not in these results", ha="center", va="center",
+                transform=ax.transAxes)  # fmt: skip
+
+
+def _draw_tension(ax, ds: xr.Dataset, labels) -> None:
+    """Tension [N] of the first, middle and last link or segment."""
+    series = dict.fromkeys(labels)
+    if "tension" in ds:
+        tension = ds["tension"].values
+        for label, j in zip(labels, (0, tension.shape[1] // 2, -1), strict=True):
+            series[label] = tension[:, j]
+    _draw_series(ax, ds["time"].values, series, "tension", "tension [N]")
 
 
 def _plot_string(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -90,19 +127,31 @@ def _plot_string(ds: xr.Dataset, path, every: float | None) -> Path:
     fig, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
     _draw_snapshots(axes[0, 0], ds, every, plt)
     ax = axes[0, 1]
-    ax.plot(ds["end_x"].values, ds["end_z"].values, "k-", lw=1.0)
+    if "end_x" in ds and "end_z" in ds:
+        ax.plot(ds["end_x"].values, ds["end_z"].values, "k-", lw=1.0)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
     ax.set_title("path of the end mass")
-    ax = axes[1, 0]
     t = ds["time"].values
     strain = ds["strain"].values
-    for label, j in (("pivot", 0), ("middle", strain.shape[1] // 2), ("end mass", -1)):
-        ax.plot(t, strain[:, j], label=label)
-    _finish(ax, "axial strain", "[-]")
+    series = {label: strain[:, j] for label, j in
+              (("pivot", 0), ("middle", strain.shape[1] // 2), ("end mass", -1))}  # fmt: skip
+    _draw_series(axes[1, 0], t, series, "axial strain", "[-]")
     _draw_energy(axes[1, 1], ds)
     return _save(fig, ds, path, plt)
+
+
+def _follows_trajectory(ds: xr.Dataset) -> bool:
+    """True when the results are of a case whose lower end follows a target trajectory."""
+    names = ("tracking_error", "target_x", "target_y", "target_z")
+    return all(n in ds for n in names) and bool(np.any(np.isfinite(ds["tracking_error"].values)))
+
+
+def _end_is_fixed(ds: xr.Dataset) -> bool:
+    """True when the lower end does not move (an anchor): its force is then the story."""
+    ends = [ds[f"node_{a}"].values[:, -1] for a in "xyz"]
+    return max(float(np.ptp(e)) for e in ends) < 1e-9 if len(ends[0]) else True
 
 
 def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -114,7 +163,7 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
     x, y, z = (ds[f"node_{a}"].values for a in "xyz")
     for ax, (h, v, hl, vl, title) in zip(
         axes[0, :2],
-        ((x, y, "x [m]", "y [m]", "plan view (ship track dashed)"),
+        ((x, y, "x [m]", "y [m]", "plan view (top end's track dashed)"),
          (x, z, "x [m]", "z [m]", "side view")),
         strict=True,
     ):  # fmt: skip
@@ -127,43 +176,46 @@ def _plot_3d(ds: xr.Dataset, path, every: float | None) -> Path:
         ax.set_title(title)
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
     plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
-    ax = axes[0, 2]
-    for a in "xyz":
-        ax.plot(times, -ds[f"top_force_{a}"].values, label=f"force {a}")
-    magnitude = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
-    ax.plot(times, magnitude, "k:", label="magnitude (tension at the top)")
-    _finish(ax, "force at the top attachment on the cable (tow point, anchor)", "[N]")
-    ax = axes[1, 0]
-    tension = ds["tension"].values
-    for label, j in (("top", 0), ("middle", tension.shape[1] // 2), ("bottom", -1)):
-        ax.plot(times, tension[:, j], label=f"{label} segment")
-    _finish(ax, "tension", "tension [N]")
-    ax = axes[1, 1]
-    if "tracking_error" in ds and np.any(np.isfinite(ds["tracking_error"].values)):
-        for a in "xyz":
-            ax.plot(times, ds[f"bottom_force_{a}"].values, label=f"force {a}")
-        _finish(ax, "force of the cable on the vehicle (lower end)", "[N]")
-        ax = axes[1, 2]
-        relative = np.stack(
-            [ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"]
-        )
-        largest = max(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)), 1e-12)
-        ax.semilogy(times, np.maximum(ds["tracking_error"].values / largest, 1e-16),
-                    label=f"largest displacement {largest:.3g} m")  # fmt: skip
-        _finish(ax, "position error / largest displacement", "[-]")
+    top = {f"force {a}": -v if (v := _values(ds, f"top_force_{a}")) is not None else None
+           for a in "xyz"}  # fmt: skip
+    top["magnitude (tension at the top)"] = _norm(ds, "top_force")
+    _draw_series(axes[0, 2], times, top, "force at the top attachment on the cable", "[N]")
+    _draw_tension(axes[1, 0], ds, ("top segment", "middle segment", "bottom segment"))
+    bottom = {f"force {a}": _values(ds, f"bottom_force_{a}") for a in "xyz"}
+    bottom["magnitude"] = _norm(ds, "bottom_force")
+    if _follows_trajectory(ds):
+        _draw_series(axes[1, 1], times, bottom, "force of the cable on the vehicle (lower end)",
+                     "[N]")  # fmt: skip
+        _draw_tracking_error(axes[1, 2], ds)
+        return _save(fig, ds, path, plt)
+    if _end_is_fixed(ds):
+        _draw_series(axes[1, 1], times, bottom, "force of the cable on its anchor (lower end)",
+                     "[N]")  # fmt: skip
     else:
-        ax.plot(times, z[:, -1], label="bottom end z [m]")
-        if "bottom_velocity_z" in ds:
-            ax.plot(times, ds["bottom_velocity_z"].values, label="bottom end vertical speed [m/s]")
-        if "top_velocity_x" in ds:
-            speed = np.linalg.norm(
-                np.stack([ds[f"top_velocity_{a}"].values for a in "xyz"]), axis=0
-            )
-            if np.any(speed > 0):
-                ax.plot(times, speed, label="tow speed [m/s]")
-        _finish(ax, "lower end: elevation and speed", "[m], [m/s]")
-        _draw_energy(axes[1, 2], ds)
+        lower = {"bottom end z [m]": z[:, -1],
+                 "bottom end vertical speed [m/s]": _values(ds, "bottom_velocity_z")}  # fmt: skip
+        speed = _norm(ds, "top_velocity")
+        if speed is not None and np.any(speed > 0):
+            lower["tow speed [m/s]"] = speed
+        _draw_series(axes[1, 1], times, lower, "lower end: elevation and speed", "[m], [m/s]")
+    _draw_energy(axes[1, 2], ds)
     return _save(fig, ds, path, plt)
+
+
+def _draw_tracking_error(ax, ds: xr.Dataset) -> None:
+    """Distance of the lower end from its target over the largest displacement of the target
+    relative to the top end (in metres when the target has not moved relative to it)."""
+    times = ds["time"].values
+    error = ds["tracking_error"].values
+    relative = np.stack([ds[f"target_{a}"].values - ds[f"node_{a}"].values[:, 0] for a in "xyz"])
+    largest = float(np.max(np.linalg.norm(relative - relative[:, :1], axis=0)))
+    if largest < 1e-6:
+        ax.semilogy(times, np.maximum(error, 1e-16), label="target fixed relative to the top")
+        _finish(ax, "position error", "[m]")
+        return
+    ax.semilogy(times, np.maximum(error / largest, 1e-16),
+                label=f"largest displacement {largest:.3g} m")  # fmt: skip
+    _finish(ax, "position error / largest displacement", "[-]")
 
 
 def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
@@ -191,20 +243,20 @@ def _plot_star(ds: xr.Dataset, path, every: float | None) -> Path:
     axes[0, 0].axhline(0.0, color="tab:blue", lw=0.8, ls="--")
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[0], times[-1]))
     plt.colorbar(sm, ax=axes[0, 1], label="time [s]")
-    ax = axes[1, 0]
-    ax.plot(times, ds["body_z"].values, label="body elevation z [m]")
-    ax.plot(times, ds["body_velocity_z"].values, label="body vertical speed [m/s]")
-    _finish(ax, "time law of the body", "[m], [m/s]")
-    ax = axes[1, 1]
-    tension = np.linalg.norm(np.stack([ds[f"top_force_{a}"].values for a in "xyz"]), axis=0)
-    for c in range(tension.shape[1]):
-        ax.plot(times, tension[:, c], label=f"cable {c}")
-    _finish(ax, "tension at the anchors (top ends)", "[N]")
+    body = {"body elevation z [m]": _values(ds, "body_z"),
+            "body vertical speed [m/s]": _values(ds, "body_velocity_z")}  # fmt: skip
+    _draw_series(axes[1, 0], times, body, "time law of the body", "[m], [m/s]")
+    tension = _norm(ds, "top_force")
+    anchors = {} if tension is None else {f"cable {c}": tension[:, c] for c in range(x.shape[1])}
+    _draw_series(axes[1, 1], times, anchors, "tension at the anchors (top ends)", "[N]")
     return _save(fig, ds, path, plt)
 
 
 def _draw_angles(ax, ds: xr.Dataset) -> None:
     """Every link's angle for short cables (as the thesis's figure 6.1), else a selection."""
+    if "angle" not in ds:
+        _draw_series(ax, ds["time"].values, {}, "link angles from the downward vertical", "[deg]")
+        return
     angles = np.degrees(ds["angle"].values)
     n = angles.shape[1]
     links = range(n) if n <= 12 else np.unique(np.linspace(0, n - 1, 7).round().astype(int))
@@ -217,7 +269,8 @@ def _finish(ax, title: str, ylabel: str) -> None:
     ax.set_xlabel("time [s]")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(fontsize=8)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
 
 
 def _save(fig, ds: xr.Dataset, path, plt) -> Path:
@@ -230,9 +283,9 @@ def _save(fig, ds: xr.Dataset, path, plt) -> Path:
 
 
 def _draw_energy(ax, ds: xr.Dataset) -> None:
-    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
-        ax.plot(ds["time"].values, ds[name].values, label=name.replace("_", " "))
-    _finish(ax, "energy", "[J]")
+    names = ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy")
+    series = {name.replace("_", " "): _values(ds, name) for name in names}
+    _draw_series(ax, ds["time"].values, series, "energy", "[J]")
 
 
 def _title(ds: xr.Dataset) -> str:
@@ -243,8 +296,23 @@ def _title(ds: xr.Dataset) -> str:
     return "seacable results"
 
 
-def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> Path:
-    """Animate the cable to a GIF (Pillow) or MP4 (needs ffmpeg on the PATH)."""
+def animate_results(
+    ds: xr.Dataset,
+    path,
+    fps: int = 20,
+    speed: float = 1.0,
+    every: float | None = None,
+    max_frames: int = 600,
+    progress: bool = True,
+) -> Path:
+    """Animate the cable to a GIF (Pillow) or MP4 (needs ffmpeg on the PATH).
+
+    One frame every ``every`` simulated seconds (default ``speed / fps``: ``speed`` simulated
+    seconds per second of video), at most ``max_frames`` frames, taken evenly over the run when
+    more are asked (a log line says so). Frames are drawn and written one at a time, each reading
+    its own time from ``ds``, so memory does not grow with the number of frames and a dataset
+    opened lazily is never read whole. A progress bar on stderr when ``progress``.
+    """
     plt = _pyplot()
     from matplotlib import animation
 
@@ -254,42 +322,116 @@ def animate_results(ds: xr.Dataset, path, fps: int = 20, speed: float = 1.0) -> 
         raise ValueError(f"animation file '{path}': use a .gif or .mp4 name")
     if suffix == ".mp4" and shutil.which("ffmpeg") is None:
         raise ValueError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
-    times = ds["time"].values
-    frame_times = np.arange(times[0], times[-1] + 1e-9, speed / fps)
-    frames = np.searchsorted(times, frame_times - 1e-9).clip(0, len(times) - 1)
     if "cable" in ds.dims:
         raise ValueError("animations of several cables are not available yet; use 'plot'")
+    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
+        raise ValueError(
+            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
+            "give fps and max_frames >= 1, speed and every > 0"
+        )
+    times = ds["time"].values
+    frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     views = [("node_x", "node_z", "x [m]", "z [m]")]
     if "node_y" in ds:
         views = [("node_x", "node_y", "x [m]", "y [m]"), *views]
     fig, axes = plt.subplots(1, len(views), figsize=(7 * len(views), 6), squeeze=False)
     lines = []
     for ax, (hn, vn, hl, vl) in zip(axes[0], views, strict=True):
-        h = ds[hn].values
-        v = ds[vn].values
-        pad = 0.05 * max(np.ptp(h), np.ptp(v), 1.0)
-        ax.set_xlim(h.min() - pad, h.max() + pad)
-        ax.set_ylim(v.min() - pad, max(v.max(), 0.0 if vn == "node_z" else v.max()) + pad)
+        (h_min, h_max), (v_min, v_max) = _extent(ds, hn, frames), _extent(ds, vn, frames)
+        pad = 0.05 * max(h_max - h_min, v_max - v_min, 1.0)
+        ax.set_xlim(h_min - pad, h_max + pad)
+        ax.set_ylim(v_min - pad, max(v_max, 0.0 if vn == "node_z" else v_max) + pad)
         ax.set_aspect("equal")
         if vn == "node_z":
             ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
         ax.set_xlabel(hl)
         ax.set_ylabel(vl)
         (line,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
-        lines.append((line, h, v))
+        lines.append((line, hn, vn))
     label = fig.suptitle("")
-
-    def draw(i):
-        for line, h, v in lines:
-            line.set_data(h[i], v[i])
-        label.set_text(f"{_title(ds)}  t = {times[i]:.2f} s")
-        return [line for line, _, _ in lines] + [label]
-
-    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
+    title = _title(ds)
     path.parent.mkdir(parents=True, exist_ok=True)
-    writer = (
-        animation.PillowWriter(fps=fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
-    )
-    anim.save(path, writer=writer)
+    writer = _gif_stream(fps) if suffix == ".gif" else animation.FFMpegWriter(fps=fps)
+    with writer.saving(fig, path, dpi=100):
+        for i in _progress(frames, progress, path.name):
+            frame = ds.isel(time=int(i))
+            for line, hn, vn in lines:
+                line.set_data(frame[hn].values, frame[vn].values)
+            label.set_text(f"{title}  t = {times[i]:.2f} s")
+            writer.grab_frame()
     plt.close(fig)
     return path
+
+
+def _frame_indices(times: np.ndarray, every: float, max_frames: int) -> np.ndarray:
+    """Output indices of the frames: one per ``every`` seconds, at most ``max_frames`` of them
+    spread evenly over the run (first and last kept)."""
+    if len(times) == 0:
+        raise ValueError("the results hold no time step to animate")
+    targets = np.arange(times[0], times[-1] + 1e-9, every)
+    frames = np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+    if len(frames) > max_frames:
+        kept = frames[np.unique(np.linspace(0, len(frames) - 1, max_frames).round().astype(int))]
+        span = times[-1] - times[0]
+        log.info(
+            "animating %d frames of the %d asked (one every %.3g s of %.3g s simulated); "
+            "raise --max-frames or --every for more or fewer",
+            len(kept), len(frames), span / max(len(kept) - 1, 1), span,
+        )  # fmt: skip
+        frames = kept
+    return frames
+
+
+def _extent(ds: xr.Dataset, name: str, frames: np.ndarray, block: int = 256):
+    """Smallest and largest value [m] of ``name`` over the frames, read a block at a time."""
+    low, high = np.inf, -np.inf
+    for start in range(0, len(frames), block):
+        values = ds[name].isel(time=frames[start : start + block]).values
+        low, high = min(low, float(np.nanmin(values))), max(high, float(np.nanmax(values)))
+    return low, high
+
+
+def _progress(frames: np.ndarray, progress: bool, name: str):
+    """The frames, through a tqdm progress bar on stderr when ``progress``."""
+    if not progress:
+        return frames
+    from tqdm import tqdm
+
+    return tqdm(frames, unit="frame", desc=f"animating {name}", delay=1.0)
+
+
+def _gif_stream(fps: int):
+    """A matplotlib movie writer at ``fps`` frames per second that appends each frame to the GIF
+    file as it is grabbed, all frames in the palette of the first (matplotlib's PillowWriter
+    keeps every frame in memory until the end: 2.5 MB a frame for a 1400 x 600 picture)."""
+    from io import BytesIO
+
+    from matplotlib import animation
+    from PIL import GifImagePlugin, Image
+
+    class GifStream(animation.AbstractMovieWriter):
+        def setup(self, fig, outfile, dpi=None):
+            super().setup(fig, outfile, dpi=dpi)
+            self._file = open(outfile, "wb")  # noqa: SIM115 (closed in finish)
+            self._palette = None
+
+        def grab_frame(self, **savefig_kwargs):
+            buffer = BytesIO()
+            self.fig.savefig(buffer, **{**savefig_kwargs, "format": "rgba", "dpi": self.dpi})
+            rgb = Image.frombuffer("RGBA", self.frame_size, buffer.getbuffer(), "raw", "RGBA", 0, 1)
+            rgb = rgb.convert("RGB")
+            if self._palette is None:
+                self._palette = rgb.quantize(colors=256, dither=Image.Dither.NONE)
+                header, _ = GifImagePlugin.getheader(self._palette, info={"loop": 0})
+                self._file.write(b"".join(header))
+                frame = self._palette
+            else:
+                frame = rgb.quantize(palette=self._palette, dither=Image.Dither.NONE)
+            duration = round(1000 / self.fps)
+            self._file.write(b"".join(GifImagePlugin.getdata(frame, duration=duration)))
+
+        def finish(self):
+            self._file.write(b";")  # GIF trailer
+            self._file.close()
+
+    return GifStream(fps=fps)

@@ -575,6 +575,14 @@ class Simulation(_Model):
     max_step: Pos | None = None  # adaptive integrators' largest step [s]
     initial_step: Pos = 1e-3  # adaptive integrators' first step [s]
     constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
+    # build-up period T [s] (0: none), as OrcaFlex's: every imposed motion (imposed top and
+    # bottom positions), applied force (floating-structure top force, body and end forces) and
+    # trajectory target f(t) is replaced by f(0) + r(t/T) (f(t) - f(0)), r(s) = s^3 (10 - 15 s
+    # + 6 s^2) up to T and 1 after, so it starts from its value at t = 0 at rest, with zero
+    # acceleration, and equals its own time function from T on (no sudden start against a line
+    # started still). A towing ship's speed or distance is not ramped: its initial towed shape
+    # is already the steady state at that speed. One to two periods of the motion is usual.
+    build_up: NonNeg = 0.0
 
     @model_validator(mode="after")
     def _ordered(self):

@@ -42,7 +42,7 @@ from seacable.kernels.planar_chain import (
     top_rows,
 )
 from seacable.kernels.timefn import JIT
-from seacable.kernels.timefn import evaluate as tf_evaluate
+from seacable.kernels.timefn import of_params as tf_of_params
 
 __all__ = ["BOTTOM_FREE", "BOTTOM_PINNED", "TOP_HEAVE", "TOP_IMPOSED", "TOP_TRACK"]
 SERVO_STATES = 3  # the servo force, at the end of every state vector (zero when unused)
@@ -152,6 +152,7 @@ class Chain3DParams(NamedTuple):
     tf_coefs: np.ndarray
     tf_count: np.ndarray
     tf_sine: np.ndarray
+    tf_build_up: np.ndarray
 
 
 def state_size(n):
@@ -171,7 +172,7 @@ def _current(current_z, current_u, current_v, z):
 
 @njit(inline="always", **JIT)
 def _tf(p, channel, t):
-    return tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, channel, t)
+    return tf_of_params(p, channel, t)
 
 
 @njit(inline="always", **JIT)

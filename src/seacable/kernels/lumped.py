@@ -118,6 +118,7 @@ class LumpedParams(NamedTuple):
     tf_coefs: np.ndarray
     tf_count: np.ndarray
     tf_sine: np.ndarray
+    tf_build_up: np.ndarray
 
 
 def state_size(n, servo=False):

@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels.timefn import JIT
-from seacable.kernels.timefn import evaluate as tf_evaluate
+from seacable.kernels.timefn import of_params as tf_of_params
 
 # ---- named integer codes shared with the model layer --------------------------------------------
 TOP_IMPOSED = 0  # top node moved by time functions (a fixed point is a constant function)
@@ -117,6 +117,7 @@ class ChainParams(NamedTuple):
     tf_coefs: np.ndarray
     tf_count: np.ndarray
     tf_sine: np.ndarray
+    tf_build_up: np.ndarray
 
 
 def state_size(n):
@@ -147,8 +148,8 @@ def _top_motion(t, y, p):
     n = p.n
     if p.top_kind == TOP_HEAVE:
         return p.top_x, y[n], 0.0, y[2 * n + 1], 0.0, 0.0
-    x, vx, ax = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_TOP_X, t)
-    z, vz, az = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_TOP_Z, t)
+    x, vx, ax = tf_of_params(p, CH_TOP_X, t)
+    z, vz, az = tf_of_params(p, CH_TOP_Z, t)
     return x, z, vx, vz, ax, az
 
 
@@ -209,8 +210,8 @@ def _bottom_body_force(t, p, w):
     zn = w[_PZ, n]
     vx = w[_VX, n]
     vz = w[_VZ, n]
-    fx, _, _ = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_BODY_FX, t)
-    fz, _, _ = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_BODY_FZ, t)
+    fx, _, _ = tf_of_params(p, CH_BODY_FX, t)
+    fz, _, _ = tf_of_params(p, CH_BODY_FZ, t)
     fz -= p.body_wet_weight
     if p.body_drag != 0.0:
         vrx = vx - _current(p.current_z, p.current_u, zn)
@@ -294,7 +295,7 @@ def _top_acceleration(t, y, p, w):
     if p.top_kind == TOP_HEAVE:
         zs = y[n]
         zsd = y[2 * n + 1]
-        u, _, _ = tf_evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, CH_TOP_FORCE, t)
+        u, _, _ = tf_of_params(p, CH_TOP_FORCE, t)
         f_structure = -p.top_stiffness * (zs - p.top_rest_z) - p.top_damping * zsd
         f_structure += u - p.top_net_weight
         den = p.top_mass + w[_M22, 0]

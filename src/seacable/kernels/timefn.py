@@ -12,9 +12,20 @@ A case holds several such functions ("channels"), stacked in arrays:
 - ``coefs``   (C, K, 4) float64: cubic coefficients per piece
 - ``count``   (C,)      int64  : number of pieces of channel c
 - ``sine``    (C, 3)    float64: amplitude, angular frequency [rad/s], phase [rad]
+- ``build_up`` (C, 2)   float64: build-up duration T [s] (0: none) and the value f(0)
 
 The first breakpoint is a large negative sentinel with a constant piece, so evaluation never
 extrapolates a non-constant polynomial backwards.
+
+Build-up (as OrcaFlex's build-up period): a channel with T > 0 is taken smoothly from its value
+at t = 0, at rest, to its time function,
+
+    F(t) = f(0) + r(s) (f(t) - f(0)),   s = t / T,   r = s^3 (10 - 15 s + 6 s^2)  (r = 1 for s >= 1)
+
+r is the quintic smoothstep: r(0) = 0, r(1) = 1, and r', r'' vanish at both ends, so F starts with
+zero velocity and acceleration and joins f with continuous velocity and acceleration at t = T.
+The derivatives are exact (product rule): F' = r' g + r f', F'' = r'' g + 2 r' f' + r f'' with
+g = f - f(0).
 """
 
 import math
@@ -28,8 +39,33 @@ JIT = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"}
 
 
 @njit(**JIT)
-def evaluate(breaks, coefs, count, sine, channel, t):
-    """Value, first and second time derivative of channel ``channel`` at time ``t`` [s]."""
+def evaluate(breaks, coefs, count, sine, build_up, channel, t):
+    """Value, first and second time derivative of channel ``channel`` at time ``t`` [s], its
+    build-up included."""
+    f, df, ddf = _unramped(breaks, coefs, count, sine, channel, t)
+    duration = build_up[channel, 0]
+    if duration <= 0.0 or t >= duration:
+        return f, df, ddf
+    start = build_up[channel, 1]
+    if t <= 0.0:
+        return start, 0.0, 0.0
+    s = t / duration
+    r = s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+    dr = 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration
+    ddr = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / (duration * duration)
+    g = f - start
+    return start + r * g, dr * g + r * df, ddr * g + 2.0 * dr * df + r * ddf
+
+
+@njit(inline="always", **JIT)
+def of_params(p, channel, t):
+    """``evaluate`` on the ``tf_*`` arrays of a kernel's parameters ``p``."""
+    return evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up, channel, t)
+
+
+@njit(**JIT)
+def _unramped(breaks, coefs, count, sine, channel, t):
+    """The time function itself: piecewise cubic plus sine."""
     k_count = count[channel]
     lo = 0
     hi = k_count - 1

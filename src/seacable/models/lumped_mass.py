@@ -76,9 +76,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
     keys = ("body_mass", "body_wet_weight", "body_drag", "tie_k", "tie_c", "constrained")
     servo = ("servo_stiffness", "servo_gain", "servo_rate_gain", "servo_step")
     bottom_fields = {k: fields[k] for k in (*keys, "target_relative", *servo)}
-    breaks, coefs, count, sine = tfn.stack(
-        [*channels[:4], *bottom_channels[:3], channels[4], *bottom_channels[3:6]]
-    )
+    ordered = [*channels[:4], *bottom_channels[:3], channels[4], *bottom_channels[3:6]]
     current_z, current_u, current_v = current_arrays(env)
     point_mass, point_weight, point_drag = seg._point_bodies(cable, env, n)
     point_mass[n] += bottom_fields["body_mass"]
@@ -117,10 +115,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             point_weight=point_weight,
             point_drag=point_drag,
             bend_stiffness=_bend_stiffness(cable, lengths),
-            tf_breaks=breaks,
-            tf_coefs=coefs,
-            tf_count=count,
-            tf_sine=sine,
+            **tfn.kernel_fields(ordered, case.simulation.build_up),
             **bottom_fields,
         ),
     )

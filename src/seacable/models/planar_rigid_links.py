@@ -169,7 +169,6 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
             "environment.current.direction_deg: the planar model needs a current along x "
             "(0 or 180 deg); use model: rigid_segments_3d for other directions"
         )
-    breaks, coefs, count, sine = tfn.stack([*top_channels, top_force, fx, fz])
     params = common.typed(
         pc.ChainParams,
         dict(
@@ -188,10 +187,7 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
             top_kind=top_kind,
             bottom_kind=bottom_kind,
             stabilization_frequency=case.simulation.constraint_stabilization_frequency,
-            tf_breaks=breaks,
-            tf_coefs=coefs,
-            tf_count=count,
-            tf_sine=sine,
+            **tfn.kernel_fields([*top_channels, top_force, fx, fz], case.simulation.build_up),
             **top_fields,
             **bottom_fields,
         ),

@@ -63,6 +63,7 @@ def _track_fields(top: schema.TowingShipTop, base_dir):
         distance = tfn.build(spec)
     else:
         distance = _channel(top.distance, base_dir, "cables[0].top.distance")
+    distance = tfn.steady(distance)  # the towed start is the steady state: no build-up
     turn_at, radius = 0.0, 0.0
     if top.turn is not None:
         turn_at = tfn.evaluate(distance, top.turn.start_time)[0]
@@ -208,9 +209,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir)
     node_mass, node_weight, node_drag = _point_bodies(cable, env, n)
     current_z, current_u, current_v = current_arrays(env)
-    breaks, coefs, count, sine = tfn.stack(
-        [*channels[:4], *body_channels[:3], channels[4], *body_channels[3:]]
-    )
+    ordered = [*channels[:4], *body_channels[:3], channels[4], *body_channels[3:]]
     fields = dict(
         n=n,
         length=lengths,
@@ -234,10 +233,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         tie_rest=np.zeros(3),
         pin=np.zeros(3),
         stabilization_frequency=case.simulation.constraint_stabilization_frequency,
-        tf_breaks=breaks,
-        tf_coefs=coefs,
-        tf_count=count,
-        tf_sine=sine,
+        **tfn.kernel_fields(ordered, case.simulation.build_up),
         **top_fields,
         **bottom_fields,
     )

@@ -2,10 +2,11 @@
 
 See ``seacable.kernels.timefn`` for the representation. Every builder returns a
 :class:`Piecewise` (breakpoints, cubic coefficients, sine term); :func:`stack` packs several into
-the arrays the kernels take.
+the arrays the kernels take, with the case's build-up (``simulation.build_up``) for every function
+that follows it.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -23,6 +24,14 @@ class Piecewise:
     breaks: np.ndarray
     coefs: np.ndarray  # (K, 4)
     sine: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0))
+    # whether the case's build-up applies (every imposed motion and applied force; not a towing
+    # ship's distance, whose initial towed shape is already the steady state at its speed)
+    builds_up: bool = True
+
+
+def steady(function: Piecewise) -> Piecewise:
+    """``function`` exempt from the case's build-up."""
+    return replace(function, builds_up=False)
 
 
 def constant(value: float) -> Piecewise:
@@ -105,23 +114,34 @@ def build(spec, base_dir=None) -> Piecewise:
     raise TypeError(f"unknown time function {type(spec).__name__}")
 
 
-def stack(functions: list[Piecewise]):
-    """Pack compiled functions into (breaks, coefs, count, sine) arrays for the kernels."""
+def stack(functions: list[Piecewise], build_up: float = 0.0):
+    """Pack compiled functions into (breaks, coefs, count, sine, build_up) arrays for the
+    kernels; ``build_up`` [s] is the case's build-up duration (0: none)."""
     n_channels = len(functions)
     k_max = max(len(f.breaks) for f in functions)
     breaks = np.full((n_channels, k_max), np.inf)
     coefs = np.zeros((n_channels, k_max, 4))
     count = np.zeros(n_channels, dtype=np.int64)
     sine = np.zeros((n_channels, 3))
+    ramps = np.zeros((n_channels, 2))
     for c, f in enumerate(functions):
         k = len(f.breaks)
         breaks[c, :k] = f.breaks
         coefs[c, :k] = f.coefs
         count[c] = k
         sine[c] = f.sine
-    return breaks, coefs, count, sine
+        if f.builds_up and build_up > 0.0:
+            ramps[c] = build_up, evaluate(f, 0.0)[0]
+    return breaks, coefs, count, sine, ramps
+
+
+def kernel_fields(functions: list[Piecewise], build_up: float = 0.0) -> dict:
+    """The ``tf_*`` fields of a kernel's parameters for these channels, in this order."""
+    names = ("tf_breaks", "tf_coefs", "tf_count", "tf_sine", "tf_build_up")
+    return dict(zip(names, stack(functions, build_up), strict=True))
 
 
 def evaluate(function: Piecewise, time: float) -> tuple[float, float, float]:
-    """Value and first two derivatives of a compiled time function at ``time`` [s]."""
+    """Value and first two derivatives of a compiled time function at ``time`` [s] (no
+    build-up: that belongs to the case)."""
     return _evaluate(*stack([function]), 0, float(time))
