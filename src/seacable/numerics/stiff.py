@@ -79,6 +79,7 @@ class StiffStepper:
     """Advance a model with one of STIFF, hitting output times exactly (dense output)."""
 
     def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, graph):
+        """``atol``: one absolute tolerance, or one per state (in the order of ``y0``)."""
         self.name = name
         self.fun = fun  # f(t, y) -> ydot (raises FloatingPointError when non-finite)
         self.t = t0
@@ -138,6 +139,7 @@ class StiffStepper:
             self._order, self._inverse = order, inverse
             half = 2 * block * (reach + 1) - 1
             options.update(linsolver="band", lband=half, uband=half)
+            options["atol"] = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape)[order]
 
             def rhs(t, z, zp):
                 zp[:] = fun(t, z[inverse])[order]
