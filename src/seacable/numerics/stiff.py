@@ -14,8 +14,11 @@ sides (O(n) work) and its factorisation is O(n):
   O(n). A star of cables (the shared body couples every chain's end) is not banded: dense.
 
 Models without that structure (rigid links: the inverse mass matrix couples every link) get a
-dense Jacobian. Work counters follow ``numerics.integrators.WORK_NAMES``; a count the solver
-does not report (CVODE's steps, SciPy's rejected steps) is -1.
+dense Jacobian. One solver object serves the whole run and steps on its own, the output times
+being read from its dense output (SciPy) or asked of CVODE one at a time: the results do
+not depend on how many output times a call asks for (``tests/test_reproducible.py``). Work
+counters follow ``numerics.integrators.WORK_NAMES``; a count the solver does not report
+(CVODE's steps, SciPy's rejected steps) is -1.
 """
 
 import numpy as np
