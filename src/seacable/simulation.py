@@ -2,6 +2,7 @@
 
 import logging
 import math
+import threading
 import time as _time
 
 import numpy as np
@@ -30,7 +31,12 @@ from seacable.results import (
 log = logging.getLogger(__name__)
 
 DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
-DEFAULT_ATOL = "rtol times each state's scale (models.common.state_scale)"
+ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each state's scale
+# the solver_atol attribute of a run with the default absolute tolerance (absolute_tolerance)
+DEFAULT_ATOL = (
+    "rtol times each state's largest magnitude (dopri5: so far; stiff integrators: at the start), "
+    f"at least {ATOL_FLOOR:g} rtol times the state's scale (models.common.state_scale)"
+)
 _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
 
 
@@ -133,9 +139,6 @@ def _check_integrator(case: schema.Case, model) -> None:
         )
     if integrator in IMPLICIT:
         getattr(model, "check_implicit", lambda case: None)(case)
-
-
-ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each state's scale
 
 
 def absolute_tolerance(case: schema.Case, model, system) -> tuple[np.ndarray, np.ndarray]:
@@ -436,8 +439,6 @@ def _compile(run: _Run) -> None:
     """Compile (or load from numba's cache) the run's kernels; a compilation that lasts more
     than COMPILE_NOTICE_SECONDS is announced at INFO (on the command line's default output)
     as soon as that time has passed, and its duration logged when it ends."""
-    import threading
-
     done = threading.Event()
 
     def notice():
