@@ -114,8 +114,8 @@ def _run(system, name, dt, duration, **kwargs):
     steps = int(round(duration / dt))
     states, times = np.empty((1, y.size)), np.empty(1)
     done, status = implicit.newmark_chunk(
-        0.0, y, acc, dt, steps, 1, implicit.scheme(name, **kwargs), 1e-13, 20, p, w, states,
-        times, work,
+        0, y, acc, steps * dt, steps, 1, implicit.scheme(name, **kwargs), 1e-13, 20, p, w, states,
+        times, work, implicit.newmark_carry(y, p),
     )  # fmt: skip
     assert (done, status) == (1, 0)
     return y, work

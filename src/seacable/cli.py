@@ -17,12 +17,38 @@ def _fail(message: str, code: int = 1):
 
 @click.group()
 @click.version_option(seacable.__version__, prog_name="seacable")
-@click.option("-v", "--verbose", is_flag=True, help="Show debug messages.")
+@click.option("-v", "--verbose", is_flag=True, help="Show seacable's debug messages.")
 def main(verbose: bool) -> None:
     """Simulate marine cables and the bodies they connect."""
-    logging.basicConfig(
-        level=logging.DEBUG if verbose else logging.INFO, format="%(levelname)s: %(message)s"
-    )
+    _configure_logging(verbose)
+
+
+class _StderrHandler(logging.StreamHandler):
+    """A stream handler writing to whatever ``sys.stderr`` is when a record comes (a program
+    or a test may swap it after the command line has configured logging)."""
+
+    @property
+    def stream(self):
+        return sys.stderr
+
+    @stream.setter
+    def stream(self, value):
+        pass
+
+
+def _configure_logging(verbose: bool) -> None:
+    """seacable's own log on stderr, at INFO (DEBUG with -v); other packages' loggers (numba's
+    compiler logs hundreds of thousands of DEBUG lines) are left to Python's default, which
+    shows their warnings and errors only. seacable's records still propagate (to the handlers
+    a host program or pytest installs on the root logger), but the root has no handler here."""
+    package = logging.getLogger("seacable")
+    for handler in [h for h in package.handlers if getattr(h, "seacable_cli", False)]:
+        package.removeHandler(handler)
+    handler = _StderrHandler()
+    handler.seacable_cli = True
+    handler.setFormatter(logging.Formatter("%(levelname)s: %(message)s"))
+    package.addHandler(handler)
+    package.setLevel(logging.DEBUG if verbose else logging.INFO)
 
 
 @main.command()

@@ -2,6 +2,7 @@
 
 import logging
 import math
+import threading
 import time as _time
 
 import numpy as np
@@ -32,6 +33,12 @@ from seacable.results import (
 log = logging.getLogger(__name__)
 
 DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
+ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each state's scale
+# the solver_atol attribute of a run with the default absolute tolerance (absolute_tolerance)
+DEFAULT_ATOL = (
+    "rtol times each state's largest magnitude (dopri5: so far; stiff integrators: at the start), "
+    f"at least {ATOL_FLOOR:g} rtol times the state's scale (models.common.state_scale)"
+)
 _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
 
 
@@ -107,7 +114,8 @@ def _solver_settings(sim: schema.Simulation) -> dict:
                 {f"scheme_{k}": float(v) for k, v in zip(names, _scheme(sim), strict=True)}
             )
     else:
-        settings.update(rtol=sim.rtol, atol=sim.atol, initial_step=sim.initial_step)
+        settings.update(rtol=sim.rtol, atol=sim.atol if sim.atol is not None else DEFAULT_ATOL)
+        settings["initial_step"] = sim.initial_step
         settings["max_step"] = sim.max_step if sim.max_step is not None else sim.output_interval
     return settings
 
@@ -135,6 +143,49 @@ def _check_integrator(case: schema.Case, model) -> None:
         getattr(model, "check_implicit", lambda case: None)(case)
 
 
+def absolute_tolerance(case: schema.Case, model, system) -> tuple[np.ndarray, np.ndarray]:
+    """The adaptive integrators' absolute tolerance of each state and, for dopri5's default,
+    the largest magnitude of each state so far (empty when not tracked).
+
+    ``simulation.atol`` given: that value for every state, no tracking. Default: a floor of
+    rtol times ATOL_FLOOR times the model's scale of each state (``state_scale``), and dopri5
+    raises state i's tolerance to rtol times the largest |y_i| reached so far, so that each
+    state's error is measured against its own amplitude (small angles and rates included)
+    and rtol alone sets the accuracy. SciPy's and SUNDIALS' integrators take a fixed
+    tolerance: rtol times the larger of |y_i| at the start and the floor."""
+    sim = case.simulation
+    size = len(system.y0)
+    if sim.atol is not None:
+        return np.full(size, sim.atol), np.empty(0)
+    floor = sim.rtol * ATOL_FLOOR * model.state_scale(case, system)
+    if sim.integrator in stiff.STIFF:
+        return np.maximum(floor, sim.rtol * np.abs(system.y0)), np.empty(0)
+    return floor, np.abs(system.y0)
+
+
+def _tolerance_attrs(run) -> dict:
+    """Which tolerance bounded the adaptive integrator's error, for the results' attributes."""
+    if run.sim.integrator in FIXED_STEP or run.samples == 0:
+        return {}
+    share = 100.0 * run.absolute_governed / run.samples
+    if run.sim.atol is None and run.magnitude.size:
+        what = (
+            "relative: each state's error measured against rtol times the largest magnitude it "
+            f"has reached; the floor atol governed {share:.1f} % of the state values at output "
+            "times (states that stayed near zero)"
+        )
+    else:
+        which = "absolute (atol)" if share > 50.0 else "relative (rtol |y|)"
+        what = (
+            f"{which}: atol exceeded rtol |y| for {share:.1f} % of the state values at output times"
+        )
+    return {
+        "solver_atol_smallest": float(run.atol.min()),
+        "solver_atol_largest": float(run.atol.max()),
+        "solver_tolerance_governing": what,
+    }
+
+
 class _Run:
     """One integration: holds the compiled state and writes rows to the sink."""
 
@@ -156,8 +207,30 @@ class _Run:
         self.stiff_failure = None
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
         self.done = 0
+        # state carried from chunk to chunk (numerics.integrators, contract point 5): dopri5's
+        # stages with a flag saying whether k[0] is the derivative at (t, y); the implicit
+        # schemes' predictor and Newton factors
+        self.stages = np.zeros((7, len(self.y)))
+        self.fsal = np.zeros(1, dtype=np.int64)
+        self.carry = None
+        if self.sim.integrator in IMPLICIT:
+            self.carry = implicit.newmark_carry(self.y, self.p)
+        self.atol, self.magnitude = absolute_tolerance(case, model, system)
+        # adaptive integrators: state values at output times whose error weight atol set
+        # (above rtol |y|, and above rtol times the largest |y| so far when that is tracked),
+        # out of all
+        self.seen = np.zeros(len(self.y))
+        self.absolute_governed = 0
+        self.samples = 0
 
     def emit(self, times, states) -> int:
+        if self.sim.integrator not in FIXED_STEP:
+            size = np.abs(states)
+            if self.magnitude.size:
+                size = np.maximum.accumulate(np.vstack([self.seen, size]))[1:]
+                self.seen = size[-1].copy()
+            self.absolute_governed += int(np.count_nonzero(self.atol > self.sim.rtol * size))
+            self.samples += states.size
         rows, status = self.model.rows(times, states, self.system, self.w)
         self.sink.write(rows)
         return status
@@ -171,22 +244,35 @@ class _Run:
 
     def compile(self) -> None:
         """Compile (or load from the cache) the kernels this run uses, before any timing or
-        progress display: a zero-length chunk does nothing but dispatch."""
+        progress display: a zero-length chunk does nothing but dispatch (on copies: the run's
+        carried state stays as it is)."""
         empty = np.empty((0, self.y.shape[0]))
         y, work, sim = self.y.copy(), np.zeros_like(self.work), self.sim
         if sim.integrator == "rk4":
-            integrators.rk4_chunk(0.0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
+            integrators.rk4_chunk(0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
         elif sim.integrator in stiff.STIFF:
             integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT:
             if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != pc.OK:
                 self.acc[:] = 0.0
-            self._newmark(0.0, y, 1.0, 1, 0, empty, np.empty(0), work)
+            carry = implicit.newmark_carry(y, self.p)
+            self._newmark(y, 1, 0, empty, np.empty(0), work, carry)
         else:
             integrators.dopri5_chunk(
-                0.0, y, 1.0, 0, 1.0, 1.0, 1.0, 1.0, self.p, self.w, empty, np.empty(0), work
-            )
+                0, y, 1.0, 0, 1.0, 1.0, self.atol, self.magnitude.copy(), 1.0, self.p, self.w,
+                empty, np.empty(0), work,
+                self.stages.copy(), self.fsal.copy(),
+            )  # fmt: skip
         self.model.rows(np.empty(0), empty, self.system, self.w)
+
+    def refresh(self) -> None:
+        """Let the model replace its parameters (at output-interval multiples, always at a
+        chunk boundary whatever the chunk sizes); what was derived from the old parameters is
+        dropped: dopri5's first-same-as-last derivative, the implicit schemes' kept factors."""
+        self.p = self.model.refresh(self.case, self.p, self.t, self.y)
+        self.fsal[0] = 0
+        if self.carry is not None:
+            self.carry[1][0] = 0.0
 
     def _stiff_stepper(self) -> stiff.StiffStepper:
         sim = self.sim
@@ -202,7 +288,7 @@ class _Run:
         block, graph = _node_structure(self.model, self.system)
         return stiff.StiffStepper(
             sim.integrator, fun, self.t, self.y,
-            rtol=sim.rtol, atol=sim.atol,
+            rtol=sim.rtol, atol=self.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
             first_step=sim.initial_step, block=block, graph=graph,
         )  # fmt: skip
@@ -219,12 +305,12 @@ class _Run:
         self.stiff_failure = failure
         return done, (pc.OK if failure is None else pc.NON_FINITE)
 
-    def _newmark(self, t0, y, dt, steps, count, states, times, work):
+    def _newmark(self, y, steps, count, states, times, work, carry):
         sim = self.sim
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return implicit.newmark_chunk(
-            t0, y, self.acc, dt, steps, count, _scheme(sim), tol, sim.max_newton_iterations,
-            self.p, self.w, states, times, work,
+            self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
+            sim.max_newton_iterations, self.p, self.w, states, times, work, carry,
         )  # fmt: skip
 
     def advance(self, count: int) -> int:
@@ -234,23 +320,24 @@ class _Run:
         times = np.empty(count)
         sim = self.sim
         if sim.integrator in FIXED_STEP:
-            dt, steps = rk4_step(sim)
-            step0 = self.done * steps
+            _, steps = rk4_step(sim)
             if sim.integrator == "rk4":
                 completed, status = integrators.rk4_chunk(
-                    step0 * dt, self.y, dt, steps, count, self.p, self.w, states, times, self.work
-                )
+                    self.done, self.y, sim.output_interval, steps, count, self.p, self.w, states,
+                    times, self.work,
+                )  # fmt: skip
             else:
                 completed, status = self._newmark(
-                    step0 * dt, self.y, dt, steps, count, states, times, self.work
+                    self.y, steps, count, states, times, self.work, self.carry
                 )
         elif sim.integrator in stiff.STIFF:
             completed, status = self._advance_stiff(count, states, times)
         else:
             max_step = sim.max_step if sim.max_step is not None else sim.output_interval
             completed, status, self.h = integrators.dopri5_chunk(
-                self.t, self.y, sim.output_interval, count, self.h, sim.rtol, sim.atol, max_step,
-                self.p, self.w, states, times, self.work,
+                self.done, self.y, sim.output_interval, count, self.h, sim.rtol, self.atol,
+                self.magnitude, max_step, self.p, self.w, states, times, self.work, self.stages,
+                self.fsal,
             )  # fmt: skip
         if completed:
             self.t = times[completed - 1]
@@ -260,7 +347,9 @@ class _Run:
         return status
 
 
-def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
+def simulate(
+    case: schema.Case, output=None, progress: bool = False, chunk_outputs: int | None = None
+) -> Results:
     """Run ``case`` and return its :class:`Results`.
 
     Parameters
@@ -272,6 +361,10 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
         or is interrupted leaves a readable file whose ``status`` attribute says so.
     progress
         Show a progress bar when the run lasts more than about two seconds.
+    chunk_outputs
+        Output intervals per compiled chunk (the rows written, the progress bar moved and
+        Ctrl-C honoured between chunks); None: chunks of about half a second of wall time.
+        The results do not depend on it (bit for bit); tests use it to force chunk sizes.
 
     Raises
     ------
@@ -295,14 +388,11 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
     variables = case_variables(model.VARIABLES, case)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
     run = _Run(case, model, system, sink)
-    start = _time.perf_counter()
-    run.compile()
-    log.debug("kernels ready in %.2f s (compiled on a first run, cached afterwards)",
-              _time.perf_counter() - start)  # fmt: skip
+    _compile(run)
     bar = _progress_bar(progress, run.n_outputs, sim.output_interval)
     try:
         run.emit(np.array([0.0]), system.y0[None, :].copy())
-        status = _loop(run, bar)
+        status = _loop(run, bar, chunk_outputs)
     except KeyboardInterrupt:
         results = sink.finish(
             STATUS_INTERRUPTED,
@@ -320,8 +410,12 @@ def simulate(case: schema.Case, output=None, progress: bool = False) -> Results:
     return sink.finish(STATUS_COMPLETE, "the run reached its duration", _work(run))
 
 
-def _loop(run: _Run, bar) -> int:
-    chunk = 1
+def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:
+    """Advance the run in compiled chunks of ``chunk_outputs`` output intervals (None: sized
+    to about _CHUNK_SECONDS of wall time), stopping at each model refresh."""
+    if chunk_outputs is not None and chunk_outputs < 1:
+        raise ValueError(f"chunk_outputs must be a positive integer or None, not {chunk_outputs}")
+    chunk = chunk_outputs or 1
     refresh = run.refresh_every()
     while run.done < run.n_outputs:
         count = min(chunk, run.n_outputs - run.done)
@@ -335,11 +429,40 @@ def _loop(run: _Run, bar) -> int:
         if status != pc.OK:
             return status
         if refresh and run.done % refresh == 0 and run.done < run.n_outputs:
-            run.p = run.model.refresh(run.case, run.p, run.t, run.y)
-        elapsed = _time.perf_counter() - start
-        rate = count / max(elapsed, 1e-6)
-        chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))
+            run.refresh()
+        if chunk_outputs is None:
+            rate = count / max(_time.perf_counter() - start, 1e-6)
+            chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))
     return pc.OK
+
+
+COMPILE_NOTICE_SECONDS = 1.0  # say that the kernels are compiling when it takes longer
+
+
+def _compile(run: _Run) -> None:
+    """Compile (or load from numba's cache) the run's kernels; a compilation that lasts more
+    than COMPILE_NOTICE_SECONDS is announced at INFO (on the command line's default output)
+    as soon as that time has passed, and its duration logged when it ends."""
+    done = threading.Event()
+
+    def notice():
+        if not done.wait(COMPILE_NOTICE_SECONDS):
+            log.info(
+                "compiling the kernels for this model and integrator (first run only, cached "
+                "afterwards; it can take a minute) ..."
+            )
+
+    watcher = threading.Thread(target=notice, daemon=True)
+    start = _time.perf_counter()
+    watcher.start()
+    try:
+        run.compile()
+    finally:
+        done.set()
+        watcher.join()
+    elapsed = _time.perf_counter() - start
+    level = logging.INFO if elapsed > COMPILE_NOTICE_SECONDS else logging.DEBUG
+    log.log(level, "kernels ready in %.1f s", elapsed)
 
 
 def _progress_bar(progress: bool, total: int, interval: float):
@@ -351,9 +474,11 @@ def _progress_bar(progress: bool, total: int, interval: float):
 
 
 def _work(run: _Run) -> dict:
-    return {
+    """The work counters and the governing tolerance, for the results' attributes."""
+    counters = {
         f"solver_{name}": int(v) for name, v in zip(integrators.WORK_NAMES, run.work, strict=True)
     }
+    return {**counters, **_tolerance_attrs(run)}
 
 
 def _node_structure(model, system):
@@ -428,6 +553,6 @@ def _divergence_message(run: _Run, status: int, settings: dict) -> str:
         advice = "tighten rtol/atol or set max_step"
     return (
         f"simulation diverged after t = {run.t:.6g} s: {what}; fastest motion at {where}. Try: "
-        f"{advice}; add joint damping; check very stiff ties or springs. Results up to "
+        f"{advice}; {run.model.DAMPING_ADVICE}; check very stiff ties or springs. Results up to "
         f"t = {run.t:.6g} s are kept."
     )

@@ -16,6 +16,7 @@ from pydantic import (
     ConfigDict,
     Field,
     PrivateAttr,
+    field_validator,
     model_validator,
 )
 
@@ -545,6 +546,9 @@ class Cable(_Model):
 
 
 # ---- simulation ----------------------------------------------------------------------------------
+FIXED_STEP_INTEGRATORS = ("rk4", "implicit_euler", "theta", "newmark", "generalized_alpha")
+
+
 class Simulation(_Model):
     duration: Pos  # [s]
     output_interval: Pos  # [s]
@@ -571,7 +575,15 @@ class Simulation(_Model):
     newton_tolerance: Pos = 1e-9
     max_newton_iterations: int = Field(10, ge=1, le=100)
     rtol: Pos = 1e-6  # adaptive integrators' relative tolerance
-    atol: Pos = 1e-8  # adaptive integrators' absolute tolerance
+    # adaptive integrators' absolute tolerance, in each state's own unit (one value for every
+    # state). Default (None): rtol alone sets the accuracy: dopri5 measures each state's error
+    # against rtol times the largest magnitude that state has reached (so small angles and
+    # rates are followed to rtol of their own amplitude), with a floor of 1e-3 rtol times the
+    # state's scale (models.common.state_scale: angles 1 rad, coordinates the cable's length
+    # L, rates those times sqrt(g / L), forces the cable's weight); bdf, radau, lsoda and cvode
+    # take a fixed tolerance, rtol times the larger of the state's start value and that floor.
+    # The results' attribute solver_tolerance_governing says which tolerance governed
+    atol: Pos | None = None
     max_step: Pos | None = None  # adaptive integrators' largest step [s]
     initial_step: Pos = 1e-3  # adaptive integrators' first step [s]
     constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
@@ -583,6 +595,31 @@ class Simulation(_Model):
     # started still). A towing ship's speed or distance is not ramped: its initial towed shape
     # is already the steady state at that speed. One to two periods of the motion is usual.
     build_up: NonNeg = 0.0
+
+    @field_validator("time_step")
+    @classmethod
+    def _step_divides_output_interval(cls, time_step, info):
+        """A fixed step must divide the output interval (outputs fall on steps): one that does
+        within 1 % is rounded to the divisor, another is refused with the two nearest divisors
+        (running silently at a step more than 1 % shorter would cost time the user did not ask
+        for, and a longer one could not be stable or accurate as they chose)."""
+        interval = info.data.get("output_interval")
+        if time_step is None or interval is None:
+            return time_step
+        if info.data.get("integrator") not in FIXED_STEP_INTEGRATORS:
+            return time_step
+        steps = max(1, math.ceil(interval / time_step - 1e-9))
+        used = interval / steps
+        if abs(used - time_step) <= 0.01 * time_step:
+            return time_step
+        valid = f"{used:.6g} s ({steps} per output)"
+        if steps > 1:
+            valid = f"{interval / (steps - 1):.6g} s ({steps - 1} per output) or " + valid
+        raise ValueError(
+            f"{time_step} s does not divide output_interval ({interval} s): the run would use "
+            f"{used:.6g} s, {100 * (1 - used / time_step):.3g} % shorter. Use time_step "
+            f"{valid}, or an output_interval that is a whole number of time steps"
+        )
 
     @model_validator(mode="after")
     def _ordered(self):

@@ -9,6 +9,10 @@ from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.models import timefunctions as tfn
 
+# what a divergence message advises against ringing, per model (only options its schema takes)
+JOINT_DAMPING_ADVICE = "add joint damping (cables[k].joint_damping [N m s/rad])"
+AXIAL_DAMPING_ADVICE = "add axial damping (cables[k].axial_damping_time [s])"
+
 
 def per_joint(value, n) -> np.ndarray:
     if isinstance(value, list):
@@ -138,3 +142,26 @@ def case_variables(variables: dict, case: schema.Case) -> dict:
     if not held:
         absent.update(HELD_VARIABLES)
     return {name: v for name, v in variables.items() if name not in absent}
+
+
+def cable_length(cable: schema.Cable) -> float:
+    """Unstretched length of the cable [m]."""
+    return float(np.sum(cable.lengths()))
+
+
+def state_scale(
+    cable: schema.Cable, env: schema.Environment, positions: np.ndarray, forces: int = 0
+) -> np.ndarray:
+    """Typical magnitude of each state of a cable's block ``[positions, their rates, forces]``,
+    the unit of the floor of the adaptive integrators' default absolute tolerance (see
+    ``schema.Simulation.atol``): ``positions`` the models give (1 for
+    angles [rad] and unit directors, the cable's length L [m] for coordinates); their rates
+    that times the pendulum frequency sqrt(g / L) [1/s] (a cable of length L swinging through
+    a radian: sqrt(g L) [m/s], sqrt(g / L) [rad/s]); then ``forces`` forces (the cable's weight
+    in air [N])."""
+    length = cable_length(cable)
+    weight = float(np.sum(cable.masses())) * env.gravity
+    positions = np.asarray(positions, dtype=float)
+    return np.concatenate(
+        [positions, positions * math.sqrt(env.gravity / length), np.full(forces, weight)]
+    )

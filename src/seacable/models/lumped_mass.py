@@ -9,7 +9,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
-from seacable.models import catenary, planar_rigid_links, statics
+from seacable.models import catenary, common, planar_rigid_links, statics
 from seacable.models import rigid_segments_3d as seg
 from seacable.models import timefunctions as tfn
 from seacable.models.common import (
@@ -389,6 +389,18 @@ def rows(times, states, system: LumpedSystem, w) -> tuple[dict, int]:
     for k, name in enumerate(lk.SCALAR_NAMES):
         out[name] = scalars[:, k]
     return add_total_energy(out), status
+
+
+DAMPING_ADVICE = common.AXIAL_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: LumpedSystem) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): node coordinates the cable's
+    length, a servo force the cable's weight."""
+    cable = case.cables[0]
+    nodes = 3 * (system.n_links + 1)
+    positions = np.full(nodes, common.cable_length(cable))
+    return common.state_scale(cable, case.environment, positions, len(system.y0) - 2 * nodes)
 
 
 def rates(system: LumpedSystem, y) -> np.ndarray:

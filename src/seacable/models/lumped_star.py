@@ -14,7 +14,7 @@ from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_star as ls
-from seacable.models import lumped_mass, star_3d
+from seacable.models import common, lumped_mass, star_3d
 from seacable.models.common import add_total_energy, xyz_variables
 
 
@@ -134,6 +134,17 @@ def rows(times, states, system: LumpedStarSystem, w) -> tuple[dict, int]:
     for j, name in enumerate(("kinetic_energy", "gravity_potential_energy", "elastic_energy")):
         out[name] = scalars[:, :, 6 + j].sum(axis=1)
     return add_total_energy(out), status
+
+
+DAMPING_ADVICE = common.AXIAL_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: LumpedStarSystem) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): every coordinate (the body's
+    too) the first cable's length."""
+    cable = case.cables[0]
+    positions = np.full(len(system.y0) // 2, common.cable_length(cable))
+    return common.state_scale(cable, case.environment, positions)
 
 
 def rates(system: LumpedStarSystem, y) -> np.ndarray:

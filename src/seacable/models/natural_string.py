@@ -15,6 +15,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import natural as nk
+from seacable.models import common
 from seacable.models.common import add_total_energy
 
 
@@ -142,6 +143,21 @@ def rows(times, states, system: NaturalSystem, w) -> tuple[dict, int]:
     out["end_z"] = out["end_z"] + z0
     # potential energy relative to the pivot's level
     return add_total_energy(out), status
+
+
+DAMPING_ADVICE = common.AXIAL_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: NaturalSystem) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): strains the static strain of
+    the cable's weight, weight / EA, angles and tangent components 1."""
+    cable = case.cables[0]
+    b = nk.block(system.params)
+    strain = float(np.sum(cable.masses())) * case.environment.gravity / cable.axial_stiffness
+    per_node = np.ones(b)
+    per_node[0] = strain
+    positions = np.tile(per_node, system.n_links + 1)
+    return common.state_scale(cable, case.environment, positions)
 
 
 def rates(system: NaturalSystem, y) -> np.ndarray:

@@ -268,6 +268,17 @@ def shortest_segment(system: PlanarSystem) -> float:
     return float(np.min(system.params.length))
 
 
+DAMPING_ADVICE = common.JOINT_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: PlanarSystem) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): link angles 1 rad, the heave
+    of a floating end the cable's length."""
+    cable = case.cables[0]
+    positions = np.append(np.ones(system.n_links), common.cable_length(cable))
+    return common.state_scale(cable, case.environment, positions)
+
+
 def rates(system: PlanarSystem, y) -> np.ndarray:
     """Angular rate of every link [rad/s]."""
     n = system.n_links

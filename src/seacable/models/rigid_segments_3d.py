@@ -16,7 +16,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
-from seacable.models import statics
+from seacable.models import common, statics
 from seacable.models import timefunctions as tfn
 from seacable.models.common import (
     add_total_energy,
@@ -443,6 +443,17 @@ def shortest_segment(system: System3D) -> float:
 def positions(system: System3D) -> int:
     """Position variables of the state (directors and heave); the servo force follows."""
     return 3 * system.n_links + 1
+
+
+DAMPING_ADVICE = common.JOINT_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: System3D) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): unit directors 1, the heave
+    of a floating end the cable's length, the servo force the cable's weight."""
+    cable = case.cables[0]
+    positions = np.append(np.ones(3 * system.n_links), common.cable_length(cable))
+    return common.state_scale(cable, case.environment, positions, c3.SERVO_STATES)
 
 
 def rates(system: System3D, y) -> np.ndarray:

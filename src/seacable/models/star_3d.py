@@ -13,6 +13,7 @@ from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
 from seacable.kernels import star3d
+from seacable.models import common
 from seacable.models import rigid_segments_3d as seg
 from seacable.models.common import current_arrays
 
@@ -145,6 +146,17 @@ def rows(times, states, system: StarSystem, w) -> tuple[dict, int]:
         rates_[:, j] = np.linalg.norm(u, axis=2)
     out["angular_rate"] = rates_
     return out, status
+
+
+DAMPING_ADVICE = common.JOINT_DAMPING_ADVICE  # divergence messages
+
+
+def state_scale(case: schema.Case, system: StarSystem) -> np.ndarray:
+    """Typical magnitude of each state (``common.state_scale``): each cable's block as the
+    single cable's, then the body's coordinates at the first cable's length."""
+    single = [seg.state_scale(case.model_copy(update={"cables": [c]}), system) for c in case.cables]
+    body = np.full(3, common.cable_length(case.cables[0]))
+    return np.concatenate([*single, common.state_scale(case.cables[0], case.environment, body)])
 
 
 def rates(system: StarSystem, y) -> np.ndarray:

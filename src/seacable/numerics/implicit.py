@@ -44,6 +44,7 @@ from seacable.numerics.dispatch import (
     model_rhs,
     model_solver,
 )
+from seacable.numerics.integrators import step_time
 
 # coefficient vector layout: pa, b, g, am, af
 SCHEME_SIZE = 5
@@ -426,40 +427,57 @@ def _step(
 
 
 @njit(**JIT)
-def newmark_chunk(
-    t0, y, acc, dt, steps_per_output, n_outputs, coef, tol, max_iter, p, w, states, times, work
-):
-    """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps ``dt``.
-
-    ``acc`` holds the scheme's acceleration a0 at the start (the model's acceleration at the
-    first call; the algorithmic one after), and is updated. ``tol`` [m] bounds the last Newton
-    correction of the positions (b h^2 |da|). A step whose iteration fails (regularised seabed
-    friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS equal
-    parts, each retry counted as a rejected step. Returns (completed, status); ``work`` gets
-    [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations, linear
-    solves] (a Jacobian costs one rhs when analytic, more with finite differences; accepted
-    counts substeps)."""
+def newmark_carry(y, p):
+    """The arrays an implicit run carries from step to step, allocated once per run and given
+    to every chunk (``numerics.integrators``, contract point 5): ``q`` (the acceleration at the
+    alpha point, the step's end acceleration a1, the last step's change of acceleration, the
+    predictor's trend), ``fresh`` ([factors valid, their step length, the step length of the
+    change in q[2]]) and the Newton matrix's factors (diag, upper, lower, factor, piv), which
+    the rigid-link models keep from step to step."""
     ny = y.shape[0]
     nq = model_positions(p, ny)
     blocks, bs = model_solver(p, nq)
+    q = np.zeros((3, nq))
+    fresh = np.zeros(3)
+    diag = np.zeros((blocks, bs * bs))
+    upper = np.zeros((max(blocks - 1, 1), bs * bs))
+    lower = np.zeros((max(blocks - 1, 1), bs * bs))
+    factor = np.zeros((max(blocks - 1, 1), bs * bs))
+    piv = np.zeros((blocks, bs), dtype=np.int64)
+    return q, fresh, diag, upper, lower, factor, piv
+
+
+@njit(**JIT)
+def newmark_chunk(
+    first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
+    w, states, times, work, carry,
+):  # fmt: skip
+    """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps
+    ``output_interval / steps_per_output`` [s], from output index ``first_output``.
+
+    ``acc`` holds the scheme's acceleration a0 at the start (the model's acceleration at the
+    first call; the algorithmic one after), and is updated; ``carry`` is ``newmark_carry``'s
+    tuple, updated. ``tol`` [m] bounds the last Newton correction of the positions
+    (b h^2 |da|). A step whose iteration fails (regularised seabed friction can make Newton
+    cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS equal parts, each retry counted
+    as a rejected step. Returns (completed, status); ``work`` gets [accepted, rejected, rhs
+    evaluations, failed evaluations, Jacobian evaluations, linear solves] (a Jacobian costs one
+    rhs when analytic, more with finite differences; accepted counts substeps)."""
+    ny = y.shape[0]
+    q, fresh, diag, upper, lower, factor, piv = carry
+    nq = q.shape[1]
+    bs = piv.shape[1]
+    blocks = piv.shape[0]
+    dt = output_interval / steps_per_output
     vec = np.empty((3, ny))
-    q = np.empty((3, nq))  # the acceleration at the alpha point, a1, the last step's change
     da = np.empty(bs * blocks)
     res = np.empty(bs * blocks)
-    diag = np.empty((blocks, bs * bs))
-    upper = np.empty((max(blocks - 1, 1), bs * bs))
-    lower = np.empty((max(blocks - 1, 1), bs * bs))
-    factor = np.empty((max(blocks - 1, 1), bs * bs))
-    piv = np.empty((blocks, bs), dtype=np.int64)
-    # [factors valid, their step length, the step length of the last step's change in q[2]]:
-    # kept from step to step
-    fresh = np.zeros(3)
     y_saved = np.empty(ny)
     acc_saved = np.empty(nq)
     step = 0
     for j in range(n_outputs):
         for _ in range(steps_per_output):
-            t = t0 + step * dt
+            t = step_time(first_output, output_interval, steps_per_output, step, dt)
             y_saved[:] = y
             acc_saved[:] = acc
             parts = 1
@@ -483,5 +501,5 @@ def newmark_chunk(
                 parts *= 2
             step += 1
         states[j, :] = y
-        times[j] = t0 + step * dt
+        times[j] = (first_output + j + 1) * output_interval
     return n_outputs, OK

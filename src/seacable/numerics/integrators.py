@@ -1,20 +1,29 @@
-"""Compiled time integrators for the planar rigid-link cable.
+"""Compiled explicit time integrators (rk4, dopri5) for every model.
 
 Contract shared by every integrator here (a new one must follow it):
 
 0. It calls the model only through ``numerics.dispatch`` (``model_rhs``, ``model_project``),
    and projects the state after every accepted step.
 1. It advances the flat state ``y`` in place over a *chunk* of ``n_outputs`` output intervals of
-   length ``output_interval`` and writes the state at the end of each interval in ``states[j]``
-   and its time in ``times[j]``; the whole chunk runs in compiled code.
-2. It returns ``(completed, status, work)`` where ``completed`` is the number of output rows
-   written, ``status`` a kernel status code (0 = sound) and ``work`` a length-4 int64 array of
-   counters added to in place: accepted steps, rejected steps, right-hand-side evaluations,
-   failed (non-finite) evaluations.
+   length ``output_interval``, starting at the global output index ``first_output``, and writes
+   the state at the end of each interval in ``states[j]`` and its time,
+   ``(first_output + j + 1) * output_interval``, in ``times[j]``; the whole chunk runs in
+   compiled code.
+2. It returns ``(completed, status, ...)`` where ``completed`` is the number of output rows
+   written and ``status`` a kernel status code (0 = sound); ``work`` is an int64 array of the
+   counters of ``WORK_NAMES``, added to in place: accepted steps, rejected steps,
+   right-hand-side evaluations, failed (non-finite) evaluations, Jacobians, linear solves.
 3. On a non-finite or singular evaluation it stops at once, leaves ``y`` at the last sound
    state of the completed rows and reports the status; it never raises.
 4. Output times are hit exactly (fixed-step: an integer number of steps per interval; adaptive:
    the step is clipped at each output time).
+5. Its results and work counters do not depend on how a run is cut into chunks (the run loop
+   sizes chunks from wall time, so they would otherwise depend on machine load): every time is
+   computed from global indices (output index times the interval, plus steps since that output
+   times the step), never accumulated from a chunk's start, and every state carried from step
+   to step (the step size proposal, a first-same-as-last derivative, the last acceleration, a
+   predictor, kept Newton factors) lives in arrays the caller allocates once per run and
+   passes to every chunk. ``tests/test_reproducible.py`` checks it for every integrator.
 """
 
 import math
@@ -49,20 +58,33 @@ _RK4_WEIGHTS = np.array([1.0, 2.0, 2.0, 1.0]) / 6.0
 
 
 @njit(**JIT)
-def rk4_chunk(t0, y, dt, steps_per_output, n_outputs, p, w, states, times, work):
-    """Classical 4th-order Runge-Kutta with a fixed step ``dt`` [s].
+def step_time(first_output, output_interval, steps_per_output, step, dt):
+    """Time [s] of the start of fixed step ``step`` of a chunk that begins at output index
+    ``first_output``: the global output index times the interval, plus the steps since that
+    output, so that a step's time never depends on where a chunk began."""
+    done = step // steps_per_output
+    return (first_output + done) * output_interval + (step - done * steps_per_output) * dt
+
+
+@njit(**JIT)
+def rk4_chunk(
+    first_output, y, output_interval, steps_per_output, n_outputs, p, w, states, times, work
+):
+    """Classical 4th-order Runge-Kutta with a fixed step ``output_interval / steps_per_output``
+    [s], from output index ``first_output`` (time ``first_output * output_interval``).
 
     The stages run in a loop with a single call of the right-hand side: four inlined copies of
     it made the compiled step twice as slow (instruction-cache pressure).
     """
     ny = y.shape[0]
+    dt = output_interval / steps_per_output
     k = np.empty((4, ny))
     stage = np.empty(ny)
     acc = np.empty(ny)
     step = 0
     for j in range(n_outputs):
         for _ in range(steps_per_output):
-            t = t0 + step * dt
+            t = step_time(first_output, output_interval, steps_per_output, step, dt)
             status = OK
             for s in range(4):
                 if s == 0:
@@ -88,7 +110,7 @@ def rk4_chunk(t0, y, dt, steps_per_output, n_outputs, p, w, states, times, work)
             work[0] += 1
             step += 1
         states[j, :] = y
-        times[j] = t0 + step * dt
+        times[j] = (first_output + j + 1) * output_interval
     return n_outputs, OK
 
 
@@ -126,23 +148,51 @@ def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
 
 
 @njit(**JIT)
-def dopri5_chunk(
-    t0, y, output_interval, n_outputs, h, rtol, atol, max_step, p, w, states, times, work
-):
-    """Adaptive Dormand-Prince 5(4) with error control; returns (completed, status, next_h)."""
+def _error_norm(k, y, ynew, h, rtol, atol, magnitude):
+    """RMS of the embedded error estimate over atol_i + rtol max(|y_i|, |ynew_i|), where atol_i
+    is at least rtol times ``magnitude[i]`` when ``magnitude`` is given (not empty)."""
     ny = y.shape[0]
-    k = np.empty((7, ny))
+    tracked = magnitude.shape[0] > 0
+    err = 0.0
+    for i in range(ny):
+        e = 0.0
+        for r in range(7):
+            e += _E[r] * k[r, i]
+        a = max(atol[i], rtol * magnitude[i]) if tracked else atol[i]
+        sc = a + rtol * max(abs(y[i]), abs(ynew[i]))
+        err += (h * e / sc) ** 2
+    return math.sqrt(err / ny)
+
+
+@njit(**JIT)
+def dopri5_chunk(
+    first_output, y, output_interval, n_outputs, h, rtol, atol, magnitude, max_step, p, w,
+    states, times, work, k, fsal,
+):  # fmt: skip
+    """Adaptive Dormand-Prince 5(4) with error control, from output index ``first_output``
+    (time ``first_output * output_interval`` [s]); returns (completed, status, next_h).
+
+    ``atol`` holds one absolute tolerance per state; when ``magnitude`` is not empty it holds
+    the largest |y_i| reached so far, updated after every accepted step, and the absolute
+    tolerance of state i is at least rtol times it (``schema.Simulation.atol``'s default: each
+    state's error measured against its own amplitude). ``k`` (7 x len(y)) are the stages, carried
+    from chunk to chunk with ``fsal[0]`` = 1 while ``k[0]`` is the derivative at (t, y) (first
+    same as last): a chunk then starts exactly as the step after an output inside a chunk
+    would, so neither the results nor the work counters depend on where chunks begin."""
+    ny = y.shape[0]
     ytmp = np.empty(ny)
     ynew = np.empty(ny)
-    t = t0
-    status = model_rhs(t, y, p, w, k[0])
-    work[2] += 1
-    if status != OK:
-        work[3] += 1
-        return 0, status, h
+    t = first_output * output_interval
+    if n_outputs > 0 and fsal[0] == 0:
+        status = model_rhs(t, y, p, w, k[0])
+        work[2] += 1
+        if status != OK:
+            work[3] += 1
+            return 0, status, h
+        fsal[0] = 1
     min_step = 1e-12 * max(1.0, output_interval)
     for j in range(n_outputs):
-        t_target = t0 + (j + 1) * output_interval
+        t_target = (first_output + j + 1) * output_interval
         while t < t_target:
             h = min(h, max_step)
             h_try = h
@@ -152,14 +202,7 @@ def dopri5_chunk(
                 last = True
             st = _dopri_step(t, y, h_try, p, w, k, ytmp, ynew)
             work[2] += 6
-            err = 0.0
-            for i in range(ny):
-                e = 0.0
-                for r in range(7):
-                    e += _E[r] * k[r, i]
-                sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
-                err += (h_try * e / sc) ** 2
-            err = math.sqrt(err / ny)
+            err = _error_norm(k, y, ynew, h_try, rtol, atol, magnitude)
             if st != OK or not math.isfinite(err):
                 work[3] += 1
                 h = 0.25 * h_try
@@ -170,10 +213,13 @@ def dopri5_chunk(
                 t = t_target if last else t + h_try
                 model_project(ynew, p)
                 y[:] = ynew
+                for i in range(magnitude.shape[0]):
+                    magnitude[i] = max(magnitude[i], abs(y[i]))
                 if model_projects(p):
                     work[2] += 1
                     if model_rhs(t, y, p, w, k[0]) != OK:
                         work[3] += 1
+                        fsal[0] = 0
                         return j, NON_FINITE, h
                 else:
                     k[0, :] = k[6, :]

@@ -14,8 +14,11 @@ sides (O(n) work) and its factorisation is O(n):
   O(n). A star of cables (the shared body couples every chain's end) is not banded: dense.
 
 Models without that structure (rigid links: the inverse mass matrix couples every link) get a
-dense Jacobian. Work counters follow ``numerics.integrators.WORK_NAMES``; a count the solver
-does not report (CVODE's steps, SciPy's rejected steps) is -1.
+dense Jacobian. One solver object serves the whole run and steps on its own, the output times
+being read from its dense output (SciPy) or asked of CVODE one at a time: the results do
+not depend on how many output times a call asks for (``tests/test_reproducible.py``). Work
+counters follow ``numerics.integrators.WORK_NAMES``; a count the solver does not report
+(CVODE's steps, SciPy's rejected steps) is -1.
 """
 
 import numpy as np
@@ -79,6 +82,7 @@ class StiffStepper:
     """Advance a model with one of STIFF, hitting output times exactly (dense output)."""
 
     def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, graph):
+        """``atol``: one absolute tolerance, or one per state (in the order of ``y0``)."""
         self.name = name
         self.fun = fun  # f(t, y) -> ydot (raises FloatingPointError when non-finite)
         self.t = t0
@@ -138,6 +142,7 @@ class StiffStepper:
             self._order, self._inverse = order, inverse
             half = 2 * block * (reach + 1) - 1
             options.update(linsolver="band", lband=half, uband=half)
+            options["atol"] = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape)[order]
 
             def rhs(t, z, zp):
                 zp[:] = fun(t, z[inverse])[order]

@@ -1,0 +1,123 @@
+"""What a run tells its user: which tolerance governed dopri5, a time step that does not divide
+the output interval, divergence advice that names only options the model takes, the compile
+notice, and the command line's -v showing seacable's own log only."""
+
+import logging
+
+import numpy as np
+import pytest
+import yaml
+from click.testing import CliRunner
+
+import seacable
+from helpers import chain_case
+from seacable import simulation
+from seacable.cli import main
+from seacable.errors import CaseError
+from test_reproducible import _lumped_line, _rigid_chain
+
+
+def _small_swing(**sim):
+    """Five links in air released on a small arc (amplitude 0.017 rad)."""
+    data = chain_case(
+        n=5,
+        initial={"shape": "arc", "top_angle_deg": 0.5},
+        simulation={"duration": 4.0, "output_interval": 0.1, "integrator": "dopri5", **sim},
+    )
+    return seacable.simulate(seacable.load_case(data)).dataset
+
+
+def test_dopri5_default_atol_lets_rtol_set_the_accuracy_of_a_small_swing():
+    """With atol fixed at 1e-8 (the old default) rtol 1e-7 gave 1.5e-6 of the amplitude; by
+    default each state's error is measured against its own amplitude, so the error follows
+    rtol and the results say the relative tolerance governed."""
+    reference = _small_swing(rtol=1e-12, atol=1e-14).angle.values
+    amplitude = np.abs(reference).max()
+    errors = {}
+    for rtol in (1e-5, 1e-7):
+        ds = _small_swing(rtol=rtol)
+        errors[rtol] = np.abs(ds.angle.values - reference).max() / amplitude
+        assert ds.attrs["solver_atol"] == simulation.DEFAULT_ATOL
+        assert ds.attrs["solver_tolerance_governing"].startswith("relative")
+        assert ds.attrs["solver_atol_smallest"] > 0.0
+    assert errors[1e-7] < 1e-6, errors
+    assert errors[1e-5] > 10.0 * errors[1e-7], errors
+    fixed = _small_swing(rtol=1e-7, atol=1e-8)
+    assert fixed.attrs["solver_atol"] == 1e-8
+    assert fixed.attrs["solver_tolerance_governing"].startswith("absolute")
+
+
+def test_default_atol_floor_follows_each_state_scale():
+    """The floor is rtol x 1e-3 x the model's scale: 1 rad for angles, the cable's length for
+    the heave of the top, those times sqrt(g / L) for their rates."""
+    sim = {"duration": 1.0, "output_interval": 0.1, "integrator": "dopri5", "rtol": 1e-6}
+    case = seacable.load_case(chain_case(n=4, simulation=sim))
+    model = simulation.model_of(case)
+    system = simulation.build_system(case)
+    floor, magnitude = simulation.absolute_tolerance(case, model, system)
+    omega = np.sqrt(9.81 / 10.0)
+    expected = 1e-9 * np.array([1, 1, 1, 1, 10, omega, omega, omega, omega, 10 * omega])
+    np.testing.assert_allclose(floor, expected, rtol=1e-12)
+    np.testing.assert_array_equal(magnitude, np.abs(system.y0))
+
+
+@pytest.mark.parametrize(
+    ("step", "advice"),
+    [
+        (0.0125, r"0\.01 s \(1 per output\)"),
+        (0.003, r"0\.00333333 s \(3 per output\) or 0\.0025 s"),
+    ],
+)
+def test_time_step_not_dividing_the_output_interval_is_refused(step, advice):
+    data = chain_case(simulation={"duration": 1.0, "output_interval": 0.01, "time_step": step})
+    with pytest.raises(
+        CaseError,
+        match=rf"simulation\.time_step: {step} s does not divide output_interval.*{advice}",
+    ):
+        seacable.load_case(data)
+
+
+def test_time_step_within_one_percent_of_a_divisor_is_used_as_that_divisor():
+    data = chain_case(simulation={"duration": 0.1, "output_interval": 0.01, "time_step": 0.00334})
+    results = seacable.simulate(seacable.load_case(data))
+    assert results.dataset.attrs["solver_time_step"] == pytest.approx(0.01 / 3, rel=1e-15)
+
+
+def _diverge(data):
+    data["simulation"].update(max_newton_iterations=1, newton_tolerance=1e-15)
+    with pytest.raises(seacable.SimulationDiverged) as raised:
+        seacable.simulate(seacable.load_case(data))
+    return str(raised.value)
+
+
+def test_divergence_advice_names_only_options_the_model_takes():
+    lumped = _diverge(_lumped_line("newmark", time_step=0.01))
+    assert "joint damping" not in lumped and "joint_damping" not in lumped
+    assert "axial_damping_time" in lumped
+    rigid = _diverge(_rigid_chain("newmark", time_step=0.01))
+    assert "joint_damping" in rigid and "axial_damping_time" not in rigid
+
+
+def test_a_slow_compilation_is_announced(caplog, monkeypatch):
+    monkeypatch.setattr(simulation, "COMPILE_NOTICE_SECONDS", 0.0)
+    case = seacable.load_case(_rigid_chain("rk4", time_step=0.002))
+    with caplog.at_level(logging.INFO, logger="seacable"):
+        seacable.simulate(case)
+    notices = [r for r in caplog.records if "compiling the kernels" in r.getMessage()]
+    assert len(notices) == 1 and notices[0].levelno == logging.INFO
+
+
+def test_verbose_command_line_shows_seacable_debug_and_no_numba_debug(tmp_path):
+    path = tmp_path / "case.yaml"
+    path.write_text(yaml.safe_dump(_rigid_chain("rk4", time_step=0.002)))
+    numba_log = logging.getLogger("numba.core.ssa")
+    result = CliRunner().invoke(
+        main, ["-v", "run", str(path), "-o", str(tmp_path / "out.nc"), "--no-progress"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "DEBUG: kernels ready" in result.stderr
+    assert not numba_log.isEnabledFor(logging.DEBUG)
+    assert not numba_log.isEnabledFor(logging.INFO)
+    quiet = CliRunner().invoke(main, ["run", str(path), "-o", str(tmp_path / "out.nc"),
+                                      "--no-progress"])  # fmt: skip
+    assert quiet.exit_code == 0 and "DEBUG" not in quiet.stderr
