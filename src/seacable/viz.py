@@ -6,6 +6,7 @@ configures nothing.
 
 import logging
 import shutil
+from io import BytesIO
 from pathlib import Path
 
 import numpy as np
@@ -404,7 +405,6 @@ def _gif_stream(fps: int):
     """A matplotlib movie writer at ``fps`` frames per second that appends each frame to the GIF
     file as it is grabbed, all frames in the palette of the first (matplotlib's PillowWriter
     keeps every frame in memory until the end: 2.5 MB a frame for a 1400 x 600 picture)."""
-    from io import BytesIO
 
     from matplotlib import animation
     from PIL import GifImagePlugin, Image
