@@ -185,6 +185,7 @@ def _initial_nodes(case, params, heave):
         velocity = lk.target_state(0.0, y0, params)[1]
         held = params.constrained != 0.0
         y0[3 * (n + 1) + 3 * n :][held] = velocity[held]
+        _blend_velocities(y0, params)
     rest = seg._explicit_rest(cable)
     params = params._replace(tie_rest=np.ascontiguousarray(nodes[-1] if rest is None else rest))
     if cable.initial.shape == "catenary":
@@ -192,7 +193,16 @@ def _initial_nodes(case, params, heave):
     return y0, params
 
 
-def _held(params, time, y):
+def _blend_velocities(y0, params) -> None:
+    """A line held at both ends starts with velocities that go linearly, along its unstretched
+    length, from the top's to the held end's (in place): a moving top over an anchor would
+    otherwise start every node but the anchored one at the top's velocity, a jump in the last
+    segment's strain rate that its axial damping turns into a force spike at t = 0."""
+    n = params.n
+    velocities = y0[3 * (n + 1) : 6 * (n + 1)].reshape(n + 1, 3)
+    along = np.concatenate([[0.0], np.cumsum(params.length)]) / np.sum(params.length)
+    top, end = velocities[0].copy(), velocities[-1].copy()
+    velocities[:] = top + along[:, None] * (end - top)
     """A servo end's cable held exactly on its target at ``time`` (its static problems);
     other cables as they are."""
     if params.bottom_kind != lk.BOTTOM_SERVO:
