@@ -203,6 +203,9 @@ def _blend_velocities(y0, params) -> None:
     along = np.concatenate([[0.0], np.cumsum(params.length)]) / np.sum(params.length)
     top, end = velocities[0].copy(), velocities[-1].copy()
     velocities[:] = top + along[:, None] * (end - top)
+
+
+def _held(params, time, y):
     """A servo end's cable held exactly on its target at ``time`` (its static problems);
     other cables as they are."""
     if params.bottom_kind != lk.BOTTOM_SERVO:
