@@ -22,7 +22,7 @@ For 20, 40, 80 and 160 segments:
   coupled point's velocity through a ``Step`` and moves it linearly, so each call gets the exact
   fairlead position at its start and the secant velocity to the exact position at its end (the
   path is exact at every step's end; within a step it is the chord, off by a dt^2 / 8, 2e-9 m
-  at a 0.1 ms step; MoorDyn has no acceleration input). Its wall time is also measured with 10 ms
+  at a 0.1 ms step; MoorDyn has no acceleration input). Its time is also measured with 10 ms
   ``Step`` calls (the same internal steps, fewer Python calls; the velocity held through
   10 ms changes the tension, reported too): the speed-up is taken against the faster;
 * seacable runs generalized-alpha (implicit, an O(n) Newton iteration per step, converged to
@@ -34,10 +34,11 @@ For 20, 40, 80 and 160 segments:
   evaluated at every stage).
 
 It prints both fairlead tensions at a few times, each code's error against its own converged
-run, their largest relative difference after the start-up (t >= 6 s), and the wall time per
+run, their largest relative difference after the start-up (t >= 6 s), and the CPU time per
 simulated second of each code (seacable: the whole ``simulate`` call with its start-up
 equilibrium and NetCDF-free output, kernels compiled before timing; MoorDyn: its Step calls
-after Init), the best of five runs of each code's chosen setting.
+after Init), the best of five runs of each code's chosen setting. Times are the process's CPU
+time (both codes are single-threaded): on a shared machine wall time measures the load.
 Run: ``python benchmarks/vs_moordyn.py [--quick] [--damping critical|overdamped]``.
 """
 
@@ -77,7 +78,10 @@ MD_REFERENCE = 8  # MoorDyn's converged run: its stable step over this (second o
 # segment (the default, 1e-9, is tighter than any step's own error here); the accuracy check
 # against the converged reference decides as for every other setting
 NEWTON = {"newton_tolerance": 1e-7}
-REPEAT = 5  # the chosen runs' wall times are the best of this many
+REPEAT = 5  # the chosen runs' times are the best of this many
+# both codes run single-threaded in this process (set OPENBLAS_NUM_THREADS=1): its CPU time
+# measures their work whatever else the machine runs, where wall time grows with the load
+CLOCK = time.process_time
 
 
 def fairlead_x(t):
@@ -141,7 +145,7 @@ def _quiet():
 
 
 def run_moordyn(segments, dt, duration, ba, coupling=None):
-    """Fairlead tension every OUTPUT seconds, the wall time of the Step calls and of Create and
+    """Fairlead tension every OUTPUT seconds, the CPU time of the Step calls and of Create and
     Init (its start-up: reading the file and its own initial-condition solve), or None on
     failure. MoorDyn moves a coupled point from the position it is given with the velocity it
     is given over each ``Step`` of ``coupling`` seconds (None: one internal step, ``dt``): each
@@ -158,15 +162,15 @@ def run_moordyn(segments, dt, duration, ba, coupling=None):
     with tempfile.TemporaryDirectory() as folder, _quiet():
         path = os.path.join(folder, "line.txt")
         _moordyn_file(path, segments, dt, ba)
-        start = time.perf_counter()
+        start = CLOCK()
         system = moordyn.Create(path)
         moordyn.Init(system, [0.0, 0.0, FAIRLEAD_Z], [0.0, 0.0, 0.0])
-        startup = time.perf_counter() - start
+        startup = CLOCK() - start
         point = moordyn.GetPoint(system, 2)
         mass = moordyn.GetPointM(point)
         steps = int(round(duration / coupling))
         tension = np.empty(steps // per_output)
-        start = time.perf_counter()
+        start = CLOCK()
         try:
             x = fairlead_x(0.0)[0]
             for k in range(steps):
@@ -181,9 +185,9 @@ def run_moordyn(segments, dt, duration, ba, coupling=None):
         except Exception:  # MoorDyn raises on NaN node positions
             return None, None, None
         finally:
-            wall = time.perf_counter() - start
+            cpu = CLOCK() - start
             moordyn.Close(system)
-    return tension, wall, startup
+    return tension, cpu, startup
 
 
 def ladder(start, smallest):
@@ -220,26 +224,26 @@ def moordyn_run(segments, duration, ba, times, peak):
     """MoorDyn's chosen run: the largest step from its stable one down to a quarter of it that
     agrees with its converged run (an MD_REFERENCE-th of the stable step) within MD_SOUND of
     the peak tension (a bounded run is not yet a sound one: near its stability limit MoorDyn can
-    stay finite and wrong). Its wall time is the best of REPEAT runs, driven as chosen and with
+    stay finite and wrong). Its CPU time is the best of REPEAT runs, driven as chosen and with
     COUPLING-second Step calls; the latter's change of the tension swing is reported."""
     stable = moordyn_stable_step(segments, peak, ba)
     converged, _, _ = run_moordyn(segments, stable / MD_REFERENCE, duration, ba)
     for dt in ladder(stable, stable / 4):
-        tension, wall, startup = run_moordyn(segments, dt, duration, ba)
+        tension, cpu, startup = run_moordyn(segments, dt, duration, ba)
         if tension is not None and (error := _error(tension, converged, times)) <= MD_SOUND:
             break
     else:
         raise RuntimeError(f"MoorDyn: no step within {MD_SOUND:.0%} at {segments} segments")
-    coarse, coarse_wall, _ = run_moordyn(segments, dt, duration, ba, coupling=COUPLING)
+    coarse, coarse_cpu, _ = run_moordyn(segments, dt, duration, ba, coupling=COUPLING)
     for _ in range(REPEAT - 1):
-        wall = min(wall, run_moordyn(segments, dt, duration, ba)[1])
-        coarse_wall = min(coarse_wall, run_moordyn(segments, dt, duration, ba, COUPLING)[1])
+        cpu = min(cpu, run_moordyn(segments, dt, duration, ba)[1])
+        coarse_cpu = min(coarse_cpu, run_moordyn(segments, dt, duration, ba, COUPLING)[1])
     return dict(
         moordyn=tension,
         md_dt=dt,
         md_stable=stable,
-        md_per_s=wall / duration,
-        md_coarse_per_s=coarse_wall / duration,
+        md_per_s=cpu / duration,
+        md_coarse_per_s=coarse_cpu / duration,
         md_startup=startup,
         md_error=error,
         md_coarse_swing=_swing(coarse, times) / _swing(tension, times) - 1,
@@ -297,21 +301,21 @@ def case(segments, duration, integrator, damping, time_step=None, **simulation):
 
 
 def run_seacable(segments, duration, integrator, damping, time_step=None, **simulation):
-    """Fairlead tension every OUTPUT seconds, the wall time of the stepping and of the start-up
+    """Fairlead tension every OUTPUT seconds, the CPU time of the stepping and of the start-up
     (building the line and its equilibrium, a run of one output interval, kernels compiled
     beforehand), and the work attributes."""
     c = case(segments, duration, integrator, damping, time_step, **simulation)
     warm = c.model_copy(update={"simulation": c.simulation.model_copy(update={"duration": OUTPUT})})
     seacable.simulate(warm)  # compile (or load from the cache) first
-    start = time.perf_counter()
+    start = CLOCK()
     seacable.simulate(warm)
-    startup = time.perf_counter() - start
-    start = time.perf_counter()
+    startup = CLOCK() - start
+    start = CLOCK()
     ds = seacable.simulate(c).dataset
-    wall = time.perf_counter() - start
+    cpu = CLOCK() - start
     force = np.sqrt(ds["top_force_x"] ** 2 + ds["top_force_y"] ** 2 + ds["top_force_z"] ** 2)
     # drop t = 0: MoorDyn reports from the first step
-    return force.values[1:], max(wall - startup, 1e-9), startup, ds.attrs
+    return force.values[1:], max(cpu - startup, 1e-9), startup, ds.attrs
 
 
 def _error(tension, reference, times):
@@ -332,19 +336,19 @@ CONFIGURATIONS = (
 def _seacable_candidates(segments, duration, damping, reference, times, target):
     """The fastest seacable run within the target, and every run found: each configuration at
     the largest step of the ladder at which it is stable and within the target. Rows:
-    (stepping wall, configuration, dt, tension, error, start-up wall)."""
+    (stepping cpu, configuration, dt, tension, error, start-up cpu)."""
     found = []
     for name, settings in CONFIGURATIONS:
         integrator = name.split()[0]
         for dt in ladder(0.05, 2e-4):
             try:
-                tension, wall, startup, _ = run_seacable(
+                tension, cpu, startup, _ = run_seacable(
                     segments, duration, integrator, damping, dt, **settings
                 )
             except seacable.SimulationDiverged:
                 tension = None
             if tension is not None and (error := _error(tension, reference, times)) <= target:
-                found.append((wall, name, dt, tension, error, startup))
+                found.append((cpu, name, dt, tension, error, startup))
                 break
     if not found:
         raise RuntimeError(f"no seacable run within {target:.2e} at {segments} segments")
@@ -357,14 +361,14 @@ def race(segments, duration, damping):
     md = moordyn_run(segments, duration, DAMPING[damping][2], times, reference.max())
     target = max(md["md_error"], 1e-3)
     best, found = _seacable_candidates(segments, duration, damping, reference, times, target)
-    wall, integrator, dt, tension, error, startup = best
+    cpu, integrator, dt, tension, error, startup = best
     # the chosen run timed again: the best of REPEAT (a 20-segment run lasts some 30 ms, where
     # the machine's noise is tens of per cent)
     settings = dict(CONFIGURATIONS)[integrator]
     for _ in range(REPEAT - 1):
         again = run_seacable(segments, duration, integrator.split()[0], damping, dt, **settings)
-        wall = min(wall, again[1])
-    md_wall = min(md["md_per_s"], md["md_coarse_per_s"]) * duration
+        cpu = min(cpu, again[1])
+    md_cpu = min(md["md_per_s"], md["md_coarse_per_s"]) * duration
     return dict(
         md,
         segments=segments,
@@ -372,11 +376,11 @@ def race(segments, duration, damping):
         seacable=tension,
         sc_integrator=integrator,
         sc_dt=dt,
-        sc_per_s=wall / duration,
+        sc_per_s=cpu / duration,
         sc_startup=startup,
         sc_error=error,
-        stepping=md_wall / wall,
-        whole=(md["md_startup"] + md_wall) / (startup + wall),
+        stepping=md_cpu / cpu,
+        whole=(md["md_startup"] + md_cpu) / (startup + cpu),
         others={row[1]: (row[2], row[0] / duration) for row in found},
         difference=_error(tension, md["moordyn"], times),
     )
@@ -417,9 +421,9 @@ def _print_rows(rows, duration):
             f"{others}"
         )
     print(
-        "\ns/s: wall seconds per simulated second of stepping (MoorDyn: one Step call per "
+        "\ns/s: CPU seconds per simulated second of stepping (MoorDyn: one Step call per "
         "internal step, then with 10 ms Step calls, the same internal steps); start: start-up "
-        "wall time [s] (MoorDyn: Create and Init, its initial-condition solve run to a 1e-4 "
+        "CPU time [s] (MoorDyn: Create and Init, its initial-condition solve run to a 1e-4 "
         "threshold; seacable: building the line and its equilibrium); stepping: speed-up of the "
         "stepping (against MoorDyn's faster driving); whole: speed-up of the whole "
         f"{duration:g} s run, start-up included; err: largest fairlead-tension error after "
