@@ -29,7 +29,8 @@ For 20, 40, 80 and 160 segments:
   1e-7 of a segment; spectral radius 0.5, its default, and 0.8) at the largest step of a ladder
   whose fairlead-tension error against its own converged solution (dopri5, rtol 1e-9) stays
   within the larger of MoorDyn's own error (its chosen step against its converged run) and
-  1e-3 of the peak tension (equal accuracy), and rk4 at the largest stable step within the same
+  1e-3 of the peak tension (equal accuracy, or 0.1 % where MoorDyn's error is smaller: the
+  table gives both errors), and rk4 at the largest stable step within the same
   bound; the fastest is reported, the others too. Its fairlead moves exactly (the sine is
   evaluated at every stage).
 
