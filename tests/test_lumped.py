@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import seacable
-from seacable.models import catenary
+from helpers import chain_case
+from seacable.models import catenary, lumped_mass
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
 
@@ -470,3 +471,85 @@ def test_a_line_held_at_both_ends_starts_with_velocities_between_its_ends():
     steady = 30e3  # N: the steady state's largest anchor force is under 29 kN
     bottom = np.hypot(first["bottom_force_x"], first["bottom_force_z"])
     assert float(bottom.max()) < 2.0 * steady
+
+
+def _lone_segment(ratio, ea=100.0, mass=1.0, pull=20.0, duration=1.5):
+    """One segment (1 m, ``mass`` kg, EA ``ea`` N) free at both ends, in air: its top on a
+    floating structure of negligible mass free in heave, its lower end pulled down by ``pull``
+    N from t = 0. Both ends fall with g; their separation s obeys (m/4) s'' = -N + pull / 2
+    with N = EA (s + alpha s') / l: a spring-mass of reduced mass m/4, whose step response
+    from rest settles at s = pull l / (2 EA)."""
+    simulation = {"duration": duration, "output_interval": 5e-4, "integrator": "dopri5"}
+    data = chain_case(
+        1,
+        top={"type": "floating_structure", "mass": 1e-9, "heave_stiffness": 0.0},
+        bottom={"type": "free", "body": {"force_z": -pull}},
+        simulation={**simulation, "rtol": 1e-10, "atol": 1e-12},
+        model="lumped_mass",
+        length=1.0,
+        mass_per_length=mass,
+        axial_stiffness=ea,
+        axial_damping_ratio=ratio,
+    )
+    return seacable.load_case(data)
+
+
+@pytest.mark.parametrize("ratio", [0.5, 1.0])
+def test_axial_damping_ratio_damps_a_lone_segment_as_its_fraction_of_critical(ratio):
+    """Ratio 1 returns without overshoot (critical); 0.5 overshoots by exp(-pi z / sqrt(1 - z^2))
+    = 16.3 % (a ratio off by a factor sqrt 2 either way would give 4.3 % or 44 %)."""
+    ea, pull = 100.0, 20.0
+    ds = seacable.simulate(_lone_segment(ratio, ea=ea, pull=pull)).dataset
+    stretch = ds["node_z"].values[:, 0] - ds["node_z"].values[:, 1] - 1.0
+    settled = pull / (2 * ea)
+    overshoot = stretch.max() / settled - 1
+    if ratio < 1:
+        expected = math.exp(-math.pi * ratio / math.sqrt(1 - ratio**2))
+        assert abs(overshoot - expected) < 2e-3, (overshoot, expected)
+    else:
+        assert overshoot < 1e-6, overshoot
+        assert abs(stretch[-1] / settled - 1) < 1e-5  # and it has settled within 1.5 s
+    assert np.all(ds["tension"].values[1:] > 0.0)  # the linear law throughout
+
+
+def test_axial_damping_ratio_is_the_fraction_of_each_segments_critical_damping():
+    """alpha_i = zeta l_i sqrt(mu_i / EA) per segment (unequal segments), i.e. MoorDyn's
+    BA = zeta l sqrt(EA mu) [N s] = EA alpha; the time form gives the same alpha everywhere."""
+    lengths, masses, ea, ratio = [2.0, 1.0, 0.5], [10.0, 3.0, 2.0], 4.0e6, 0.8
+    cable = {
+        "model": "lumped_mass",
+        "links": 3,
+        "link_lengths": lengths,
+        "link_masses": masses,
+        "diameter": 0.05,
+        "axial_stiffness": ea,
+        "axial_damping_ratio": ratio,
+        "top": {"type": "fixed"},
+        "bottom": {"type": "free"},
+    }
+    data = {"cables": [cable], "simulation": {"duration": 1.0, "output_interval": 0.5}}
+    alpha = lumped_mass.build(seacable.load_case(data)).params.axial_damping
+    mu = np.array(masses) / np.array(lengths)
+    np.testing.assert_allclose(ea * alpha, ratio * np.array(lengths) * np.sqrt(ea * mu), rtol=1e-14)
+    del cable["axial_damping_ratio"]
+    cable["axial_damping_time"] = 0.003
+    alpha = lumped_mass.build(seacable.load_case(data)).params.axial_damping
+    np.testing.assert_array_equal(alpha, [0.003] * 3)
+
+
+def test_axial_damping_is_given_one_way():
+    data = chain_case(3, model="lumped_mass", axial_stiffness=1e6)
+    data["cables"][0].update(axial_damping_time=0.01, axial_damping_ratio=1.0)
+    with pytest.raises(
+        seacable.CaseError,
+        match=r"cables\[0\]: give at most one of 'axial_damping_time' \[s\] or "
+        r"'axial_damping_ratio'",
+    ):
+        seacable.load_case(data)
+    data = chain_case(3, model="natural_string", axial_stiffness=1e6, axial_damping_ratio=1.0)
+    with pytest.raises(
+        seacable.CaseError,
+        match=r"cables\[0\]: axial_damping_ratio is for model 'lumped_mass' \(got model "
+        r"'natural_string'\); give axial_damping_time",
+    ):
+        seacable.load_case(data)

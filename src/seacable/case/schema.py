@@ -451,7 +451,11 @@ class Cable(_Model):
     friction_coefficient: NonNeg = 0.0  # Richtmyer f: 0.5 rho f Cd_n d l (V cos phi)^2
     added_mass_coefficient: NonNeg | None = None  # Ca, normal only; 3D default 1.0
     axial_stiffness: Pos | None = None  # EA [N] (lumped_mass: required)
-    axial_damping_time: NonNeg = 0.0  # alpha [s]: N = EA (eps + alpha d eps/dt)
+    # axial damping, at most one of (none: undamped): alpha [s] in N = EA (eps + alpha d eps/dt),
+    # or (lumped_mass) zeta, the fraction of each segment's critical damping, MoorDyn's negative
+    # BA: alpha_i = zeta l_i sqrt(mu_i / EA), mu_i = m_i / l_i its mass per length [kg/m]
+    axial_damping_time: NonNeg | None = None  # alpha [s]
+    axial_damping_ratio: NonNeg | None = None  # zeta [-]
     point_bodies: list[PointBody] = []  # floats and clump weights at joints (3D)
     top_reference_angle_deg: float = 0.0  # angle the first joint spring is unloaded at [deg]
     top: FixedTop | ImposedTop | FloatingStructureTop | TowingShipTop = Field(discriminator="type")
@@ -480,6 +484,16 @@ class Cable(_Model):
             )
         if self.joint_stiffness is not None and self.bending_stiffness is not None:
             raise ValueError("give at most one of 'joint_stiffness' or 'bending_stiffness'")
+        if self.axial_damping_time is not None and self.axial_damping_ratio is not None:
+            raise ValueError(
+                "give at most one of 'axial_damping_time' [s] or 'axial_damping_ratio' "
+                "[fraction of each segment's critical damping]"
+            )
+        if self.axial_damping_ratio is not None and self.model != "lumped_mass":
+            raise ValueError(
+                f"axial_damping_ratio is for model 'lumped_mass' (got model '{self.model}'); "
+                "give axial_damping_time [s] instead"
+            )
         for key in ("joint_stiffness", "joint_damping"):
             value = getattr(self, key)
             if isinstance(value, list) and len(value) != self.links:
@@ -543,6 +557,22 @@ class Cable(_Model):
         if self.mass_per_length is not None:
             return self.mass_per_length * self.lengths()
         return self.density * math.pi * self.diameter**2 / 4 * self.lengths()
+
+    def axial_damping_times(self) -> np.ndarray:
+        """alpha of each segment [s] (N = EA (eps + alpha d eps/dt)). From axial_damping_ratio
+        zeta: a segment of stiffness EA / l with half of its mass m at each end vibrates (its
+        ends in opposition) at omega = 2 sqrt(EA / (m l)); its critical damping is
+        m omega / 2 = sqrt(EA m / l) [N s/m], that is alpha_crit = l sqrt(m / (l EA))
+        = l sqrt(mu / EA) [s] (the segment's length over the axial wave speed), and
+        alpha = zeta alpha_crit. The fastest mode of a uniform line's interior nodes (each of
+        mass m between two half segments) has the same omega and ratio; MoorDyn's BA = -zeta:
+        BA = zeta l sqrt(EA mu) [N s] = EA alpha."""
+        if self.axial_damping_ratio is None:
+            return np.full(self.links, self.axial_damping_time or 0.0)
+        if self.axial_stiffness is None:
+            return np.zeros(self.links)  # the model refuses the cable (EA is required)
+        lengths = self.lengths()
+        return self.axial_damping_ratio * np.sqrt(self.masses() * lengths / self.axial_stiffness)
 
 
 # ---- simulation ----------------------------------------------------------------------------------

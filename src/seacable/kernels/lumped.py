@@ -72,7 +72,7 @@ class LumpedParams(NamedTuple):
     added_mass: np.ndarray  # (n,) normal added mass of each segment [kg]
     wet_weight: np.ndarray  # (n,) apparent weight of each segment, positive down [N]
     axial_stiffness: float  # EA [N]
-    axial_damping: float  # alpha [s]
+    axial_damping: np.ndarray  # (n,) alpha of each segment [s]
     slack_allowed: int  # 1: no compression (the physical law); 0: linear (smooth static solves)
     drag_normal: np.ndarray  # (n,) 0.5 rho Cd_n d l [N s^2/m^2]
     drag_tangential: np.ndarray  # (n,) [N s^2/m^2]
@@ -153,7 +153,7 @@ def _segment_forces(t, y, p, w):
         l0 = p.length[i]
         strain = length / l0 - 1.0
         strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
-        tension = p.axial_stiffness * (strain + p.axial_damping * strain_rate)
+        tension = p.axial_stiffness * (strain + p.axial_damping[i] * strain_rate)
         if tension < 0.0 and p.slack_allowed == 1:
             tension = 0.0
         w[_T, i] = tension
@@ -716,7 +716,7 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
     g = np.empty((3, 9))
     for i in range(n):
         _segment_jacobians(
-            y, v0, i, p.length[i], p.axial_stiffness, p.axial_damping, p.slack_allowed,
+            y, v0, i, p.length[i], p.axial_stiffness, p.axial_damping[i], p.slack_allowed,
             p.drag_normal[i], 2.0 * p.drag_tangential[i], p.current_z, p.current_u, p.current_v,
             g,
         )  # fmt: skip

@@ -40,7 +40,8 @@ def _check(cable: schema.Cable) -> None:
     if cable.joint_damping:
         raise CaseError(
             f"{where}.joint_damping: the lumped-mass model has bending stiffness but no bending "
-            "damping; remove joint_damping (axial_damping_time damps the axial law)"
+            "damping; remove joint_damping (axial_damping_time or axial_damping_ratio damps the "
+            "axial law)"
         )
     if cable.initial.shape == "static":
         raise CaseError(f"{where}.initial: use shape 'catenary' for a lumped-mass cable")
@@ -89,7 +90,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             added_mass=props.added_mass,
             wet_weight=props.wet_weight,
             axial_stiffness=cable.axial_stiffness,
-            axial_damping=cable.axial_damping_time,
+            axial_damping=cable.axial_damping_times(),
             slack_allowed=1,
             drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
             drag_tangential=tangential_drag(cable, rho, lengths),
