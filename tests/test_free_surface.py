@@ -272,3 +272,24 @@ def test_lumped_line_hanging_from_above_the_surface_weighs_its_part_in_air_fully
     weight, buoyancy = 2000.0 * area * G, RHO * area * G  # of a metre of line [N]
     assert loads[5] == pytest.approx(-weight + 0.25 * 0.5 * buoyancy, rel=1e-12)
     assert loads[6] == pytest.approx(-weight + (0.75 * 0.5 + 0.5) * buoyancy, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
+def test_float_at_a_joint_floats_at_its_draft(model):
+    # a sphere of 0.5 m at the joint between a slack line (_line) and a third link lying
+    # horizontal; heavy enough that the joint, its centre, stays under water
+    radius, mass = 0.5, 400.0
+    draft = brentq(lambda d: RHO * _cap_volume(d, radius) - mass, 0.0, 2 * radius)
+    z_eq = radius - draft
+    cable = _line(model, z_eq - 0.01)
+    cable["links"], cable["length"] = 3, 45.0
+    cable["initial"]["angles_deg"].append(90.0)
+    cable["bottom"] = {"type": "free"}
+    cable["point_bodies"] = [{"node": 2, "mass": mass, "drag_coefficient": 0.0,
+                              "shape": {"kind": "sphere", "radius": radius}}]  # fmt: skip
+    ds = _simulate([cable], 4.0, "rk4", 1e-3)
+    period, mean = _period_and_mean(ds["time"].values, ds["node_z"].values[:, 2])
+    assert abs(mean - z_eq) < 5e-5
+    waterplane = math.pi * (2 * radius * draft - draft**2)
+    expected = 2 * math.pi * math.sqrt(mass / (RHO * G * waterplane))
+    assert period == pytest.approx(expected, rel=2e-3)
