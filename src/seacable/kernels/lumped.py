@@ -177,23 +177,28 @@ def _segment_forces(t, y, p, w):
         vt = rx * tx + ry * ty + rz * tz
         nx, ny, nz = rx - vt * tx, ry - vt * ty, rz - vt * tz
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        cn = -wet * p.drag_normal[i] * vn
-        ct = -wet * p.drag_tangential[i] * abs(vt) * vt
+        cn = -p.drag_normal[i] * vn
+        ct = -p.drag_tangential[i] * abs(vt) * vt
+        if wet < 1.0:  # (a branch: wholly submerged segments compute as they always did)
+            cn *= wet
+            ct *= wet
         fx = 0.5 * (cn * nx + ct * tx)
         fy = 0.5 * (cn * ny + ct * ty)
         fz = 0.5 * (cn * nz + ct * tz - p.wet_weight[i])
-        # the buoyancy's shares less the halves in wet_weight (zero when wholly submerged)
-        lift_a = p.buoyancy[i] * (share_a * wet - 0.5)
-        lift_b = p.buoyancy[i] * ((1.0 - share_a) * wet - 0.5)
         # the pull N t on node i, -N t on node i + 1; loads and added mass half and half
         px, py, pz = tension * tx, tension * ty, tension * tz
         w[_F, i] += fx + px
         w[_F + 1, i] += fy + py
-        w[_F + 2, i] += fz + pz + lift_a
+        w[_F + 2, i] += fz + pz
         w[_F, i + 1] += fx - px
         w[_F + 1, i + 1] += fy - py
-        w[_F + 2, i + 1] += fz - pz + lift_b
-        ma = 0.5 * wet * p.added_mass[i]
+        w[_F + 2, i + 1] += fz - pz
+        ma = 0.5 * p.added_mass[i]
+        if wet < 1.0:
+            # the buoyancy's shares less the halves in wet_weight, and the submerged added mass
+            w[_F + 2, i] += p.buoyancy[i] * (share_a * wet - 0.5)
+            w[_F + 2, i + 1] += p.buoyancy[i] * ((1.0 - share_a) * wet - 0.5)
+            ma *= wet
         m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
         m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
         for k in (i, i + 1):
