@@ -279,14 +279,88 @@ class Tie(_Model):
     rest_position: Point | None = None
 
 
-class Body(_Model):
+# ---- bodies and the free surface -----------------------------------------------------------------
+class Sphere(_Model):
+    """A sphere of ``radius`` [m] centred on the body's position."""
+
+    kind: Literal["sphere"]
+    radius: Pos  # [m]
+
+    def volume(self) -> float:
+        return 4.0 / 3.0 * math.pi * self.radius**3
+
+
+class VerticalCylinder(_Model):
+    """A vertical cylinder of ``radius`` and ``height`` [m] centred on the body's position."""
+
+    kind: Literal["vertical_cylinder"]
+    radius: Pos  # [m]
+    height: Pos  # [m]
+
+    def volume(self) -> float:
+        return math.pi * self.radius**2 * self.height
+
+
+class VolumeTable(_Model):
+    """Any hull: ``submerged_volume`` pairs [elevation z of the body's position (m, negative
+    below the surface), submerged volume (m^3)], z ascending, the volume not increasing, from
+    the whole volume (wholly submerged, at the first z and below) to 0 (clear of the water, at
+    the last z and above); linearly interpolated."""
+
+    kind: Literal["table"]
+    submerged_volume: list[tuple[float, NonNeg]] = Field(min_length=2)
+
+    @model_validator(mode="after")
+    def _monotone(self):
+        z = [pair[0] for pair in self.submerged_volume]
+        v = [pair[1] for pair in self.submerged_volume]
+        if np.any(np.diff(z) <= 0.0):
+            raise ValueError(f"submerged_volume: elevations {z} must be strictly ascending [m]")
+        if np.any(np.diff(v) > 0.0) or v[0] <= 0.0 or v[-1] != 0.0:
+            raise ValueError(
+                f"submerged_volume: volumes {v} must not increase with z, from the whole "
+                "volume (> 0 m^3, at the lowest z) to 0 (at the highest z)"
+            )
+        return self
+
+    def volume(self) -> float:
+        return float(self.submerged_volume[0][1])
+
+
+Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="kind")]
+
+
+class _Displacing(_Model):
+    """A body's displaced volume: a ``volume`` [m^3], a point that is always wholly submerged
+    (its buoyancy rho g V everywhere, even above z = 0), or a ``shape`` whose submerged part
+    follows the free surface z = 0: buoyancy rho g V_sub, added mass and drag area times the
+    submerged fraction V_sub / V (docs/conventions.md, "The free surface")."""
+
+    volume: NonNeg = 0.0  # displaced volume of a point body [m^3]
+    shape: Shape | None = None  # instead of volume: the body's extent about its position
+
+    @model_validator(mode="after")
+    def _volume_or_shape(self):
+        if self.shape is not None and self.volume != 0.0:
+            raise ValueError(
+                f"volume: value {self.volume}; a body with a shape takes its volume from it "
+                f"({self.shape.volume():.6g} m^3): remove 'volume'"
+            )
+        return self
+
+    def displaced_volume(self) -> float:
+        """Wholly submerged volume [m^3]."""
+        return self.volume if self.shape is None else self.shape.volume()
+
+
+class Body(_Displacing):
     """Point body at the free end (a terminal mass, towed body, clump weight or buoy).
 
     Added mass and drag area take one value or one per global axis [x, y, z]: a very large
-    added mass along an axis restrains the body's motion along it (as Jacquot & Marichal do)."""
+    added mass along an axis restrains the body's motion along it (as Jacquot & Marichal do).
+    With a ``shape`` they are the wholly submerged values, scaled by the submerged fraction."""
 
     mass: NonNeg = 0.0  # [kg]
-    volume: NonNeg = 0.0  # displaced volume [m^3] (buoyancy)
     added_mass: PerAxis = 0.0  # [kg]
     drag_coefficient: NonNeg = 0.0  # Cd on drag_area (force 0.5 rho Cd A |v| v_k per axis k)
     drag_area: PerAxis = 0.0  # [m^2]
@@ -360,28 +434,27 @@ class AttachedBottom(_Model):
     body: str
 
 
-class SharedBody(_Model):
+class SharedBody(_Displacing):
     """A point body that several cables attach to (3D models). ``position`` [x, y, z] (m) is
     where it starts: every attached cable's initial shape must end there (within 1 mm; a
     lumped-mass cable's catenary does). Added mass and drag area take one value or one per
-    global axis."""
+    global axis (with a ``shape``: wholly submerged values, scaled by the submerged fraction)."""
 
     name: str
     position: Point
     mass: Pos  # [kg]
-    volume: NonNeg = 0.0  # [m^3]
     added_mass: PerAxis = 0.0  # [kg]
     drag_coefficient: NonNeg = 0.0
     drag_area: PerAxis = 0.0  # [m^2]
 
 
-class PointBody(_Model):
+class PointBody(_Displacing):
     """A float or clump weight at a joint (3D model): ``node`` counts joints from the top
-    (1 = between the first and second segments). Drag as a sphere: 0.5 rho Cd A |v| v."""
+    (1 = between the first and second segments). Drag as a sphere: 0.5 rho Cd A |v| v (with a
+    ``shape``: added mass and drag area scaled by the submerged fraction)."""
 
     node: int = Field(ge=1)
     mass: NonNeg = 0.0  # [kg]
-    volume: NonNeg = 0.0  # [m^3]
     added_mass: PerAxis = 0.0  # [kg]
     drag_coefficient: NonNeg = 0.5
     drag_area: NonNeg = 0.0  # [m^2]

@@ -41,6 +41,7 @@ from seacable.kernels.planar_chain import (
     put_entry,
     top_rows,
 )
+from seacable.kernels.surface import POINT, point_potential, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
 
@@ -98,7 +99,12 @@ _XC = 59  # 2 rows: xi constant part
 _XL = 61  # 6 rows: d xi / d L (2x3)
 _A = 67  # 3 rows: node acceleration
 _EDD = 70  # 3 rows: director acceleration
-N_WORK_ROWS = 73
+# point bodies at nodes (the end body at node n) as the free surface leaves them (_hydrostatics)
+_BM = 73  # 3 rows: mass + submerged share of the added mass per axis [kg]
+_BW = 76  # apparent weight, positive down [N]
+_BD = 77  # 3 rows: 0.5 rho Cd A times the submerged fraction per axis [N s^2/m^2]
+_BK = 80  # hydrostatic heave stiffness rho g A_wp [N/m]
+N_WORK_ROWS = 81
 
 
 class Chain3DParams(NamedTuple):
@@ -121,6 +127,11 @@ class Chain3DParams(NamedTuple):
     node_mass: np.ndarray  # (n+1, 3) point-body mass + added mass per axis at nodes [kg]
     node_wet_weight: np.ndarray  # (n+1,) point-body apparent weight, positive down [N]
     node_drag: np.ndarray  # (n+1,) point-body 0.5 rho Cd A (sphere) [N s^2/m^2]
+    # the free surface (kernels.surface): row k for the point body at node k, row n for the end
+    # body; node_mass, node_wet_weight, node_drag and body_* are their wholly submerged values
+    node_shape: np.ndarray  # (n+1, L) shape rows
+    node_added: np.ndarray  # (n+1, 3) added mass when wholly submerged [kg]
+    node_buoyancy: np.ndarray  # (n+1,) rho g V [N]
     top_kind: int
     top_x: float  # heaving structure x, y [m]
     top_y: float
@@ -338,6 +349,41 @@ def _kinematics_and_loads(t, y, p, w):
         w[_F + 1, i] = cn * ny + ct * ey
         w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
     _joint_torques(y, p, w)
+    _hydrostatics(p, w)
+
+
+@njit(inline="always", **JIT)
+def _point_loads(p, k, z, out):
+    """Mass (3), apparent weight, drag factor (3) and heave stiffness of the point body at node k
+    (the end body at k = n) with its reference point at elevation z: the submerged fraction f
+    scales the buoyancy, the added mass and the drag (kernels.surface)."""
+    if k == p.n:
+        mass, weight = p.body_mass, p.body_wet_weight
+        drag0, drag1, drag2 = p.body_drag[0], p.body_drag[1], p.body_drag[2]
+    else:
+        mass, weight = p.node_mass[k], p.node_wet_weight[k]
+        drag0 = drag1 = drag2 = p.node_drag[k]
+    if p.node_shape[k, 0] == POINT:  # always submerged: the values as given
+        out[0], out[1], out[2], out[3] = mass[0], mass[1], mass[2], weight
+        out[4], out[5], out[6], out[7] = drag0, drag1, drag2, 0.0
+        return
+    f, slope, _ = submersion(z, p.node_shape[k])
+    lost = 1.0 - f
+    for c in range(3):
+        out[c] = mass[c] - lost * p.node_added[k, c]
+    out[3] = weight + lost * p.node_buoyancy[k]
+    out[4], out[5], out[6] = f * drag0, f * drag1, f * drag2
+    out[7] = -slope * p.node_buoyancy[k]
+
+
+@njit(inline="always", **JIT)
+def _hydrostatics(p, w):
+    """Rows _BM, _BW, _BD, _BK of every node from its elevation (node 0 carries none)."""
+    loads = np.empty(8)
+    for k in range(1, p.n + 1):
+        _point_loads(p, k, w[_P + 2, k], loads)
+        for r in range(8):
+            w[_BM + r, k] = loads[r]
 
 
 @njit(**JIT)
@@ -348,20 +394,16 @@ def _point_force(p, k, w, t):
     cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
     rx, ry, rz = vx - cu, vy - cv, vz
     speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    dx, dy, dz = w[_BD, k] * speed, w[_BD + 1, k] * speed, w[_BD + 2, k] * speed
     if k < p.n:
-        c = p.node_drag[k] * speed
-        return -c * rx, -c * ry, -c * rz - p.node_wet_weight[k]
+        return -dx * rx, -dy * ry, -dz * rz - w[_BW, k]
     fx, _, _ = _tf(p, CH_BODY_FX, t)
     fy, _, _ = _tf(p, CH_BODY_FY, t)
     fz, _, _ = _tf(p, CH_BODY_FZ, t)
-    fx -= p.body_drag[0] * speed * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
-    fy -= (
-        p.body_drag[1] * speed * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
-    )
-    fz -= (
-        p.body_drag[2] * speed * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
-    )
-    return fx, fy, fz - p.body_wet_weight
+    fx -= dx * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
+    fy -= dy * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
+    fz -= dz * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
+    return fx, fy, fz - w[_BW, k]
 
 
 @njit(**JIT)
@@ -417,7 +459,7 @@ def _backward_sweep(t, y, p, w):
         fx += y[servo]
         fy += y[servo + 1]
         fz += y[servo + 2]
-    m[0], m[3], m[5] = p.body_mass[0], p.body_mass[1], p.body_mass[2]
+    m[0], m[3], m[5] = w[_BM, n], w[_BM + 1, n], w[_BM + 2, n]
     b[0], b[1], b[2] = -fx, -fy, -fz
     if pinned:  # the holding force L adds to the force below the end node: S = I
         s[0] = s[4] = s[8] = 1.0
@@ -494,9 +536,9 @@ def _backward_sweep(t, y, p, w):
             nm = p.node_mass[i]
             if nm[0] != 0.0 or nm[1] != 0.0 or nm[2] != 0.0 or p.node_wet_weight[i] != 0.0:
                 fx, fy, fz = _point_force(p, i, w, t)
-                m[0] += nm[0]
-                m[3] += nm[1]
-                m[5] += nm[2]
+                m[0] += w[_BM, i]
+                m[3] += w[_BM + 1, i]
+                m[5] += w[_BM + 2, i]
                 b[0] -= fx
                 b[1] -= fy
                 b[2] -= fz
@@ -732,9 +774,9 @@ def _below_point_body(p, w, k, t, force_above):
         return force_above
     fx, fy, fz = _point_force(p, k, w, t)
     out = np.empty(3)
-    out[0] = force_above[0] + fx - nm[0] * w[_A, k]
-    out[1] = force_above[1] + fy - nm[1] * w[_A + 1, k]
-    out[2] = force_above[2] + fz - nm[2] * w[_A + 2, k]
+    out[0] = force_above[0] + fx - w[_BM, k] * w[_A, k]
+    out[1] = force_above[1] + fy - w[_BM + 1, k] * w[_A + 1, k]
+    out[2] = force_above[2] + fz - w[_BM + 2, k] * w[_A + 2, k]
     return out
 
 
@@ -763,17 +805,15 @@ def _energies(y, p, w):
         cx, cy, cz = ay * ez - az * ey, az * ex - ax * ez, ax * ey - ay * ex
         phi = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ax * ex + ay * ey + az * ez)
         elastic += 0.5 * p.joint_stiffness[i] * phi * phi
-    for k in range(1, n):
-        nm = p.node_mass[k]
-        kinetic += 0.5 * (nm[0] * w[_V, k] ** 2 + nm[1] * w[_V + 1, k] ** 2)
-        kinetic += 0.5 * nm[2] * w[_V + 2, k] ** 2
-        gravity += p.node_wet_weight[k] * w[_P + 2, k]
+    for k in range(1, n + 1):
+        kinetic += 0.5 * (w[_BM, k] * w[_V, k] ** 2 + w[_BM + 1, k] * w[_V + 1, k] ** 2)
+        kinetic += 0.5 * w[_BM + 2, k] * w[_V + 2, k] ** 2
+        weight = p.body_wet_weight if k == n else p.node_wet_weight[k]
+        gravity += point_potential(w[_P + 2, k], weight, p.node_buoyancy[k], p.node_shape[k])
     for k in range(3):
-        kinetic += 0.5 * p.body_mass[k] * w[_V + k, n] ** 2
         if p.bottom_kind == BOTTOM_FREE:
             d = w[_P + k, n] - p.tie_rest[k]
             elastic += 0.5 * p.tie_k[k] * d * d
-    gravity += p.body_wet_weight * w[_P + 2, n]
     if p.top_kind == TOP_HEAVE:
         kinetic += 0.5 * p.top_mass * y[6 * n + 1] ** 2
         gravity += p.top_net_weight * y[3 * n]
@@ -867,16 +907,15 @@ def _static_point_force(p, k, z, vel, t):
     cu, cv = _current(p.current_z, p.current_u, p.current_v, z)
     rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]
     speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    loads = np.empty(8)
+    _point_loads(p, k, z, loads)
+    dx, dy, dz = loads[4] * speed, loads[5] * speed, loads[6] * speed
     if k < p.n:
-        c = p.node_drag[k] * speed
-        return -c * rx, -c * ry, -c * rz - p.node_wet_weight[k]
+        return -dx * rx, -dy * ry, -dz * rz - loads[3]
     fx, _, _ = _tf(p, CH_BODY_FX, t)
     fy, _, _ = _tf(p, CH_BODY_FY, t)
     fz, _, _ = _tf(p, CH_BODY_FZ, t)
-    fx -= p.body_drag[0] * speed * rx
-    fy -= p.body_drag[1] * speed * ry
-    fz -= p.body_drag[2] * speed * rz
-    return fx, fy, fz - p.body_wet_weight
+    return fx - dx * rx, fy - dy * ry, fz - dz * rz - loads[3]
 
 
 @njit(**JIT)
@@ -1185,7 +1224,7 @@ def _segment_rows(t, y, p, w, i, lam_top, lam_bottom, cm, cx, cv, diag, upper, l
     if body:
         # a point body at node i: m_b A_i - F_b in the translation rows of this segment, and
         # lam_i' = lam_i - (m_b A_i - F_b) in its rotation rows
-        _point_matrix(p, w, i, nm, p.node_drag[i], cv / cm, jv)
+        _point_matrix(p, w, i, cv / cm, cx / cm, jv)
         _put3(diag, upper, lower, i, 6, i, 3, jv, 1.0)
         for r in range(3):
             for c in range(3):
@@ -1225,19 +1264,23 @@ def _segment_rows(t, y, p, w, i, lam_top, lam_bottom, cm, cx, cv, diag, upper, l
 
 
 @njit(**JIT)
-def _point_matrix(p, w, k, mass, drag, ratio, out):
+def _point_matrix(p, w, k, ratio, stiff_ratio, out):
     """d(m_b A - F_b)/dA of the point body at node k (velocities following the accelerations
-    by ``ratio``), 3x3 row-major into ``out``."""
+    by ``ratio``, positions by ``stiff_ratio``: the hydrostatic heave stiffness rho g A_wp at the
+    free surface), 3x3 row-major into ``out``. The submerged added mass's own dependence on z
+    is left out (its term m_a' A dz is small; the residual stays exact)."""
     vx, vy, vz = w[_V, k], w[_V + 1, k], w[_V + 2, k]
     cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
     rel = (vx - cu, vy - cv, vz)
     speed = math.sqrt(rel[0] ** 2 + rel[1] ** 2 + rel[2] ** 2)
     for r in range(3):
         for c in range(3):
-            value = mass[r] if r == c else 0.0
+            value = w[_BM + r, k] if r == c else 0.0
             if speed > 0.0:
-                value += ratio * drag * ((speed if r == c else 0.0) + rel[r] * rel[c] / speed)
+                jac = (speed if r == c else 0.0) + rel[r] * rel[c] / speed
+                value += ratio * w[_BD + r, k] * jac
             out[3 * r + c] = value
+    out[8] += stiff_ratio * w[_BK, k]
 
 
 @njit(**JIT)
@@ -1261,11 +1304,12 @@ def _end_rows(p, w, cm, cx, cv, diag):
             continue
         # m_b A_n - lam_n - F_body = 0 on a free axis
         diag[n, row + 6 + r] -= 1.0
-        diag[n, row + 3 + r] += p.body_mass[r] + ratio * p.tie_c[r] + cx / cm * p.tie_k[r]
+        stiffness = p.tie_k[r] + (w[_BK, n] if r == 2 else 0.0)  # ties, hydrostatic heave
+        diag[n, row + 3 + r] += w[_BM + r, n] + ratio * p.tie_c[r] + cx / cm * stiffness
         if speed > 0.0:
             for c in range(3):
                 jac = (speed if r == c else 0.0) + rel[r] * rel[c] / speed
-                diag[n, row + 3 + c] += ratio * p.body_drag[r] * jac
+                diag[n, row + 3 + c] += ratio * w[_BD + r, n] * jac
 
 
 @njit(**JIT)
@@ -1304,8 +1348,9 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         # a point body at node i: its inertia m_b E_i in the translation rows, and the force
         # on the segment's top differs from the dynamic one by -m_b E_i (rotation rows)
         body = np.zeros(3)
-        if i > 0:
-            body[:] = nm * err
+        if i > 0 and (nm[0] != 0.0 or nm[1] != 0.0 or nm[2] != 0.0):
+            for k in range(3):
+                body[k] = w[_BM + k, i] * err[k]
         e_body = e[0] * body[0] + e[1] * body[1] + e[2] * body[2]
         for k in range(3):
             res[bs * i + 6 + k] = p.mass[i] * mid[k] + ma * (mid[k] - e_mid * e[k]) + body[k]
@@ -1313,7 +1358,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         err = nxt
     for k in range(3):
         held = closed and p.constrained[k] != 0.0
-        res[bs * n + 6 + k] = err[k] if held else p.body_mass[k] * err[k]
+        res[bs * n + 6 + k] = err[k] if held else w[_BM + k, n] * err[k]
     if not matrix:
         return OK
     diag[:, :] = 0.0

@@ -25,6 +25,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels.surface import POINT, point_potential, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 
 BOTTOM_FREE = c3.BOTTOM_FREE
@@ -59,7 +60,11 @@ _MA = 3  # 6 rows: symmetric added-mass matrix of each node (11, 12, 13, 22, 23,
 _T = 9  # segment tension
 _TX = 10  # 3 rows: unit tangent of each segment
 _L = 13  # stretched length of each segment
-N_WORK_ROWS = 14
+# floats, clump weights and the end body as the free surface leaves them (_hydrostatics)
+_SF = 14  # submerged fraction of the node's body (1 without a shape)
+_SK = 15  # hydrostatic heave stiffness rho g A_wp [N/m]
+_PM = 16  # 3 rows: point_mass less the emerged share of the added mass [kg]
+N_WORK_ROWS = 19
 
 
 class LumpedParams(NamedTuple):
@@ -71,6 +76,7 @@ class LumpedParams(NamedTuple):
     node_mass: np.ndarray  # (n+1,) structural mass lumped at nodes [kg]
     added_mass: np.ndarray  # (n,) normal added mass of each segment [kg]
     wet_weight: np.ndarray  # (n,) apparent weight of each segment, positive down [N]
+    buoyancy: np.ndarray  # (n,) rho g A l of each segment wholly submerged [N]
     axial_stiffness: float  # EA [N]
     axial_damping: np.ndarray  # (n,) alpha of each segment [s]
     slack_allowed: int  # 1: no compression (the physical law); 0: linear (smooth static solves)
@@ -101,6 +107,11 @@ class LumpedParams(NamedTuple):
     point_mass: np.ndarray  # (n+1, 3) floats and clump weights (+ added mass) per node [kg]
     point_weight: np.ndarray  # (n+1,) their apparent weight, positive down [N]
     point_drag: np.ndarray  # (n+1,) their 0.5 rho Cd A (sphere) [N s^2/m^2]
+    # the free surface (kernels.surface), as chain3d's: row k for the body at node k, row n for
+    # the end body; point_* and body_* are wholly submerged values
+    node_shape: np.ndarray  # (n+1, L) shape rows
+    node_added: np.ndarray  # (n+1, 3) added mass when wholly submerged [kg]
+    node_buoyancy: np.ndarray  # (n+1,) rho g V [N]
     bend_stiffness: np.ndarray  # (n+1,) EI / mean span at interior nodes, 0 at the ends [N m]
     body_wet_weight: float
     body_drag: np.ndarray  # (3,)
@@ -159,8 +170,10 @@ def _segment_forces(t, y, p, w):
         w[_T, i] = tension
         w[_TX, i], w[_TX + 1, i], w[_TX + 2, i] = tx, ty, tz
         w[_L, i] = length
-        # loads at the segment centre on the relative velocity
+        # loads at the segment centre on the relative velocity; drag, added mass and buoyancy of
+        # its submerged part (kernels.surface), the buoyancy at that part's centroid
         zc = 0.5 * (y[a + 2] + y[b + 2])
+        wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
         cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
@@ -170,6 +183,9 @@ def _segment_forces(t, y, p, w):
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
         cn = -p.drag_normal[i] * vn
         ct = -p.drag_tangential[i] * abs(vt) * vt
+        if wet < 1.0:  # (a branch: wholly submerged segments compute as they always did)
+            cn *= wet
+            ct *= wet
         fx = 0.5 * (cn * nx + ct * tx)
         fy = 0.5 * (cn * ny + ct * ty)
         fz = 0.5 * (cn * nz + ct * tz - p.wet_weight[i])
@@ -182,6 +198,11 @@ def _segment_forces(t, y, p, w):
         w[_F + 1, i + 1] += fy - py
         w[_F + 2, i + 1] += fz - pz
         ma = 0.5 * p.added_mass[i]
+        if wet < 1.0:
+            # the buoyancy's shares less the halves in wet_weight, and the submerged added mass
+            w[_F + 2, i] += p.buoyancy[i] * (share_a * wet - 0.5)
+            w[_F + 2, i + 1] += p.buoyancy[i] * ((1.0 - share_a) * wet - 0.5)
+            ma *= wet
         m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
         m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
         for k in (i, i + 1):
@@ -251,12 +272,28 @@ def _bending(n, stiffness, w):
 
 
 @njit(inline="always", **JIT)
+def _hydrostatics(y, p, w):
+    """Rows _SF, _SK, _PM of every node from its elevation (kernels.surface)."""
+    for k in range(p.n + 1):
+        fraction, slope = 1.0, 0.0
+        if p.node_shape[k, 0] != POINT:
+            fraction, slope, _ = submersion(y[3 * k + 2], p.node_shape[k])
+        w[_SF, k] = fraction
+        w[_SK, k] = -slope * p.node_buoyancy[k]
+        for c in range(3):
+            w[_PM + c, k] = p.point_mass[k, c] - (1.0 - fraction) * p.node_added[k, c]
+
+
+@njit(inline="always", **JIT)
 def _point_forces(y, p, w):
-    """Apparent weight and sphere drag of the floats and clump weights."""
+    """Apparent weight and sphere drag of the floats and clump weights (the end body at node n
+    is _body_load's)."""
     n = p.n
     v0 = 3 * (n + 1)
-    for k in range(n + 1):
-        weight, drag = p.point_weight[k], p.point_drag[k]
+    for k in range(n):
+        fraction = w[_SF, k]
+        weight = p.point_weight[k] + (1.0 - fraction) * p.node_buoyancy[k]
+        drag = fraction * p.point_drag[k]
         if weight == 0.0 and drag == 0.0:
             continue
         w[_F + 2, k] -= weight
@@ -272,9 +309,11 @@ def _point_forces(y, p, w):
 @njit(inline="always", **JIT)
 def _body_load(t, y, p):
     """Force on the end body besides the cable: applied, drag, apparent weight, ties (zero
-    without a body)."""
+    without a body), the submerged fraction scaling buoyancy and drag."""
     n = p.n
     v0 = 3 * (n + 1)
+    fraction, _, _ = submersion(y[3 * n + 2], p.node_shape[n])
+    wet_weight = p.body_wet_weight + (1.0 - fraction) * p.node_buoyancy[n]
     cu, cv = c3._current(p.current_z, p.current_u, p.current_v, y[3 * n + 2])
     rx, ry, rz = y[v0 + 3 * n] - cu, y[v0 + 3 * n + 1] - cv, y[v0 + 3 * n + 2]
     speed = math.sqrt(rx * rx + ry * ry + rz * rz)
@@ -282,9 +321,10 @@ def _body_load(t, y, p):
     f[0], _, _ = c3._tf(p, c3.CH_BODY_FX, t)
     f[1], _, _ = c3._tf(p, c3.CH_BODY_FY, t)
     f[2], _, _ = c3._tf(p, c3.CH_BODY_FZ, t)
+    speed *= fraction
     f[0] -= p.body_drag[0] * speed * rx
     f[1] -= p.body_drag[1] * speed * ry
-    f[2] -= p.body_drag[2] * speed * rz + p.body_wet_weight
+    f[2] -= p.body_drag[2] * speed * rz + wet_weight
     for c in range(3):
         f[c] -= p.tie_k[c] * (y[3 * n + c] - p.tie_rest[c]) + p.tie_c[c] * y[v0 + 3 * n + c]
     if p.bottom_kind == BOTTOM_SERVO:
@@ -304,34 +344,36 @@ def _body_force(t, y, p, w):
 def _node_mass(p, w, k):
     """The 3x3 mass matrix of node k, row-major."""
     a = np.empty(9)
-    _node_mass_into(p.node_mass[k], p.point_mass[k], w, k, a)
+    _node_mass_into(p.node_mass[k], w, k, a)
     return a
 
 
 @njit(**JIT)
-def _node_mass_into(m, body, w, k, a):
+def _node_mass_into(m, w, k, a):
+    """Node k's mass matrix: structural mass m, the segments' added mass and the point masses
+    of the workspace (rows _MA, _PM)."""
     a[0] = m + w[_MA, k]
     a[1] = a[3] = w[_MA + 1, k]
     a[2] = a[6] = w[_MA + 2, k]
     a[4] = m + w[_MA + 3, k]
     a[5] = a[7] = w[_MA + 4, k]
     a[8] = m + w[_MA + 5, k]
-    a[0] += body[0]
-    a[4] += body[1]
-    a[8] += body[2]
+    a[0] += w[_PM, k]
+    a[4] += w[_PM + 1, k]
+    a[8] += w[_PM + 2, k]
 
 
 @njit(**JIT)
-def _node_acceleration(m, body, w, k):
-    """Solve node k's symmetric 3x3 mass matrix (structural mass m, added mass from the
-    workspace, ``body`` the end body's masses or None) against its force. Scalars only, and no
-    parameter tuple: per-node helpers that take the whole tuple copy it at every call.
+def _node_acceleration(m, w, k):
+    """Solve node k's symmetric 3x3 mass matrix (structural mass m, added and point masses
+    from the workspace) against its force. Scalars only, and no parameter tuple: per-node
+    helpers that take the whole tuple copy it at every call.
     Returns ax, ay, az and False when singular."""
     a00, a01, a02 = m + w[_MA, k], w[_MA + 1, k], w[_MA + 2, k]
     a11, a12, a22 = m + w[_MA + 3, k], w[_MA + 4, k], m + w[_MA + 5, k]
-    a00 += body[0]
-    a11 += body[1]
-    a22 += body[2]
+    a00 += w[_PM, k]
+    a11 += w[_PM + 1, k]
+    a22 += w[_PM + 2, k]
     fx, fy, fz = w[_F, k], w[_F + 1, k], w[_F + 2, k]
     c00 = a11 * a22 - a12 * a12
     c01 = a12 * a02 - a01 * a22
@@ -423,6 +465,7 @@ def rhs(t, y, p, w, ydot):
     n = p.n
     v0 = 3 * (n + 1)
     _segment_forces(t, y, p, w)
+    _hydrostatics(y, p, w)
     _bending(p.n, p.bend_stiffness, w)
     _seabed(y, p, w)
     _point_forces(y, p, w)
@@ -440,7 +483,7 @@ def rhs(t, y, p, w, ydot):
                 ydot[v0 + c] = acc[c]
             if heave:
                 # held in x and y: the vertical equation alone, the structure's mass added
-                mass = p.node_mass[0] + p.point_mass[0, 2] + w[_MA + 5, 0] + p.top_mass
+                mass = p.node_mass[0] + w[_PM + 2, 0] + w[_MA + 5, 0] + p.top_mass
                 ydot[v0 + 2] = (w[_F + 2, 0] + _structure_force(t, y, p)) / mass
             continue
         if k == n and is_held(p):
@@ -451,7 +494,7 @@ def rhs(t, y, p, w, ydot):
             elif not _held_end(t, y, p, w, ydot):
                 status = c3.NON_FINITE
             continue
-        ax, ay, az, ok = _node_acceleration(p.node_mass[k], p.point_mass[k], w, k)
+        ax, ay, az, ok = _node_acceleration(p.node_mass[k], w, k)
         if not ok:
             status = c3.NON_FINITE
         ydot[v0 + 3 * k] = ax
@@ -495,16 +538,18 @@ def _energies(y, p, w):
         if depth > 0.0:
             elastic += 0.5 * p.seabed_stiffness[k] * depth * depth
     for i in range(n):
-        gravity += p.wet_weight[i] * 0.5 * (y[3 * i + 2] + y[3 * i + 5])
+        zc = 0.5 * (y[3 * i + 2] + y[3 * i + 5])
+        _, _, mean_depth = segment_submersion(y[3 * i + 2], y[3 * i + 5])
+        gravity += p.wet_weight[i] * zc + p.buoyancy[i] * (zc - mean_depth)
         dx = y[3 * i + 3] - y[3 * i]
         dy = y[3 * i + 4] - y[3 * i + 1]
         dz = y[3 * i + 5] - y[3 * i + 2]
         strain = math.sqrt(dx * dx + dy * dy + dz * dz) / p.length[i] - 1.0
         if strain > 0.0:
             elastic += 0.5 * p.axial_stiffness * p.length[i] * strain * strain
-    gravity += p.body_wet_weight * y[3 * n + 2]  # zero without a body
-    for k in range(n + 1):
-        gravity += p.point_weight[k] * y[3 * k + 2]
+    for k in range(n + 1):  # the end body (zero without one) at n, point bodies before it
+        weight = p.body_wet_weight if k == n else p.point_weight[k]
+        gravity += point_potential(y[3 * k + 2], weight, p.node_buoyancy[k], p.node_shape[k])
     for c in range(3):  # ties: zero without them
         d = y[3 * n + c] - p.tie_rest[c]
         elastic += 0.5 * p.tie_k[c] * d * d
@@ -547,7 +592,8 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
             inertia = 0.0
             for k in range(3):
                 inertia += an[3 * c + k] * ydot[v0 + 3 * n + k]
-            inertia -= p.body_mass[c] * ydot[v0 + 3 * n + c]
+            body_mass = p.body_mass[c] - (1.0 - w[_SF, n]) * p.node_added[n, c]
+            inertia -= body_mass * ydot[v0 + 3 * n + c]
             scalars[3 + c] = w[_F + c, n] - body[c] - inertia
         else:
             # the pull of the last segment on the body
@@ -709,7 +755,7 @@ def _bending_jacobian(n, stiffness, w, cx, diag, upper, lower):
 
 
 @njit(**JIT)
-def _jacobian(y, p, cx, cv, diag, upper, lower):
+def _jacobian(y, p, w, cx, cv, diag, upper, lower):
     """Add -cx dF/dx - cv dF/dv of the segments, the seabed and the end body's drag."""
     n = p.n
     v0 = 3 * (n + 1)
@@ -737,8 +783,9 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
         )  # fmt: skip
     for k in range(n + 1):
         if p.point_drag[k] > 0.0:
-            _sphere_drag_jacobian(y, v0, k, p.point_drag[k], p.current_z, p.current_u,
-                                  p.current_v, cv, diag)  # fmt: skip
+            _sphere_drag_jacobian(y, v0, k, w[_SF, k] * p.point_drag[k], p.current_z,
+                                  p.current_u, p.current_v, cv, diag)  # fmt: skip
+        diag[k, 8] += cx * w[_SK, k]  # the free surface's heave stiffness (zero without it)
     if not _free_axes(p):
         return
     # the end body's drag and ties (zero without them)
@@ -750,7 +797,7 @@ def _jacobian(y, p, cx, cv, diag, upper, lower):
             term = r[a] * r[b] / speed if speed > 0.0 else 0.0
             if a == b:
                 term += speed
-            diag[n, 3 * a + b] += cv * p.body_drag[a] * term
+            diag[n, 3 * a + b] += cv * w[_SF, n] * p.body_drag[a] * term
     for a in range(3):
         diag[n, 4 * a] += cx * p.tie_k[a] + cv * p.tie_c[a]
 
@@ -772,7 +819,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     status = rhs(t, y, p, w, ydot)
     mass = np.empty(9)  # not diag: without ``matrix`` it holds the caller's factors
     for k in range(n + 1):
-        _node_mass_into(p.node_mass[k], p.point_mass[k], w, k, mass)
+        _node_mass_into(p.node_mass[k], w, k, mass)
         if k == 0 and p.top_kind == c3.TOP_HEAVE:
             mass[8] += p.top_mass
         for r in range(3):
@@ -790,7 +837,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
             if is_held(p) and p.constrained[c] != 0.0:
                 res[3 * n + c] = 0.0
         return status
-    _jacobian(y, p, cx, cv, diag, upper, lower)
+    _jacobian(y, p, w, cx, cv, diag, upper, lower)
     _bending_jacobian(n, p.bend_stiffness, w, cx, diag, upper, lower)
     if p.top_kind == c3.TOP_HEAVE:
         _heave_rows(p, cx, cv, diag, upper, lower, res)

@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from seacable.kernels.surface import point_potential, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
 
@@ -104,6 +105,10 @@ class ChainParams(NamedTuple):
     body_mass: float  # bottom body mass + added mass [kg]
     body_wet_weight: float  # bottom body apparent weight, positive down [N]
     body_drag: float  # 0.5 rho Cd A of the bottom body [N s^2/m^2]
+    # the free surface (kernels.surface): the three above are wholly submerged values
+    body_shape: np.ndarray  # (L,) shape row
+    body_added: float  # added mass when wholly submerged [kg]
+    body_buoyancy: float  # rho g V [N]
     tie_kx: float  # elastic tie of the bottom body, x [N/m]
     tie_cx: float  # [N s/m]
     tie_kz: float  # z [N/m]
@@ -202,6 +207,20 @@ def _kinematics_and_loads(t, y, p, w):
             w[_Q, i - 1] += torque
 
 
+@njit(inline="always", **JIT)
+def _body_now(p, z):
+    """The bottom body at elevation z [m]: mass + submerged added mass [kg], apparent weight
+    [N], drag factor [N s^2/m^2] and hydrostatic heave stiffness rho g A_wp [N/m]."""
+    fraction, slope, _ = submersion(z, p.body_shape)
+    lost = 1.0 - fraction
+    return (
+        p.body_mass - lost * p.body_added,
+        p.body_wet_weight + lost * p.body_buoyancy,
+        fraction * p.body_drag,
+        -slope * p.body_buoyancy,
+    )
+
+
 @njit(**JIT)
 def _bottom_body_force(t, p, w):
     """Force on the bottom point body (excluding the cable): weight, drag, applied, ties."""
@@ -212,12 +231,13 @@ def _bottom_body_force(t, p, w):
     vz = w[_VZ, n]
     fx, _, _ = tf_of_params(p, CH_BODY_FX, t)
     fz, _, _ = tf_of_params(p, CH_BODY_FZ, t)
-    fz -= p.body_wet_weight
-    if p.body_drag != 0.0:
+    _, wet_weight, drag, _ = _body_now(p, zn)
+    fz -= wet_weight
+    if drag != 0.0:
         vrx = vx - _current(p.current_z, p.current_u, zn)
         speed = math.sqrt(vrx * vrx + vz * vz)
-        fx -= p.body_drag * speed * vrx
-        fz -= p.body_drag * speed * vz
+        fx -= drag * speed * vrx
+        fz -= drag * speed * vz
     fx -= p.tie_kx * (xn - p.tie_x0) + p.tie_cx * vx
     fz -= p.tie_kz * (zn - p.tie_z0) + p.tie_cz * vz
     return fx, fz
@@ -233,7 +253,8 @@ def _backward_sweep(t, y, p, w):
         s11, s12, s21, s22 = 1.0, 0.0, 0.0, 1.0
     else:
         fbx, fbz = _bottom_body_force(t, p, w)
-        m11, m12, m22 = p.body_mass, 0.0, p.body_mass
+        mass, _, _, _ = _body_now(p, w[_PZ, n])
+        m11, m12, m22 = mass, 0.0, mass
         bx, bz = -fbx, -fbz
         s11, s12, s21, s22 = 0.0, 0.0, 0.0, 0.0
     w[_M11, n], w[_M12, n], w[_M22, n], w[_BX, n], w[_BZ, n] = m11, m12, m22, bx, bz
@@ -421,8 +442,9 @@ def _energies(y, p, w):
         rel = y[i] - (p.top_reference_angle if i == 0 else y[i - 1])
         elastic += 0.5 * p.joint_stiffness[i] * rel * rel
     if p.bottom_kind == BOTTOM_FREE:
-        kinetic += 0.5 * p.body_mass * (w[_VX, n] ** 2 + w[_VZ, n] ** 2)
-        gravity += p.body_wet_weight * w[_PZ, n]
+        mass, _, _, _ = _body_now(p, w[_PZ, n])
+        kinetic += 0.5 * mass * (w[_VX, n] ** 2 + w[_VZ, n] ** 2)
+        gravity += point_potential(w[_PZ, n], p.body_wet_weight, p.body_buoyancy, p.body_shape)
         dx = w[_PX, n] - p.tie_x0
         dz = w[_PZ, n] - p.tie_z0
         elastic += 0.5 * (p.tie_kx * dx * dx + p.tie_kz * dz * dz)
@@ -554,18 +576,20 @@ def _drag_jacobian(dn, dt, vn, vt, nx, nz, ex, ez):
 
 @njit(**JIT)
 def _body_jacobian(p, w):
-    """-dF/dV and -dF/dP of the bottom body's force (xx, xz, zz each)."""
+    """-dF/dV and -dF/dP of the bottom body's force (xx, xz, zz each): drag, ties and the
+    free surface's heave stiffness."""
     n = p.n
     cxx, cxz, czz = p.tie_cx, 0.0, p.tie_cz
-    if p.body_drag != 0.0:
+    _, _, drag, heave = _body_now(p, w[_PZ, n])
+    if drag != 0.0:
         vrx = w[_VX, n] - _current(p.current_z, p.current_u, w[_PZ, n])
         vrz = w[_VZ, n]
         speed = math.sqrt(vrx * vrx + vrz * vrz)
         if speed > 0.0:
-            cxx += p.body_drag * (speed + vrx * vrx / speed)
-            cxz += p.body_drag * vrx * vrz / speed
-            czz += p.body_drag * (speed + vrz * vrz / speed)
-    return cxx, cxz, czz, p.tie_kx, 0.0, p.tie_kz
+            cxx += drag * (speed + vrx * vrx / speed)
+            cxz += drag * vrx * vrz / speed
+            czz += drag * (speed + vrz * vrz / speed)
+    return cxx, cxz, czz, p.tie_kx, 0.0, p.tie_kz + heave
 
 
 @njit(**JIT)
@@ -642,10 +666,11 @@ def _end_rows(p, w, cm, cx, cv, diag):
     else:
         # m_b A_n - lam_n - F_body = 0
         dxx, dxz, dzz, kxx, kxz, kzz = _body_jacobian(p, w)
-        diag[n, rx + 1] += p.body_mass + (cv * dxx + cx * kxx) / cm
+        mass, _, _, _ = _body_now(p, w[_PZ, n])
+        diag[n, rx + 1] += mass + (cv * dxx + cx * kxx) / cm
         diag[n, rx + 2] += (cv * dxz + cx * kxz) / cm
         diag[n, rz + 1] += (cv * dxz + cx * kxz) / cm
-        diag[n, rz + 2] += p.body_mass + (cv * dzz + cx * kzz) / cm
+        diag[n, rz + 2] += mass + (cv * dzz + cx * kzz) / cm
         diag[n, rx + 3] -= 1.0
         diag[n, rz + 4] -= 1.0
 
@@ -690,7 +715,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         res[bs * i + 4] = 0.5 * p.mass[i] * (ez_ + ez_next)
         res[bs * (i + 1) + 2] = p.inertia[i] * g
         ex_, ez_ = ex_next, ez_next
-    scale = 1.0 if pinned else p.body_mass
+    scale = 1.0 if pinned else _body_now(p, w[_PZ, n])[0]
     res[bs * n + 3] = scale * ex_
     res[bs * n + 4] = scale * ez_
     if not matrix:

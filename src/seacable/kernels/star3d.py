@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels.surface import submersion
 from seacable.kernels.timefn import JIT
 
 N_BODY_STATES = 6
@@ -29,6 +30,10 @@ class StarParams(NamedTuple):
     body_mass: np.ndarray  # (3,) mass + added mass per axis [kg]
     body_wet_weight: float  # [N], positive down
     body_drag: np.ndarray  # (3,) 0.5 rho Cd A per axis [N s^2/m^2]
+    # the free surface (kernels.surface): the three above are wholly submerged values
+    body_shape: np.ndarray  # (L,) shape row
+    body_added: np.ndarray  # (3,) added mass when wholly submerged [kg]
+    body_buoyancy: float  # rho g V [N]
     current_z: np.ndarray
     current_u: np.ndarray
     current_v: np.ndarray
@@ -64,12 +69,13 @@ def _inverse3(a):
 
 
 @njit(**JIT)
-def _body_force(p, pos, vel):
+def _body_force(p, pos, vel, fraction):
+    """Drag and apparent weight of the body with ``fraction`` of it submerged."""
     cu, cv = c3._current(p.current_z, p.current_u, p.current_v, pos[2])
     r = np.array([vel[0] - cu, vel[1] - cv, vel[2]])
     speed = math.sqrt(r[0] ** 2 + r[1] ** 2 + r[2] ** 2)
-    force = -p.body_drag * speed * r
-    force[2] -= p.body_wet_weight
+    force = -(fraction * p.body_drag) * speed * r
+    force[2] -= p.body_wet_weight + (1.0 - fraction) * p.body_buoyancy
     return force
 
 
@@ -83,9 +89,10 @@ def solve(t, y, p, workspaces, reactions):
     vel = y[b0 + 3 : b0 + 6]
     omega = p.stabilization_frequency
     system = np.zeros(9)
+    fraction, _, _ = submersion(pos[2], p.body_shape)
     for r in range(3):
-        system[4 * r] = p.body_mass[r]
-    rhs_ = _body_force(p, pos, vel)
+        system[4 * r] = p.body_mass[r] - (1.0 - fraction) * p.body_added[r]
+    rhs_ = _body_force(p, pos, vel, fraction)
     inverses = np.zeros((k_count, 9))
     offsets_ = np.zeros((k_count, 3))
     tops = np.zeros((k_count, 3))

@@ -7,6 +7,7 @@ import numpy as np
 
 from seacable.case import schema
 from seacable.errors import CaseError
+from seacable.kernels import surface
 from seacable.models import timefunctions as tfn
 
 # what a divergence message advises against ringing, per model (only options its schema takes)
@@ -91,6 +92,7 @@ class Section:
     rho: float  # water density, 0 in air [kg/m^3]
     area: float  # cross-section pi d^2 / 4 [m^2]
     wet_weight: np.ndarray  # apparent weight, positive down [N]
+    buoyancy: np.ndarray  # rho g A l wholly submerged [N]
     added_mass: np.ndarray  # normal added mass Ca rho A l [kg] (Ca default 1)
 
 
@@ -108,6 +110,7 @@ def section(case: schema.Case) -> Section:
         rho=rho,
         area=area,
         wet_weight=(mass - rho * area * lengths) * env.gravity,
+        buoyancy=rho * area * lengths * env.gravity,
         added_mass=ca * rho * area * lengths,
     )
 
@@ -164,4 +167,67 @@ def state_scale(
     positions = np.asarray(positions, dtype=float)
     return np.concatenate(
         [positions, positions * math.sqrt(env.gravity / length), np.full(forces, weight)]
+    )
+
+
+# ---- bodies and the free surface -----------------------------------------------------------------
+def _case_bodies(case: schema.Case) -> list:
+    bodies = list(case.bodies)
+    for cable in case.cables:
+        bodies += list(cable.point_bodies)
+        if isinstance(getattr(cable.bottom, "body", None), schema.Body):
+            bodies.append(cable.bottom.body)
+    return bodies
+
+
+def shape_width(case: schema.Case) -> int:
+    """Width of the shape rows of ``case`` (kernels.surface): room for its longest table."""
+    width = surface.HEADER
+    for body in _case_bodies(case):
+        if isinstance(body.shape, schema.VolumeTable):
+            width = max(width, surface.HEADER + 2 * len(body.shape.submerged_volume))
+    return width
+
+
+def shape_row(shape, width: int) -> np.ndarray:
+    """The kernels' shape row (kernels.surface) of a schema shape (None: a point volume)."""
+    row = surface.point_row(width)
+    if isinstance(shape, schema.Sphere):
+        row[:2] = (surface.SPHERE, shape.radius)
+    elif isinstance(shape, schema.VerticalCylinder):
+        row[:3] = (surface.CYLINDER, shape.radius, shape.height)
+    elif isinstance(shape, schema.VolumeTable):
+        table = np.array(shape.submerged_volume, dtype=float)
+        count = len(table)
+        row[:4] = (surface.TABLE, 0.0, 0.0, count)
+        row[surface.HEADER : surface.HEADER + count] = table[:, 0]
+        row[surface.HEADER + count : surface.HEADER + 2 * count] = table[:, 1] / table[0, 1]
+    return row
+
+
+@dataclass(frozen=True)
+class BodyLoads:
+    """A point body's loads when wholly submerged, and what the free surface scales (SI)."""
+
+    mass: np.ndarray  # (3,) mass + added mass per axis [kg]
+    wet_weight: float  # apparent weight (m - rho V) g, positive down [N]
+    drag: np.ndarray  # (3,) 0.5 rho Cd A per axis [N s^2/m^2]
+    added: np.ndarray  # (3,) added mass per axis [kg]
+    buoyancy: float  # rho g V [N]
+    shape: np.ndarray  # shape row (kernels.surface)
+
+
+def body_loads(body, env: schema.Environment, width: int) -> BodyLoads:
+    """Loads of a Body, SharedBody or PointBody (one drag area for a PointBody); no water, no
+    buoyancy, added mass or drag in air."""
+    rho = 0.0 if env.in_air else env.water_density
+    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass), float)
+    buoyancy = rho * body.displaced_volume() * env.gravity
+    return BodyLoads(
+        mass=body.mass + added,
+        wet_weight=(body.mass - rho * body.displaced_volume()) * env.gravity,
+        drag=0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area), float),
+        added=added,
+        buoyancy=buoyancy,
+        shape=shape_row(body.shape, width),
     )

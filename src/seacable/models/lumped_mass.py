@@ -17,6 +17,7 @@ from seacable.models.common import (
     current_arrays,
     joint_stiffness,
     section,
+    shape_width,
     tangential_drag,
     typed,
     xyz_variables,
@@ -73,13 +74,16 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
         raise CaseError("environment.seabed: give environment.water_depth [m] for the seabed")
     top_kind, top_fields, channels, heave = seg._top(cable, base_dir)
     # the 3D model's reading of the lower end: its kinds and channels are shared
-    bottom_kind, fields, bottom_channels = seg._bottom(cable, env, base_dir)
+    width = shape_width(case)
+    bottom_kind, fields, bottom_channels = seg._bottom(cable, env, base_dir, width)
     keys = ("body_mass", "body_wet_weight", "body_drag", "tie_k", "tie_c", "constrained")
     servo = ("servo_stiffness", "servo_gain", "servo_rate_gain", "servo_step")
     bottom_fields = {k: fields[k] for k in (*keys, "target_relative", *servo)}
     ordered = [*channels[:4], *bottom_channels[:3], channels[4], *bottom_channels[3:6]]
     current_z, current_u, current_v = current_arrays(env)
-    point_mass, point_weight, point_drag = seg._point_bodies(cable, env, n)
+    point_mass, point_weight, point_drag, surface_fields = seg._point_bodies(
+        cable, env, n, width, fields.get("end_body")
+    )
     point_mass[n] += bottom_fields["body_mass"]
     params = typed(
         lk.LumpedParams,
@@ -89,6 +93,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             node_mass=node_mass,
             added_mass=props.added_mass,
             wet_weight=props.wet_weight,
+            buoyancy=props.buoyancy,
             axial_stiffness=cable.axial_stiffness,
             axial_damping=cable.axial_damping_times(),
             slack_allowed=1,
@@ -113,6 +118,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             pin=np.zeros(3),
             tie_rest=np.zeros(3),
             point_mass=point_mass,
+            **surface_fields,
             point_weight=point_weight,
             point_drag=point_drag,
             bend_stiffness=_bend_stiffness(cable, lengths),

@@ -15,7 +15,7 @@ from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_star as ls
 from seacable.models import common, lumped_mass, star_3d
-from seacable.models.common import add_total_energy, xyz_variables
+from seacable.models.common import add_total_energy, body_loads, shape_width, xyz_variables
 
 
 @dataclass(frozen=True)
@@ -55,25 +55,27 @@ def build(case: schema.Case, base_dir=None) -> LumpedStarSystem:
     """Assemble the star of ``case``: every lumped-mass cable ends on its one shared body."""
     body = case.bodies[0]
     position = np.array(schema.xyz(body.position), dtype=float)
-    env = case.environment
-    rho = 0.0 if env.in_air else env.water_density
-    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass), float)
+    loads = body_loads(body, case.environment, shape_width(case))
     chains, positions, velocities = [], [], []
     for k in range(len(case.cables)):
         system = _chain(case, k, body, base_dir)
         p, n = system.params, system.n_links
         free = dict(bottom_kind=lk.BOTTOM_FREE, constrained=np.zeros(3))
         if k == 0:  # chain 0's end node carries the body
-            mass = np.ascontiguousarray(body.mass + added, dtype=float)
             point_mass = p.point_mass.copy()
-            point_mass[n] += mass
+            point_mass[n] += loads.mass
+            wider = loads.shape.size - p.node_shape.shape[1]  # >= 0: the case's widest
+            shapes = np.pad(p.node_shape, ((0, 0), (0, wider)))
+            node_added, buoyancy = p.node_added.copy(), p.node_buoyancy.copy()
+            shapes[n], node_added[n], buoyancy[n] = loads.shape, loads.added, loads.buoyancy
             free.update(
-                body_mass=mass,
+                body_mass=np.ascontiguousarray(loads.mass, dtype=float),
                 point_mass=point_mass,
-                body_wet_weight=float((body.mass - rho * body.volume) * env.gravity),
-                body_drag=np.ascontiguousarray(
-                    0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area))
-                ),
+                body_wet_weight=float(loads.wet_weight),
+                body_drag=np.ascontiguousarray(loads.drag, dtype=float),
+                node_shape=shapes,
+                node_added=node_added,
+                node_buoyancy=buoyancy,
             )
         chains.append(p._replace(**free))
         nodes = system.y0[: 3 * (n + 1)]

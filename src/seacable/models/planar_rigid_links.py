@@ -14,6 +14,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
+from seacable.kernels import surface
 from seacable.models import common
 from seacable.models import timefunctions as tfn
 from seacable.models.common import add_total_energy
@@ -75,14 +76,16 @@ def _top(cable: schema.Cable, base_dir):
     return kind, fields, channels, force, heave, position
 
 
-def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
-    """Bottom-end parameters and channels (fx, fz)."""
+def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz, width):
+    """Bottom-end parameters and channels (fx, fz); ``width``: of the shape row."""
     bottom = cable.bottom
-    rho = 0.0 if env.in_air else env.water_density
     fields = dict(
         body_mass=0.0,
         body_wet_weight=0.0,
         body_drag=0.0,
+        body_shape=surface.point_row(width),
+        body_added=0.0,
+        body_buoyancy=0.0,
         tie_kx=0.0,
         tie_cx=0.0,
         tie_kz=0.0,
@@ -130,10 +133,14 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz):
             f"for x and z (got {body.added_mass}, {body.drag_area}); use model: rigid_segments_3d "
             "for direction-dependent values"
         )
+    loads = common.body_loads(body, env, width)
     fields.update(
-        body_mass=body.mass + (0.0 if env.in_air else added[0]),
-        body_wet_weight=(body.mass - rho * body.volume) * env.gravity,
-        body_drag=0.5 * rho * body.drag_coefficient * area[0],
+        body_mass=loads.mass[0],
+        body_wet_weight=loads.wet_weight,
+        body_drag=loads.drag[0],
+        body_shape=loads.shape,
+        body_added=loads.added[0],
+        body_buoyancy=loads.buoyancy,
     )
     if bottom.tie is not None:
         rest = _xz(bottom.tie.rest_position) or end_xz
@@ -162,7 +169,9 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
     if top_pos is None:  # imposed motion: start where the time functions put the top at t = 0
         top_pos = (tfn.evaluate(top_channels[0], 0.0)[0], tfn.evaluate(top_channels[1], 0.0)[0])
     node_x, node_z = _initial_nodes(top_pos, angles, lengths)
-    bottom_kind, bottom_fields, fx, fz = _bottom(cable, env, base_dir, (node_x[-1], node_z[-1]))
+    bottom_kind, bottom_fields, fx, fz = _bottom(
+        cable, env, base_dir, (node_x[-1], node_z[-1]), common.shape_width(case)
+    )
     current_z, current_u, current_v = common.current_arrays(env)
     if np.any(np.abs(current_v) > 1e-12 * (1.0 + np.abs(current_u))):
         raise CaseError(

@@ -16,14 +16,17 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
+from seacable.kernels import surface
 from seacable.models import common, statics
 from seacable.models import timefunctions as tfn
 from seacable.models.common import (
     add_total_energy,
+    body_loads,
     current_arrays,
     joint_stiffness,
     per_joint,
     section,
+    shape_width,
     tangential_drag,
     typed,
     xyz_variables,
@@ -117,10 +120,10 @@ def _top(cable: schema.Cable, base_dir):
     return kind, fields, (*channels, force, distance), heave
 
 
-def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
-    """Bottom kind, fields (positions filled in later) and channels (fx, fy, fz, target x, y, z)."""
+def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, width: int):
+    """Bottom kind, fields (positions filled in later) and channels (fx, fy, fz, target x, y, z);
+    ``width``: of the shape rows."""
     bottom = cable.bottom
-    rho = 0.0 if env.in_air else env.water_density
     zero = tfn.constant(0.0)
     fields = dict(
         body_mass=np.zeros(3),
@@ -158,11 +161,12 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
         force = _channel(bottom.force, base_dir, "cables[0].bottom.force")
         return c3.BOTTOM_FREE, fields, (zero, zero, force, *targets)
     body = bottom.body
-    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
+    loads = body_loads(body, env, width)
     fields.update(
-        body_mass=body.mass + added,
-        body_wet_weight=(body.mass - rho * body.volume) * env.gravity,
-        body_drag=0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area)),
+        body_mass=loads.mass,
+        body_wet_weight=loads.wet_weight,
+        body_drag=loads.drag,
+        end_body=loads,
     )
     if bottom.tie is not None:
         tie = bottom.tie
@@ -180,22 +184,38 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir):
     return c3.BOTTOM_FREE, fields, (*forces, *targets)
 
 
-def _point_bodies(cable: schema.Cable, env: schema.Environment, n: int):
-    rho = 0.0 if env.in_air else env.water_density
+def _point_bodies(cable: schema.Cable, env: schema.Environment, n: int, width: int, end_body):
+    """Per-node fields of the floats and clump weights (the free surface's rows: the end body's
+    ``BodyLoads`` at node n, or None)."""
     node_mass = np.zeros((n + 1, 3))
     node_weight = np.zeros(n + 1)
     node_drag = np.zeros(n + 1)
+    shapes = np.array([surface.point_row(width) for _ in range(n + 1)])
+    node_added = np.zeros((n + 1, 3))
+    buoyancy = np.zeros(n + 1)
     for k, body in enumerate(cable.point_bodies):
         if body.node >= n:
             raise CaseError(
                 f"cables[0].point_bodies[{k}].node: value {body.node} is not a joint of a cable "
                 f"of {n} segments; allowed 1 to {n - 1} (the end body goes in 'bottom')"
             )
-        added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
-        node_mass[body.node] += body.mass + added
-        node_weight[body.node] += (body.mass - rho * body.volume) * env.gravity
-        node_drag[body.node] += 0.5 * rho * body.drag_coefficient * body.drag_area
-    return node_mass, node_weight, node_drag
+        if body.shape is not None and np.any(shapes[body.node] != shapes[0]):
+            raise CaseError(
+                f"cables[0].point_bodies[{k}].shape: node {body.node} already has a body with "
+                "a shape; one shaped body per node (merge them into one)"
+            )
+        loads = body_loads(body, env, width)
+        node_mass[body.node] += loads.mass
+        node_weight[body.node] += loads.wet_weight
+        node_drag[body.node] += loads.drag[0]
+        node_added[body.node] += loads.added
+        buoyancy[body.node] += loads.buoyancy
+        if body.shape is not None:
+            shapes[body.node] = loads.shape
+    if end_body is not None:
+        shapes[n], node_added[n], buoyancy[n] = end_body.shape, end_body.added, end_body.buoyancy
+    surface_fields = dict(node_shape=shapes, node_added=node_added, node_buoyancy=buoyancy)
+    return node_mass, node_weight, node_drag, surface_fields
 
 
 def build(case: schema.Case, base_dir=None) -> System3D:
@@ -206,8 +226,12 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     props = section(case)
     lengths, mass, rho, added = props.lengths, props.mass, props.rho, props.added_mass
     top_kind, top_fields, channels, heave = _top(cable, base_dir)
-    bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir)
-    node_mass, node_weight, node_drag = _point_bodies(cable, env, n)
+    width = shape_width(case)
+    bottom_kind, bottom_fields, body_channels = _bottom(cable, env, base_dir, width)
+    end_body = bottom_fields.pop("end_body", None)
+    node_mass, node_weight, node_drag, surface_fields = _point_bodies(
+        cable, env, n, width, end_body
+    )
     current_z, current_u, current_v = current_arrays(env)
     ordered = [*channels[:4], *body_channels[:3], channels[4], *body_channels[3:]]
     fields = dict(
@@ -228,6 +252,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         node_mass=node_mass,
         node_wet_weight=node_weight,
         node_drag=node_drag,
+        **surface_fields,
         top_kind=top_kind,
         bottom_kind=bottom_kind,
         tie_rest=np.zeros(3),

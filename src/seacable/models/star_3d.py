@@ -15,7 +15,7 @@ from seacable.kernels import chain3d as c3
 from seacable.kernels import star3d
 from seacable.models import common
 from seacable.models import rigid_segments_3d as seg
-from seacable.models.common import current_arrays
+from seacable.models.common import body_loads, current_arrays, shape_width
 
 
 @dataclass(frozen=True)
@@ -58,18 +58,18 @@ def build(case: schema.Case, base_dir=None) -> StarSystem:
         chains.append(system.params._replace(pin=position.copy()))
         states.append(system.y0)
     env = case.environment
-    rho = 0.0 if env.in_air else env.water_density
-    added = np.zeros(3) if env.in_air else np.array(schema.per_axis(body.added_mass))
+    loads = body_loads(body, env, shape_width(case))
     offsets = np.concatenate([[0], np.cumsum([len(s) for s in states])]).astype(np.int64)
     current_z, current_u, current_v = current_arrays(env)
     params = star3d.StarParams(
         chains=tuple(chains),
         offsets=offsets,
-        body_mass=np.ascontiguousarray(body.mass + added, dtype=float),
-        body_wet_weight=float((body.mass - rho * body.volume) * env.gravity),
-        body_drag=np.ascontiguousarray(
-            0.5 * rho * body.drag_coefficient * np.array(schema.per_axis(body.drag_area))
-        ),
+        body_mass=np.ascontiguousarray(loads.mass, dtype=float),
+        body_wet_weight=float(loads.wet_weight),
+        body_drag=np.ascontiguousarray(loads.drag, dtype=float),
+        body_shape=np.ascontiguousarray(loads.shape, dtype=float),
+        body_added=np.ascontiguousarray(loads.added, dtype=float),
+        body_buoyancy=float(loads.buoyancy),
         current_z=current_z,
         current_u=current_u,
         current_v=current_v,

@@ -1,0 +1,295 @@
+"""The free surface z = 0 for bodies: the submerged-fraction kernel against closed forms, and a
+buoy floating at its waterline in the lumped-mass, 3D rigid-segment and planar models (its
+equilibrium draft and heave period against closed forms, energy, implicit against rk4)."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+import seacable
+from seacable.case import schema
+from seacable.case.schema import VolumeTable
+from seacable.errors import CaseError
+from seacable.kernels import surface
+from seacable.models.common import shape_row
+
+RHO, G = 1025.0, 9.81
+SPHERE_R, SPHERE_MASS, SPHERE_ADDED = 1.0, 800.0, 400.0  # m, kg, kg (wholly submerged)
+CYL_R, CYL_H, CYL_MASS = 0.6, 2.0, 600.0  # m, m, kg
+
+
+def _cap_volume(d, r):
+    """Submerged volume of a sphere of radius r at draft d [m^3]."""
+    return math.pi * d * d * (3 * r - d) / 3
+
+
+def _sphere_draft():
+    return brentq(lambda d: RHO * _cap_volume(d, SPHERE_R) - SPHERE_MASS, 0.0, 2 * SPHERE_R)
+
+
+def _line_mass():
+    """Mass the slack line puts on the body's node (lumped: half its last segment) [kg]."""
+    return RHO * math.pi * 0.002**2 / 4 * 15.0 / 2
+
+
+def _line(model, z0, azimuth=0.0):
+    """A slack, neutrally buoyant, drag-free line of two 15 m links from an anchor 20 m down to
+    a body at z0, folded towards ``azimuth`` [deg]: it exerts (almost) nothing on the body."""
+    top_z, half = -20.0, 15.0
+    h = (z0 - top_z) / 2
+    x1 = math.sqrt(half**2 - h**2)
+    angles = [math.degrees(math.atan2(x1, -h)), math.degrees(math.atan2(-x1, -h))]
+    cable = {
+        "name": f"line {azimuth:g}",
+        "model": model,
+        "links": 2,
+        "length": 2 * half,
+        "diameter": 0.002,
+        "density": RHO,  # neutrally buoyant
+        "drag_coefficient_normal": 0.0,
+        "top": {
+            "type": "fixed",
+            "position": [0.0, top_z] if model == "rigid_links" else [0.0, 0.0, top_z],
+        },  # fmt: skip
+        "initial": {"shape": "angles", "angles_deg": angles},
+    }
+    if model != "rigid_links":
+        cable["added_mass_coefficient"] = 0.0
+        cable["initial"]["azimuth_deg"] = azimuth
+    if model == "lumped_mass":
+        cable["axial_stiffness"] = 1e5
+    return cable
+
+
+def _simulate(cables, duration, integrator, dt, bodies=()):
+    simulation = {"duration": duration, "output_interval": 0.005, "integrator": integrator,
+                  "time_step": dt}  # fmt: skip
+    case = {"name": "buoy", "cables": cables, "bodies": list(bodies), "simulation": simulation}
+    return seacable.simulate(seacable.load_case(case)).dataset
+
+
+def _buoy(model, shape, mass, z0, added=0.0, duration=5.0, integrator="rk4", dt=1e-3):
+    """A body released at rest at z0 on a slack line (_line)."""
+    cable = _line(model, z0)
+    cable["bottom"] = {"type": "free", "body": {"mass": mass, "shape": shape, "added_mass": added}}
+    return _simulate([cable], duration, integrator, dt)
+
+
+def _heave(ds):
+    return ds["time"].values, ds["node_z"].values[:, -1]
+
+
+def _period_and_mean(t, z):
+    """Mean of the extremes and the mean period between upward crossings of it."""
+    mean = 0.5 * (z.min() + z.max())
+    s = z - mean
+    up = np.nonzero((s[:-1] < 0) & (s[1:] >= 0))[0]
+    crossings = t[up] - s[up] * (t[up + 1] - t[up]) / (s[up + 1] - s[up])
+    assert len(crossings) >= 3
+    return float(np.mean(np.diff(crossings))), mean
+
+
+# ---- the kernel -------------------------------------------------------------------------------
+def test_sphere_fraction_slope_and_potential_match_closed_forms():
+    row = shape_row(schema.Sphere(kind="sphere", radius=2.0), 4)
+    volume = 4 / 3 * math.pi * 8
+    for z in np.linspace(-2.5, 2.5, 23):
+        f, slope, integral = surface.submersion(z, row)
+        d = min(max(2.0 - z, 0.0), 4.0)
+        assert f == pytest.approx(_cap_volume(d, 2.0) / volume, abs=1e-14)
+        waterplane = math.pi * (4.0 * d - d * d)
+        assert -volume * slope == pytest.approx(waterplane, abs=1e-12)
+        # I(z) = z while wholly submerged, then z_full + the integral of f
+        expected = z if z <= -2.0 else -2.0 + quad(lambda s: surface.submersion(s, row)[0],
+                                                    -2.0, z)[0]  # fmt: skip
+        assert integral == pytest.approx(expected, abs=1e-10)
+    eps = 1e-7  # C1 at both poles: the slope vanishes there
+    for pole in (-2.0, 2.0):
+        assert abs(surface.submersion(pole - eps, row)[1]) < 1e-6
+        assert abs(surface.submersion(pole + eps, row)[1]) < 1e-6
+
+
+def test_cylinder_and_table_fractions():
+    cylinder = shape_row(
+        schema.VerticalCylinder(kind="vertical_cylinder", radius=1.0, height=3.0), 4
+    )
+    assert surface.submersion(0.0, cylinder)[:2] == pytest.approx((0.5, -1 / 3))
+    assert surface.submersion(-1.5, cylinder) == (1.0, 0.0, -1.5)
+    assert surface.submersion(1.6, cylinder)[:2] == (0.0, 0.0)
+    # once clear of the water, I is the height of the volume's centroid above the reference
+    # point: 0 for a centred cylinder (-H/2 + the integral of f = -H/2 + H/2)
+    assert surface.submersion(1.6, cylinder)[2] == pytest.approx(0.0, abs=1e-15)
+    # the same cylinder as a table: identical fraction, slope and potential
+    table = VolumeTable(kind="table", submerged_volume=[[-1.5, 3 * math.pi], [1.5, 0.0]])
+    row = shape_row(table, 8)
+    for z in (-2.0, -1.0, 0.3, 1.4, 2.0):
+        np.testing.assert_allclose(surface.submersion(z, row), surface.submersion(z, cylinder))
+
+
+@pytest.mark.parametrize(
+    "table, match",
+    [
+        ([[0.0, 1.0], [-1.0, 0.0]], "strictly ascending"),
+        ([[-1.0, 1.0], [0.0, 2.0], [1.0, 0.0]], "must not increase"),
+        ([[-1.0, 1.0], [1.0, 0.5]], "must not increase"),
+    ],
+)
+def test_bad_table_is_refused(table, match):
+    case = {
+        "cables": [{"model": "lumped_mass", "links": 2, "length": 10.0, "diameter": 0.01,
+                    "mass_per_length": 1.0, "axial_stiffness": 1e6, "top": {"type": "fixed"},
+                    "bottom": {"type": "free", "body": {"mass": 1.0, "shape": {
+                        "kind": "table", "submerged_volume": table}}}}],
+        "simulation": {"duration": 1.0, "output_interval": 0.1},
+    }  # fmt: skip
+    with pytest.raises(CaseError, match=match):
+        seacable.load_case(case)
+
+
+def test_volume_and_shape_together_are_refused():
+    body = {"mass": 1.0, "volume": 1.0, "shape": {"kind": "sphere", "radius": 0.5}}
+    case = {
+        "cables": [{"links": 2, "length": 10.0, "diameter": 0.01, "mass_per_length": 1.0,
+                    "top": {"type": "fixed"}, "bottom": {"type": "free", "body": body}}],
+        "simulation": {"duration": 1.0, "output_interval": 0.1},
+    }  # fmt: skip
+    with pytest.raises(CaseError, match=r"bottom\.body.*volume.*remove 'volume'"):
+        seacable.load_case(case)
+
+
+# ---- a floating buoy --------------------------------------------------------------------------
+@pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
+def test_sphere_floats_at_its_draft_with_the_closed_form_heave_period(model):
+    draft = _sphere_draft()
+    z_eq = SPHERE_R - draft
+    shape = {"kind": "sphere", "radius": SPHERE_R}
+    ds = _buoy(model, shape, SPHERE_MASS, z_eq - 0.01, added=SPHERE_ADDED)
+    assert ds.attrs["status"] == "complete"
+    period, mean = _period_and_mean(*_heave(ds))
+    # the mean of the extremes differs from the equilibrium by O(amplitude^2)
+    assert abs(mean - z_eq) < 5e-5
+    fraction = _cap_volume(draft, SPHERE_R) / (4 / 3 * math.pi * SPHERE_R**3)
+    waterplane = math.pi * (2 * SPHERE_R * draft - draft**2)
+    mass = SPHERE_MASS + SPHERE_ADDED * fraction + (_line_mass() if model == "lumped_mass" else 0)
+    expected = 2 * math.pi * math.sqrt(mass / (RHO * G * waterplane))
+    assert period == pytest.approx(expected, rel=2e-3)
+
+
+def test_vertical_cylinder_heave_is_linear_in_the_planar_model():
+    area = math.pi * CYL_R**2
+    draft = CYL_MASS / (RHO * area)
+    z_eq = CYL_H / 2 - draft
+    shape = {"kind": "vertical_cylinder", "radius": CYL_R, "height": CYL_H}
+    ds = _buoy("rigid_links", shape, CYL_MASS, z_eq - 0.2)  # 0.2 m: linear all the way
+    period, mean = _period_and_mean(*_heave(ds))
+    assert mean == pytest.approx(z_eq, abs=1e-4)
+    assert period == pytest.approx(2 * math.pi * math.sqrt(CYL_MASS / (RHO * G * area)), rel=2e-3)
+
+
+@pytest.mark.parametrize("model", ["rigid_segments_3d", "rigid_links"])
+def test_undamped_buoy_leaping_out_of_the_water_keeps_its_energy(model):
+    # released wholly submerged, the sphere leaps clear of the water (to z = 6.55 m) and falls
+    # back: buoyancy's work is the potential -rho g V I(z) (no drag, no added mass). The line's
+    # links (inextensible here) snap taut as it flies; a lumped-mass line's stiff snap would
+    # measure rk4's error on it rather than the free surface's energy
+    shape = {"kind": "sphere", "radius": SPHERE_R}
+    ds = _buoy(model, shape, SPHERE_MASS, -1.5, duration=6.0)
+    z = ds["node_z"].values[:, -1]
+    assert z.min() < -1.4 and z.max() > 6.0  # wholly under, then clear of the water
+    energy = ds["total_energy"].values
+    swing = np.ptp(ds["kinetic_energy"].values)
+    assert np.ptp(energy) < 1e-7 * swing
+
+
+@pytest.mark.parametrize(
+    "model", ["lumped_mass", pytest.param("rigid_segments_3d", marks=pytest.mark.slow)]
+)
+def test_implicit_scheme_floats_the_buoy_as_rk4(model):
+    # 0.3 m off equilibrium: the waterplane area, so the heave stiffness in the Newton matrix,
+    # changes by a quarter over the swing
+    shape = {"kind": "sphere", "radius": SPHERE_R}
+    z0 = SPHERE_R - _sphere_draft() - 0.3
+    explicit = _buoy(model, shape, SPHERE_MASS, z0, added=SPHERE_ADDED, duration=3.0)
+    implicit = _buoy(model, shape, SPHERE_MASS, z0, added=SPHERE_ADDED, duration=3.0,
+                     integrator="newmark", dt=2e-3)  # fmt: skip
+    assert implicit.attrs["status"] == "complete"
+    np.testing.assert_allclose(_heave(implicit)[1], _heave(explicit)[1], atol=2e-3)
+
+
+@pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
+def test_shared_body_of_a_star_floats_at_its_draft(model):
+    draft = _sphere_draft()
+    z_eq = SPHERE_R - draft
+    body = {"name": "buoy", "position": [0.0, 0.0, z_eq - 0.01], "mass": SPHERE_MASS,
+            "shape": {"kind": "sphere", "radius": SPHERE_R}}  # fmt: skip
+    cables = [_line(model, z_eq - 0.01, azimuth) for azimuth in (0.0, 180.0)]
+    for cable in cables:
+        cable["bottom"] = {"type": "attached", "body": "buoy"}
+    ds = _simulate(cables, 4.0, "rk4", 1e-3, bodies=[body])
+    period, mean = _period_and_mean(ds["time"].values, ds["body_z"].values)
+    assert abs(mean - z_eq) < 5e-5
+    waterplane = math.pi * (2 * SPHERE_R * draft - draft**2)
+    mass = SPHERE_MASS + (2 * _line_mass() if model == "lumped_mass" else 0.0)
+    assert period == pytest.approx(2 * math.pi * math.sqrt(mass / (RHO * G * waterplane)), rel=2e-3)
+
+
+# ---- cable segments ---------------------------------------------------------------------------
+def _hanging_line(model):
+    """20 m of line (2000 kg/m^3, 5 cm) hanging straight from 5.5 m above the water."""
+    cable = {
+        "model": model, "links": 20, "length": 20.0, "diameter": 0.05, "density": 2000.0,
+        "top": {"type": "fixed", "position": [0.0, 0.0, 5.5]}, "bottom": {"type": "free"},
+        "axial_stiffness": 1e8,
+    }  # fmt: skip
+    simulation = {"duration": 1.0, "output_interval": 0.5, "time_step": 2e-4}
+    return seacable.load_case({"cables": [cable], "simulation": simulation})
+
+
+def _weight_above_and_below():
+    """Its top's load: the weight in air of 5.5 m and the apparent weight of 14.5 m [N]."""
+    return G * math.pi * 0.05**2 / 4 * (2000.0 * 20.0 - RHO * 14.5)
+
+
+def test_lumped_line_hanging_from_above_the_surface_weighs_its_part_in_air_fully():
+    # the loads on the unstretched line's nodes (its internal forces cancel in the sum): the
+    # segment crossing the surface carries half its buoyancy, at its submerged half's centroid
+    from seacable.kernels import lumped as lk
+    from seacable.models import lumped_mass
+
+    system = lumped_mass.build(_hanging_line("lumped_mass"))
+    work = lk.make_workspace(system.n_links)
+    lk.rhs(0.0, system.y0, system.params, work, np.zeros_like(system.y0))
+    loads = work[lk._F + 2]
+    assert loads.sum() == pytest.approx(-_weight_above_and_below(), rel=1e-12)
+    heights = system.y0[2 : 3 * (system.n_links + 1) : 3]
+    assert heights[5] == pytest.approx(0.5) and heights[6] == pytest.approx(-0.5)
+    # nodes 5 and 6 each carry a metre of line (halves of two segments); segment 5 between
+    # them is half submerged, its buoyancy B / 2 at z = -0.25 m: a quarter of it on node 5
+    area = math.pi * 0.05**2 / 4
+    weight, buoyancy = 2000.0 * area * G, RHO * area * G  # of a metre of line [N]
+    assert loads[5] == pytest.approx(-weight + 0.25 * 0.5 * buoyancy, rel=1e-12)
+    assert loads[6] == pytest.approx(-weight + (0.75 * 0.5 + 0.5) * buoyancy, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
+def test_float_at_a_joint_floats_at_its_draft(model):
+    # a sphere of 0.5 m at the joint between a slack line (_line) and a third link lying
+    # horizontal; heavy enough that the joint, its centre, stays under water
+    radius, mass = 0.5, 400.0
+    draft = brentq(lambda d: RHO * _cap_volume(d, radius) - mass, 0.0, 2 * radius)
+    z_eq = radius - draft
+    cable = _line(model, z_eq - 0.01)
+    cable["links"], cable["length"] = 3, 45.0
+    cable["initial"]["angles_deg"].append(90.0)
+    cable["bottom"] = {"type": "free"}
+    cable["point_bodies"] = [{"node": 2, "mass": mass, "drag_coefficient": 0.0,
+                              "shape": {"kind": "sphere", "radius": radius}}]  # fmt: skip
+    ds = _simulate([cable], 4.0, "rk4", 1e-3)
+    period, mean = _period_and_mean(ds["time"].values, ds["node_z"].values[:, 2])
+    assert abs(mean - z_eq) < 5e-5
+    waterplane = math.pi * (2 * radius * draft - draft**2)
+    expected = 2 * math.pi * math.sqrt(mass / (RHO * G * waterplane))
+    assert period == pytest.approx(expected, rel=2e-3)
