@@ -314,7 +314,7 @@ def _chain(
         "bottom": {"type": "free"},
         "initial": {"shape": "angles", "angles_deg": list(angles)},
     }  # fmt: skip
-    if model == "rigid_segments_3d":
+    if model == "rigid_segments_3d":  # (the planar model has no link added mass)
         cable["added_mass_coefficient"] = added
         cable["initial"]["azimuth_deg"] = azimuth
     simulation = {"duration": duration, "output_interval": 0.01, "integrator": "rk4",
@@ -440,3 +440,23 @@ def test_planar_and_3d_chains_agree_through_the_surface():
     assert np.max(np.abs(spatial["node_y"].values)) == 0.0
     np.testing.assert_allclose(spatial["tension"].values, planar["tension"].values, rtol=1e-7,
                                atol=1e-6)  # fmt: skip
+
+
+@pytest.mark.parametrize("model", ["rigid_links", "rigid_segments_3d"])
+def test_implicit_scheme_swings_the_chain_through_the_surface_as_rk4(model):
+    # the Newton matrix leaves out the change of submerged length (the residual is exact): it
+    # converges, in about a quarter more iterations than wholly under water (measured: 1235
+    # against 1004 evaluations planar, 1278 against 1003 in 3D)
+    def run(integrator, dt):
+        case = _chain(model, 2.0, [80.0] * 4, drag=1.2, added=1.0, duration=2.0, dt=dt)
+        update = {"integrator": integrator}
+        case = case.model_copy(update={"simulation": case.simulation.model_copy(update=update)})
+        return seacable.simulate(case).dataset
+
+    reference = run("rk4", 2.5e-4)
+    implicit = run("newmark", 2e-3)
+    assert implicit.attrs["status"] == "complete"
+    z = reference["node_z"].values
+    assert z[0, -1] > 0.0 and z.min() < -1.5
+    for name in ("node_x", "node_z"):  # measured: 3.0e-5 (planar), 2.5e-5 m (3D)
+        np.testing.assert_allclose(implicit[name].values, reference[name].values, atol=1e-4)
