@@ -349,8 +349,9 @@ def test_normal_added_mass_slows_a_swinging_segment(ca):
 
 
 def test_no_added_mass_along_the_axis():
-    """A vertical segment moved up and down along its axis: the top force is m a + W only."""
-    motion = {"kind": "sine", "amplitude": 0.5, "period": 2.0}
+    """A vertical segment moved up and down along its axis (under water): the top force is
+    m a + W only."""
+    motion = {"kind": "sine", "amplitude": 0.5, "period": 2.0, "offset": -1.0}
     ds = seacable.simulate(_single_segment({"type": "imposed", "z": motion}, 0.0)).dataset
     t = ds["time"].values
     acc = -0.5 * (math.pi) ** 2 * np.sin(math.pi * t)

@@ -41,7 +41,7 @@ from seacable.kernels.planar_chain import (
     put_entry,
     top_rows,
 )
-from seacable.kernels.surface import POINT, point_potential, submersion
+from seacable.kernels.surface import POINT, point_potential, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
 
@@ -104,7 +104,14 @@ _BM = 73  # 3 rows: mass + submerged share of the added mass per axis [kg]
 _BW = 76  # apparent weight, positive down [N]
 _BD = 77  # 3 rows: 0.5 rho Cd A times the submerged fraction per axis [N s^2/m^2]
 _BK = 80  # hydrostatic heave stiffness rho g A_wp [N/m]
-N_WORK_ROWS = 81
+# segments as the free surface leaves them (_kinematics_and_loads): the submerged fraction of the
+# length, the added mass and rotational inertia with the added mass of that fraction, and the
+# buoyancy's moment arm times its force (centroid of the submerged part from the centre along e)
+_SF = 81  # submerged fraction [1]
+_SA = 82  # normal added mass [kg]
+_SJ = 83  # rotational inertia about the centre [kg m^2]
+_SQ = 84  # arm x buoyancy [N m]
+N_WORK_ROWS = 85
 
 
 class Chain3DParams(NamedTuple):
@@ -116,6 +123,7 @@ class Chain3DParams(NamedTuple):
     added_mass: np.ndarray  # (n,) normal added mass [kg]
     inertia: np.ndarray  # (n,) rotational inertia about the centre, added included [kg m^2]
     wet_weight: np.ndarray  # (n,) apparent weight, positive down [N]
+    buoyancy: np.ndarray  # (n,) rho g A l of the segment wholly submerged [N]
     drag_normal: np.ndarray  # (n,) 0.5 rho Cd d l [N s^2/m^2]
     drag_tangential: np.ndarray  # (n,) 0.5 rho f Cd d l (Richtmyer) [N s^2/m^2]
     joint_stiffness: np.ndarray  # (n,) [N m/rad]; joint i between segment i-1 (or top) and i
@@ -348,8 +356,43 @@ def _kinematics_and_loads(t, y, p, w):
         w[_F, i] = cn * nx + ct * ex
         w[_F + 1, i] = cn * ny + ct * ey
         w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
+        wet = _segment_surface(p, w, i)
+        if wet < 1.0:
+            # (a branch that rewrites the loads: wholly submerged segments compute bitwise as
+            # they always did) the drag and the buoyancy of the submerged part
+            cn *= wet
+            ct *= wet
+            w[_F, i] = cn * nx + ct * ex
+            w[_F + 1, i] = cn * ny + ct * ey
+            w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i] + (wet - 1.0) * p.buoyancy[i]
     _joint_torques(y, p, w)
+    for i in range(n):
+        if w[_SF, i] < 1.0:
+            # the buoyancy's moment about the centre: (arm e) x (0, 0, lift)
+            w[_TQ, i] += w[_SQ, i] * w[_E + 1, i]
+            w[_TQ + 1, i] -= w[_SQ, i] * w[_E, i]
     _hydrostatics(p, w)
+
+
+@njit(inline="always", **JIT)
+def _segment_surface(p, w, i):
+    """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
+    the added mass of the submerged fraction, spread as the whole segment's (so the rotational
+    added inertia scales alike), and the buoyancy's moment arm to the submerged part's centroid.
+    Returns the fraction."""
+    wet, share_top, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
+    w[_SF, i] = wet
+    if wet < 1.0:
+        ma = p.added_mass[i]
+        lost = (1.0 - wet) * ma
+        w[_SA, i] = ma - lost
+        w[_SJ, i] = p.inertia[i] - lost * p.length[i] * p.length[i] / 12.0
+        w[_SQ, i] = (0.5 - share_top) * p.length[i] * wet * p.buoyancy[i]
+    else:
+        w[_SA, i] = p.added_mass[i]
+        w[_SJ, i] = p.inertia[i]
+        w[_SQ, i] = 0.0
+    return wet
 
 
 @njit(inline="always", **JIT)
@@ -467,7 +510,7 @@ def _backward_sweep(t, y, p, w):
     for i in range(n - 1, -1, -1):
         li = p.length[i]
         mi = p.mass[i]
-        ma = p.added_mass[i]
+        ma = w[_SA, i]
         mt = mi + ma
         ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
         u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
@@ -475,7 +518,7 @@ def _backward_sweep(t, y, p, w):
         a1x, a1y, a1z = _sym_mul(m, t1x, t1y, t1z)
         a2x, a2y, a2z = _sym_mul(m, t2x, t2y, t2z)
         mex, mey, mez = _sym_mul(m, ex, ey, ez)
-        base = p.inertia[i] + 0.25 * mt * li * li
+        base = w[_SJ, i] + 0.25 * mt * li * li
         d11 = base + li * li * (t1x * a1x + t1y * a1y + t1z * a1z)
         d12 = li * li * (t1x * a2x + t1y * a2y + t1z * a2z)
         d22 = base + li * li * (t2x * a2x + t2y * a2y + t2z * a2z)
@@ -795,9 +838,12 @@ def _energies(y, p, w):
         va = vx * ex + vy * ey + vz * ez
         v2 = vx * vx + vy * vy + vz * vz
         u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
-        kinetic += 0.5 * p.mass[i] * v2 + 0.5 * p.added_mass[i] * (v2 - va * va)
-        kinetic += 0.5 * p.inertia[i] * u2
+        kinetic += 0.5 * p.mass[i] * v2 + 0.5 * w[_SA, i] * (v2 - va * va)
+        kinetic += 0.5 * w[_SJ, i] * u2
         gravity += p.wet_weight[i] * (w[_P + 2, i] + 0.5 * li * ez)
+        if w[_SF, i] < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
+            _, _, mean_depth = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
+            gravity += p.buoyancy[i] * (w[_P + 2, i] + 0.5 * li * ez - mean_depth)
         if i == 0:
             ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
         else:
@@ -1192,7 +1238,7 @@ def _segment_rows(t, y, p, w, i, lam_top, lam_bottom, cm, cx, cv, diag, upper, l
     e = w[_E : _E + 3, i].copy()
     u = y[u0 + 3 * i : u0 + 3 * i + 3]
     u2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2]
-    J = p.inertia[i]
+    J = w[_SJ, i]
     # kinematics
     _put_identity(diag, upper, lower, b, 0, b, 3, 1.0)
     _put_identity(diag, upper, lower, b, 0, i, 3, -1.0)
@@ -1233,14 +1279,15 @@ def _segment_rows(t, y, p, w, i, lam_top, lam_bottom, cm, cx, cv, diag, upper, l
                     v -= m3[3 * r + k] * jv[3 * k + c]
                 put_entry(diag, upper, lower, NEWTON_BLOCK, b, 3 + r, i, 3 + c, v)
     # translation
-    ma = p.added_mass[i]
+    ma = w[_SA, i]
     cu, cv_ = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, i] + 0.5 * li * e[2])
     vrel = np.empty(3)
     for k in range(3):
         vrel[k] = 0.5 * (w[_V + k, i] + w[_V + k, b])
     vrel[0] -= cu
     vrel[1] -= cv_
-    _drag_jacobians(p.drag_normal[i], p.drag_tangential[i], vrel, e, jv, je)
+    wet = w[_SF, i]  # the drag of the submerged part
+    _drag_jacobians(wet * p.drag_normal[i], wet * p.drag_tangential[i], vrel, e, jv, je)
     ratio = cv / cm
     for r in range(3):
         for c in range(3):
@@ -1337,7 +1384,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
     for i in range(n):
         li = p.length[i]
         e = w[_E : _E + 3, i]
-        ma = p.added_mass[i]
+        ma = w[_SA, i]
         nm = p.node_mass[i]
         g = np.empty(3)
         for k in range(3):
@@ -1354,7 +1401,7 @@ def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res
         e_body = e[0] * body[0] + e[1] * body[1] + e[2] * body[2]
         for k in range(3):
             res[bs * i + 6 + k] = p.mass[i] * mid[k] + ma * (mid[k] - e_mid * e[k]) + body[k]
-            res[bs * (i + 1) + 3 + k] = p.inertia[i] * g[k] - 0.5 * li * (body[k] - e_body * e[k])
+            res[bs * (i + 1) + 3 + k] = w[_SJ, i] * g[k] - 0.5 * li * (body[k] - e_body * e[k])
         err = nxt
     for k in range(3):
         held = closed and p.constrained[k] != 0.0

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from seacable.kernels.surface import point_potential, submersion
+from seacable.kernels.surface import point_potential, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
 
@@ -87,6 +87,7 @@ class ChainParams(NamedTuple):
     mass: np.ndarray  # (n,) link mass [kg]
     inertia: np.ndarray  # (n,) link moment of inertia about its centre [kg m^2]
     wet_weight: np.ndarray  # (n,) apparent weight, positive down [N]
+    buoyancy: np.ndarray  # (n,) rho g A l of the link wholly submerged [N]
     drag_normal: np.ndarray  # (n,) 0.5 rho Cd_n d l  [N s^2/m^2]
     drag_tangential: np.ndarray  # (n,) 0.5 rho Cd_t pi d l  [N s^2/m^2]
     joint_stiffness: np.ndarray  # (n,) joint i between link i-1 (top: reference) and i [N m/rad]
@@ -191,9 +192,19 @@ def _kinematics_and_loads(t, y, p, w):
         ft = -p.drag_tangential[i] * abs(vt) * vt
         w[_FX, i] = fn * c + ft * s
         w[_FZ, i] = fn * s - ft * c - p.wet_weight[i]
-    # joint springs and dampers: joint i acts between link i-1 (or the top reference) and link i
-    for i in range(n):
         w[_Q, i] = 0.0
+        wet, share_top, _ = segment_submersion(w[_PZ, i], w[_PZ, i + 1])
+        if wet < 1.0:
+            # (a branch that rewrites the loads: wholly submerged links compute bitwise as they
+            # always did) the drag of the submerged part and its buoyancy, at its centroid a
+            # distance d = (1/2 - share_top) l along e from the centre: a moment d n . F
+            fn *= wet
+            ft *= wet
+            lift = wet * p.buoyancy[i]
+            w[_FX, i] = fn * c + ft * s
+            w[_FZ, i] = fn * s - ft * c - p.wet_weight[i] + (lift - p.buoyancy[i])
+            w[_Q, i] = (0.5 - share_top) * li * s * lift
+    # joint springs and dampers: joint i acts between link i-1 (or the top reference) and link i
     for i in range(n):
         if i == 0:
             rel = y[0] - p.top_reference_angle
@@ -439,6 +450,9 @@ def _energies(y, p, w):
         om = y[n + 1 + i]
         kinetic += 0.5 * p.mass[i] * (vcx * vcx + vcz * vcz) + 0.5 * p.inertia[i] * om * om
         gravity += p.wet_weight[i] * 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
+        wet, _, mean_depth = segment_submersion(w[_PZ, i], w[_PZ, i + 1])
+        if wet < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
+            gravity += p.buoyancy[i] * (0.5 * (w[_PZ, i] + w[_PZ, i + 1]) - mean_depth)
         rel = y[i] - (p.top_reference_angle if i == 0 else y[i - 1])
         elastic += 0.5 * p.joint_stiffness[i] * rel * rel
     if p.bottom_kind == BOTTOM_FREE:
@@ -634,7 +648,9 @@ def _link_rows(p_arrays, n, y, w, i, lam, cm, cx, cv, diag, upper, lower):
     vz = 0.5 * (w[_VZ, i] + w[_VZ, b])
     vn = vx * nx + vz * nz
     vt = vx * ex + vz * ez
-    jxx, jxz, jzz, ftx, ftz = _drag_jacobian(drag_n[i], drag_t[i], vn, vt, nx, nz, ex, ez)
+    wet, _, _ = segment_submersion(w[_PZ, i], w[_PZ, b])  # the drag of the submerged part
+    jxx, jxz, jzz, ftx, ftz = _drag_jacobian(wet * drag_n[i], wet * drag_t[i], vn, vt, nx, nz,
+                                             ex, ez)  # fmt: skip
     half_m = 0.5 * mass[i]
     r = 0.5 * cv / cm
     for blk in (i, b):

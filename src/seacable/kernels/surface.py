@@ -29,7 +29,8 @@ height of the volume's centroid above the reference point: 0 for the centred sph
 cylinder).
 
 Cable segments have no shape: :func:`segment_submersion` gives the submerged fraction of a
-straight segment's length from its ends' heights.
+straight segment's length from its ends' heights, and where its buoyancy acts (the lumped-mass,
+planar rigid-link and 3D rigid-segment models all use it).
 """
 
 import numpy as np
@@ -103,7 +104,8 @@ def segment_submersion(za, zb):
     """A straight cable segment between ends at elevations za and zb [m]: the submerged
     fraction s of its length, the share of its buoyancy rho g A l s carried by end a (the lever
     rule about the submerged part's centroid: the exact hydrostatic load on a rigid segment,
-    1/2 when wholly submerged) and the mean of min(z, 0) along it [m] (its buoyancy potential is
+    1/2 when wholly submerged; the centroid lies (1/2 - share) l from the centre towards end b)
+    and the mean of min(z, 0) along it [m] (its buoyancy potential is
     -rho g A l times it; the centre's elevation when wholly submerged). s is C0 in za and zb."""
     low, high = min(za, zb), max(za, zb)
     if high <= 0.0:

@@ -186,6 +186,7 @@ def build(case: schema.Case, base_dir=None) -> PlanarSystem:
             mass=mass,
             inertia=mass * lengths**2 / 12.0,
             wet_weight=props.wet_weight,
+            buoyancy=props.buoyancy,
             drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
             drag_tangential=common.tangential_drag(cable, rho, lengths),
             joint_stiffness=common.joint_stiffness(cable, lengths),

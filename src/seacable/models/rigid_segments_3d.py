@@ -241,6 +241,7 @@ def build(case: schema.Case, base_dir=None) -> System3D:
         added_mass=added,
         inertia=(mass + added) * lengths**2 / 12.0,
         wet_weight=props.wet_weight,
+        buoyancy=props.buoyancy,
         drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
         drag_tangential=tangential_drag(cable, rho, lengths),
         joint_stiffness=joint_stiffness(cable, lengths),
