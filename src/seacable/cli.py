@@ -27,6 +27,8 @@ class _StderrHandler(logging.StreamHandler):
     """A stream handler writing to whatever ``sys.stderr`` is when a record comes (a program
     or a test may swap it after the command line has configured logging)."""
 
+    seacable_cli = True  # marks the handlers the command line installs (replaced on each call)
+
     @property
     def stream(self):
         return sys.stderr
@@ -45,7 +47,6 @@ def _configure_logging(verbose: bool) -> None:
     for handler in [h for h in package.handlers if getattr(h, "seacable_cli", False)]:
         package.removeHandler(handler)
     handler = _StderrHandler()
-    handler.seacable_cli = True
     handler.setFormatter(logging.Formatter("%(levelname)s: %(message)s"))
     package.addHandler(handler)
     package.setLevel(logging.DEBUG if verbose else logging.INFO)

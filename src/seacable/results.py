@@ -85,7 +85,7 @@ class _Sink:
         self.coords = coords
         self.variables = variables
         self.attrs = dict(attrs)
-        self.chunks = {name: [] for name in ("time", *variables)}
+        self.chunks: dict[str, list[np.ndarray]] = {name: [] for name in ("time", *variables)}
         self.rows = 0
         self._file = None
         if self.path is not None:

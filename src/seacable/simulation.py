@@ -4,6 +4,7 @@ import logging
 import math
 import threading
 import time as _time
+from typing import Any
 
 import numpy as np
 
@@ -96,7 +97,7 @@ def fastest_frequency(system) -> tuple[float, str]:
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
-    settings = {
+    settings: dict[str, Any] = {
         "integrator": sim.integrator,
         "duration": sim.duration,
         "output_interval": sim.output_interval,

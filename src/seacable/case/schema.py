@@ -35,8 +35,9 @@ def xyz(point) -> tuple[float, float, float]:
 
 def per_axis(value) -> tuple[float, float, float]:
     if isinstance(value, tuple | list):
-        return tuple(float(v) for v in value)
-    return (float(value),) * 3
+        x, y, z = value
+        return (float(x), float(y), float(z))
+    return (float(value), float(value), float(value))
 
 
 class _Model(BaseModel):
@@ -493,6 +494,7 @@ class InitialShape(_Model):
 
     def angles(self, n: int) -> np.ndarray:
         if self.shape == "angles":
+            assert self.angles_deg is not None  # _consistent: shape 'angles' needs them
             if len(self.angles_deg) != n:
                 raise ValueError(f"angles_deg has {len(self.angles_deg)} values; the cable has {n}")
             return np.radians(np.asarray(self.angles_deg, dtype=float))
@@ -621,6 +623,7 @@ class Cable(_Model):
     def lengths(self) -> np.ndarray:
         if self.link_lengths is not None:
             return np.asarray(self.link_lengths, dtype=float)
+        assert self.length is not None  # _exactly_one_each: length or link_lengths
         return np.full(self.links, self.length / self.links)
 
     def masses(self) -> np.ndarray:
@@ -629,6 +632,7 @@ class Cable(_Model):
             return np.asarray(self.link_masses, dtype=float)
         if self.mass_per_length is not None:
             return self.mass_per_length * self.lengths()
+        assert self.density is not None  # _exactly_one_each: one of the three is given
         return self.density * math.pi * self.diameter**2 / 4 * self.lengths()
 
     def axial_damping_times(self) -> np.ndarray:

@@ -29,13 +29,14 @@ g = f - f(0).
 """
 
 import math
+from typing import Any
 
 from numba import njit
 
 # compiled once and cached; the numpy error model drops per-division zero checks and the safe
 # fastmath flags allow fused multiply-adds and reciprocals but keep NaN/inf semantics (the
 # divergence checks rely on them)
-JIT = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
+JIT: dict[str, Any] = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
 
 @njit(**JIT)

@@ -2,6 +2,7 @@
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -61,7 +62,7 @@ def channel(spec, base_dir, where: str) -> tfn.Piecewise:
 def typed(cls, fields: dict):
     """An instance of the NamedTuple ``cls`` with every field of the exact type its compiled
     kernels were built for (a float given as an int would trigger a new compilation)."""
-    out = {}
+    out: dict[str, Any] = {}
     for name, annotation in cls.__annotations__.items():
         value = fields[name]
         if annotation is int:
@@ -137,7 +138,7 @@ def case_variables(variables: dict, case: schema.Case) -> dict:
     servo = any(b.method == "stiffness_servo" for b in trajectory)
     pinned = any(isinstance(b, schema.PinnedBottom) for b in bottoms)
     held = pinned or guided or any(b.method == "exact" for b in trajectory)
-    absent = set()
+    absent: set[str] = set()
     if not (trajectory or guided):
         absent.update(TRAJECTORY_VARIABLES)
     if not servo:
@@ -171,12 +172,13 @@ def state_scale(
 
 
 # ---- bodies and the free surface -----------------------------------------------------------------
-def _case_bodies(case: schema.Case) -> list:
-    bodies = list(case.bodies)
+def _case_bodies(case: schema.Case) -> list[schema.SharedBody | schema.PointBody | schema.Body]:
+    bodies: list[schema.SharedBody | schema.PointBody | schema.Body] = list(case.bodies)
     for cable in case.cables:
         bodies += list(cable.point_bodies)
-        if isinstance(getattr(cable.bottom, "body", None), schema.Body):
-            bodies.append(cable.bottom.body)
+        body = getattr(cable.bottom, "body", None)
+        if isinstance(body, schema.Body):
+            bodies.append(body)
     return bodies
 
 

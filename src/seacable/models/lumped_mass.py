@@ -102,7 +102,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             current_z=current_z,
             current_u=current_u,
             current_v=current_v,
-            seabed_z=-depth if (seabed is not None) else -1e30,
+            seabed_z=-depth if (seabed is not None and depth is not None) else -1e30,
             seabed_stiffness=(seabed.stiffness if seabed else 0.0) * node_length,
             seabed_damping=(seabed.damping if seabed else 0.0) * node_length,
             seabed_friction=seabed.friction_coefficient if seabed else 0.0,
@@ -145,7 +145,7 @@ def _initial_state(case, params, heave):
     if params.bottom_kind != lk.BOTTOM_SERVO:
         return y0, params
     params = params._replace(servo_step=seg.servo_step(case))
-    stiffness, force = end_stiffness(params, y0, 0.0, case.cables[0].bottom.servo.sphere_radius)
+    stiffness, force = end_stiffness(params, y0, 0.0, seg.end_servo(case).sphere_radius)
     params = params._replace(servo_stiffness=np.ascontiguousarray(stiffness))
     return np.concatenate([y0, force]), params
 
@@ -465,6 +465,6 @@ refresh_interval = seg.refresh_interval
 def refresh(case: schema.Case, params, time: float, y):
     """Parameters for the next stretch of the run: the servo's stiffness K recomputed about the
     target at ``time``, from the line's current shape."""
-    radius = case.cables[0].bottom.servo.sphere_radius
+    radius = seg.end_servo(case).sphere_radius
     stiffness, _ = end_stiffness(params, y, time, radius)
     return params._replace(servo_stiffness=np.ascontiguousarray(stiffness))

@@ -19,7 +19,7 @@ from seacable.models.common import add_total_energy, body_loads, shape_width, xy
 
 
 @dataclass(frozen=True)
-class LumpedStarSystem(star_3d.StarSystem):
+class LumpedStarSystem(star_3d.StarSystem[ls.LumpedStarParams]):
     """The star's parameters (``LumpedStarParams``), initial state, segments per cable, number
     of cables and their names."""
 
@@ -166,7 +166,7 @@ def node_graph(system: LumpedStarSystem) -> list[np.ndarray]:
     k, n = system.cables, system.n_links
     body = k * n
     reach = 2 if any(np.any(c.bend_stiffness > 0.0) for c in system.params.chains) else 1
-    graph = [[] for _ in range(body + 1)]
+    graph: list[list[int]] = [[] for _ in range(body + 1)]
     for c in range(k):
         # cable c's nodes in the star's order, its end being the body
         order = [*range(c * n, c * n + n), body]

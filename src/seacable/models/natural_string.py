@@ -53,6 +53,10 @@ def _check(case: schema.Case) -> None:
 def build(case: schema.Case, base_dir=None) -> NaturalSystem:
     _check(case)
     cable = case.cables[0]
+    top, bottom = cable.top, cable.bottom
+    # narrowed as _check ensured: a fixed top, a free bottom carrying the end mass, EA given
+    assert isinstance(top, schema.FixedTop) and isinstance(bottom, schema.FreeBottom)
+    assert cable.axial_stiffness is not None
     n = cable.links
     length = float(cable.lengths().sum())
     mu = float(cable.masses().sum()) / length
@@ -61,7 +65,7 @@ def build(case: schema.Case, base_dir=None) -> NaturalSystem:
         n=n,
         length=length,
         mu=mu,
-        end_mass=float(cable.bottom.body.mass),
+        end_mass=float(bottom.body.mass),
         axial_stiffness=float(cable.axial_stiffness),
         axial_damping=float(cable.axial_damping_time or 0.0),
         slack_allowed=1,
@@ -79,7 +83,7 @@ def build(case: schema.Case, base_dir=None) -> NaturalSystem:
         y0[2 : 3 * (n + 1) : 3] = -np.cos(nodes)
     else:
         y0[1 : b * (n + 1) : 2] = nodes
-    x, _, z = schema.xyz(cable.top.position)
+    x, _, z = schema.xyz(top.position)
     return NaturalSystem(params=params, y0=y0, n_links=n, top=(x, z))
 
 
@@ -153,7 +157,9 @@ def state_scale(case: schema.Case, system: NaturalSystem) -> np.ndarray:
     the cable's weight, weight / EA, angles and tangent components 1."""
     cable = case.cables[0]
     b = nk.block(system.params)
-    strain = float(np.sum(cable.masses())) * case.environment.gravity / cable.axial_stiffness
+    strain = (
+        float(np.sum(cable.masses())) * case.environment.gravity / system.params.axial_stiffness
+    )
     per_node = np.ones(b)
     per_node[0] = strain
     positions = np.tile(per_node, system.n_links + 1)

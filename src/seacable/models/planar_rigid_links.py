@@ -59,6 +59,7 @@ def _top(cable: schema.Cable, base_dir):
         )
         position = None
     else:
+        assert isinstance(top, schema.FloatingStructureTop)  # Cable._planar_limits: no towing_ship
         kind = pc.TOP_HEAVE
         x, _, z = schema.xyz(top.position)
         channels = (tfn.constant(x), tfn.constant(z))
@@ -124,6 +125,7 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, end_xz, widt
             fx,
             common.channel(bottom.force, base_dir, "cables[0].bottom.force"),
         )
+    assert isinstance(bottom, schema.FreeBottom)  # Cable._planar_limits: no trajectory, attached
     body = bottom.body
     added = schema.per_axis(body.added_mass)
     area = schema.per_axis(body.drag_area)

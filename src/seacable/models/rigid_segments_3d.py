@@ -10,6 +10,7 @@ circular cylinder) with its rotational part Ca rho pi d^2/4 l^3/12, and apparent
 
 import math
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -84,7 +85,9 @@ def _top(cable: schema.Cable, base_dir):
     """Top kind, fields, channels (x, y, z, force, distance) and the heave state."""
     top = cable.top
     zero = tfn.constant(0.0)
-    fields = dict(top_x=0.0, top_y=0.0, top_mass=1.0, top_stiffness=0.0, top_damping=0.0)
+    fields: dict[str, Any] = dict(
+        top_x=0.0, top_y=0.0, top_mass=1.0, top_stiffness=0.0, top_damping=0.0
+    )
     fields.update(top_rest_z=0.0, top_net_weight=0.0, track_origin=np.zeros(3))
     fields.update(track_heading=0.0, track_turn_at=0.0, track_radius=0.0)
     heave = (0.0, 0.0)
@@ -138,7 +141,7 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, width: int):
         servo_rate_gain=0.0,
         servo_step=1.0,
     )
-    targets = (zero, zero, zero)
+    targets: tuple[tfn.Piecewise, ...] = (zero, zero, zero)
     if isinstance(bottom, schema.PinnedBottom):
         return c3.BOTTOM_PINNED, fields, (zero, zero, zero, *targets)
     if isinstance(bottom, schema.TrajectoryBottom):
@@ -160,6 +163,8 @@ def _bottom(cable: schema.Cable, env: schema.Environment, base_dir, width: int):
         )
         force = _channel(bottom.force, base_dir, "cables[0].bottom.force")
         return c3.BOTTOM_FREE, fields, (zero, zero, force, *targets)
+    # an attached end is built by the star models, which hand this one a pinned end
+    assert isinstance(bottom, schema.FreeBottom)
     body = bottom.body
     loads = body_loads(body, env, width)
     fields.update(
@@ -290,8 +295,15 @@ def build(case: schema.Case, base_dir=None) -> System3D:
     return System3D(params=params, y0=y0, n_links=n, diameter=cable.diameter)
 
 
+def end_servo(case: schema.Case) -> schema.Servo:
+    """The servo of the case's lower end (a trajectory end with method stiffness_servo)."""
+    bottom = case.cables[0].bottom
+    assert isinstance(bottom, schema.TrajectoryBottom)  # only servo ends ask for their servo
+    return bottom.servo
+
+
 def servo_step(case: schema.Case) -> float:
-    servo = case.cables[0].bottom.servo
+    servo = end_servo(case)
     if servo.step is not None:
         return servo.step
     sim = case.simulation
@@ -309,13 +321,13 @@ def refresh_interval(case: schema.Case) -> float | None:
 def refresh(case: schema.Case, params, time: float, y):
     """Parameters for the next stretch of the run: the servo's stiffness K recomputed about the
     target at ``time`` (the top's current velocity taken as steady)."""
-    radius = case.cables[0].bottom.servo.sphere_radius
+    radius = end_servo(case).sphere_radius
     stiffness, _ = statics.end_stiffness(params, y, time, radius)
     return params._replace(servo_stiffness=np.ascontiguousarray(stiffness))
 
 
 def _start_servo(case, params, y0):
-    servo = case.cables[0].bottom.servo
+    servo = end_servo(case)
     stiffness, force = statics.end_stiffness(params, y0, 0.0, servo.sphere_radius)
     y0 = y0.copy()
     y0[6 * params.n + 2 :] = force
@@ -379,12 +391,6 @@ def _fill_rest_positions(cable: schema.Cable, params, y0):
             )
         end = anchor
     return params._replace(tie_rest=np.asarray(rest, float), pin=np.asarray(end, float))
-
-
-def _top_reference(cable: schema.Cable) -> np.ndarray:
-    angle = math.radians(cable.top_reference_angle_deg)
-    azimuth = math.radians(cable.initial.azimuth_deg)
-    return directors_from_angles(np.array([angle]), azimuth)[0]
 
 
 def _top_reference(cable: schema.Cable) -> np.ndarray:
@@ -474,7 +480,14 @@ def positions(system: System3D) -> int:
 DAMPING_ADVICE = common.JOINT_DAMPING_ADVICE  # divergence messages
 
 
-def state_scale(case: schema.Case, system: System3D) -> np.ndarray:
+class _Segmented(Protocol):
+    """What ``state_scale`` reads of a system: its segments per cable (a star's too)."""
+
+    @property
+    def n_links(self) -> int: ...
+
+
+def state_scale(case: schema.Case, system: _Segmented) -> np.ndarray:
     """Typical magnitude of each state (``common.state_scale``): unit directors 1, the heave
     of a floating end the cable's length, the servo force the cable's weight."""
     cable = case.cables[0]

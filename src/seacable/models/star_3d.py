@@ -6,32 +6,39 @@ mass, buoyancy, added mass and drag per axis.
 """
 
 from dataclasses import dataclass
+from typing import Generic, TypeVar
 
 import numpy as np
 
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
-from seacable.kernels import star3d
+from seacable.kernels import lumped_star, star3d
 from seacable.models import common
 from seacable.models import rigid_segments_3d as seg
 from seacable.models.common import body_loads, current_arrays, shape_width
 
+# the kernel's parameter tuple: star3d.StarParams here, kernels.lumped_star's for lumped cables
+ParamsT = TypeVar("ParamsT", covariant=True)
+
 
 @dataclass(frozen=True)
-class StarSystem:
-    params: star3d.StarParams
+class StarSystem(Generic[ParamsT]):
+    params: ParamsT
     y0: np.ndarray
     n_links: int  # segments per cable (all equal)
     cables: int
     names: tuple[str, ...]
 
 
+AnyStar = StarSystem[star3d.StarParams | lumped_star.LumpedStarParams]  # sizes, coords: both
+
+
 def _body(case: schema.Case) -> schema.SharedBody:
     return case.bodies[0]
 
 
-def build(case: schema.Case, base_dir=None) -> StarSystem:
+def build(case: schema.Case, base_dir=None) -> StarSystem[star3d.StarParams]:
     """Assemble the star of ``case``: every cable attached to its one shared body."""
     body = _body(case)
     position = np.array(schema.xyz(body.position), dtype=float)
@@ -99,15 +106,15 @@ VARIABLES = {
 }
 
 
-def workspace(system: StarSystem):
+def workspace(system: StarSystem[star3d.StarParams]):
     return tuple(c3.make_workspace(system.n_links) for _ in range(system.cables))
 
 
-def sizes(system: StarSystem) -> dict:
+def sizes(system: AnyStar) -> dict:
     return {"segment": system.n_links, "node": system.n_links + 1, "cable": system.cables}
 
 
-def coords(system: StarSystem) -> dict:
+def coords(system: AnyStar) -> dict:
     lengths = system.params.chains[0].length
     return {
         "segment": ("segment", np.arange(system.n_links, dtype=float), "1", "segment index"),
@@ -122,7 +129,7 @@ def coords(system: StarSystem) -> dict:
     }
 
 
-def rows(times, states, system: StarSystem, w) -> tuple[dict, int]:
+def rows(times, states, system: StarSystem[star3d.StarParams], w) -> tuple[dict, int]:
     m = len(times)
     k = system.cables
     n = system.n_links
@@ -151,7 +158,7 @@ def rows(times, states, system: StarSystem, w) -> tuple[dict, int]:
 DAMPING_ADVICE = common.JOINT_DAMPING_ADVICE  # divergence messages
 
 
-def state_scale(case: schema.Case, system: StarSystem) -> np.ndarray:
+def state_scale(case: schema.Case, system: StarSystem[star3d.StarParams]) -> np.ndarray:
     """Typical magnitude of each state (``common.state_scale``): each cable's block as the
     single cable's, then the body's coordinates at the first cable's length."""
     single = [seg.state_scale(case.model_copy(update={"cables": [c]}), system) for c in case.cables]
@@ -159,7 +166,7 @@ def state_scale(case: schema.Case, system: StarSystem) -> np.ndarray:
     return np.concatenate([*single, common.state_scale(case.cables[0], case.environment, body)])
 
 
-def rates(system: StarSystem, y) -> np.ndarray:
+def rates(system: StarSystem[star3d.StarParams], y) -> np.ndarray:
     n = system.n_links
     parts = []
     for j in range(system.cables):
@@ -168,7 +175,7 @@ def rates(system: StarSystem, y) -> np.ndarray:
     return np.concatenate(parts)
 
 
-def fastest_frequency(system: StarSystem) -> tuple[float, str]:
+def fastest_frequency(system: StarSystem[star3d.StarParams]) -> tuple[float, str]:
     best = (0.0, "")
     for j, chain in enumerate(system.params.chains):
         size = c3.state_size(chain.n)

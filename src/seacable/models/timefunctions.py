@@ -39,9 +39,11 @@ def constant(value: float) -> Piecewise:
 
 
 def _sine(spec: schema.Sine) -> Piecewise:
-    omega = (
-        spec.angular_frequency if spec.angular_frequency is not None else 2 * np.pi / spec.period
-    )
+    if spec.angular_frequency is not None:
+        omega = spec.angular_frequency
+    else:
+        assert spec.period is not None  # Sine._one_frequency: exactly one of the two is given
+        omega = 2 * np.pi / spec.period
     base = constant(spec.offset)
     return Piecewise(base.breaks, base.coefs, (spec.amplitude, omega, spec.phase))
 

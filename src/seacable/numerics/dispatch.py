@@ -7,11 +7,20 @@ A model joins by adding a branch to each overload: ``rhs(t, y, p, w, ydot) -> st
 models without constraints in their state).
 """
 
+from typing import TYPE_CHECKING
+
 from numba import njit, types
 from numba.extending import overload
 
 from seacable.kernels import chain3d, lumped, lumped_star, natural, planar_chain, star3d
 from seacable.kernels.timefn import JIT
+
+if TYPE_CHECKING:
+    from numba.core.decorators import _JITOptions
+
+# the dispatchers compile with the kernels' options; overload hands every key on to jit, cache
+# included, but numba's stubs type jit_options as the keyword options without ``cache``
+OVERLOAD_JIT: "_JITOptions" = JIT  # type: ignore[assignment]  # stubs omit overload's cache
 
 
 def model_rhs(t, y, p, w, ydot):
@@ -28,7 +37,7 @@ def _is(p, cls):
     return isinstance(p, types.BaseNamedTuple) and p.instance_class is cls
 
 
-@overload(model_rhs, jit_options=JIT)
+@overload(model_rhs, jit_options=OVERLOAD_JIT)
 def _model_rhs(t, y, p, w, ydot):
     if _is(p, planar_chain.ChainParams):
         return lambda t, y, p, w, ydot: planar_chain.rhs(t, y, p, w, ydot)
@@ -45,7 +54,7 @@ def _model_rhs(t, y, p, w, ydot):
     return None
 
 
-@overload(model_project, jit_options=JIT)
+@overload(model_project, jit_options=OVERLOAD_JIT)
 def _model_project(y, p):
     if _is(p, planar_chain.ChainParams):
         return lambda y, p: None
@@ -66,7 +75,7 @@ def model_projects(p):
     raise NotImplementedError("model_projects is only callable from compiled code")
 
 
-@overload(model_projects, jit_options=JIT, inline="always")
+@overload(model_projects, jit_options=OVERLOAD_JIT, inline="always")
 def _model_projects(p):
     if _is(p, planar_chain.ChainParams) or _is(p, lumped.LumpedParams):
         return lambda p: False
@@ -91,7 +100,7 @@ def model_prescribe(t, y, acc, p, w):
     raise NotImplementedError("model_prescribe is only callable from compiled code")
 
 
-@overload(model_newton, jit_options=JIT)
+@overload(model_newton, jit_options=OVERLOAD_JIT)
 def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix):
     if _is(p, lumped.LumpedParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
@@ -131,7 +140,7 @@ def model_block(p):
     raise NotImplementedError("model_block is only callable from compiled code")
 
 
-@overload(model_block, jit_options=JIT, inline="always")
+@overload(model_block, jit_options=OVERLOAD_JIT, inline="always")
 def _model_block(p):
     if _is(p, lumped.LumpedParams) or _is(p, lumped_star.LumpedStarParams):
         return lambda p: 3
@@ -140,7 +149,7 @@ def _model_block(p):
     return None
 
 
-@overload(model_prescribe, jit_options=JIT)
+@overload(model_prescribe, jit_options=OVERLOAD_JIT)
 def _model_prescribe(t, y, acc, p, w):
     if _is(p, lumped.LumpedParams):
         return lambda t, y, acc, p, w: lumped.prescribe(t, y, acc, p)
@@ -158,7 +167,7 @@ def model_newton_cost(p):
     raise NotImplementedError("model_newton_cost is only callable from compiled code")
 
 
-@overload(model_newton_cost, jit_options=JIT, inline="always")
+@overload(model_newton_cost, jit_options=OVERLOAD_JIT, inline="always")
 def _model_newton_cost(p):
     if _is(p, lumped.LumpedParams) or _is(p, planar_chain.ChainParams):
         return lambda p: 1  # analytic Jacobian
@@ -178,7 +187,7 @@ def model_solver(p, nq):
     raise NotImplementedError("model_solver is only callable from compiled code")
 
 
-@overload(model_solver, jit_options=JIT, inline="always")
+@overload(model_solver, jit_options=OVERLOAD_JIT, inline="always")
 def _model_solver(p, nq):
     if _is(p, lumped.LumpedParams) or _is(p, lumped_star.LumpedStarParams):
         return lambda p, nq: (nq // 3, 3)
@@ -209,7 +218,7 @@ def _correct_nodes(b_node, da, a1):
     return largest
 
 
-@overload(model_correct, jit_options=JIT, inline="always")
+@overload(model_correct, jit_options=OVERLOAD_JIT, inline="always")
 def _model_correct(p, da, a1):
     if _is(p, lumped.LumpedParams) or _is(p, natural.NaturalParams):
         return lambda p, da, a1: _correct_nodes(model_block(p), da, a1)
@@ -228,7 +237,7 @@ def model_positions(p, ny):
     raise NotImplementedError("model_positions is only callable from compiled code")
 
 
-@overload(model_positions, jit_options=JIT, inline="always")
+@overload(model_positions, jit_options=OVERLOAD_JIT, inline="always")
 def _model_positions(p, ny):
     if _is(p, chain3d.Chain3DParams):
         return lambda p, ny: 3 * p.n + 1  # directors and heave; the servo force follows
@@ -243,7 +252,7 @@ def model_keeps_matrix(p):
     raise NotImplementedError("model_keeps_matrix is only callable from compiled code")
 
 
-@overload(model_keeps_matrix, jit_options=JIT, inline="always")
+@overload(model_keeps_matrix, jit_options=OVERLOAD_JIT, inline="always")
 def _model_keeps_matrix(p):
     if _is(p, planar_chain.ChainParams) or _is(p, chain3d.Chain3DParams):
         return lambda p: True  # 5x5 or 9x9 blocks, joint differences
@@ -256,7 +265,7 @@ def model_chain(p):
     raise NotImplementedError("model_chain is only callable from compiled code")
 
 
-@overload(model_chain, jit_options=JIT, inline="always")
+@overload(model_chain, jit_options=OVERLOAD_JIT, inline="always")
 def _model_chain(p):
     if _is(p, lumped_star.LumpedStarParams):
         return lambda p: p.n

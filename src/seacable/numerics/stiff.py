@@ -40,7 +40,8 @@ def graph_sparsity(neighbours, block: int):
     (``chain_graph``; a star: each chain's last node and the shared body couple too)."""
     nodes = len(neighbours)
     nq = nodes * block
-    rows, cols = [], []
+    rows: list[int] = []
+    cols: list[int] = []
     for i, near_nodes in enumerate(neighbours):
         own = np.arange(i * block, (i + 1) * block)
         near = (np.asarray(near_nodes)[:, None] * block + np.arange(block)[None, :]).ravel()
@@ -58,7 +59,7 @@ def graph_sparsity(neighbours, block: int):
 def interleave(nodes: int, block: int) -> np.ndarray:
     """Permutation p with z = y[p] ordered node by node: [x_0, v_0, x_1, v_1, ...]."""
     nq = nodes * block
-    order = []
+    order: list[int] = []
     for i in range(nodes):
         order.extend(range(i * block, (i + 1) * block))
         order.extend(range(nq + i * block, nq + (i + 1) * block))
