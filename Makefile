@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test test-all lint bench clean clean-cache
+.PHONY: demo test test-all lint typecheck bench clean clean-cache
 
 $(VENV)/bin/python:
 	$(PYTHON) -m venv $(VENV)
@@ -23,10 +23,13 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff format --check src tests benchmarks
 	$(VENV)/bin/ruff check src tests benchmarks
 
-test: lint
+typecheck: $(STAMP)
+	$(VENV)/bin/mypy src
+
+test: lint typecheck
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -m "not slow"
 
-test-all: lint
+test-all: lint typecheck
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
 bench: $(STAMP)
