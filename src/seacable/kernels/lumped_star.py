@@ -29,6 +29,7 @@ from numba import njit
 
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
+from seacable.kernels import lumped_newton as lkn
 from seacable.kernels.timefn import JIT
 
 
@@ -129,7 +130,7 @@ def rhs(t, y, p, ws, ydot):
 
 @njit(**JIT)
 def newton_system(t, y, a_alpha, p, ws, ydot, cm, cx, cv, diag, upper, lower, res, matrix=True):
-    """The star's Newton residual and matrix (see ``kernels.lumped.newton_system``): each
+    """The star's Newton residual and matrix (see ``kernels.lumped_newton.newton_system``): each
     chain's system, its last node's rows and columns moved onto the body's."""
     cables = len(p.chains)
     n = p.n
@@ -147,7 +148,7 @@ def newton_system(t, y, a_alpha, p, ws, ydot, cm, cx, cv, diag, upper, lower, re
         _gather(y, k, n, cables, nq, yk)
         _gather(a_alpha, k, n, cables, nq, ak)
         dk, uk, lo, rk = ws.diag[k], ws.upper[k], ws.lower[k], ws.res[k]
-        st = lk.newton_system(t, yk, ak, pk, ws.w[k], ws.ydot[k], cm, cx, cv, dk, uk, lo, rk,
+        st = lkn.newton_system(t, yk, ak, pk, ws.w[k], ws.ydot[k], cm, cx, cv, dk, uk, lo, rk,
                               matrix)  # fmt: skip
         if st != c3.OK:
             status = st
@@ -176,7 +177,7 @@ def prescribe(t, y, acc, p, ws):
         yk, ak = ws.y[k], ws.acc[k]
         _gather(y, k, n, cables, nq, yk)
         _gather(acc, k, n, cables, nq, ak)
-        lk.prescribe(t, yk, ak, p.chains[k])
+        lkn.prescribe(t, yk, ak, p.chains[k])
         _scatter(yk, k, n, cables, nq, y)
         _scatter(ak, k, n, cables, nq, acc)
 

@@ -252,13 +252,13 @@ def _fd_jacobian(t, y, p, w, ydot, cx, cv, diag, upper, lower):
 @njit(**JIT)
 def newton_system(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix=True):
     """Residual and block-tridiagonal matrix of an implicit step (see
-    ``kernels.lumped.newton_system``), in acceleration units (the mass matrix is the identity in
-    these variables), with the Jacobian of the accelerations from coloured finite differences:
-    a node's acceleration depends on its neighbours only, so perturbing every third node at once
-    gives a whole block column per evaluation, 6 B + 1 evaluations per matrix (B variables per
-    node). Blocks are 3x3; with two variables per node the third row and column are the
-    identity. With ``matrix`` False only the residual is formed. Returns the status of the
-    right-hand side."""
+    ``kernels.lumped_newton.newton_system``), in acceleration units (the mass matrix is the
+    identity in these variables), with the Jacobian of the accelerations from coloured finite
+    differences: a node's acceleration depends on its neighbours only, so perturbing every third
+    node at once gives a whole block column per evaluation, 6 B + 1 evaluations per matrix (B
+    variables per node). Blocks are 3x3; with two variables per node the third row and column
+    are the identity. With ``matrix`` False only the residual is formed. Returns the status of
+    the right-hand side."""
     n = p.n
     b = 3 if p.cartesian == 1 else 2
     nodes = n + 1

@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels import chain3d_outputs as c3o
 from seacable.kernels.surface import submersion
 from seacable.kernels.timefn import JIT
 
@@ -191,7 +192,7 @@ def outputs_chunk(times, states, p, workspaces, node_pos, tension, scalars, anch
         for k in range(k_count):
             pk = p.chains[k]
             yk = states[j, p.offsets[k] : p.offsets[k + 1]]
-            c3.outputs_from_solution(times[j], yk, pk, workspaces[k], reactions[k],
+            c3o.outputs_from_solution(times[j], yk, pk, workspaces[k], reactions[k],
                                      node_pos[j, k], tension[j, k], scalars[j, k])  # fmt: skip
             for c in range(3):
                 anchor_force[j, k, c] = scalars[j, k, c]

@@ -9,6 +9,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
+from seacable.kernels import lumped_newton as lkn
 from seacable.models import catenary, common, planar_rigid_links, statics
 from seacable.models import rigid_segments_3d as seg
 from seacable.models import timefunctions as tfn
@@ -285,7 +286,7 @@ def _newton_equilibrium(params, y0, iterations):
     def residual(y):
         # with zero wanted acceleration, res = -F per node (prescribed nodes: 0); the matrix
         # (cm = 0, cx = 1, cv = 0) is -dF/dx
-        lk.newton_system(0.0, y, at_rest, params, w, ydot, 0.0, 1.0, 0.0, diag, upper, lower, res)
+        lkn.newton_system(0.0, y, at_rest, params, w, ydot, 0.0, 1.0, 0.0, diag, upper, lower, res)
         return res.copy()
 
     def stretched(y):

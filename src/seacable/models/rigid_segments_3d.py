@@ -17,6 +17,7 @@ import numpy as np
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
+from seacable.kernels import chain3d_outputs as c3o
 from seacable.kernels import surface
 from seacable.models import common, statics
 from seacable.models import timefunctions as tfn
@@ -440,7 +441,7 @@ def rows(times, states, system: System3D, w) -> tuple[dict, int]:
     nodes = np.empty((m, n + 1, 3))
     tension = np.empty((m, n))
     scalars = np.empty((m, c3.N_SCALARS))
-    status = c3.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
+    status = c3o.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
     directors = states[:, : 3 * n].reshape(m, n, 3)
     rates_ = states[:, 3 * n + 1 : 6 * n + 1].reshape(m, n, 3)
     out = {"time": times, "tension": tension}

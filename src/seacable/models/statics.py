@@ -3,7 +3,7 @@
 In steady towing every node moves with the tow point, so the shape is the equilibrium of the
 segments under their steady loads (apparent weight, drag and friction on the velocity relative to
 the current) and the end forces. With perfect joints it follows exactly from the lower end
-upwards (``kernels.chain3d.static_shoot``): each segment lies along the force it transmits,
+upwards (``kernels.chain3d_statics.static_shoot``): each segment lies along the force it transmits,
 corrected by half its own load. For a free lower end this is one sweep (repeated while the
 depths, hence the current, settle); for a pinned lower end the anchor reaction is found by Newton
 iterations on the position of the top, started from the inextensible catenary between the ends.
@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 
 from seacable.errors import SeacableError
 from seacable.kernels import chain3d as c3
+from seacable.kernels import chain3d_statics as c3s
 
 
 class StaticsError(SeacableError):
@@ -34,7 +35,7 @@ def _free(params, top, vel, time):
     forces = np.zeros((n + 1, 3))
     nan = np.full(3, np.nan)
     for _ in range(100):
-        failures = c3.static_shoot(params, nan, z, vel, time, directors, forces)
+        failures = c3s.static_shoot(params, nan, z, vel, time, directors, forces)
         nodes = _nodes(top, directors, params.length)
         change = np.max(np.abs(nodes[:, 2] - z))
         z = nodes[:, 2]
@@ -87,7 +88,7 @@ def _pinned_newton(params, top, vel, time, reaction, iterations=60):
 
     def mismatch(reaction):
         nonlocal z
-        c3.static_shoot(params, reaction, z, vel, time, directors, forces)
+        c3s.static_shoot(params, reaction, z, vel, time, directors, forces)
         start = anchor - (params.length[:, None] * directors).sum(axis=0)
         z = _nodes(start, directors, params.length)[:, 2]
         return start - top

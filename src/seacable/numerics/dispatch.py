@@ -12,7 +12,17 @@ from typing import TYPE_CHECKING
 from numba import njit, types
 from numba.extending import overload
 
-from seacable.kernels import chain3d, lumped, lumped_star, natural, planar_chain, star3d
+from seacable.kernels import (
+    chain3d,
+    chain3d_newton,
+    lumped,
+    lumped_newton,
+    lumped_star,
+    natural,
+    planar_chain,
+    planar_newton,
+    star3d,
+)
 from seacable.kernels.timefn import JIT
 
 if TYPE_CHECKING:
@@ -90,7 +100,8 @@ def _model_projects(p):
 
 def model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix):
     """Residual and block-tridiagonal matrix of an implicit step's Newton iteration (compiled
-    code only; second-order models with node blocks, see ``kernels.lumped.newton_system``)."""
+    code only; second-order models with node blocks, see
+    ``kernels.lumped_newton.newton_system``)."""
     raise NotImplementedError("model_newton is only callable from compiled code")
 
 
@@ -104,19 +115,19 @@ def model_prescribe(t, y, acc, p, w):
 def _model_newton(t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix):
     if _is(p, lumped.LumpedParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
-            lumped.newton_system(
+            lumped_newton.newton_system(
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
     if _is(p, chain3d.Chain3DParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
-            chain3d.newton_system(
+            chain3d_newton.newton_system(
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
     if _is(p, planar_chain.ChainParams):
         return lambda t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix: (
-            planar_chain.newton_system(
+            planar_newton.newton_system(
                 t, y, a_alpha, p, w, ydot, cm, cx, cv, diag, upper, lower, res, matrix
             )
         )
@@ -152,7 +163,7 @@ def _model_block(p):
 @overload(model_prescribe, jit_options=OVERLOAD_JIT)
 def _model_prescribe(t, y, acc, p, w):
     if _is(p, lumped.LumpedParams):
-        return lambda t, y, acc, p, w: lumped.prescribe(t, y, acc, p)
+        return lambda t, y, acc, p, w: lumped_newton.prescribe(t, y, acc, p)
     if _is(p, lumped_star.LumpedStarParams):
         return lambda t, y, acc, p, w: lumped_star.prescribe(t, y, acc, p, w)
     if _is(p, natural.NaturalParams) or _is(p, planar_chain.ChainParams):
@@ -194,9 +205,9 @@ def _model_solver(p, nq):
     if _is(p, natural.NaturalParams):
         return lambda p, nq: (nq // (3 if p.cartesian == 1 else 2), 3)
     if _is(p, planar_chain.ChainParams):
-        return lambda p, nq: (p.n + 1, planar_chain.NEWTON_BLOCK)
+        return lambda p, nq: (p.n + 1, planar_newton.NEWTON_BLOCK)
     if _is(p, chain3d.Chain3DParams):
-        return lambda p, nq: (p.n + 1, chain3d.NEWTON_BLOCK)
+        return lambda p, nq: (p.n + 1, chain3d_newton.NEWTON_BLOCK)
     return None
 
 
@@ -225,9 +236,9 @@ def _model_correct(p, da, a1):
     if _is(p, lumped_star.LumpedStarParams):
         return lambda p, da, a1: _correct_nodes(3, da, a1)
     if _is(p, planar_chain.ChainParams):
-        return lambda p, da, a1: planar_chain.newton_correct(p.length, da, a1)
+        return lambda p, da, a1: planar_newton.newton_correct(p.length, da, a1)
     if _is(p, chain3d.Chain3DParams):
-        return lambda p, da, a1: chain3d.newton_correct(p.length, da, a1)
+        return lambda p, da, a1: chain3d_newton.newton_correct(p.length, da, a1)
     return None
 
 
