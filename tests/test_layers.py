@@ -7,14 +7,19 @@ PACKAGE = Path(__file__).parent.parent / "src" / "seacable"
 
 # module (or subpackage) -> seacable modules it may import
 LAYER = {
-    "cli": 7,
-    "viz": 6,
-    "__init__": 6,
-    "simulation": 5, "analysis": 5,
-    "case.loader": 4, "results": 4,
-    "models": 3,
-    "case.schema": 2,
-    "numerics": 1,
+    "cli": 12,
+    "viz": 11,
+    "__init__": 11,
+    "simulation": 10, "analysis": 10,
+    "case.loader": 9, "results": 9,
+    "models": 8,
+    "numerics": 7,
+    "system": 6,
+    "lines": 5, "forces": 5,
+    "bodies": 4,
+    "packing": 3,
+    "case.system": 2, "timefunctions": 2,
+    "case.schema": 1,
     "kernels": 0,
     "errors": 0,
 }  # fmt: skip

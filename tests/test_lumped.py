@@ -8,7 +8,8 @@ import pytest
 
 import seacable
 from helpers import chain_case
-from seacable.models import catenary, lumped_mass
+from seacable.lines import catenary
+from seacable.models import lumped_mass
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
 

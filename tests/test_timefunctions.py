@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from helpers import chain_case, run
+from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.kernels.timefn import evaluate
-from seacable.models import timefunctions as tfn
 
 
 def _eval(spec, times, base_dir=None, build_up=0.0):

@@ -8,6 +8,7 @@ import click
 
 import seacable
 from seacable import viz
+from seacable.case.system import SystemCase
 
 
 def _fail(message: str, code: int = 1):
@@ -79,6 +80,14 @@ def validate(case_file: str) -> None:
         case = seacable.load_case(case_file)
     except seacable.CaseError as exc:
         _fail(str(exc), 2)
+    if isinstance(case, SystemCase):
+        kinds = ", ".join(f"{b.name} ({b.type})" for b in case.bodies)
+        models = ", ".join(f"{line.name} ({line.model})" for line in case.lines)
+        click.echo(
+            f"ok: case '{case.name}': bodies {kinds}; lines {models}; "
+            f"{case.simulation.duration:g} s with {case.simulation.integrator}"
+        )
+        return
     cable = case.cables[0]
     what = f"{len(case.cables)} cables on body '{case.bodies[0].name}'" if case.bodies else (
         f"cable '{cable.name}' ({cable.model}) of {cable.links} links, top {cable.top.type}, "

@@ -36,9 +36,11 @@ def provenance(case_text: str, solver: dict) -> dict:
 
 
 class Results:
-    """The outcome of :func:`seacable.simulate`: the dataset, its status and message."""
+    """The outcome of :func:`seacable.simulate`: the dataset, its status and message. A system
+    of bodies and lines gives a DataTree (``xarray.open_datatree``) with a group per body
+    (``bodies/<name>``) and per line (``lines/<name>``); ``results["lines/chain/tension"]``."""
 
-    def __init__(self, dataset: xr.Dataset, path: Path | None = None):
+    def __init__(self, dataset: xr.Dataset | xr.DataTree, path: Path | None = None):
         self.dataset = dataset
         self.path = path
 
@@ -68,9 +70,12 @@ class Results:
     def open(cls, path, lazy: bool = False) -> "Results":
         """Read results written by seacable (complete or not). ``lazy`` keeps the file open and
         reads a variable, or the part of it asked for, only when it is used (long runs)."""
+        with h5netcdf.File(path, "r") as f:
+            grouped = bool(f.groups)
+        opener = xr.open_datatree if grouped else xr.open_dataset
         if lazy:
-            return cls(xr.open_dataset(path, engine="h5netcdf"), Path(path))
-        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return cls(opener(path, engine="h5netcdf"), Path(path))
+        with opener(path, engine="h5netcdf") as ds:
             return cls(ds.load(), Path(path))
 
 
@@ -94,19 +99,29 @@ class _Sink:
 
     def _create(self):
         f = h5netcdf.File(self.path, "w")
-        f.dimensions = {"time": None, **self.sizes}
-        for name, (dim, values, units, long_name) in self.coords.items():
-            v = f.create_variable(name, (dim,), float, data=values)
+        f.dimensions = {"time": None}
+        for path, size in self.sizes.items():  # a system's are per group: "lines/chain/node"
+            group, dim = _split(path)
+            _group(f, group).dimensions[dim] = size
+        for path, (dim, values, units, long_name) in self.coords.items():
+            group, name = _split(path)
+            v = _group(f, group).create_variable(name, (dim,), float, data=values)
             v.attrs.update(units=units, long_name=long_name)
         t = f.create_variable("time", ("time",), float, chunks=(1024,))
         t.attrs.update(units="s", long_name="time", standard_name="time")
-        for name, (dims, units, long_name) in self.variables.items():
-            shape = tuple(1024 if d == "time" else self.sizes[d] for d in dims)
-            v = f.create_variable(name, dims, float, chunks=tuple(min(s, 1024) for s in shape))
+        for path, (dims, units, long_name) in self.variables.items():
+            group, name = _split(path)
+            shape = tuple(1024 if d == "time" else self._size(group, d) for d in dims)
+            v = _group(f, group).create_variable(
+                name, dims, float, chunks=tuple(min(s, 1024) for s in shape)
+            )
             v.attrs.update(units=units, long_name=long_name)
         f.attrs.update(self.attrs)
         f.flush()
         return f
+
+    def _size(self, group: str, dim: str) -> int:
+        return self.sizes[f"{group}/{dim}" if group else dim]
 
     def write(self, rows: dict) -> None:
         """Append ``rows`` (name -> values, time first); names the case does not record (a
@@ -121,7 +136,7 @@ class _Sink:
             start = self.rows
             self._file.resize_dimension("time", start + count)
             for name, values in rows.items():
-                self._file.variables[name][start : start + count, ...] = values
+                self._file[name][start : start + count, ...] = values
             self._file.flush()
         self.rows += count
 
@@ -133,16 +148,44 @@ class _Sink:
             self._file = None
         return Results(self._dataset(), self.path)
 
-    def _dataset(self) -> xr.Dataset:
-        data = {}
-        for name, (dims, units, long_name) in self.variables.items():
-            values = _join(self.chunks[name], dims, self.sizes)
+    def _dataset(self) -> xr.Dataset | xr.DataTree:
+        """The rows as a Dataset, or as a DataTree when the variables live in groups."""
+        groups: dict[str, tuple[dict, dict]] = {"": ({}, {})}
+        for path, (dims, units, long_name) in self.variables.items():
+            group, name = _split(path)
+            sizes = {d: self._size(group, d) for d in dims if d != "time"}
+            values = _join(self.chunks[path], dims, sizes)
+            data = groups.setdefault(group, ({}, {}))[0]
             data[name] = xr.Variable(dims, values, {"units": units, "long_name": long_name})
-        coords = {"time": xr.Variable(("time",), _join(self.chunks["time"], ("time",), {}))}
-        coords["time"].attrs.update(units="s", long_name="time")
-        for name, (dim, values, units, long_name) in self.coords.items():
+        time = xr.Variable(("time",), _join(self.chunks["time"], ("time",), {}))
+        time.attrs.update(units="s", long_name="time")
+        groups[""][1]["time"] = time
+        for path, (dim, values, units, long_name) in self.coords.items():
+            group, name = _split(path)
+            coords = groups.setdefault(group, ({}, {}))[1]
             coords[name] = xr.Variable((dim,), values, {"units": units, "long_name": long_name})
-        return xr.Dataset(data, coords=coords, attrs=self.attrs)
+        if len(groups) == 1:
+            data, coords = groups[""]
+            return xr.Dataset(data, coords=coords, attrs=self.attrs)
+        tree = {
+            f"/{group}": xr.Dataset(data, coords=coords) for group, (data, coords) in groups.items()
+        }
+        tree["/"] = tree["/"].assign_attrs(self.attrs)
+        return xr.DataTree.from_dict(tree)
+
+
+def _split(path: str) -> tuple[str, str]:
+    """("lines/chain", "tension") of "lines/chain/tension"; ("", name) at the top level."""
+    group, _, name = path.rpartition("/")
+    return group, name
+
+
+def _group(f, path: str):
+    """The group at ``path`` of an open h5netcdf file, created as needed."""
+    group = f
+    for part in filter(None, path.split("/")):
+        group = group.groups[part] if part in group.groups else group.create_group(part)
+    return group
 
 
 def _join(chunks, dims, sizes):

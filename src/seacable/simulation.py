@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from seacable.case import loader, schema
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels import planar_chain as pc
 from seacable.models import (
@@ -30,6 +31,8 @@ from seacable.results import (
     _Sink,
     provenance,
 )
+from seacable.system import model as system_model
+from seacable.system.assemble import BuiltSystem
 
 log = logging.getLogger(__name__)
 
@@ -67,10 +70,12 @@ MODELS = {
 }
 
 
-def model_of(case: schema.Case):
-    """The model module of the case (build, VARIABLES, rows, rates, ...): several cables on a
-    shared body form a star (of rigid-segment or of lumped-mass cables, as the first cable's
-    model says), else the one cable's model."""
+def model_of(case: schema.Case | SystemCase):
+    """The model module of the case (build, VARIABLES, rows, rates, ...): a system of bodies and
+    lines (``lines:``), several cables on a shared body form a star (of rigid-segment or of
+    lumped-mass cables, as the first cable's model says), else the one cable's model."""
+    if isinstance(case, SystemCase):
+        return system_model
     if case.bodies:
         return lumped_star if case.cables[0].model == "lumped_mass" else star_3d
     return MODELS[case.cables[0].model]
@@ -88,6 +93,7 @@ SYSTEM_MODELS = {
     lumped_star.LumpedStarSystem: lumped_star,
     lumped_mass.LumpedSystem: lumped_mass,
     natural_string.NaturalSystem: natural_string,
+    BuiltSystem: system_model,
 }
 
 
@@ -131,7 +137,7 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
     )
 
 
-def _check_integrator(case: schema.Case, model) -> None:
+def _check_integrator(case: schema.Case | SystemCase, model) -> None:
     integrator = case.simulation.integrator
     if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
         raise CaseError(
@@ -144,7 +150,9 @@ def _check_integrator(case: schema.Case, model) -> None:
         getattr(model, "check_implicit", lambda case: None)(case)
 
 
-def absolute_tolerance(case: schema.Case, model, system) -> tuple[np.ndarray, np.ndarray]:
+def absolute_tolerance(
+    case: schema.Case | SystemCase, model, system
+) -> tuple[np.ndarray, np.ndarray]:
     """The adaptive integrators' absolute tolerance of each state and, for dopri5's default,
     the largest magnitude of each state so far (empty when not tracked).
 
@@ -190,7 +198,7 @@ def _tolerance_attrs(run) -> dict:
 class _Run:
     """One integration: holds the compiled state and writes rows to the sink."""
 
-    def __init__(self, case: schema.Case, model, system, sink: _Sink):
+    def __init__(self, case: schema.Case | SystemCase, model, system, sink: _Sink):
         self.case = case
         self.sim = case.simulation
         self.model = model
@@ -349,7 +357,10 @@ class _Run:
 
 
 def simulate(
-    case: schema.Case, output=None, progress: bool = False, chunk_outputs: int | None = None
+    case: schema.Case | SystemCase,
+    output=None,
+    progress: bool = False,
+    chunk_outputs: int | None = None,
 ) -> Results:
     """Run ``case`` and return its :class:`Results`.
 
@@ -378,7 +389,8 @@ def simulate(
     model = model_of(case)
     _check_integrator(case, model)
     system = model.build(case, loader.case_base_dir(case))
-    check_servo_loop(case, system.params, system.y0, model.workspace(system))
+    if not isinstance(case, SystemCase):
+        check_servo_loop(case, system.params, system.y0, model.workspace(system))
     sim = case.simulation
     settings = _solver_settings(sim)
     warning = _step_warning(sim, system)
@@ -386,7 +398,10 @@ def simulate(
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
-    variables = case_variables(model.VARIABLES, case)
+    if isinstance(case, SystemCase):
+        variables = model.variables(system)
+    else:
+        variables = case_variables(model.VARIABLES, case)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
     run = _Run(case, model, system, sink)
     _compile(run)

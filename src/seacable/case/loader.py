@@ -9,12 +9,13 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from seacable.case.schema import Case
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 
-_TAGS = ("type", "kind")
+_TAGS = ("type", "kind", "model")
 
 
-def load_case(source: str | Path | dict) -> Case:
+def load_case(source: str | Path | dict) -> Case | SystemCase:
     """Load and validate a case from a YAML file path, a YAML string or a dict.
 
     Raises
@@ -42,16 +43,17 @@ def load_case(source: str | Path | dict) -> Case:
             raise CaseError(f"case file is not valid YAML: {exc}") from None
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
+    root: type[Case] | type[SystemCase] = SystemCase if "lines" in data else Case
     try:
-        case = Case.model_validate(data)
+        case = root.model_validate(data)
     except ValidationError as exc:
-        raise CaseError(format_errors(exc)) from None
+        raise CaseError(format_errors(exc, root)) from None
     case._source_text = text if text is not None else yaml.safe_dump(data, sort_keys=False)
     case._base_dir = None if base_dir is None else str(base_dir)
     return case
 
 
-def case_text(case: Case) -> str:
+def case_text(case: Case | SystemCase) -> str:
     """The YAML text a case was loaded from (or a dump of it when built in Python)."""
     text = case._source_text
     if text is None:
@@ -59,19 +61,19 @@ def case_text(case: Case) -> str:
     return text
 
 
-def case_base_dir(case: Case):
+def case_base_dir(case: Case | SystemCase):
     """Directory that relative file names in the case refer to (None: current directory)."""
     return case._base_dir
 
 
-def format_errors(exc: ValidationError) -> str:
+def format_errors(exc: ValidationError, root: Any = Case) -> str:
     lines = [f"invalid case ({exc.error_count()} problem{'s' * (exc.error_count() > 1)}):"]
     for error in exc.errors():
-        path, model = _walk(error["loc"])
+        path, model = _walk(error["loc"], root)
         where = path or "(top level)"
         if error["type"] == "extra_forbidden":
             key = error["loc"][-1]
-            parent_path, parent = _walk(error["loc"][:-1])
+            parent_path, parent = _walk(error["loc"][:-1], root)
             valid = ", ".join(parent.model_fields) if parent is not None else "?"
             lines.append(
                 f"- {parent_path or '(top level)'}: unknown key '{key}'. Valid keys: {valid}. "
@@ -88,7 +90,7 @@ def format_errors(exc: ValidationError) -> str:
             ctx = error.get("ctx", {})
             key = ctx.get("discriminator", "'type'").strip("'")
             allowed = ctx.get("expected_tags") or ", ".join(
-                repr(t) for t in _tag_values(_annotation_at(error["loc"]))
+                repr(t) for t in _tag_values(_annotation_at(error["loc"], root))
             )
             if "tag" in ctx:
                 lines.append(
@@ -101,10 +103,10 @@ def format_errors(exc: ValidationError) -> str:
     return "\n".join(lines)
 
 
-def _walk(loc) -> tuple[str, type[BaseModel] | None]:
+def _walk(loc, root: Any = Case) -> tuple[str, type[BaseModel] | None]:
     """Readable path for a pydantic location and the model found at its end (tags dropped)."""
     text = ""
-    annotation: Any = Case
+    annotation: Any = root
     for item in loc:
         model = _as_model(annotation, item)
         if model is not None and item in _tag_values(annotation):
@@ -123,9 +125,9 @@ def _walk(loc) -> tuple[str, type[BaseModel] | None]:
     return text, _as_model(annotation)
 
 
-def _annotation_at(loc):
+def _annotation_at(loc, root: Any = Case):
     """Annotation of the field at ``loc`` (for listing the allowed tags of a union)."""
-    parent_path, parent = _walk(loc[:-1])
+    parent_path, parent = _walk(loc[:-1], root)
     if parent is None or loc[-1] not in parent.model_fields:
         return None
     return parent.model_fields[loc[-1]].annotation

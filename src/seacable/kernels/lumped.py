@@ -78,6 +78,7 @@ class LumpedParams(NamedTuple):
     wet_weight: np.ndarray  # (n,) apparent weight of each segment, positive down [N]
     buoyancy: np.ndarray  # (n,) rho g A l of each segment wholly submerged [N]
     axial_stiffness: float  # EA [N]
+    segment_stiffness: np.ndarray  # (n,) EA of each segment [N] (the kernels read this one)
     axial_damping: np.ndarray  # (n,) alpha of each segment [s]
     slack_allowed: int  # 1: no compression (the physical law); 0: linear (smooth static solves)
     drag_normal: np.ndarray  # (n,) 0.5 rho Cd_n d l [N s^2/m^2]
@@ -143,69 +144,87 @@ def make_workspace(n):
 @njit(inline="always", **JIT)
 def _segment_forces(t, y, p, w):
     """Tension, tangent, hydrodynamic and weight loads of every segment, shared to its nodes."""
-    n = p.n
+    segment_loads(
+        y, p.n, 0, 0, p.length, p.segment_stiffness, p.axial_damping, p.slack_allowed,
+        p.drag_normal, p.drag_tangential, p.wet_weight, p.buoyancy, p.added_mass,
+        p.current_z, p.current_u, p.current_v, w,
+    )  # fmt: skip
+
+
+@njit(**JIT)
+def segment_loads(
+    y, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
+    buoyancy, added_mass, current_z, current_u, current_v, w,
+):  # fmt: skip
+    """Tension, tangent, hydrodynamic and weight loads of the n segments of one line, shared
+    to its nodes: the line's nodes at ``y = [r_0 .. r_n, v_0 .. v_n]`` (3 each), its segment
+    properties at ``[s0 + i]`` of the flat arrays (EA ``stiffness`` [N], alpha ``damping`` [s],
+    ``slack`` 1: no compression), its nodes' workspace columns ``c0 + k``. Every line model
+    and every line of a system computes its segment loads here."""
     v0 = 3 * (n + 1)
-    for k in range(n + 1):
+    for k in range(c0, c0 + n + 1):
         for c in range(3):
             w[_F + c, k] = 0.0
         for c in range(6):
             w[_MA + c, k] = 0.0
     for i in range(n):
+        s = s0 + i
         a = 3 * i
         b = 3 * (i + 1)
+        ka, kb = c0 + i, c0 + i + 1
         dx, dy, dz = y[b] - y[a], y[b + 1] - y[a + 1], y[b + 2] - y[a + 2]
-        length = math.sqrt(dx * dx + dy * dy + dz * dz)
-        tx, ty, tz = dx / length, dy / length, dz / length
+        length_now = math.sqrt(dx * dx + dy * dy + dz * dz)
+        tx, ty, tz = dx / length_now, dy / length_now, dz / length_now
         dvx, dvy, dvz = (
             y[v0 + b] - y[v0 + a],
             y[v0 + b + 1] - y[v0 + a + 1],
             y[v0 + b + 2] - y[v0 + a + 2],
         )
-        l0 = p.length[i]
-        strain = length / l0 - 1.0
+        l0 = length[s]
+        strain = length_now / l0 - 1.0
         strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
-        tension = p.axial_stiffness * (strain + p.axial_damping[i] * strain_rate)
-        if tension < 0.0 and p.slack_allowed == 1:
+        tension = stiffness[s] * (strain + damping[s] * strain_rate)
+        if tension < 0.0 and slack == 1:
             tension = 0.0
-        w[_T, i] = tension
-        w[_TX, i], w[_TX + 1, i], w[_TX + 2, i] = tx, ty, tz
-        w[_L, i] = length
+        w[_T, ka] = tension
+        w[_TX, ka], w[_TX + 1, ka], w[_TX + 2, ka] = tx, ty, tz
+        w[_L, ka] = length_now
         # loads at the segment centre on the relative velocity; drag, added mass and buoyancy of
         # its submerged part (kernels.surface), the buoyancy at that part's centroid
         zc = 0.5 * (y[a + 2] + y[b + 2])
         wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
-        cu, cv = c3._current(p.current_z, p.current_u, p.current_v, zc)
+        cu, cv = c3._current(current_z, current_u, current_v, zc)
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
         vt = rx * tx + ry * ty + rz * tz
         nx, ny, nz = rx - vt * tx, ry - vt * ty, rz - vt * tz
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        cn = -p.drag_normal[i] * vn
-        ct = -p.drag_tangential[i] * abs(vt) * vt
+        cn = -drag_normal[s] * vn
+        ct = -drag_tangential[s] * abs(vt) * vt
         if wet < 1.0:  # (a branch: wholly submerged segments compute as they always did)
             cn *= wet
             ct *= wet
         fx = 0.5 * (cn * nx + ct * tx)
         fy = 0.5 * (cn * ny + ct * ty)
-        fz = 0.5 * (cn * nz + ct * tz - p.wet_weight[i])
+        fz = 0.5 * (cn * nz + ct * tz - wet_weight[s])
         # the pull N t on node i, -N t on node i + 1; loads and added mass half and half
         px, py, pz = tension * tx, tension * ty, tension * tz
-        w[_F, i] += fx + px
-        w[_F + 1, i] += fy + py
-        w[_F + 2, i] += fz + pz
-        w[_F, i + 1] += fx - px
-        w[_F + 1, i + 1] += fy - py
-        w[_F + 2, i + 1] += fz - pz
-        ma = 0.5 * p.added_mass[i]
+        w[_F, ka] += fx + px
+        w[_F + 1, ka] += fy + py
+        w[_F + 2, ka] += fz + pz
+        w[_F, kb] += fx - px
+        w[_F + 1, kb] += fy - py
+        w[_F + 2, kb] += fz - pz
+        ma = 0.5 * added_mass[s]
         if wet < 1.0:
             # the buoyancy's shares less the halves in wet_weight, and the submerged added mass
-            w[_F + 2, i] += p.buoyancy[i] * (share_a * wet - 0.5)
-            w[_F + 2, i + 1] += p.buoyancy[i] * ((1.0 - share_a) * wet - 0.5)
+            w[_F + 2, ka] += buoyancy[s] * (share_a * wet - 0.5)
+            w[_F + 2, kb] += buoyancy[s] * ((1.0 - share_a) * wet - 0.5)
             ma *= wet
         m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
         m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
-        for k in (i, i + 1):
+        for k in (ka, kb):
             w[_MA, k] += m00
             w[_MA + 1, k] += m01
             w[_MA + 2, k] += m02
@@ -216,26 +235,38 @@ def _segment_forces(t, y, p, w):
 
 @njit(inline="always", **JIT)
 def _seabed(y, p, w):
-    n = p.n
+    seabed_loads(
+        y, p.n, 0, p.seabed_z, p.seabed_stiffness, p.seabed_damping, p.seabed_friction,
+        p.seabed_slip_speed, w,
+    )  # fmt: skip
+
+
+@njit(**JIT)
+def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, w):
+    """Seabed contact of the n + 1 nodes of one line (``y`` as in segment_loads; per-node
+    stiffness [N/m] and damping [N s/m] at ``[c0 + k]``, as its workspace columns): a
+    vertical spring-damper below ``seabed_z`` and regularised Coulomb friction along it."""
     v0 = 3 * (n + 1)
-    for k in range(n + 1):
-        depth = p.seabed_z - y[3 * k + 2]
+    for j in range(n + 1):
+        k = c0 + j
+        depth = seabed_z - y[3 * j + 2]
         if depth <= 0.0:
             continue
-        vz = y[v0 + 3 * k + 2]
-        normal = p.seabed_stiffness[k] * depth - p.seabed_damping[k] * vz
+        vz = y[v0 + 3 * j + 2]
+        normal = stiffness[k] * depth - damping[k] * vz
         if normal < 0.0:
             normal = 0.0
         w[_F + 2, k] += normal
-        vx, vy = y[v0 + 3 * k], y[v0 + 3 * k + 1]
-        speed = math.sqrt(vx * vx + vy * vy + p.seabed_slip_speed**2)
-        w[_F, k] -= p.seabed_friction * normal * vx / speed
-        w[_F + 1, k] -= p.seabed_friction * normal * vy / speed
+        vx, vy = y[v0 + 3 * j], y[v0 + 3 * j + 1]
+        speed = math.sqrt(vx * vx + vy * vy + slip_speed**2)
+        w[_F, k] -= friction * normal * vx / speed
+        w[_F + 1, k] -= friction * normal * vy / speed
 
 
 @njit(**JIT)
 def _bend_angle(w, i):
-    """Angle phi between the tangents of segments i - 1 and i, and phi / sin(phi)."""
+    """Angle phi between the tangents of segments i - 1 and i (workspace columns), and
+    phi / sin(phi)."""
     ax, ay, az = w[_TX, i - 1], w[_TX + 1, i - 1], w[_TX + 2, i - 1]
     bx, by, bz = w[_TX, i], w[_TX + 1, i], w[_TX + 2, i]
     cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
@@ -248,10 +279,17 @@ def _bend_angle(w, i):
 
 @njit(**JIT)
 def _bending(n, stiffness, w):
-    """Bending moment k phi at each interior node, from V = k phi^2 / 2 with phi the angle
-    between the two segments' tangents: the forces are -k phi dphi/dr on the three nodes,
-    dphi/d(d_a) = -u_a / L_a with u_a the unit normal to t_a towards t_b (and the same for b)."""
-    for i in range(1, n):
+    bending(n, 0, stiffness, w)
+
+
+@njit(**JIT)
+def bending(n, c0, stiffness, w):
+    """Bending moment k phi at each interior node of one line (columns and ``stiffness``
+    [N m] at ``c0 + k``), from V = k phi^2 / 2 with phi the angle between the two segments'
+    tangents: the forces are -k phi dphi/dr on the three nodes, dphi/d(d_a) = -u_a / L_a with
+    u_a the unit normal to t_a towards t_b (and the same for b)."""
+    for j in range(1, n):
+        i = c0 + j
         k = stiffness[i]
         if k == 0.0:
             continue

@@ -2,14 +2,12 @@
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from seacable.case import schema
-from seacable.errors import CaseError
 from seacable.kernels import surface
-from seacable.models import timefunctions as tfn
+from seacable.packing import channel, current_arrays, shape_row, typed  # noqa: F401  (re-exported)
 
 # what a divergence message advises against ringing, per model (only options its schema takes)
 JOINT_DAMPING_ADVICE = "add joint damping (cables[k].joint_damping [N m s/rad])"
@@ -35,45 +33,11 @@ def joint_stiffness(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
     return np.zeros(n)
 
 
-def current_arrays(env: schema.Environment):
-    """Current profile as (z, u, v) arrays [m, m/s, m/s]; zero current in air."""
-    if env.current is None or env.in_air:
-        return np.zeros(1), np.zeros(1), np.zeros(1)
-    z, speed = env.current.arrays()
-    heading = math.radians(env.current.direction_deg)
-    return z, speed * math.cos(heading), speed * math.sin(heading)
-
-
 def tangential_drag(cable: schema.Cable, rho: float, lengths: np.ndarray) -> np.ndarray:
     """0.5 rho (pi Cd_t + f Cd_n) d l: skin friction on the wetted area plus Richtmyer's law."""
     coefficient = math.pi * cable.drag_coefficient_tangential
     coefficient += cable.friction_coefficient * cable.drag_coefficient_normal
     return 0.5 * rho * coefficient * cable.diameter * lengths
-
-
-def channel(spec, base_dir, where: str) -> tfn.Piecewise:
-    """Compile a time function; a table that cannot be read becomes a CaseError naming it."""
-    try:
-        return tfn.build(spec, base_dir)
-    except ValueError as exc:
-        raise CaseError(f"{where}: {exc}") from None
-
-
-def typed(cls, fields: dict):
-    """An instance of the NamedTuple ``cls`` with every field of the exact type its compiled
-    kernels were built for (a float given as an int would trigger a new compilation)."""
-    out: dict[str, Any] = {}
-    for name, annotation in cls.__annotations__.items():
-        value = fields[name]
-        if annotation is int:
-            out[name] = int(value)
-        elif annotation is float:
-            out[name] = float(value)
-        elif name == "tf_count":
-            out[name] = np.ascontiguousarray(value, dtype=np.int64)
-        else:
-            out[name] = np.ascontiguousarray(value, dtype=np.float64)
-    return cls(**out)
 
 
 def add_total_energy(rows: dict) -> dict:
@@ -189,22 +153,6 @@ def shape_width(case: schema.Case) -> int:
         if isinstance(body.shape, schema.VolumeTable):
             width = max(width, surface.HEADER + 2 * len(body.shape.submerged_volume))
     return width
-
-
-def shape_row(shape, width: int) -> np.ndarray:
-    """The kernels' shape row (kernels.surface) of a schema shape (None: a point volume)."""
-    row = surface.point_row(width)
-    if isinstance(shape, schema.Sphere):
-        row[:2] = (surface.SPHERE, shape.radius)
-    elif isinstance(shape, schema.VerticalCylinder):
-        row[:3] = (surface.CYLINDER, shape.radius, shape.height)
-    elif isinstance(shape, schema.VolumeTable):
-        table = np.array(shape.submerged_volume, dtype=float)
-        count = len(table)
-        row[:4] = (surface.TABLE, 0.0, 0.0, count)
-        row[surface.HEADER : surface.HEADER + count] = table[:, 0]
-        row[surface.HEADER + count : surface.HEADER + 2 * count] = table[:, 1] / table[0, 1]
-    return row
 
 
 @dataclass(frozen=True)

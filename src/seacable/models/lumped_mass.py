@@ -6,13 +6,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_newton as lkn
-from seacable.models import catenary, common, planar_rigid_links, statics
+from seacable.lines import catenary
+from seacable.models import common, planar_rigid_links, statics
 from seacable.models import rigid_segments_3d as seg
-from seacable.models import timefunctions as tfn
 from seacable.models.common import (
     add_total_energy,
     current_arrays,
@@ -96,6 +97,7 @@ def build(case: schema.Case, base_dir=None) -> LumpedSystem:
             wet_weight=props.wet_weight,
             buoyancy=props.buoyancy,
             axial_stiffness=cable.axial_stiffness,
+            segment_stiffness=np.full(n, cable.axial_stiffness),
             axial_damping=cable.axial_damping_times(),
             slack_allowed=1,
             drag_normal=0.5 * rho * cable.drag_coefficient_normal * cable.diameter * lengths,
@@ -269,7 +271,11 @@ def discrete_equilibrium(params, y0, iterations=30):
     target = params.axial_stiffness
     y = y0.copy()
     for stiffness in (1e-3 * target, 1e-2 * target, 1e-1 * target, target):
-        stage = params._replace(slack_allowed=0, axial_stiffness=stiffness)
+        stage = params._replace(
+            slack_allowed=0,
+            axial_stiffness=stiffness,
+            segment_stiffness=np.full(params.n, stiffness),
+        )
         y = _newton_equilibrium(stage, y, iterations)
     return y
 

@@ -11,12 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
 from seacable.kernels import surface
 from seacable.models import common
-from seacable.models import timefunctions as tfn
 from seacable.models.common import add_total_energy
 
 

@@ -14,13 +14,13 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import chain3d as c3
 from seacable.kernels import chain3d_outputs as c3o
 from seacable.kernels import surface
 from seacable.models import common, statics
-from seacable.models import timefunctions as tfn
 from seacable.models.common import (
     add_total_energy,
     body_loads,

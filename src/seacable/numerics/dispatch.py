@@ -24,6 +24,7 @@ from seacable.kernels import (
     star3d,
 )
 from seacable.kernels.timefn import JIT
+from seacable.system import kernel as system_kernel
 
 if TYPE_CHECKING:
     from numba.core.decorators import _JITOptions
@@ -61,6 +62,8 @@ def _model_rhs(t, y, p, w, ydot):
         return lambda t, y, p, w, ydot: lumped_star.rhs(t, y, p, w, ydot)
     if _is(p, natural.NaturalParams):
         return lambda t, y, p, w, ydot: natural.rhs(t, y, p, w, ydot)
+    if _is(p, system_kernel.SystemParams):
+        return lambda t, y, p, w, ydot: system_kernel.rhs(t, y, p, w, ydot)
     return None
 
 
@@ -76,6 +79,8 @@ def _model_project(y, p):
         return lambda y, p: None
     if _is(p, natural.NaturalParams):
         return lambda y, p: natural.project(y, p)
+    if _is(p, system_kernel.SystemParams):
+        return lambda y, p: system_kernel.project(y, p)
     return None
 
 
@@ -95,6 +100,8 @@ def _model_projects(p):
         return lambda p: True
     if _is(p, natural.NaturalParams):
         return lambda p: p.cartesian == 1
+    if _is(p, system_kernel.SystemParams):
+        return lambda p: True  # quaternions are normalised
     return None
 
 

@@ -1,0 +1,154 @@
+"""Compiled equations of motion of a body: its 6x6 mass matrix in the earth frame at its
+reference point, the velocity-dependent (gyroscopic and centripetal) terms, the mass and force
+a line's end gives it at one of its points, and the solve for the accelerations of its free
+degrees of freedom.
+
+With r = R r_G the arm of the centre of gravity, [r] the cross-product matrix and I_G the inertia
+about G in the earth frame (R I_body R^T):
+
+    [ m I      -m [r]          ] [a    ]   [F  ]   [m w x (w x r)                    ]
+    [ m [r]    I_G - m [r][r]  ] [alpha] = [M_O] - [w x (I_G w) + m r x (w x (w x r))]
+
+plus the added-mass matrix (body frame at the reference point, turned into the earth frame;
+its Coriolis terms are left out, as the ship-simulator document prescribes). A held degree of
+freedom has its row replaced by a_i = 0.
+"""
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.timefn import JIT
+
+
+@njit(**JIT)
+def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
+    """Fill ``m6`` (6, 6) and ``bias`` (6) of one body (``cog`` body frame, ``inertia`` about
+    G body frame, ``added`` 6x6 body frame at the reference point times ``scale_added``)."""
+    rx = rot[0, 0] * cog[0] + rot[0, 1] * cog[1] + rot[0, 2] * cog[2]
+    ry = rot[1, 0] * cog[0] + rot[1, 1] * cog[1] + rot[1, 2] * cog[2]
+    rz = rot[2, 0] * cog[0] + rot[2, 1] * cog[1] + rot[2, 2] * cog[2]
+    ig = np.zeros((3, 3))  # R I_body R^T
+    for i in range(3):
+        for j in range(3):
+            total = 0.0
+            for k in range(3):
+                for m in range(3):
+                    total += rot[i, k] * inertia[k, m] * rot[j, m]
+            ig[i, j] = total
+    cr = ((0.0, -rz, ry), (rz, 0.0, -rx), (-ry, rx, 0.0))
+    for i in range(6):
+        for j in range(6):
+            m6[i, j] = 0.0
+    for i in range(3):
+        m6[i, i] = mass
+        for j in range(3):
+            m6[i, 3 + j] = -mass * cr[i][j]
+            m6[3 + i, j] = mass * cr[i][j]
+            rr = 0.0
+            for k in range(3):
+                rr += cr[i][k] * cr[k][j]
+            m6[3 + i, 3 + j] = ig[i, j] - mass * rr
+    if scale_added != 0.0:
+        for i in range(6):
+            for j in range(6):
+                total = 0.0
+                for k in range(6):
+                    for m in range(6):
+                        total += _block(rot, i, k) * added[k, m] * _block(rot, j, m)
+                m6[i, j] += scale_added * total
+    wx, wy, wz = omega[0], omega[1], omega[2]
+    # w x r, then w x (w x r)
+    ax, ay, az = wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx
+    cx, cy, cz = wy * az - wz * ay, wz * ax - wx * az, wx * ay - wy * ax
+    bias[0], bias[1], bias[2] = mass * cx, mass * cy, mass * cz
+    hx = ig[0, 0] * wx + ig[0, 1] * wy + ig[0, 2] * wz
+    hy = ig[1, 0] * wx + ig[1, 1] * wy + ig[1, 2] * wz
+    hz = ig[2, 0] * wx + ig[2, 1] * wy + ig[2, 2] * wz
+    bias[3] = wy * hz - wz * hy + mass * (ry * cz - rz * cy)
+    bias[4] = wz * hx - wx * hz + mass * (rz * cx - rx * cz)
+    bias[5] = wx * hy - wy * hx + mass * (rx * cy - ry * cx)
+
+
+@njit(inline="always", **JIT)
+def _block(rot, i, k):
+    """Entry (i, k) of diag(R, R)."""
+    if (i < 3) != (k < 3):
+        return 0.0
+    return rot[i % 3, k % 3]
+
+
+@njit(**JIT)
+def add_point_mass(m3, arm, omega, force, m6, rhs):
+    """A mass matrix ``m3`` (3x3, row-major 9) rigidly carried at ``arm`` (earth frame) from the
+    reference point and loaded by ``force`` besides its carrier (a line's end node): adds
+    Phi^T m3 Phi to ``m6`` and Phi^T (force - m3 w x (w x arm)) to ``rhs``, Phi = [I, -[arm]]."""
+    rx, ry, rz = arm[0], arm[1], arm[2]
+    wx, wy, wz = omega[0], omega[1], omega[2]
+    ax, ay, az = wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx
+    c = (wy * az - wz * ay, wz * ax - wx * az, wx * ay - wy * ax)
+    f = (
+        force[0] - (m3[0] * c[0] + m3[1] * c[1] + m3[2] * c[2]),
+        force[1] - (m3[3] * c[0] + m3[4] * c[1] + m3[5] * c[2]),
+        force[2] - (m3[6] * c[0] + m3[7] * c[1] + m3[8] * c[2]),
+    )
+    add_force(arm, f[0], f[1], f[2], rhs)
+    # Phi (3x6) = [I, -[arm]]; -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
+    phi = ((0.0, rz, -ry), (-rz, 0.0, rx), (ry, -rx, 0.0))
+    for i in range(6):
+        for j in range(6):
+            total = 0.0
+            for k in range(3):
+                pik = (1.0 if i == k else 0.0) if i < 3 else phi[k][i - 3]
+                for m in range(3):
+                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi[m][j - 3]
+                    total += pik * m3[3 * k + m] * pjm
+            m6[i, j] += total
+
+
+@njit(inline="always", **JIT)
+def add_force(arm, fx, fy, fz, rhs):
+    """Add a force (earth frame) acting at ``arm`` from the reference point: the force, and
+    its moment arm x f about the reference point."""
+    rhs[0] += fx
+    rhs[1] += fy
+    rhs[2] += fz
+    rhs[3] += arm[1] * fz - arm[2] * fy
+    rhs[4] += arm[2] * fx - arm[0] * fz
+    rhs[5] += arm[0] * fy - arm[1] * fx
+
+
+@njit(**JIT)
+def solve_free(m6, rhs, free, out):
+    """Accelerations ``out`` (6) of M a = rhs with a_i = 0 on every held degree of freedom
+    (``free[i] == 0``): Gaussian elimination with partial pivoting. False when singular."""
+    a = m6.copy()
+    b = rhs.copy()
+    for i in range(6):
+        if free[i] == 0.0:
+            for j in range(6):
+                a[i, j] = 0.0
+            a[i, i] = 1.0
+            b[i] = 0.0
+    for k in range(6):
+        p = k
+        for i in range(k + 1, 6):
+            if abs(a[i, k]) > abs(a[p, k]):
+                p = i
+        if a[p, k] == 0.0:
+            return False
+        if p != k:
+            for j in range(6):
+                a[k, j], a[p, j] = a[p, j], a[k, j]
+            b[k], b[p] = b[p], b[k]
+        for i in range(k + 1, 6):
+            factor = a[i, k] / a[k, k]
+            if factor != 0.0:
+                for j in range(k, 6):
+                    a[i, j] -= factor * a[k, j]
+                b[i] -= factor * b[k]
+    for i in range(5, -1, -1):
+        total = b[i]
+        for j in range(i + 1, 6):
+            total -= a[i, j] * out[j]
+        out[i] = total / a[i, i]
+    return True

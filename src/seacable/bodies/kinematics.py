@@ -1,0 +1,176 @@
+"""Compiled kinematics of bodies: orientation quaternions, rotation matrices, the pose and twist
+of every body at a time, and the position and velocity of a point of a body.
+
+A pose is the reference point's position (3) and the orientation quaternion q = (w, x, y, z),
+|q| = 1, rotating body-frame vectors into the earth frame: r_earth = R(q) r_body. A twist is the
+reference point's velocity and the angular velocity omega, both in the earth frame;
+dq/dt = 1/2 (0, omega) * q (quaternion product, omega in the earth frame).
+Euler angles (roll phi, pitch theta, yaw psi) compose as R = Rz(psi) Ry(theta) Rx(phi).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.timefn import JIT, evaluate
+
+FIXED = 0  # held at rest (BodyKind.FIXED)
+IMPOSED = 1  # moved by six time functions (BodyKind.IMPOSED)
+DYNAMIC = 2  # moved by its equations of motion (BodyKind.DYNAMIC)
+
+
+@njit(**JIT)
+def rotation(qw, qx, qy, qz, out):
+    """The rotation matrix of a unit quaternion, into ``out`` (3, 3)."""
+    out[0, 0] = 1.0 - 2.0 * (qy * qy + qz * qz)
+    out[0, 1] = 2.0 * (qx * qy - qw * qz)
+    out[0, 2] = 2.0 * (qx * qz + qw * qy)
+    out[1, 0] = 2.0 * (qx * qy + qw * qz)
+    out[1, 1] = 1.0 - 2.0 * (qx * qx + qz * qz)
+    out[1, 2] = 2.0 * (qy * qz - qw * qx)
+    out[2, 0] = 2.0 * (qx * qz - qw * qy)
+    out[2, 1] = 2.0 * (qy * qz + qw * qx)
+    out[2, 2] = 1.0 - 2.0 * (qx * qx + qy * qy)
+
+
+@njit(**JIT)
+def euler_quaternion(roll, pitch, yaw):
+    """The quaternion of R = Rz(yaw) Ry(pitch) Rx(roll) [rad]."""
+    cr, sr = math.cos(0.5 * roll), math.sin(0.5 * roll)
+    cp, sp = math.cos(0.5 * pitch), math.sin(0.5 * pitch)
+    cy, sy = math.cos(0.5 * yaw), math.sin(0.5 * yaw)
+    return (
+        cy * cp * cr + sy * sp * sr,
+        cy * cp * sr - sy * sp * cr,
+        cy * sp * cr + sy * cp * sr,
+        sy * cp * cr - cy * sp * sr,
+    )
+
+
+@njit(**JIT)
+def quaternion_euler(qw, qx, qy, qz):
+    """Roll, pitch, yaw [rad] of a unit quaternion (pitch within [-pi/2, pi/2])."""
+    roll = math.atan2(2.0 * (qw * qx + qy * qz), 1.0 - 2.0 * (qx * qx + qy * qy))
+    sine = max(-1.0, min(1.0, 2.0 * (qw * qy - qz * qx)))
+    pitch = math.asin(sine)
+    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    return roll, pitch, yaw
+
+
+@njit(**JIT)
+def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
+    """Earth-frame angular velocity of R = Rz(yaw) Ry(pitch) Rx(roll) with angle rates:
+    omega = dyaw e_z + dpitch Rz e_y + droll Rz Ry e_x."""
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    out[0] = -dpitch * sy + droll * cp * cy
+    out[1] = dpitch * cy + droll * cp * sy
+    out[2] = dyaw - droll * sp
+
+
+@njit(**JIT)
+def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, tf, pos, rot, vel, omega):
+    """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
+    (nb, 3, 3), ``vel`` and ``omega`` (nb, 3). ``tf`` is the tuple of time-function arrays
+    (breaks, coefs, count, sine, build_up); an imposed body's channels are x, y, z [m], roll,
+    pitch, yaw [rad] from ``channel[b]`` on."""
+    breaks, coefs, count, sine, build_up = tf
+    angles = np.empty(3)
+    rates = np.empty(3)
+    for b in range(kind.shape[0]):
+        if kind[b] == DYNAMIC:
+            q, v = q_at[b], v_at[b]
+            for c in range(3):
+                pos[b, c] = y[q + c]
+                vel[b, c] = y[v + c]
+            if rigid[b] == 1:
+                rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot[b])
+                for c in range(3):
+                    omega[b, c] = y[v + 3 + c]
+            else:
+                rotation(1.0, 0.0, 0.0, 0.0, rot[b])
+                omega[b, :] = 0.0
+        elif kind[b] == IMPOSED:
+            first = channel[b]
+            for c in range(3):
+                f, df, _ = evaluate(breaks, coefs, count, sine, build_up, first + c, t)
+                pos[b, c] = f
+                vel[b, c] = df
+                a, da, _ = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
+                angles[c] = a
+                rates[c] = da
+            qw, qx, qy, qz = euler_quaternion(angles[0], angles[1], angles[2])
+            rotation(qw, qx, qy, qz, rot[b])
+            euler_rates_omega(
+                angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], omega[b]
+            )
+        else:
+            for c in range(3):
+                pos[b, c] = pose0[b, c]
+                vel[b, c] = 0.0
+                omega[b, c] = 0.0
+            rotation(pose0[b, 3], pose0[b, 4], pose0[b, 5], pose0[b, 6], rot[b])
+
+
+@njit(**JIT)
+def point_states(body, offset, pos, rot, vel, omega, ppos, pvel, parm):
+    """Earth-frame position and velocity of every point (``ppos``, ``pvel`` (np, 3)) and its
+    arm from its body's reference point (``parm``): r = R r_body, p = x + r,
+    v = v_ref + omega x r."""
+    for k in range(body.shape[0]):
+        b = body[k]
+        for c in range(3):
+            parm[k, c] = (
+                rot[b, c, 0] * offset[k, 0]
+                + rot[b, c, 1] * offset[k, 1]
+                + rot[b, c, 2] * offset[k, 2]
+            )
+        rx, ry, rz = parm[k, 0], parm[k, 1], parm[k, 2]
+        wx, wy, wz = omega[b, 0], omega[b, 1], omega[b, 2]
+        ppos[k, 0] = pos[b, 0] + rx
+        ppos[k, 1] = pos[b, 1] + ry
+        ppos[k, 2] = pos[b, 2] + rz
+        pvel[k, 0] = vel[b, 0] + wy * rz - wz * ry
+        pvel[k, 1] = vel[b, 1] + wz * rx - wx * rz
+        pvel[k, 2] = vel[b, 2] + wx * ry - wy * rx
+
+
+@njit(inline="always", **JIT)
+def turn(rot, v):
+    """R v for a 3-vector v (a tuple)."""
+    return (
+        rot[0, 0] * v[0] + rot[0, 1] * v[1] + rot[0, 2] * v[2],
+        rot[1, 0] * v[0] + rot[1, 1] * v[1] + rot[1, 2] * v[2],
+        rot[2, 0] * v[0] + rot[2, 1] * v[1] + rot[2, 2] * v[2],
+    )
+
+
+@njit(**JIT)
+def imposed_acceleration(t, first, tf, out):
+    """Acceleration (3) and angular acceleration (3, earth frame) of an imposed body, from
+    its channels' second derivatives: alpha = d/dt (dyaw e_z + dpitch Rz e_y + droll Rz Ry e_x)."""
+    breaks, coefs, count, sine, build_up = tf
+    ang = np.empty(3)
+    rate = np.empty(3)
+    acc = np.empty(3)
+    for c in range(3):
+        _, _, out[c] = evaluate(breaks, coefs, count, sine, build_up, first + c, t)
+        ang[c], rate[c], acc[c] = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
+    roll, pitch, yaw = ang[0], ang[1], ang[2]
+    dr, dp, dy = rate[0], rate[1], rate[2]
+    cy, sy, cp, sp = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
+    ey = (-sy, cy, 0.0)  # Rz e_y
+    ex = (cp * cy, cp * sy, -sp)  # Rz Ry e_x
+    w1 = (dp * ey[0], dp * ey[1], dy + dp * ey[2])  # angular velocity of Rz Ry
+    # d(Rz e_y)/dt = dyaw e_z x Rz e_y; d(Rz Ry e_x)/dt = w1 x Rz Ry e_x
+    dey = (-dy * ey[1], dy * ey[0], 0.0)
+    dex = (
+        w1[1] * ex[2] - w1[2] * ex[1],
+        w1[2] * ex[0] - w1[0] * ex[2],
+        w1[0] * ex[1] - w1[1] * ex[0],
+    )
+    for c in range(3):
+        out[3 + c] = acc[1] * ey[c] + dp * dey[c] + acc[0] * ex[c] + dr * dex[c]
+    out[5] += acc[2]
+    _ = roll

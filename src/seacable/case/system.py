@@ -1,0 +1,333 @@
+"""The case-file schema of a system of bodies and lines: named bodies with named points, the
+force models acting on each body, named line types, and lines between body points.
+
+Conventions (docs/conventions.md): SI units, the earth frame z up with z = 0 at the still-water
+surface, angles in degrees in the case file (keys end in ``_deg``). A body's pose is its
+reference point's position and its orientation (roll, pitch, yaw: rotations about the earth's x,
+y and z axes, applied in that order: R = Rz(yaw) Ry(pitch) Rx(roll)); its points and its centre of
+gravity are given in the body frame, relative to the reference point.
+"""
+
+from typing import Annotated, Literal
+
+from pydantic import Field, PrivateAttr, field_validator, model_validator
+
+from seacable.case.schema import (
+    Constant,
+    Environment,
+    NonNeg,
+    PerAxis,
+    Pos,
+    Shape,
+    Simulation,
+    TimeFunction,
+    _Model,
+)
+
+Vector = tuple[float, float, float]
+Matrix6 = tuple[
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float],
+]
+Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
+DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
+ORIGIN = "origin"  # the point every body has: its reference point
+
+
+# ---- force models (``external forces`` of a body) ------------------------------------------------
+class Gravity(_Model):
+    """The body's weight m g at its centre of gravity, downwards."""
+
+    model: Literal["gravity"]
+
+
+class Buoyancy(_Model):
+    """rho g V_submerged at the centre of buoyancy, upwards: the body's ``volume`` (wholly
+    submerged at any elevation) or its ``shape`` (the submerged part as the free surface cuts
+    it). Nothing in air (environment.in_air)."""
+
+    model: Literal["buoyancy"]
+
+
+class Drag(_Model):
+    """Quadratic drag on the velocity of the reference point relative to the current, per body
+    axis k: -0.5 rho Cd A_k |v_r| v_r,k (times the submerged fraction of a shaped body)."""
+
+    model: Literal["drag"]
+    drag_coefficient: NonNeg  # Cd
+    area: PerAxis  # A per body axis [m^2]
+
+
+class AppliedForce(_Model):
+    """A force and a moment given as time functions, in the earth frame, at a point of the
+    body (its reference point by default): a thrust, a test load."""
+
+    model: Literal["applied"]
+    point: str = ORIGIN
+    force_x: TimeFunction = Constant(value=0.0)  # [N]
+    force_y: TimeFunction = Constant(value=0.0)  # [N]
+    force_z: TimeFunction = Constant(value=0.0)  # [N], positive up
+    moment_x: TimeFunction = Constant(value=0.0)  # [N m]
+    moment_y: TimeFunction = Constant(value=0.0)  # [N m]
+    moment_z: TimeFunction = Constant(value=0.0)  # [N m]
+
+
+class LinearStiffness(_Model):
+    """F = -K d: d the body's displacement from ``equilibrium`` (x, y, z [m] of the reference
+    point, then roll, pitch, yaw [rad] as the small rotation vector from the equilibrium
+    orientation), K [N/m, N/rad, N m/m, N m/rad] in the earth frame at the reference point: a
+    hydrostatic stiffness, a mooring's linearisation, elastic ties to the earth. ``matrix``
+    6x6, or ``diagonal`` (6 values); ``equilibrium`` defaults to the initial pose."""
+
+    model: Literal["linear_stiffness"]
+    matrix: Matrix6 | None = None
+    diagonal: tuple[float, float, float, float, float, float] | None = None
+    equilibrium_position: Vector | None = None  # [m]
+    equilibrium_orientation_deg: Vector | None = None  # roll, pitch, yaw [deg]
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.matrix is None) == (self.diagonal is None):
+            raise ValueError("give exactly one of 'matrix' (6x6) or 'diagonal' (6 values)")
+        return self
+
+
+class LinearDamping(_Model):
+    """F = -B (v, omega): the reference point's velocity [m/s] and the angular velocity
+    [rad/s], earth frame; B [N s/m, N s, N m s/m, N m s/rad] 6x6 or ``diagonal``."""
+
+    model: Literal["linear_damping"]
+    matrix: Matrix6 | None = None
+    diagonal: tuple[NonNeg, NonNeg, NonNeg, NonNeg, NonNeg, NonNeg] | None = None
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.matrix is None) == (self.diagonal is None):
+            raise ValueError("give exactly one of 'matrix' (6x6) or 'diagonal' (6 values)")
+        return self
+
+
+ForceModel = Annotated[
+    Gravity | Buoyancy | Drag | AppliedForce | LinearStiffness | LinearDamping,
+    Field(discriminator="model"),
+]
+
+
+# ---- bodies -------------------------------------------------------------------------------------
+class _Body(_Model):
+    name: Name
+    points: dict[Name, Vector] = {}  # attachment points in the body frame [m]
+
+    @field_validator("points")
+    @classmethod
+    def _no_origin(cls, points):
+        if ORIGIN in points:
+            raise ValueError(f"'{ORIGIN}' is every body's reference point; choose another name")
+        return points
+
+
+class FixedBody(_Body):
+    """Held at rest: an anchor, a pin, a fixed platform."""
+
+    type: Literal["fixed"]
+    position: Vector  # [m]
+    orientation_deg: Vector = (0.0, 0.0, 0.0)  # roll, pitch, yaw [deg]
+
+
+class ImposedBody(_Body):
+    """Moves as its time functions say, whatever the lines pull: a vessel's or a crane's
+    motion, a vehicle's trajectory. Position of the reference point [m] and orientation angles
+    [deg] (roll, pitch, yaw) as functions of time."""
+
+    type: Literal["imposed"]
+    x: TimeFunction = Constant(value=0.0)  # [m]
+    y: TimeFunction = Constant(value=0.0)  # [m]
+    z: TimeFunction = Constant(value=0.0)  # [m]
+    roll_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    pitch_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    yaw_deg: TimeFunction = Constant(value=0.0)  # [deg]
+
+
+class _Dynamic(_Body):
+    position: Vector  # initial position of the reference point [m]
+    velocity: Vector = (0.0, 0.0, 0.0)  # initial [m/s]
+    mass: NonNeg  # [kg]
+    volume: NonNeg = 0.0  # displaced volume when wholly submerged [m^3]
+    shape: Shape | None = None  # instead of volume: the volume the free surface cuts
+    external_forces: list[ForceModel] = Field(default=[], alias="external forces")
+
+    @model_validator(mode="after")
+    def _volume_or_shape(self):
+        if self.shape is not None and self.volume:
+            raise ValueError("give 'volume' [m^3] or 'shape', not both")
+        needs = [f.model for f in self.external_forces if f.model == "buoyancy"]
+        if needs and self.shape is None and not self.volume:
+            raise ValueError("force model 'buoyancy' needs the body's 'volume' [m^3] or 'shape'")
+        return self
+
+    def displaced_volume(self) -> float:
+        """Volume wholly submerged [m^3]."""
+        return self.shape.volume() if self.shape is not None else self.volume
+
+
+class PointBody(_Dynamic):
+    """Three translational degrees of freedom: a buoy, a clump weight, a towed fish, the
+    connection between line sections. Its points are all its reference point."""
+
+    type: Literal["point"]
+    added_mass: PerAxis = 0.0  # per earth axis x, y, z [kg] (scaled by a shape's submergence)
+    dofs: list[Literal["surge", "sway", "heave"]] = ["surge", "sway", "heave"]
+
+    @field_validator("points")
+    @classmethod
+    def _at_origin(cls, points):
+        off = {k: v for k, v in points.items() if any(v)}
+        if off:
+            raise ValueError(
+                f"a point body's points are its reference point; got {off}: use type 'rigid'"
+            )
+        return points
+
+
+class RigidBody(_Dynamic):
+    """Six degrees of freedom (or those of ``dofs``: a heaving buoy is ``[heave]``, a ship in
+    the horizontal plane ``[surge, sway, yaw]``; the others are held at their initial values).
+    surge, sway, heave move the reference point along the earth's x, y, z; roll, pitch, yaw turn
+    the body about the earth's x, y, z axes through the reference point."""
+
+    type: Literal["rigid"]
+    orientation_deg: Vector = (0.0, 0.0, 0.0)  # initial roll, pitch, yaw [deg]
+    angular_velocity: Vector = (0.0, 0.0, 0.0)  # initial, earth frame [rad/s]
+    centre_of_gravity: Vector = (0.0, 0.0, 0.0)  # body frame [m]
+    inertia: Vector | tuple[Vector, Vector, Vector] = (0.0, 0.0, 0.0)  # about the CoG,
+    # body frame [kg m^2]: the diagonal, or the 3x3 matrix
+    added_mass: Matrix6 | tuple[float, float, float, float, float, float] = (0.0,) * 6
+    # body frame, at the reference point [kg, kg m, kg m^2]: 6x6, or its diagonal
+    centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
+    dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+
+    @field_validator("dofs")
+    @classmethod
+    def _unique(cls, dofs):
+        if len(set(dofs)) != len(dofs):
+            raise ValueError(f"dofs lists a degree of freedom twice: {dofs}")
+        return dofs
+
+
+Body = Annotated[FixedBody | ImposedBody | PointBody | RigidBody, Field(discriminator="type")]
+
+
+# ---- line types and lines -----------------------------------------------------------------------
+class LineType(_Model):
+    """Properties of a cable, rope or chain, per unit length."""
+
+    name: Name
+    diameter: Pos  # hydrodynamic and buoyancy diameter [m]
+    mass_per_length: Pos  # [kg/m]
+    axial_stiffness: Pos | None = None  # EA [N] (extensible models)
+    # axial damping, at most one of: alpha [s] in N = EA (eps + alpha d eps/dt), or zeta, the
+    # fraction of each segment's critical damping (MoorDyn's negative BA)
+    axial_damping_time: NonNeg | None = None  # [s]
+    axial_damping_ratio: NonNeg | None = None  # [-]
+    bending_stiffness: NonNeg = 0.0  # EI [N m^2]
+    drag_coefficient_normal: NonNeg = 1.2  # Cd on the projected area d l
+    drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
+    friction_coefficient: NonNeg = 0.0  # Richtmyer f
+    added_mass_coefficient: NonNeg = 1.0  # Ca, normal
+
+    @model_validator(mode="after")
+    def _one_damping(self):
+        if self.axial_damping_time is not None and self.axial_damping_ratio is not None:
+            raise ValueError(
+                "give at most one of 'axial_damping_time' [s] or 'axial_damping_ratio'"
+            )
+        return self
+
+
+class Section(_Model):
+    """A stretch of a line: ``length`` [m] of line type ``type`` in ``segments`` equal
+    segments."""
+
+    type: Name
+    length: Pos  # unstretched [m]
+    segments: int = Field(ge=1, le=100_000)
+
+
+class LumpedMassLine(_Model):
+    """An extensible line of lumped masses (Poth's displacement variables, as MoorDyn): its
+    end nodes follow the points ``from`` and ``to`` (``body`` or ``body.point``) and give them
+    their mass and the line's force."""
+
+    name: Name
+    model: Literal["lumped_mass"]
+    from_: str = Field(alias="from")
+    to: str
+    sections: list[Section] = Field(min_length=1)
+    initial: Literal["catenary", "straight"] = "catenary"
+
+
+class Tie(_Model):
+    """A massless elastic tie (a hawser, a mooring spring) between two body points: tension
+    k (d - L0) + c dd/dt when stretched (d the distance between the points), or from the
+    table of (elongation [m], tension [N]) pairs; none in compression (slack)."""
+
+    name: Name
+    model: Literal["tie"]
+    from_: str = Field(alias="from")
+    to: str
+    unstretched_length: NonNeg  # L0 [m]
+    stiffness: Pos | None = None  # k [N/m]
+    tension_table: list[tuple[NonNeg, NonNeg]] | None = Field(default=None, min_length=2)
+    damping: NonNeg = 0.0  # c [N s/m], while taut
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.stiffness is None) == (self.tension_table is None):
+            raise ValueError(
+                "give exactly one of 'stiffness' [N/m] or 'tension_table' "
+                "[[elongation m, tension N], ...]"
+            )
+        if self.tension_table is not None:
+            table = self.tension_table
+            if table[0] != (0.0, 0.0):
+                raise ValueError("tension_table must start at [0, 0] (no tension at L0)")
+            if any(b[0] <= a[0] or b[1] < a[1] for a, b in zip(table, table[1:], strict=False)):
+                raise ValueError(
+                    "tension_table: elongations must increase and tensions must not decrease"
+                )
+        return self
+
+
+Line = Annotated[LumpedMassLine | Tie, Field(discriminator="model")]
+
+
+class SystemCase(_Model):
+    """A complete case: bodies, the lines between them, the environment and the run."""
+
+    name: str = "case"
+    description: str = ""
+    environment: Environment = Environment()
+    bodies: list[Body] = Field(min_length=1)
+    line_types: list[LineType] = []
+    lines: list[Line] = Field(min_length=1)
+    simulation: Simulation
+    _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
+    _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
+
+    @model_validator(mode="after")
+    def _unique_names(self):
+        for what, items in (
+            ("bodies", self.bodies),
+            ("line_types", self.line_types),
+            ("lines", self.lines),
+        ):
+            names = [item.name for item in items]
+            twice = sorted({n for n in names if names.count(n) > 1})
+            if twice:
+                raise ValueError(f"{what}: names must be unique; {twice} appear more than once")
+        return self

@@ -1,0 +1,35 @@
+"""Quadratic drag of a body on the velocity of its reference point relative to the current:
+per body axis k, f_k = -c_k |v_r| (R^T v_r)_k, c_k = 0.5 rho Cd A_k [N s^2/m^2], times the
+submerged fraction of a shaped body; applied at the reference point."""
+
+import math
+
+from numba import njit
+
+from seacable.bodies.dynamics import add_force
+from seacable.case.schema import per_axis
+from seacable.kernels import chain3d as c3
+from seacable.kernels.timefn import JIT
+
+
+def pack(spec, rho: float) -> list[float]:
+    """The row: c_x, c_y, c_z [N s^2/m^2]."""
+    area = per_axis(spec.area)
+    return [0.5 * rho * spec.drag_coefficient * a for a in area]
+
+
+@njit(**JIT)
+def add(row, fraction, pos, rot, vel, current_z, current_u, current_v, rhs):
+    cu, cv = c3._current(current_z, current_u, current_v, pos[2])
+    rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]
+    speed = math.sqrt(rx * rx + ry * ry + rz * rz) * fraction
+    # body-frame components R^T v_r, their drag, back to the earth frame
+    fb = (
+        -row[0] * speed * (rot[0, 0] * rx + rot[1, 0] * ry + rot[2, 0] * rz),
+        -row[1] * speed * (rot[0, 1] * rx + rot[1, 1] * ry + rot[2, 1] * rz),
+        -row[2] * speed * (rot[0, 2] * rx + rot[1, 2] * ry + rot[2, 2] * rz),
+    )
+    fx = rot[0, 0] * fb[0] + rot[0, 1] * fb[1] + rot[0, 2] * fb[2]
+    fy = rot[1, 0] * fb[0] + rot[1, 1] * fb[1] + rot[1, 2] * fb[2]
+    fz = rot[2, 0] * fb[0] + rot[2, 1] * fb[1] + rot[2, 2] * fb[2]
+    add_force((0.0, 0.0, 0.0), fx, fy, fz, rhs)

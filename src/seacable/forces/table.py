@@ -1,0 +1,42 @@
+"""Every force model of every body, evaluated from one flat table (``forces.kinds``): row f
+acts on body ``body[f]``, reads its floats from ``data[at[f]:]`` and its channels from
+``first[f]`` on."""
+
+from numba import njit
+
+from seacable.forces import applied, drag, linear, weight
+from seacable.forces.kinds import (
+    APPLIED,
+    BUOYANCY,
+    DRAG,
+    GRAVITY,
+    LINEAR_DAMPING,
+    LINEAR_STIFFNESS,
+)
+from seacable.kernels.timefn import JIT
+
+
+@njit(**JIT)
+def add_all(
+    t, kind, body, at, first, data, mass, cog, volume, cob, fraction, y, q_at, pos, rot, vel,
+    omega, gravity, rho, current_z, current_u, current_v, tf, rhs,
+):  # fmt: skip
+    """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6)."""
+    for f in range(kind.shape[0]):
+        b = body[f]
+        row = data[at[f] :]
+        k = kind[f]
+        if k == GRAVITY:
+            weight.add_gravity(mass[b], cog[b], rot[b], gravity, rhs[b])
+        elif k == BUOYANCY:
+            weight.add_buoyancy(volume[b], cob[b], fraction[b], rot[b], gravity, rho, rhs[b])
+        elif k == DRAG:
+            drag.add(row, fraction[b], pos[b], rot[b], vel[b], current_z, current_u, current_v,
+                     rhs[b])  # fmt: skip
+        elif k == APPLIED:
+            applied.add(row, first[f], t, rot[b], tf, rhs[b])
+        elif k == LINEAR_STIFFNESS:
+            q = q_at[b]
+            linear.add_stiffness(row, pos[b], y[q + 3 : q + 7], rhs[b])
+        elif k == LINEAR_DAMPING:
+            linear.add_damping(row, vel[b], omega[b], rhs[b])

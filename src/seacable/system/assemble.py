@@ -1,0 +1,360 @@
+"""A validated SystemCase turned into the flat SystemParams and the initial state: names
+resolved to indices, offsets laid out (system.kernel's state layout), force models packed, line
+sections cut into segments, time functions compiled into channels."""
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from seacable import timefunctions as tfn
+from seacable.bodies import kinematics
+from seacable.case import system as sch
+from seacable.case.schema import VolumeTable, per_axis
+from seacable.errors import CaseError
+from seacable.forces import applied, drag, linear
+from seacable.forces.kinds import ForceKind
+from seacable.kernels import surface
+from seacable.packing import channel, current_arrays, shape_row
+from seacable.system.kernel import SystemParams
+
+KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
+INT_FIELDS = {
+    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "point_body", "force_kind",
+    "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
+    "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
+}  # fmt: skip
+
+
+@dataclass
+class Layout:
+    """Where each component lives: names in case order, state offsets, points."""
+
+    bodies: list[str] = field(default_factory=list)
+    lines: list[str] = field(default_factory=list)  # lumped-mass lines
+    ties: list[str] = field(default_factory=list)
+    points: list[tuple[int, str]] = field(default_factory=list)  # (body, point name)
+    point_index: dict = field(default_factory=dict)  # "body.point" -> index
+
+
+@dataclass(frozen=True)
+class BuiltSystem:
+    params: SystemParams
+    y0: np.ndarray
+    layout: Layout
+    case: sch.SystemCase
+
+
+def _rad(function: tfn.Piecewise) -> tfn.Piecewise:
+    """A degree-valued time function in radians."""
+    k = math.pi / 180.0
+    amplitude, omega, phase = function.sine
+    return tfn.Piecewise(function.breaks, function.coefs * k, (amplitude * k, omega, phase),
+                         function.builds_up)  # fmt: skip
+
+
+def _point(case: sch.SystemCase, layout: Layout, ref: str, where: str) -> int:
+    """Index of the point ``body`` or ``body.point`` (created on first use)."""
+    if ref in layout.point_index:
+        return layout.point_index[ref]
+    body_name, _, point_name = ref.partition(".")
+    names = layout.bodies
+    if body_name not in names:
+        raise CaseError(
+            f"{where}: '{ref}' names no body; bodies are {names} (write 'body' or 'body.point')"
+        )
+    b = names.index(body_name)
+    body = case.bodies[b]
+    point_name = point_name or sch.ORIGIN
+    if point_name != sch.ORIGIN and point_name not in body.points:
+        raise CaseError(
+            f"{where}: body '{body_name}' has no point '{point_name}'; its points are "
+            f"{[sch.ORIGIN, *body.points]}"
+        )
+    layout.point_index[ref] = len(layout.points)
+    layout.points.append((b, point_name))
+    return layout.point_index[ref]
+
+
+def _orientation(body) -> tuple[float, float, float, float]:
+    roll, pitch, yaw = (math.radians(a) for a in getattr(body, "orientation_deg", (0, 0, 0)))
+    return kinematics.euler_quaternion(roll, pitch, yaw)
+
+
+def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
+    env = case.environment
+    rho = 0.0 if env.in_air else env.water_density
+    layout = Layout(bodies=[b.name for b in case.bodies])
+    channels: list[tfn.Piecewise] = []
+    nb = len(case.bodies)
+    tables = [
+        len(b.shape.submerged_volume) for b in case.bodies
+        if isinstance(b, sch.PointBody | sch.RigidBody) and isinstance(b.shape, VolumeTable)
+    ]  # fmt: skip
+    width = surface.HEADER + 2 * max(tables or [0])
+    f: dict[str, list] = {k: [] for k in ("kind", "body", "at", "first")}
+    data: list[float] = []
+    arrays = {
+        "body_kind": np.zeros(nb), "body_rigid": np.zeros(nb), "body_q": -np.ones(nb),
+        "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_pose": np.zeros((nb, 7)),
+        "body_mass": np.zeros(nb), "body_cog": np.zeros((nb, 3)),
+        "body_inertia": np.zeros((nb, 3, 3)), "body_added": np.zeros((nb, 6, 6)),
+        "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
+        "body_cob": np.zeros((nb, 3)), "body_shape": np.zeros((nb, width)),
+    }  # fmt: skip
+    q_at = v_at = 0
+    y_q: list[float] = []
+    y_v: list[float] = []
+    for b, body in enumerate(case.bodies):
+        where = f"bodies[{b}] ({body.name})"
+        arrays["body_shape"][b] = shape_row(getattr(body, "shape", None), width)
+        arrays["body_pose"][b, 3] = 1.0
+        if isinstance(body, sch.FixedBody):
+            arrays["body_pose"][b] = [*body.position, *_orientation(body)]
+            continue
+        if isinstance(body, sch.ImposedBody):
+            arrays["body_kind"][b] = kinematics.IMPOSED
+            arrays["body_channel"][b] = len(channels)
+            for axis in ("x", "y", "z"):
+                channels.append(channel(getattr(body, axis), base_dir, f"{where}.{axis}"))
+            for angle in ("roll_deg", "pitch_deg", "yaw_deg"):
+                channels.append(_rad(channel(getattr(body, angle), base_dir, f"{where}.{angle}")))
+            continue
+        rigid = isinstance(body, sch.RigidBody)
+        arrays["body_kind"][b] = kinematics.DYNAMIC
+        arrays["body_rigid"][b] = 1 if rigid else 0
+        arrays["body_q"][b], arrays["body_v"][b] = q_at, v_at
+        arrays["body_mass"][b] = body.mass
+        arrays["body_volume"][b] = body.displaced_volume()
+        free = [1.0 if name in body.dofs else 0.0 for name in sch.DOF_NAMES]
+        arrays["body_free"][b] = free
+        velocity = [v * free[c] for c, v in enumerate(body.velocity)]
+        if isinstance(body, sch.RigidBody):
+            quaternion = _orientation(body)
+            y_q += [*body.position, *quaternion]
+            omega = [w * free[3 + c] for c, w in enumerate(body.angular_velocity)]
+            y_v += [*velocity, *omega]
+            arrays["body_cog"][b] = body.centre_of_gravity
+            arrays["body_cob"][b] = body.centre_of_buoyancy
+            inertia = np.array(body.inertia, dtype=float)
+            arrays["body_inertia"][b] = np.diag(inertia) if inertia.ndim == 1 else inertia
+            added = np.array(body.added_mass, dtype=float)
+            arrays["body_added"][b] = np.diag(added) if added.ndim == 1 else added
+            q_at, v_at = q_at + 7, v_at + 6
+        else:
+            y_q += list(body.position)
+            y_v += velocity
+            arrays["body_added"][b, :3, :3] = np.diag(
+                np.zeros(3) if env.in_air else np.array(per_axis(body.added_mass), float)
+            )
+            q_at, v_at = q_at + 3, v_at + 3
+        for k, spec in enumerate(body.external_forces):
+            f["kind"].append(int(ForceKind[spec.model.upper()]))
+            f["body"].append(b)
+            f["at"].append(len(data))
+            f["first"].append(len(channels))
+            data += _force_row(case, layout, spec, body, rho, base_dir, channels,
+                               f"{where}.external forces[{k}]")  # fmt: skip
+    lines = _lines(case, layout, rho, q_at, v_at)
+    n_q = q_at + lines.pop("interior_q")
+    n_v = v_at + lines.pop("interior_v")
+    # velocity offsets are absolute: after every position
+    arrays["body_v"] = np.where(arrays["body_v"] >= 0, arrays["body_v"] + n_q, -1)
+    lines["line_v"] = lines["line_v"] + n_q
+    ties = _ties(case, layout)
+    points = np.array([b for b, _ in layout.points], dtype=np.int64)
+    offsets = np.array([_offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
+    current_z, current_u, current_v = current_arrays(env)
+    seabed = env.seabed
+    fields: dict[str, Any] = dict(
+        n_q=n_q, n_v=n_v, **arrays, point_body=points, point_offset=offsets,
+        force_kind=f["kind"], force_body=f["body"], force_at=f["at"], force_first=f["first"],
+        force_data=np.array(data + [0.0]), **lines, **ties, slack_allowed=1,
+        gravity=env.gravity, rho=rho,
+        seabed_z=-env.water_depth if (seabed and env.water_depth) else -1e30,
+        seabed_friction=seabed.friction_coefficient if seabed else 0.0,
+        seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
+        current_z=current_z, current_u=current_u, current_v=current_v,
+        **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
+    )  # fmt: skip
+    params = _typed(fields)
+    y0 = np.zeros(n_q + n_v)
+    y0[:q_at] = y_q
+    y0[n_q : n_q + v_at] = y_v
+    built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
+    return built
+
+
+def _typed(fields: dict) -> SystemParams:
+    out: dict[str, Any] = {}
+    for name, annotation in SystemParams.__annotations__.items():
+        value = fields[name]
+        if annotation is int:
+            out[name] = int(value)
+        elif annotation is float:
+            out[name] = float(value)
+        elif name in INT_FIELDS or name == "tf_count":
+            out[name] = np.ascontiguousarray(value, dtype=np.int64)
+        else:
+            out[name] = np.ascontiguousarray(value, dtype=np.float64)
+    return SystemParams(**out)
+
+
+def _offset(body, point: str) -> tuple[float, float, float]:
+    if point == sch.ORIGIN:
+        return (0.0, 0.0, 0.0)
+    return body.points[point]
+
+
+def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list[float]:
+    if isinstance(spec, sch.Drag):
+        return drag.pack(spec, rho)
+    if isinstance(spec, sch.AppliedForce):
+        _point(case, layout, f"{body.name}.{spec.point}" if spec.point != sch.ORIGIN
+               else body.name, where)  # fmt: skip
+        for name in applied.CHANNELS:
+            channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
+        return applied.pack(_offset(body, spec.point))
+    if isinstance(spec, sch.LinearStiffness):
+        position: Any = spec.equilibrium_position or body.position
+        angles: Any = spec.equilibrium_orientation_deg or getattr(
+            body, "orientation_deg", (0.0, 0.0, 0.0)
+        )
+        roll, pitch, yaw = (math.radians(a) for a in angles)
+        quaternion = kinematics.euler_quaternion(roll, pitch, yaw)
+        return [*linear.matrix(spec).ravel(), *position, *quaternion]
+    if isinstance(spec, sch.LinearDamping):
+        return list(linear.matrix(spec).ravel())
+    return []  # gravity, buoyancy: the body's own fields
+
+
+def _sections(case, line, rho):
+    """Per-segment arrays of a lumped-mass line from its sections."""
+    types = {t.name: t for t in case.line_types}
+    env = case.environment
+    out: dict[str, list] = {k: [] for k in (
+        "length", "mass", "stiffness", "damping", "drag_normal", "drag_tangential",
+        "wet_weight", "buoyancy", "added_mass", "bend")}  # fmt: skip
+    for k, section in enumerate(line.sections):
+        where = f"lines ({line.name}).sections[{k}]"
+        if section.type not in types:
+            raise CaseError(
+                f"{where}.type: no line type '{section.type}'; line_types are {list(types)}"
+            )
+        t = types[section.type]
+        if t.axial_stiffness is None:
+            raise CaseError(
+                f"{where}.type: line type '{t.name}' has no axial_stiffness; a lumped-mass line "
+                "needs EA [N]"
+            )
+        n = section.segments
+        length = np.full(n, section.length / n)
+        mass = t.mass_per_length * length
+        area = math.pi * t.diameter**2 / 4
+        ea = t.axial_stiffness
+        if t.axial_damping_ratio is not None:
+            alpha = t.axial_damping_ratio * np.sqrt(mass * length / ea)
+        else:
+            alpha = np.full(n, t.axial_damping_time or 0.0)
+        ca = 0.0 if env.in_air else t.added_mass_coefficient
+        tangential = math.pi * t.drag_coefficient_tangential
+        tangential += t.friction_coefficient * t.drag_coefficient_normal
+        out["length"].append(length)
+        out["mass"].append(mass)
+        out["stiffness"].append(np.full(n, ea))
+        out["damping"].append(alpha)
+        out["drag_normal"].append(0.5 * rho * t.drag_coefficient_normal * t.diameter * length)
+        out["drag_tangential"].append(0.5 * rho * tangential * t.diameter * length)
+        out["wet_weight"].append((mass - rho * area * length) * env.gravity)
+        out["buoyancy"].append(rho * area * length * env.gravity)
+        out["added_mass"].append(ca * rho * area * length)
+        out["bend"].append(np.full(n, t.bending_stiffness))
+    return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def _lines(case, layout, rho, q_at, v_at) -> dict:
+    env = case.environment
+    seabed = env.seabed
+    keys = ("line_n", "line_seg", "line_node", "line_q", "line_v", "line_from", "line_to")
+    out: dict[str, list] = {k: [] for k in keys}
+    segs: dict[str, list] = {}
+    nodes: dict[str, list] = {k: [] for k in ("mass", "k", "c", "bend")}
+    seg_count = node_count = interior_q = interior_v = 0
+    for k, line in enumerate(case.lines):
+        if not isinstance(line, sch.LumpedMassLine):
+            continue
+        where = f"lines[{k}] ({line.name})"
+        layout.lines.append(line.name)
+        props = _sections(case, line, rho)
+        n = len(props["length"])
+        if n < 2:
+            raise CaseError(f"{where}.sections: a lumped-mass line needs at least 2 segments")
+        out["line_n"].append(n)
+        out["line_seg"].append(seg_count)
+        out["line_node"].append(node_count)
+        out["line_q"].append(q_at + interior_q)
+        out["line_v"].append(v_at + interior_v)
+        out["line_from"].append(_point(case, layout, line.from_, f"{where}.from"))
+        out["line_to"].append(_point(case, layout, line.to, f"{where}.to"))
+        for name, values in props.items():
+            segs.setdefault(name, []).append(values)
+        mass = np.zeros(n + 1)
+        mass[:-1] += 0.5 * props["mass"]
+        mass[1:] += 0.5 * props["mass"]
+        span = np.zeros(n + 1)
+        span[:-1] += 0.5 * props["length"]
+        span[1:] += 0.5 * props["length"]
+        bend = np.zeros(n + 1)
+        # EI over the mean span of the two segments at each interior node
+        mean = 0.5 * (props["length"][1:] + props["length"][:-1])
+        bend[1:-1] = props["bend"][1:] / mean
+        nodes["mass"].append(mass)
+        nodes["k"].append((seabed.stiffness if seabed else 0.0) * span)
+        nodes["c"].append((seabed.damping if seabed else 0.0) * span)
+        nodes["bend"].append(bend)
+        seg_count += n
+        node_count += n + 1
+        interior_q += 3 * (n - 1)
+        interior_v += 3 * (n - 1)
+
+    def cat(parts):
+        return np.concatenate(parts) if parts else np.zeros(1)
+
+    fields: dict[str, Any] = {k: np.array(v, dtype=np.int64) for k, v in out.items()}
+    names = {"length": "seg_length", "stiffness": "seg_stiffness", "damping": "seg_damping",
+             "drag_normal": "seg_drag_normal", "drag_tangential": "seg_drag_tangential",
+             "wet_weight": "seg_wet_weight", "buoyancy": "seg_buoyancy",
+             "added_mass": "seg_added_mass"}  # fmt: skip
+    for key, name in names.items():
+        fields[name] = cat(segs.get(key, []))
+    fields.update(
+        node_mass=cat(nodes["mass"]), node_seabed_stiffness=cat(nodes["k"]),
+        node_seabed_damping=cat(nodes["c"]), node_bend=cat(nodes["bend"]),
+        interior_q=interior_q, interior_v=interior_v,
+    )  # fmt: skip
+    return fields
+
+
+def _ties(case, layout) -> dict:
+    out: dict[str, list] = {k: [] for k in (
+        "tie_from", "tie_to", "tie_first", "tie_count", "tie_length", "tie_stiffness",
+        "tie_damping")}  # fmt: skip
+    rows: list = []
+    for k, line in enumerate(case.lines):
+        if not isinstance(line, sch.Tie):
+            continue
+        where = f"lines[{k}] ({line.name})"
+        layout.ties.append(line.name)
+        out["tie_from"].append(_point(case, layout, line.from_, f"{where}.from"))
+        out["tie_to"].append(_point(case, layout, line.to, f"{where}.to"))
+        table = line.tension_table or []
+        out["tie_first"].append(len(rows))
+        out["tie_count"].append(len(table))
+        rows += table
+        out["tie_length"].append(line.unstretched_length)
+        out["tie_stiffness"].append(line.stiffness or 0.0)
+        out["tie_damping"].append(line.damping)
+    fields: dict = {k: np.array(v) for k, v in out.items()}
+    fields["tie_table"] = np.array(rows, dtype=float).reshape(-1, 2) if rows else np.zeros((1, 2))
+    return fields

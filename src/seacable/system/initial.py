@@ -1,0 +1,149 @@
+"""The initial state of a system's lines: each lumped-mass line on its elastic catenary
+(a uniform line) or straight between its end points at t = 0, then every line's interior nodes
+at their discrete static equilibrium with the bodies held where they start (Newton iterations
+on the nodes' accelerations; block-banded finite-difference Jacobian, 9 evaluations per
+Jacobian whatever the size). Interior velocities go linearly, along the line, from one end's
+velocity to the other's."""
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+from seacable.case import system as sch
+from seacable.errors import CaseError
+from seacable.lines import catenary
+from seacable.system import kernel
+from seacable.system.assemble import BuiltSystem
+
+
+def end_points(built: BuiltSystem, y: np.ndarray):
+    """Positions and velocities of every point at t = 0."""
+    p = built.params
+    w = kernel.make_work(p)
+    kernel.rhs(0.0, y, p, w, np.zeros_like(y))
+    return w.ppos.copy(), w.pvel.copy()
+
+
+def _catenary(p, li, start, end, env, where):
+    n, s0 = p.line_n[li], p.line_seg[li]
+    lengths = p.seg_length[s0 : s0 + n]
+    stiffness = p.seg_stiffness[s0 : s0 + n]
+    weight = p.seg_wet_weight[s0 : s0 + n]
+    if np.ptp(stiffness) > 0 or np.ptp(weight / lengths) > 1e-9 * abs(weight[0] / lengths[0]):
+        return None  # not uniform: straight, then the static solve
+    low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
+    total = float(lengths.sum())
+    w = float(weight.sum()) / total
+    on_seabed = p.seabed_z > -1e29 and abs(low[2] - p.seabed_z) < 1e-6
+    span_vector = high[:2] - low[:2]
+    span = float(np.hypot(*span_vector))
+    try:
+        h, v_f = catenary.solve(span, float(high[2] - low[2]), total, w, stiffness[0], on_seabed)
+    except catenary.CatenaryError as exc:
+        raise CaseError(f"{where}.initial: {exc}") from None
+    s_high = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
+    x, z = catenary.profile(total - s_high, h, v_f, total, w, stiffness[0], on_seabed)
+    direction = span_vector / span if span > 0 else np.zeros(2)
+    nodes = np.empty((n + 1, 3))
+    nodes[:, 0] = low[0] + x * direction[0]
+    nodes[:, 1] = low[1] + x * direction[1]
+    nodes[:, 2] = low[2] + z
+    if on_seabed:
+        # nodes lying on the seabed start at the penetration that carries their weight
+        stiffness_per_length = p.node_seabed_stiffness[p.line_node[li]] / (0.5 * lengths[0])
+        lying = (np.abs(z) < 1e-9) & (np.arange(n + 1) < n)
+        nodes[lying, 2] -= w / stiffness_per_length
+    return nodes[::-1] if not flip else nodes
+
+
+def initial_state(built: BuiltSystem) -> np.ndarray:
+    p, case = built.params, built.case
+    y = built.y0.copy()
+    ppos, pvel = end_points(built, y)
+    lumped = [line for line in case.lines if isinstance(line, sch.LumpedMassLine)]
+    for li, line in enumerate(lumped):
+        n = p.line_n[li]
+        start, end = ppos[p.line_from[li]], ppos[p.line_to[li]]
+        s0 = p.line_seg[li]
+        arc = np.concatenate([[0.0], np.cumsum(p.seg_length[s0 : s0 + n])])
+        arc /= arc[-1]
+        where = f"lines ({line.name})"
+        nodes = None
+        if line.initial == "catenary":
+            nodes = _catenary(p, li, start, end, case.environment, where)
+        if nodes is None:
+            nodes = start + arc[:, None] * (end - start)[None, :]
+        q, v = p.line_q[li], p.line_v[li]
+        y[q : q + 3 * (n - 1)] = nodes[1:-1].ravel()
+        va, vb = pvel[p.line_from[li]], pvel[p.line_to[li]]
+        y[v : v + 3 * (n - 1)] = (va + arc[1:-1, None] * (vb - va)[None, :]).ravel()
+    if lumped and any(line.initial == "catenary" for line in lumped):
+        y = static_lines(p, y)
+    return y
+
+
+def _interior(p):
+    """State indices of every interior node position, in line order."""
+    parts = [np.arange(p.line_q[li], p.line_q[li] + 3 * (p.line_n[li] - 1)) for li in
+             range(len(p.line_n))]  # fmt: skip
+    return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
+
+
+def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
+    """Every line's interior nodes at rest in balance, bodies held: Newton on the nodes'
+    accelerations, EA raised in steps of ten from a thousandth of its value (a nearly
+    inextensible line makes Newton's steps erratic), each stage from the last one's result."""
+    y = y0.copy()
+    target = p.seg_stiffness
+    for factor in (1e-3, 1e-2, 1e-1, 1.0):
+        stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
+        y = _newton(stage, y, iterations)
+    return y
+
+
+def _newton(p, y0, iterations):
+    index = _interior(p)
+    m = len(index)
+    nq = p.n_q
+    w = kernel.make_work(p)
+    ydot = np.zeros_like(y0)
+    velocity = index + nq  # the accelerations sit at the velocities' offsets
+
+    def residual(y):
+        kernel.rhs(0.0, y, p, w, ydot)
+        return ydot[velocity].copy()
+
+    y = y0.copy()
+    y[p.n_q :] = 0.0
+    r = residual(y)
+    best, best_norm = y, np.linalg.norm(r)
+    scale = float(np.abs(r).max()) + 1e-6
+    half = 5  # block-tridiagonal with 3 x 3 blocks: 5 diagonals either side
+    for _ in range(iterations):
+        if np.abs(r).max() < 1e-12 * scale:
+            break
+        ab = np.zeros((2 * half + 1, m))
+        for colour in range(9):
+            columns = np.arange(colour, m, 9)
+            step = 1e-7 * np.maximum(1.0, np.abs(y[index[columns]]))
+            trial = y.copy()
+            trial[index[columns]] += step
+            dr = residual(trial) - r
+            for col, h in zip(columns, step, strict=True):
+                node = col // 3  # rows of this node and its two neighbours
+                rows = np.arange(3 * max(0, node - 1), min(m, 3 * (node + 2)))
+                ab[half + rows - col, col] = dr[rows] / h
+        delta = solve_banded((half, half), ab, -r)
+        # the seabed's contact is not smooth: when no shorter step lowers the residual, the
+        # full step is taken anyway, and the best state met is kept
+        for damping in (1.0, 0.5, 0.25, 0.1, 1.0):
+            trial = y.copy()
+            trial[index] += damping * delta
+            rt = residual(trial)
+            if np.linalg.norm(rt) < np.linalg.norm(r):
+                break
+        y, r = trial, rt
+        if np.linalg.norm(r) < best_norm:
+            best, best_norm = y, np.linalg.norm(r)
+    best = best.copy()
+    best[p.n_q :] = y0[p.n_q :]
+    return best

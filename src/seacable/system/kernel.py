@@ -1,0 +1,301 @@
+"""The compiled right-hand side of a system of bodies and lines.
+
+State: ``y = [Q, V]``. Q holds, per dynamic body, its reference point's position (3) and, for a
+rigid body, its orientation quaternion (4); then the interior nodes of every lumped-mass line
+(3 each). V holds, per dynamic body, its velocity (3) and, for a rigid body, its angular
+velocity (3, earth frame); then the interior nodes' velocities. The offsets are
+``body_q``/``body_v`` and ``line_q``/``line_v`` (system.assemble): every array is flat with
+offsets, so the compiled types depend on no count.
+
+One evaluation: (1) every body's pose and twist (fixed, imposed from its channels, dynamic from
+the state); (2) every point's position and velocity; (3) every tie's force and every line's
+loads, the interior nodes' accelerations, the end nodes' mass and loads handed to their bodies;
+(4) every force model; (5) each dynamic body's 6x6 equation solved on its free degrees of
+freedom. O(total nodes + bodies).
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from seacable.bodies import dynamics, kinematics
+from seacable.forces import table
+from seacable.kernels import lumped as lk
+from seacable.kernels import surface
+from seacable.kernels.planar_chain import NON_FINITE, OK
+from seacable.kernels.timefn import JIT
+from seacable.lines import lumped_mass, tie
+
+DYNAMIC = kinematics.DYNAMIC
+IMPOSED = kinematics.IMPOSED
+
+
+class SystemParams(NamedTuple):
+    """Flat parameters of a system (SI units); see system.assemble for how each is built."""
+
+    n_q: int  # position variables
+    n_v: int  # velocity variables
+    body_kind: np.ndarray  # (nb,) int: kinematics.FIXED, IMPOSED or DYNAMIC
+    body_rigid: np.ndarray  # (nb,) int: 1 with an orientation state
+    body_q: np.ndarray  # (nb,) int: offset of the position in y (-1: none)
+    body_v: np.ndarray  # (nb,) int: offset of the velocity in y (-1: none)
+    body_channel: np.ndarray  # (nb,) int: an imposed body's first channel (x y z roll pitch yaw)
+    body_pose: np.ndarray  # (nb, 7) fixed bodies: position, quaternion
+    body_mass: np.ndarray  # (nb,) [kg]
+    body_cog: np.ndarray  # (nb, 3) centre of gravity, body frame [m]
+    body_inertia: np.ndarray  # (nb, 3, 3) about the CoG, body frame [kg m^2]
+    body_added: np.ndarray  # (nb, 6, 6) added mass, body frame at the reference point
+    body_free: np.ndarray  # (nb, 6) 1.0 on a free degree of freedom
+    body_volume: np.ndarray  # (nb,) wholly submerged [m^3]
+    body_cob: np.ndarray  # (nb, 3) centre of buoyancy, body frame [m]
+    body_shape: np.ndarray  # (nb, L) shape rows (kernels.surface)
+    point_body: np.ndarray  # (np,) int
+    point_offset: np.ndarray  # (np, 3) body frame [m]
+    force_kind: np.ndarray  # (nf,) int: forces.kinds
+    force_body: np.ndarray  # (nf,) int
+    force_at: np.ndarray  # (nf,) int: first float of the row in force_data
+    force_first: np.ndarray  # (nf,) int: first channel
+    force_data: np.ndarray  # floats of every row
+    line_n: np.ndarray  # (nl,) int: segments
+    line_seg: np.ndarray  # (nl,) int: first segment in the segment arrays
+    line_node: np.ndarray  # (nl,) int: first node (workspace column, node arrays)
+    line_q: np.ndarray  # (nl,) int: first interior position in y
+    line_v: np.ndarray  # (nl,) int: first interior velocity in y
+    line_from: np.ndarray  # (nl,) int: point of node 0
+    line_to: np.ndarray  # (nl,) int: point of node n
+    seg_length: np.ndarray  # unstretched [m]
+    seg_stiffness: np.ndarray  # EA [N]
+    seg_damping: np.ndarray  # alpha [s]
+    slack_allowed: int  # 1: no compression (the law); 0: linear (smooth static solves)
+    seg_drag_normal: np.ndarray  # 0.5 rho Cd_n d li [N s^2/m^2]
+    seg_drag_tangential: np.ndarray  # [N s^2/m^2]
+    seg_wet_weight: np.ndarray  # positive down [N]
+    seg_buoyancy: np.ndarray  # rho g A li [N]
+    seg_added_mass: np.ndarray  # normal [kg]
+    node_mass: np.ndarray  # [kg]
+    node_seabed_stiffness: np.ndarray  # [N/m]
+    node_seabed_damping: np.ndarray  # [N s/m]
+    node_bend: np.ndarray  # EI / mean span at interior nodes [N m]
+    tie_from: np.ndarray  # (nt,) int: point
+    tie_to: np.ndarray  # (nt,) int
+    tie_first: np.ndarray  # (nt,) int: first table row
+    tie_count: np.ndarray  # (nt,) int: table rows (0: linear)
+    tie_length: np.ndarray  # L0 [m]
+    tie_stiffness: np.ndarray  # k [N/m] (0 with a table)
+    tie_damping: np.ndarray  # c [N s/m]
+    tie_table: np.ndarray  # (K, 2) elongation [m], tension [N]
+    gravity: float  # [m/s^2]
+    rho: float  # water density, 0 in air [kg/m^3]
+    seabed_z: float  # [m] (-1e30: none)
+    seabed_friction: float
+    seabed_slip_speed: float  # [m/s]
+    current_z: np.ndarray
+    current_u: np.ndarray
+    current_v: np.ndarray
+    tf_breaks: np.ndarray
+    tf_coefs: np.ndarray
+    tf_count: np.ndarray
+    tf_sine: np.ndarray
+    tf_build_up: np.ndarray
+
+
+class SystemWork(NamedTuple):
+    """Scratch arrays of one evaluation (allocated once per run)."""
+
+    pos: np.ndarray  # (nb, 3)
+    rot: np.ndarray  # (nb, 3, 3)
+    vel: np.ndarray  # (nb, 3)
+    omega: np.ndarray  # (nb, 3)
+    acc: np.ndarray  # (nb, 6) accelerations (dynamic: solved; imposed: from the channels)
+    fraction: np.ndarray  # (nb,) submerged fraction
+    load: np.ndarray  # (nb, 6) force and moment at the reference point (earth frame)
+    mass: np.ndarray  # (nb, 6, 6)
+    bias: np.ndarray  # (nb, 6)
+    ppos: np.ndarray  # (np, 3)
+    pvel: np.ndarray  # (np, 3)
+    parm: np.ndarray  # (np, 3)
+    nodes: np.ndarray  # (lumped.N_WORK_ROWS, total nodes)
+    line: np.ndarray  # (6 (max n + 1),) one line's nodes
+    end_mass: np.ndarray  # (nl, 2, 9) end nodes' mass matrices
+    end_load: np.ndarray  # (nl, 2, 3) end nodes' loads
+    tie_tension: np.ndarray  # (nt,)
+    tie_force: np.ndarray  # (nt, 3) on the from point
+
+
+def make_work(p: SystemParams) -> SystemWork:
+    nb, npt, nl, nt = len(p.body_kind), len(p.point_body), len(p.line_n), len(p.tie_from)
+    nmax = int(p.line_n.max()) if nl else 1
+    return SystemWork(
+        pos=np.zeros((nb, 3)), rot=np.zeros((nb, 3, 3)), vel=np.zeros((nb, 3)),
+        omega=np.zeros((nb, 3)), acc=np.zeros((nb, 6)), fraction=np.ones(nb),
+        load=np.zeros((nb, 6)), mass=np.zeros((nb, 6, 6)), bias=np.zeros((nb, 6)),
+        ppos=np.zeros((npt, 3)), pvel=np.zeros((npt, 3)), parm=np.zeros((npt, 3)),
+        nodes=np.zeros((lk.N_WORK_ROWS, max(1, len(p.node_mass)))),
+        line=np.zeros(6 * (nmax + 1)), end_mass=np.zeros((nl, 2, 9)),
+        end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
+    )  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def _tf(p):
+    return (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
+
+
+@njit(**JIT)
+def _fractions(kind, shape, pos, fraction):
+    for b in range(kind.shape[0]):
+        fraction[b] = 1.0
+        if shape[b, 0] != surface.POINT:
+            fraction[b], _, _ = surface.submersion(pos[b, 2], shape[b])
+
+
+@njit(**JIT)
+def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, rot, omega,
+                 out_mass, out_bias):  # fmt: skip
+    for b in range(p_kind.shape[0]):
+        if p_kind[b] != DYNAMIC:
+            continue
+        # a shaped body's added mass follows its submerged fraction
+        scale = fraction[b] if shape[b, 0] != surface.POINT else 1.0
+        dynamics.rigid_mass(
+            mass[b],
+            cog[b],
+            inertia[b],
+            added[b],
+            rot[b],
+            omega[b],
+            scale,
+            out_mass[b],
+            out_bias[b],
+        )
+
+
+@njit(inline="always", **JIT)
+def evaluate(t, y, p, w, ydot):
+    """Fill the workspace and ``ydot``; returns a status (kernels.planar_chain codes)."""
+    status = OK
+    kinematics.body_states(
+        t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
+        _tf(p), w.pos, w.rot, w.vel, w.omega,
+    )  # fmt: skip
+    kinematics.point_states(
+        p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
+    )
+    _fractions(p.body_kind, p.body_shape, w.pos, w.fraction)
+    w.load[:, :] = 0.0
+    _body_masses(
+        p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
+        p.body_shape, w.fraction, w.rot, w.omega, w.mass, w.bias,
+    )  # fmt: skip
+    # ties
+    tie.forces(
+        w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
+        p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
+    )  # fmt: skip
+    for k in range(p.tie_from.shape[0]):
+        f = w.tie_force[k]
+        a, b = p.tie_from[k], p.tie_to[k]
+        dynamics.add_force(w.parm[a], f[0], f[1], f[2], w.load[p.point_body[a]])
+        dynamics.add_force(w.parm[b], -f[0], -f[1], -f[2], w.load[p.point_body[b]])
+    # lumped-mass lines
+    if not _lines(y, p, w, ydot):
+        status = NON_FINITE
+    # force models
+    table.add_all(
+        t, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_data, p.body_mass,
+        p.body_cog, p.body_volume, p.body_cob, w.fraction, y, p.body_q, w.pos, w.rot, w.vel,
+        w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, _tf(p), w.load,
+    )  # fmt: skip
+    if not _bodies(y, p, w, ydot):
+        status = NON_FINITE
+    return status
+
+
+@njit(**JIT)
+def _line_loads(y, p, w, li):
+    n, s0, c0 = p.line_n[li], p.line_seg[li], p.line_node[li]
+    lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
+                       p.line_to[li], w.line)  # fmt: skip
+    lumped_mass.loads(
+        w.line, n, s0, c0, p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed,
+        p.seg_drag_normal,
+        p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
+        p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z, p.seabed_friction,
+        p.seabed_slip_speed, p.current_z, p.current_u, p.current_v, w.nodes,
+    )  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def _lines(y, p, w, ydot):
+    ok = True
+    for li in range(p.line_n.shape[0]):
+        _line_loads(y, p, w, li)
+        n, c0 = p.line_n[li], p.line_node[li]
+        ok = (
+            lumped_mass.interior_rates(
+                w.line, n, p.line_q[li], p.line_v[li], c0, p.node_mass, w.nodes, ydot
+            )
+            and ok
+        )
+        for end in range(2):
+            point = p.line_from[li] if end == 0 else p.line_to[li]
+            lumped_mass.end_mass_force(
+                p.node_mass, w.nodes, c0 + end * n, w.end_mass[li, end], w.end_load[li, end]
+            )
+            b = p.point_body[point]
+            if p.body_kind[b] == DYNAMIC:
+                dynamics.add_point_mass(
+                    w.end_mass[li, end], w.parm[point], w.omega[b], w.end_load[li, end],
+                    w.mass[b], w.load[b],
+                )  # fmt: skip
+    return ok
+
+
+@njit(**JIT)
+def _bodies(y, p, w, ydot):
+    ok = True
+    rhs = np.empty(6)
+    for b in range(p.body_kind.shape[0]):
+        if p.body_kind[b] != DYNAMIC:
+            continue
+        for i in range(6):
+            rhs[i] = w.load[b, i] - w.bias[b, i]
+        ok = dynamics.solve_free(w.mass[b], rhs, p.body_free[b], w.acc[b]) and ok
+        q, v = p.body_q[b], p.body_v[b]
+        for c in range(3):
+            ydot[q + c] = y[v + c]
+            ydot[v + c] = w.acc[b, c]
+        if p.body_rigid[b] == 1:
+            wx, wy, wz = y[v + 3], y[v + 4], y[v + 5]
+            qw, qx, qy, qz = y[q + 3], y[q + 4], y[q + 5], y[q + 6]
+            # dq/dt = 1/2 (0, w) q
+            ydot[q + 3] = 0.5 * (-wx * qx - wy * qy - wz * qz)
+            ydot[q + 4] = 0.5 * (wx * qw + wy * qz - wz * qy)
+            ydot[q + 5] = 0.5 * (wy * qw + wz * qx - wx * qz)
+            ydot[q + 6] = 0.5 * (wz * qw + wx * qy - wy * qx)
+            for c in range(3):
+                ydot[v + 3 + c] = w.acc[b, 3 + c]
+    return ok
+
+
+@njit(**JIT)
+def rhs(t, y, p, w, ydot):
+    status = evaluate(t, y, p, w, ydot)
+    total = 0.0
+    for v in ydot:
+        total += v
+    if not np.isfinite(total):
+        status = NON_FINITE
+    return status
+
+
+@njit(**JIT)
+def project(y, p):
+    """Every rigid body's quaternion back to unit length (after each accepted step)."""
+    for b in range(p.body_kind.shape[0]):
+        if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
+            q = p.body_q[b] + 3
+            norm = np.sqrt(y[q] ** 2 + y[q + 1] ** 2 + y[q + 2] ** 2 + y[q + 3] ** 2)
+            for c in range(4):
+                y[q + c] /= norm

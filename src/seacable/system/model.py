@@ -1,0 +1,199 @@
+"""What the run loop (``simulation``) reaches of a system of bodies and lines: its build, its
+output variables per group (``bodies/<name>``, ``lines/<name>``), its output rows, the scales and
+frequencies the integrators' defaults and warnings use."""
+
+import math
+
+import numpy as np
+
+from seacable.case import system as sch
+from seacable.system import kernel, outputs
+from seacable.system.assemble import BuiltSystem
+from seacable.system.assemble import build as _assemble
+from seacable.system.initial import initial_state
+
+RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
+NEWTON = False  # the implicit schemes do not serve systems yet
+DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
+AXES = "xyz"
+
+
+def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
+    built = _assemble(case, base_dir)
+    y0 = initial_state(built)
+    return BuiltSystem(params=built.params, y0=y0, layout=built.layout, case=case)
+
+
+def workspace(system: BuiltSystem) -> kernel.SystemWork:
+    return kernel.make_work(system.params)
+
+
+def _body_variables(body) -> dict:
+    out = {}
+    for c in AXES:
+        out[f"position_{c}"] = (("time",), "m", f"position of the reference point, {c}")
+    if not isinstance(body, sch.PointBody):
+        for angle in ("roll", "pitch", "yaw"):
+            out[angle] = (("time",), "degree", f"{angle} (R = Rz(yaw) Ry(pitch) Rx(roll))")
+    if not isinstance(body, sch.FixedBody):
+        for c in AXES:
+            out[f"velocity_{c}"] = (("time",), "m/s", f"velocity of the reference point, {c}")
+    if isinstance(body, sch.RigidBody | sch.ImposedBody):
+        for c in AXES:
+            out[f"angular_velocity_{c}"] = (("time",), "rad/s", f"angular velocity, {c}")
+    for c in AXES:
+        out[f"line_force_{c}"] = (("time",), "N", f"force of the lines and ties on the body, {c}")
+    if not isinstance(body, sch.PointBody):
+        for c in AXES:
+            out[f"line_moment_{c}"] = (
+                ("time",), "N m",
+                f"moment of the lines and ties about the reference point, {c}",
+            )  # fmt: skip
+    return out
+
+
+def _lumped_variables() -> dict:
+    out: dict[str, tuple[tuple[str, ...], str, str]] = {
+        f"node_{c}": (("time", "node"), "m", f"node position, {c}") for c in AXES
+    }
+    out["tension"] = (("time", "segment"), "N", "axial tension of the segment (no compression)")
+    for end in ("from", "to"):
+        for c in AXES:
+            out[f"{end}_force_{c}"] = (
+                ("time",), "N", f"force of the line on its '{end}' point, {c}",
+            )  # fmt: skip
+    return out
+
+
+TIE_VARIABLES = {
+    "tension": (("time",), "N", "tension of the tie (zero when slack)"),
+    "distance": (("time",), "m", "distance between the tie's points"),
+    **{f"{end}_{c}": (("time",), "m", f"position of the '{end}' point, {c}")
+       for end in ("from", "to") for c in AXES},
+}  # fmt: skip
+
+
+def variables(system: BuiltSystem) -> dict:
+    """Every output variable, its name prefixed by its group."""
+    out = {}
+    for body in system.case.bodies:
+        for name, spec in _body_variables(body).items():
+            out[f"bodies/{body.name}/{name}"] = spec
+    for line in system.layout.lines:
+        for name, spec in _lumped_variables().items():
+            out[f"lines/{line}/{name}"] = spec
+    for line in system.layout.ties:
+        for name, spec in TIE_VARIABLES.items():
+            out[f"lines/{line}/{name}"] = spec
+    return out
+
+
+def sizes(system: BuiltSystem) -> dict:
+    p = system.params
+    out = {}
+    for li, line in enumerate(system.layout.lines):
+        out[f"lines/{line}/segment"] = int(p.line_n[li])
+        out[f"lines/{line}/node"] = int(p.line_n[li]) + 1
+    return out
+
+
+def coords(system: BuiltSystem) -> dict:
+    p = system.params
+    out = {}
+    for li, line in enumerate(system.layout.lines):
+        n, s0 = int(p.line_n[li]), int(p.line_seg[li])
+        arc = np.concatenate([[0.0], np.cumsum(p.seg_length[s0 : s0 + n])])
+        out[f"lines/{line}/arc_length"] = (
+            "node", arc, "m", "unstretched arc length from the 'from' end",
+        )  # fmt: skip
+    return out
+
+
+BODY_NAMES = (
+    *(f"position_{c}" for c in AXES), "roll", "pitch", "yaw",
+    *(f"velocity_{c}" for c in AXES), *(f"angular_velocity_{c}" for c in AXES),
+    *(f"line_force_{c}" for c in AXES), *(f"line_moment_{c}" for c in AXES),
+)  # fmt: skip
+
+
+def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
+    p = system.params
+    m = len(times)
+    nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
+    bodies = np.empty((m, nb, outputs.BODY_COLUMNS))
+    nodes = np.empty((m, len(p.node_mass), 3))
+    tension = np.empty((m, len(p.seg_length)))
+    ends = np.empty((m, nl, 2, 3))
+    ties = np.empty((m, nt, 8))
+    status = outputs.outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties)
+    out: dict = {"time": times}
+    for b, body in enumerate(system.case.bodies):
+        for k, name in enumerate(BODY_NAMES):
+            out[f"bodies/{body.name}/{name}"] = bodies[:, b, k]
+    for li, line in enumerate(system.layout.lines):
+        n, c0, s0 = int(p.line_n[li]), int(p.line_node[li]), int(p.line_seg[li])
+        for c, axis in enumerate(AXES):
+            out[f"lines/{line}/node_{axis}"] = nodes[:, c0 : c0 + n + 1, c]
+            out[f"lines/{line}/from_force_{axis}"] = ends[:, li, 0, c]
+            out[f"lines/{line}/to_force_{axis}"] = ends[:, li, 1, c]
+        out[f"lines/{line}/tension"] = tension[:, s0 : s0 + n]
+    for k, line in enumerate(system.layout.ties):
+        out[f"lines/{line}/tension"] = ties[:, k, 0]
+        out[f"lines/{line}/distance"] = ties[:, k, 1]
+        for c, axis in enumerate(AXES):
+            out[f"lines/{line}/from_{axis}"] = ties[:, k, 2 + c]
+            out[f"lines/{line}/to_{axis}"] = ties[:, k, 5 + c]
+    return out, status
+
+
+def _size(system: BuiltSystem) -> float:
+    """A length scale of the system [m]: its lines' total length, else 1 m."""
+    p = system.params
+    return float(max(1.0, p.seg_length.sum() if len(p.line_n) else 1.0))
+
+
+def state_scale(case, system: BuiltSystem) -> np.ndarray:
+    """Typical magnitude of each state: positions the system's length scale L, quaternions 1,
+    velocities sqrt(g L) (angular: sqrt(g / L))."""
+    p = system.params
+    size = _size(system)
+    q = np.full(p.n_q, size)
+    v = np.full(p.n_v, math.sqrt(p.gravity * size))
+    for b in range(len(p.body_kind)):
+        if p.body_q[b] >= 0 and p.body_rigid[b]:
+            q[p.body_q[b] + 3 : p.body_q[b] + 7] = 1.0
+            v[p.body_v[b] + 3 : p.body_v[b] + 6] = math.sqrt(p.gravity / size)
+    return np.concatenate([q, v])
+
+
+def positions(system: BuiltSystem) -> int:
+    return int(system.params.n_q)
+
+
+def rates(system: BuiltSystem, y) -> np.ndarray:
+    """Speed of every dynamic body and interior node [m/s] (divergence messages)."""
+    p = system.params
+    v = y[p.n_q :]
+    return np.abs(v) if len(v) else np.zeros(1)
+
+
+def fastest_frequency(system: BuiltSystem) -> tuple[float, str]:
+    """Fastest axial mode of any segment between two nodes: 2 sqrt(EA / (m l))."""
+    p = system.params
+    if not len(p.line_n):
+        return 1.0, "no line"
+    best, what = 0.0, ""
+    for li, line in enumerate(system.layout.lines):
+        n, s0, c0 = int(p.line_n[li]), int(p.line_seg[li]), int(p.line_node[li])
+        mass = np.minimum(p.node_mass[c0 : c0 + n], p.node_mass[c0 + 1 : c0 + n + 1])
+        mass = mass + 0.5 * p.seg_added_mass[s0 : s0 + n]
+        omega = 2.0 * np.sqrt(p.seg_stiffness[s0 : s0 + n] / (mass * p.seg_length[s0 : s0 + n]))
+        i = int(np.argmax(omega))
+        if omega[i] > best:
+            best = float(omega[i])
+            what = f"axial waves on segment {i} of line '{line}' ({p.seg_length[s0 + i]:.3g} m)"
+    return best, what
+
+
+def shortest_segment(system: BuiltSystem) -> float:
+    return float(system.params.seg_length.min())

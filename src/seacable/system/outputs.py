@@ -1,0 +1,107 @@
+"""Compiled outputs of a system at output times: every body's pose, twist and the force and
+moment its lines and ties apply to it; every lumped line's nodes, tensions and end forces;
+every tie's tension and length."""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.bodies import kinematics
+from seacable.bodies.dynamics import add_force
+from seacable.kernels.planar_chain import OK
+from seacable.kernels.timefn import JIT
+from seacable.lines import lumped_mass
+from seacable.system import kernel
+
+BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, force 3, moment 3
+
+
+@njit(**JIT)
+def _point_acceleration(t, p, w, k, out):
+    """Acceleration of point k: a + alpha x r + w x (w x r) of its body."""
+    b = p.point_body[k]
+    acc = np.zeros(6)
+    if p.body_kind[b] == kinematics.DYNAMIC:
+        acc[:] = w.acc[b]
+    elif p.body_kind[b] == kinematics.IMPOSED:
+        kinematics.imposed_acceleration(t, p.body_channel[b], kernel._tf(p), acc)
+    r = w.parm[k]
+    om = w.omega[b]
+    ax, ay, az = (
+        om[1] * r[2] - om[2] * r[1],
+        om[2] * r[0] - om[0] * r[2],
+        om[0] * r[1] - om[1] * r[0],
+    )
+    out[0] = acc[0] + acc[4] * r[2] - acc[5] * r[1] + om[1] * az - om[2] * ay
+    out[1] = acc[1] + acc[5] * r[0] - acc[3] * r[2] + om[2] * ax - om[0] * az
+    out[2] = acc[2] + acc[3] * r[1] - acc[4] * r[0] + om[0] * ay - om[1] * ax
+
+
+@njit(**JIT)
+def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties):
+    """Rows of every output time (bodies (m, nb, BODY_COLUMNS), nodes (m, total nodes, 3),
+    tension (m, total segments), ends (m, nl, 2, 3): force of the line on its from / to
+    point, ties (m, nt, 8): tension, length, from point, to point)."""
+    status = OK
+    ydot = np.empty(states.shape[1])
+    a = np.empty(3)
+    on_body = np.zeros((p.body_kind.shape[0], 6))
+    for j in range(times.shape[0]):
+        t, y = times[j], states[j]
+        st = kernel.rhs(t, y, p, w, ydot)
+        if st != OK and status == OK:
+            status = st
+        on_body[:, :] = 0.0
+        for li in range(p.line_n.shape[0]):
+            n, c0, s0 = p.line_n[li], p.line_node[li], p.line_seg[li]
+            lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
+                               p.line_to[li], w.line)  # fmt: skip
+            for k in range(n + 1):
+                for c in range(3):
+                    nodes[j, c0 + k, c] = w.line[3 * k + c]
+            for i in range(n):
+                tension[j, s0 + i] = w.nodes[lumped_mass.T_ROW, c0 + i]
+            for end in range(2):
+                point = p.line_from[li] if end == 0 else p.line_to[li]
+                _point_acceleration(t, p, w, point, a)
+                m3 = w.end_mass[li, end]
+                for c in range(3):
+                    inertia = m3[3 * c] * a[0] + m3[3 * c + 1] * a[1] + m3[3 * c + 2] * a[2]
+                    ends[j, li, end, c] = w.end_load[li, end, c] - inertia
+                f = ends[j, li, end]
+                add_force(w.parm[point], f[0], f[1], f[2], on_body[p.point_body[point]])
+        for k in range(p.tie_from.shape[0]):
+            f = w.tie_force[k]
+            a_, b_ = p.tie_from[k], p.tie_to[k]
+            add_force(w.parm[a_], f[0], f[1], f[2], on_body[p.point_body[a_]])
+            add_force(w.parm[b_], -f[0], -f[1], -f[2], on_body[p.point_body[b_]])
+            ties[j, k, 0] = w.tie_tension[k]
+            d = 0.0
+            for c in range(3):
+                d += (w.ppos[b_, c] - w.ppos[a_, c]) ** 2
+            ties[j, k, 1] = math.sqrt(d)
+            for c in range(3):
+                ties[j, k, 2 + c] = w.ppos[a_, c]
+                ties[j, k, 5 + c] = w.ppos[b_, c]
+        _bodies(y, p, w, on_body, bodies[j])
+    return status
+
+
+@njit(**JIT)
+def _bodies(y, p, w, on_body, out):
+    for b in range(p.body_kind.shape[0]):
+        rot = w.rot[b]
+        # the rotation matrix's Euler angles (R = Rz Ry Rx)
+        pitch = math.asin(max(-1.0, min(1.0, -rot[2, 0])))
+        roll = math.atan2(rot[2, 1], rot[2, 2])
+        yaw = math.atan2(rot[1, 0], rot[0, 0])
+        for c in range(3):
+            out[b, c] = w.pos[b, c]
+            out[b, 6 + c] = w.vel[b, c]
+            out[b, 9 + c] = w.omega[b, c]
+            out[b, 12 + c] = on_body[b, c]
+            out[b, 15 + c] = on_body[b, 3 + c]
+        out[b, 3], out[b, 4], out[b, 5] = (
+            math.degrees(roll), math.degrees(pitch), math.degrees(yaw),
+        )  # fmt: skip

@@ -1,0 +1,286 @@
+"""Statics and linearisation of a whole system: every dynamic body free on its degrees of
+freedom under its force models, its lines and ties, and the steady current; every lumped line
+at its discrete equilibrium (seabed included). Newton iterations on the accelerations of every
+free degree of freedom at rest, with a sparse finite-difference Jacobian (columns grouped by a
+greedy colouring of the system's known sparsity: each line a chain of nodes, its two end
+nodes' neighbours tied to the bodies it hangs from, ties joining bodies), solved by sparse LU.
+
+Coordinates ("increments"): per dynamic body its free translations (earth x, y, z) and its
+free rotations (a rotation vector in the earth frame, applied as exp(theta) to its
+orientation), then every interior node's position. The same coordinates carry the
+linearisation: ``jacobian`` gives d(rates)/d(increments, velocities) about any state.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import sparse
+from scipy.sparse.linalg import splu
+
+from seacable.bodies import kinematics
+from seacable.errors import SeacableError
+from seacable.system import kernel
+from seacable.system.assemble import BuiltSystem
+
+
+class StaticsError(SeacableError):
+    """The static equilibrium was not found; the message names the body or line at fault."""
+
+
+@dataclass(frozen=True)
+class Coordinates:
+    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node; ``body`` its
+    body (-1 for a node); ``axis`` 0..2; ``q`` its position in y (translation, node) or the
+    body's first quaternion entry; ``v`` the state index of its velocity; ``line`` (-1 for a
+    body)."""
+
+    kind: np.ndarray
+    body: np.ndarray
+    axis: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    line: np.ndarray
+
+
+def coordinates(p: kernel.SystemParams) -> Coordinates:
+    rows: list[tuple[int, int, int, int, int, int]] = []
+    for b in range(len(p.body_kind)):
+        if p.body_kind[b] != kinematics.DYNAMIC:
+            continue
+        q, v = int(p.body_q[b]), int(p.body_v[b])
+        for c in range(3):
+            if p.body_free[b, c]:
+                rows.append((0, b, c, q + c, v + c, -1))
+        if p.body_rigid[b]:
+            for c in range(3):
+                if p.body_free[b, 3 + c]:
+                    rows.append((1, b, c, q + 3, v + 3 + c, -1))
+    for li in range(len(p.line_n)):
+        q, v = int(p.line_q[li]), int(p.line_v[li])
+        for k in range(3 * (int(p.line_n[li]) - 1)):
+            rows.append((2, -1, k % 3, q + k, v + k, li))
+    table = np.array(rows, dtype=np.int64).reshape(-1, 6)
+    return Coordinates(*(table[:, c].copy() for c in range(6)))
+
+
+def _rotate(quaternion: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """exp(theta / 2) * q: the orientation turned by the rotation vector theta (earth)."""
+    angle = float(np.linalg.norm(theta))
+    if angle < 1e-300:
+        return quaternion.copy()
+    axis = theta / angle
+    s, c = np.sin(0.5 * angle), np.cos(0.5 * angle)
+    dw, dx, dy, dz = c, *(s * axis)
+    qw, qx, qy, qz = quaternion
+    out = np.array([
+        dw * qw - dx * qx - dy * qy - dz * qz,
+        dw * qx + dx * qw + dy * qz - dz * qy,
+        dw * qy - dx * qz + dy * qw + dz * qx,
+        dw * qz + dx * qy - dy * qx + dz * qw,
+    ])  # fmt: skip
+    return out / np.linalg.norm(out)
+
+
+def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
+    """The state moved by the increments ``dx``."""
+    out = y.copy()
+    plain = coords.kind != 1
+    np.add.at(out, coords.q[plain], dx[plain])
+    for b in np.unique(coords.body[coords.kind == 1]):
+        mine = (coords.kind == 1) & (coords.body == b)
+        theta = np.zeros(3)
+        theta[coords.axis[mine]] = dx[mine]
+        q = coords.q[mine][0]
+        out[q : q + 4] = _rotate(out[q : q + 4], theta)
+    return out
+
+
+def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
+    """Which increments can change which accelerations (a superset)."""
+    n = len(coords.kind)
+    body_cols = {}
+    for i in range(n):
+        if coords.body[i] >= 0:
+            body_cols.setdefault(int(coords.body[i]), []).append(i)
+    node_index = {}
+    for i in np.flatnonzero(coords.kind == 2):
+        li = int(coords.line[i])
+        local = int(coords.q[i] - p.line_q[li]) // 3
+        node_index.setdefault((li, local), []).append(i)
+    links: list[tuple[list[int], list[int]]] = []
+    moving = set(body_cols)
+    # bodies that share a line or tie are coupled; every body to itself
+    groups: list[list[int]] = [[b] for b in moving]
+    for li in range(len(p.line_n)):
+        ends = [int(p.point_body[p.line_from[li]]), int(p.point_body[p.line_to[li]])]
+        ends = [b for b in ends if b in moving]
+        groups.append(ends)
+        n_int = int(p.line_n[li]) - 1
+        reach = 2  # bending couples nodes two apart
+        for j in range(n_int):
+            near = [
+                node_index[(li, k)] for k in range(max(0, j - reach), min(n_int, j + reach + 1))
+            ]
+            links.append((node_index[(li, j)], [c for cols in near for c in cols]))
+        for j in (*range(min(reach, n_int)), *range(max(0, n_int - reach), n_int)):
+            for b in ends:
+                links.append((node_index[(li, j)], body_cols[b]))
+                links.append((body_cols[b], node_index[(li, j)]))
+    for k in range(len(p.tie_from)):
+        groups.append([b for b in (int(p.point_body[p.tie_from[k]]),
+                                   int(p.point_body[p.tie_to[k]])) if b in moving])  # fmt: skip
+    for group in groups:
+        for a in group:
+            for b in group:
+                links.append((body_cols[a], body_cols[b]))
+    rows, cols = [], []
+    for r, c in links:
+        for i in r:
+            rows.extend([i] * len(c))
+            cols.extend(c)
+    data = np.ones(len(rows))
+    return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
+
+
+def colour(structure: sparse.csr_matrix) -> np.ndarray:
+    """Groups of columns that share no row (greedy), for finite differences."""
+    csc = structure.tocsc()
+    n = structure.shape[1]
+    colours = -np.ones(n, dtype=np.int64)
+    row_colours: list[set[int]] = [set() for _ in range(structure.shape[0])]
+    for j in range(n):
+        rows = csc.indices[csc.indptr[j] : csc.indptr[j + 1]]
+        used = set().union(*(row_colours[r] for r in rows)) if len(rows) else set()
+        c = 0
+        while c in used:
+            c += 1
+        colours[j] = c
+        for r in rows:
+            row_colours[r].add(c)
+    return colours
+
+
+class _Residual:
+    """Accelerations of every increment's degree of freedom at a state."""
+
+    def __init__(self, p: kernel.SystemParams, coords: Coordinates, time: float = 0.0):
+        self.p, self.coords, self.time = p, coords, time
+        self.w = kernel.make_work(p)
+        self.ydot = np.zeros(p.n_q + p.n_v)
+
+    def __call__(self, y: np.ndarray) -> np.ndarray:
+        kernel.rhs(self.time, y, self.p, self.w, self.ydot)
+        return self.ydot[self.coords.v].copy()
+
+
+def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matrix:
+    rows_of = structure.tocsc()
+    n = len(coords.kind)
+    data_r, data_c, data_v = [], [], []
+    for c in range(int(colours.max()) + 1 if n else 0):
+        columns = np.flatnonzero(colours == c)
+        scale = np.where(
+            coords.kind[columns] == 1, 1.0, np.maximum(1.0, np.abs(y[coords.q[columns]]))
+        )
+        step = 1e-7 * scale
+        dx = np.zeros(n)
+        dx[columns] = step
+        dr = residual(apply(y, coords, dx)) - r0
+        for j, h in zip(columns, step, strict=True):
+            rows = rows_of.indices[rows_of.indptr[j] : rows_of.indptr[j + 1]]
+            data_r.extend(rows)
+            data_c.extend([j] * len(rows))
+            data_v.extend(dr[rows] / h)
+    return sparse.csc_matrix((data_v, (data_r, data_c)), shape=(n, n))
+
+
+def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
+                tolerance: float = 1e-9) -> np.ndarray:  # fmt: skip
+    """The state at rest in balance, from ``y0``'s positions (velocities set to zero).
+    Raises StaticsError naming the body or line that stays out of balance."""
+    p = built.params
+    coords = coordinates(p)
+    y = y0.copy()
+    y[p.n_q :] = 0.0
+    if not len(coords.kind):
+        return y
+    residual = _Residual(p, coords)
+    structure = pattern(p, coords)
+    colours = colour(structure)
+    r = residual(y)
+    scale = float(np.abs(r).max()) + 1.0
+    best, best_norm = y, float(np.linalg.norm(r))
+    for _ in range(iterations):
+        if not np.all(np.isfinite(r)):
+            break
+        if np.abs(r).max() < tolerance * scale:
+            return y
+        jac = _fd_jacobian(residual, y, coords, structure, colours, r)
+        try:
+            step = splu(jac).solve(-r)
+        except RuntimeError:
+            break
+        limit = _step_limit(built, coords)
+        largest = np.abs(step).max()
+        if largest > limit:
+            step *= limit / largest
+        for damping in (1.0, 0.5, 0.25, 0.125, 1.0):
+            trial = apply(y, coords, damping * step)
+            rt = residual(trial)
+            if np.all(np.isfinite(rt)) and np.linalg.norm(rt) < np.linalg.norm(r):
+                break
+        y, r = trial, rt
+        if np.linalg.norm(r) < best_norm:
+            best, best_norm = y, float(np.linalg.norm(r))
+    r = residual(best)
+    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+        return best
+    raise StaticsError(_blame(built, coords, r))
+
+
+def _step_limit(built: BuiltSystem, coords: Coordinates) -> float:
+    """Largest increment of one Newton step: a tenth of the system's line length (a rotation:
+    0.1 rad counts the same)."""
+    total = float(built.params.seg_length.sum()) if len(built.params.line_n) else 10.0
+    return max(1.0, 0.1 * total)
+
+
+def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
+    worst = int(np.nanargmax(np.where(np.isfinite(r), np.abs(r), np.inf)))
+    if coords.body[worst] >= 0:
+        name = built.case.bodies[int(coords.body[worst])].name
+        what = ("x", "y", "z")[int(coords.axis[worst])]
+        dof = "rotation about" if coords.kind[worst] == 1 else "force along"
+        where = f"body '{name}' ({dof} {what}: acceleration {r[worst]:.3g} at rest)"
+    else:
+        where = f"line '{built.layout.lines[int(coords.line[worst])]}'"
+    return (
+        f"statics: no equilibrium found; {where} stays out of balance. Check that something "
+        "holds every free degree of freedom (a line, a tie, a stiffness or buoyancy against "
+        "gravity), that the lines can reach their bodies, or start the run as given "
+        "(start: as_given)"
+    )
+
+
+def jacobian(
+    built: BuiltSystem, y: np.ndarray, time: float = 0.0
+) -> tuple[np.ndarray, Coordinates]:
+    """A = d(rates)/d(increments, velocities) of the free degrees of freedom about ``y``
+    (dense, central differences): the linearised system dz/dt = A z with z = (dx, dv)."""
+    p = built.params
+    coords = coordinates(p)
+    n = len(coords.kind)
+    residual = _Residual(p, coords, time)
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    for j in range(n):
+        h = 1e-6 * (1.0 if coords.kind[j] == 1 else max(1.0, abs(y[coords.q[j]])))
+        dx = np.zeros(n)
+        dx[j] = h
+        a[n:, j] = (residual(apply(y, coords, dx)) - residual(apply(y, coords, -dx))) / (2 * h)
+        hv = 1e-6 * max(1.0, abs(y[coords.v[j]]))
+        up, down = y.copy(), y.copy()
+        up[coords.v[j]] += hv
+        down[coords.v[j]] -= hv
+        a[n:, n + j] = (residual(up) - residual(down)) / (2 * hv)
+    return a, coords

@@ -1,0 +1,269 @@
+"""Pictures of a system of bodies and lines (a DataTree: ``bodies/<name>``, ``lines/<name>``):
+elevation and plan views of every line and body at a few times, with the water surface and the
+seabed; a range graph of each line's tension along its length (least, mean and largest over the
+run, as OrcaFlex draws them); end tensions, body positions and rotations over time. Only finite
+rows set the axes, so a diverged run still draws what it computed."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from seacable.viz.cable import (
+    _finish,
+    _frame_indices,
+    _gif_stream,
+    _progress,
+    _pyplot,
+    _snapshot_indices,
+)
+
+
+def _times(tree: xr.DataTree) -> np.ndarray:
+    return tree.to_dataset()["time"].values
+
+
+def _groups(tree: xr.DataTree, kind: str) -> dict[str, xr.Dataset]:
+    if kind not in tree.children:
+        return {}
+    return {name: node.to_dataset() for name, node in tree[kind].children.items()}
+
+
+def _shape(ds: xr.Dataset, i: int, a: str, b: str):
+    """Two coordinates of a line's points at output i: its nodes, or a tie's two ends."""
+    if f"node_{a}" in ds:
+        return ds[f"node_{a}"].values[i], ds[f"node_{b}"].values[i]
+    return (
+        np.array([ds[f"from_{a}"].values[i], ds[f"to_{a}"].values[i]]),
+        np.array([ds[f"from_{b}"].values[i], ds[f"to_{b}"].values[i]]),
+    )
+
+
+def _environment(tree: xr.DataTree) -> dict:
+    try:
+        case = yaml.safe_load(tree.attrs.get("case", "")) or {}
+    except yaml.YAMLError:
+        return {}
+    env = case.get("environment", {}) if isinstance(case, dict) else {}
+    return env if isinstance(env, dict) else {}
+
+
+def _finite_rows(tree: xr.DataTree) -> int:
+    """Rows up to the last one whose every line node is finite (a diverged run's last rows may
+    hold NaN)."""
+    times = _times(tree)
+    last = len(times)
+    for ds in _groups(tree, "lines").values():
+        for name in ("node_x", "node_z", "from_x"):
+            if name in ds:
+                finite = np.isfinite(ds[name].values.reshape(len(times), -1)).all(axis=1)
+                bad = np.flatnonzero(~finite)
+                if bad.size:
+                    last = min(last, int(bad[0]))
+    return last
+
+
+def _draw_view(ax, tree, rows, a: str, b: str, plt, env: dict) -> None:
+    lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
+    times = _times(tree)
+    cmap = plt.get_cmap("viridis")
+    for k, i in enumerate(rows):
+        color = cmap(k / max(len(rows) - 1, 1))
+        for ds in lines.values():
+            h, v = _shape(ds, i, a, b)
+            ax.plot(h, v, "-", color=color, lw=1.0)
+    for name, ds in bodies.items():
+        h, v = ds[f"position_{a}"].values[rows], ds[f"position_{b}"].values[rows]
+        ax.plot(h, v, "s", ms=4, mfc="none", color="k")
+        ax.annotate(name, (h[-1], v[-1]), fontsize=7, xytext=(3, 3),
+                    textcoords="offset points")  # fmt: skip
+    if b == "z":
+        ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--", label="water surface")
+        depth = env.get("water_depth")
+        if isinstance(depth, int | float):
+            ax.axhline(-float(depth), color="saddlebrown", lw=1.2, label="seabed")
+        ax.legend(fontsize=7, loc="best")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"{a} [m]")
+    ax.set_ylabel(f"{b} [m]")
+    view = "elevation" if b == "z" else "plan"
+    span = f"{times[rows[0]]:.3g} to {times[rows[-1]]:.3g} s" if len(rows) else "no rows"
+    ax.set_title(f"{view}, {len(rows)} snapshots from {span}")
+    if len(rows):
+        sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(times[rows[0]], times[rows[-1]]))
+        plt.colorbar(sm, ax=ax, label="time [s]")
+
+
+def _draw_range(ax, tree, last: int) -> None:
+    """Least, mean and largest tension [kN] along each lumped line over the finite rows."""
+    drawn = False
+    for name, ds in _groups(tree, "lines").items():
+        if "tension" not in ds or ds["tension"].ndim != 2:
+            continue
+        tension = ds["tension"].values[:last] / 1e3
+        arc = ds["arc_length"].values
+        centres = 0.5 * (arc[1:] + arc[:-1])
+        (line,) = ax.plot(centres, tension.mean(axis=0), label=f"{name} mean")
+        ax.fill_between(centres, tension.min(axis=0), tension.max(axis=0), alpha=0.25,
+                        color=line.get_color(), label=f"{name} least to largest")  # fmt: skip
+        drawn = True
+    ax.set_xlabel("arc length from the 'from' end [m]")
+    ax.set_ylabel("tension [kN]")
+    ax.set_title("tension range along each line")
+    if drawn:
+        ax.legend(fontsize=7)
+
+
+def _draw_end_tensions(ax, tree, last: int) -> None:
+    t = _times(tree)[:last]
+    for name, ds in _groups(tree, "lines").items():
+        for end in ("from", "to"):
+            parts = [f"{end}_force_{c}" for c in "xyz"]
+            if all(p in ds for p in parts):
+                force = np.linalg.norm(np.stack([ds[p].values[:last] for p in parts]), axis=0)
+                ax.plot(t, force / 1e3, label=f"{name}, '{end}' end")
+        if "tension" in ds and ds["tension"].ndim == 1:
+            ax.plot(t, ds["tension"].values[:last] / 1e3, label=f"{name} (tie)")
+    _finish(ax, "force of each line on its end points", "[kN]")
+
+
+def _draw_bodies(ax, tree, last: int, what: str) -> None:
+    t = _times(tree)[:last]
+    for name, ds in _groups(tree, "bodies").items():
+        if what == "position" and "velocity_x" in ds:  # bodies that move
+            for c in "xyz":
+                values = ds[f"position_{c}"].values[:last]
+                if np.ptp(values) > 0:
+                    ax.plot(t, values, label=f"{name} {c}")
+        if what == "angle" and "angular_velocity_x" in ds:
+            for angle in ("roll", "pitch", "yaw"):
+                values = ds[angle].values[:last]
+                if np.ptp(values) > 0:
+                    ax.plot(t, values, label=f"{name} {angle}")
+    if what == "position":
+        _finish(ax, "positions of the bodies that move", "[m]")
+    else:
+        _finish(ax, "rotations of the rigid bodies", "[degree]")
+    if not ax.lines:
+        ax.text(0.5, 0.5, "nothing moves here", ha="center", va="center",
+                transform=ax.transAxes)  # fmt: skip
+
+
+def _title(tree: xr.DataTree) -> str:
+    name = "seacable results"
+    for line in str(tree.attrs.get("case", "")).splitlines():
+        if line.startswith("name:"):
+            name = line.split(":", 1)[1].strip()
+    status = tree.attrs.get("status", "?")
+    return name if status == "complete" else f"{name} [{status}]"
+
+
+def plot_system(tree: xr.DataTree, path, every: float | None = None) -> Path:
+    """The picture of a system's results (module docstring)."""
+    plt = _pyplot()
+    last = _finite_rows(tree)
+    times = _times(tree)[:last]
+    rows = _snapshot_indices(times, every if every is not None else None)
+    if len(rows) > 12:
+        rows = rows[np.unique(np.linspace(0, len(rows) - 1, 12).round().astype(int))]
+    env = _environment(tree)
+    fig, axes = plt.subplots(2, 3, figsize=(18, 10), constrained_layout=True)
+    _draw_view(axes[0, 0], tree, rows, "x", "z", plt, env)
+    _draw_view(axes[0, 1], tree, rows, "x", "y", plt, env)
+    _draw_range(axes[0, 2], tree, last)
+    _draw_end_tensions(axes[1, 0], tree, last)
+    _draw_bodies(axes[1, 1], tree, last, "position")
+    _draw_bodies(axes[1, 2], tree, last, "angle")
+    fig.suptitle(_title(tree))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def _extent(tree: xr.DataTree, frames, a: str) -> tuple[float, float]:
+    low, high = math.inf, -math.inf
+    for ds in _groups(tree, "lines").values():
+        for name in (f"node_{a}", f"from_{a}", f"to_{a}"):
+            if name in ds:
+                values = ds[name].values[frames]
+                values = values[np.isfinite(values)]
+                if values.size:
+                    low, high = min(low, float(values.min())), max(high, float(values.max()))
+    for ds in _groups(tree, "bodies").values():
+        values = ds[f"position_{a}"].values[frames]
+        values = values[np.isfinite(values)]
+        if values.size:
+            low, high = min(low, float(values.min())), max(high, float(values.max()))
+    if not math.isfinite(low):
+        return -1.0, 1.0
+    return low, high
+
+
+def animate_system(
+    tree: xr.DataTree,
+    path,
+    fps: int = 20,
+    speed: float = 1.0,
+    every: float | None = None,
+    max_frames: int = 600,
+    progress: bool = True,
+) -> Path:
+    """Animate a system in plan and elevation (the options of ``viz.cable.animate_results``),
+    one frame at a time."""
+    plt = _pyplot()
+    path = Path(path)
+    if path.suffix.lower() != ".gif":
+        raise ValueError(f"animation file '{path}': systems are animated to .gif")
+    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
+        raise ValueError(
+            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
+            "give fps and max_frames >= 1, speed and every > 0"
+        )
+    last = _finite_rows(tree)
+    times = _times(tree)[: max(last, 1)]
+    frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
+    env = _environment(tree)
+    lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
+    fig, axes = plt.subplots(1, 2, figsize=(14, 6))
+    artists = []
+    for ax, (a, b) in zip(axes, (("x", "y"), ("x", "z")), strict=True):
+        (h0, h1), (v0, v1) = _extent(tree, frames, a), _extent(tree, frames, b)
+        if b == "z":
+            v1 = max(v1, 0.0)
+        pad = 0.05 * max(h1 - h0, v1 - v0, 1.0)
+        ax.set_xlim(h0 - pad, h1 + pad)
+        ax.set_ylim(v0 - pad, v1 + pad)
+        ax.set_aspect("equal")
+        ax.set_xlabel(f"{a} [m]")
+        ax.set_ylabel(f"{b} [m]")
+        if b == "z":
+            ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+            depth = env.get("water_depth")
+            if isinstance(depth, int | float):
+                ax.axhline(-float(depth), color="saddlebrown", lw=1.2)
+        for ds in lines.values():
+            (artist,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
+            artists.append((artist, ds, a, b))
+        for ds in bodies.values():
+            (artist,) = ax.plot([], [], "s", ms=5, mfc="none", color="tab:red")
+            artists.append((artist, ds, a, b))
+    label = fig.suptitle("")
+    title = _title(tree)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    writer = _gif_stream(fps)
+    with writer.saving(fig, path, dpi=80):
+        for i in _progress(frames, progress, path.name):
+            for artist, ds, a, b in artists:
+                if f"position_{a}" in ds:
+                    artist.set_data([ds[f"position_{a}"].values[i]],
+                                    [ds[f"position_{b}"].values[i]])  # fmt: skip
+                else:
+                    artist.set_data(*_shape(ds, int(i), a, b))
+            label.set_text(f"{title}  t = {times[i]:.2f} s")
+            writer.grab_frame()
+    plt.close(fig)
+    return path

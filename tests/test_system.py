@@ -1,0 +1,280 @@
+"""The system of bodies and lines: each body kind, force model and coupling against a closed
+form, an invariant or today's single-cable model."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+from scipy.spatial.transform import Rotation
+
+import seacable
+from seacable import viz
+from seacable.bodies import kinematics
+from seacable.case.loader import load_case
+from seacable.kernels.timefn import evaluate
+from seacable.simulation import simulate
+from seacable.system import model
+
+EXAMPLES = Path(__file__).parent.parent / "examples"
+
+
+def _sim(duration, dt=None, integrator="rk4", interval=0.1, **more):
+    out = {"duration": duration, "output_interval": interval, "integrator": integrator, **more}
+    if dt is not None:
+        out["time_step"] = dt
+    return out
+
+
+def _rigid(**fields):
+    body = {"name": "float", "type": "rigid", "position": [0.0, 0.0, 0.0], "mass": 1000.0}
+    body.update(fields)
+    return body
+
+
+def _case(bodies, lines, simulation, environment=None, line_types=None):
+    data = {
+        "name": "test system",
+        "environment": environment or {"in_air": True},
+        "bodies": bodies,
+        "lines": lines,
+        "simulation": simulation,
+    }
+    if line_types is not None:
+        data["line_types"] = line_types
+    return data
+
+
+ANCHOR = {"name": "ground", "type": "fixed", "position": [0.0, 0.0, -50.0]}
+
+
+def _tie(name, a, b, length=1.0, stiffness=1.0):
+    return {"name": name, "model": "tie", "from": a, "to": b, "unstretched_length": length,
+            "stiffness": stiffness}  # fmt: skip
+
+
+def test_the_catenary_example_matches_the_single_cable_model():
+    """The mooring example written as a system (a fixed anchor body, an imposed fairlead body,
+    one lumped-mass line) gives today's single-cable results to 1e-9 of each variable's scale,
+    both run tightly with dopri5: same initial equilibrium, same dynamics, same end forces."""
+    old = yaml.safe_load((EXAMPLES / "catenary_mooring_line_surge.yaml").read_text())
+    cable = old["cables"][0]
+    tight = {"duration": 1.0, "output_interval": 0.25, "integrator": "dopri5", "rtol": 1e-10,
+             "atol": 1e-12, "build_up": 12.0}  # fmt: skip
+    old["simulation"] = tight
+    top = cable["top"]
+    keys = ("diameter", "mass_per_length", "axial_stiffness", "axial_damping_time",
+            "drag_coefficient_normal", "drag_coefficient_tangential")  # fmt: skip
+    new = _case(
+        [
+            {"name": "anchor", "type": "fixed", "position": cable["bottom"]["anchor"]},
+            {"name": "fairlead", "type": "imposed", "x": top["x"], "z": top["z"]},
+        ],
+        [{"name": "chain", "model": "lumped_mass", "from": "fairlead", "to": "anchor",
+          "sections": [{"type": "chain", "length": cable["length"],
+                        "segments": cable["links"]}]}],
+        tight,
+        environment=old["environment"],
+        line_types=[{"name": "chain", **{k: cable[k] for k in keys}}],
+    )  # fmt: skip
+    reference = simulate(load_case(old)).dataset
+    tree = simulate(load_case(new)).dataset
+    line = tree["lines/chain"].to_dataset()
+    pairs = {"node_x": "node_x", "node_z": "node_z", "tension": "tension",
+             "top_force_x": "from_force_x", "top_force_z": "from_force_z",
+             "bottom_force_x": "to_force_x", "bottom_force_z": "to_force_z"}  # fmt: skip
+    for old_name, new_name in pairs.items():
+        a, b = reference[old_name].values, line[new_name].values
+        error = np.abs(a - b).max() / np.abs(a).max()
+        assert error < 1e-9, f"{old_name}: {error:.2e} of its scale"
+    force = tree["bodies/anchor"].to_dataset()["line_force_x"].values
+    np.testing.assert_allclose(force, reference["bottom_force_x"].values, rtol=1e-8)
+
+
+def test_heave_float_decays_at_its_natural_period():
+    """A rigid body free in heave only, on a linear spring: z(t) = z0 cos(w t) with
+    w = sqrt(K / (m + A33)) (the added mass in its 6x6 matrix); surge and roll stay held."""
+    k, mass, added = 4.0e5, 1000.0, 600.0
+    body = _rigid(dofs=["heave"], position=[0.0, 0.0, 0.2], added_mass=[0, 0, added, 0, 0, 0],
+                  inertia=[100.0, 100.0, 100.0],
+                  **{"external forces": [
+                      {"model": "linear_stiffness", "diagonal": [1e4, 1e4, k, 1e4, 1e4, 1e4],
+                       "equilibrium_position": [0.0, 0.0, 0.0]},
+                      {"model": "applied", "force_x": 500.0, "moment_x": 300.0}]})  # fmt: skip
+    case = _case([body, ANCHOR], [_tie("soft", "float", "ground", length=100.0)],
+                 _sim(2.0, dt=1e-3, interval=0.05))  # fmt: skip
+    ds = simulate(load_case(case)).dataset["bodies/float"].to_dataset()
+    t = ds["time"].values
+    omega = math.sqrt(k / (mass + added))
+    np.testing.assert_allclose(ds["position_z"].values, 0.2 * np.cos(omega * t), atol=1e-8)
+    assert np.all(ds["position_x"].values == 0.0) and np.all(ds["roll"].values == 0.0)
+
+
+def test_compound_pendulum_about_a_held_point():
+    """A rigid body turning about the earth's x axis only (dofs [roll]) with its centre of
+    gravity 2 m below its reference point: the small-angle period of a compound pendulum,
+    2 pi sqrt(I_O / (m g d)), I_O = I_G + m d^2; the reaction at the held point is not a force
+    model, so the gravity moment alone swings it."""
+    mass, d, i_g = 50.0, 2.0, 10.0
+    body = _rigid(mass=mass, dofs=["roll"], centre_of_gravity=[0.0, 0.0, -d],
+                  inertia=[i_g, i_g, i_g], orientation_deg=[1.0, 0.0, 0.0],
+                  **{"external forces": [{"model": "gravity"}]})  # fmt: skip
+    case = _case([body, ANCHOR], [_tie("slack", "float", "ground", length=100.0)],
+                 _sim(6.0, dt=2e-3, interval=0.01))  # fmt: skip
+    ds = simulate(load_case(case)).dataset["bodies/float"].to_dataset()
+    roll, t = ds["roll"].values, ds["time"].values
+    crossings = t[1:][np.diff(np.sign(roll)) != 0]
+    period = 2.0 * np.mean(np.diff(crossings))
+    expected = 2 * math.pi * math.sqrt((i_g + mass * d * d) / (mass * 9.81 * d))
+    assert abs(period / expected - 1.0) < 2e-3
+    assert np.all(ds["position_z"].values == 0.0)
+
+
+def test_torque_free_rigid_body_keeps_its_angular_momentum_and_energy():
+    """An asymmetric body spinning freely: the angular momentum R I R^T w (earth frame) and the
+    kinetic energy stay constant (quaternion rates, gyroscopic terms, projection)."""
+    inertia = np.array([1.0, 2.0, 3.0])
+    body = _rigid(mass=1.0, inertia=inertia.tolist(), angular_velocity=[0.1, 2.0, 0.3])
+    other = {"name": "far", "type": "fixed", "position": [500.0, 0.0, 0.0]}
+    case = _case([body, other], [_tie("slack", "float", "far", length=1000.0)],
+                 _sim(5.0, dt=1e-3, interval=0.05))  # fmt: skip
+    ds = simulate(load_case(case)).dataset["bodies/float"].to_dataset()
+    angles = np.radians(np.stack([ds[a].values for a in ("roll", "pitch", "yaw")], axis=1))
+    rotations = Rotation.from_euler("xyz", angles).as_matrix()
+    omega = np.stack([ds[f"angular_velocity_{c}"].values for c in "xyz"], axis=1)
+    momentum = np.einsum("tij,j,tkj,tk->ti", rotations, inertia, rotations, omega)
+    energy = 0.5 * np.einsum("ti,ti->t", omega, momentum)
+    np.testing.assert_allclose(momentum, momentum[:1].repeat(len(momentum), 0), atol=1e-9)
+    np.testing.assert_allclose(energy, energy[0], rtol=1e-9)
+    assert np.ptp(omega[:, 1]) > 0.1  # it does tumble (the intermediate axis)
+
+
+def test_tie_between_two_free_bodies_conserves_momentum_and_goes_slack():
+    """Two point bodies pulled apart then together by a linear tie (no other force): total
+    momentum is constant; the tie carries tension only while longer than its length."""
+    a = {"name": "a", "type": "point", "position": [0.0, 0.0, 0.0], "mass": 2.0,
+         "velocity": [-1.0, 0.5, 0.0]}  # fmt: skip
+    b = {"name": "b", "type": "point", "position": [3.0, 0.0, 0.0], "mass": 1.0,
+         "velocity": [2.0, 0.0, 0.0]}  # fmt: skip
+    case = _case([a, b], [_tie("hawser", "a", "b", length=3.0, stiffness=50.0)],
+                 _sim(3.0, dt=1e-3, interval=0.01))  # fmt: skip
+    tree = simulate(load_case(case)).dataset
+    va = np.stack([tree[f"bodies/a/velocity_{c}"].values for c in "xyz"])
+    vb = np.stack([tree[f"bodies/b/velocity_{c}"].values for c in "xyz"])
+    momentum = 2.0 * va + vb
+    np.testing.assert_allclose(momentum, momentum[:, :1].repeat(momentum.shape[1], 1), atol=1e-12)
+    tension = tree["lines/hawser/tension"].values
+    distance = tree["lines/hawser/distance"].values
+    np.testing.assert_array_equal(tension[distance <= 3.0], 0.0)
+    np.testing.assert_allclose(tension[distance > 3.0], 50.0 * (distance[distance > 3.0] - 3.0))
+    assert tension.max() > 10.0 and np.any(distance < 3.0)
+
+
+def test_euler_angles_match_scipy_and_rates_give_the_angular_velocity():
+    roll, pitch, yaw = 0.3, -0.4, 1.2
+    q = kinematics.euler_quaternion(roll, pitch, yaw)
+    rot = np.empty((3, 3))
+    kinematics.rotation(*q, rot)
+    np.testing.assert_allclose(rot, Rotation.from_euler("xyz", [roll, pitch, yaw]).as_matrix(),
+                               atol=1e-14)  # fmt: skip
+    np.testing.assert_allclose(kinematics.quaternion_euler(*q), (roll, pitch, yaw), atol=1e-14)
+    rates = np.array([0.2, -0.1, 0.5])
+    omega = np.empty(3)
+    kinematics.euler_rates_omega(roll, pitch, yaw, *rates, omega)
+    h = 1e-6
+    a = Rotation.from_euler("xyz", np.array([roll, pitch, yaw]) + h * rates).as_matrix()
+    b = Rotation.from_euler("xyz", np.array([roll, pitch, yaw]) - h * rates).as_matrix()
+    skew = (a - b) / (2 * h) @ rot.T  # dR/dt R^T = [omega]
+    np.testing.assert_allclose(omega, [skew[2, 1], skew[0, 2], skew[1, 0]], atol=1e-8)
+
+
+def test_imposed_angular_acceleration_is_the_rate_of_the_angular_velocity():
+    """alpha of an imposed body against central differences of its angular velocity."""
+    case = _case(
+        [{"name": "ship", "type": "imposed", "x": {"kind": "sine", "amplitude": 1.0, "period": 7.0},
+          "roll_deg": {"kind": "sine", "amplitude": 10.0, "period": 5.0},
+          "pitch_deg": {"kind": "sine", "amplitude": 4.0, "period": 6.0, "phase": 0.3},
+          "yaw_deg": {"kind": "ramp", "start_time": 0.0, "end_time": 10.0, "end_value": 30.0}},
+         ANCHOR],
+        [_tie("t", "ship", "ground", length=100.0)], _sim(1.0),
+    )  # fmt: skip
+    built = model.build(load_case(case))
+    p = built.params
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
+
+    def omega(t):
+        angle = [evaluate(*tf, 3 + c, t)[0] for c in range(3)]
+        rate = [evaluate(*tf, 3 + c, t)[1] for c in range(3)]
+        out = np.empty(3)
+        kinematics.euler_rates_omega(*angle, *rate, out)
+        return out
+
+    t, h = 1.3, 1e-5
+    acc = np.empty(6)
+    kinematics.imposed_acceleration(t, 0, tf, acc)
+    np.testing.assert_allclose(acc[3:], (omega(t + h) - omega(t - h)) / (2 * h), atol=1e-8)
+    assert acc[0] == pytest.approx(-((2 * math.pi / 7) ** 2) * math.sin(2 * math.pi * t / 7))
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (lambda c: c["lines"][0].update({"from": "nowhere"}), r"lines\[0\] \(t\)\.from: 'nowhere' names no body"),
+        (lambda c: c["lines"][0].update({"to": "ground.hook"}), r"body 'ground' has no point 'hook'"),
+        (lambda c: c["bodies"].append(dict(ANCHOR)), r"bodies: names must be unique; \['ground'\]"),
+        (lambda c: c["bodies"][0].update({"dofs": ["heave", "heave"]}), r"lists a degree of freedom twice"),
+        (lambda c: c["lines"][0].update({"tension_table": [[0, 0], [1, 5]]}), r"exactly one of 'stiffness'"),
+    ],
+)  # fmt: skip
+def test_a_mistake_names_the_body_or_line_at_fault(change, message):
+    case = _case([_rigid(), ANCHOR], [_tie("t", "float", "ground")], _sim(1.0))
+    change(case)
+    with pytest.raises(seacable.CaseError, match=message):
+        model.build(load_case(case))
+
+
+def test_a_lumped_line_needs_a_known_line_type():
+    case = _case(
+        [ANCHOR, {"name": "top", "type": "fixed", "position": [10.0, 0.0, -40.0]}],
+        [{"name": "leg", "model": "lumped_mass", "from": "top", "to": "ground",
+          "sections": [{"type": "rope", "length": 20.0, "segments": 4}]}],
+        _sim(1.0), line_types=[{"name": "chain", "diameter": 0.1, "mass_per_length": 50.0,
+                                "axial_stiffness": 1e8}],
+    )  # fmt: skip
+    with pytest.raises(seacable.CaseError, match=r"sections\[0\]\.type: no line type 'rope'"):
+        model.build(load_case(case))
+
+
+def test_system_results_are_a_datatree_on_disk_and_in_pictures(tmp_path):
+    """Groups per body and line with units and long names; plot and animate draw them."""
+    a = {"name": "buoy", "type": "point", "position": [0.0, 0.0, -10.0], "mass": 100.0,
+         "volume": 0.2, "added_mass": 50.0,
+         "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
+                             {"model": "drag", "drag_coefficient": 1.0, "area": 0.5}]}  # fmt: skip
+    case = _case(
+        [a, ANCHOR],
+        [{"name": "rope", "model": "lumped_mass", "from": "ground", "to": "buoy",
+          "sections": [{"type": "rope", "length": 40.0, "segments": 6}], "initial": "straight"}],
+        _sim(2.0, dt=5e-4, interval=0.1),
+        environment={"water_depth": 50.0},
+        line_types=[{"name": "rope", "diameter": 0.05, "mass_per_length": 2.0,
+                     "axial_stiffness": 2e6, "axial_damping_ratio": 1.0}],
+    )  # fmt: skip
+    path = tmp_path / "buoy.nc"
+    simulate(load_case(case), output=path)
+    tree = xr.open_datatree(path, engine="h5netcdf")
+    assert set(tree["bodies"].children) == {"buoy", "ground"}
+    for node in tree.subtree:
+        for name, variable in node.to_dataset().data_vars.items():
+            assert variable.attrs.get("units") and variable.attrs.get("long_name"), name
+    z = tree["bodies/buoy/position_z"].values
+    # net buoyancy (0.2 m^3 of water for 100 kg: 1030 N) stretches the nearly neutral 40 m rope
+    # (EA / L = 5e4 N/m) by about 2.1 cm, about which the buoy still swings after 2 s
+    assert 0.015 < z[-10:].mean() + 10.0 < 0.03
+    assert "angular_velocity_x" not in tree["bodies/buoy"].to_dataset()  # a point body
+    results = seacable.Results.open(path)
+    assert viz.plot_results(results.dataset, tmp_path / "p.png").stat().st_size > 10_000
+    gif = viz.animate_results(results.dataset, tmp_path / "a.gif", max_frames=3, progress=False)
+    assert gif.stat().st_size > 1_000
