@@ -1,10 +1,14 @@
 """Bad case files give errors that name the path, the value and what is allowed."""
 
+from pathlib import Path
+
 import pytest
 
 import seacable
 from helpers import chain_case
 from seacable import CaseError
+from seacable.case.loader import case_base_dir, derive_case
+from seacable.simulation import build_system
 
 
 def _load(mutate):
@@ -141,6 +145,27 @@ def test_case_is_immutable():
     case = _load(lambda d: None)
     with pytest.raises(Exception, match="frozen"):
         case.cables[0].links = 3
+
+
+def test_derived_case_is_validated_like_a_file():
+    case = _load(lambda d: None)
+    shorter = derive_case(case, {"simulation": {"duration": 0.5, "output_interval": 0.1}})
+    assert shorter.simulation.duration == 0.5
+    assert shorter.cables[0] == case.cables[0]
+    assert derive_case(case, {"name": None}).name == "case"  # None removes a key
+    with pytest.raises(CaseError, match=r"simulation\.duration: .*greater than 0 \(got -1\.0\)"):
+        derive_case(case, {"simulation": {"duration": -1.0}})
+    with pytest.raises(CaseError, match="not a whole number of output intervals"):
+        derive_case(case, {"simulation": {"duration": 0.55, "output_interval": 0.1}})
+
+
+def test_derived_case_reads_files_from_the_case_folder(monkeypatch, tmp_path):
+    examples = Path(__file__).parent.parent / "examples"
+    case = seacable.load_case(examples / "crane_tip_lowering_imposed_motion.yaml")
+    monkeypatch.chdir(tmp_path)  # the table's relative file name must not depend on this
+    derived = derive_case(case, {"simulation": {"duration": 1.0}})
+    assert case_base_dir(derived) == case_base_dir(case) == str(examples.resolve())
+    assert build_system(derived) is not None
 
 
 def test_mass_keys_are_exclusive_and_counted():

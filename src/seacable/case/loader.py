@@ -53,6 +53,38 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
     return case
 
 
+def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
+    """A new case from ``case``: the mapping it was read from with ``changes`` merged in,
+    validated as a case file is (the same checks and messages), its relative file names still
+    referring to ``case``'s folder.
+
+    ``changes`` is a nested mapping like the case's own (``{"simulation": {"duration": 1.0}}``):
+    a mapping merges into the mapping at the same key, a value of None removes the key, any
+    other value (numbers, strings, lists) replaces it.
+
+    Raises
+    ------
+    CaseError
+        When the derived case is invalid, as for a file.
+    """
+    data = yaml.safe_load(case_text(case))
+    derived = load_case(_merged(data, changes))
+    derived._base_dir = case._base_dir
+    return derived
+
+
+def _merged(data: dict, changes: dict) -> dict:
+    out = dict(data)
+    for key, value in changes.items():
+        if value is None:
+            out.pop(key, None)
+        elif isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = _merged(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
 def case_text(case: Case | SystemCase) -> str:
     """The YAML text a case was loaded from (or a dump of it when built in Python)."""
     text = case._source_text

@@ -1,0 +1,313 @@
+"""Golden results of every example: record them from today's code, and compare a run to them.
+
+Each example is shortened to a 1 s run and integrated with its own integrator at settings tight
+enough that the results are the physics of the model, not of the step: a fixed-step scheme's
+step is halved, an adaptive scheme's rtol divided by 10, until one more refinement changes no
+variable by more than TARGET of its scale. The recorded file (``tests/golden/<example>.nc``)
+holds every variable and coordinate of that run, the case changes that derive it from the
+example (attribute ``golden_changes``, JSON) and the change measured on the last refinement
+(``golden_refinement_change``: the estimated discretisation error, a fraction of each
+variable's scale). A reformulated model (another state layout, an end's position from its time
+function instead of integrated, ...) run with the same integrator at these settings must then
+match within 1e-9 of each variable's scale (:func:`compare_to_golden`).
+
+Run from the repository root::
+
+    PYTHONPATH=src python tests/golden/record.py [example stems...]
+"""
+
+import gzip
+import io
+import json
+import sys
+import time
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+import yaml
+
+import seacable
+from seacable.case.loader import case_text, derive_case
+from seacable.case.schema import FIXED_STEP_INTEGRATORS
+from seacable.errors import SimulationDiverged
+from seacable.simulation import rk4_step
+
+GOLDEN = Path(__file__).resolve().parent
+EXAMPLES = GOLDEN.parent.parent / "examples"
+DURATION = 1.0  # [s] of every golden run
+MIN_ROWS = 5  # an example's output interval is kept when it gives at least this many rows
+SHORT_INTERVAL = 0.1  # [s] output interval otherwise
+TARGET = 1e-11  # one more refinement changes no variable by more than this fraction of its scale
+TOLERANCE = 1e-9  # a run matches its golden result within this fraction of each scale
+MAX_HALVINGS = 8  # fixed-step schemes: at most the example's step / 2^8
+RTOLS = (1e-9, 1e-10, 1e-11, 1e-12, 1e-13)  # adaptive schemes: tried in this order
+# a variable is measured against at least this fraction of the largest of the variables in its
+# units: one that is nearly zero by the physics (the velocity of a huge end mass that stands for
+# a pin) has round-off errors that are large against its own magnitude but not against the
+# motion, and another formulation need not reproduce them
+UNITS_FLOOR = 1e-3
+# one whose largest magnitude is below this fraction of its units' largest (a force component
+# zero by symmetry, a pinned end's velocity: round-off) is measured against that largest one
+ROUND_OFF = 1e-9
+# variables of these units are all measured against the largest of them: the energies are terms
+# of one balance, and the total (nearly constant, possibly near zero) is a sum of the others
+SHARED_SCALE_UNITS = ("J",)
+
+
+def example_path(stem: str) -> Path:
+    return EXAMPLES / f"{stem}.yaml"
+
+
+def example_stems() -> list[str]:
+    return sorted(p.stem for p in EXAMPLES.glob("*.yaml"))
+
+
+def golden_path(stem: str) -> Path:
+    """NetCDF-3 (classic, 64-bit offsets), gzip-compressed: a third of the size of NetCDF-4's
+    HDF5 for these small files; ``gunzip -k`` gives a file any NetCDF tool reads."""
+    return GOLDEN / f"{stem}.nc.gz"
+
+
+def output_interval(interval: float) -> float:
+    """The example's output interval [s] if it divides DURATION into MIN_ROWS or more rows,
+    else SHORT_INTERVAL."""
+    count = DURATION / interval
+    if abs(count - round(count)) < 1e-9 * count and round(count) >= MIN_ROWS:
+        return interval
+    return SHORT_INTERVAL
+
+
+def derived(stem: str, changes: Mapping):
+    """The example's case with ``changes`` (a nested mapping of case keys, as
+    :func:`seacable.case.loader.derive_case` takes) applied through the loader's validation."""
+    return derive_case(seacable.load_case(example_path(stem)), dict(changes))
+
+
+def run(stem: str, changes: Mapping) -> xr.Dataset:
+    results = seacable.simulate(derived(stem, changes))
+    if results.status != "complete":
+        raise RuntimeError(f"{stem} with {dict(changes)}: {results.status}: {results.message}")
+    return results.dataset
+
+
+def variable_scales(golden: xr.Dataset) -> dict[str, float]:
+    """Scale of each variable: its largest finite magnitude over the run, at least UNITS_FLOOR
+    times the largest among the variables of its units (all of that largest for
+    SHARED_SCALE_UNITS and when below ROUND_OFF of it). The units scale of a rate of turn
+    [rad/s] is at least the largest velocity [m/s] over the shortest link (a line in its steady
+    state turns at round-off rates only)."""
+    own = {}
+    for name, variable in golden.data_vars.items():
+        values = np.abs(variable.values[np.isfinite(variable.values)])
+        own[name] = float(values.max()) if values.size else 0.0
+    by_units: dict[str, float] = {}
+    for name, scale in own.items():
+        units = golden[name].attrs.get("units", "")
+        by_units[units] = max(by_units.get(units, 0.0), scale)
+    if "rad/s" in by_units and "m/s" in by_units and "link_length" in golden.coords:
+        turn = by_units["m/s"] / float(golden["link_length"].min())
+        by_units["rad/s"] = max(by_units["rad/s"], turn)
+    scales = {}
+    for name, scale in own.items():
+        units = golden[name].attrs.get("units", "")
+        group = by_units[units]
+        shared = units in SHARED_SCALE_UNITS or scale < ROUND_OFF * group
+        scales[name] = group if shared else max(scale, UNITS_FLOOR * group)
+    return scales
+
+
+def relative_errors(
+    golden: xr.Dataset, actual: Mapping, names: Mapping[str, str] | None = None
+) -> dict[str, tuple[float, tuple, float, float]]:
+    """For each golden variable: (largest error as a fraction of its scale, index of the worst
+    element, golden value there, actual value there). ``actual`` maps names to arrays (an
+    xarray Dataset does); ``names`` maps actual names to golden ones (default: the same names).
+    A NaN in one and not the other counts as an infinite error; a golden variable with no
+    actual counterpart as a NaN error."""
+    names = dict(names) if names is not None else {name: name for name in golden.data_vars}
+    old_to_new = {old: new for new, old in names.items()}
+    scales = variable_scales(golden)
+    errors = {}
+    for name in golden.data_vars:
+        reference = golden[name].values
+        if name not in old_to_new or old_to_new[name] not in actual:
+            errors[name] = (float("nan"), (), float("nan"), float("nan"))
+            continue
+        values = np.asarray(actual[old_to_new[name]], dtype=float)
+        if values.shape != reference.shape:
+            errors[name] = (float("inf"), values.shape, float("nan"), float("nan"))
+            continue
+        scale = scales[name] if scales[name] > 0.0 else 1.0
+        error = np.abs(values - reference) / scale
+        mismatch = np.isnan(values) != np.isnan(reference)
+        error = np.where(np.isnan(reference) & np.isnan(values), 0.0, error)
+        error = np.where(mismatch, np.inf, error)
+        worst = np.unravel_index(int(np.argmax(error)), error.shape) if error.size else ()
+        worst_error = float(error[worst]) if error.size else 0.0
+        errors[name] = (worst_error, worst, float(reference[worst]), float(values[worst]))
+    return errors
+
+
+def compare_to_golden(
+    golden: xr.Dataset,
+    actual: Mapping,
+    names: Mapping[str, str] | None = None,
+    tolerance: float = TOLERANCE,
+    label: str = "",
+) -> list[str]:
+    """One line per golden variable that ``actual`` does not match within ``tolerance`` of the
+    variable's scale (empty: all match), naming the example, the variable, the worst index, the
+    two values and the error. Arguments as :func:`relative_errors`."""
+    failures = []
+    for name, (error, index, expected, got) in relative_errors(golden, actual, names).items():
+        if error <= tolerance:
+            continue
+        if np.isnan(error):
+            failures.append(f"{label}: golden variable '{name}' has no counterpart in the run")
+            continue
+        dims = golden[name].dims
+        where = ", ".join(f"{d}={i}" for d, i in zip(dims, index, strict=False))
+        failures.append(
+            f"{label}: '{name}' differs by {error:.3g} of its scale (allowed {tolerance:g}) at "
+            f"{where}: golden {expected!r}, run {got!r}"
+        )
+    return failures
+
+
+def refinement_changes(coarse: xr.Dataset, fine: xr.Dataset) -> dict[str, float]:
+    """Largest change of each variable from ``fine`` to ``coarse`` (fraction of its scale in
+    ``fine``)."""
+    return {name: error[0] for name, error in relative_errors(fine, coarse).items()}
+
+
+def _refinements(stem: str):
+    """The changes of the example's case tried in turn, coarsest first."""
+    example = seacable.load_case(example_path(stem))
+    sim = example.simulation
+    base = {"duration": DURATION, "output_interval": output_interval(sim.output_interval)}
+    cables = _servo_steps_kept(example)
+    if sim.integrator in FIXED_STEP_INTEGRATORS:
+        step = rk4_step(derived(stem, {"simulation": base}).simulation)[0]
+        for k in range(MAX_HALVINGS + 1):
+            yield {"simulation": {**base, "time_step": step / 2**k}, **cables}
+    else:
+        for rtol in RTOLS:  # atol None: rtol times each state's scale
+            yield {"simulation": {**base, "rtol": rtol, "atol": None}, **cables}
+
+
+def _servo_steps_kept(case) -> dict:
+    """Changes that write out a trajectory servo's step where it defaults to the integration
+    step, so that refining the step does not change the servo law (its correction rate is gain
+    times the error over the servo step). Empty when no servo takes its step by default."""
+    data = yaml.safe_load(case_text(case))
+    changed = False
+    for cable in data["cables"]:
+        servo = cable.get("bottom", {}).get("servo")
+        if isinstance(servo, dict) and servo.get("step") is None:
+            servo["step"] = rk4_step(case.simulation)[0]
+            changed = True
+    return {"cables": data["cables"]} if changed else {}
+
+
+def converge(stem: str) -> tuple[dict, xr.Dataset, dict[str, float]]:
+    """Refine the example's settings until one more refinement changes no variable by more
+    than TARGET, or the change stops falling (round-off has overtaken the discretisation error),
+    or a finer run fails. The coarser run of the pair with the smallest change: its changes, its
+    results and each variable's change on that refinement."""
+    previous = None
+    best = None
+    for changes in _refinements(stem):
+        try:
+            dataset = run(stem, changes)
+        except (RuntimeError, SimulationDiverged) as exc:
+            if previous is None:
+                raise
+            print(f"{stem}: {changes} failed, refinement stops: {exc}", flush=True)
+            break
+        if previous is not None:
+            per_variable = refinement_changes(previous[1], dataset)
+            change = max(per_variable.values())
+            if best is not None and change > max(best[2].values()):
+                break
+            best = (*previous, per_variable)
+            if change <= TARGET:
+                break
+        previous = (changes, dataset)
+    assert best is not None
+    return best
+
+
+def record(stem: str) -> dict:
+    """Converge the example, write its golden file, return a summary."""
+    start = time.perf_counter()
+    changes, dataset, per_variable = converge(stem)
+    variable = max(per_variable, key=per_variable.__getitem__)
+    change = per_variable[variable]
+    dataset = dataset.copy()
+    dataset.attrs.pop("created", None)
+    dataset.attrs.update(
+        golden_example=stem,
+        golden_changes=json.dumps(changes),
+        golden_refined_changes=json.dumps(_refined(changes)),
+        golden_refinement_change=change,
+        golden_refinement_worst_variable=variable,
+        golden_converged=int(change <= TARGET),
+        golden_target=TARGET,
+    )
+    for name, value in per_variable.items():
+        dataset[name].attrs["golden_refinement_change"] = value
+    save_golden(dataset, golden_path(stem))
+    return {
+        "example": stem,
+        "integrator": dataset.attrs["solver_integrator"],
+        "settings": changes,
+        "change": change,
+        "variable": variable,
+        "converged": change <= TARGET,
+        "seconds": time.perf_counter() - start,
+        "bytes": golden_path(stem).stat().st_size,
+    }
+
+
+def _refined(changes: dict) -> dict:
+    sim = dict(changes["simulation"])
+    if "time_step" in sim:
+        sim["time_step"] /= 2
+    else:
+        sim["rtol"] /= 10
+    return {**changes, "simulation": sim}
+
+
+def save_golden(dataset: xr.Dataset, path: Path) -> None:
+    raw = dataset.to_netcdf(None, format="NETCDF3_64BIT", engine="scipy")
+    path.write_bytes(gzip.compress(bytes(raw), compresslevel=9, mtime=0))
+
+
+def load_golden(stem: str) -> xr.Dataset:
+    raw = gzip.decompress(golden_path(stem).read_bytes())
+    with xr.open_dataset(io.BytesIO(raw), engine="scipy") as dataset:
+        return dataset.load()
+
+
+def golden_changes(golden: xr.Dataset) -> dict:
+    """The simulation keys the golden run changed in its example."""
+    return json.loads(golden.attrs["golden_changes"])
+
+
+def main(stems: list[str]) -> None:
+    for stem in stems or example_stems():
+        summary = record(stem)
+        settings = {k: v for k, v in summary["settings"]["simulation"].items() if k != "duration"}
+        print(
+            f"{stem}: {summary['integrator']} {settings} change on refinement "
+            f"{summary['change']:.2g} ({summary['variable']})"
+            f"{'' if summary['converged'] else ' NOT CONVERGED'}, "
+            f"{summary['seconds']:.1f} s, {summary['bytes'] / 1000:.0f} kB",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
