@@ -34,9 +34,10 @@ def _rigid(**fields):
     return body
 
 
-def _case(bodies, lines, simulation, environment=None, line_types=None):
+def _case(bodies, lines, simulation, environment=None, line_types=None, start="as_given"):
     data = {
         "name": "test system",
+        "start": start,
         "environment": environment or {"in_air": True},
         "bodies": bodies,
         "lines": lines,

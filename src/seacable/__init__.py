@@ -11,7 +11,7 @@ from seacable.case.loader import load_case
 from seacable.case.schema import Case
 from seacable.errors import CaseError, SeacableError, SimulationDiverged, SimulationInterrupted
 from seacable.results import Results
-from seacable.simulation import simulate
+from seacable.simulation import simulate, statics
 
 __version__ = "0.1.0"
 
@@ -25,4 +25,5 @@ __all__ = [
     "__version__",
     "load_case",
     "simulate",
+    "statics",
 ]

@@ -1,6 +1,7 @@
 """The ``seacable`` command line: parse, call the public API, write. Nothing else."""
 
 import logging
+import math
 import sys
 from pathlib import Path
 
@@ -97,6 +98,42 @@ def validate(case_file: str) -> None:
         f"ok: case '{case.name}': {what}, {case.simulation.duration:g} s with "
         f"{case.simulation.integrator}"
     )
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="NetCDF file to write (default: CASE_FILE with .statics.nc).")  # fmt: skip
+def statics(case_file: str, output: str | None) -> None:
+    """Static equilibrium of the system of CASE_FILE: every body's pose and every line's end
+    tensions, printed and written."""
+    output = output or str(Path(case_file).with_suffix(".statics.nc"))
+    try:
+        results = seacable.statics(seacable.load_case(case_file), output=output)
+    except seacable.SeacableError as exc:
+        _fail(str(exc), 2)
+    tree = results.dataset
+    for name, node in tree["bodies"].children.items():
+        ds = node.to_dataset().isel(time=0)
+        where = ", ".join(f"{ds[f'position_{c}'].item():.4g}" for c in "xyz")
+        angles = ""
+        if "roll" in ds:
+            angles = "; roll, pitch, yaw " + ", ".join(
+                f"{ds[a].item():.4g}" for a in ("roll", "pitch", "yaw")
+            ) + " deg"  # fmt: skip
+        click.echo(f"body {name}: at ({where}) m{angles}")
+    for name, node in tree["lines"].children.items():
+        ds = node.to_dataset().isel(time=0)
+        if "from_force_x" in ds:
+            ends = [
+                math.sqrt(sum(ds[f"{end}_force_{c}"].item() ** 2 for c in "xyz"))
+                for end in ("from", "to")
+            ]
+            click.echo(f"line {name}: end tensions {ends[0] / 1e3:.4g} kN (from), "
+                       f"{ends[1] / 1e3:.4g} kN (to)")  # fmt: skip
+        else:
+            click.echo(f"line {name}: tension {ds['tension'].item() / 1e3:.4g} kN")
+    click.echo(f"statics written: {output}")
 
 
 @main.command()

@@ -426,6 +426,43 @@ def simulate(
     return sink.finish(STATUS_COMPLETE, "the run reached its duration", _work(run))
 
 
+def statics(case: schema.Case | SystemCase, output=None) -> Results:
+    """The static equilibrium of a system (``start: static`` whatever the case says): every
+    free body and line at rest in balance under its force models, gravity, buoyancy and the
+    steady current, as one output row at t = 0 (the same groups and variables as a run).
+
+    Raises
+    ------
+    CaseError
+        ``case`` is not a system of bodies and lines (a case with ``lines:``).
+    StaticsError
+        No equilibrium found; the message names the body or line out of balance.
+    """
+    if not isinstance(case, SystemCase):
+        raise CaseError(
+            "statics: the case is a single cable (cables:); statics of the whole system need "
+            "a case with bodies: and lines:"
+        )
+    derived = loader.derive_case(case, {"start": "static"})
+    assert isinstance(derived, SystemCase)  # derive_case keeps the form
+    case = derived
+    system = system_model.build(case, loader.case_base_dir(case))
+    attrs = provenance(loader.case_text(case), {"analysis": "statics"})
+    sink = _Sink(
+        output, system_model.sizes(system), system_model.coords(system),
+        system_model.variables(system), attrs,
+    )  # fmt: skip
+    y0 = system.y0.copy()
+    y0[system.params.n_q :] = 0.0
+    rows, status = system_model.rows(
+        np.array([0.0]), y0[None, :], system, system_model.workspace(system)
+    )
+    sink.write(rows)
+    if status != pc.OK:
+        return sink.finish(STATUS_DIVERGED, "the equilibrium's forces are not finite", {})
+    return sink.finish(STATUS_COMPLETE, "static equilibrium", {})
+
+
 def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:
     """Advance the run in compiled chunks of ``chunk_outputs`` output intervals (None: sized
     to about _CHUNK_SECONDS of wall time), stopping at each model refresh."""

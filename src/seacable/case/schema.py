@@ -140,9 +140,15 @@ class Table(_Model):
 
 
 def _number_is_constant(value: Any) -> Any:
-    """Allow a plain number where a time function is expected."""
+    """Allow a plain number where a time function is expected (also one YAML 1.1 reads as text,
+    such as ``1.0e6``, which pydantic takes as a number everywhere else: the same here)."""
     if isinstance(value, int | float) and not isinstance(value, bool):
         return {"kind": "constant", "value": value}
+    if isinstance(value, str):
+        try:
+            return {"kind": "constant", "value": float(value)}
+        except ValueError:
+            return value
     return value
 
 

@@ -315,6 +315,10 @@ class SystemCase(_Model):
     bodies: list[Body] = Field(min_length=1)
     line_types: list[LineType] = []
     lines: list[Line] = Field(min_length=1)
+    # how the run starts: "static", every free body and line at rest in balance (steady current
+    # included; system.statics), or "as_given", bodies where the case puts them, each lumped
+    # line at its static shape between them (a free decay from an offset)
+    start: Literal["static", "as_given"] = "static"
     simulation: Simulation
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to

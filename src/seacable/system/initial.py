@@ -81,10 +81,10 @@ def initial_state(built: BuiltSystem) -> np.ndarray:
     return y
 
 
-def _interior(p):
-    """State indices of every interior node position, in line order."""
-    parts = [np.arange(p.line_q[li], p.line_q[li] + 3 * (p.line_n[li] - 1)) for li in
-             range(len(p.line_n))]  # fmt: skip
+def _interior(p, at):
+    """State indices of every interior node position (``at`` = p.line_q) or velocity
+    (p.line_v), in line order."""
+    parts = [np.arange(at[li], at[li] + 3 * (p.line_n[li] - 1)) for li in range(len(p.line_n))]
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
 
 
@@ -101,12 +101,11 @@ def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
 
 
 def _newton(p, y0, iterations):
-    index = _interior(p)
+    index = _interior(p, p.line_q)
     m = len(index)
-    nq = p.n_q
     w = kernel.make_work(p)
     ydot = np.zeros_like(y0)
-    velocity = index + nq  # the accelerations sit at the velocities' offsets
+    velocity = _interior(p, p.line_v)  # the accelerations sit at the velocities' offsets
 
     def residual(y):
         kernel.rhs(0.0, y, p, w, ydot)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from seacable.case import system as sch
-from seacable.system import kernel, outputs
+from seacable.system import kernel, outputs, statics
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
 from seacable.system.initial import initial_state
@@ -19,8 +19,14 @@ AXES = "xyz"
 
 
 def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
+    """Parameters and initial state: lines at their static shape, and with ``start: static``
+    every free body at its static equilibrium too (the velocities the case gives are kept)."""
     built = _assemble(case, base_dir)
     y0 = initial_state(built)
+    if case.start == "static":
+        velocities = y0[built.params.n_q :].copy()
+        y0 = statics.equilibrium(built, y0)
+        y0[built.params.n_q :] = velocities
     return BuiltSystem(params=built.params, y0=y0, layout=built.layout, case=case)
 
 

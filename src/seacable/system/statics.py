@@ -69,9 +69,10 @@ def _rotate(quaternion: np.ndarray, theta: np.ndarray) -> np.ndarray:
     if angle < 1e-300:
         return quaternion.copy()
     axis = theta / angle
-    s, c = np.sin(0.5 * angle), np.cos(0.5 * angle)
-    dw, dx, dy, dz = c, *(s * axis)
-    qw, qx, qy, qz = quaternion
+    s = float(np.sin(0.5 * angle))
+    dw = float(np.cos(0.5 * angle))
+    dx, dy, dz = (s * float(a) for a in axis)
+    qw, qx, qy, qz = (float(v) for v in quaternion)
     out = np.array([
         dw * qw - dx * qx - dy * qy - dz * qz,
         dw * qx + dx * qw + dy * qz - dz * qy,
@@ -98,12 +99,12 @@ def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
 def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
     """Which increments can change which accelerations (a superset)."""
     n = len(coords.kind)
-    body_cols = {}
+    body_cols: dict[int, list[int]] = {}
     for i in range(n):
         if coords.body[i] >= 0:
             body_cols.setdefault(int(coords.body[i]), []).append(i)
-    node_index = {}
-    for i in np.flatnonzero(coords.kind == 2):
+    node_index: dict[tuple[int, int], list[int]] = {}
+    for i in (int(k) for k in np.flatnonzero(coords.kind == 2)):
         li = int(coords.line[i])
         local = int(coords.q[i] - p.line_q[li]) // 3
         node_index.setdefault((li, local), []).append(i)
