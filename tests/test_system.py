@@ -280,3 +280,69 @@ def test_system_results_are_a_datatree_on_disk_and_in_pictures(tmp_path):
     assert viz.plot_results(results.dataset, tmp_path / "p.png").stat().st_size > 10_000
     gif = viz.animate_results(results.dataset, tmp_path / "a.gif", max_frames=3, progress=False)
     assert gif.stat().st_size > 1_000
+
+
+def _buoy_on_tie(**buoy):
+    body = {"name": "buoy", "type": "point", "position": [1.0, 0.5, -30.0], "mass": 400.0,
+            "volume": 1.0, "external forces": [{"model": "gravity"}, {"model": "buoyancy"}],
+            **buoy}  # fmt: skip
+    return _case([body, ANCHOR], [_tie("tether", "ground", "buoy", length=12.0, stiffness=2e4)],
+                 _sim(1.0), environment={"water_depth": 50.0}, start="static")  # fmt: skip
+
+
+def test_statics_of_a_buoy_on_a_tether_is_the_closed_form():
+    """A buoy of net buoyancy (rho V - m) g on a linear tether from a fixed anchor: it floats
+    straight above the anchor, the tether stretched by that force over its stiffness."""
+    results = seacable.statics(load_case(_buoy_on_tie()))
+    ds = results.dataset["bodies/buoy"].to_dataset().isel(time=0)
+    lift = (1025.0 * 1.0 - 400.0) * 9.81
+    assert ds["position_x"].item() == pytest.approx(0.0, abs=1e-9)
+    assert ds["position_y"].item() == pytest.approx(0.0, abs=1e-9)
+    assert ds["position_z"].item() == pytest.approx(-50.0 + 12.0 + lift / 2e4, abs=1e-9)
+    assert results.dataset["lines/tether/tension"].values[0] == pytest.approx(lift, rel=1e-9)
+
+
+def test_statics_names_the_body_nothing_holds():
+    """A constant push along x on a buoy free in surge only, which nothing resists along x."""
+    push = {"model": "applied", "force_x": 100.0}
+    case = _buoy_on_tie(dofs=["surge"], position=[0.0, 0.0, -38.0])
+    case["bodies"][0]["external forces"].append(push)
+    with pytest.raises(seacable.SeacableError, match=r"body 'buoy' \(force along x"):
+        seacable.statics(load_case(case))
+
+
+def test_a_free_decay_has_the_period_of_the_linearised_modes():
+    """The platform example (coarser lines), displaced 0.5 m in heave from its equilibrium and
+    released: the damped heave period of the run within 1 % of the linearised system's
+    (system_modes), whose pitch period is the closed form of its hydrostatics within 2 %."""
+    from seacable.analysis import system_modes
+
+    path = EXAMPLES / "platform_three_catenary_lines.yaml"
+    coarse = {"lines": [
+        {**line, "sections": [{**line["sections"][0], "segments": 10}]}
+        for line in yaml.safe_load(path.read_text())["lines"]
+    ]}  # fmt: skip
+    case = seacable.case.loader.derive_case(load_case(path), coarse)
+    modes = system_modes(case)
+    heave = float(modes["period"][list(modes["dominant"].values).index("platform:heave")])
+    pitch = float(modes["period"][list(modes["dominant"].values).index("platform:pitch")])
+    stiffness = 1.00553e9 + 1025 * 9.81 * 1e4 * (-15 + 10)  # waterplane + rho g V (z_B - z_G)
+    inertia = 8.0e9 + 1e7 * 10.0**2 + 4.0e9  # about the reference point, added inertia included
+    assert pitch == pytest.approx(2 * math.pi * math.sqrt(inertia / stiffness), rel=0.02)
+    still = seacable.statics(case).dataset["bodies/platform"].to_dataset().isel(time=0)
+    start = [still[f"position_{c}"].item() for c in "xy"] + [still["position_z"].item() + 0.5]
+    released = seacable.case.loader.derive_case(case, {
+        "start": "as_given",
+        "bodies": [*yaml.safe_load(path.read_text())["bodies"][:3],
+                   {**yaml.safe_load(path.read_text())["bodies"][3], "position": start,
+                    "external forces": yaml.safe_load(path.read_text())["bodies"][3][
+                        "external forces"][:4]}],
+        "simulation": {"duration": 80.0, "output_interval": 0.05},
+    })  # fmt: skip
+    ds = simulate(released).dataset["bodies/platform"].to_dataset()
+    z = ds["position_z"].values - still["position_z"].item()
+    t = ds["time"].values
+    upward = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
+    crossings = t[upward] - z[upward] * (t[upward + 1] - t[upward]) / (z[upward + 1] - z[upward])
+    measured = float(np.mean(np.diff(crossings)))
+    assert measured == pytest.approx(heave, rel=0.01)

@@ -1,11 +1,16 @@
-"""Analyses built on a case's dynamics: linearised natural modes about a state."""
+"""Analyses built on a case's dynamics: linearised natural modes about a state (a planar
+cable; a system of bodies and lines about its static equilibrium)."""
 
 import numpy as np
+import xarray as xr
 
 from seacable.case import loader, schema
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
 from seacable.models import planar_rigid_links
+from seacable.system import model as system_model
+from seacable.system import statics
 
 
 def linear_modes(case: schema.Case, state=None, time: float = 0.0, step: float = 1e-7):
@@ -67,3 +72,96 @@ def linear_modes(case: schema.Case, state=None, time: float = 0.0, step: float =
     shapes /= np.where(np.abs(shapes).max(axis=0) > 0, np.abs(shapes).max(axis=0), 1.0)
     frequencies = np.abs(values)
     return frequencies, -values.real / frequencies, shapes
+
+
+def system_modes(case: schema.Case | SystemCase, count: int = 12) -> xr.Dataset:
+    """The natural modes of a system of bodies and lines about its static equilibrium.
+
+    The rates of every free degree of freedom (a body's free translations and rotations, every
+    line node) are linearised by central differences of the compiled right-hand side
+    (``system.statics.jacobian``; rotations as small rotation vectors in the earth frame), and
+    the eigenvalues of the first-order system give each mode's frequency and damping. The
+    ``count`` slowest oscillatory modes are returned, slowest first.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``period`` [s] = 2 pi / |Im lambda|, ``frequency`` |lambda| [rad/s] (undamped
+        equivalent), ``damping_ratio`` -Re(lambda) / |lambda| (dimension ``mode``), and
+        ``shape`` (``mode``, ``coordinate``): the position part of each mode, real part with the
+        largest component 1; coordinate names ``body:surge`` ... ``body:yaw`` and
+        ``line:node k:x``; ``dominant`` names each mode's largest body coordinate (or line).
+    """
+    if not isinstance(case, SystemCase):
+        raise CaseError("modes: give a case with bodies: and lines: (a system)")
+    derived = loader.derive_case(case, {"start": "static"})
+    assert isinstance(derived, SystemCase)  # derive_case keeps the form
+    built = system_model.build(derived, loader.case_base_dir(derived))
+    y = built.y0.copy()
+    y[built.params.n_q :] = 0.0
+    a, coords = statics.jacobian(built, y)
+    n = len(coords.kind)
+    values, vectors = np.linalg.eig(a)
+    keep = np.flatnonzero(values.imag > 1e-9 * np.maximum(1.0, np.abs(values)))
+    order = keep[np.argsort(np.abs(values[keep].imag))][:count]
+    names = _coordinate_names(built, coords)
+    shapes = vectors[:n, order].T
+    shapes = shapes / shapes[np.arange(len(order)), np.argmax(np.abs(shapes), axis=1)][:, None]
+    # each coordinate's share of the mode's kinetic energy ranks it (a rotation in rad and a
+    # translation in m compare through the body's inertia and mass)
+    weight = np.sqrt(_inertia_diagonal(built, coords))
+    dominant = []
+    for shape in np.abs(shapes.real) * weight:
+        dominant.append(names[int(np.argmax(shape))].split(":node")[0])
+    lam = values[order]
+    return xr.Dataset(
+        {
+            "period": ("mode", 2 * np.pi / np.abs(lam.imag), {"units": "s",
+                       "long_name": "damped period 2 pi / |Im lambda|"}),
+            "frequency": ("mode", np.abs(lam), {"units": "rad/s",
+                          "long_name": "undamped-equivalent angular frequency |lambda|"}),
+            "damping_ratio": ("mode", -lam.real / np.abs(lam), {"units": "1",
+                              "long_name": "-Re(lambda) / |lambda|"}),
+            "shape": (("mode", "coordinate"), shapes.real, {"units": "1",
+                      "long_name": "position part of the mode, largest component 1"}),
+            "dominant": ("mode", np.array(dominant, dtype=object), {"units": "1",
+                         "long_name": "the body coordinate (or line) the mode moves most"}),
+        },
+        coords={"coordinate": names},
+    )  # fmt: skip
+
+
+def _inertia_diagonal(built, coords) -> np.ndarray:
+    """Mass (or moment of inertia about the reference point, added parts included) of each
+    coordinate [kg, kg m^2]."""
+    p = built.params
+    out = np.empty(len(coords.kind))
+    for i, (kind, body, axis) in enumerate(zip(coords.kind, coords.body, coords.axis, strict=True)):
+        if kind == 2:
+            line = int(coords.line[i])
+            node = int(p.line_node[line]) + (int(coords.q[i]) - int(p.line_q[line])) // 3 + 1
+            out[i] = p.node_mass[node]
+        elif kind == 0:
+            out[i] = p.body_mass[body] + p.body_added[body, axis, axis]
+        else:
+            arm = p.body_cog[body].copy()
+            arm[axis] = 0.0
+            out[i] = (p.body_inertia[body, axis, axis] + p.body_mass[body] * arm @ arm
+                      + p.body_added[body, 3 + axis, 3 + axis])  # fmt: skip
+    return np.maximum(out, 1e-12)
+
+
+def _coordinate_names(built, coords) -> list[str]:
+    translations, rotations = ("surge", "sway", "heave"), ("roll", "pitch", "yaw")
+    names = []
+    for kind, body, axis, q, line in zip(
+        coords.kind, coords.body, coords.axis, coords.q, coords.line, strict=True
+    ):
+        if kind == 2:
+            name = built.layout.lines[int(line)]
+            node = (int(q) - int(built.params.line_q[line])) // 3 + 1
+            names.append(f"{name}:node {node}:{'xyz'[int(axis)]}")
+        else:
+            dof = (rotations if kind == 1 else translations)[int(axis)]
+            names.append(f"{built.case.bodies[int(body)].name}:{dof}")
+    return names

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 import seacable
-from seacable import viz
+from seacable import analysis, viz
 from seacable.case.system import SystemCase
 
 
@@ -134,6 +134,24 @@ def statics(case_file: str, output: str | None) -> None:
         else:
             click.echo(f"line {name}: tension {ds['tension'].item() / 1e3:.4g} kN")
     click.echo(f"statics written: {output}")
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("--count", type=int, default=12, show_default=True, help="Slowest modes shown.")
+def modes(case_file: str, count: int) -> None:
+    """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
+    ratio and the coordinate each mode moves most."""
+    try:
+        found = analysis.system_modes(seacable.load_case(case_file), count=count)
+    except seacable.SeacableError as exc:
+        _fail(str(exc), 2)
+    click.echo("mode  period [s]  damping ratio  moves most")
+    for k in range(found.sizes["mode"]):
+        click.echo(
+            f"{k + 1:4d}  {found['period'].values[k]:10.4g}  "
+            f"{found['damping_ratio'].values[k]:13.3g}  {found['dominant'].values[k]}"
+        )
 
 
 @main.command()

@@ -159,8 +159,8 @@ def segment_loads(
     """Tension, tangent, hydrodynamic and weight loads of the n segments of one line, shared
     to its nodes: the line's nodes at ``y = [r_0 .. r_n, v_0 .. v_n]`` (3 each), its segment
     properties at ``[s0 + i]`` of the flat arrays (EA ``stiffness`` [N], alpha ``damping`` [s],
-    ``slack`` 1: no compression), its nodes' workspace columns ``c0 + k``. Every line model
-    and every line of a system computes its segment loads here."""
+    ``slack``: 1 no compression, 0 linear), its nodes' workspace columns ``c0 + k``. Every
+    line model and every line of a system computes its segment loads here."""
     v0 = 3 * (n + 1)
     for k in range(c0, c0 + n + 1):
         for c in range(3):

@@ -100,9 +100,20 @@ def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
     return y
 
 
+def settle_lines(p, y0, iterations: int = 30, slack: int = 0) -> np.ndarray:
+    """Every line's interior nodes at rest in balance from a nearby state (no EA stages: the
+    outer loop of the system's statics, whose lines start each time from their last balance,
+    their nodes carried along with their moved ends), with the axial law ``slack``
+    (kernels.lumped.segment_loads: 0 linear)."""
+    stage = p._replace(slack_allowed=slack)
+    return _newton(stage, y0, iterations)
+
+
 def _newton(p, y0, iterations):
     index = _interior(p, p.line_q)
     m = len(index)
+    if m == 0:
+        return y0.copy()
     w = kernel.make_work(p)
     ydot = np.zeros_like(y0)
     velocity = _interior(p, p.line_v)  # the accelerations sit at the velocities' offsets

@@ -19,8 +19,10 @@ from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
+from seacable.kernels import surface
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
+from seacable.system.initial import settle_lines
 
 
 class StaticsError(SeacableError):
@@ -198,7 +200,13 @@ def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matr
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
                 tolerance: float = 1e-9) -> np.ndarray:  # fmt: skip
     """The state at rest in balance, from ``y0``'s positions (velocities set to zero).
-    Raises StaticsError naming the body or line that stays out of balance."""
+
+    First Newton over every coordinate at once (sparse Jacobian); when that fails, Newton over
+    the free bodies' degrees of freedom alone (a small dense system), each line settled at its
+    static shape between its ends for every trial pose (``initial.settle_lines``, the linear
+    axial law: chain lying on a frictionless seabed has one shape) — slower, but it does not
+    lose its way in the kinks of the seabed's contact or of the free surface. Raises
+    StaticsError naming the body or line that stays out of balance."""
     p = built.params
     coords = coordinates(p)
     y = y0.copy()
@@ -206,44 +214,138 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if not len(coords.kind):
         return y
     residual = _Residual(p, coords)
+    scale = float(np.abs(residual(y)).max()) + 1.0
+    direct = _direct(built, coords, residual, y, iterations, tolerance * scale)
+    r = residual(direct)
+    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+        return direct
+    bodies = np.flatnonzero(coords.kind != 2)
+    if not bodies.size:
+        raise StaticsError(_blame(built, coords, r))
+    nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
+    r = residual(nested)
+    nodes = np.flatnonzero(coords.kind == 2)
+    r[nodes] = _Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
+    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+        return nested
+    raise StaticsError(_blame(built, coords, r))
+
+
+def _direct(built, coords, residual, y, iterations, tolerance):
+    """Newton over every coordinate; the best state met."""
+    p = built.params
     structure = pattern(p, coords)
     colours = colour(structure)
     r = residual(y)
-    scale = float(np.abs(r).max()) + 1.0
     best, best_norm = y, float(np.linalg.norm(r))
+    limit = _step_limit(built, coords)
     for _ in range(iterations):
-        if not np.all(np.isfinite(r)):
+        if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
             break
-        if np.abs(r).max() < tolerance * scale:
-            return y
         jac = _fd_jacobian(residual, y, coords, structure, colours, r)
         try:
             step = splu(jac).solve(-r)
         except RuntimeError:
             break
-        limit = _step_limit(built, coords)
-        largest = np.abs(step).max()
-        if largest > limit:
-            step *= limit / largest
-        for damping in (1.0, 0.5, 0.25, 0.125, 1.0):
-            trial = apply(y, coords, damping * step)
+        largest = float(np.max(np.abs(step) / limit))
+        if largest > 1.0:
+            step /= largest
+        # the first shorter step that lowers the residual, else the whole step: the seabed's
+        # contact makes the residual non-smooth and Newton's path to it not monotone
+        for fraction in (1.0, 0.5, 0.25, 0.125, 1.0):
+            trial = apply(y, coords, fraction * step)
             rt = residual(trial)
             if np.all(np.isfinite(rt)) and np.linalg.norm(rt) < np.linalg.norm(r):
                 break
         y, r = trial, rt
-        if np.linalg.norm(r) < best_norm:
+        if np.all(np.isfinite(r)) and np.linalg.norm(r) < best_norm:
             best, best_norm = y, float(np.linalg.norm(r))
-    r = residual(best)
-    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-        return best
-    raise StaticsError(_blame(built, coords, r))
+    return best
 
 
-def _step_limit(built: BuiltSystem, coords: Coordinates) -> float:
-    """Largest increment of one Newton step: a tenth of the system's line length (a rotation:
-    0.1 rad counts the same)."""
-    total = float(built.params.seg_length.sum()) if len(built.params.line_n) else 10.0
-    return max(1.0, 0.1 * total)
+def _moved(p, coords: Coordinates, y, bodies, dx):
+    """``y`` with the bodies moved by ``dx`` and each line's interior nodes carried along,
+    each by the displacement of its two ends weighted by its place along the line."""
+    full = np.zeros(len(coords.kind))
+    full[bodies] = dx
+    before = _point_positions(p, y)
+    out = apply(y, coords, full)
+    after = _point_positions(p, out)
+    for li in range(len(p.line_n)):
+        n, s0, q = int(p.line_n[li]), int(p.line_seg[li]), int(p.line_q[li])
+        arc = np.cumsum(p.seg_length[s0 : s0 + n])[:-1] / p.seg_length[s0 : s0 + n].sum()
+        da = after[p.line_from[li]] - before[p.line_from[li]]
+        db = after[p.line_to[li]] - before[p.line_to[li]]
+        shift = da[None, :] + arc[:, None] * (db - da)[None, :]
+        out[q : q + 3 * (n - 1)] += shift.ravel()
+    return out
+
+
+def _point_positions(p, y) -> np.ndarray:
+    w = kernel.make_work(p)
+    kernel.rhs(0.0, y, p, w, np.zeros_like(y))
+    return w.ppos.copy()
+
+
+def _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance):
+    p = built.params
+    limit = _step_limit(built, coords, shortest=True)[bodies]
+
+    def settled(state):
+        out = settle_lines(p, state, slack=0)
+        return out, residual(out)[bodies]
+
+    y, r = settled(y)
+    for _ in range(iterations):
+        if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
+            break
+        jac = np.empty((len(bodies), len(bodies)))
+        for j in range(len(bodies)):
+            h = (
+                1e-6
+                if coords.kind[bodies[j]] == 1
+                else 1e-6 * max(1.0, abs(y[coords.q[bodies[j]]]))
+            )
+            dx = np.zeros(len(bodies))
+            dx[j] = h
+            jac[:, j] = (settled(_moved(p, coords, y, bodies, dx))[1] - r) / h
+        try:
+            step = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        largest = float(np.max(np.abs(step) / limit))
+        if largest > 1.0:
+            step /= largest
+        for fraction in (1.0, 0.5, 0.25, 0.125, 0.0625):
+            trial, rt = settled(_moved(p, coords, y, bodies, fraction * step))
+            if np.all(np.isfinite(rt)) and np.linalg.norm(rt) < np.linalg.norm(r):
+                break
+        else:
+            break
+        y, r = trial, rt
+    return y
+
+
+def _step_limit(built: BuiltSystem, coords: Coordinates, shortest: bool = False) -> np.ndarray:
+    """Largest increment of each coordinate in one Newton step: a tenth of all lines' and
+    ties' length (of the ``shortest`` one) for positions (at least 1 m), 0.1 rad for
+    rotations, and a quarter of its size
+    for a body the free surface cuts (a step must not lift it clear of the water, where
+    nothing tells Newton the way back)."""
+    p = built.params
+    lengths = [
+        float(p.seg_length[p.line_seg[i] : p.line_seg[i] + p.line_n[i]].sum())
+        for i in range(len(p.line_n))
+    ] + [float(v) for v in p.tie_length if v > 0]
+    metres = max(1.0, 0.1 * (min(lengths) if shortest else sum(lengths))) if lengths else 1.0
+    limit = np.where(coords.kind == 1, 0.1, metres)
+    for i in np.flatnonzero((coords.kind == 0) & (coords.axis == 2)):
+        shape = p.body_shape[coords.body[i]]
+        if shape[0] != surface.POINT:
+            size = shape[1] if shape[0] == surface.SPHERE else (
+                0.5 * shape[2] if shape[0] == surface.CYLINDER else 1.0)  # fmt: skip
+            limit[i] = min(limit[i], 0.25 * size)
+    return limit
 
 
 def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
