@@ -88,13 +88,14 @@ def _interior(p, at):
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
 
 
-def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
+def static_lines(p, y0, iterations: int = 30, stages=(1e-3, 1e-2, 1e-1, 1.0)) -> np.ndarray:
     """Every line's interior nodes at rest in balance, bodies held: Newton on the nodes'
     accelerations, EA raised in steps of ten from a thousandth of its value (a nearly
-    inextensible line makes Newton's steps erratic), each stage from the last one's result."""
+    inextensible line makes Newton's steps erratic), each stage from the last one's result.
+    ``stages``: the fractions of EA in turn (``(1.0,)`` from a state already near balance)."""
     y = y0.copy()
     target = p.seg_stiffness
-    for factor in (1e-3, 1e-2, 1e-1, 1.0):
+    for factor in stages:
         stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
         y = _newton(stage, y, iterations)
     return y
