@@ -20,7 +20,7 @@ from scipy.sparse.linalg import splu
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface
-from seacable.system import kernel
+from seacable.system import kernel, outputs
 from seacable.system.assemble import BuiltSystem
 from seacable.system.initial import settle_lines
 
@@ -387,3 +387,54 @@ def jacobian(
         down[coords.v[j]] -= hv
         a[n:, n + j] = (residual(up) - residual(down)) / (2 * hv)
     return a, coords
+
+
+def line_loads(built: BuiltSystem, y: np.ndarray) -> np.ndarray:
+    """(bodies, 6): force [N] and moment about the reference point [N m] of every body's lines
+    and ties at the state ``y``, earth frame (the results' ``line_force_*``, ``line_moment_*``)."""
+    p = built.params
+    nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
+    bodies = np.empty((1, nb, outputs.BODY_COLUMNS))
+    outputs.outputs_chunk(
+        np.zeros(1), y[None, :], p, kernel.make_work(p), bodies,
+        np.empty((1, len(p.node_mass), 3)), np.empty((1, len(p.seg_length))),
+        np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)),
+    )  # fmt: skip
+    return bodies[0, :, 12:18].copy()
+
+
+def mooring_stiffness(
+    built: BuiltSystem, y: np.ndarray, body: str, translation: float = 1e-2,
+    rotation: float = 1e-4,
+) -> np.ndarray:  # fmt: skip
+    """The 6x6 stiffness of the lines and ties on ``body`` about the state ``y`` (a static
+    equilibrium): K[i, j] = -dF_i/dx_j [N/m, N/rad; N m/m, N m/rad], F the force and the moment
+    about the body's reference point of its lines and ties (earth frame), x the reference
+    point's position and the rotation vector (earth frame). The body's pose is moved by
+    +-``translation`` [m] and +-``rotation`` [rad] in turn, every line's interior nodes re-solved
+    at rest with every body held (the other bodies do not follow: their own stiffness is not
+    included), and the loads differenced (central differences). The body's own force models
+    (hydrostatics, weight) are not in K; MoorPy's ``lines_only`` stiffness is its analogue."""
+    p = built.params
+    b = built.layout.bodies.index(body)
+    if p.body_kind[b] != kinematics.DYNAMIC or not p.body_rigid[b]:
+        raise ValueError(f"mooring_stiffness: body '{body}' is not a rigid (6-DOF) body")
+    q = int(p.body_q[b])
+    y = y.copy()
+    y[p.n_q :] = 0.0
+    stiffness = np.zeros((6, 6))
+    for j in range(6):
+        h = translation if j < 3 else rotation
+        loads = []
+        for sign in (1.0, -1.0):
+            moved = y.copy()
+            if j < 3:
+                moved[q + j] += sign * h
+            else:
+                theta = np.zeros(3)
+                theta[j - 3] = sign * h
+                moved[q + 3 : q + 7] = _rotate(y[q + 3 : q + 7], theta)
+            moved = settle_lines(p, moved)
+            loads.append(line_loads(built, moved)[b])
+        stiffness[:, j] = -(loads[0] - loads[1]) / (2.0 * h)
+    return stiffness
