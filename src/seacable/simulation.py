@@ -295,11 +295,12 @@ class _Run:
             return ydot.copy()
 
         block, graph = _node_structure(self.model, self.system)
+        sparsity = getattr(self.model, "jacobian_sparsity", lambda system: None)(self.system)
         return stiff.StiffStepper(
             sim.integrator, fun, self.t, self.y,
             rtol=sim.rtol, atol=self.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
-            first_step=sim.initial_step, block=block, graph=graph,
+            first_step=sim.initial_step, block=block, graph=graph, sparsity=sparsity,
         )  # fmt: skip
 
     def _advance_stiff(self, count, states, times):
@@ -551,6 +552,8 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
     size = len(system.y0)
     _, graph = _node_structure(model, system)
     dense = graph is None or (sim.integrator == "cvode" and not stiff.banded(graph))
+    if hasattr(model, "jacobian_sparsity"):  # a system: SciPy colours its sparse pattern
+        dense = sim.integrator in ("cvode", "lsoda")
     if sim.integrator in stiff.STIFF and dense and size > 200:
         return (
             f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "

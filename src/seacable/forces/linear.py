@@ -35,8 +35,8 @@ def rotation_vector(qw, qx, qy, qz):
 
 
 @njit(**JIT)
-def add_stiffness(row, pos, quat, rhs):
-    """``quat`` the body's orientation (w, x, y, z)."""
+def _displacement(row, pos, quat):
+    """d = (x - x_eq, theta) of the stiffness row; ``quat`` the orientation (w, x, y, z)."""
     ew, ex, ey, ez = row[39], -row[40], -row[41], -row[42]  # conjugate of q_eq
     qw, qx, qy, qz = quat[0], quat[1], quat[2], quat[3]
     # q q_eq^*
@@ -45,12 +45,29 @@ def add_stiffness(row, pos, quat, rhs):
     dy = qw * ey - qx * ez + qy * ew + qz * ex
     dz = qw * ez + qx * ey - qy * ex + qz * ew
     tx, ty, tz = rotation_vector(dw, dx, dy, dz)
-    d = (pos[0] - row[36], pos[1] - row[37], pos[2] - row[38], tx, ty, tz)
+    return (pos[0] - row[36], pos[1] - row[37], pos[2] - row[38], tx, ty, tz)
+
+
+@njit(**JIT)
+def add_stiffness(row, pos, quat, rhs):
+    """-K d added to the body's force and moment."""
+    d = _displacement(row, pos, quat)
     for i in range(6):
         total = 0.0
         for j in range(6):
             total += row[6 * i + j] * d[j]
         rhs[i] -= total
+
+
+@njit(**JIT)
+def stiffness_energy(row, pos, quat):
+    """1/2 d^T K d [J] (the potential of -K d when K is symmetric)."""
+    d = _displacement(row, pos, quat)
+    total = 0.0
+    for i in range(6):
+        for j in range(6):
+            total += 0.5 * d[i] * row[6 * i + j] * d[j]
+    return total
 
 
 @njit(**JIT)

@@ -82,8 +82,13 @@ def banded(graph) -> bool:
 class StiffStepper:
     """Advance a model with one of STIFF, hitting output times exactly (dense output)."""
 
-    def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, graph):
-        """``atol``: one absolute tolerance, or one per state (in the order of ``y0``)."""
+    def __init__(
+        self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, block, graph, sparsity=None
+    ):
+        """``atol``: one absolute tolerance, or one per state (in the order of ``y0``).
+        ``sparsity``: the Jacobian's pattern as a sparse matrix (a system of bodies and lines),
+        used by SciPy's integrators instead of a node graph; CVODE then factorises densely."""
+        self.sparsity = sparsity
         self.name = name
         self.fun = fun  # f(t, y) -> ydot (raises FloatingPointError when non-finite)
         self.t = t0
@@ -102,7 +107,9 @@ class StiffStepper:
         options = dict(rtol=rtol, atol=atol, max_step=max_step, first_step=first_step)
         # LSODA takes a banded Jacobian through lband/uband only for its own FD; the [x, v]
         # layout is not banded, so it uses its dense finite differences
-        if graph is not None and self.name != "lsoda":
+        if self.sparsity is not None and self.name != "lsoda":
+            options["jac_sparsity"] = self.sparsity
+        elif graph is not None and self.name != "lsoda":
             options["jac_sparsity"] = graph_sparsity(graph, block)
         self.solver = solver[self.name](self.fun, self.t, y0.copy(), np.inf, **options)
 

@@ -5,6 +5,7 @@ frequencies the integrators' defaults and warnings use."""
 import math
 
 import numpy as np
+from scipy import sparse
 
 from seacable.case import system as sch
 from seacable.system import kernel, outputs, statics
@@ -79,9 +80,17 @@ TIE_VARIABLES = {
 }  # fmt: skip
 
 
+ENERGY_VARIABLES = {
+    "kinetic_energy": (("time",), "J", "kinetic energy of bodies and line nodes (added mass in)"),
+    "gravity_potential_energy": (("time",), "J", "potential of gravity and buoyancy"),
+    "elastic_energy": (("time",), "J", "axial, bending, seabed, tie and linear-spring energy"),
+    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
+}
+
+
 def variables(system: BuiltSystem) -> dict:
-    """Every output variable, its name prefixed by its group."""
-    out = {}
+    """Every output variable, its name prefixed by its group (the energies at the top)."""
+    out = dict(ENERGY_VARIABLES)
     for body in system.case.bodies:
         for name, spec in _body_variables(body).items():
             out[f"bodies/{body.name}/{name}"] = spec
@@ -131,8 +140,12 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     tension = np.empty((m, len(p.seg_length)))
     ends = np.empty((m, nl, 2, 3))
     ties = np.empty((m, nt, 8))
-    status = outputs.outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties)
+    energy = np.empty((m, 3))
+    status = outputs.outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy)
     out: dict = {"time": times}
+    for k, name in enumerate(list(ENERGY_VARIABLES)[:3]):
+        out[name] = energy[:, k]
+    out["total_energy"] = energy.sum(axis=1)
     for b, body in enumerate(system.case.bodies):
         for k, name in enumerate(BODY_NAMES):
             out[f"bodies/{body.name}/{name}"] = bodies[:, b, k]
@@ -199,6 +212,39 @@ def fastest_frequency(system: BuiltSystem) -> tuple[float, str]:
             best = float(omega[i])
             what = f"axial waves on segment {i} of line '{line}' ({p.seg_length[s0 + i]:.3g} m)"
     return best, what
+
+
+def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
+    """The pattern of d(ydot)/dy (SciPy's stiff integrators colour its columns): positions
+    move with their velocities (a quaternion with its angular velocity and itself), every
+    acceleration depends on the positions and velocities of the coordinates
+    ``statics.pattern`` couples it to."""
+    p = system.params
+    coords = statics.coordinates(p)
+    coupled = statics.pattern(p, coords).tocoo()
+    n = p.n_q + p.n_v
+    rows: list[int] = []
+    cols: list[int] = []
+
+    def positions(i: int) -> range:
+        return range(coords.q[i], coords.q[i] + 4) if coords.kind[i] == 1 else range(
+            coords.q[i], coords.q[i] + 1)  # fmt: skip
+
+    for i in range(len(coords.kind)):
+        for k in positions(i):  # dq/dt from v (a quaternion: from omega and itself)
+            rows.append(k)
+            cols.append(int(coords.v[i]))
+            if coords.kind[i] == 1:
+                rows.extend([k] * 4)
+                cols.extend(positions(i))
+    for i, j in zip(coupled.row, coupled.col, strict=True):
+        v = int(coords.v[i])
+        for k in positions(j):
+            rows.append(v)
+            cols.append(k)
+        rows.append(v)
+        cols.append(int(coords.v[j]))
+    return sparse.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
 
 
 def shortest_segment(system: BuiltSystem) -> float:

@@ -12,6 +12,7 @@ from seacable.bodies.dynamics import add_force
 from seacable.kernels.planar_chain import OK
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass
+from seacable.system import energy as system_energy
 from seacable.system import kernel
 
 BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, force 3, moment 3
@@ -39,10 +40,11 @@ def _point_acceleration(t, p, w, k, out):
 
 
 @njit(**JIT)
-def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties):
+def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy):
     """Rows of every output time (bodies (m, nb, BODY_COLUMNS), nodes (m, total nodes, 3),
     tension (m, total segments), ends (m, nl, 2, 3): force of the line on its from / to
-    point, ties (m, nt, 8): tension, length, from point, to point)."""
+    point, ties (m, nt, 8): tension, length, from point, to point, energy (m, 3): kinetic,
+    gravity potential, elastic (system.energy))."""
     status = OK
     ydot = np.empty(states.shape[1])
     a = np.empty(3)
@@ -85,6 +87,7 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties):
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
         _bodies(y, p, w, on_body, bodies[j])
+        energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(y, p, w)
     return status
 
 

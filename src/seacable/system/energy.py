@@ -1,0 +1,129 @@
+"""Compiled energies of a system at a state (after ``kernel.rhs`` filled the workspace):
+kinetic (bodies with their added mass, every line node with its own and its added mass),
+the potential of gravity and buoyancy (line segments as ``kernels.lumped`` counts them, each
+body's ``gravity`` and ``buoyancy`` force models, the free surface through
+``kernels.surface``), and elastic (axial strain, seabed springs, bending, ties, linear
+stiffness). Without damping, drag or applied forces their sum is constant: the test of the
+coupling between bodies and lines (tests/test_system.py)."""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.bodies import dynamics, kinematics
+from seacable.bodies.kinematics import turn
+from seacable.forces import linear
+from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
+from seacable.kernels import lumped as lk
+from seacable.kernels.surface import POINT, segment_submersion, submersion
+from seacable.kernels.timefn import JIT
+from seacable.lines import lumped_mass
+
+
+@njit(**JIT)
+def _lines(y, p, w):
+    kinetic = gravity = elastic = 0.0
+    m3 = np.empty(9)
+    for li in range(p.line_n.shape[0]):
+        n, s0, c0 = p.line_n[li], p.line_seg[li], p.line_node[li]
+        lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
+                           p.line_to[li], w.line)  # fmt: skip
+        yl = w.line
+        v0 = 3 * (n + 1)
+        for k in range(n + 1):
+            lk._node_mass_into(p.node_mass[c0 + k], w.nodes, c0 + k, m3)
+            vx, vy, vz = yl[v0 + 3 * k], yl[v0 + 3 * k + 1], yl[v0 + 3 * k + 2]
+            kinetic += 0.5 * (
+                vx * (m3[0] * vx + m3[1] * vy + m3[2] * vz)
+                + vy * (m3[3] * vx + m3[4] * vy + m3[5] * vz)
+                + vz * (m3[6] * vx + m3[7] * vy + m3[8] * vz)
+            )
+            depth = p.seabed_z - yl[3 * k + 2]
+            if depth > 0.0:
+                elastic += 0.5 * p.node_seabed_stiffness[c0 + k] * depth * depth
+            if 0 < k < n and p.node_bend[c0 + k] > 0.0:
+                phi, _, _ = lk._bend_angle(w.nodes, c0 + k)
+                elastic += 0.5 * p.node_bend[c0 + k] * phi * phi
+        for i in range(n):
+            s = s0 + i
+            za, zb = yl[3 * i + 2], yl[3 * i + 5]
+            _, _, mean_depth = segment_submersion(za, zb)
+            zc = 0.5 * (za + zb)
+            gravity += p.seg_wet_weight[s] * zc + p.seg_buoyancy[s] * (zc - mean_depth)
+            dx = yl[3 * i + 3] - yl[3 * i]
+            dy = yl[3 * i + 4] - yl[3 * i + 1]
+            dz = yl[3 * i + 5] - yl[3 * i + 2]
+            strain = math.sqrt(dx * dx + dy * dy + dz * dz) / p.seg_length[s] - 1.0
+            if strain > 0.0 or p.slack_allowed == 0:
+                elastic += 0.5 * p.seg_stiffness[s] * p.seg_length[s] * strain * strain
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def _tie_energy(elongation, stiffness, table, first, count):
+    """Integral of the tie's tension (damping aside) from 0 to ``elongation`` [J]."""
+    if elongation <= 0.0:
+        return 0.0
+    if stiffness > 0.0:
+        return 0.5 * stiffness * elongation * elongation
+    total = 0.0
+    for k in range(first + 1, first + count):
+        e0, t0, e1, t1 = table[k - 1, 0], table[k - 1, 1], table[k, 0], table[k, 1]
+        top = elongation if (elongation <= e1 or k == first + count - 1) else e1
+        slope = (t1 - t0) / (e1 - e0)
+        total += (top - e0) * (t0 + 0.5 * slope * (top - e0))
+        if top == elongation:
+            break
+    return total
+
+
+@njit(**JIT)
+def _bodies(y, p, w):
+    kinetic = gravity = elastic = 0.0
+    m6 = np.empty((6, 6))
+    bias = np.empty(6)
+    for b in range(p.body_kind.shape[0]):
+        if p.body_kind[b] != kinematics.DYNAMIC:
+            continue
+        scale = w.fraction[b] if p.body_shape[b, 0] != POINT else 1.0
+        dynamics.rigid_mass(p.body_mass[b], p.body_cog[b], p.body_inertia[b], p.body_added[b],
+                            w.rot[b], w.omega[b], scale, m6, bias)  # fmt: skip
+        nu = (w.vel[b, 0], w.vel[b, 1], w.vel[b, 2], w.omega[b, 0], w.omega[b, 1], w.omega[b, 2])
+        for i in range(6):
+            for j in range(6):
+                kinetic += 0.5 * nu[i] * m6[i, j] * nu[j]
+    for f in range(p.force_kind.shape[0]):
+        b = p.force_body[f]
+        kind = p.force_kind[f]
+        if kind == GRAVITY:
+            arm = turn(w.rot[b], (p.body_cog[b, 0], p.body_cog[b, 1], p.body_cog[b, 2]))
+            gravity += p.body_mass[b] * p.gravity * (w.pos[b, 2] + arm[2])
+        elif kind == BUOYANCY:
+            weight = p.rho * p.gravity * p.body_volume[b]
+            if p.body_shape[b, 0] == POINT:
+                arm = turn(w.rot[b], (p.body_cob[b, 0], p.body_cob[b, 1], p.body_cob[b, 2]))
+                gravity -= weight * (w.pos[b, 2] + arm[2])
+            else:
+                _, _, integral = submersion(w.pos[b, 2], p.body_shape[b])
+                gravity -= weight * integral
+        elif kind == LINEAR_STIFFNESS:
+            row = p.force_data[p.force_at[f] :]
+            q = p.body_q[b]
+            elastic += linear.stiffness_energy(row, w.pos[b], y[q + 3 : q + 7])
+    for k in range(p.tie_from.shape[0]):
+        a, c = p.tie_from[k], p.tie_to[k]
+        d = 0.0
+        for i in range(3):
+            d += (w.ppos[c, i] - w.ppos[a, i]) ** 2
+        elastic += _tie_energy(math.sqrt(d) - p.tie_length[k], p.tie_stiffness[k], p.tie_table,
+                               p.tie_first[k], p.tie_count[k])  # fmt: skip
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def energies(y, p, w):
+    """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs."""
+    k1, g1, e1 = _lines(y, p, w)
+    k2, g2, e2 = _bodies(y, p, w)
+    return k1 + k2, g1 + g2, e1 + e2
