@@ -375,3 +375,14 @@ def test_energy_of_bodies_on_lines_is_conserved_without_damping():
     kinetic = tree["kinetic_energy"].values
     assert np.ptp(kinetic) > 100.0  # the swing exchanges energies
     assert np.ptp(total) < 1e-6 * np.abs(kinetic).max()
+
+
+def test_a_group_of_bodies_nothing_holds_is_named():
+    """Two buoys joined by a tie and to nothing else: no static equilibrium, refused."""
+    a = {"name": "a", "type": "point", "position": [0.0, 0.0, -5.0], "mass": 1.0}
+    b = {"name": "b", "type": "point", "position": [3.0, 0.0, -5.0], "mass": 1.0}
+    case = _case([a, b, ANCHOR], [_tie("t", "a", "b")], _sim(1.0), start="static")
+    with pytest.raises(
+        seacable.CaseError, match=r"bodies \['a', 'b'\]: a group that nothing holds"
+    ):
+        model.build(load_case(case))

@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 
 from seacable.case import system as sch
-from seacable.system import kernel, outputs, statics
+from seacable.system import kernel, outputs, statics, topology
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
 from seacable.system.initial import initial_state
@@ -23,6 +23,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     """Parameters and initial state: lines at their static shape, and with ``start: static``
     every free body at its static equilibrium too (the velocities the case gives are kept)."""
     built = _assemble(case, base_dir)
+    if case.start == "static":
+        topology.check_held(case)
     y0 = initial_state(built)
     if case.start == "static":
         velocities = y0[built.params.n_q :].copy()
