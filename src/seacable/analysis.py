@@ -8,6 +8,7 @@ from seacable.case import loader, schema
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
+from seacable.kernels.status import Status
 from seacable.models import planar_rigid_links
 from seacable.system import model as system_model
 from seacable.system import statics
@@ -48,7 +49,7 @@ def linear_modes(case: schema.Case, state=None, time: float = 0.0, step: float =
 
     def accelerations(y):
         status = pc.rhs(time, y, p, w, ydot)
-        if status != pc.OK:
+        if status != Status.OK:
             raise FloatingPointError("the dynamics cannot be evaluated at this state")
         return ydot[v_index].copy()
 

@@ -11,7 +11,7 @@ import numpy as np
 from seacable.case import loader, schema
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
-from seacable.kernels import planar_chain as pc
+from seacable.kernels.status import Status
 from seacable.models import (
     lumped_mass,
     lumped_star,
@@ -262,7 +262,7 @@ class _Run:
         elif sim.integrator in stiff.STIFF:
             integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT:
-            if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != pc.OK:
+            if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
             carry = implicit.newmark_carry(y, self.p)
             self._newmark(y, 1, 0, empty, np.empty(0), work, carry)
@@ -290,7 +290,7 @@ class _Run:
 
         def fun(t, y):
             status = integrators.evaluate_rhs(t, y, p, w, ydot)
-            if status != pc.OK or not np.isfinite(ydot).all():
+            if status != Status.OK or not np.isfinite(ydot).all():
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()
 
@@ -313,7 +313,7 @@ class _Run:
             self.y = states[done - 1].copy()
         self.work[:] = self.stepper.work()
         self.stiff_failure = failure
-        return done, (pc.OK if failure is None else pc.NON_FINITE)
+        return done, (Status.OK if failure is None else Status.NON_FINITE)
 
     def _newmark(self, y, steps, count, states, times, work, carry):
         sim = self.sim
@@ -420,7 +420,7 @@ def simulate(
     finally:
         if bar is not None:
             bar.close()
-    if status != pc.OK:
+    if status != Status.OK:
         message = _divergence_message(run, status, settings)
         results = sink.finish(STATUS_DIVERGED, message, _work(run))
         raise SimulationDiverged(message, results)
@@ -459,7 +459,7 @@ def statics(case: schema.Case | SystemCase, output=None) -> Results:
         np.array([0.0]), y0[None, :], system, system_model.workspace(system)
     )
     sink.write(rows)
-    if status != pc.OK:
+    if status != Status.OK:
         return sink.finish(STATUS_DIVERGED, "the equilibrium's forces are not finite", {})
     return sink.finish(STATUS_COMPLETE, "static equilibrium", {})
 
@@ -480,14 +480,14 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:
         status = run.advance(count)
         if bar is not None:
             bar.update(run.done - before)
-        if status != pc.OK:
+        if status != Status.OK:
             return status
         if refresh and run.done % refresh == 0 and run.done < run.n_outputs:
             run.refresh()
         if chunk_outputs is None:
             rate = count / max(_time.perf_counter() - start, 1e-6)
             chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))
-    return pc.OK
+    return Status.OK
 
 
 COMPILE_NOTICE_SECONDS = 1.0  # say that the kernels are compiling when it takes longer
@@ -579,12 +579,12 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
 def _divergence_message(run: _Run, status: int, settings: dict) -> str:
     rates = run.model.rates(run.system, run.y)
     worst = int(np.nanargmax(rates)) if np.any(np.isfinite(rates)) else 0
-    if status == pc.SINGULAR_CLOSURE:
+    if status == Status.SINGULAR_CLOSURE:
         what = (
             "the pinned end could not be closed (the cable is pulled straight between its ends, "
             "where a rigid-link model has no unique tension)"
         )
-    elif status == pc.NEWTON_FAILED:
+    elif status == Status.NEWTON_FAILED:
         what = (
             f"the implicit step's Newton iteration did not converge in "
             f"{settings['max_newton_iterations']} iterations"

@@ -33,12 +33,10 @@ from numba import njit
 from seacable.kernels.planar_chain import (
     BOTTOM_FREE,
     BOTTOM_PINNED,
-    NON_FINITE,
-    OK,
-    SINGULAR_CLOSURE,
     TOP_HEAVE,
     TOP_IMPOSED,
 )
+from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.surface import POINT, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params

@@ -25,6 +25,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.surface import POINT, point_potential, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 
@@ -511,7 +512,7 @@ def rhs(t, y, p, w, ydot):
         _body_force(t, y, p, w)
     pos, vel, acc = top_state(t, y, p)
     heave = p.top_kind == c3.TOP_HEAVE
-    status = c3.OK
+    status = OK
     for k in range(n + 1):
         for c in range(3):
             ydot[3 * k + c] = y[v0 + 3 * k + c]
@@ -530,18 +531,18 @@ def rhs(t, y, p, w, ydot):
                     ydot[3 * n + c] = 0.0
                     ydot[v0 + 3 * n + c] = 0.0
             elif not _held_end(t, y, p, w, ydot):
-                status = c3.NON_FINITE
+                status = NON_FINITE
             continue
         ax, ay, az, ok = _node_acceleration(p.node_mass[k], w, k)
         if not ok:
-            status = c3.NON_FINITE
+            status = NON_FINITE
         ydot[v0 + 3 * k] = ax
         ydot[v0 + 3 * k + 1] = ay
         ydot[v0 + 3 * k + 2] = az
     if p.bottom_kind == BOTTOM_SERVO:
         _servo_rates(t, y, p, ydot)
     if not math.isfinite(ydot[v0 + 3 * n] + ydot[v0 + 3 * n + 2]):
-        status = c3.NON_FINITE
+        status = NON_FINITE
     return status
 
 
@@ -656,9 +657,9 @@ def outputs(t, y, p, w, node_pos, tension, scalars):
 
 @njit(**JIT)
 def outputs_chunk(times, states, p, w, node_pos, tension, scalars):
-    status = c3.OK
+    status = OK
     for j in range(times.shape[0]):
         st = outputs(times[j], states[j], p, w, node_pos[j], tension[j], scalars[j])
-        if st != c3.OK and status == c3.OK:
+        if st != OK and status == OK:
             status = st
     return status

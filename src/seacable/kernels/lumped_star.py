@@ -30,6 +30,7 @@ from numba import njit
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_newton as lkn
+from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 
 
@@ -105,13 +106,13 @@ def rhs(t, y, p, ws, ydot):
     hub = 3 * n * cables
     system = np.zeros(9)
     force = np.zeros(3)
-    status = c3.OK
+    status = OK
     for k in range(cables):
         pk = p.chains[k]
         wk, yk, dk = ws.w[k], ws.y[k], ws.ydot[k]
         _gather(y, k, n, cables, nq, yk)
         st = lk.rhs(t, yk, pk, wk, dk)  # the end's own acceleration is not used
-        if st != c3.OK:
+        if st != OK:
             status = st
         _scatter(dk, k, n, cables, nq, ydot)
         mass = lk._node_mass(pk, wk, n)  # chain 0's includes the body's
@@ -124,7 +125,7 @@ def rhs(t, y, p, ws, ydot):
         ydot[hub + c] = y[nq + hub + c]
         ydot[nq + hub + c] = acc[c]
     if det == 0.0 or not math.isfinite(acc[0] + acc[1] + acc[2]):
-        status = c3.NON_FINITE
+        status = NON_FINITE
     return status
 
 
@@ -141,7 +142,7 @@ def newton_system(t, y, a_alpha, p, ws, ydot, cm, cx, cv, diag, upper, lower, re
     if matrix:
         for c in range(9):
             diag[body, c] = 0.0
-    status = c3.OK
+    status = OK
     for k in range(cables):
         pk = p.chains[k]
         yk, ak = ws.y[k], ws.acc[k]
@@ -150,7 +151,7 @@ def newton_system(t, y, a_alpha, p, ws, ydot, cm, cx, cv, diag, upper, lower, re
         dk, uk, lo, rk = ws.diag[k], ws.upper[k], ws.lower[k], ws.res[k]
         st = lkn.newton_system(t, yk, ak, pk, ws.w[k], ws.ydot[k], cm, cx, cv, dk, uk, lo, rk,
                               matrix)  # fmt: skip
-        if st != c3.OK:
+        if st != OK:
             status = st
         _scatter(rk, k, n, cables, nq, res)
         for c in range(3):
@@ -187,7 +188,7 @@ def outputs_chunk(times, states, p, ws, node_pos, tension, scalars, body_acc):
     """Per time: node positions (k, n+1, 3), tensions (k, n), each chain's ``lumped`` scalars
     (k, S) (chain 0's energies include the body's; a chain's bottom force is its pull on the
     body) and the body's acceleration (3)."""
-    status = c3.OK
+    status = OK
     cables = len(p.chains)
     n = p.n
     ny = states.shape[1]
@@ -195,7 +196,7 @@ def outputs_chunk(times, states, p, ws, node_pos, tension, scalars, body_acc):
     ydot = np.empty(ny)
     for j in range(times.shape[0]):
         st = rhs(times[j], states[j], p, ws, ydot)
-        if st != c3.OK and status == c3.OK:
+        if st != OK and status == OK:
             status = st
         for c in range(3):
             body_acc[j, c] = ydot[nq + 3 * n * cables + c]
@@ -203,6 +204,6 @@ def outputs_chunk(times, states, p, ws, node_pos, tension, scalars, body_acc):
             _gather(states[j], k, n, cables, nq, ws.y[k])
             st = lk.outputs(times[j], ws.y[k], p.chains[k], ws.w[k], node_pos[j, k],
                             tension[j, k], scalars[j, k])  # fmt: skip
-            if st != c3.OK and status == c3.OK:
+            if st != OK and status == OK:
                 status = st
     return status

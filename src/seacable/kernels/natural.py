@@ -30,7 +30,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from seacable.kernels.planar_chain import NON_FINITE, OK
+from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 
 SCALAR_NAMES = ("end_x", "end_z", "kinetic_energy", "gravity_potential_energy", "elastic_energy")

@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.surface import point_potential, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
@@ -47,11 +48,6 @@ CH_BODY_FX = 3  # applied force on the bottom body, x [N]
 CH_BODY_FZ = 4  # applied force on the bottom body, z [N]
 N_CHANNELS = 5
 
-# status codes returned by the kernels
-OK = 0
-NON_FINITE = 1
-SINGULAR_CLOSURE = 2
-NEWTON_FAILED = 4  # an implicit step's Newton iteration did not converge
 
 # ---- scalar outputs (columns of the ``scalars`` output array) -----------------------------------
 SCALAR_NAMES = (

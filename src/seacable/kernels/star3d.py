@@ -19,6 +19,7 @@ from numba import njit
 
 from seacable.kernels import chain3d as c3
 from seacable.kernels import chain3d_outputs as c3o
+from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.surface import submersion
 from seacable.kernels.timefn import JIT
 
@@ -113,7 +114,7 @@ def solve(t, y, p, workspaces, reactions):
         c3._forward_sweep(yk, pk, w, ac, al, True)
         inv, det = _inverse3(al)
         if det == 0.0:
-            return c3.SINGULAR_CLOSURE, np.zeros(3)
+            return SINGULAR_CLOSURE, np.zeros(3)
         inverses[k] = inv
         # the chain end must follow the body: A_end = A_B + stab
         for r in range(3):
@@ -127,7 +128,7 @@ def solve(t, y, p, workspaces, reactions):
                 rhs_[r] += inv[3 * r + c] * offsets_[k, c]
     body_acc, det = c3._solve3(system, rhs_)
     if det == 0.0:
-        return c3.SINGULAR_CLOSURE, body_acc
+        return SINGULAR_CLOSURE, body_acc
     for k in range(k_count):
         pk = p.chains[k]
         yk = y[p.offsets[k] : p.offsets[k + 1]]
@@ -138,10 +139,10 @@ def solve(t, y, p, workspaces, reactions):
                 value += inv[3 * r + c] * (body_acc[c] + offsets_[k, c])
             reactions[k, r] = value
         c3._final_accelerations(yk, pk, workspaces[k], tops[k], top_gains[k], reactions[k], True)
-    status = c3.OK
+    status = OK
     if not (math.isfinite(body_acc[0]) and math.isfinite(body_acc[1])
             and math.isfinite(body_acc[2])):  # fmt: skip
-        status = c3.NON_FINITE
+        status = NON_FINITE
     return status, body_acc
 
 
@@ -182,12 +183,12 @@ def project(y, p):
 def outputs_chunk(times, states, p, workspaces, node_pos, tension, scalars, anchor_force):
     """Per time: node positions (k, n+1, 3), tension (k, n), chain scalars (k, S) and the force
     of each cable on its top attachment (k, 3)."""
-    status = c3.OK
+    status = OK
     k_count = len(p.chains)
     reactions = np.zeros((k_count, 3))
     for j in range(times.shape[0]):
         st, _ = solve(times[j], states[j], p, workspaces, reactions)
-        if st != c3.OK and status == c3.OK:
+        if st != OK and status == OK:
             status = st
         for k in range(k_count):
             pk = p.chains[k]

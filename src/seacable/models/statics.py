@@ -18,6 +18,7 @@ from scipy.optimize import brentq
 from seacable.errors import SeacableError
 from seacable.kernels import chain3d as c3
 from seacable.kernels import chain3d_statics as c3s
+from seacable.kernels.status import Status
 
 
 class StaticsError(SeacableError):
@@ -246,7 +247,7 @@ def _polish(params, y0, directors, heave, time, max_iterations=30):
 
     def residual(d, z, t1, t2):
         status = c3.rhs(time, state(d, z), params, w, ydot)
-        if status != c3.OK:
+        if status != Status.OK:
             return None
         edd = ydot[3 * n + 1 : 6 * n + 1].reshape(n, 3) * params.length[:, None]
         r = np.concatenate([(edd * t1).sum(axis=1), (edd * t2).sum(axis=1)])

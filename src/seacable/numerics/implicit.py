@@ -30,7 +30,7 @@ import math
 import numpy as np
 from numba import literally, njit
 
-from seacable.kernels.planar_chain import NEWTON_FAILED, NON_FINITE, OK
+from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import (
     model_chain,

@@ -31,7 +31,7 @@ import math
 import numpy as np
 from numba import njit
 
-from seacable.kernels.planar_chain import NON_FINITE, OK
+from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics.dispatch import model_project, model_projects, model_rhs
 

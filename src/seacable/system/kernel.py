@@ -23,7 +23,7 @@ from seacable.bodies import dynamics, kinematics
 from seacable.forces import table
 from seacable.kernels import lumped as lk
 from seacable.kernels import surface
-from seacable.kernels.planar_chain import NON_FINITE, OK
+from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass, tie
 

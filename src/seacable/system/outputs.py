@@ -9,7 +9,7 @@ from numba import njit
 
 from seacable.bodies import kinematics
 from seacable.bodies.dynamics import add_force
-from seacable.kernels.planar_chain import OK
+from seacable.kernels.status import OK
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass
 from seacable.system import energy as system_energy
