@@ -4,7 +4,7 @@ import logging
 import math
 import threading
 import time as _time
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -60,6 +60,46 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     )
     steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
     return sim.output_interval / steps, steps
+
+
+@runtime_checkable
+class RunModel(Protocol):
+    """What the run loop reaches of a model (a module): the contract every model honours
+    (``tests/test_contracts.py`` checks each one).
+
+    1. ``build(case, base_dir) -> system``: flat parameters (``system.params``, a NamedTuple of
+       arrays and numbers whose types depend on no count) and the initial state
+       (``system.y0``); a case the model cannot run raises CaseError naming the field.
+    2. ``workspace(system)``: the scratch its compiled functions share, allocated once per run.
+    3. ``rows(times, states, system, w) -> (rows, status)``: output rows (``time`` first), every
+       variable the model records, and the worst kernel status met.
+    4. ``sizes(system)``, ``coords(system)``: the dimensions and coordinates of its results.
+    5. ``rates(system, y)``: the magnitudes a divergence message names (``RATE_WHAT`` says what
+       they are), ``fastest_frequency(system)``: the rk4 step warning's estimate [rad/s] and
+       what sets it, ``state_scale(case, system)``: each state's typical size (the adaptive
+       integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
+       schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
+    6. ``NEWTON``: True when the fixed-step implicit schemes serve it (then it has a branch in
+       every overload of ``numerics.dispatch``).
+    Optional: ``VARIABLES`` (a single-cable model's records) or ``variables(system)`` (a
+    system's, per group); ``positions``, ``node_block``/``node_graph`` or
+    ``jacobian_sparsity`` (stiff integrators' Jacobian structure), ``check_implicit``,
+    ``refresh_interval``/``refresh`` (parameters replaced during a run: the servo).
+    """
+
+    RATE_WHAT: tuple
+    DAMPING_ADVICE: str
+    NEWTON: bool
+
+    def build(self, case, base_dir=None) -> Any: ...
+    def workspace(self, system) -> Any: ...
+    def rows(self, times, states, system, w) -> tuple[dict, int]: ...
+    def sizes(self, system) -> dict: ...
+    def coords(self, system) -> dict: ...
+    def rates(self, system, y) -> np.ndarray: ...
+    def fastest_frequency(self, system) -> tuple[float, str]: ...
+    def state_scale(self, case, system) -> np.ndarray: ...
+    def shortest_segment(self, system) -> float: ...
 
 
 MODELS = {
@@ -139,7 +179,7 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
 
 def _check_integrator(case: schema.Case | SystemCase, model) -> None:
     integrator = case.simulation.integrator
-    if integrator in IMPLICIT and not getattr(model, "NEWTON", False):
+    if integrator in IMPLICIT and not model.NEWTON:
         raise CaseError(
             f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal "
             f"Newton matrix (rigid_links, rigid_segments_3d, lumped_mass, natural_string); "
@@ -593,7 +633,7 @@ def _divergence_message(run: _Run, status: int, settings: dict) -> str:
         what = f"the {settings['integrator']} solver failed ({run.stiff_failure})"
     else:
         what = "the state became non-finite"
-    thing, rate, unit, first = getattr(run.model, "RATE_WHAT", ("link", "angular rate", "rad/s", 0))
+    thing, rate, unit, first = run.model.RATE_WHAT
     where = f"{thing} {worst + first} ({rate} {rates[worst]:.4g} {unit} in the last sound state)"
     if settings["integrator"] in IMPLICIT:
         advice = (

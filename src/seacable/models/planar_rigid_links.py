@@ -291,6 +291,9 @@ def state_scale(case: schema.Case, system: PlanarSystem) -> np.ndarray:
     return common.state_scale(cable, case.environment, positions)
 
 
+RATE_WHAT = ("link", "angular rate", "rad/s", 0)  # what ``rates`` measures (divergence messages)
+
+
 def rates(system: PlanarSystem, y) -> np.ndarray:
     """Angular rate of every link [rad/s]."""
     n = system.n_links

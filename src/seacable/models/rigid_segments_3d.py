@@ -496,6 +496,9 @@ def state_scale(case: schema.Case, system: _Segmented) -> np.ndarray:
     return common.state_scale(cable, case.environment, positions, c3.SERVO_STATES)
 
 
+RATE_WHAT = ("segment", "angular rate", "rad/s", 0)  # |de/dt| of each segment (messages)
+
+
 def rates(system: System3D, y) -> np.ndarray:
     n = system.n_links
     return np.linalg.norm(y[3 * n + 1 : 6 * n + 1].reshape(n, 3), axis=1)

@@ -166,6 +166,15 @@ def state_scale(case: schema.Case, system: StarSystem[star3d.StarParams]) -> np.
     return np.concatenate([*single, common.state_scale(case.cables[0], case.environment, body)])
 
 
+RATE_WHAT = ("segment (counted over the cables one after another)", "angular rate", "rad/s", 0)
+NEWTON = False  # the fixed-step implicit schemes do not serve a star of rigid segments
+
+
+def shortest_segment(system: StarSystem[star3d.StarParams]) -> float:
+    """Shortest segment of any cable [m]."""
+    return float(min(np.min(chain.length) for chain in system.params.chains))
+
+
 def rates(system: StarSystem[star3d.StarParams], y) -> np.ndarray:
     n = system.n_links
     parts = []

@@ -1,0 +1,45 @@
+"""Every implementation honours its contract (the Protocol or enumeration that states it)."""
+
+import ast
+import inspect
+import typing
+
+import pytest
+
+from seacable import simulation
+from seacable.case import system as sch
+from seacable.forces import kinds, table
+from seacable.models import lumped_star, star_3d
+from seacable.system import model as system_model
+
+MODELS = [*simulation.MODELS.values(), star_3d, lumped_star, system_model]
+
+
+@pytest.mark.parametrize("module", MODELS, ids=lambda m: m.__name__)
+def test_every_model_is_a_run_model(module):
+    members = {n for n in vars(simulation.RunModel) if not n.startswith("_")}
+    members |= set(simulation.RunModel.__annotations__)
+    missing = sorted(name for name in members if not hasattr(module, name))
+    assert not missing, f"{module.__name__} lacks {missing} of simulation.RunModel"
+    assert isinstance(module, simulation.RunModel)
+    assert hasattr(module, "VARIABLES") or hasattr(module, "variables")
+
+
+def test_every_model_the_run_loop_picks_is_listed():
+    assert set(simulation.SYSTEM_MODELS.values()) <= set(MODELS)
+
+
+def _schema_force_models() -> list[str]:
+    union = typing.get_args(typing.get_args(sch.ForceModel)[0])
+    return [typing.get_args(cls.model_fields["model"].annotation)[0] for cls in union]
+
+
+def test_every_force_model_of_the_schema_has_a_kind_and_a_branch():
+    """Each ``model:`` of ``external forces`` has a ForceKind, and forces.table evaluates each
+    kind (a kind nobody evaluates would be accepted and silently do nothing)."""
+    names = _schema_force_models()
+    assert sorted(names) == sorted(kind.name.lower() for kind in kinds.ForceKind)
+    source = inspect.getsource(table.add_all)
+    branches = {node.id for node in ast.walk(ast.parse(source)) if isinstance(node, ast.Name)}
+    for kind in kinds.ForceKind:
+        assert kind.name in branches, f"forces.table.add_all has no branch for {kind.name}"
