@@ -220,15 +220,41 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return direct
     bodies = np.flatnonzero(coords.kind != 2)
-    if not bodies.size:
-        raise StaticsError(_blame(built, coords, r))
-    nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
-    r = residual(nested)
-    nodes = np.flatnonzero(coords.kind == 2)
-    r[nodes] = _Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
+    if bodies.size:
+        nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
+        r = residual(nested)
+        nodes = np.flatnonzero(coords.kind == 2)
+        r[nodes] = _Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
+        if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+            return nested
+    followed = _homotopy(built, coords, residual, y, tolerance * scale)
+    r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-        return nested
+        return followed
     raise StaticsError(_blame(built, coords, r))
+
+
+def _homotopy(built, coords, residual, y, tolerance, smallest: float = 1e-3):
+    """Newton's homotopy: the balance of r(x) - (1 - s) r(x0) followed from s = 0 (where the
+    start is one) to s = 1, each s from the last one's balance, the step in s halved when
+    Newton fails there: loads that the direct Newton cannot take at once (a platform pushed far
+    off by a steady force) are taken in stages."""
+    start = residual(y)
+    s, step = 0.0, 0.1
+    while s < 1.0 and step >= smallest:
+        target = min(1.0, s + step)
+
+        def staged(state, target=target):  # noqa: B023 (bound by the default)
+            return residual(state) - (1.0 - target) * start
+
+        trial = _direct(built, coords, staged, y, 20, tolerance)
+        rt = staged(trial)
+        if np.all(np.isfinite(rt)) and np.abs(rt).max() < max(tolerance, 1e-9):
+            y, s = trial, target
+            step = min(2.0 * step, 0.25)
+        else:
+            step *= 0.5
+    return y
 
 
 def _direct(built, coords, residual, y, iterations, tolerance):
