@@ -70,11 +70,11 @@ def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
 
 
 @njit(**JIT)
-def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, tf, pos, rot, vel, omega):
+def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, rot, vel, omega):
     """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
     (nb, 3, 3), ``vel`` and ``omega`` (nb, 3). ``tf`` is the tuple of time-function arrays
     (breaks, coefs, count, sine, build_up); an imposed body's channels are x, y, z [m], roll,
-    pitch, yaw [rad] from ``channel[b]`` on."""
+    pitch, yaw [rad] from ``channel[b]`` on (its angles read only when ``turns[b]``)."""
     breaks, coefs, count, sine, build_up = tf
     angles = np.empty(3)
     rates = np.empty(3)
@@ -97,6 +97,11 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, tf, pos, rot, vel
                 f, df, _ = evaluate(breaks, coefs, count, sine, build_up, first + c, t)
                 pos[b, c] = f
                 vel[b, c] = df
+            if turns[b] == 0:
+                rotation(1.0, 0.0, 0.0, 0.0, rot[b])
+                omega[b, :] = 0.0
+                continue
+            for c in range(3):
                 a, da, _ = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
                 angles[c] = a
                 rates[c] = da

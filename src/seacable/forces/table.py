@@ -16,7 +16,7 @@ from seacable.forces.kinds import (
 from seacable.kernels.timefn import JIT
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: a call would pass and count every array
 def add_all(
     t, kind, body, at, first, data, mass, cog, volume, cob, fraction, y, q_at, pos, rot, vel,
     omega, gravity, rho, current_z, current_u, current_v, tf, rhs,

@@ -17,7 +17,7 @@ T_ROW = lk._T
 TANGENT_ROW = lk._TX
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: each call would pass and count every array
 def gather(y, n, q, v, ppos, pvel, a, b, yl):
     """The line's nodes as ``yl = [r_0 .. r_n, v_0 .. v_n]``: its ends from points a and b."""
     v0 = 3 * (n + 1)
@@ -31,7 +31,7 @@ def gather(y, n, q, v, ppos, pvel, a, b, yl):
         yl[v0 + 3 + k] = y[v + k]
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def loads(
     yl, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
     buoyancy, added_mass, node_bend, seabed_k, seabed_c, seabed_z, friction, slip, current_z,
@@ -47,7 +47,7 @@ def loads(
     lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, w)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def interior_rates(yl, n, q, v, c0, node_mass, w, ydot):
     """Rates of the interior nodes; False when a node's mass matrix is singular."""
     v0 = 3 * (n + 1)
@@ -65,7 +65,7 @@ def interior_rates(yl, n, q, v, c0, node_mass, w, ydot):
     return ok
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def end_mass_force(node_mass, w, k, m3, force):
     """The 3x3 mass (row-major ``m3``) and the loads (``force``) of end node column k."""
     lk._node_mass_into(node_mass[k], w, k, m3)

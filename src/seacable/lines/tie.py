@@ -29,7 +29,7 @@ def tension(elongation, rate, stiffness, damping, table, first, count):
     return max(value, 0.0)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: a call would pass and count every array
 def forces(ppos, pvel, point_from, point_to, length, stiffness, damping, table, first, count,
            out_tension, out_force):  # fmt: skip
     """Tension of every tie (``out_tension``) and its force on its ``from`` point

@@ -101,7 +101,7 @@ def _model_projects(p):
     if _is(p, natural.NaturalParams):
         return lambda p: p.cartesian == 1
     if _is(p, system_kernel.SystemParams):
-        return lambda p: True  # quaternions are normalised
+        return lambda p: system_kernel.projects(p)  # quaternions of rigid bodies
     return None
 
 

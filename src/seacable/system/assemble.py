@@ -21,7 +21,8 @@ from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
 INT_FIELDS = {
-    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "point_body", "force_kind",
+    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_turns", "point_body",
+    "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
 }  # fmt: skip
@@ -97,7 +98,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     data: list[float] = []
     arrays = {
         "body_kind": np.zeros(nb), "body_rigid": np.zeros(nb), "body_q": -np.ones(nb),
-        "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_pose": np.zeros((nb, 7)),
+        "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_turns": np.zeros(nb),
+        "body_pose": np.zeros((nb, 7)),
         "body_mass": np.zeros(nb), "body_cog": np.zeros((nb, 3)),
         "body_inertia": np.zeros((nb, 3, 3)), "body_added": np.zeros((nb, 6, 6)),
         "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
@@ -120,6 +122,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 channels.append(channel(getattr(body, axis), base_dir, f"{where}.{axis}"))
             for angle in ("roll_deg", "pitch_deg", "yaw_deg"):
                 channels.append(_rad(channel(getattr(body, angle), base_dir, f"{where}.{angle}")))
+                if getattr(body, angle) != sch.Constant(value=0.0):
+                    arrays["body_turns"][b] = 1
             continue
         rigid = isinstance(body, sch.RigidBody)
         arrays["body_kind"][b] = kinematics.DYNAMIC

@@ -41,6 +41,7 @@ class SystemParams(NamedTuple):
     body_q: np.ndarray  # (nb,) int: offset of the position in y (-1: none)
     body_v: np.ndarray  # (nb,) int: offset of the velocity in y (-1: none)
     body_channel: np.ndarray  # (nb,) int: an imposed body's first channel (x y z roll pitch yaw)
+    body_turns: np.ndarray  # (nb,) int: 1 when an imposed body's angles are not all zero
     body_pose: np.ndarray  # (nb, 7) fixed bodies: position, quaternion
     body_mass: np.ndarray  # (nb,) [kg]
     body_cog: np.ndarray  # (nb, 3) centre of gravity, body frame [m]
@@ -121,6 +122,7 @@ class SystemWork(NamedTuple):
     end_load: np.ndarray  # (nl, 2, 3) end nodes' loads
     tie_tension: np.ndarray  # (nt,)
     tie_force: np.ndarray  # (nt, 3) on the from point
+    rhs6: np.ndarray  # (6,) one body's right-hand side
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -134,6 +136,7 @@ def make_work(p: SystemParams) -> SystemWork:
         nodes=np.zeros((lk.N_WORK_ROWS, max(1, len(p.node_mass)))),
         line=np.zeros(6 * (nmax + 1)), end_mass=np.zeros((nl, 2, 9)),
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
+        rhs6=np.zeros(6),
     )  # fmt: skip
 
 
@@ -177,7 +180,7 @@ def evaluate(t, y, p, w, ydot):
     status = OK
     kinematics.body_states(
         t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
-        _tf(p), w.pos, w.rot, w.vel, w.omega,
+        p.body_turns, _tf(p), w.pos, w.rot, w.vel, w.omega,
     )  # fmt: skip
     kinematics.point_states(
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
@@ -212,7 +215,7 @@ def evaluate(t, y, p, w, ydot):
     return status
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
 def _line_loads(y, p, w, li):
     n, s0, c0 = p.line_n[li], p.line_seg[li], p.line_node[li]
     lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
@@ -252,7 +255,7 @@ def _lines(y, p, w, ydot):
     return ok
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _bodies(y, p, w, ydot):
     ok = True
     rhs = np.empty(6)
@@ -288,6 +291,15 @@ def rhs(t, y, p, w, ydot):
     if not np.isfinite(total):
         status = NON_FINITE
     return status
+
+
+@njit(inline="always", **JIT)
+def projects(p):
+    """True when ``project`` changes the state: some dynamic body has an orientation."""
+    for b in range(p.body_kind.shape[0]):
+        if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
+            return True
+    return False
 
 
 @njit(**JIT)
