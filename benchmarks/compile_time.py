@@ -2,11 +2,13 @@
 
 A family is one compiled path: the examples that share the model module (a star of cables on a
 shared body, or the one cable's model), the integrator and the kinds of the cable's two ends
-(the trajectory end with its method); it is derived from the case files in ``examples/``, and
-the first example of each family (in name order) stands for it. Each example is shortened to a
-few output intervals (``--intervals``; the point is compilation, not simulation): its YAML is
-read, ``simulation.duration`` set, relative table files made absolute, and the result written to
-a temporary case file that ``seacable.load_case`` validates like any other.
+(the trajectory end with its method); a system of bodies and lines (a case with ``lines:``) is
+one family per set of line models, set of body kinds and integrator. Families are derived from
+the case files in ``examples/``, and the first example of each family (in name order) stands
+for it. Each example is shortened to a few output intervals (``--intervals``; the point is
+compilation, not simulation): its YAML is read, ``simulation.duration`` set, relative table
+files made absolute, and the result written to a temporary case file that
+``seacable.load_case`` validates like any other.
 
 For each example, two fresh Python processes run ``import seacable``, load the case, simulate it
 (the first run) and simulate it again in the same process (the warm run: the same compiled code,
@@ -19,6 +21,7 @@ first run - cached first run. Budgets (issue 14): a cold first run within 10 s, 
 run within 1 s. The machine's load average is printed with each row (the figures are wall times).
 
 Run: python benchmarks/compile_time.py [EXAMPLE ...] [--intervals N] [--list] [--check]
+[--systems] (--systems: the system families alone)
 (EXAMPLE: a file name in examples/, with or without .yaml, or a path; default: one per family).
 Exit status 0 whatever the figures; with --check, 1 when a budget is exceeded or a run fails.
 """
@@ -42,10 +45,15 @@ CHILD_TIMEOUT = 1800.0  # [s] a run taking longer is reported as failed
 
 
 def family(data: dict) -> str:
-    """The compiled path of a case mapping: model module, integrator and the ends' kinds."""
+    """The compiled path of a case mapping: model module, integrator and the ends' kinds; for
+    a system (``lines:``), its line models, its body kinds and the integrator."""
+    integrator = data.get("simulation", {}).get("integrator", "rk4")
+    if "lines" in data:
+        models = sorted({line.get("model", "?") for line in data["lines"]})
+        kinds = sorted({body.get("type", "?") for body in data.get("bodies") or []})
+        return f"system: {'+'.join(models)} lines, bodies {'/'.join(kinds)}, {integrator}"
     cables = data.get("cables") or [{}]
     model = cables[0].get("model", "rigid_links")
-    integrator = data.get("simulation", {}).get("integrator", "rk4")
     if data.get("bodies"):
         return f"star of {len(cables)} {model}, {integrator}"
     top = cables[0].get("top", {}).get("type", "?")
@@ -154,6 +162,7 @@ def main() -> None:
     parser.add_argument("examples", nargs="*", help="examples to time (default: one per family)")
     parser.add_argument("--intervals", type=int, default=3, help="output intervals simulated")
     parser.add_argument("--list", action="store_true", help="print the families and stop")
+    parser.add_argument("--systems", action="store_true", help="the system families alone")
     parser.add_argument("--check", action="store_true", help="exit 1 when a budget is exceeded")
     parser.add_argument("--child", nargs="?", const="", default=None, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -162,6 +171,8 @@ def main() -> None:
         return
 
     groups = families()
+    if args.systems:
+        groups = {name: members for name, members in groups.items() if name.startswith("system")}
     if args.list:
         for name, members in groups.items():
             print(f"{name}: " + ", ".join(path.stem for path in members))
