@@ -92,12 +92,28 @@ def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
     """Every line's interior nodes at rest in balance, bodies held: Newton on the nodes'
     accelerations, EA raised in steps of ten from a thousandth of its value (a nearly
     inextensible line makes Newton's steps erratic), each stage from the last one's result."""
+    linear = p._replace(slack_allowed=0)
+    direct = _newton(linear, y0, iterations)
+    if _settled(linear, direct):  # a start near the balance (a catenary) needs no stages
+        return direct
     y = y0.copy()
     target = p.seg_stiffness
     for factor in (1e-3, 1e-2, 1e-1, 1.0):
         stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
         y = _newton(stage, y, iterations)
     return y
+
+
+def _settled(p, y) -> bool:
+    """True when every interior node's acceleration at rest is below 1e-6 g."""
+    index = _interior(p, p.line_v)
+    if not len(index):
+        return True
+    ydot = np.zeros_like(y)
+    at_rest = y.copy()
+    at_rest[p.n_q :] = 0.0
+    kernel.rhs(0.0, at_rest, p, kernel.make_work(p), ydot)
+    return bool(np.all(np.abs(ydot[index]) < 1e-6 * p.gravity))
 
 
 def settle_lines(p, y0, iterations: int = 30, slack: int = 0) -> np.ndarray:
@@ -129,7 +145,7 @@ def _newton(p, y0, iterations):
     scale = float(np.abs(r).max()) + 1e-6
     half = 5  # block-tridiagonal with 3 x 3 blocks: 5 diagonals either side
     for _ in range(iterations):
-        if np.abs(r).max() < 1e-12 * scale:
+        if np.abs(r).max() < max(1e-12 * scale, 1e-10 * p.gravity):
             break
         ab = np.zeros((2 * half + 1, m))
         for colour in range(9):
