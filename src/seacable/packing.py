@@ -29,9 +29,10 @@ def channel(spec, base_dir, where: str) -> tfn.Piecewise:
         raise CaseError(f"{where}: {exc}") from None
 
 
-def typed(cls, fields: dict):
+def typed(cls, fields: dict, int_arrays: frozenset[str] = frozenset()):
     """An instance of the NamedTuple ``cls`` with every field of the exact type its compiled
-    kernels were built for (a float given as an int would trigger a new compilation)."""
+    kernels were built for (a float given as an int would trigger a new compilation): the
+    arrays named in ``int_arrays`` (and ``tf_count``) int64, the other arrays float64."""
     out: dict[str, Any] = {}
     for name, annotation in cls.__annotations__.items():
         value = fields[name]
@@ -39,7 +40,7 @@ def typed(cls, fields: dict):
             out[name] = int(value)
         elif annotation is float:
             out[name] = float(value)
-        elif name == "tf_count":
+        elif name == "tf_count" or name in int_arrays:
             out[name] = np.ascontiguousarray(value, dtype=np.int64)
         else:
             out[name] = np.ascontiguousarray(value, dtype=np.float64)

@@ -16,16 +16,16 @@ from seacable.errors import CaseError
 from seacable.forces import applied, drag, linear
 from seacable.forces.kinds import ForceKind
 from seacable.kernels import surface
-from seacable.packing import channel, current_arrays, shape_row
+from seacable.packing import channel, current_arrays, shape_row, typed
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
-INT_FIELDS = {
+INT_FIELDS = frozenset({
     "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_turns", "point_body",
     "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
-}  # fmt: skip
+})  # fmt: skip
 
 
 @dataclass
@@ -182,27 +182,12 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         current_z=current_z, current_u=current_u, current_v=current_v,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
-    params = _typed(fields)
+    params = typed(SystemParams, fields, INT_FIELDS)
     y0 = np.zeros(n_q + n_v)
     y0[:q_at] = y_q
     y0[n_q : n_q + v_at] = y_v
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
-
-
-def _typed(fields: dict) -> SystemParams:
-    out: dict[str, Any] = {}
-    for name, annotation in SystemParams.__annotations__.items():
-        value = fields[name]
-        if annotation is int:
-            out[name] = int(value)
-        elif annotation is float:
-            out[name] = float(value)
-        elif name in INT_FIELDS or name == "tf_count":
-            out[name] = np.ascontiguousarray(value, dtype=np.int64)
-        else:
-            out[name] = np.ascontiguousarray(value, dtype=np.float64)
-    return SystemParams(**out)
 
 
 def _offset(body, point: str) -> tuple[float, float, float]:

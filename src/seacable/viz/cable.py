@@ -325,11 +325,7 @@ def animate_results(
         raise ValueError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
     if "cable" in ds.dims:
         raise ValueError("animations of several cables are not available yet; use 'plot'")
-    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
-        raise ValueError(
-            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
-            "give fps and max_frames >= 1, speed and every > 0"
-        )
+    check_frames(fps, speed, every, max_frames)
     times = ds["time"].values
     frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     views = [("node_x", "node_z", "x [m]", "z [m]")]
@@ -362,6 +358,15 @@ def animate_results(
             writer.grab_frame()
     plt.close(fig)
     return path
+
+
+def check_frames(fps: int, speed: float, every: float | None, max_frames: int) -> None:
+    """Refuse animation options that draw nothing (a ValueError naming them)."""
+    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
+        raise ValueError(
+            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
+            "give fps and max_frames >= 1, speed and every > 0"
+        )
 
 
 def _frame_indices(times: np.ndarray, every: float, max_frames: int) -> np.ndarray:

@@ -18,6 +18,7 @@ from seacable.viz.cable import (
     _progress,
     _pyplot,
     _snapshot_indices,
+    check_frames,
 )
 
 
@@ -218,11 +219,7 @@ def animate_system(
     path = Path(path)
     if path.suffix.lower() != ".gif":
         raise ValueError(f"animation file '{path}': systems are animated to .gif")
-    if fps < 1 or max_frames < 1 or speed <= 0 or (every is not None and every <= 0):
-        raise ValueError(
-            f"fps {fps}, max_frames {max_frames}, speed {speed}, every {every}: "
-            "give fps and max_frames >= 1, speed and every > 0"
-        )
+    check_frames(fps, speed, every, max_frames)
     last = _finite_rows(tree)
     times = _times(tree)[: max(last, 1)]
     frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
