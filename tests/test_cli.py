@@ -1,4 +1,4 @@
-"""The command line: run, validate, plot, animate."""
+"""The command line: run, validate, plot, animate, statics, modes."""
 
 import logging
 from pathlib import Path
@@ -163,3 +163,27 @@ def test_animate_caps_frames_and_streams(tmp_path, caplog):
         assert picture.n_frames == 5
     result = runner.invoke(main, ["animate", str(result_file), "-o", str(gif), "--fps", "0"])
     assert result.exit_code == 2 and "give fps and max_frames >= 1" in result.output
+
+
+def test_system_validate_statics_and_modes(tmp_path):
+    """A system case: validate names its bodies and lines, statics prints every body's pose
+    and every line's end tensions and writes them as a DataTree, modes prints the periods."""
+    example = Path(__file__).parent.parent / "examples" / "buoy_three_lines_clump_weight.yaml"
+    runner = CliRunner()
+    result = runner.invoke(main, ["validate", str(example)])
+    assert result.exit_code == 0 and "buoy (point)" in result.output
+    assert "leg_c_upper (lumped_mass)" in result.output
+    output = tmp_path / "statics.nc"
+    result = runner.invoke(main, ["statics", str(example), "-o", str(output)])
+    assert result.exit_code == 0, result.output
+    assert "body buoy: at (4.438, -7.596, -20.41) m" in result.output
+    assert "line leg_a: end tensions" in result.output
+    tree = xr.open_datatree(output, engine="h5netcdf")
+    assert abs(tree["bodies/buoy/position_z"].values[0] + 20.41) < 0.005
+    result = runner.invoke(main, ["modes", str(example), "--count", "4"])
+    assert result.exit_code == 0, result.output
+    lines = result.output.splitlines()
+    assert lines[0].startswith("mode  period [s]") and len(lines) == 5
+    single = _case_file(tmp_path)
+    result = runner.invoke(main, ["statics", str(single)])
+    assert result.exit_code == 2 and "statics of the whole system need" in result.output
