@@ -386,3 +386,18 @@ def test_a_group_of_bodies_nothing_holds_is_named():
         seacable.CaseError, match=r"bodies \['a', 'b'\]: a group that nothing holds"
     ):
         model.build(load_case(case))
+
+
+def test_a_number_yaml_reads_as_text_is_a_constant_but_nan_is_refused():
+    """YAML 1.1 reads 1.0e6 as text; a time function takes it as the number it is elsewhere,
+    but not text that reads as nan or inf."""
+    text = "\n".join([
+        "bodies:",
+        "  - {name: a, type: fixed, position: [0, 0, 0]}",
+        "  - {name: b, type: imposed, x: 1.0e3}",
+        "lines: [{name: t, model: tie, from: a, to: b, unstretched_length: 1, stiffness: 1}]",
+        "simulation: {duration: 1, output_interval: 0.1}",
+    ])  # fmt: skip
+    assert load_case(text).bodies[1].x.value == 1000.0
+    with pytest.raises(seacable.CaseError, match=r"bodies\[1\]\.x"):
+        load_case(text.replace("x: 1.0e3", "x: nan"))

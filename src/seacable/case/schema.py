@@ -146,9 +146,11 @@ def _number_is_constant(value: Any) -> Any:
         return {"kind": "constant", "value": value}
     if isinstance(value, str):
         try:
-            return {"kind": "constant", "value": float(value)}
+            number = float(value)
         except ValueError:
             return value
+        # text that reads as nan or inf stays text (refused): a finite number only
+        return {"kind": "constant", "value": number} if math.isfinite(number) else value
     return value
 
 
