@@ -10,6 +10,7 @@ from seacable import simulation
 from seacable.case import system as sch
 from seacable.forces import kinds, table
 from seacable.models import lumped_star, star_3d
+from seacable.models.contract import RunModel
 from seacable.system import model as system_model
 
 MODELS = [*simulation.MODELS.values(), star_3d, lumped_star, system_model]
@@ -17,11 +18,11 @@ MODELS = [*simulation.MODELS.values(), star_3d, lumped_star, system_model]
 
 @pytest.mark.parametrize("module", MODELS, ids=lambda m: m.__name__)
 def test_every_model_is_a_run_model(module):
-    members = {n for n in vars(simulation.RunModel) if not n.startswith("_")}
-    members |= set(simulation.RunModel.__annotations__)
+    members = {n for n in vars(RunModel) if not n.startswith("_")}
+    members |= set(RunModel.__annotations__)
     missing = sorted(name for name in members if not hasattr(module, name))
-    assert not missing, f"{module.__name__} lacks {missing} of simulation.RunModel"
-    assert isinstance(module, simulation.RunModel)
+    assert not missing, f"{module.__name__} lacks {missing} of RunModel"
+    assert isinstance(module, RunModel)
     assert hasattr(module, "VARIABLES") or hasattr(module, "variables")
 
 

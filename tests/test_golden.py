@@ -1,7 +1,6 @@
 """Every example matches its golden result (tests/golden/, recorded by tests/golden/record.py):
 a 1 s run at the recorded tight settings, every variable within 1e-9 of its scale."""
 
-import time
 
 import numpy as np
 import pytest
@@ -18,7 +17,6 @@ from golden.record import (
 )
 
 STEMS = example_stems()
-SLOW_RUN = 15.0  # [s] after compilation: an example's golden run slower than this is marked slow
 
 
 def test_every_example_has_a_golden_result():
@@ -29,15 +27,12 @@ def test_every_example_has_a_golden_result():
 @pytest.mark.parametrize("stem", STEMS)  # each under 3 s after compilation (none is slow)
 def test_example_matches_its_golden_result(stem):
     golden = load_golden(stem)
-    start = time.perf_counter()
     results = run(stem, golden_changes(golden))
-    elapsed = time.perf_counter() - start
     failures = compare_to_golden(golden, results, label=stem)
     for name in golden.coords:
         if not np.allclose(results[name].values, golden[name].values, rtol=1e-12, atol=0.0):
             failures.append(f"{stem}: coordinate '{name}' differs from the golden one")
     assert not failures, "\n".join(failures)
-    assert elapsed < SLOW_RUN, f"{stem}: the golden run took {elapsed:.1f} s; mark it slow"
 
 
 def test_a_small_change_of_the_physics_is_caught():

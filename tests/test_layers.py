@@ -18,8 +18,8 @@ LAYER = {
     "lines": 5, "forces": 5,
     "bodies": 4,
     "packing": 3,
-    "case.system": 2, "timefunctions": 2,
-    "case.schema": 1,
+    "case.system": 2, "case.schema": 2, "timefunctions": 2,
+    "case.base": 1,
     "kernels": 0,
     "errors": 0,
 }  # fmt: skip

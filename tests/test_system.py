@@ -389,8 +389,8 @@ def test_a_group_of_bodies_nothing_holds_is_named():
 
 
 def test_a_number_yaml_reads_as_text_is_a_constant_but_nan_is_refused():
-    """YAML 1.1 reads 1.0e6 as text; a time function takes it as the number it is elsewhere,
-    but not text that reads as nan or inf."""
+    """YAML 1.1 reads 1.0e6 as text; the case loader reads it as the number it is, but not
+    text that reads as nan."""
     text = "\n".join([
         "bodies:",
         "  - {name: a, type: fixed, position: [0, 0, 0]}",

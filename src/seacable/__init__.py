@@ -7,11 +7,12 @@ Public API::
     results.dataset["tension"]
 """
 
+from seacable.analysis import statics
 from seacable.case.loader import load_case
 from seacable.case.schema import Case
 from seacable.errors import CaseError, SeacableError, SimulationDiverged, SimulationInterrupted
 from seacable.results import Results
-from seacable.simulation import simulate, statics
+from seacable.simulation import simulate
 
 __version__ = "0.1.0"
 

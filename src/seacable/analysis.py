@@ -10,8 +10,9 @@ from seacable.errors import CaseError
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.status import Status
 from seacable.models import planar_rigid_links
+from seacable.results import STATUS_COMPLETE, STATUS_DIVERGED, Results, _Sink, provenance
 from seacable.system import model as system_model
-from seacable.system import statics
+from seacable.system import statics as system_statics
 
 
 def linear_modes(case: schema.Case, state=None, time: float = 0.0, step: float = 1e-7):
@@ -100,7 +101,7 @@ def system_modes(case: schema.Case | SystemCase, count: int = 12) -> xr.Dataset:
     built = system_model.build(derived, loader.case_base_dir(derived))
     y = built.y0.copy()
     y[built.params.n_q :] = 0.0
-    a, coords = statics.jacobian(built, y)
+    a, coords = system_statics.jacobian(built, y)
     n = len(coords.kind)
     values, vectors = np.linalg.eig(a)
     keep = np.flatnonzero(values.imag > 1e-9 * np.maximum(1.0, np.abs(values)))
@@ -166,3 +167,40 @@ def _coordinate_names(built, coords) -> list[str]:
             dof = (rotations if kind == 1 else translations)[int(axis)]
             names.append(f"{built.case.bodies[int(body)].name}:{dof}")
     return names
+
+
+def statics(case: schema.Case | SystemCase, output=None) -> Results:
+    """The static equilibrium of a system (``start: static`` whatever the case says): every
+    free body and line at rest in balance under its force models, gravity, buoyancy and the
+    steady current, as one output row at t = 0 (the same groups and variables as a run).
+
+    Raises
+    ------
+    CaseError
+        ``case`` is not a system of bodies and lines (a case with ``lines:``).
+    StaticsError
+        No equilibrium found; the message names the body or line out of balance.
+    """
+    if not isinstance(case, SystemCase):
+        raise CaseError(
+            "statics: the case is a single cable (cables:); statics of the whole system need "
+            "a case with bodies: and lines:"
+        )
+    derived = loader.derive_case(case, {"start": "static"})
+    assert isinstance(derived, SystemCase)  # derive_case keeps the form
+    case = derived
+    system = system_model.build(case, loader.case_base_dir(case))
+    attrs = provenance(loader.case_text(case), {"analysis": "statics"})
+    sink = _Sink(
+        output, system_model.sizes(system), system_model.coords(system),
+        system_model.variables(system), attrs,
+    )  # fmt: skip
+    y0 = system.y0.copy()
+    y0[system.params.n_q :] = 0.0
+    rows, status = system_model.rows(
+        np.array([0.0]), y0[None, :], system, system_model.workspace(system)
+    )
+    sink.write(rows)
+    if status != Status.OK:
+        return sink.finish(STATUS_DIVERGED, "the equilibrium's forces are not finite", {})
+    return sink.finish(STATUS_COMPLETE, "static equilibrium", {})

@@ -4,7 +4,7 @@ import logging
 import math
 import threading
 import time as _time
-from typing import Any, Protocol, runtime_checkable
+from typing import Any
 
 import numpy as np
 
@@ -60,46 +60,6 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     )
     steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
     return sim.output_interval / steps, steps
-
-
-@runtime_checkable
-class RunModel(Protocol):
-    """What the run loop reaches of a model (a module): the contract every model honours
-    (``tests/test_contracts.py`` checks each one).
-
-    1. ``build(case, base_dir) -> system``: flat parameters (``system.params``, a NamedTuple of
-       arrays and numbers whose types depend on no count) and the initial state
-       (``system.y0``); a case the model cannot run raises CaseError naming the field.
-    2. ``workspace(system)``: the scratch its compiled functions share, allocated once per run.
-    3. ``rows(times, states, system, w) -> (rows, status)``: output rows (``time`` first), every
-       variable the model records, and the worst kernel status met.
-    4. ``sizes(system)``, ``coords(system)``: the dimensions and coordinates of its results.
-    5. ``rates(system, y)``: the magnitudes a divergence message names (``RATE_WHAT`` says what
-       they are), ``fastest_frequency(system)``: the rk4 step warning's estimate [rad/s] and
-       what sets it, ``state_scale(case, system)``: each state's typical size (the adaptive
-       integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
-       schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
-    6. ``NEWTON``: True when the fixed-step implicit schemes serve it (then it has a branch in
-       every overload of ``numerics.dispatch``).
-    Optional: ``VARIABLES`` (a single-cable model's records) or ``variables(system)`` (a
-    system's, per group); ``positions``, ``node_block``/``node_graph`` or
-    ``jacobian_sparsity`` (stiff integrators' Jacobian structure), ``check_implicit``,
-    ``refresh_interval``/``refresh`` (parameters replaced during a run: the servo).
-    """
-
-    RATE_WHAT: tuple
-    DAMPING_ADVICE: str
-    NEWTON: bool
-
-    def build(self, case, base_dir=None) -> Any: ...
-    def workspace(self, system) -> Any: ...
-    def rows(self, times, states, system, w) -> tuple[dict, int]: ...
-    def sizes(self, system) -> dict: ...
-    def coords(self, system) -> dict: ...
-    def rates(self, system, y) -> np.ndarray: ...
-    def fastest_frequency(self, system) -> tuple[float, str]: ...
-    def state_scale(self, case, system) -> np.ndarray: ...
-    def shortest_segment(self, system) -> float: ...
 
 
 MODELS = {
@@ -465,43 +425,6 @@ def simulate(
         results = sink.finish(STATUS_DIVERGED, message, _work(run))
         raise SimulationDiverged(message, results)
     return sink.finish(STATUS_COMPLETE, "the run reached its duration", _work(run))
-
-
-def statics(case: schema.Case | SystemCase, output=None) -> Results:
-    """The static equilibrium of a system (``start: static`` whatever the case says): every
-    free body and line at rest in balance under its force models, gravity, buoyancy and the
-    steady current, as one output row at t = 0 (the same groups and variables as a run).
-
-    Raises
-    ------
-    CaseError
-        ``case`` is not a system of bodies and lines (a case with ``lines:``).
-    StaticsError
-        No equilibrium found; the message names the body or line out of balance.
-    """
-    if not isinstance(case, SystemCase):
-        raise CaseError(
-            "statics: the case is a single cable (cables:); statics of the whole system need "
-            "a case with bodies: and lines:"
-        )
-    derived = loader.derive_case(case, {"start": "static"})
-    assert isinstance(derived, SystemCase)  # derive_case keeps the form
-    case = derived
-    system = system_model.build(case, loader.case_base_dir(case))
-    attrs = provenance(loader.case_text(case), {"analysis": "statics"})
-    sink = _Sink(
-        output, system_model.sizes(system), system_model.coords(system),
-        system_model.variables(system), attrs,
-    )  # fmt: skip
-    y0 = system.y0.copy()
-    y0[system.params.n_q :] = 0.0
-    rows, status = system_model.rows(
-        np.array([0.0]), y0[None, :], system, system_model.workspace(system)
-    )
-    sink.write(rows)
-    if status != Status.OK:
-        return sink.finish(STATUS_DIVERGED, "the equilibrium's forces are not finite", {})
-    return sink.finish(STATUS_COMPLETE, "static equilibrium", {})
 
 
 def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:

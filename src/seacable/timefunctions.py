@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from seacable.case import schema
+from seacable.case import base
 from seacable.kernels.timefn import evaluate as _evaluate
 
 SENTINEL = -1.0e30  # first breakpoint: a constant piece that covers all earlier times
@@ -38,7 +38,7 @@ def constant(value: float) -> Piecewise:
     return Piecewise(np.array([SENTINEL]), np.array([[float(value), 0.0, 0.0, 0.0]]))
 
 
-def _sine(spec: schema.Sine) -> Piecewise:
+def _sine(spec: base.Sine) -> Piecewise:
     if spec.angular_frequency is not None:
         omega = spec.angular_frequency
     else:
@@ -48,7 +48,7 @@ def _sine(spec: schema.Sine) -> Piecewise:
     return Piecewise(base.breaks, base.coefs, (spec.amplitude, omega, spec.phase))
 
 
-def _ramp(spec: schema.Ramp) -> Piecewise:
+def _ramp(spec: base.Ramp) -> Piecewise:
     slope = (spec.end_value - spec.start_value) / (spec.end_time - spec.start_time)
     breaks = np.array([SENTINEL, spec.start_time, spec.end_time])
     coefs = np.array(
@@ -61,7 +61,7 @@ def _ramp(spec: schema.Ramp) -> Piecewise:
     return Piecewise(breaks, coefs)
 
 
-def _acceleration_profile(spec: schema.AccelerationProfile) -> Piecewise:
+def _acceleration_profile(spec: base.AccelerationProfile) -> Piecewise:
     """Exact position from piecewise-constant accelerations (zero after the last phase)."""
     x = spec.initial_position
     v = spec.initial_velocity
@@ -81,7 +81,7 @@ def _acceleration_profile(spec: schema.AccelerationProfile) -> Piecewise:
     return Piecewise(np.array(breaks), np.array(coefs))
 
 
-def _table(spec: schema.Table, base_dir) -> Piecewise:
+def _table(spec: base.Table, base_dir) -> Piecewise:
     times, values = spec.load(base_dir)
     first = [values[0], 0.0, 0.0, 0.0]
     last = [values[-1], 0.0, 0.0, 0.0]
@@ -103,15 +103,15 @@ def build(spec, base_dir=None) -> Piecewise:
     """Compile one validated time-function specification (or None for zero)."""
     if spec is None:
         return constant(0.0)
-    if isinstance(spec, schema.Constant):
+    if isinstance(spec, base.Constant):
         return constant(spec.value)
-    if isinstance(spec, schema.Sine):
+    if isinstance(spec, base.Sine):
         return _sine(spec)
-    if isinstance(spec, schema.Ramp):
+    if isinstance(spec, base.Ramp):
         return _ramp(spec)
-    if isinstance(spec, schema.AccelerationProfile):
+    if isinstance(spec, base.AccelerationProfile):
         return _acceleration_profile(spec)
-    if isinstance(spec, schema.Table):
+    if isinstance(spec, base.Table):
         return _table(spec, base_dir)
     raise TypeError(f"unknown time function {type(spec).__name__}")
 

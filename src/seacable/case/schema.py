@@ -1,212 +1,46 @@
-"""The case-file schema: frozen, validated pydantic models. Units are given for every field.
+"""The case-file schema of one cable with its ends (the single-cable form): frozen, validated
+pydantic models. Units are given for every field; the parts every case form shares (time
+functions, environment, shapes, simulation) are in ``case.base``.
 
 Conventions (see docs/conventions.md): SI units, z up with z = 0 at the still-water surface,
 angles in the case file in degrees (keys end in ``_deg``), radians everywhere inside.
 """
 
-import csv
 import math
-from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
 import numpy as np
 from pydantic import (
-    BaseModel,
-    BeforeValidator,
-    ConfigDict,
     Field,
     PrivateAttr,
-    field_validator,
     model_validator,
 )
 
-Pos = Annotated[float, Field(gt=0)]
-NonNeg = Annotated[float, Field(ge=0)]
-Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x, y, z], m
-PerAxis = NonNeg | tuple[NonNeg, NonNeg, NonNeg]  # one value, or one per global axis x, y, z
-
-
-def xyz(point) -> tuple[float, float, float]:
-    """(x, y, z) of a point given as [x, z] or [x, y, z]."""
-    if len(point) == 2:
-        return (float(point[0]), 0.0, float(point[1]))
-    return (float(point[0]), float(point[1]), float(point[2]))
-
-
-def per_axis(value) -> tuple[float, float, float]:
-    if isinstance(value, tuple | list):
-        x, y, z = value
-        return (float(x), float(y), float(z))
-    return (float(value), float(value), float(value))
-
-
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-# ---- time functions ------------------------------------------------------------------------------
-class Constant(_Model):
-    """f(t) = value."""
-
-    kind: Literal["constant"] = "constant"
-    value: float
-
-
-class Sine(_Model):
-    """f(t) = offset + amplitude sin(omega t + phase); give exactly one of period [s] or
-    angular_frequency [rad/s]; phase [rad]."""
-
-    kind: Literal["sine"]
-    amplitude: float
-    period: Pos | None = None
-    angular_frequency: Pos | None = None
-    phase: float = 0.0
-    offset: float = 0.0
-
-    @model_validator(mode="after")
-    def _one_frequency(self):
-        if (self.period is None) == (self.angular_frequency is None):
-            raise ValueError(
-                "give exactly one of 'period' [s] or 'angular_frequency' [rad/s] "
-                f"(got period={self.period}, angular_frequency={self.angular_frequency})"
-            )
-        return self
-
-
-class Ramp(_Model):
-    """Linear from start_value at start_time [s] to end_value at end_time, constant outside."""
-
-    kind: Literal["ramp"]
-    start_time: float
-    end_time: float
-    start_value: float = 0.0
-    end_value: float
-
-    @model_validator(mode="after")
-    def _ordered(self):
-        if not self.end_time > self.start_time:
-            raise ValueError(
-                f"end_time ({self.end_time} s) must be later than start_time ({self.start_time} s)"
-            )
-        return self
-
-
-class AccelerationPhase(_Model):
-    duration: Pos  # [s]
-    acceleration: float  # [m/s^2] (or the unit of the quantity per s^2)
-
-
-class AccelerationProfile(_Model):
-    """A motion built from phases of constant acceleration; gives position, velocity and
-    acceleration exactly. After the last phase the acceleration is zero."""
-
-    kind: Literal["acceleration_profile"]
-    initial_position: float = 0.0  # [m]
-    initial_velocity: float = 0.0  # [m/s]
-    start_time: float = 0.0  # [s]
-    phases: list[AccelerationPhase] = Field(min_length=1)
-
-
-class Table(_Model):
-    """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
-    clamped cubic spline; held constant outside the table. ``file`` is relative to the case."""
-
-    kind: Literal["table"]
-    file: str
-    interpolation: Literal["linear", "cubic"] = "linear"
-
-    def load(self, base_dir=None):
-        path = Path(self.file)
-        if base_dir is not None and not path.is_absolute():
-            path = Path(base_dir) / path
-        if not path.exists():
-            raise ValueError(f"table file '{path}' does not exist")
-        rows = []
-        with open(path, newline="") as fh:
-            for row in csv.reader(fh):
-                if not row or row[0].strip().startswith("#"):
-                    continue
-                try:
-                    rows.append((float(row[0]), float(row[1])))
-                except (ValueError, IndexError):
-                    if rows:  # a header is allowed only on the first line
-                        raise ValueError(f"table file '{path}': bad row {row!r}") from None
-        data = np.array(rows, dtype=float)
-        if data.shape[0] < 2 or not np.all(np.diff(data[:, 0]) > 0):
-            raise ValueError(
-                f"table file '{path}' needs at least 2 rows with strictly increasing times"
-            )
-        return data[:, 0], data[:, 1]
-
-
-def _number_is_constant(value: Any) -> Any:
-    """Allow a plain number where a time function is expected (also one YAML 1.1 reads as text,
-    such as ``1.0e6``, which pydantic takes as a number everywhere else: the same here)."""
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return {"kind": "constant", "value": value}
-    if isinstance(value, str):
-        try:
-            number = float(value)
-        except ValueError:
-            return value
-        # text that reads as nan or inf stays text (refused): a finite number only
-        return {"kind": "constant", "value": number} if math.isfinite(number) else value
-    return value
-
-
-TimeFunction = Annotated[
-    Constant | Sine | Ramp | AccelerationProfile | Table,
-    Field(discriminator="kind"),
-    BeforeValidator(_number_is_constant),
-]
-
-
-# ---- environment ---------------------------------------------------------------------------------
-class Current(_Model):
-    """Current flowing towards ``direction_deg`` (from +x towards +y; 0 = along +x): either a
-    uniform ``velocity`` [m/s] or a ``profile`` of [elevation z (m, negative below the surface),
-    speed (m/s)] pairs, linearly interpolated and held constant beyond the end points."""
-
-    velocity: float | None = None
-    profile: list[tuple[float, float]] | None = None
-    direction_deg: float = 0.0
-
-    @model_validator(mode="after")
-    def _one(self):
-        if (self.velocity is None) == (self.profile is None):
-            raise ValueError("give exactly one of 'velocity' [m/s] or 'profile' [[z, u], ...]")
-        if self.profile is not None:
-            if len(self.profile) < 2:
-                raise ValueError("a current profile needs at least 2 points")
-        return self
-
-    def arrays(self):
-        if self.profile is None:
-            return np.array([0.0]), np.array([float(self.velocity)])
-        data = np.array(sorted(self.profile), dtype=float)
-        if np.any(np.diff(data[:, 0]) <= 0):
-            raise ValueError("current profile elevations must be distinct")
-        return data[:, 0].copy(), data[:, 1].copy()
-
-
-class Seabed(_Model):
-    """Seabed contact of lumped-mass cables: per metre of line, a vertical ``stiffness``
-    [N/m per m of line] and ``damping`` [N s/m per m] while a node is below the seabed, and
-    Coulomb friction along it (``friction_coefficient``, regularised below ``slip_speed``)."""
-
-    stiffness: Pos = 1.0e5
-    damping: NonNeg = 0.0
-    friction_coefficient: NonNeg = 0.0
-    slip_speed: Pos = 0.01  # [m/s]
-
-
-class Environment(_Model):
-    gravity: Pos = 9.81  # [m/s^2]
-    water_density: Pos = 1025.0  # [kg/m^3]
-    water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
-    current: Current | None = None
-    in_air: bool = False  # true: no buoyancy, no drag, no added mass
-    seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
+from seacable.case.base import (
+    FIXED_STEP_INTEGRATORS,
+    AccelerationPhase,
+    AccelerationProfile,
+    Constant,
+    Current,
+    Environment,
+    NonNeg,
+    PerAxis,
+    Point,
+    Pos,
+    Ramp,
+    Seabed,
+    Shape,
+    Simulation,
+    Sine,
+    Sphere,
+    Table,
+    TimeFunction,
+    VerticalCylinder,
+    VolumeTable,
+    _Model,
+    per_axis,
+    xyz,
+)
 
 
 # ---- cable -------------------------------------------------------------------------------------
@@ -289,56 +123,6 @@ class Tie(_Model):
 
 
 # ---- bodies and the free surface -----------------------------------------------------------------
-class Sphere(_Model):
-    """A sphere of ``radius`` [m] centred on the body's position."""
-
-    kind: Literal["sphere"]
-    radius: Pos  # [m]
-
-    def volume(self) -> float:
-        return 4.0 / 3.0 * math.pi * self.radius**3
-
-
-class VerticalCylinder(_Model):
-    """A vertical cylinder of ``radius`` and ``height`` [m] centred on the body's position."""
-
-    kind: Literal["vertical_cylinder"]
-    radius: Pos  # [m]
-    height: Pos  # [m]
-
-    def volume(self) -> float:
-        return math.pi * self.radius**2 * self.height
-
-
-class VolumeTable(_Model):
-    """Any hull: ``submerged_volume`` pairs [elevation z of the body's position (m, negative
-    below the surface), submerged volume (m^3)], z ascending, the volume not increasing, from
-    the whole volume (wholly submerged, at the first z and below) to 0 (clear of the water, at
-    the last z and above); linearly interpolated."""
-
-    kind: Literal["table"]
-    submerged_volume: list[tuple[float, NonNeg]] = Field(min_length=2)
-
-    @model_validator(mode="after")
-    def _monotone(self):
-        z = [pair[0] for pair in self.submerged_volume]
-        v = [pair[1] for pair in self.submerged_volume]
-        if np.any(np.diff(z) <= 0.0):
-            raise ValueError(f"submerged_volume: elevations {z} must be strictly ascending [m]")
-        if np.any(np.diff(v) > 0.0) or v[0] <= 0.0 or v[-1] != 0.0:
-            raise ValueError(
-                f"submerged_volume: volumes {v} must not increase with z, from the whole "
-                "volume (> 0 m^3, at the lowest z) to 0 (at the highest z)"
-            )
-        return self
-
-    def volume(self) -> float:
-        return float(self.submerged_volume[0][1])
-
-
-Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="kind")]
-
-
 class _Displacing(_Model):
     """A body's displaced volume: a ``volume`` [m^3], a point that is always wholly submerged
     (its buoyancy rho g V everywhere, even above z = 0), or a ``shape`` whose submerged part
@@ -660,110 +444,6 @@ class Cable(_Model):
         return self.axial_damping_ratio * np.sqrt(self.masses() * lengths / self.axial_stiffness)
 
 
-# ---- simulation ----------------------------------------------------------------------------------
-FIXED_STEP_INTEGRATORS = ("rk4", "implicit_euler", "theta", "newmark", "generalized_alpha")
-
-
-class Simulation(_Model):
-    duration: Pos  # [s]
-    output_interval: Pos  # [s]
-    # rk4, dopri5: compiled explicit; implicit_euler, theta, newmark, generalized_alpha:
-    # compiled fixed-step implicit (models with a node-block Newton matrix); bdf, radau, lsoda
-    # (SciPy) and cvode (SUNDIALS): adaptive stiff, with structured finite-difference Jacobians
-    integrator: Literal[
-        "rk4", "dopri5", "implicit_euler", "theta", "newmark", "generalized_alpha",
-        "bdf", "radau", "lsoda", "cvode",
-    ] = "rk4"  # fmt: skip
-    # fixed step [s] of rk4 and the implicit schemes (default: output_interval / ceil(...) <=
-    # 0.01 s)
-    time_step: Pos | None = None
-    theta: float = Field(0.5, ge=0.5, le=1.0)  # theta-method weight (1/2: trapezoidal, 1: Euler)
-    newmark_gamma: float = Field(0.5, ge=0.5, le=1.0)  # Newmark gamma
-    newmark_beta: float = Field(0.25, gt=0.0, le=0.5)  # Newmark beta
-    # generalized-alpha rho_infinity: how much of the highest frequencies survives a step. 0.5
-    # damps axial ringing enough that a slack segment snapping taut does not feed energy back
-    # (a rising body on a line of EA 1e8 N at 5 ms steps: with 0.8 or Newmark's 1 the energy
-    # grew 25 to 30 times; with 0.5 or less it decays, as in rk4)
-    spectral_radius: float = Field(0.5, ge=0.0, le=1.0)
-    # implicit schemes: Newton stops when its last correction of every node position is below
-    # this fraction of the shortest segment (a strain)
-    newton_tolerance: Pos = 1e-9
-    max_newton_iterations: int = Field(10, ge=1, le=100)
-    rtol: Pos = 1e-6  # adaptive integrators' relative tolerance
-    # adaptive integrators' absolute tolerance, in each state's own unit (one value for every
-    # state). Default (None): rtol alone sets the accuracy: dopri5 measures each state's error
-    # against rtol times the largest magnitude that state has reached (so small angles and
-    # rates are followed to rtol of their own amplitude), with a floor of 1e-3 rtol times the
-    # state's scale (models.common.state_scale: angles 1 rad, coordinates the cable's length
-    # L, rates those times sqrt(g / L), forces the cable's weight); bdf, radau, lsoda and cvode
-    # take a fixed tolerance, rtol times the larger of the state's start value and that floor.
-    # The results' attribute solver_tolerance_governing says which tolerance governed
-    atol: Pos | None = None
-    max_step: Pos | None = None  # adaptive integrators' largest step [s]
-    initial_step: Pos = 1e-3  # adaptive integrators' first step [s]
-    constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
-    # build-up period T [s] (0: none), as OrcaFlex's: every imposed motion (imposed top and
-    # bottom positions), applied force (floating-structure top force, body and end forces) and
-    # trajectory target f(t) is replaced by f(0) + r(t/T) (f(t) - f(0)), r(s) = s^3 (10 - 15 s
-    # + 6 s^2) up to T and 1 after, so it starts from its value at t = 0 at rest, with zero
-    # acceleration, and equals its own time function from T on (no sudden start against a line
-    # started still). A towing ship's speed or distance is not ramped: its initial towed shape
-    # is already the steady state at that speed. One to two periods of the motion is usual.
-    build_up: NonNeg = 0.0
-
-    @field_validator("time_step")
-    @classmethod
-    def _step_divides_output_interval(cls, time_step, info):
-        """A fixed step must divide the output interval (outputs fall on steps): one that does
-        within 1 % is rounded to the divisor, another is refused with the two nearest divisors
-        (running silently at a step more than 1 % shorter would cost time the user did not ask
-        for, and a longer one could not be stable or accurate as they chose)."""
-        interval = info.data.get("output_interval")
-        if time_step is None or interval is None:
-            return time_step
-        if info.data.get("integrator") not in FIXED_STEP_INTEGRATORS:
-            return time_step
-        steps = max(1, math.ceil(interval / time_step - 1e-9))
-        used = interval / steps
-        if abs(used - time_step) <= 0.01 * time_step:
-            return time_step
-        valid = f"{used:.6g} s ({steps} per output)"
-        if steps > 1:
-            valid = f"{interval / (steps - 1):.6g} s ({steps - 1} per output) or " + valid
-        raise ValueError(
-            f"{time_step} s does not divide output_interval ({interval} s): the run would use "
-            f"{used:.6g} s, {100 * (1 - used / time_step):.3g} % shorter. Use time_step "
-            f"{valid}, or an output_interval that is a whole number of time steps"
-        )
-
-    @model_validator(mode="after")
-    def _ordered(self):
-        if (
-            self.integrator == "newmark"
-            and self.newmark_beta < 0.25 * (self.newmark_gamma + 0.5) ** 2 - 1e-12
-        ):
-            raise ValueError(
-                f"newmark_beta ({self.newmark_beta}) is below (gamma + 1/2)^2 / 4 = "
-                f"{0.25 * (self.newmark_gamma + 0.5) ** 2:g} for newmark_gamma "
-                f"{self.newmark_gamma}: the scheme would not be unconditionally stable; raise "
-                "newmark_beta (0.25 with gamma 0.5 is the average-acceleration rule)"
-            )
-        if self.output_interval > self.duration:
-            raise ValueError(
-                f"output_interval ({self.output_interval} s) is longer than duration "
-                f"({self.duration} s)"
-            )
-        count = self.duration / self.output_interval
-        if abs(count - round(count)) > 1e-6 * count:
-            below = math.floor(count) * self.output_interval
-            raise ValueError(
-                f"duration ({self.duration} s) is not a whole number of output intervals "
-                f"({self.output_interval} s): use duration {below:g} or "
-                f"{below + self.output_interval:g}, or another output_interval"
-            )
-        return self
-
-
 class Case(_Model):
     """A complete simulation case."""
 
@@ -804,3 +484,48 @@ class Case(_Model):
         if self.bodies and not attached:
             raise ValueError("bodies are given but no cable is attached to them")
         return self
+
+
+# the shared parts (case.base) are re-exported: ``schema.Sine`` etc. keep working
+__all__ = [
+    "AccelerationPhase",
+    "AccelerationProfile",
+    "AttachedBottom",
+    "Body",
+    "Cable",
+    "Case",
+    "Constant",
+    "Current",
+    "Environment",
+    "FIXED_STEP_INTEGRATORS",
+    "FixedTop",
+    "FloatingStructureBottom",
+    "FloatingStructureTop",
+    "FreeBottom",
+    "ImposedTop",
+    "InitialShape",
+    "NonNeg",
+    "PerAxis",
+    "PinnedBottom",
+    "Point",
+    "PointBody",
+    "Pos",
+    "Ramp",
+    "Seabed",
+    "Servo",
+    "Shape",
+    "SharedBody",
+    "Simulation",
+    "Sine",
+    "Sphere",
+    "Table",
+    "Tie",
+    "TimeFunction",
+    "TowingShipTop",
+    "TrajectoryBottom",
+    "Turn",
+    "VerticalCylinder",
+    "VolumeTable",
+    "per_axis",
+    "xyz",
+]

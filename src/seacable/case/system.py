@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, PrivateAttr, field_validator, model_validator
 
-from seacable.case.schema import (
+from seacable.case.base import (
     Constant,
     Environment,
     NonNeg,
@@ -77,7 +77,17 @@ class AppliedForce(_Model):
     moment_z: TimeFunction = Constant(value=0.0)  # [N m]
 
 
-class LinearStiffness(_Model):
+class _MatrixOrDiagonal(_Model):
+    """A 6x6 ``matrix`` or its ``diagonal``, exactly one of them."""
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.matrix is None) == (self.diagonal is None):
+            raise ValueError("give exactly one of 'matrix' (6x6) or 'diagonal' (6 values)")
+        return self
+
+
+class LinearStiffness(_MatrixOrDiagonal):
     """F = -K d: d the body's displacement from ``equilibrium`` (x, y, z [m] of the reference
     point, then roll, pitch, yaw [rad] as the small rotation vector from the equilibrium
     orientation), K [N/m, N/rad, N m/m, N m/rad] in the earth frame at the reference point: a
@@ -90,26 +100,14 @@ class LinearStiffness(_Model):
     equilibrium_position: Vector | None = None  # [m]
     equilibrium_orientation_deg: Vector | None = None  # roll, pitch, yaw [deg]
 
-    @model_validator(mode="after")
-    def _one_form(self):
-        if (self.matrix is None) == (self.diagonal is None):
-            raise ValueError("give exactly one of 'matrix' (6x6) or 'diagonal' (6 values)")
-        return self
 
-
-class LinearDamping(_Model):
+class LinearDamping(_MatrixOrDiagonal):
     """F = -B (v, omega): the reference point's velocity [m/s] and the angular velocity
     [rad/s], earth frame; B [N s/m, N s, N m s/m, N m s/rad] 6x6 or ``diagonal``."""
 
     model: Literal["linear_damping"]
     matrix: Matrix6 | None = None
     diagonal: tuple[NonNeg, NonNeg, NonNeg, NonNeg, NonNeg, NonNeg] | None = None
-
-    @model_validator(mode="after")
-    def _one_form(self):
-        if (self.matrix is None) == (self.diagonal is None):
-            raise ValueError("give exactly one of 'matrix' (6x6) or 'diagonal' (6 values)")
-        return self
 
 
 ForceModel = Annotated[

@@ -25,11 +25,81 @@ nodes (floats, clump weights) join the articulated inertia of the part below the
 """
 
 import math
-from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
+from seacable.kernels.chain3d_ends import (
+    is_closed,
+    servo_rates,
+    target_channels,
+    target_from,
+    target_motion,
+    top_motion,
+)
+from seacable.kernels.chain3d_layout import (
+    _A,
+    _B,
+    _BD,
+    _BK,
+    _BM,
+    _BW,
+    _E,
+    _EDD,
+    _F,
+    _H,
+    _ID11,
+    _ID12,
+    _ID22,
+    _M,
+    _P,
+    _RS,
+    _S,
+    _SA,
+    _SF,
+    _SJ,
+    _SQ,
+    _T1,
+    _T2,
+    _TQ,
+    _U,
+    _V,
+    _W,
+    _XC,
+    _XL,
+    BOTTOM_SERVO,
+    BOTTOM_TRAJECTORY,
+    CH_BODY_FX,
+    CH_BODY_FY,
+    CH_BODY_FZ,
+    CH_TARGET_X,
+    CH_TARGET_Y,
+    CH_TARGET_Z,
+    CH_TOP_FORCE,
+    CH_TOP_X,
+    CH_TOP_Y,
+    CH_TOP_Z,
+    CH_TRACK_S,
+    N_CHANNELS,
+    N_SCALARS,
+    N_WORK_ROWS,
+    SCALAR_NAMES,
+    SERVO_STATES,
+    TOP_TRACK,
+    Chain3DParams,
+    _current,
+    _tf,
+    make_workspace,
+    state_size,
+)
+from seacable.kernels.chain3d_loads import (
+    _hydrostatics,
+    _joint_torques,
+    _kinematics_and_loads,
+    _point_force,
+    _point_loads,
+    _segment_surface,
+)
 from seacable.kernels.planar_chain import (
     BOTTOM_FREE,
     BOTTOM_PINNED,
@@ -37,412 +107,80 @@ from seacable.kernels.planar_chain import (
     TOP_IMPOSED,
 )
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
-from seacable.kernels.surface import POINT, segment_submersion, submersion
 from seacable.kernels.timefn import JIT
-from seacable.kernels.timefn import of_params as tf_of_params
 
-__all__ = ["BOTTOM_FREE", "BOTTOM_PINNED", "TOP_HEAVE", "TOP_IMPOSED", "TOP_TRACK"]
-SERVO_STATES = 3  # the servo force, at the end of every state vector (zero when unused)
-
-TOP_TRACK = 2  # towing ship on a track: straight, then optionally a circle; s(t) from a channel
-BOTTOM_TRAJECTORY = 2  # lower end held on a moving target (exact end force), all axes
-BOTTOM_SERVO = 3  # free lower end pulled by a force the stiffness-matrix servo updates
-
-CH_TOP_X, CH_TOP_Y, CH_TOP_Z, CH_TOP_FORCE = 0, 1, 2, 3
-CH_BODY_FX, CH_BODY_FY, CH_BODY_FZ = 4, 5, 6
-CH_TRACK_S = 7  # distance travelled along the track [m]
-CH_TARGET_X, CH_TARGET_Y, CH_TARGET_Z = 8, 9, 10  # target of the lower end (trajectory, servo)
-N_CHANNELS = 11
-
-SCALAR_NAMES = (
-    "top_force_x",
-    "top_force_y",
-    "top_force_z",
-    "bottom_force_x",
-    "bottom_force_y",
-    "bottom_force_z",
-    "top_velocity_x",
-    "top_velocity_y",
-    "top_velocity_z",
-    "bottom_velocity_x",
-    "bottom_velocity_y",
-    "bottom_velocity_z",
-    "kinetic_energy",
-    "gravity_potential_energy",
-    "elastic_energy",
-    "constraint_error",
-    "target_x",
-    "target_y",
-    "target_z",
-    "tracking_error",
-    "servo_force_x",
-    "servo_force_y",
-    "servo_force_z",
-)
-N_SCALARS = len(SCALAR_NAMES)
-
-# workspace rows, each of length n + 1
-_P, _V, _E, _U, _F, _TQ = 0, 3, 6, 9, 12, 15  # 3 rows each: node pos, node vel, e, u, F, torque
-_T1, _T2 = 18, 21  # basis of the plane normal to e (3 rows each)
-_ID11, _ID12, _ID22 = 24, 25, 26  # inverse of the 2x2 D
-_H = 27  # 6 rows: H (3x2), row-major H[r, c] at _H + 2 r + c
-_W = 33  # 2 rows
-_RS = 35  # 6 rows: dw/dL (2x3), row-major at _RS + 3 r + c
-_M = 41  # 6 rows: symmetric M (11, 12, 13, 22, 23, 33)
-_B = 47  # 3 rows
-_S = 50  # 9 rows: S (3x3) row-major
-_XC = 59  # 2 rows: xi constant part
-_XL = 61  # 6 rows: d xi / d L (2x3)
-_A = 67  # 3 rows: node acceleration
-_EDD = 70  # 3 rows: director acceleration
-# point bodies at nodes (the end body at node n) as the free surface leaves them (_hydrostatics)
-_BM = 73  # 3 rows: mass + submerged share of the added mass per axis [kg]
-_BW = 76  # apparent weight, positive down [N]
-_BD = 77  # 3 rows: 0.5 rho Cd A times the submerged fraction per axis [N s^2/m^2]
-_BK = 80  # hydrostatic heave stiffness rho g A_wp [N/m]
-# segments as the free surface leaves them (_kinematics_and_loads): the submerged fraction of the
-# length, the added mass and rotational inertia with the added mass of that fraction, and the
-# buoyancy's moment arm times its force (centroid of the submerged part from the centre along e)
-_SF = 81  # submerged fraction [1]
-_SA = 82  # normal added mass [kg]
-_SJ = 83  # rotational inertia about the centre [kg m^2]
-_SQ = 84  # arm x buoyancy [N m]
-N_WORK_ROWS = 85
-
-
-class Chain3DParams(NamedTuple):
-    """Flat parameters of one 3D rigid-segment cable and its end conditions (SI units)."""
-
-    n: int
-    length: np.ndarray  # (n,) [m]
-    mass: np.ndarray  # (n,) structural mass [kg]
-    added_mass: np.ndarray  # (n,) normal added mass [kg]
-    inertia: np.ndarray  # (n,) rotational inertia about the centre, added included [kg m^2]
-    wet_weight: np.ndarray  # (n,) apparent weight, positive down [N]
-    buoyancy: np.ndarray  # (n,) rho g A l of the segment wholly submerged [N]
-    drag_normal: np.ndarray  # (n,) 0.5 rho Cd d l [N s^2/m^2]
-    drag_tangential: np.ndarray  # (n,) 0.5 rho f Cd d l (Richtmyer) [N s^2/m^2]
-    joint_stiffness: np.ndarray  # (n,) [N m/rad]; joint i between segment i-1 (or top) and i
-    joint_damping: np.ndarray  # (n,) [N m s/rad]
-    top_reference: np.ndarray  # (3,) direction the top joint spring is unloaded at
-    current_z: np.ndarray  # (K,) ascending elevations [m]
-    current_u: np.ndarray  # (K,) current along x [m/s]
-    current_v: np.ndarray  # (K,) current along y [m/s]
-    node_mass: np.ndarray  # (n+1, 3) point-body mass + added mass per axis at nodes [kg]
-    node_wet_weight: np.ndarray  # (n+1,) point-body apparent weight, positive down [N]
-    node_drag: np.ndarray  # (n+1,) point-body 0.5 rho Cd A (sphere) [N s^2/m^2]
-    # the free surface (kernels.surface): row k for the point body at node k, row n for the end
-    # body; node_mass, node_wet_weight, node_drag and body_* are their wholly submerged values
-    node_shape: np.ndarray  # (n+1, L) shape rows
-    node_added: np.ndarray  # (n+1, 3) added mass when wholly submerged [kg]
-    node_buoyancy: np.ndarray  # (n+1,) rho g V [N]
-    top_kind: int
-    top_x: float  # heaving structure x, y [m]
-    top_y: float
-    top_mass: float
-    top_stiffness: float
-    top_damping: float
-    top_rest_z: float
-    top_net_weight: float
-    track_origin: np.ndarray  # (3,) tow point at s = 0 [m]
-    track_heading: float  # initial heading from +x towards +y [rad]
-    track_turn_at: float  # distance along the track where the turn starts [m]
-    track_radius: float  # signed turning radius (+ turns towards +y/left), 0: no turn [m]
-    bottom_kind: int
-    body_mass: np.ndarray  # (3,) mass + added mass per axis [kg]
-    body_wet_weight: float
-    body_drag: np.ndarray  # (3,) 0.5 rho Cd A per axis [N s^2/m^2]
-    tie_k: np.ndarray  # (3,) [N/m]
-    tie_c: np.ndarray  # (3,) [N s/m]
-    tie_rest: np.ndarray  # (3,)
-    pin: np.ndarray  # (3,)
-    constrained: np.ndarray  # (3,) 1.0 on the axes a closed lower end holds, 0.0 where it is free
-    target_relative: int  # 1: target channels are offsets from the top attachment
-    servo_stiffness: np.ndarray  # (3, 3) K: force on the end per displacement [N/m]
-    servo_gain: float  # a
-    servo_rate_gain: float  # b
-    servo_step: float  # the update interval Delta t of the servo [s]
-    stabilization_frequency: float
-    tf_breaks: np.ndarray
-    tf_coefs: np.ndarray
-    tf_count: np.ndarray
-    tf_sine: np.ndarray
-    tf_build_up: np.ndarray
-
-
-def state_size(n):
-    return 6 * n + 2 + SERVO_STATES
-
-
-def make_workspace(n):
-    return np.zeros((N_WORK_ROWS, n + 1))
-
-
-@njit(**JIT)
-def _current(current_z, current_u, current_v, z):
-    if current_z.shape[0] == 1:
-        return current_u[0], current_v[0]
-    return np.interp(z, current_z, current_u), np.interp(z, current_z, current_v)
-
-
-@njit(inline="always", **JIT)
-def _tf(p, channel, t):
-    return tf_of_params(p, channel, t)
-
-
-@njit(inline="always", **JIT)
-def top_motion(t, y, p):
-    """Top position (3), velocity (3), acceleration (3) (zero acceleration for heave)."""
-    n = p.n
-    pos = np.zeros(3)
-    vel = np.zeros(3)
-    acc = np.zeros(3)
-    if p.top_kind == TOP_HEAVE:
-        pos[0] = p.top_x
-        pos[1] = p.top_y
-        pos[2] = y[3 * n]
-        vel[2] = y[6 * n + 1]
-        return pos, vel, acc
-    if p.top_kind == TOP_TRACK:
-        s, sd, sdd = _tf(p, CH_TRACK_S, t)
-        c0 = math.cos(p.track_heading)
-        s0 = math.sin(p.track_heading)
-        if p.track_radius == 0.0 or s <= p.track_turn_at:
-            pos[0] = p.track_origin[0] + s * c0
-            pos[1] = p.track_origin[1] + s * s0
-            vel[0] = sd * c0
-            vel[1] = sd * s0
-            acc[0] = sdd * c0
-            acc[1] = sdd * s0
-        else:
-            r = p.track_radius
-            phi = (s - p.track_turn_at) / r  # heading change (signed with r)
-            heading = p.track_heading + phi
-            ch = math.cos(heading)
-            sh = math.sin(heading)
-            # centre of the circle: left of the track for r > 0
-            cx = p.track_origin[0] + p.track_turn_at * c0 - r * s0
-            cy = p.track_origin[1] + p.track_turn_at * s0 + r * c0
-            pos[0] = cx + r * sh
-            pos[1] = cy - r * ch
-            vel[0] = sd * ch
-            vel[1] = sd * sh
-            kappa = sd * sd / r
-            acc[0] = sdd * ch - kappa * sh
-            acc[1] = sdd * sh + kappa * ch
-        pos[2] = p.track_origin[2]
-        return pos, vel, acc
-    pos[0], vel[0], acc[0] = _tf(p, CH_TOP_X, t)
-    pos[1], vel[1], acc[1] = _tf(p, CH_TOP_Y, t)
-    pos[2], vel[2], acc[2] = _tf(p, CH_TOP_Z, t)
-    return pos, vel, acc
-
-
-@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
-def is_closed(p):
-    """True when the lower end is held (pinned, guided or on a trajectory): a closed loop."""
-    return p.bottom_kind == BOTTOM_PINNED or p.bottom_kind == BOTTOM_TRAJECTORY
-
-
-@njit(inline="always", **JIT)
-def target_channels(t, p):
-    """The lower end's target as the case gives it (3 each: position, velocity, acceleration):
-    the pin, or the trajectory's channels (offsets from the top when ``target_relative``).
-    Shared with the lumped-mass kernel (same field names)."""
-    pos = np.empty(3)
-    vel = np.zeros(3)
-    acc = np.zeros(3)
-    if p.bottom_kind == BOTTOM_PINNED:
-        pos[:] = p.pin
-        return pos, vel, acc
-    pos[0], vel[0], acc[0] = _tf(p, CH_TARGET_X, t)
-    pos[1], vel[1], acc[1] = _tf(p, CH_TARGET_Y, t)
-    pos[2], vel[2], acc[2] = _tf(p, CH_TARGET_Z, t)
-    return pos, vel, acc
-
-
-@njit(inline="always", **JIT)
-def target_from(t, p, top_pos, top_vel, top_acc):
-    """``target_channels`` made absolute with the top's motion (given) when relative."""
-    pos, vel, acc = target_channels(t, p)
-    if p.bottom_kind != BOTTOM_PINNED and p.target_relative == 1:
-        pos += top_pos
-        vel += top_vel
-        acc += top_acc
-    return pos, vel, acc
-
-
-@njit(**JIT)
-def target_motion(t, y, p):
-    """Position, velocity and acceleration (3 each) the lower end is to follow."""
-    top_pos, top_vel, top_acc = top_motion(t, y, p)
-    return target_from(t, p, top_pos, top_vel, top_acc)
-
-
-@njit(**JIT)
-def _joint_torques(y, p, w):
-    """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity."""
-    n = p.n
-    u0 = 3 * n + 1
-    for i in range(n):
-        w[_TQ, i] = 0.0
-        w[_TQ + 1, i] = 0.0
-        w[_TQ + 2, i] = 0.0
-    for i in range(n):
-        bx, by, bz = y[3 * i], y[3 * i + 1], y[3 * i + 2]
-        if i == 0:
-            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
-            wax, way, waz = 0.0, 0.0, 0.0
-        else:
-            ax, ay, az = y[3 * i - 3], y[3 * i - 2], y[3 * i - 1]
-            uax, uay, uaz = y[u0 + 3 * i - 3], y[u0 + 3 * i - 2], y[u0 + 3 * i - 1]
-            wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
-        ubx, uby, ubz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
-        wbx, wby, wbz = by * ubz - bz * uby, bz * ubx - bx * ubz, bx * uby - by * ubx
-        cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx  # e_a x e_b
-        sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
-        cos_phi = ax * bx + ay * by + az * bz
-        phi = math.atan2(sin_phi, cos_phi)
-        factor = phi / sin_phi if sin_phi > 1e-12 else 1.0
-        k = p.joint_stiffness[i] * factor
-        c = p.joint_damping[i]
-        tx = k * cx + c * (wbx - wax)  # moment the joint exerts on segment a; -t on segment b
-        ty = k * cy + c * (wby - way)
-        tz = k * cz + c * (wbz - waz)
-        w[_TQ, i] -= tx
-        w[_TQ + 1, i] -= ty
-        w[_TQ + 2, i] -= tz
-        if i > 0:
-            w[_TQ, i - 1] += tx
-            w[_TQ + 1, i - 1] += ty
-            w[_TQ + 2, i - 1] += tz
-
-
-@njit(**JIT)
-def _kinematics_and_loads(t, y, p, w):
-    n = p.n
-    u0 = 3 * n + 1
-    cz_, cu_, cv_ = p.current_z, p.current_u, p.current_v
-    pos, vel, _ = top_motion(t, y, p)
-    for k in range(3):
-        w[_P + k, 0] = pos[k]
-        w[_V + k, 0] = vel[k]
-    for i in range(n):
-        li = p.length[i]
-        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
-        ux, uy, uz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
-        w[_E, i], w[_E + 1, i], w[_E + 2, i] = ex, ey, ez
-        w[_U, i], w[_U + 1, i], w[_U + 2, i] = ux, uy, uz
-        w[_P, i + 1] = w[_P, i] + li * ex
-        w[_P + 1, i + 1] = w[_P + 1, i] + li * ey
-        w[_P + 2, i + 1] = w[_P + 2, i] + li * ez
-        w[_V, i + 1] = w[_V, i] + li * ux
-        w[_V + 1, i + 1] = w[_V + 1, i] + li * uy
-        w[_V + 2, i + 1] = w[_V + 2, i] + li * uz
-        zc = w[_P + 2, i] + 0.5 * li * ez
-        cu, cv = _current(cz_, cu_, cv_, zc)
-        rx = w[_V, i] + 0.5 * li * ux - cu
-        ry = w[_V + 1, i] + 0.5 * li * uy - cv
-        rz = w[_V + 2, i] + 0.5 * li * uz
-        vt = rx * ex + ry * ey + rz * ez
-        nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
-        vn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        cn = -p.drag_normal[i] * vn
-        ct = -p.drag_tangential[i] * abs(vt) * vt
-        w[_F, i] = cn * nx + ct * ex
-        w[_F + 1, i] = cn * ny + ct * ey
-        w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
-        wet = _segment_surface(p, w, i)
-        if wet < 1.0:
-            # (a branch that rewrites the loads: wholly submerged segments compute bitwise as
-            # they always did) the drag and the buoyancy of the submerged part
-            cn *= wet
-            ct *= wet
-            w[_F, i] = cn * nx + ct * ex
-            w[_F + 1, i] = cn * ny + ct * ey
-            w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i] + (wet - 1.0) * p.buoyancy[i]
-    _joint_torques(y, p, w)
-    for i in range(n):
-        if w[_SF, i] < 1.0:
-            # the buoyancy's moment about the centre: (arm e) x (0, 0, lift)
-            w[_TQ, i] += w[_SQ, i] * w[_E + 1, i]
-            w[_TQ + 1, i] -= w[_SQ, i] * w[_E, i]
-    _hydrostatics(p, w)
-
-
-@njit(inline="always", **JIT)
-def _segment_surface(p, w, i):
-    """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
-    the added mass of the submerged fraction, spread as the whole segment's (so the rotational
-    added inertia scales alike), and the buoyancy's moment arm to the submerged part's centroid.
-    Returns the fraction."""
-    wet, share_top, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
-    w[_SF, i] = wet
-    if wet < 1.0:
-        ma = p.added_mass[i]
-        lost = (1.0 - wet) * ma
-        w[_SA, i] = ma - lost
-        w[_SJ, i] = p.inertia[i] - lost * p.length[i] * p.length[i] / 12.0
-        w[_SQ, i] = (0.5 - share_top) * p.length[i] * wet * p.buoyancy[i]
-    else:
-        w[_SA, i] = p.added_mass[i]
-        w[_SJ, i] = p.inertia[i]
-        w[_SQ, i] = 0.0
-    return wet
-
-
-@njit(inline="always", **JIT)
-def _point_loads(p, k, z, out):
-    """Mass (3), apparent weight, drag factor (3) and heave stiffness of the point body at node k
-    (the end body at k = n) with its reference point at elevation z: the submerged fraction f
-    scales the buoyancy, the added mass and the drag (kernels.surface)."""
-    if k == p.n:
-        mass, weight = p.body_mass, p.body_wet_weight
-        drag0, drag1, drag2 = p.body_drag[0], p.body_drag[1], p.body_drag[2]
-    else:
-        mass, weight = p.node_mass[k], p.node_wet_weight[k]
-        drag0 = drag1 = drag2 = p.node_drag[k]
-    if p.node_shape[k, 0] == POINT:  # always submerged: the values as given
-        out[0], out[1], out[2], out[3] = mass[0], mass[1], mass[2], weight
-        out[4], out[5], out[6], out[7] = drag0, drag1, drag2, 0.0
-        return
-    f, slope, _ = submersion(z, p.node_shape[k])
-    lost = 1.0 - f
-    for c in range(3):
-        out[c] = mass[c] - lost * p.node_added[k, c]
-    out[3] = weight + lost * p.node_buoyancy[k]
-    out[4], out[5], out[6] = f * drag0, f * drag1, f * drag2
-    out[7] = -slope * p.node_buoyancy[k]
-
-
-@njit(inline="always", **JIT)
-def _hydrostatics(p, w):
-    """Rows _BM, _BW, _BD, _BK of every node from its elevation (node 0 carries none)."""
-    loads = np.empty(8)
-    for k in range(1, p.n + 1):
-        _point_loads(p, k, w[_P + 2, k], loads)
-        for r in range(8):
-            w[_BM + r, k] = loads[r]
-
-
-@njit(**JIT)
-def _point_force(p, k, w, t):
-    """Force on the point body at node k (not the cable): weight, drag (and at the bottom,
-    applied forces and ties)."""
-    vx, vy, vz = w[_V, k], w[_V + 1, k], w[_V + 2, k]
-    cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
-    rx, ry, rz = vx - cu, vy - cv, vz
-    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
-    dx, dy, dz = w[_BD, k] * speed, w[_BD + 1, k] * speed, w[_BD + 2, k] * speed
-    if k < p.n:
-        return -dx * rx, -dy * ry, -dz * rz - w[_BW, k]
-    fx, _, _ = _tf(p, CH_BODY_FX, t)
-    fy, _, _ = _tf(p, CH_BODY_FY, t)
-    fz, _, _ = _tf(p, CH_BODY_FZ, t)
-    fx -= dx * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
-    fy -= dy * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
-    fz -= dz * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
-    return fx, fy, fz - w[_BW, k]
+# re-exported: the chain's other kernels and the lumped-mass kernel read them as ``c3.X``
+__all__ = [
+    "_hydrostatics",
+    "_joint_torques",
+    "_kinematics_and_loads",
+    "_point_force",
+    "_point_loads",
+    "_segment_surface",
+    "BOTTOM_FREE",
+    "BOTTOM_PINNED",
+    "BOTTOM_SERVO",
+    "BOTTOM_TRAJECTORY",
+    "CH_BODY_FX",
+    "CH_BODY_FY",
+    "CH_BODY_FZ",
+    "CH_TARGET_X",
+    "CH_TARGET_Y",
+    "CH_TARGET_Z",
+    "CH_TOP_FORCE",
+    "CH_TOP_X",
+    "CH_TOP_Y",
+    "CH_TOP_Z",
+    "CH_TRACK_S",
+    "Chain3DParams",
+    "N_CHANNELS",
+    "N_SCALARS",
+    "N_WORK_ROWS",
+    "SCALAR_NAMES",
+    "SERVO_STATES",
+    "TOP_HEAVE",
+    "TOP_IMPOSED",
+    "TOP_TRACK",
+    "_A",
+    "_B",
+    "_BD",
+    "_BK",
+    "_BM",
+    "_BW",
+    "_E",
+    "_EDD",
+    "_F",
+    "_H",
+    "_ID11",
+    "_ID12",
+    "_ID22",
+    "_M",
+    "_P",
+    "_RS",
+    "_S",
+    "_SA",
+    "_SF",
+    "_SJ",
+    "_SQ",
+    "_T1",
+    "_T2",
+    "_TQ",
+    "_U",
+    "_V",
+    "_W",
+    "_XC",
+    "_XL",
+    "_current",
+    "_tf",
+    "is_closed",
+    "make_workspace",
+    "servo_rates",
+    "state_size",
+    "target_channels",
+    "target_from",
+    "target_motion",
+    "top_motion",
+]
 
 
 @njit(**JIT)
@@ -752,22 +490,6 @@ def rhs(t, y, p, w, ydot):
         pos, vel, _ = target_motion(t, y, p)
         servo_rates(p, pos, vel, w[_P : _P + 3, n], w[_V : _V + 3, n], ydot, servo)
     return status
-
-
-@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
-def servo_rates(p, target_pos, target_vel, end_pos, end_vel, ydot, start):
-    """ydot[start:start + 3] = dF/dt of the servo's force: the paper's per-step correction
-    dF = K (a dE - b dt dE') as a rate over its step dt, dE the target less the end's position
-    (shared with the lumped-mass kernel: same field names)."""
-    for r in range(3):
-        rate = 0.0
-        for c in range(3):
-            error = target_pos[c] - end_pos[c]
-            error_rate = target_vel[c] - end_vel[c]
-            rate += p.servo_stiffness[r, c] * (
-                p.servo_gain * error / p.servo_step - p.servo_rate_gain * error_rate
-            )
-        ydot[start + r] = rate
 
 
 @njit(**JIT)

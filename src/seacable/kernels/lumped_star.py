@@ -30,6 +30,7 @@ from numba import njit
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_newton as lkn
+from seacable.kernels import lumped_outputs as lko
 from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 
@@ -202,7 +203,7 @@ def outputs_chunk(times, states, p, ws, node_pos, tension, scalars, body_acc):
             body_acc[j, c] = ydot[nq + 3 * n * cables + c]
         for k in range(cables):
             _gather(states[j], k, n, cables, nq, ws.y[k])
-            st = lk.outputs(times[j], ws.y[k], p.chains[k], ws.w[k], node_pos[j, k],
+            st = lko.outputs(times[j], ws.y[k], p.chains[k], ws.w[k], node_pos[j, k],
                             tension[j, k], scalars[j, k])  # fmt: skip
             if st != OK and status == OK:
                 status = st

@@ -11,6 +11,7 @@ from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.kernels import lumped as lk
 from seacable.kernels import lumped_newton as lkn
+from seacable.kernels import lumped_outputs as lko
 from seacable.lines import catenary
 from seacable.models import common, planar_rigid_links, statics
 from seacable.models import rigid_segments_3d as seg
@@ -243,7 +244,7 @@ def end_force(params, y, point, time: float = 0.0):
     state = discrete_equilibrium(held, start)
     w = lk.make_workspace(n)
     scalars = np.empty(lk.N_SCALARS)
-    lk.outputs(time, state, held, w, np.empty((n + 1, 3)), np.empty(n), scalars)
+    lko.outputs(time, state, held, w, np.empty((n + 1, 3)), np.empty(n), scalars)
     return -scalars[3:6], state
 
 
@@ -409,7 +410,7 @@ def rows(times, states, system: LumpedSystem, w) -> tuple[dict, int]:
     nodes = np.empty((m, n + 1, 3))
     tension = np.empty((m, n))
     scalars = np.empty((m, lk.N_SCALARS))
-    status = lk.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
+    status = lko.outputs_chunk(times, states, system.params, w, nodes, tension, scalars)
     out = {"time": times, "tension": tension}
     for c, a in enumerate("xyz"):
         out[f"node_{a}"] = nodes[:, :, c]

@@ -15,8 +15,8 @@ from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
 from seacable.forces import linear
 from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
-from seacable.kernels import lumped as lk
-from seacable.kernels.surface import POINT, segment_submersion, submersion
+from seacable.kernels.lumped_outputs import line_energies
+from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass
 
@@ -24,39 +24,18 @@ from seacable.lines import lumped_mass
 @njit(**JIT)
 def _lines(y, p, w):
     kinetic = gravity = elastic = 0.0
-    m3 = np.empty(9)
     for li in range(p.line_n.shape[0]):
-        n, s0, c0 = p.line_n[li], p.line_seg[li], p.line_node[li]
+        n = p.line_n[li]
         lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
                            p.line_to[li], w.line)  # fmt: skip
-        yl = w.line
-        v0 = 3 * (n + 1)
-        for k in range(n + 1):
-            lk._node_mass_into(p.node_mass[c0 + k], w.nodes, c0 + k, m3)
-            vx, vy, vz = yl[v0 + 3 * k], yl[v0 + 3 * k + 1], yl[v0 + 3 * k + 2]
-            kinetic += 0.5 * (
-                vx * (m3[0] * vx + m3[1] * vy + m3[2] * vz)
-                + vy * (m3[3] * vx + m3[4] * vy + m3[5] * vz)
-                + vz * (m3[6] * vx + m3[7] * vy + m3[8] * vz)
-            )
-            depth = p.seabed_z - yl[3 * k + 2]
-            if depth > 0.0:
-                elastic += 0.5 * p.node_seabed_stiffness[c0 + k] * depth * depth
-            if 0 < k < n and p.node_bend[c0 + k] > 0.0:
-                phi, _, _ = lk._bend_angle(w.nodes, c0 + k)
-                elastic += 0.5 * p.node_bend[c0 + k] * phi * phi
-        for i in range(n):
-            s = s0 + i
-            za, zb = yl[3 * i + 2], yl[3 * i + 5]
-            _, _, mean_depth = segment_submersion(za, zb)
-            zc = 0.5 * (za + zb)
-            gravity += p.seg_wet_weight[s] * zc + p.seg_buoyancy[s] * (zc - mean_depth)
-            dx = yl[3 * i + 3] - yl[3 * i]
-            dy = yl[3 * i + 4] - yl[3 * i + 1]
-            dz = yl[3 * i + 5] - yl[3 * i + 2]
-            strain = math.sqrt(dx * dx + dy * dy + dz * dz) / p.seg_length[s] - 1.0
-            if strain > 0.0 or p.slack_allowed == 0:
-                elastic += 0.5 * p.seg_stiffness[s] * p.seg_length[s] * strain * strain
+        k, g, e = line_energies(
+            w.line, n, p.line_seg[li], p.line_node[li], p.node_mass, p.seg_length,
+            p.seg_stiffness, p.seg_wet_weight, p.seg_buoyancy, p.seabed_z,
+            p.node_seabed_stiffness, p.node_bend, p.slack_allowed, w.nodes,
+        )  # fmt: skip
+        kinetic += k
+        gravity += g
+        elastic += e
     return kinetic, gravity, elastic
 
 

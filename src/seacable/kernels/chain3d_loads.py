@@ -1,0 +1,198 @@
+"""Loads on the 3D chain's segments and point bodies: joint bending and damping moments,
+kinematics of the nodes, drag, added mass and apparent weight on the relative velocity, the
+free surface's share of each (numba; rows of ``chain3d_layout``)."""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from seacable.kernels.chain3d_ends import top_motion
+from seacable.kernels.chain3d_layout import (
+    _BD,
+    _BM,
+    _BW,
+    _E,
+    _F,
+    _P,
+    _SA,
+    _SF,
+    _SJ,
+    _SQ,
+    _TQ,
+    _U,
+    _V,
+    CH_BODY_FX,
+    CH_BODY_FY,
+    CH_BODY_FZ,
+    _current,
+    _tf,
+)
+from seacable.kernels.surface import POINT, segment_submersion, submersion
+from seacable.kernels.timefn import JIT
+
+
+@njit(**JIT)
+def _joint_torques(y, p, w):
+    """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity."""
+    n = p.n
+    u0 = 3 * n + 1
+    for i in range(n):
+        w[_TQ, i] = 0.0
+        w[_TQ + 1, i] = 0.0
+        w[_TQ + 2, i] = 0.0
+    for i in range(n):
+        bx, by, bz = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        if i == 0:
+            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
+            wax, way, waz = 0.0, 0.0, 0.0
+        else:
+            ax, ay, az = y[3 * i - 3], y[3 * i - 2], y[3 * i - 1]
+            uax, uay, uaz = y[u0 + 3 * i - 3], y[u0 + 3 * i - 2], y[u0 + 3 * i - 1]
+            wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
+        ubx, uby, ubz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
+        wbx, wby, wbz = by * ubz - bz * uby, bz * ubx - bx * ubz, bx * uby - by * ubx
+        cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx  # e_a x e_b
+        sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
+        cos_phi = ax * bx + ay * by + az * bz
+        phi = math.atan2(sin_phi, cos_phi)
+        factor = phi / sin_phi if sin_phi > 1e-12 else 1.0
+        k = p.joint_stiffness[i] * factor
+        c = p.joint_damping[i]
+        tx = k * cx + c * (wbx - wax)  # moment the joint exerts on segment a; -t on segment b
+        ty = k * cy + c * (wby - way)
+        tz = k * cz + c * (wbz - waz)
+        w[_TQ, i] -= tx
+        w[_TQ + 1, i] -= ty
+        w[_TQ + 2, i] -= tz
+        if i > 0:
+            w[_TQ, i - 1] += tx
+            w[_TQ + 1, i - 1] += ty
+            w[_TQ + 2, i - 1] += tz
+
+
+@njit(**JIT)
+def _kinematics_and_loads(t, y, p, w):
+    n = p.n
+    u0 = 3 * n + 1
+    cz_, cu_, cv_ = p.current_z, p.current_u, p.current_v
+    pos, vel, _ = top_motion(t, y, p)
+    for k in range(3):
+        w[_P + k, 0] = pos[k]
+        w[_V + k, 0] = vel[k]
+    for i in range(n):
+        li = p.length[i]
+        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        ux, uy, uz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
+        w[_E, i], w[_E + 1, i], w[_E + 2, i] = ex, ey, ez
+        w[_U, i], w[_U + 1, i], w[_U + 2, i] = ux, uy, uz
+        w[_P, i + 1] = w[_P, i] + li * ex
+        w[_P + 1, i + 1] = w[_P + 1, i] + li * ey
+        w[_P + 2, i + 1] = w[_P + 2, i] + li * ez
+        w[_V, i + 1] = w[_V, i] + li * ux
+        w[_V + 1, i + 1] = w[_V + 1, i] + li * uy
+        w[_V + 2, i + 1] = w[_V + 2, i] + li * uz
+        zc = w[_P + 2, i] + 0.5 * li * ez
+        cu, cv = _current(cz_, cu_, cv_, zc)
+        rx = w[_V, i] + 0.5 * li * ux - cu
+        ry = w[_V + 1, i] + 0.5 * li * uy - cv
+        rz = w[_V + 2, i] + 0.5 * li * uz
+        vt = rx * ex + ry * ey + rz * ez
+        nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
+        vn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        cn = -p.drag_normal[i] * vn
+        ct = -p.drag_tangential[i] * abs(vt) * vt
+        w[_F, i] = cn * nx + ct * ex
+        w[_F + 1, i] = cn * ny + ct * ey
+        w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
+        wet = _segment_surface(p, w, i)
+        if wet < 1.0:
+            # (a branch that rewrites the loads: wholly submerged segments compute bitwise as
+            # they always did) the drag and the buoyancy of the submerged part
+            cn *= wet
+            ct *= wet
+            w[_F, i] = cn * nx + ct * ex
+            w[_F + 1, i] = cn * ny + ct * ey
+            w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i] + (wet - 1.0) * p.buoyancy[i]
+    _joint_torques(y, p, w)
+    for i in range(n):
+        if w[_SF, i] < 1.0:
+            # the buoyancy's moment about the centre: (arm e) x (0, 0, lift)
+            w[_TQ, i] += w[_SQ, i] * w[_E + 1, i]
+            w[_TQ + 1, i] -= w[_SQ, i] * w[_E, i]
+    _hydrostatics(p, w)
+
+
+@njit(inline="always", **JIT)
+def _segment_surface(p, w, i):
+    """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
+    the added mass of the submerged fraction, spread as the whole segment's (so the rotational
+    added inertia scales alike), and the buoyancy's moment arm to the submerged part's centroid.
+    Returns the fraction."""
+    wet, share_top, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
+    w[_SF, i] = wet
+    if wet < 1.0:
+        ma = p.added_mass[i]
+        lost = (1.0 - wet) * ma
+        w[_SA, i] = ma - lost
+        w[_SJ, i] = p.inertia[i] - lost * p.length[i] * p.length[i] / 12.0
+        w[_SQ, i] = (0.5 - share_top) * p.length[i] * wet * p.buoyancy[i]
+    else:
+        w[_SA, i] = p.added_mass[i]
+        w[_SJ, i] = p.inertia[i]
+        w[_SQ, i] = 0.0
+    return wet
+
+
+@njit(inline="always", **JIT)
+def _point_loads(p, k, z, out):
+    """Mass (3), apparent weight, drag factor (3) and heave stiffness of the point body at node k
+    (the end body at k = n) with its reference point at elevation z: the submerged fraction f
+    scales the buoyancy, the added mass and the drag (kernels.surface)."""
+    if k == p.n:
+        mass, weight = p.body_mass, p.body_wet_weight
+        drag0, drag1, drag2 = p.body_drag[0], p.body_drag[1], p.body_drag[2]
+    else:
+        mass, weight = p.node_mass[k], p.node_wet_weight[k]
+        drag0 = drag1 = drag2 = p.node_drag[k]
+    if p.node_shape[k, 0] == POINT:  # always submerged: the values as given
+        out[0], out[1], out[2], out[3] = mass[0], mass[1], mass[2], weight
+        out[4], out[5], out[6], out[7] = drag0, drag1, drag2, 0.0
+        return
+    f, slope, _ = submersion(z, p.node_shape[k])
+    lost = 1.0 - f
+    for c in range(3):
+        out[c] = mass[c] - lost * p.node_added[k, c]
+    out[3] = weight + lost * p.node_buoyancy[k]
+    out[4], out[5], out[6] = f * drag0, f * drag1, f * drag2
+    out[7] = -slope * p.node_buoyancy[k]
+
+
+@njit(inline="always", **JIT)
+def _hydrostatics(p, w):
+    """Rows _BM, _BW, _BD, _BK of every node from its elevation (node 0 carries none)."""
+    loads = np.empty(8)
+    for k in range(1, p.n + 1):
+        _point_loads(p, k, w[_P + 2, k], loads)
+        for r in range(8):
+            w[_BM + r, k] = loads[r]
+
+
+@njit(**JIT)
+def _point_force(p, k, w, t):
+    """Force on the point body at node k (not the cable): weight, drag (and at the bottom,
+    applied forces and ties)."""
+    vx, vy, vz = w[_V, k], w[_V + 1, k], w[_V + 2, k]
+    cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
+    rx, ry, rz = vx - cu, vy - cv, vz
+    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
+    dx, dy, dz = w[_BD, k] * speed, w[_BD + 1, k] * speed, w[_BD + 2, k] * speed
+    if k < p.n:
+        return -dx * rx, -dy * ry, -dz * rz - w[_BW, k]
+    fx, _, _ = _tf(p, CH_BODY_FX, t)
+    fy, _, _ = _tf(p, CH_BODY_FY, t)
+    fz, _, _ = _tf(p, CH_BODY_FZ, t)
+    fx -= dx * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
+    fy -= dy * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
+    fz -= dz * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
+    return fx, fy, fz - w[_BW, k]

@@ -1,0 +1,46 @@
+"""The contract of a model the run loop (``simulation``) reaches, as a Protocol with its rules
+(``tests/test_contracts.py`` checks every model module against it)."""
+
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+
+@runtime_checkable
+class RunModel(Protocol):
+    """What the run loop reaches of a model (a module): the contract every model honours
+    (``tests/test_contracts.py`` checks each one).
+
+    1. ``build(case, base_dir) -> system``: flat parameters (``system.params``, a NamedTuple of
+       arrays and numbers whose types depend on no count) and the initial state
+       (``system.y0``); a case the model cannot run raises CaseError naming the field.
+    2. ``workspace(system)``: the scratch its compiled functions share, allocated once per run.
+    3. ``rows(times, states, system, w) -> (rows, status)``: output rows (``time`` first), every
+       variable the model records, and the worst kernel status met.
+    4. ``sizes(system)``, ``coords(system)``: the dimensions and coordinates of its results.
+    5. ``rates(system, y)``: the magnitudes a divergence message names (``RATE_WHAT`` says what
+       they are), ``fastest_frequency(system)``: the rk4 step warning's estimate [rad/s] and
+       what sets it, ``state_scale(case, system)``: each state's typical size (the adaptive
+       integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
+       schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
+    6. ``NEWTON``: True when the fixed-step implicit schemes serve it (then it has a branch in
+       every overload of ``numerics.dispatch``).
+    Optional: ``VARIABLES`` (a single-cable model's records) or ``variables(system)`` (a
+    system's, per group); ``positions``, ``node_block``/``node_graph`` or
+    ``jacobian_sparsity`` (stiff integrators' Jacobian structure), ``check_implicit``,
+    ``refresh_interval``/``refresh`` (parameters replaced during a run: the servo).
+    """
+
+    RATE_WHAT: tuple
+    DAMPING_ADVICE: str
+    NEWTON: bool
+
+    def build(self, case, base_dir=None) -> Any: ...
+    def workspace(self, system) -> Any: ...
+    def rows(self, times, states, system, w) -> tuple[dict, int]: ...
+    def sizes(self, system) -> dict: ...
+    def coords(self, system) -> dict: ...
+    def rates(self, system, y) -> np.ndarray: ...
+    def fastest_frequency(self, system) -> tuple[float, str]: ...
+    def state_scale(self, case, system) -> np.ndarray: ...
+    def shortest_segment(self, system) -> float: ...
