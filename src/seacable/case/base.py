@@ -142,17 +142,9 @@ class Table(_Model):
 
 
 def _number_is_constant(value: Any) -> Any:
-    """Allow a plain number where a time function is expected (also one YAML 1.1 reads as text,
-    such as ``1.0e6``, which pydantic takes as a number everywhere else: the same here)."""
+    """Allow a plain number where a time function is expected."""
     if isinstance(value, int | float) and not isinstance(value, bool):
         return {"kind": "constant", "value": value}
-    if isinstance(value, str):
-        try:
-            number = float(value)
-        except ValueError:
-            return value
-        # text that reads as nan or inf stays text (refused): a finite number only
-        return {"kind": "constant", "value": number} if math.isfinite(number) else value
     return value
 
 

@@ -1,5 +1,6 @@
 """Read a YAML case file (never evaluating its text) into a validated, immutable Case."""
 
+import re
 import types
 import typing
 from pathlib import Path
@@ -13,6 +14,23 @@ from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 
 _TAGS = ("type", "kind", "model")
+
+
+class _CaseYAML(yaml.SafeLoader):
+    """PyYAML's safe loader reading numbers as engineers write them: YAML 1.1 wants a dot and
+    a signed exponent for a float, so ``1e6`` and ``1.0e6`` would be text; here they are
+    floats (as YAML 1.2 reads them), whatever field they fill."""
+
+
+_CaseYAML.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?(?:[0-9][0-9_]*)?(?:\.[0-9_]*)?[eE][-+]?[0-9]+$"),
+    list("-+0123456789."),
+)
+
+
+def _parse(text: str):
+    return yaml.load(text, Loader=_CaseYAML)  # a SafeLoader: never constructs objects
 
 
 def load_case(source: str | Path | dict) -> Case | SystemCase:
@@ -38,7 +56,7 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
         else:
             text = str(source)
         try:
-            data = yaml.safe_load(text)
+            data = _parse(text)
         except yaml.YAMLError as exc:
             raise CaseError(f"case file is not valid YAML: {exc}") from None
     if not isinstance(data, dict):
@@ -67,7 +85,7 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
     CaseError
         When the derived case is invalid, as for a file.
     """
-    data = yaml.safe_load(case_text(case))
+    data = _parse(case_text(case))
     derived = load_case(_merged(data, changes))
     derived._base_dir = case._base_dir
     return derived
