@@ -1,7 +1,6 @@
 """Every example matches its golden result (tests/golden/, recorded by tests/golden/record.py):
 a 1 s run at the recorded tight settings, every variable within 1e-9 of its scale."""
 
-
 import numpy as np
 import pytest
 import yaml
