@@ -94,11 +94,11 @@ from seacable.kernels.chain3d_layout import (
 )
 from seacable.kernels.chain3d_loads import (
     _hydrostatics,
-    _joint_torques,
     _kinematics_and_loads,
     _point_force,
     _point_loads,
-    _segment_surface,
+    joint_torques,
+    segment_surface,
 )
 from seacable.kernels.planar_chain import (
     BOTTOM_FREE,
@@ -112,11 +112,11 @@ from seacable.kernels.timefn import JIT
 # re-exported: the chain's other kernels and the lumped-mass kernel read them as ``c3.X``
 __all__ = [
     "_hydrostatics",
-    "_joint_torques",
+    "joint_torques",
     "_kinematics_and_loads",
     "_point_force",
     "_point_loads",
-    "_segment_surface",
+    "segment_surface",
     "BOTTOM_FREE",
     "BOTTOM_PINNED",
     "BOTTOM_SERVO",
@@ -223,6 +223,80 @@ def _sym_mul(m, x0, x1, x2):
     )
 
 
+@njit(inline="always", **JIT)
+def segment_back(i, li, mi, w, m, b, s, pinned):
+    """One segment of the backward sweep: from the articulated inertia ``m`` (symmetric 3x3 as
+    (11, 12, 13, 22, 23, 33)), bias ``b`` and, when ``pinned``, the reaction map ``s`` (3x3) at
+    the segment's lower node to those at its upper node, in place; the segment's rows _T1, _T2,
+    _ID, _H, _W (and _RS) of column i for the forward sweep. Reads rows _E, _U, _F, _TQ, _SA,
+    _SJ of column i; ``li``, ``mi`` its length and structural mass."""
+    ma = w[_SA, i]
+    mt = mi + ma
+    ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+    u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
+    t1x, t1y, t1z, t2x, t2y, t2z = _basis(ex, ey, ez)
+    a1x, a1y, a1z = _sym_mul(m, t1x, t1y, t1z)
+    a2x, a2y, a2z = _sym_mul(m, t2x, t2y, t2z)
+    mex, mey, mez = _sym_mul(m, ex, ey, ez)
+    base = w[_SJ, i] + 0.25 * mt * li * li
+    d11 = base + li * li * (t1x * a1x + t1y * a1y + t1z * a1z)
+    d12 = li * li * (t1x * a2x + t1y * a2y + t1z * a2z)
+    d22 = base + li * li * (t2x * a2x + t2y * a2y + t2z * a2z)
+    inv_det = 1.0 / (d11 * d22 - d12 * d12)
+    i11, i12, i22 = d22 * inv_det, -d12 * inv_det, d11 * inv_det
+    h1x, h1y, h1z = (
+        li * (0.5 * mt * t1x + a1x),
+        li * (0.5 * mt * t1y + a1y),
+        li * (0.5 * mt * t1z + a1z),
+    )
+    h2x, h2y, h2z = (
+        li * (0.5 * mt * t2x + a2x),
+        li * (0.5 * mt * t2y + a2y),
+        li * (0.5 * mt * t2z + a2z),
+    )
+    # generalised director force G = -e x torque
+    tqx, tqy, tqz = w[_TQ, i], w[_TQ + 1, i], w[_TQ + 2, i]
+    gx, gy, gz = -(ey * tqz - ez * tqy), -(ez * tqx - ex * tqz), -(ex * tqy - ey * tqx)
+    qx = -2.0 * li * u2 * mex + 2.0 * b[0] - w[_F, i]
+    qy = -2.0 * li * u2 * mey + 2.0 * b[1] - w[_F + 1, i]
+    qz = -2.0 * li * u2 * mez + 2.0 * b[2] - w[_F + 2, i]
+    w1 = t1x * gx + t1y * gy + t1z * gz - 0.5 * li * (t1x * qx + t1y * qy + t1z * qz)
+    w2 = t2x * gx + t2y * gy + t2z * gz - 0.5 * li * (t2x * qx + t2y * qy + t2z * qz)
+    k1x, k1y, k1z = i11 * h1x + i12 * h2x, i11 * h1y + i12 * h2y, i11 * h1z + i12 * h2z
+    k2x, k2y, k2z = i12 * h1x + i22 * h2x, i12 * h1y + i22 * h2y, i12 * h1z + i22 * h2z
+    if pinned:
+        # rows of dw/dL = -l T^T S
+        r1 = np.empty(3)
+        r2 = np.empty(3)
+        for c in range(3):
+            r1[c] = -li * (t1x * s[c] + t1y * s[3 + c] + t1z * s[6 + c])
+            r2[c] = -li * (t2x * s[c] + t2y * s[3 + c] + t2z * s[6 + c])
+            w[_RS + c, i] = r1[c]
+            w[_RS + 3 + c, i] = r2[c]
+        kk = (k1x, k1y, k1z, k2x, k2y, k2z)
+        for r in range(3):
+            for c in range(3):
+                s[3 * r + c] += kk[r] * r1[c] + kk[3 + r] * r2[c]
+    w[_T1, i], w[_T1 + 1, i], w[_T1 + 2, i] = t1x, t1y, t1z
+    w[_T2, i], w[_T2 + 1, i], w[_T2 + 2, i] = t2x, t2y, t2z
+    w[_ID11, i], w[_ID12, i], w[_ID22, i] = i11, i12, i22
+    w[_H, i], w[_H + 1, i] = h1x, h2x
+    w[_H + 2, i], w[_H + 3, i] = h1y, h2y
+    w[_H + 4, i], w[_H + 5, i] = h1z, h2z
+    w[_W, i], w[_W + 1, i] = w1, w2
+    # b <- b - F + K w - l u^2 (m/2 e + M e)
+    b[0] += -w[_F, i] + k1x * w1 + k2x * w2 - li * u2 * (0.5 * mi * ex + mex)
+    b[1] += -w[_F + 1, i] + k1y * w1 + k2y * w2 - li * u2 * (0.5 * mi * ey + mey)
+    b[2] += -w[_F + 2, i] + k1z * w1 + k2z * w2 - li * u2 * (0.5 * mi * ez + mez)
+    # M <- m_t I - m_a e e^T + M - K H^T
+    m[0] += mt - ma * ex * ex - (k1x * h1x + k2x * h2x)
+    m[1] += -ma * ex * ey - (k1x * h1y + k2x * h2y)
+    m[2] += -ma * ex * ez - (k1x * h1z + k2x * h2z)
+    m[3] += mt - ma * ey * ey - (k1y * h1y + k2y * h2y)
+    m[4] += -ma * ey * ez - (k1y * h1z + k2y * h2z)
+    m[5] += mt - ma * ez * ez - (k1z * h1z + k2z * h2z)
+
+
 @njit(**JIT)
 def _backward_sweep(t, y, p, w):
     n = p.n
@@ -242,73 +316,7 @@ def _backward_sweep(t, y, p, w):
         s[0] = s[4] = s[8] = 1.0
     _store_node(w, n, m, b, s)
     for i in range(n - 1, -1, -1):
-        li = p.length[i]
-        mi = p.mass[i]
-        ma = w[_SA, i]
-        mt = mi + ma
-        ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
-        u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
-        t1x, t1y, t1z, t2x, t2y, t2z = _basis(ex, ey, ez)
-        a1x, a1y, a1z = _sym_mul(m, t1x, t1y, t1z)
-        a2x, a2y, a2z = _sym_mul(m, t2x, t2y, t2z)
-        mex, mey, mez = _sym_mul(m, ex, ey, ez)
-        base = w[_SJ, i] + 0.25 * mt * li * li
-        d11 = base + li * li * (t1x * a1x + t1y * a1y + t1z * a1z)
-        d12 = li * li * (t1x * a2x + t1y * a2y + t1z * a2z)
-        d22 = base + li * li * (t2x * a2x + t2y * a2y + t2z * a2z)
-        inv_det = 1.0 / (d11 * d22 - d12 * d12)
-        i11, i12, i22 = d22 * inv_det, -d12 * inv_det, d11 * inv_det
-        h1x, h1y, h1z = (
-            li * (0.5 * mt * t1x + a1x),
-            li * (0.5 * mt * t1y + a1y),
-            li * (0.5 * mt * t1z + a1z),
-        )
-        h2x, h2y, h2z = (
-            li * (0.5 * mt * t2x + a2x),
-            li * (0.5 * mt * t2y + a2y),
-            li * (0.5 * mt * t2z + a2z),
-        )
-        # generalised director force G = -e x torque
-        tqx, tqy, tqz = w[_TQ, i], w[_TQ + 1, i], w[_TQ + 2, i]
-        gx, gy, gz = -(ey * tqz - ez * tqy), -(ez * tqx - ex * tqz), -(ex * tqy - ey * tqx)
-        qx = -2.0 * li * u2 * mex + 2.0 * b[0] - w[_F, i]
-        qy = -2.0 * li * u2 * mey + 2.0 * b[1] - w[_F + 1, i]
-        qz = -2.0 * li * u2 * mez + 2.0 * b[2] - w[_F + 2, i]
-        w1 = t1x * gx + t1y * gy + t1z * gz - 0.5 * li * (t1x * qx + t1y * qy + t1z * qz)
-        w2 = t2x * gx + t2y * gy + t2z * gz - 0.5 * li * (t2x * qx + t2y * qy + t2z * qz)
-        k1x, k1y, k1z = i11 * h1x + i12 * h2x, i11 * h1y + i12 * h2y, i11 * h1z + i12 * h2z
-        k2x, k2y, k2z = i12 * h1x + i22 * h2x, i12 * h1y + i22 * h2y, i12 * h1z + i22 * h2z
-        if pinned:
-            # rows of dw/dL = -l T^T S
-            r1 = np.empty(3)
-            r2 = np.empty(3)
-            for c in range(3):
-                r1[c] = -li * (t1x * s[c] + t1y * s[3 + c] + t1z * s[6 + c])
-                r2[c] = -li * (t2x * s[c] + t2y * s[3 + c] + t2z * s[6 + c])
-                w[_RS + c, i] = r1[c]
-                w[_RS + 3 + c, i] = r2[c]
-            kk = (k1x, k1y, k1z, k2x, k2y, k2z)
-            for r in range(3):
-                for c in range(3):
-                    s[3 * r + c] += kk[r] * r1[c] + kk[3 + r] * r2[c]
-        w[_T1, i], w[_T1 + 1, i], w[_T1 + 2, i] = t1x, t1y, t1z
-        w[_T2, i], w[_T2 + 1, i], w[_T2 + 2, i] = t2x, t2y, t2z
-        w[_ID11, i], w[_ID12, i], w[_ID22, i] = i11, i12, i22
-        w[_H, i], w[_H + 1, i] = h1x, h2x
-        w[_H + 2, i], w[_H + 3, i] = h1y, h2y
-        w[_H + 4, i], w[_H + 5, i] = h1z, h2z
-        w[_W, i], w[_W + 1, i] = w1, w2
-        # b <- b - F + K w - l u^2 (m/2 e + M e)
-        b[0] += -w[_F, i] + k1x * w1 + k2x * w2 - li * u2 * (0.5 * mi * ex + mex)
-        b[1] += -w[_F + 1, i] + k1y * w1 + k2y * w2 - li * u2 * (0.5 * mi * ey + mey)
-        b[2] += -w[_F + 2, i] + k1z * w1 + k2z * w2 - li * u2 * (0.5 * mi * ez + mez)
-        # M <- m_t I - m_a e e^T + M - K H^T
-        m[0] += mt - ma * ex * ex - (k1x * h1x + k2x * h2x)
-        m[1] += -ma * ex * ey - (k1x * h1y + k2x * h2y)
-        m[2] += -ma * ex * ez - (k1x * h1z + k2x * h2z)
-        m[3] += mt - ma * ey * ey - (k1y * h1y + k2y * h2y)
-        m[4] += -ma * ey * ez - (k1y * h1z + k2y * h2z)
-        m[5] += mt - ma * ez * ez - (k1z * h1z + k2z * h2z)
+        segment_back(i, p.length[i], p.mass[i], w, m, b, s, pinned)
         if i > 0:  # a point body at the top node of this segment joins the part below it
             nm = p.node_mass[i]
             if nm[0] != 0.0 or nm[1] != 0.0 or nm[2] != 0.0 or p.node_wet_weight[i] != 0.0:

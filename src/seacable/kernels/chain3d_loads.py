@@ -33,21 +33,21 @@ from seacable.kernels.timefn import JIT
 
 
 @njit(**JIT)
-def _joint_torques(y, p, w):
-    """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity."""
-    n = p.n
-    u0 = 3 * n + 1
+def joint_torques(n, y, e0, u0, ref, ref_omega, stiffness, damping, w):
+    """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity; joint i
+    joins segment i - 1 (for i = 0: the direction ``ref`` turning at ``ref_omega``, the body the
+    line hangs from) to segment i. Directors at ``y[e0 + 3 i]``, rates at ``y[u0 + 3 i]``."""
     for i in range(n):
         w[_TQ, i] = 0.0
         w[_TQ + 1, i] = 0.0
         w[_TQ + 2, i] = 0.0
     for i in range(n):
-        bx, by, bz = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        bx, by, bz = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
         if i == 0:
-            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
-            wax, way, waz = 0.0, 0.0, 0.0
+            ax, ay, az = ref[0], ref[1], ref[2]
+            wax, way, waz = ref_omega[0], ref_omega[1], ref_omega[2]
         else:
-            ax, ay, az = y[3 * i - 3], y[3 * i - 2], y[3 * i - 1]
+            ax, ay, az = y[e0 + 3 * i - 3], y[e0 + 3 * i - 2], y[e0 + 3 * i - 1]
             uax, uay, uaz = y[u0 + 3 * i - 3], y[u0 + 3 * i - 2], y[u0 + 3 * i - 1]
             wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
         ubx, uby, ubz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
@@ -57,8 +57,8 @@ def _joint_torques(y, p, w):
         cos_phi = ax * bx + ay * by + az * bz
         phi = math.atan2(sin_phi, cos_phi)
         factor = phi / sin_phi if sin_phi > 1e-12 else 1.0
-        k = p.joint_stiffness[i] * factor
-        c = p.joint_damping[i]
+        k = stiffness[i] * factor
+        c = damping[i]
         tx = k * cx + c * (wbx - wax)  # moment the joint exerts on segment a; -t on segment b
         ty = k * cy + c * (wby - way)
         tz = k * cz + c * (wbz - waz)
@@ -72,17 +72,15 @@ def _joint_torques(y, p, w):
 
 
 @njit(**JIT)
-def _kinematics_and_loads(t, y, p, w):
-    n = p.n
-    u0 = 3 * n + 1
-    cz_, cu_, cv_ = p.current_z, p.current_u, p.current_v
-    pos, vel, _ = top_motion(t, y, p)
-    for k in range(3):
-        w[_P + k, 0] = pos[k]
-        w[_V + k, 0] = vel[k]
+def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                  added_mass, inertia, joint_stiffness, joint_damping, ref, ref_omega,
+                  cz_, cu_, cv_, w):  # fmt: skip
+    """Every node's position and velocity from node 0's (rows _P, _V of column 0, set by the
+    caller) and the directors; every segment's loads (rows _F), joint and buoyancy moments
+    (_TQ) and its share of the free surface (_SF, _SA, _SJ, _SQ). One line's arrays."""
     for i in range(n):
-        li = p.length[i]
-        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        li = length[i]
+        ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
         ux, uy, uz = y[u0 + 3 * i], y[u0 + 3 * i + 1], y[u0 + 3 * i + 2]
         w[_E, i], w[_E + 1, i], w[_E + 2, i] = ex, ey, ez
         w[_U, i], w[_U + 1, i], w[_U + 2, i] = ux, uy, uz
@@ -100,12 +98,12 @@ def _kinematics_and_loads(t, y, p, w):
         vt = rx * ex + ry * ey + rz * ez
         nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        cn = -p.drag_normal[i] * vn
-        ct = -p.drag_tangential[i] * abs(vt) * vt
+        cn = -drag_normal[i] * vn
+        ct = -drag_tangential[i] * abs(vt) * vt
         w[_F, i] = cn * nx + ct * ex
         w[_F + 1, i] = cn * ny + ct * ey
-        w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i]
-        wet = _segment_surface(p, w, i)
+        w[_F + 2, i] = cn * nz + ct * ez - wet_weight[i]
+        wet = segment_surface(added_mass, inertia, length, buoyancy, w, i)
         if wet < 1.0:
             # (a branch that rewrites the loads: wholly submerged segments compute bitwise as
             # they always did) the drag and the buoyancy of the submerged part
@@ -113,18 +111,31 @@ def _kinematics_and_loads(t, y, p, w):
             ct *= wet
             w[_F, i] = cn * nx + ct * ex
             w[_F + 1, i] = cn * ny + ct * ey
-            w[_F + 2, i] = cn * nz + ct * ez - p.wet_weight[i] + (wet - 1.0) * p.buoyancy[i]
-    _joint_torques(y, p, w)
+            w[_F + 2, i] = cn * nz + ct * ez - wet_weight[i] + (wet - 1.0) * buoyancy[i]
+    joint_torques(n, y, e0, u0, ref, ref_omega, joint_stiffness, joint_damping, w)
     for i in range(n):
         if w[_SF, i] < 1.0:
             # the buoyancy's moment about the centre: (arm e) x (0, 0, lift)
             w[_TQ, i] += w[_SQ, i] * w[_E + 1, i]
             w[_TQ + 1, i] -= w[_SQ, i] * w[_E, i]
+
+
+@njit(**JIT)
+def _kinematics_and_loads(t, y, p, w):
+    pos, vel, _ = top_motion(t, y, p)
+    for k in range(3):
+        w[_P + k, 0] = pos[k]
+        w[_V + k, 0] = vel[k]
+    segment_loads(
+        p.n, y, 0, 3 * p.n + 1, p.length, p.wet_weight, p.buoyancy, p.drag_normal,
+        p.drag_tangential, p.added_mass, p.inertia, p.joint_stiffness, p.joint_damping,
+        p.top_reference, np.zeros(3), p.current_z, p.current_u, p.current_v, w,
+    )  # fmt: skip
     _hydrostatics(p, w)
 
 
 @njit(inline="always", **JIT)
-def _segment_surface(p, w, i):
+def segment_surface(added_mass, inertia, length, buoyancy, w, i):
     """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
     the added mass of the submerged fraction, spread as the whole segment's (so the rotational
     added inertia scales alike), and the buoyancy's moment arm to the submerged part's centroid.
@@ -132,14 +143,14 @@ def _segment_surface(p, w, i):
     wet, share_top, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
     w[_SF, i] = wet
     if wet < 1.0:
-        ma = p.added_mass[i]
+        ma = added_mass[i]
         lost = (1.0 - wet) * ma
         w[_SA, i] = ma - lost
-        w[_SJ, i] = p.inertia[i] - lost * p.length[i] * p.length[i] / 12.0
-        w[_SQ, i] = (0.5 - share_top) * p.length[i] * wet * p.buoyancy[i]
+        w[_SJ, i] = inertia[i] - lost * length[i] * length[i] / 12.0
+        w[_SQ, i] = (0.5 - share_top) * length[i] * wet * buoyancy[i]
     else:
-        w[_SA, i] = p.added_mass[i]
-        w[_SJ, i] = p.inertia[i]
+        w[_SA, i] = added_mass[i]
+        w[_SJ, i] = inertia[i]
         w[_SQ, i] = 0.0
     return wet
 

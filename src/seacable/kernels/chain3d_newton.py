@@ -63,7 +63,8 @@ def _put_identity(diag, upper, lower, rb, r0, cb, c0, value):
 @njit(**JIT)
 def _joint_moment(ax, ay, az, bx, by, bz, uax, uay, uaz, ubx, uby, ubz, k, c):
     """Moment joint (a, b) exerts on segment a (minus it on b): the gradient of k phi^2 / 2 and
-    a damper on the relative angular velocity (as ``_joint_torques``). Scalars only: it is
+    a damper on the relative angular velocity (as ``chain3d_loads.joint_torques``). Scalars
+    only: it is
     called 38 times per segment for each Newton matrix."""
     wax, way, waz = ay * uaz - az * uay, az * uax - ax * uaz, ax * uay - ay * uax
     wbx, wby, wbz = by * ubz - bz * uby, bz * ubx - bx * ubz, bx * uby - by * ubx
