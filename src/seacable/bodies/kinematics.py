@@ -18,6 +18,14 @@ from seacable.kernels.timefn import JIT, evaluate
 FIXED = 0  # held at rest (BodyKind.FIXED)
 IMPOSED = 1  # moved by six time functions (BodyKind.IMPOSED)
 DYNAMIC = 2  # moved by its equations of motion (BodyKind.DYNAMIC)
+TIP = 3  # a point body carried at the tip of a rigid-segment line: its motion is the tip's,
+# its mass and loads join the line's (no state of its own; lines.rigid_segments)
+
+
+@njit(inline="always", **JIT)
+def has_mass(kind):
+    """True for a body that forces accelerate (dynamic, or carried at a line's tip)."""
+    return kind == DYNAMIC or kind == TIP
 
 
 @njit(**JIT)
@@ -70,11 +78,13 @@ def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
 
 
 @njit(**JIT)
-def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, rot, vel, omega):
+def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, rot, vel, omega,
+                quat):  # fmt: skip
     """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
-    (nb, 3, 3), ``vel`` and ``omega`` (nb, 3). ``tf`` is the tuple of time-function arrays
-    (breaks, coefs, count, sine, build_up); an imposed body's channels are x, y, z [m], roll,
-    pitch, yaw [rad] from ``channel[b]`` on (its angles read only when ``turns[b]``)."""
+    (nb, 3, 3), ``quat`` (nb, 4), ``vel`` and ``omega`` (nb, 3). ``tf`` is the tuple of
+    time-function arrays (breaks, coefs, count, sine, build_up); an imposed body's channels
+    are x, y, z [m], roll, pitch, yaw [rad] from ``channel[b]`` on (its angles read only when
+    ``turns[b]``)."""
     breaks, coefs, count, sine, build_up = tf
     angles = np.empty(3)
     rates = np.empty(3)
@@ -86,11 +96,12 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, r
                 vel[b, c] = y[v + c]
             if rigid[b] == 1:
                 rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot[b])
+                for c in range(4):
+                    quat[b, c] = y[q + 3 + c]
                 for c in range(3):
                     omega[b, c] = y[v + 3 + c]
             else:
-                rotation(1.0, 0.0, 0.0, 0.0, rot[b])
-                omega[b, :] = 0.0
+                _still(b, rot, omega, quat)
         elif kind[b] == IMPOSED:
             first = channel[b]
             for c in range(3):
@@ -98,8 +109,7 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, r
                 pos[b, c] = f
                 vel[b, c] = df
             if turns[b] == 0:
-                rotation(1.0, 0.0, 0.0, 0.0, rot[b])
-                omega[b, :] = 0.0
+                _still(b, rot, omega, quat)
                 continue
             for c in range(3):
                 a, da, _ = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
@@ -107,15 +117,29 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, r
                 rates[c] = da
             qw, qx, qy, qz = euler_quaternion(angles[0], angles[1], angles[2])
             rotation(qw, qx, qy, qz, rot[b])
+            quat[b, 0], quat[b, 1], quat[b, 2], quat[b, 3] = qw, qx, qy, qz
             euler_rates_omega(
                 angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], omega[b]
             )
-        else:
+        elif kind[b] == FIXED:
             for c in range(3):
                 pos[b, c] = pose0[b, c]
                 vel[b, c] = 0.0
                 omega[b, c] = 0.0
             rotation(pose0[b, 3], pose0[b, 4], pose0[b, 5], pose0[b, 6], rot[b])
+            for c in range(4):
+                quat[b, c] = pose0[b, 3 + c]
+        else:  # TIP: its position and velocity come from its line (lines.rigid_segments)
+            _still(b, rot, omega, quat)
+
+
+@njit(inline="always", **JIT)
+def _still(b, rot, omega, quat):
+    """No rotation: the identity orientation, no angular velocity."""
+    rotation(1.0, 0.0, 0.0, 0.0, rot[b])
+    omega[b, :] = 0.0
+    quat[b, 0] = 1.0
+    quat[b, 1] = quat[b, 2] = quat[b, 3] = 0.0
 
 
 @njit(**JIT)
@@ -124,21 +148,47 @@ def point_states(body, offset, pos, rot, vel, omega, ppos, pvel, parm):
     arm from its body's reference point (``parm``): r = R r_body, p = x + r,
     v = v_ref + omega x r."""
     for k in range(body.shape[0]):
-        b = body[k]
-        for c in range(3):
-            parm[k, c] = (
-                rot[b, c, 0] * offset[k, 0]
-                + rot[b, c, 1] * offset[k, 1]
-                + rot[b, c, 2] * offset[k, 2]
-            )
-        rx, ry, rz = parm[k, 0], parm[k, 1], parm[k, 2]
-        wx, wy, wz = omega[b, 0], omega[b, 1], omega[b, 2]
-        ppos[k, 0] = pos[b, 0] + rx
-        ppos[k, 1] = pos[b, 1] + ry
-        ppos[k, 2] = pos[b, 2] + rz
-        pvel[k, 0] = vel[b, 0] + wy * rz - wz * ry
-        pvel[k, 1] = vel[b, 1] + wz * rx - wx * rz
-        pvel[k, 2] = vel[b, 2] + wx * ry - wy * rx
+        point_state(k, body, offset, pos, rot, vel, omega, ppos, pvel, parm)
+
+
+@njit(inline="always", **JIT)
+def point_state(k, body, offset, pos, rot, vel, omega, ppos, pvel, parm):
+    """``point_states`` of point k alone."""
+    b = body[k]
+    for c in range(3):
+        parm[k, c] = (
+            rot[b, c, 0] * offset[k, 0] + rot[b, c, 1] * offset[k, 1] + rot[b, c, 2] * offset[k, 2]
+        )
+    rx, ry, rz = parm[k, 0], parm[k, 1], parm[k, 2]
+    wx, wy, wz = omega[b, 0], omega[b, 1], omega[b, 2]
+    ppos[k, 0] = pos[b, 0] + rx
+    ppos[k, 1] = pos[b, 1] + ry
+    ppos[k, 2] = pos[b, 2] + rz
+    pvel[k, 0] = vel[b, 0] + wy * rz - wz * ry
+    pvel[k, 1] = vel[b, 1] + wz * rx - wx * rz
+    pvel[k, 2] = vel[b, 2] + wx * ry - wy * rx
+
+
+@njit(**JIT)
+def point_acceleration(t, kind, channel, tf, acc, arm, omega, out):
+    """Acceleration (3) of a point at ``arm`` (earth frame) from its body's reference point:
+    a + alpha x r + w x (w x r), with the body's ``acc`` (6: a dynamic or tip body's, solved)
+    or its channels' (imposed), zero for a fixed body."""
+    a = np.zeros(6)
+    if kind == DYNAMIC or kind == TIP:
+        a[:] = acc
+    elif kind == IMPOSED:
+        imposed_acceleration(t, channel, tf, a)
+    r = arm
+    om = omega
+    ax, ay, az = (
+        om[1] * r[2] - om[2] * r[1],
+        om[2] * r[0] - om[0] * r[2],
+        om[0] * r[1] - om[1] * r[0],
+    )
+    out[0] = a[0] + a[4] * r[2] - a[5] * r[1] + om[1] * az - om[2] * ay
+    out[1] = a[1] + a[5] * r[0] - a[3] * r[2] + om[2] * ax - om[0] * az
+    out[2] = a[2] + a[3] * r[1] - a[4] * r[0] + om[0] * ay - om[1] * ax
 
 
 @njit(inline="always", **JIT)

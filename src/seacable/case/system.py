@@ -269,6 +269,34 @@ class LumpedMassLine(_Model):
     initial: Literal["catenary", "straight"] = "catenary"
 
 
+class RigidSegmentsLine(_Model):
+    """An inextensible line of rigid uniform cylinders in 3D (Jacquot & Marichal 1993), joined
+    by ball joints with bending springs (the line type's EI over the mean span of the two
+    segments; the first joint, at ``from``, against ``base_reference``) and dampers: drag on the
+    velocity relative to the current (normal pressure drag on d l, Richtmyer's tangential
+    friction), normal added mass, apparent weight, each segment as the free surface cuts it.
+
+    Node 0 follows the point ``from``. The last node either carries ``to``, a point body that no
+    other rigid-segment line ends on (the body moves with the line's end: a towed fish, a float,
+    a depressor between two cables; on the axes its ``dofs`` leave out it is held where it
+    starts), or is held on ``to``, a point of a fixed or imposed body (an anchor, a vehicle's
+    trajectory)."""
+
+    name: Name
+    model: Literal["rigid_segments_3d"]
+    from_: str = Field(alias="from")
+    to: str
+    sections: list[Section] = Field(min_length=1)
+    # initial shape: the inextensible catenary between the ends (hanging in the vertical plane
+    # through them; a body carried at the tip moves to the line's end), or a straight line
+    # from ``from`` towards ``to`` with the whole length
+    initial: Literal["catenary", "straight"] = "catenary"
+    joint_damping: NonNeg = 0.0  # [N m s/rad], every joint
+    # direction the first joint's spring is unloaded at, in the frame of ``from``'s body
+    # (unit vector); by default the first segment's initial direction
+    base_reference: Vector | None = None
+
+
 class Tie(_Model):
     """A massless elastic tie (a hawser, a mooring spring) between two body points: tension
     k (d - L0) + c dd/dt when stretched (d the distance between the points), or from the
@@ -301,7 +329,7 @@ class Tie(_Model):
         return self
 
 
-Line = Annotated[LumpedMassLine | Tie, Field(discriminator="model")]
+Line = Annotated[LumpedMassLine | RigidSegmentsLine | Tie, Field(discriminator="model")]
 
 
 class SystemCase(_Model):

@@ -18,7 +18,7 @@ from seacable.kernels.timefn import JIT
 
 @njit(inline="always", **JIT)  # inlined: a call would pass and count every array
 def add_all(
-    t, kind, body, at, first, data, mass, cog, volume, cob, fraction, y, q_at, pos, rot, vel,
+    t, kind, body, at, first, data, mass, cog, volume, cob, fraction, quat, pos, rot, vel,
     omega, gravity, rho, current_z, current_u, current_v, tf, rhs,
 ):  # fmt: skip
     """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6)."""
@@ -36,7 +36,6 @@ def add_all(
         elif k == APPLIED:
             applied.add(row, first[f], t, rot[b], tf, rhs[b])
         elif k == LINEAR_STIFFNESS:
-            q = q_at[b]
-            linear.add_stiffness(row, pos[b], y[q + 3 : q + 7], rhs[b])
+            linear.add_stiffness(row, pos[b], quat[b], rhs[b])
         elif k == LINEAR_DAMPING:
             linear.add_damping(row, vel[b], omega[b], rhs[b])

@@ -503,19 +503,23 @@ def rhs(t, y, p, w, ydot):
 @njit(**JIT)
 def project(y, p):
     """Put the state back on its manifold: unit directors, rates normal to them."""
-    n = p.n
-    u0 = 3 * n + 1
+    project_directors(y, p.n, 0, 3 * p.n + 1)
+
+
+@njit(**JIT)
+def project_directors(y, n, q, v):
+    """Unit directors at ``y[q + 3 i]``, their rates at ``y[v + 3 i]`` made normal to them."""
     for i in range(n):
-        ex, ey, ez = y[3 * i], y[3 * i + 1], y[3 * i + 2]
+        ex, ey, ez = y[q + 3 * i], y[q + 3 * i + 1], y[q + 3 * i + 2]
         inv = 1.0 / math.sqrt(ex * ex + ey * ey + ez * ez)
         ex *= inv
         ey *= inv
         ez *= inv
-        y[3 * i], y[3 * i + 1], y[3 * i + 2] = ex, ey, ez
-        dot = y[u0 + 3 * i] * ex + y[u0 + 3 * i + 1] * ey + y[u0 + 3 * i + 2] * ez
-        y[u0 + 3 * i] -= dot * ex
-        y[u0 + 3 * i + 1] -= dot * ey
-        y[u0 + 3 * i + 2] -= dot * ez
+        y[q + 3 * i], y[q + 3 * i + 1], y[q + 3 * i + 2] = ex, ey, ez
+        dot = y[v + 3 * i] * ex + y[v + 3 * i + 1] * ey + y[v + 3 * i + 2] * ez
+        y[v + 3 * i] -= dot * ex
+        y[v + 3 * i + 1] -= dot * ey
+        y[v + 3 * i + 2] -= dot * ez
 
 
 @njit(**JIT)

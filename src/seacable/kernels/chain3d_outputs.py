@@ -31,13 +31,15 @@ from seacable.kernels.timefn import JIT
 
 
 @njit(**JIT)
-def _energies(y, p, w):
-    n = p.n
+def segment_energies(n, length, mass, wet_weight, buoyancy, joint_stiffness, ref, w):
+    """Kinetic (own and added mass, translation and rotation), gravity and buoyancy potential
+    and joint-spring energy of one line's segments (its workspace ``w`` filled); joint 0 is
+    unloaded along ``ref``."""
     kinetic = 0.0
     gravity = 0.0
     elastic = 0.0
     for i in range(n):
-        li = p.length[i]
+        li = length[i]
         ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
         vx = 0.5 * (w[_V, i] + w[_V, i + 1])
         vy = 0.5 * (w[_V + 1, i] + w[_V + 1, i + 1])
@@ -45,19 +47,28 @@ def _energies(y, p, w):
         va = vx * ex + vy * ey + vz * ez
         v2 = vx * vx + vy * vy + vz * vz
         u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
-        kinetic += 0.5 * p.mass[i] * v2 + 0.5 * w[_SA, i] * (v2 - va * va)
+        kinetic += 0.5 * mass[i] * v2 + 0.5 * w[_SA, i] * (v2 - va * va)
         kinetic += 0.5 * w[_SJ, i] * u2
-        gravity += p.wet_weight[i] * (w[_P + 2, i] + 0.5 * li * ez)
+        gravity += wet_weight[i] * (w[_P + 2, i] + 0.5 * li * ez)
         if w[_SF, i] < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
             _, _, mean_depth = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
-            gravity += p.buoyancy[i] * (w[_P + 2, i] + 0.5 * li * ez - mean_depth)
+            gravity += buoyancy[i] * (w[_P + 2, i] + 0.5 * li * ez - mean_depth)
         if i == 0:
-            ax, ay, az = p.top_reference[0], p.top_reference[1], p.top_reference[2]
+            ax, ay, az = ref[0], ref[1], ref[2]
         else:
             ax, ay, az = w[_E, i - 1], w[_E + 1, i - 1], w[_E + 2, i - 1]
         cx, cy, cz = ay * ez - az * ey, az * ex - ax * ez, ax * ey - ay * ex
         phi = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ax * ex + ay * ey + az * ez)
-        elastic += 0.5 * p.joint_stiffness[i] * phi * phi
+        elastic += 0.5 * joint_stiffness[i] * phi * phi
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def _energies(y, p, w):
+    n = p.n
+    kinetic, gravity, elastic = segment_energies(
+        n, p.length, p.mass, p.wet_weight, p.buoyancy, p.joint_stiffness, p.top_reference, w
+    )
     for k in range(1, n + 1):
         kinetic += 0.5 * (w[_BM, k] * w[_V, k] ** 2 + w[_BM + 1, k] * w[_V + 1, k] ** 2)
         kinetic += 0.5 * w[_BM + 2, k] * w[_V + 2, k] ** 2

@@ -25,6 +25,7 @@ INT_FIELDS = frozenset({
     "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
+    "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
 })  # fmt: skip
 
 
@@ -34,6 +35,7 @@ class Layout:
 
     bodies: list[str] = field(default_factory=list)
     lines: list[str] = field(default_factory=list)  # lumped-mass lines
+    rigid: list[str] = field(default_factory=list)  # rigid-segment lines
     ties: list[str] = field(default_factory=list)
     points: list[tuple[int, str]] = field(default_factory=list)  # (body, point name)
     point_index: dict = field(default_factory=dict)  # "body.point" -> index
@@ -105,6 +107,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
         "body_cob": np.zeros((nb, 3)), "body_shape": np.zeros((nb, width)),
     }  # fmt: skip
+    tips = rigid_tips(case)
     q_at = v_at = 0
     y_q: list[float] = []
     y_v: list[float] = []
@@ -126,9 +129,10 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                     arrays["body_turns"][b] = 1
             continue
         rigid = isinstance(body, sch.RigidBody)
-        arrays["body_kind"][b] = kinematics.DYNAMIC
+        arrays["body_kind"][b] = kinematics.TIP if b in tips else kinematics.DYNAMIC
         arrays["body_rigid"][b] = 1 if rigid else 0
-        arrays["body_q"][b], arrays["body_v"][b] = q_at, v_at
+        if b not in tips:
+            arrays["body_q"][b], arrays["body_v"][b] = q_at, v_at
         arrays["body_mass"][b] = body.mass
         arrays["body_volume"][b] = body.displaced_volume()
         free = [1.0 if name in body.dofs else 0.0 for name in sch.DOF_NAMES]
@@ -147,12 +151,15 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             arrays["body_added"][b] = np.diag(added) if added.ndim == 1 else added
             q_at, v_at = q_at + 7, v_at + 6
         else:
-            y_q += list(body.position)
-            y_v += velocity
             arrays["body_added"][b, :3, :3] = np.diag(
                 np.zeros(3) if env.in_air else np.array(per_axis(body.added_mass), float)
             )
-            q_at, v_at = q_at + 3, v_at + 3
+            if b in tips:  # no state: the line's tip carries it; held axes stay here
+                arrays["body_pose"][b, :3] = body.position
+            else:
+                y_q += list(body.position)
+                y_v += velocity
+                q_at, v_at = q_at + 3, v_at + 3
         for k, spec in enumerate(body.external_forces):
             f["kind"].append(int(ForceKind[spec.model.upper()]))
             f["body"].append(b)
@@ -160,12 +167,17 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             f["first"].append(len(channels))
             data += _force_row(case, layout, spec, body, rho, base_dir, channels,
                                f"{where}.external forces[{k}]")  # fmt: skip
+    bodies_q, bodies_v = q_at, v_at
     lines = _lines(case, layout, rho, q_at, v_at)
-    n_q = q_at + lines.pop("interior_q")
-    n_v = v_at + lines.pop("interior_v")
+    q_at += lines.pop("interior_q")
+    v_at += lines.pop("interior_v")
+    rigid_lines = _rigid_lines(case, layout, rho, q_at, v_at, tips, arrays["body_free"])
+    n_q = q_at + rigid_lines.pop("directors")
+    n_v = v_at + rigid_lines.pop("rates")
     # velocity offsets are absolute: after every position
     arrays["body_v"] = np.where(arrays["body_v"] >= 0, arrays["body_v"] + n_q, -1)
     lines["line_v"] = lines["line_v"] + n_q
+    rigid_lines["rs_v"] = rigid_lines["rs_v"] + n_q
     ties = _ties(case, layout)
     points = np.array([b for b, _ in layout.points], dtype=np.int64)
     offsets = np.array([_offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
@@ -174,7 +186,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     fields: dict[str, Any] = dict(
         n_q=n_q, n_v=n_v, **arrays, point_body=points, point_offset=offsets,
         force_kind=f["kind"], force_body=f["body"], force_at=f["at"], force_first=f["first"],
-        force_data=np.array(data + [0.0]), **lines, **ties, slack_allowed=1,
+        force_data=np.array(data + [0.0]), **lines, **rigid_lines, **ties, slack_allowed=1,
+        stabilization_frequency=case.simulation.constraint_stabilization_frequency,
         gravity=env.gravity, rho=rho,
         seabed_z=-env.water_depth if (seabed and env.water_depth) else -1e30,
         seabed_friction=seabed.friction_coefficient if seabed else 0.0,
@@ -184,8 +197,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     )  # fmt: skip
     params = typed(SystemParams, fields, INT_FIELDS)
     y0 = np.zeros(n_q + n_v)
-    y0[:q_at] = y_q
-    y0[n_q : n_q + v_at] = y_v
+    y0[:bodies_q] = y_q
+    y0[n_q : n_q + bodies_v] = y_v
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
 
@@ -218,8 +231,8 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
     return []  # gravity, buoyancy: the body's own fields
 
 
-def _sections(case, line, rho):
-    """Per-segment arrays of a lumped-mass line from its sections."""
+def _sections(case, line, rho, extensible=True):
+    """Per-segment arrays of a line from its sections (``extensible``: EA and its damping)."""
     types = {t.name: t for t in case.line_types}
     env = case.environment
     out: dict[str, list] = {k: [] for k in (
@@ -232,7 +245,7 @@ def _sections(case, line, rho):
                 f"{where}.type: no line type '{section.type}'; line_types are {list(types)}"
             )
         t = types[section.type]
-        if t.axial_stiffness is None:
+        if extensible and t.axial_stiffness is None:
             raise CaseError(
                 f"{where}.type: line type '{t.name}' has no axial_stiffness; a lumped-mass line "
                 "needs EA [N]"
@@ -241,7 +254,7 @@ def _sections(case, line, rho):
         length = np.full(n, section.length / n)
         mass = t.mass_per_length * length
         area = math.pi * t.diameter**2 / 4
-        ea = t.axial_stiffness
+        ea = t.axial_stiffness or math.inf
         if t.axial_damping_ratio is not None:
             alpha = t.axial_damping_ratio * np.sqrt(mass * length / ea)
         else:
@@ -346,4 +359,132 @@ def _ties(case, layout) -> dict:
         out["tie_damping"].append(line.damping)
     fields: dict = {k: np.array(v) for k, v in out.items()}
     fields["tie_table"] = np.array(rows, dtype=float).reshape(-1, 2) if rows else np.zeros((1, 2))
+    return fields
+
+
+def _rigid(case) -> list[tuple[int, "sch.RigidSegmentsLine"]]:
+    return [(k, line) for k, line in enumerate(case.lines)
+            if isinstance(line, sch.RigidSegmentsLine)]  # fmt: skip
+
+
+def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
+    """{body index: rigid-line number} of the point bodies carried at a rigid-segment line's
+    tip. Refuses a tip that no sweep can carry: a rigid body, a body two such lines end on, a
+    ring of lines each carried by the next."""
+    names = [b.name for b in case.bodies]
+    tips: dict[int, int] = {}
+    base: dict[int, int] = {}  # rigid-line number -> base body
+    for r, (k, line) in enumerate(_rigid(case)):
+        where = f"lines[{k}] ({line.name}).to"
+        body_name = line.to.partition(".")[0]
+        start = line.from_.partition(".")[0]
+        if body_name not in names or start not in names:
+            continue  # named in the error of the point's resolution
+        b = names.index(body_name)
+        base[r] = names.index(start)
+        body = case.bodies[b]
+        if isinstance(body, sch.FixedBody | sch.ImposedBody):
+            continue  # held on a kinematic point
+        if isinstance(body, sch.RigidBody):
+            raise CaseError(
+                f"{where}: '{line.to}' is on the rigid body '{body_name}'; a rigid-segment "
+                "line's last node carries a point body or is held on a fixed or imposed body "
+                "(a rigid body there, closing a loop, is not supported yet): swap 'from' and "
+                "'to' so that the line starts at the rigid body"
+            )
+        if b in tips:
+            other = _rigid(case)[tips[b]][1].name
+            raise CaseError(
+                f"{where}: the point body '{body_name}' is already carried at the end of line "
+                f"'{other}'; one rigid-segment line may end on a point body (closing a loop of "
+                "inextensible lines is not supported yet): swap 'from' and 'to' of one of them"
+            )
+        tips[b] = r
+    for b, r in tips.items():  # walk down from each tip to its root: a ring never ends
+        seen, at = {b}, base[r]
+        while at in tips:
+            if at in seen:
+                ring = sorted(_rigid(case)[tips[x]][1].name for x in seen)
+                raise CaseError(
+                    f"lines {ring}: a ring of rigid-segment lines, each carried at the end of "
+                    "the next, with nothing fixed, imposed or free to start from; swap 'from' "
+                    "and 'to' of one of them"
+                )
+            seen.add(at)
+            at = base[tips[at]]
+    return tips
+
+
+def _depth(case, tips: dict[int, int], r: int) -> int:
+    """How many rigid lines carry line r's base (0: a base that no rigid line carries)."""
+    names = [b.name for b in case.bodies]
+    lines = _rigid(case)
+    depth, at = 0, names.index(lines[r][1].from_.partition(".")[0])
+    while at in tips:
+        depth += 1
+        at = names.index(lines[tips[at]][1].from_.partition(".")[0])
+    return depth
+
+
+def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
+    """Flat arrays of the rigid-segment lines (system.kernel's ``rs_`` fields); the order of
+    their sweeps, children first (a line carried at another's tip before that one)."""
+    keys = ("rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip")
+    out: dict[str, list] = {k: [] for k in keys}
+    held: list = []
+    ref: list = []
+    segs: dict[str, list] = {k: [] for k in (
+        "length", "mass", "added", "inertia", "wet_weight", "buoyancy", "drag_normal",
+        "drag_tangential", "joint_stiffness", "joint_damping")}  # fmt: skip
+    seg_count = node_count = directors = 0
+    for r, (k, line) in enumerate(_rigid(case)):
+        where = f"lines[{k}] ({line.name})"
+        layout.rigid.append(line.name)
+        props = _sections(case, line, rho, extensible=False)
+        n = len(props["length"])
+        lengths = props["length"]
+        out["rs_n"].append(n)
+        out["rs_seg"].append(seg_count)
+        out["rs_node"].append(node_count)
+        out["rs_q"].append(q_at + directors)
+        out["rs_v"].append(v_at + directors)
+        out["rs_from"].append(_point(case, layout, line.from_, f"{where}.from"))
+        out["rs_to"].append(_point(case, layout, line.to, f"{where}.to"))
+        tip = next((b for b, rr in tips.items() if rr == r), -1)
+        out["rs_tip"].append(tip)
+        held.append(np.ones(3) if tip < 0 else 1.0 - body_free[tip, :3])
+        ref.append(
+            np.full(3, np.nan)
+            if line.base_reference is None
+            else np.asarray(line.base_reference, float) / np.linalg.norm(line.base_reference)
+        )
+        if line.base_reference is not None and not np.linalg.norm(line.base_reference) > 0:
+            raise CaseError(f"{where}.base_reference: a direction needs a non-zero length")
+        mass, added = props["mass"], props["added_mass"]
+        # a joint stands for the bending over the mean span of its two segments; the first
+        # joint over the first segment
+        span = np.concatenate([[lengths[0]], 0.5 * (lengths[1:] + lengths[:-1])])
+        bend = np.concatenate([[props["bend"][0]], 0.5 * (props["bend"][1:] + props["bend"][:-1])])
+        values = {
+            "length": lengths, "mass": mass, "added": added,
+            "inertia": (mass + added) * lengths**2 / 12.0, "wet_weight": props["wet_weight"],
+            "buoyancy": props["buoyancy"], "drag_normal": props["drag_normal"],
+            "drag_tangential": props["drag_tangential"], "joint_stiffness": bend / span,
+            "joint_damping": np.full(n, line.joint_damping),
+        }  # fmt: skip
+        for key, value in values.items():
+            segs[key].append(value)
+        seg_count += n
+        node_count += n + 1
+        directors += 3 * n
+    nr = len(out["rs_n"])
+    depth = [_depth(case, tips, r) for r in range(nr)]
+    order = sorted(range(nr), key=lambda r: -depth[r])  # children first
+    fields: dict[str, Any] = {k: np.array(v, dtype=np.int64) for k, v in out.items()}
+    fields["rs_order"] = np.array(order, dtype=np.int64)
+    fields["rs_held"] = np.array(held, dtype=float).reshape(-1, 3)
+    fields["rs_ref"] = np.array(ref, dtype=float).reshape(-1, 3)
+    for key, parts in segs.items():
+        fields[f"rs_{key}"] = np.concatenate(parts) if parts else np.zeros(1)
+    fields.update(directors=directors, rates=directors)
     return fields

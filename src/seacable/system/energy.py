@@ -15,6 +15,7 @@ from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
 from seacable.forces import linear
 from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
+from seacable.kernels.chain3d_outputs import segment_energies
 from seacable.kernels.lumped_outputs import line_energies
 from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
@@ -63,7 +64,7 @@ def _bodies(y, p, w):
     m6 = np.empty((6, 6))
     bias = np.empty(6)
     for b in range(p.body_kind.shape[0]):
-        if p.body_kind[b] != kinematics.DYNAMIC:
+        if not kinematics.has_mass(p.body_kind[b]):
             continue
         scale = w.fraction[b] if p.body_shape[b, 0] != POINT else 1.0
         dynamics.rigid_mass(p.body_mass[b], p.body_cog[b], p.body_inertia[b], p.body_added[b],
@@ -88,8 +89,7 @@ def _bodies(y, p, w):
                 gravity -= weight * integral
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
-            q = p.body_q[b]
-            elastic += linear.stiffness_energy(row, w.pos[b], y[q + 3 : q + 7])
+            elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])
     for k in range(p.tie_from.shape[0]):
         a, c = p.tie_from[k], p.tie_to[k]
         d = 0.0
@@ -105,4 +105,27 @@ def energies(y, p, w):
     """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs."""
     k1, g1, e1 = _lines(y, p, w)
     k2, g2, e2 = _bodies(y, p, w)
-    return k1 + k2, g1 + g2, e1 + e2
+    k3, g3, e3 = _rigid(p, w)
+    return k1 + k2 + k3, g1 + g2 + g3, e1 + e2 + e3
+
+
+@njit(**JIT)
+def _rigid(p, w):
+    """The rigid lines' segments (kernels.chain3d_outputs.segment_energies)."""
+    kinetic = gravity = elastic = 0.0
+    ref = np.empty(3)
+    for li in range(p.rs_n.shape[0]):
+        n, s0, c0 = p.rs_n[li], p.rs_seg[li], p.rs_node[li]
+        base = p.point_body[p.rs_from[li]]
+        for c in range(3):
+            ref[c] = (w.rot[base, c, 0] * p.rs_ref[li, 0] + w.rot[base, c, 1] * p.rs_ref[li, 1]
+                      + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
+        e = s0 + n
+        k, g, el = segment_energies(
+            n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_wet_weight[s0:e], p.rs_buoyancy[s0:e],
+            p.rs_joint_stiffness[s0:e], ref, w.rs[:, c0 : c0 + n + 1],
+        )  # fmt: skip
+        kinetic += k
+        gravity += g
+        elastic += el
+    return kinetic, gravity, elastic

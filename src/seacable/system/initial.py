@@ -55,10 +55,14 @@ def _catenary(p, li, start, end, env, where):
     return nodes[::-1] if not flip else nodes
 
 
-def initial_state(built: BuiltSystem) -> np.ndarray:
+def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
+    """The initial state, and the parameters with every rigid line's first-joint reference
+    (its first segment's initial direction, unless the case gives one)."""
     p, case = built.params, built.case
     y = built.y0.copy()
-    ppos, pvel = end_points(built, y)
+    if len(p.rs_n):
+        y, p = _rigid_initial(built, y)
+    ppos, pvel = end_points(BuiltSystem(p, y, built.layout, case), y)
     lumped = [line for line in case.lines if isinstance(line, sch.LumpedMassLine)]
     for li, line in enumerate(lumped):
         n = p.line_n[li]
@@ -78,7 +82,91 @@ def initial_state(built: BuiltSystem) -> np.ndarray:
         y[v : v + 3 * (n - 1)] = (va + arc[1:-1, None] * (vb - va)[None, :]).ravel()
     if lumped and any(line.initial == "catenary" for line in lumped):
         y = static_lines(p, y)
-    return y
+    return y, p
+
+
+def _rigid_initial(built: BuiltSystem, y: np.ndarray):
+    """Directors of every rigid line from its initial shape, bases before the lines they
+    carry; rates zero (node 0 moves with its point)."""
+    p, case = built.params, built.case
+    rigid = [line for line in case.lines if isinstance(line, sch.RigidSegmentsLine)]
+    ref = p.rs_ref.copy()
+    y = y.copy()
+    for li in p.rs_order[::-1]:
+        line = rigid[li]
+        where = f"lines ({line.name})"
+        n, s0, q = int(p.rs_n[li]), int(p.rs_seg[li]), int(p.rs_q[li])
+        lengths = p.rs_length[s0 : s0 + n]
+        ppos, _ = end_points(BuiltSystem(p, y, built.layout, case), y)
+        start = ppos[p.rs_from[li]]
+        tip = int(p.rs_tip[li])
+        end = p.body_pose[tip, :3] if tip >= 0 else ppos[p.rs_to[li]]
+        total = float(lengths.sum())
+        distance = float(np.linalg.norm(end - start))
+        if tip < 0 and distance > total * (1 + 1e-9):
+            raise CaseError(
+                f"{where}: its ends are {distance:.6g} m apart, farther than its length "
+                f"{total:.6g} m; an inextensible line cannot reach: lengthen it or move its ends"
+            )
+        nodes = None
+        weight = float(p.rs_wet_weight[s0 : s0 + n].sum()) / total
+        if line.initial == "catenary" and distance < total * (1 - 1e-9) and weight > 0:
+            nodes = _hanging(start, end, lengths, weight)
+        if nodes is None:
+            chord = end - start if distance > 0 else np.array([0.0, 0.0, -1.0])
+            unit = chord / np.linalg.norm(chord)
+            arc = np.concatenate([[0.0], np.cumsum(lengths)])
+            nodes = start + arc[:, None] * unit[None, :]
+        if distance <= total:
+            nodes = _reach(nodes, lengths, start, end)
+        e = np.diff(nodes, axis=0)
+        e /= np.linalg.norm(e, axis=1)[:, None]
+        y[q : q + 3 * n] = e.ravel()
+        y[p.rs_v[li] : p.rs_v[li] + 3 * n] = 0.0
+        if np.isnan(ref[li]).any():
+            base = int(p.point_body[p.rs_from[li]])
+            w = kernel.make_work(p)
+            kernel.rhs(0.0, y, p, w, np.zeros_like(y))
+            ref[li] = w.rot[base].T @ e[0]
+    return y, p._replace(rs_ref=ref)
+
+
+def _hanging(start, end, lengths, weight):
+    """Nodes on the inextensible catenary from ``start`` to ``end`` (None when none joins
+    them)."""
+    low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
+    total = float(lengths.sum())
+    span_vector = high[:2] - low[:2]
+    span = float(np.hypot(*span_vector))
+    try:
+        h, v_f = catenary.solve(span, float(high[2] - low[2]), total, weight, np.inf, False)
+    except catenary.CatenaryError:
+        return None
+    s_high = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
+    x, z = catenary.profile(total - s_high, h, v_f, total, weight, np.inf, False)
+    direction = span_vector / span if span > 0 else np.zeros(2)
+    nodes = np.column_stack([low[0] + x * direction[0], low[1] + x * direction[1], low[2] + z])
+    return nodes[::-1] if not flip else nodes
+
+
+def _reach(nodes, lengths, start, end, sweeps: int = 200):
+    """Nodes moved so that every segment has its length and the chain joins ``start`` to
+    ``end`` (forward-and-backward reaching, from a nearby shape: the chords of a catenary are
+    a little shorter than its arcs)."""
+    nodes = nodes.copy()
+    n = len(lengths)
+    for _ in range(sweeps):
+        nodes[n] = end
+        for i in range(n - 1, -1, -1):
+            d = nodes[i] - nodes[i + 1]
+            nodes[i] = nodes[i + 1] + lengths[i] * d / np.linalg.norm(d)
+        nodes[0] = start
+        for i in range(n):
+            d = nodes[i + 1] - nodes[i]
+            nodes[i + 1] = nodes[i] + lengths[i] * d / np.linalg.norm(d)
+        if np.linalg.norm(nodes[n] - end) < 1e-10 * lengths.sum():
+            break
+    return nodes
 
 
 def _interior(p, at):

@@ -25,7 +25,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     built = _assemble(case, base_dir)
     if case.start == "static":
         topology.check_held(case)
-    y0 = initial_state(built)
+    y0, params = initial_state(built)
+    built = BuiltSystem(params=params, y0=built.y0, layout=built.layout, case=case)
     if case.start == "static":
         velocities = y0[built.params.n_q :].copy()
         y0 = statics.equilibrium(built, y0)
@@ -61,11 +62,11 @@ def _body_variables(body) -> dict:
     return out
 
 
-def _lumped_variables() -> dict:
+def _line_variables(tension: str) -> dict:
     out: dict[str, tuple[tuple[str, ...], str, str]] = {
         f"node_{c}": (("time", "node"), "m", f"node position, {c}") for c in AXES
     }
-    out["tension"] = (("time", "segment"), "N", "axial tension of the segment (no compression)")
+    out["tension"] = (("time", "segment"), "N", tension)
     for end in ("from", "to"):
         for c in AXES:
             out[f"{end}_force_{c}"] = (
@@ -74,6 +75,8 @@ def _lumped_variables() -> dict:
     return out
 
 
+LUMPED_TENSION = "axial tension of the segment (no compression)"
+RIGID_TENSION = "axial force at the segment's centre (positive pulling, negative compressed)"
 TIE_VARIABLES = {
     "tension": (("time",), "N", "tension of the tie (zero when slack)"),
     "distance": (("time",), "m", "distance between the tie's points"),
@@ -97,7 +100,10 @@ def variables(system: BuiltSystem) -> dict:
         for name, spec in _body_variables(body).items():
             out[f"bodies/{body.name}/{name}"] = spec
     for line in system.layout.lines:
-        for name, spec in _lumped_variables().items():
+        for name, spec in _line_variables(LUMPED_TENSION).items():
+            out[f"lines/{line}/{name}"] = spec
+    for line in system.layout.rigid:
+        for name, spec in _line_variables(RIGID_TENSION).items():
             out[f"lines/{line}/{name}"] = spec
     for line in system.layout.ties:
         for name, spec in TIE_VARIABLES.items():
@@ -111,6 +117,9 @@ def sizes(system: BuiltSystem) -> dict:
     for li, line in enumerate(system.layout.lines):
         out[f"lines/{line}/segment"] = int(p.line_n[li])
         out[f"lines/{line}/node"] = int(p.line_n[li]) + 1
+    for li, line in enumerate(system.layout.rigid):
+        out[f"lines/{line}/segment"] = int(p.rs_n[li])
+        out[f"lines/{line}/node"] = int(p.rs_n[li]) + 1
     return out
 
 
@@ -123,6 +132,10 @@ def coords(system: BuiltSystem) -> dict:
         out[f"lines/{line}/arc_length"] = (
             "node", arc, "m", "unstretched arc length from the 'from' end",
         )  # fmt: skip
+    for li, line in enumerate(system.layout.rigid):
+        n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
+        arc = np.concatenate([[0.0], np.cumsum(p.rs_length[s0 : s0 + n])])
+        out[f"lines/{line}/arc_length"] = ("node", arc, "m", "arc length from the 'from' end")
     return out
 
 
@@ -143,7 +156,10 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     ends = np.empty((m, nl, 2, 3))
     ties = np.empty((m, nt, 8))
     energy = np.empty((m, 3))
-    status = outputs.outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy)
+    rigid = outputs.rigid_rows(p, m)
+    status = outputs.outputs_chunk(
+        times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid
+    )
     out: dict = {"time": times}
     for k, name in enumerate(list(ENERGY_VARIABLES)[:3]):
         out[name] = energy[:, k]
@@ -158,6 +174,13 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
             out[f"lines/{line}/from_force_{axis}"] = ends[:, li, 0, c]
             out[f"lines/{line}/to_force_{axis}"] = ends[:, li, 1, c]
         out[f"lines/{line}/tension"] = tension[:, s0 : s0 + n]
+    for li, line in enumerate(system.layout.rigid):
+        n, c0, s0 = int(p.rs_n[li]), int(p.rs_node[li]), int(p.rs_seg[li])
+        for c, axis in enumerate(AXES):
+            out[f"lines/{line}/node_{axis}"] = rigid[0][:, c0 : c0 + n + 1, c]
+            out[f"lines/{line}/from_force_{axis}"] = rigid[2][:, li, 0, c]
+            out[f"lines/{line}/to_force_{axis}"] = rigid[2][:, li, 1, c]
+        out[f"lines/{line}/tension"] = rigid[1][:, s0 : s0 + n]
     for k, line in enumerate(system.layout.ties):
         out[f"lines/{line}/tension"] = ties[:, k, 0]
         out[f"lines/{line}/distance"] = ties[:, k, 1]

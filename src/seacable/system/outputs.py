@@ -9,42 +9,31 @@ from numba import njit
 
 from seacable.bodies import kinematics
 from seacable.bodies.dynamics import add_force
+from seacable.kernels import chain3d as c3
 from seacable.kernels.status import OK
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass
+from seacable.lines import lumped_mass, rigid_segments
 from seacable.system import energy as system_energy
 from seacable.system import kernel
 
 BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, force 3, moment 3
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _point_acceleration(t, p, w, k, out):
-    """Acceleration of point k: a + alpha x r + w x (w x r) of its body."""
     b = p.point_body[k]
-    acc = np.zeros(6)
-    if p.body_kind[b] == kinematics.DYNAMIC:
-        acc[:] = w.acc[b]
-    elif p.body_kind[b] == kinematics.IMPOSED:
-        kinematics.imposed_acceleration(t, p.body_channel[b], kernel._tf(p), acc)
-    r = w.parm[k]
-    om = w.omega[b]
-    ax, ay, az = (
-        om[1] * r[2] - om[2] * r[1],
-        om[2] * r[0] - om[0] * r[2],
-        om[0] * r[1] - om[1] * r[0],
+    kinematics.point_acceleration(
+        t, p.body_kind[b], p.body_channel[b], kernel._tf(p), w.acc[b], w.parm[k], w.omega[b], out
     )
-    out[0] = acc[0] + acc[4] * r[2] - acc[5] * r[1] + om[1] * az - om[2] * ay
-    out[1] = acc[1] + acc[5] * r[0] - acc[3] * r[2] + om[2] * ax - om[0] * az
-    out[2] = acc[2] + acc[3] * r[1] - acc[4] * r[0] + om[0] * ay - om[1] * ax
 
 
 @njit(**JIT)
-def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy):
+def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid):
     """Rows of every output time (bodies (m, nb, BODY_COLUMNS), nodes (m, total nodes, 3),
     tension (m, total segments), ends (m, nl, 2, 3): force of the line on its from / to
     point, ties (m, nt, 8): tension, length, from point, to point, energy (m, 3): kinetic,
-    gravity potential, elastic (system.energy))."""
+    gravity potential, elastic (system.energy)); ``rigid`` the rigid lines' (nodes, tension,
+    ends) alike."""
     status = OK
     ydot = np.empty(states.shape[1])
     a = np.empty(3)
@@ -86,9 +75,47 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
             for c in range(3):
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
+        _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j])
         _bodies(y, p, w, on_body, bodies[j])
         energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(y, p, w)
     return status
+
+
+def rigid_rows(p, m: int) -> tuple:
+    """Arrays of ``m`` rows of the rigid lines' outputs: nodes, tensions, end forces."""
+    nodes = int((p.rs_n + 1).sum())
+    return (np.empty((m, nodes, 3)), np.empty((m, int(p.rs_n.sum()))),
+            np.empty((m, len(p.rs_n), 2, 3)))  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def _rigid_rows(p, w, on_body, nodes, tension, ends):
+    """Every rigid line's nodes, tensions at its segments' centres and forces on its ends."""
+    for li in range(p.rs_n.shape[0]):
+        n, c0, s0 = p.rs_n[li], p.rs_node[li], p.rs_seg[li]
+        ws = w.rs[:, c0 : c0 + n + 1]
+        held = p.rs_held[li]
+        pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
+        force = w.rs_force[li]
+        for k in range(n + 1):
+            for c in range(3):
+                nodes[c0 + k, c] = ws[c3._P + c, k]
+        above = rigid_segments.node_force(ws, 0, force, pinned)
+        for c in range(3):
+            ends[li, 0, c] = -above[c]
+        for i in range(n):
+            below = rigid_segments.node_force(ws, i + 1, force, pinned)
+            e0, e1, e2 = ws[c3._E, i], ws[c3._E + 1, i], ws[c3._E + 2, i]
+            t_top = -(e0 * above[0] + e1 * above[1] + e2 * above[2])
+            t_bottom = -(e0 * below[0] + e1 * below[1] + e2 * below[2])
+            tension[s0 + i] = 0.5 * (t_top + t_bottom)
+            above = below
+        for c in range(3):
+            ends[li, 1, c] = above[c]
+        for end in range(2):
+            point = p.rs_from[li] if end == 0 else p.rs_to[li]
+            f = ends[li, end]
+            add_force(w.parm[point], f[0], f[1], f[2], on_body[p.point_body[point]])
 
 
 @njit(**JIT)

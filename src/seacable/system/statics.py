@@ -424,7 +424,7 @@ def line_loads(built: BuiltSystem, y: np.ndarray) -> np.ndarray:
     outputs.outputs_chunk(
         np.zeros(1), y[None, :], p, kernel.make_work(p), bodies,
         np.empty((1, len(p.node_mass), 3)), np.empty((1, len(p.seg_length))),
-        np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)), np.empty((1, 3)),
+        np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)), np.empty((1, 3)), outputs.rigid_rows(p, 1),
     )  # fmt: skip
     return bodies[0, :, 12:18].copy()
 
