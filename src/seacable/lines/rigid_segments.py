@@ -25,6 +25,7 @@ from seacable.kernels.chain3d_layout import (
     _A,
     _E,
     _EDD,
+    _F,
     _H,
     _ID11,
     _ID12,
@@ -32,6 +33,7 @@ from seacable.kernels.chain3d_layout import (
     _RS,
     _T1,
     _T2,
+    _TQ,
     _U,
     _W,
 )
@@ -170,3 +172,44 @@ def node_force(w, k, held_force, pinned):
     """lam_k: the force the part of the line above node k exerts on node k and below it (at
     node 0, the force the base applies to the line; at the tip, the line's pull on the tip)."""
     return c3._node_force(w, k, held_force, pinned)
+
+
+@njit(**JIT)
+def march(n, w, lam, e):
+    """At rest, from the tip's force ``lam``: each segment turned along the pull it carries,
+    e_i = -(lam_(i+1) - F_i / 2) / |...| (tension positive, joint springs ignored; F_i its loads
+    as ``w`` holds them), into ``e`` (3 n); lam_i = lam_(i+1) - F_i. One pass of the fixed
+    point that gives the statics of a hanging or towed line its first shape."""
+    for i in range(n - 1, -1, -1):
+        hx = lam[0] - 0.5 * w[_F, i]
+        hy = lam[1] - 0.5 * w[_F + 1, i]
+        hz = lam[2] - 0.5 * w[_F + 2, i]
+        size = (hx * hx + hy * hy + hz * hz) ** 0.5
+        if size > 0.0:
+            e[3 * i], e[3 * i + 1], e[3 * i + 2] = -hx / size, -hy / size, -hz / size
+        else:
+            e[3 * i], e[3 * i + 1], e[3 * i + 2] = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+        for c in range(3):
+            lam[c] -= w[_F + c, i]
+
+
+@njit(**JIT)
+def moment_balance(n, length, w, lam, out):
+    """At rest: the force lam_k down the line from the tip's ``lam`` (lam_i = lam_(i+1) - F_i,
+    F_i the segment's loads) and each segment's moment about its centre,
+    l e x (lam_(i+1) - F_i / 2) - torque_i, on (t1, t2) into ``out`` (2 n): zero when the
+    segment is in balance. Returns lam_0 in ``lam``."""
+    for i in range(n - 1, -1, -1):
+        li = length[i]
+        ex, ey, ez = w[_E, i], w[_E + 1, i], w[_E + 2, i]
+        hx = lam[0] - 0.5 * w[_F, i]
+        hy = lam[1] - 0.5 * w[_F + 1, i]
+        hz = lam[2] - 0.5 * w[_F + 2, i]
+        mx = li * (ey * hz - ez * hy) - w[_TQ, i]
+        my = li * (ez * hx - ex * hz) - w[_TQ + 1, i]
+        mz = li * (ex * hy - ey * hx) - w[_TQ + 2, i]
+        t1x, t1y, t1z, t2x, t2y, t2z = c3._basis(ex, ey, ez)
+        out[2 * i] = t1x * mx + t1y * my + t1z * mz
+        out[2 * i + 1] = t2x * mx + t2y * my + t2z * mz
+        for c in range(3):
+            lam[c] -= w[_F + c, i]

@@ -154,6 +154,7 @@ class SystemWork(NamedTuple):
     rs_force: np.ndarray  # (nr, 3) holding force L at a held tip (its constant part l0 between
     # the backward and the forward sweeps)
     rs_la: np.ndarray  # (nr, 9) dL/dA_0, row-major
+    own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -171,6 +172,7 @@ def make_work(p: SystemParams) -> SystemWork:
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros((c3.N_WORK_ROWS, rs_nodes)),
         rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
+        own_load=np.zeros((nb, 3)),
     )  # fmt: skip
 
 
@@ -246,6 +248,10 @@ def evaluate(t, y, p, w, ydot):
         p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat, w.pos, w.rot, w.vel,
         w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, _tf(p), w.load,
     )  # fmt: skip
+    if p.rs_n.shape[0] > 0:
+        for b in range(w.load.shape[0]):  # for the statics' moment balance of rigid lines
+            for c in range(3):
+                w.own_load[b, c] = w.load[b, c]
     if p.rs_n.shape[0] > 0 and not _rigid_backward(t, p, w):
         status = SINGULAR_CLOSURE
     if not _bodies(y, p, w, ydot):
@@ -511,3 +517,35 @@ def project(y, p):
             norm = np.sqrt(y[q] ** 2 + y[q + 1] ** 2 + y[q + 2] ** 2 + y[q + 3] ** 2)
             for c in range(4):
                 y[q + c] /= norm
+
+
+@njit(**JIT)
+def rigid_moments(p, w, use, out, march):
+    """After ``rhs`` at rest: every rigid line's moment balance (lines.rigid_segments
+    .moment_balance) into ``out`` (2 per segment, line after line), for the lines with
+    ``use[li]`` (trees whose tips are all free), children first: a tip body's force is its own
+    loads and its carried lines' pull. With ``march``: instead, each segment's director along
+    the pull it carries (lines.rigid_segments.march) into ``out`` (3 per segment)."""
+    lam = np.empty(3)
+    pull = np.zeros((p.body_kind.shape[0], 3))
+    at = np.empty(p.rs_n.shape[0], dtype=np.int64)
+    total = 0
+    for li in range(p.rs_n.shape[0]):
+        at[li] = total
+        total += (3 if march else 2) * p.rs_n[li]
+    for j in range(p.rs_order.shape[0]):
+        li = p.rs_order[j]
+        if not use[li]:
+            continue
+        n, s0, ws = _rs_view(p, w, li)
+        tip = p.rs_tip[li]
+        for c in range(3):
+            lam[c] = -(w.own_load[tip, c] + pull[tip, c])
+        if march:
+            rigid_segments.march(n, ws, lam, out[at[li] : at[li] + 3 * n])
+        else:
+            rigid_segments.moment_balance(n, p.rs_length[s0 : s0 + n], ws, lam,
+                                          out[at[li] : at[li] + 2 * n])  # fmt: skip
+        base = p.point_body[p.rs_from[li]]
+        for c in range(3):
+            pull[base, c] -= lam[c]

@@ -193,7 +193,9 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
 def _size(system: BuiltSystem) -> float:
     """A length scale of the system [m]: its lines' total length, else 1 m."""
     p = system.params
-    return float(max(1.0, p.seg_length.sum() if len(p.line_n) else 1.0))
+    total = (p.seg_length.sum() if len(p.line_n) else 0.0) + (
+        p.rs_length.sum() if len(p.rs_n) else 0.0)  # fmt: skip
+    return float(max(1.0, total))
 
 
 def state_scale(case, system: BuiltSystem) -> np.ndarray:
@@ -251,26 +253,31 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     rows: list[int] = []
     cols: list[int] = []
 
+    size = {1: 4, 3: 3}  # a quaternion, a director (and its rate)
+
     def positions(i: int) -> range:
-        return range(coords.q[i], coords.q[i] + 4) if coords.kind[i] == 1 else range(
-            coords.q[i], coords.q[i] + 1)  # fmt: skip
+        return range(coords.q[i], coords.q[i] + size.get(int(coords.kind[i]), 1))
+
+    def velocities(i: int) -> range:
+        return range(coords.v[i], coords.v[i] + (3 if coords.kind[i] == 3 else 1))
 
     for i in range(len(coords.kind)):
         for k in positions(i):  # dq/dt from v (a quaternion: from omega and itself)
-            rows.append(k)
-            cols.append(int(coords.v[i]))
-            if coords.kind[i] == 1:
-                rows.extend([k] * 4)
+            rows.extend([k] * len(velocities(i)))
+            cols.extend(velocities(i))
+            if coords.kind[i] in size:
+                rows.extend([k] * len(positions(i)))
                 cols.extend(positions(i))
     for i, j in zip(coupled.row, coupled.col, strict=True):
-        v = int(coords.v[i])
-        for k in positions(j):
-            rows.append(v)
-            cols.append(k)
-        rows.append(v)
-        cols.append(int(coords.v[j]))
+        for v in velocities(i):
+            for k in (*positions(j), *velocities(j)):
+                rows.append(v)
+                cols.append(k)
     return sparse.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
 
 
 def shortest_segment(system: BuiltSystem) -> float:
-    return float(system.params.seg_length.min())
+    p = system.params
+    lengths = [p.seg_length[: int(p.line_n.sum())], p.rs_length[: int(p.rs_n.sum())]]
+    every = np.concatenate(lengths)
+    return float(every.min()) if every.size else 1.0

@@ -7,7 +7,9 @@ nodes' neighbours tied to the bodies it hangs from, ties joining bodies), solved
 
 Coordinates ("increments"): per dynamic body its free translations (earth x, y, z) and its
 free rotations (a rotation vector in the earth frame, applied as exp(theta) to its
-orientation), then every interior node's position. The same coordinates carry the
+orientation), then every interior node's position, then every rigid segment's turn on the two
+directions t1, t2 normal to its director (kernels.chain3d._basis; the residual is the
+director's acceleration on them). The same coordinates carry the
 linearisation: ``jacobian`` gives d(rates)/d(increments, velocities) about any state.
 """
 
@@ -31,10 +33,12 @@ class StaticsError(SeacableError):
 
 @dataclass(frozen=True)
 class Coordinates:
-    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node; ``body`` its
-    body (-1 for a node); ``axis`` 0..2; ``q`` its position in y (translation, node) or the
-    body's first quaternion entry; ``v`` the state index of its velocity; ``line`` (-1 for a
-    body)."""
+    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node, 3 director;
+    ``body`` its body (-1 for a node or director); ``axis`` 0..2 (a director's: 0 along t1, 1
+    along t2); ``q`` its position in y (translation, node), the body's first quaternion entry
+    or the director's first entry; ``v`` the state index of its velocity (a director's first
+    rate); ``line`` (-1 for a body; a lumped line's index for a node, a rigid line's for a
+    director)."""
 
     kind: np.ndarray
     body: np.ndarray
@@ -61,6 +65,11 @@ def coordinates(p: kernel.SystemParams) -> Coordinates:
         q, v = int(p.line_q[li]), int(p.line_v[li])
         for k in range(3 * (int(p.line_n[li]) - 1)):
             rows.append((2, -1, k % 3, q + k, v + k, li))
+    for li in range(len(p.rs_n)):
+        q, v = int(p.rs_q[li]), int(p.rs_v[li])
+        for i in range(int(p.rs_n[li])):
+            for axis in range(2):
+                rows.append((3, -1, axis, q + 3 * i, v + 3 * i, li))
     table = np.array(rows, dtype=np.int64).reshape(-1, 6)
     return Coordinates(*(table[:, c].copy() for c in range(6)))
 
@@ -84,11 +93,42 @@ def _rotate(quaternion: np.ndarray, theta: np.ndarray) -> np.ndarray:
     return out / np.linalg.norm(out)
 
 
+def normal_basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """t1, t2 (m, 3) normal to the unit vectors e (m, 3), as kernels.chain3d._basis builds
+    them."""
+    a = np.abs(e)
+    t1 = np.where(
+        ((a[:, 0] <= a[:, 1]) & (a[:, 0] <= a[:, 2]))[:, None],
+        np.column_stack([np.zeros(len(e)), e[:, 2], -e[:, 1]]),
+        np.where(
+            (a[:, 1] <= a[:, 2])[:, None],
+            np.column_stack([-e[:, 2], np.zeros(len(e)), e[:, 0]]),
+            np.column_stack([e[:, 1], -e[:, 0], np.zeros(len(e))]),
+        ),
+    )
+    t1 /= np.linalg.norm(t1, axis=1)[:, None]
+    return t1, np.cross(e, t1)
+
+
+def _tangents(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarray:
+    """The direction (m, 3) each director increment of ``which`` turns its director along."""
+    index = coords.q[which][:, None] + np.arange(3)[None, :]
+    t1, t2 = normal_basis(y[index])
+    return np.where((coords.axis[which] == 0)[:, None], t1, t2)
+
+
 def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
     """The state moved by the increments ``dx``."""
     out = y.copy()
-    plain = coords.kind != 1
+    plain = (coords.kind == 0) | (coords.kind == 2)
     np.add.at(out, coords.q[plain], dx[plain])
+    turned = np.flatnonzero(coords.kind == 3)
+    if turned.size:
+        index = coords.q[turned][:, None] + np.arange(3)[None, :]
+        np.add.at(out, index, dx[turned][:, None] * _tangents(y, coords, turned))
+        first = np.unique(coords.q[turned])
+        rows = first[:, None] + np.arange(3)[None, :]
+        out[rows] /= np.linalg.norm(out[rows], axis=1)[:, None]
     for b in np.unique(coords.body[coords.kind == 1]):
         mine = (coords.kind == 1) & (coords.body == b)
         theta = np.zeros(3)
@@ -111,6 +151,8 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
         local = int(coords.q[i] - p.line_q[li]) // 3
         node_index.setdefault((li, local), []).append(i)
     links: list[tuple[list[int], list[int]]] = []
+    for cols in _rigid_groups(p, coords, body_cols):
+        links.append((cols, cols))
     moving = set(body_cols)
     # bodies that share a line or tie are coupled; every body to itself
     groups: list[list[int]] = [[b] for b in moving]
@@ -145,6 +187,37 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
     return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
 
 
+def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> list[list[int]]:
+    """The columns of each tree of rigid lines and the bodies they join (coupled densely: a
+    sweep couples every segment of a line); a body carried at a tip gets its tree's columns
+    in ``body_cols`` (its motion is its line's)."""
+    parent: dict[tuple[str, int], tuple[str, int]] = {}
+
+    def root(x):
+        parent.setdefault(x, x)
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for li in range(len(p.rs_n)):
+        parent[root(("line", li))] = root(("body", int(p.point_body[p.rs_from[li]])))
+        if p.rs_tip[li] >= 0:
+            parent[root(("body", int(p.rs_tip[li])))] = root(("line", li))
+    members: dict[tuple[str, int], list[int]] = {}
+    for i in np.flatnonzero(coords.kind == 3):
+        members.setdefault(root(("line", int(coords.line[i]))), []).append(int(i))
+    for li in range(len(p.rs_n)):
+        for b in (int(p.point_body[p.rs_from[li]]), int(p.rs_tip[li])):
+            if b >= 0 and b in body_cols and p.body_kind[b] != kinematics.TIP:
+                group = members.setdefault(root(("body", b)), [])
+                group.extend(c for c in body_cols[b] if c not in group)
+    for li in range(len(p.rs_n)):
+        if p.rs_tip[li] >= 0:
+            body_cols[int(p.rs_tip[li])] = members[root(("line", li))]
+    return list(members.values())
+
+
 def colour(structure: sparse.csr_matrix) -> np.ndarray:
     """Groups of columns that share no row (greedy), for finite differences."""
     csc = structure.tocsc()
@@ -171,9 +244,53 @@ class _Residual:
         self.w = kernel.make_work(p)
         self.ydot = np.zeros(p.n_q + p.n_v)
 
+        # rigid lines whose trees hang free (no held tip) balance moments (N m) rather than
+        # accelerations: the residual of the segments' statics, well scaled whatever the
+        # masses carried below them
+        self.free = free_trees(p)
+        self.directors = np.flatnonzero(coords.kind == 3)
+        self.moments = np.zeros(len(self.directors))
+        per_segment = np.repeat(np.arange(len(p.rs_n)), 2 * np.asarray(p.rs_n, dtype=int))
+        self.balanced = self.free[per_segment] if len(p.rs_n) else np.zeros(0, bool)
+
     def __call__(self, y: np.ndarray) -> np.ndarray:
         kernel.rhs(self.time, y, self.p, self.w, self.ydot)
-        return self.ydot[self.coords.v].copy()
+        out = accelerations(y, self.coords, self.ydot)
+        if self.balanced.any():
+            kernel.rigid_moments(self.p, self.w, self.free, self.moments, False)
+            out[self.directors[self.balanced]] = self.moments[self.balanced]
+        return out
+
+
+def free_trees(p: kernel.SystemParams) -> np.ndarray:
+    """Per rigid line: True when no line of its tree (the lines joined through the bodies
+    carried at their tips) is held at its tip."""
+    nr = len(p.rs_n)
+    tree = np.arange(nr)
+    carried_by = {int(p.rs_tip[li]): li for li in range(nr) if p.rs_tip[li] >= 0}
+    for li in range(nr):  # the root of each line: follow its base up while a line carries it
+        at = li
+        while int(p.point_body[p.rs_from[at]]) in carried_by:
+            at = carried_by[int(p.point_body[p.rs_from[at]])]
+        tree[li] = at
+    held: np.ndarray = np.asarray(p.rs_held).reshape(-1, 3).any(axis=1)
+    return np.array([not held[tree == tree[li]].any() for li in range(nr)], dtype=bool)
+
+
+def accelerations(y: np.ndarray, coords: Coordinates, ydot: np.ndarray) -> np.ndarray:
+    """The acceleration of each coordinate in the rates ``ydot`` (a director's on its turn's
+    direction)."""
+    out = ydot[coords.v].copy()
+    turned = np.flatnonzero(coords.kind == 3)
+    if turned.size:
+        index = coords.v[turned][:, None] + np.arange(3)[None, :]
+        out[turned] = np.einsum("ij,ij->i", ydot[index], _tangents(y, coords, turned))
+    return out
+
+
+def _angle(kind: np.ndarray) -> np.ndarray:
+    """True for a coordinate that is an angle [rad] (a body's turn, a director's)."""
+    return (kind == 1) | (kind == 3)
 
 
 def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matrix:
@@ -183,7 +300,7 @@ def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matr
     for c in range(int(colours.max()) + 1 if n else 0):
         columns = np.flatnonzero(colours == c)
         scale = np.where(
-            coords.kind[columns] == 1, 1.0, np.maximum(1.0, np.abs(y[coords.q[columns]]))
+            _angle(coords.kind[columns]), 1.0, np.maximum(1.0, np.abs(y[coords.q[columns]]))
         )
         step = 1e-7 * scale
         dx = np.zeros(n)
@@ -214,13 +331,15 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if not len(coords.kind):
         return y
     residual = _Residual(p, coords)
+    if residual.balanced.any():
+        y = _hang(p, y, residual.free)
     scale = float(np.abs(residual(y)).max()) + 1.0
     direct = _direct(built, coords, residual, y, iterations, tolerance * scale)
     r = residual(direct)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return direct
-    bodies = np.flatnonzero(coords.kind != 2)
-    if bodies.size:
+    bodies = np.flatnonzero(coords.kind <= 1)
+    if bodies.size and not len(p.rs_n):
         nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
         r = residual(nested)
         nodes = np.flatnonzero(coords.kind == 2)
@@ -232,6 +351,32 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
     raise StaticsError(_blame(built, coords, r))
+
+
+def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200):
+    """The rigid lines of free trees turned, again and again, along the pull each segment
+    carries (kernel.rigid_moments' march: the statics of a hanging or towed line as a fixed
+    point, tension positive), half a step at a time, until they stop turning: a first shape
+    from which Newton converges to the balance with every segment pulled, not to one of the
+    balances with segments folded back and pushed."""
+    w = kernel.make_work(p)
+    ydot = np.zeros_like(y)
+    index = np.concatenate([
+        np.arange(p.rs_q[li], p.rs_q[li] + 3 * p.rs_n[li]) for li in range(len(p.rs_n))
+    ])  # fmt: skip
+    turned = np.zeros(len(index))
+    mine = np.repeat(free, 3 * np.asarray(p.rs_n, dtype=int))
+    y = y.copy()
+    for _ in range(sweeps):
+        kernel.rhs(0.0, y, p, w, ydot)
+        kernel.rigid_moments(p, w, free, turned, True)
+        old = y[index].reshape(-1, 3)
+        new = np.where(mine.reshape(-1, 3), 0.5 * (old + turned.reshape(-1, 3)), old)
+        new /= np.linalg.norm(new, axis=1)[:, None]
+        y[index] = new.ravel()
+        if np.abs(new - old).max() < 1e-9:
+            break
+    return y
 
 
 def _homotopy(built, coords, residual, y, tolerance, smallest: float = 1e-3):
@@ -359,12 +504,19 @@ def _step_limit(built: BuiltSystem, coords: Coordinates, shortest: bool = False)
     for a body the free surface cuts (a step must not lift it clear of the water, where
     nothing tells Newton the way back)."""
     p = built.params
-    lengths = [
-        float(p.seg_length[p.line_seg[i] : p.line_seg[i] + p.line_n[i]].sum())
-        for i in range(len(p.line_n))
-    ] + [float(v) for v in p.tie_length if v > 0]
+    lengths = (
+        [
+            float(p.seg_length[p.line_seg[i] : p.line_seg[i] + p.line_n[i]].sum())
+            for i in range(len(p.line_n))
+        ]
+        + [float(v) for v in p.tie_length if v > 0]
+        + [
+            float(p.rs_length[p.rs_seg[i] : p.rs_seg[i] + p.rs_n[i]].sum())
+            for i in range(len(p.rs_n))
+        ]
+    )
     metres = max(1.0, 0.1 * (min(lengths) if shortest else sum(lengths))) if lengths else 1.0
-    limit = np.where(coords.kind == 1, 0.1, metres)
+    limit = np.where(_angle(coords.kind), 0.1, metres)
     for i in np.flatnonzero((coords.kind == 0) & (coords.axis == 2)):
         shape = p.body_shape[coords.body[i]]
         if shape[0] != surface.POINT:
@@ -381,6 +533,8 @@ def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
         what = ("x", "y", "z")[int(coords.axis[worst])]
         dof = "rotation about" if coords.kind[worst] == 1 else "force along"
         where = f"body '{name}' ({dof} {what}: acceleration {r[worst]:.3g} at rest)"
+    elif coords.kind[worst] == 3:
+        where = f"line '{built.layout.rigid[int(coords.line[worst])]}'"
     else:
         where = f"line '{built.layout.lines[int(coords.line[worst])]}'"
     return (
@@ -403,14 +557,20 @@ def jacobian(
     a = np.zeros((2 * n, 2 * n))
     a[:n, n:] = np.eye(n)
     for j in range(n):
-        h = 1e-6 * (1.0 if coords.kind[j] == 1 else max(1.0, abs(y[coords.q[j]])))
+        h = 1e-6 * (1.0 if _angle(coords.kind[j : j + 1])[0] else max(1.0, abs(y[coords.q[j]])))
         dx = np.zeros(n)
         dx[j] = h
         a[n:, j] = (residual(apply(y, coords, dx)) - residual(apply(y, coords, -dx))) / (2 * h)
         hv = 1e-6 * max(1.0, abs(y[coords.v[j]]))
         up, down = y.copy(), y.copy()
-        up[coords.v[j]] += hv
-        down[coords.v[j]] -= hv
+        if coords.kind[j] == 3:  # the director's rate along its turn's direction
+            at = coords.v[j] + np.arange(3)
+            step = hv * _tangents(y, coords, np.array([j]))[0]
+            up[at] += step
+            down[at] -= step
+        else:
+            up[coords.v[j]] += hv
+            down[coords.v[j]] -= hv
         a[n:, n + j] = (residual(up) - residual(down)) / (2 * hv)
     return a, coords
 
