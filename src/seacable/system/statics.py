@@ -273,7 +273,7 @@ def free_trees(p: kernel.SystemParams) -> np.ndarray:
         while int(p.point_body[p.rs_from[at]]) in carried_by:
             at = carried_by[int(p.point_body[p.rs_from[at]])]
         tree[li] = at
-    held: np.ndarray = np.asarray(p.rs_held).reshape(-1, 3).any(axis=1)
+    held = np.asarray(np.asarray(p.rs_held).reshape(-1, 3).sum(axis=1) > 0)
     return np.array([not held[tree == tree[li]].any() for li in range(nr)], dtype=bool)
 
 
