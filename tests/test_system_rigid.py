@@ -1,0 +1,213 @@
+"""Rigid-segment lines in a system: against today's single-cable model (a body carried at the
+end, a floating structure above a pinned end, a towed body's static shape), an invariant
+(energy of a tree of lines and bodies without damping) and the static balance of the bodies
+they carry; the cases the sweep cannot carry are refused naming the line."""
+
+import math
+
+import numpy as np
+import pytest
+
+from seacable.case.loader import load_case
+from seacable.errors import CaseError
+from seacable.simulation import simulate
+from seacable.system import model
+
+ROPE = {"name": "rope", "diameter": 0.02, "mass_per_length": 1.5, "drag_coefficient_normal": 0.0}
+WIRE = {"name": "wire", "diameter": 0.03, "mass_per_length": 2.5, "drag_coefficient_normal": 1.8,
+        "friction_coefficient": 0.02}  # fmt: skip
+WATER = {"water_density": 1025.0, "gravity": 9.81}
+
+
+def _sim(duration, dt, interval=0.1):
+    return {"duration": duration, "time_step": dt, "integrator": "rk4",
+            "output_interval": interval}  # fmt: skip
+
+
+def _line(name, a, b, length, segments, kind="rope", **more):
+    section = {"type": kind, "length": length, "segments": segments}
+    return {"name": name, "model": "rigid_segments_3d", "from": a, "to": b,
+            "sections": [section], **more}  # fmt: skip
+
+
+def _system(bodies, lines, simulation, environment=None, start="as_given", types=(ROPE,)):
+    return {"name": "rigid lines", "start": start, "environment": environment or
+            {"in_air": True, "gravity": 9.81}, "bodies": bodies, "line_types": list(types),
+            "lines": lines, "simulation": simulation}  # fmt: skip
+
+
+def _cable(top, bottom, angles, simulation, environment=None, **more):
+    """Today's single 3D cable: 10 m of ``ROPE`` (or ``more``) at ``angles`` from the vertical."""
+    cable = {"name": "cable", "model": "rigid_segments_3d", "links": len(angles), "length": 10.0,
+             "diameter": 0.02, "mass_per_length": 1.5, "drag_coefficient_normal": 0.0,
+             "top": top, "bottom": bottom, "initial": {"shape": "angles", "azimuth_deg": 0.0,
+                                                       "angles_deg": list(angles)}}  # fmt: skip
+    cable.update(more)
+    return {"name": "single cable", "environment": environment or {"in_air": True, "gravity": 9.81},
+            "cables": [cable], "simulation": simulation}  # fmt: skip
+
+
+def _gap(a, b) -> float:
+    return float(np.abs(a - b).max() / np.abs(a).max())
+
+
+def test_a_body_at_the_end_moves_as_todays_free_end():
+    """A fixed body, a 10-segment line in air and a point body with its weight at the end give
+    the motion and tensions of today's cable with a fixed top and a free end carrying the same
+    body (the body absorbed into the line's sweep as the free end's)."""
+    angle = math.degrees(math.atan2(6.0, 8.0))
+    old = _cable(
+        {"type": "fixed", "position": [0.0, 0.0, 0.0]},
+        {"type": "free", "body": {"mass": 20.0}},
+        [angle] * 10,
+        _sim(1.0, 1e-3),
+    )
+    new = _system(
+        [{"name": "pin", "type": "fixed", "position": [0, 0, 0]},
+         {"name": "ball", "type": "point", "position": [6.0, 0.0, -8.0], "mass": 20.0,
+          "external forces": [{"model": "gravity"}]}],
+        [_line("chain", "pin", "ball", 10.0, 10, initial="straight")], _sim(1.0, 1e-3),
+    )  # fmt: skip
+    a = simulate(load_case(old)).dataset
+    b = simulate(load_case(new)).dataset
+    assert _gap(a["node_x"].values[:, -1], b["bodies/ball/position_x"].values) < 1e-12
+    assert _gap(a["node_z"].values[:, -1], b["bodies/ball/position_z"].values) < 1e-12
+    assert _gap(a["tension"].values, b["lines/chain/tension"].values) < 1e-12
+    assert _gap(a["total_energy"].values, b["total_energy"].values) < 1e-12
+
+
+def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure():
+    """A rigid body with dofs [heave] (stiffness, damping, a sine force) over a line held on a
+    fixed anchor gives today's floating-structure top over a pinned end: the holding force is
+    eliminated into the body's articulated inertia through the tip's map dA_n/dA_0."""
+    sine = {"kind": "sine", "amplitude": 20000.0, "period": 6.0}
+    new = _system(
+        [{"name": "anchor", "type": "fixed", "position": [7.0, 0.0, -30.0]},
+         {"name": "buoy", "type": "rigid", "position": [0, 0, 0], "mass": 5000.0,
+          "added_mass": [0, 0, 2000.0, 0, 0, 0], "inertia": [1.0, 1.0, 1.0], "dofs": ["heave"],
+          "velocity": [0, 0, 0.5],
+          "external forces": [
+              {"model": "linear_stiffness", "diagonal": [0, 0, 8e4, 0, 0, 0],
+               "equilibrium_position": [0, 0, 0.3]},
+              {"model": "linear_damping", "diagonal": [0, 0, 1000.0, 0, 0, 0]},
+              {"model": "applied", "force_z": sine}]}],
+        [_line("leg", "buoy", "anchor", 32.0, 16, kind="wire")], _sim(2.0, 2e-3),
+        environment=WATER, types=(WIRE,),
+    )  # fmt: skip
+    built = model.build(load_case(new))
+    p = built.params
+    e = built.y0[p.rs_q[0] : p.rs_q[0] + 48].reshape(-1, 3)
+    assert np.allclose(e[:, 1], 0.0)
+    top = {"type": "floating_structure", "position": [0.0, 0.3], "mass": 5000.0,
+           "added_mass": 2000.0, "heave_stiffness": 8e4, "heave_damping": 1000.0,
+           "initial_heave": -0.3, "initial_heave_velocity": 0.5, "force": sine}  # fmt: skip
+    angles = np.degrees(np.arctan2(e[:, 0], -e[:, 2])).tolist()
+    old = _cable(top, {"type": "pinned", "anchor": [7.0, 0.0, -30.0]}, angles, _sim(2.0, 2e-3),
+                 environment=WATER,
+                 length=32.0, diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
+                 friction_coefficient=0.02)  # fmt: skip
+    a = simulate(load_case(old)).dataset
+    b = simulate(load_case(new)).dataset
+    assert _gap(a["node_z"].values[:, 0], b["bodies/buoy/position_z"].values) < 1e-9
+    assert _gap(a["tension"].values, b["lines/leg/tension"].values) < 1e-9
+    assert _gap(a["bottom_force_z"].values, b["lines/leg/to_force_z"].values) < 1e-9
+
+
+def _tree(start, environment, types, simulation, ship=None):
+    """A ship, a main cable to a depressor, a pennant to a towed fish."""
+    forces = [{"model": "gravity"}, {"model": "buoyancy"}]
+    drag = [] if environment.get("in_air") else [
+        {"model": "drag", "drag_coefficient": 1.0, "area": 1.0}]  # fmt: skip
+    return _system(
+        [ship or {"name": "ship", "type": "fixed", "position": [0, 0, 0]},
+         {"name": "depressor", "type": "point", "position": [-60, 0, -150], "mass": 1500.0,
+          "volume": 0.2, "added_mass": 300.0, "external forces": forces + drag},
+         {"name": "fish", "type": "point", "position": [-160, 0, -160], "mass": 400.0,
+          "volume": 0.3, "added_mass": 200.0, "external forces": forces + drag}],
+        [_line("main", "ship", "depressor", 200.0, 20, kind=types[0]["name"]),
+         _line("pennant", "depressor", "fish", 110.0, 11, kind=types[0]["name"])],
+        simulation, environment=environment, start=start, types=types,
+    )  # fmt: skip
+
+
+def test_energy_of_a_tree_of_lines_and_bodies_is_conserved():
+    """Ship, main cable, depressor, pennant, fish in air without drag: the depressor carried at
+    the main cable's end and carrying the pennant (a tree swept children first); the total
+    energy stays constant as the lines swing and fold."""
+    ds = simulate(load_case(_tree("as_given", {"in_air": True, "gravity": 9.81}, (ROPE,),
+                                  _sim(3.0, 1e-3)))).dataset  # fmt: skip
+    energy = ds["total_energy"].values
+    assert np.ptp(ds["kinetic_energy"].values) > 1e3  # it moves
+    assert np.ptp(energy) < 1e-6 * np.abs(ds["gravity_potential_energy"].values).max()
+
+
+def test_a_two_stage_tow_starts_in_balance_with_every_segment_pulled():
+    """Towing in a 2 m/s current: the statics holds the depressor and the fish where the lines,
+    weights, buoyancy and drag balance (each body's forces sum to zero), every segment in
+    tension, and a run from it stays there."""
+    water = {**WATER, "current": {"velocity": -2.0}}
+    ds = simulate(load_case(_tree("static", water, (WIRE,), _sim(1.0, 5e-3, 0.5)))).dataset
+    for line in ("main", "pennant"):
+        tension = ds[f"lines/{line}/tension"].values
+        assert tension.min() > 1e3
+        assert np.ptp(tension, axis=0).max() < 1e-6 * tension.max()
+    for body in ("depressor", "fish"):
+        rows = ds[f"bodies/{body}"]
+        assert np.ptp(rows["position_x"].values) < 1e-8
+    # the fish: the pennant's pull balances its apparent weight and drag in the current
+    pull = [float(ds[f"lines/pennant/to_force_{c}"].values[0]) for c in "xz"]
+    weight = (400.0 - 1025.0 * 0.3) * 9.81
+    drag = 0.5 * 1025.0 * 1.0 * 1.0 * 2.0**2  # towards -x, the current's way
+    np.testing.assert_allclose(pull, [drag, weight], rtol=1e-8)
+
+
+def test_a_towed_body_hangs_where_todays_statics_puts_it():
+    """One cable and a towed body in a current: the system's statics (Newton on the moment
+    balance) gives the shape of today's statics (shooting from the free end)."""
+    water = {**WATER, "current": {"velocity": -2.0}}
+    body = {"mass": 400.0, "volume": 0.3, "added_mass": 200.0, "drag_coefficient": 1.0,
+            "drag_area": 1.0}  # fmt: skip
+    old = _cable({"type": "fixed", "position": [0.0, 0.0, 0.0]}, {"type": "free", "body": body},
+                 [30.0] * 20, _sim(0.1, 5e-3), environment=water, length=200.0,
+                 diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
+                 friction_coefficient=0.02)  # fmt: skip
+    old["cables"][0]["initial"] = {"shape": "static"}
+    new = _system(
+        [{"name": "ship", "type": "fixed", "position": [0, 0, 0]},
+         {"name": "fish", "type": "point", "position": [-100, 0, -170], "mass": 400.0,
+          "volume": 0.3, "added_mass": [200.0, 200.0, 200.0],
+          "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
+                              {"model": "drag", "drag_coefficient": 1.0, "area": 1.0}]}],
+        [_line("tow", "ship", "fish", 200.0, 20, kind="wire")], _sim(0.1, 5e-3),
+        environment=water, start="static", types=(WIRE,),
+    )  # fmt: skip
+    a = simulate(load_case(old)).dataset
+    b = simulate(load_case(new)).dataset
+    for c in "xz":
+        np.testing.assert_allclose(b[f"lines/tow/node_{c}"].values[0], a[f"node_{c}"].values[0],
+                                   rtol=0, atol=1e-6)  # fmt: skip
+
+
+ANCHOR = {"name": "anchor", "type": "fixed", "position": [0, 0, -20]}
+
+
+@pytest.mark.parametrize(
+    ("bodies", "lines", "message"),
+    [
+        ([ANCHOR, {"name": "hull", "type": "rigid", "position": [5, 0, 0], "mass": 1.0}],
+         [_line("leg", "anchor", "hull", 30.0, 5)], r"lines\[0\] \(leg\)\.to: .*rigid body"),
+        ([ANCHOR, {"name": "b", "type": "point", "position": [5, 0, -5], "mass": 1.0}],
+         [_line("one", "anchor", "b", 30.0, 5), _line("two", "anchor", "b", 30.0, 5)],
+         r"lines\[1\] \(two\)\.to: .*already carried at the end of line 'one'"),
+        ([ANCHOR, {"name": "a", "type": "point", "position": [5, 0, -5], "mass": 1.0},
+          {"name": "b", "type": "point", "position": [9, 0, -5], "mass": 1.0}],
+         [_line("one", "a", "b", 5.0, 5), _line("two", "b", "a", 5.0, 5)],
+         r"a ring of rigid-segment lines"),
+        ([ANCHOR, {"name": "top", "type": "fixed", "position": [0, 0, 0]}],
+         [_line("leg", "top", "anchor", 10.0, 5)], r"lines \(leg\): its ends are 20 m apart"),
+    ],
+)  # fmt: skip
+def test_what_a_sweep_cannot_carry_is_refused_naming_the_line(bodies, lines, message):
+    case = load_case(_system(bodies, lines, _sim(1.0, 1e-3)))
+    with pytest.raises(CaseError, match=message):
+        model.build(case)
