@@ -159,19 +159,33 @@ def _top_motion(t, y, p):
 def _kinematics_and_loads(t, y, p, w):
     """Node positions/velocities, link unit vectors, link forces and torques."""
     n = p.n
-    current_z = p.current_z
-    current_u = p.current_u
     x0, z0, vx0, vz0, _, _ = _top_motion(t, y, p)
     w[_PX, 0] = x0
     w[_PZ, 0] = z0
     w[_VX, 0] = vx0
     w[_VZ, 0] = vz0
+    link_loads(
+        n, y, 0, n + 1, p.length, p.wet_weight, p.buoyancy, p.drag_normal, p.drag_tangential,
+        p.joint_stiffness, p.joint_damping, p.top_reference_angle, 0.0, p.current_z,
+        p.current_u, w,
+    )  # fmt: skip
+
+
+@njit(**JIT)
+def link_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+               joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u,
+               w):  # fmt: skip
+    """Every node's position and velocity from node 0's (rows _PX, _PZ, _VX, _VZ of column 0,
+    set by the caller) and the angles ``y[q0 + i]`` and rates ``y[v0 + i]``; every link's
+    loads (_FX, _FZ) and torque (_Q): apparent weight, drag on the relative velocity, the free
+    surface's share, joint springs and dampers (joint 0 against ``ref_angle`` turning at
+    ``ref_rate``). One line's arrays."""
     for i in range(n):
-        th = y[i]
-        om = y[n + 1 + i]
+        th = y[q0 + i]
+        om = y[v0 + i]
         s = math.sin(th)
         c = math.cos(th)
-        li = p.length[i]
+        li = length[i]
         w[_EX, i] = s
         w[_EZ, i] = -c
         w[_PX, i + 1] = w[_PX, i] + li * s
@@ -184,10 +198,10 @@ def _kinematics_and_loads(t, y, p, w):
         vrz = 0.5 * (w[_VZ, i] + w[_VZ, i + 1])
         vn = vrx * c + vrz * s
         vt = vrx * s - vrz * c
-        fn = -p.drag_normal[i] * abs(vn) * vn
-        ft = -p.drag_tangential[i] * abs(vt) * vt
+        fn = -drag_normal[i] * abs(vn) * vn
+        ft = -drag_tangential[i] * abs(vt) * vt
         w[_FX, i] = fn * c + ft * s
-        w[_FZ, i] = fn * s - ft * c - p.wet_weight[i]
+        w[_FZ, i] = fn * s - ft * c - wet_weight[i]
         w[_Q, i] = 0.0
         wet, share_top, _ = segment_submersion(w[_PZ, i], w[_PZ, i + 1])
         if wet < 1.0:
@@ -196,19 +210,19 @@ def _kinematics_and_loads(t, y, p, w):
             # distance d = (1/2 - share_top) l along e from the centre: a moment d n . F
             fn *= wet
             ft *= wet
-            lift = wet * p.buoyancy[i]
+            lift = wet * buoyancy[i]
             w[_FX, i] = fn * c + ft * s
-            w[_FZ, i] = fn * s - ft * c - p.wet_weight[i] + (lift - p.buoyancy[i])
+            w[_FZ, i] = fn * s - ft * c - wet_weight[i] + (lift - buoyancy[i])
             w[_Q, i] = (0.5 - share_top) * li * s * lift
     # joint springs and dampers: joint i acts between link i-1 (or the top reference) and link i
     for i in range(n):
         if i == 0:
-            rel = y[0] - p.top_reference_angle
-            rate = y[n + 1]
+            rel = y[q0] - ref_angle
+            rate = y[v0] - ref_rate
         else:
-            rel = y[i] - y[i - 1]
-            rate = y[n + 1 + i] - y[n + i]
-        torque = p.joint_stiffness[i] * rel + p.joint_damping[i] * rate
+            rel = y[q0 + i] - y[q0 + i - 1]
+            rate = y[v0 + i] - y[v0 + i - 1]
+        torque = joint_stiffness[i] * rel + joint_damping[i] * rate
         w[_Q, i] -= torque
         if i > 0:
             w[_Q, i - 1] += torque
@@ -250,6 +264,60 @@ def _bottom_body_force(t, p, w):
     return fx, fz
 
 
+@njit(inline="always", **JIT)
+def link_back(i, li, mi, inertia, om, w, st, pinned):
+    """One link of the backward sweep: the articulated inertia, bias and (``pinned``) reaction
+    map ``st`` = (m11, m12, m22, bx, bz, s11, s12, s21, s22) at the link's lower node turned into
+    those at its upper node, in place, and stored in column i with the link's rows _D, _HX,
+    _HZ, _U (_RSX, _RSZ) for the forward sweep. Reads _EX, _EZ, _FX, _FZ, _Q of column i; the
+    link's length, mass, inertia about its centre and angular rate."""
+    m11, m12, m22, bx, bz = st[0], st[1], st[2], st[3], st[4]
+    s11, s12, s21, s22 = st[5], st[6], st[7], st[8]
+    ex = w[_EX, i]
+    ez = w[_EZ, i]
+    nx = -ez
+    nz = ex
+    mnx = m11 * nx + m12 * nz
+    mnz = m12 * nx + m22 * nz
+    mex = m11 * ex + m12 * ez
+    mez = m12 * ex + m22 * ez
+    n_m_n = nx * mnx + nz * mnz
+    n_m_e = nx * mex + nz * mez
+    inv_d = 1.0 / (inertia + 0.25 * mi * li * li + li * li * n_m_n)
+    hx = li * (0.5 * mi * nx + mnx)
+    hz = li * (0.5 * mi * nz + mnz)
+    n_f = nx * w[_FX, i] + nz * w[_FZ, i]
+    u = w[_Q, i] - 0.5 * li * (-2.0 * li * om * om * n_m_e + 2.0 * (nx * bx + nz * bz) - n_f)
+    w[_D, i] = inv_d  # stored as the reciprocal of D
+    w[_HX, i] = hx
+    w[_HZ, i] = hz
+    w[_U, i] = u
+    w2 = li * om * om
+    hx_d = hx * inv_d
+    hz_d = hz * inv_d
+    new_bx = bx - w[_FX, i] + hx_d * u - w2 * (0.5 * mi * ex + mex)
+    new_bz = bz - w[_FZ, i] + hz_d * u - w2 * (0.5 * mi * ez + mez)
+    m11 = mi + m11 - hx * hx_d
+    m12 = m12 - hx * hz_d
+    m22 = mi + m22 - hz * hz_d
+    bx = new_bx
+    bz = new_bz
+    if pinned:
+        # d u / d L = -l n^T S  (row vector)
+        rsx = -li * (nx * s11 + nz * s21)
+        rsz = -li * (nx * s12 + nz * s22)
+        w[_RSX, i] = rsx
+        w[_RSZ, i] = rsz
+        s11 += hx_d * rsx
+        s12 += hx_d * rsz
+        s21 += hz_d * rsx
+        s22 += hz_d * rsz
+    w[_M11, i], w[_M12, i], w[_M22, i], w[_BX, i], w[_BZ, i] = m11, m12, m22, bx, bz
+    w[_S11, i], w[_S12, i], w[_S21, i], w[_S22, i] = s11, s12, s21, s22
+    st[0], st[1], st[2], st[3], st[4] = m11, m12, m22, bx, bz
+    st[5], st[6], st[7], st[8] = s11, s12, s21, s22
+
+
 @njit(**JIT)
 def _backward_sweep(t, y, p, w):
     """Articulated 2x2 inertias M_k, biases b_k and (pinned) reaction sensitivities S_k."""
@@ -266,51 +334,11 @@ def _backward_sweep(t, y, p, w):
         s11, s12, s21, s22 = 0.0, 0.0, 0.0, 0.0
     w[_M11, n], w[_M12, n], w[_M22, n], w[_BX, n], w[_BZ, n] = m11, m12, m22, bx, bz
     w[_S11, n], w[_S12, n], w[_S21, n], w[_S22, n] = s11, s12, s21, s22
+    st = np.empty(9)
+    st[0], st[1], st[2], st[3], st[4] = m11, m12, m22, bx, bz
+    st[5], st[6], st[7], st[8] = s11, s12, s21, s22
     for i in range(n - 1, -1, -1):
-        li = p.length[i]
-        mi = p.mass[i]
-        om = y[n + 1 + i]
-        ex = w[_EX, i]
-        ez = w[_EZ, i]
-        nx = -ez
-        nz = ex
-        mnx = m11 * nx + m12 * nz
-        mnz = m12 * nx + m22 * nz
-        mex = m11 * ex + m12 * ez
-        mez = m12 * ex + m22 * ez
-        n_m_n = nx * mnx + nz * mnz
-        n_m_e = nx * mex + nz * mez
-        inv_d = 1.0 / (p.inertia[i] + 0.25 * mi * li * li + li * li * n_m_n)
-        hx = li * (0.5 * mi * nx + mnx)
-        hz = li * (0.5 * mi * nz + mnz)
-        n_f = nx * w[_FX, i] + nz * w[_FZ, i]
-        u = w[_Q, i] - 0.5 * li * (-2.0 * li * om * om * n_m_e + 2.0 * (nx * bx + nz * bz) - n_f)
-        w[_D, i] = inv_d  # stored as the reciprocal of D
-        w[_HX, i] = hx
-        w[_HZ, i] = hz
-        w[_U, i] = u
-        w2 = li * om * om
-        hx_d = hx * inv_d
-        hz_d = hz * inv_d
-        new_bx = bx - w[_FX, i] + hx_d * u - w2 * (0.5 * mi * ex + mex)
-        new_bz = bz - w[_FZ, i] + hz_d * u - w2 * (0.5 * mi * ez + mez)
-        m11 = mi + m11 - hx * hx_d
-        m12 = m12 - hx * hz_d
-        m22 = mi + m22 - hz * hz_d
-        bx = new_bx
-        bz = new_bz
-        if pinned:
-            # d u / d L = -l n^T S  (row vector)
-            rsx = -li * (nx * s11 + nz * s21)
-            rsz = -li * (nx * s12 + nz * s22)
-            w[_RSX, i] = rsx
-            w[_RSZ, i] = rsz
-            s11 += hx_d * rsx
-            s12 += hx_d * rsz
-            s21 += hz_d * rsx
-            s22 += hz_d * rsz
-        w[_M11, i], w[_M12, i], w[_M22, i], w[_BX, i], w[_BZ, i] = m11, m12, m22, bx, bz
-        w[_S11, i], w[_S12, i], w[_S21, i], w[_S22, i] = s11, s12, s21, s22
+        link_back(i, p.length[i], p.mass[i], p.inertia[i], y[n + 1 + i], w, st, pinned)
 
 
 @njit(**JIT)
