@@ -16,6 +16,7 @@ from seacable.system import model
 ROPE = {"name": "rope", "diameter": 0.02, "mass_per_length": 1.5, "drag_coefficient_normal": 0.0}
 WIRE = {"name": "wire", "diameter": 0.03, "mass_per_length": 2.5, "drag_coefficient_normal": 1.8,
         "friction_coefficient": 0.02}  # fmt: skip
+PLANAR_WIRE = {**WIRE, "added_mass_coefficient": 0.0}  # Pouzada's links carry no added mass
 WATER = {"water_density": 1025.0, "gravity": 9.81}
 
 
@@ -24,10 +25,13 @@ def _sim(duration, dt, interval=0.1):
             "output_interval": interval}  # fmt: skip
 
 
-def _line(name, a, b, length, segments, kind="rope", **more):
+def _line(name, a, b, length, segments, kind="rope", model="rigid_segments_3d", **more):
     section = {"type": kind, "length": length, "segments": segments}
-    return {"name": name, "model": "rigid_segments_3d", "from": a, "to": b,
-            "sections": [section], **more}  # fmt: skip
+    return {"name": name, "model": model, "from": a, "to": b, "sections": [section],
+            **more}  # fmt: skip
+
+
+MODELS = ["rigid_segments_3d", "rigid_links"]
 
 
 def _system(bodies, lines, simulation, environment=None, start="as_given", types=(ROPE,)):
@@ -36,9 +40,9 @@ def _system(bodies, lines, simulation, environment=None, start="as_given", types
             "lines": lines, "simulation": simulation}  # fmt: skip
 
 
-def _cable(top, bottom, angles, simulation, environment=None, **more):
-    """Today's single 3D cable: 10 m of ``ROPE`` (or ``more``) at ``angles`` from the vertical."""
-    cable = {"name": "cable", "model": "rigid_segments_3d", "links": len(angles), "length": 10.0,
+def _cable(top, bottom, angles, simulation, environment=None, model="rigid_segments_3d", **more):
+    """Today's single cable: 10 m of ``ROPE`` (or ``more``) at ``angles`` from the vertical."""
+    cable = {"name": "cable", "model": model, "links": len(angles), "length": 10.0,
              "diameter": 0.02, "mass_per_length": 1.5, "drag_coefficient_normal": 0.0,
              "top": top, "bottom": bottom, "initial": {"shape": "angles", "azimuth_deg": 0.0,
                                                        "angles_deg": list(angles)}}  # fmt: skip
@@ -51,22 +55,21 @@ def _gap(a, b) -> float:
     return float(np.abs(a - b).max() / np.abs(a).max())
 
 
-def test_a_body_at_the_end_moves_as_todays_free_end():
+@pytest.mark.parametrize("kind", MODELS)
+def test_a_body_at_the_end_moves_as_todays_free_end(kind):
     """A fixed body, a 10-segment line in air and a point body with its weight at the end give
     the motion and tensions of today's cable with a fixed top and a free end carrying the same
-    body (the body absorbed into the line's sweep as the free end's)."""
+    body (the body absorbed into the line's sweep as the free end's), in 3D and planar."""
     angle = math.degrees(math.atan2(6.0, 8.0))
-    old = _cable(
-        {"type": "fixed", "position": [0.0, 0.0, 0.0]},
-        {"type": "free", "body": {"mass": 20.0}},
-        [angle] * 10,
-        _sim(1.0, 1e-3),
-    )
+    fixed, free = {"type": "fixed", "position": [0.0, 0.0, 0.0]}, {"type": "free", "body": {
+        "mass": 20.0}}  # fmt: skip
+    old = _cable(fixed, free, [angle] * 10, _sim(1.0, 1e-3), model=kind)
     new = _system(
         [{"name": "pin", "type": "fixed", "position": [0, 0, 0]},
          {"name": "ball", "type": "point", "position": [6.0, 0.0, -8.0], "mass": 20.0,
           "external forces": [{"model": "gravity"}]}],
-        [_line("chain", "pin", "ball", 10.0, 10, initial="straight")], _sim(1.0, 1e-3),
+        [_line("chain", "pin", "ball", 10.0, 10, initial="straight", model=kind)],
+        _sim(1.0, 1e-3),
     )  # fmt: skip
     a = simulate(load_case(old)).dataset
     b = simulate(load_case(new)).dataset
@@ -76,10 +79,12 @@ def test_a_body_at_the_end_moves_as_todays_free_end():
     assert _gap(a["total_energy"].values, b["total_energy"].values) < 1e-12
 
 
-def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure():
+@pytest.mark.parametrize("kind", MODELS)
+def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure(kind):
     """A rigid body with dofs [heave] (stiffness, damping, a sine force) over a line held on a
     fixed anchor gives today's floating-structure top over a pinned end: the holding force is
     eliminated into the body's articulated inertia through the tip's map dA_n/dA_0."""
+    wire = WIRE if kind == "rigid_segments_3d" else PLANAR_WIRE
     sine = {"kind": "sine", "amplitude": 20000.0, "period": 6.0}
     new = _system(
         [{"name": "anchor", "type": "fixed", "position": [7.0, 0.0, -30.0]},
@@ -91,19 +96,23 @@ def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure
                "equilibrium_position": [0, 0, 0.3]},
               {"model": "linear_damping", "diagonal": [0, 0, 1000.0, 0, 0, 0]},
               {"model": "applied", "force_z": sine}]}],
-        [_line("leg", "buoy", "anchor", 32.0, 16, kind="wire")], _sim(2.0, 2e-3),
-        environment=WATER, types=(WIRE,),
+        [_line("leg", "buoy", "anchor", 32.0, 16, kind="wire", model=kind)], _sim(2.0, 2e-3),
+        environment=WATER, types=(wire,),
     )  # fmt: skip
     built = model.build(load_case(new))
     p = built.params
-    e = built.y0[p.rs_q[0] : p.rs_q[0] + 48].reshape(-1, 3)
+    if kind == "rigid_links":
+        angles = built.y0[p.rs_q[0] : p.rs_q[0] + 16]
+        e = np.column_stack([np.sin(angles), 0 * angles, -np.cos(angles)])
+    else:
+        e = built.y0[p.rs_q[0] : p.rs_q[0] + 48].reshape(-1, 3)
     assert np.allclose(e[:, 1], 0.0)
     top = {"type": "floating_structure", "position": [0.0, 0.3], "mass": 5000.0,
            "added_mass": 2000.0, "heave_stiffness": 8e4, "heave_damping": 1000.0,
            "initial_heave": -0.3, "initial_heave_velocity": 0.5, "force": sine}  # fmt: skip
     angles = np.degrees(np.arctan2(e[:, 0], -e[:, 2])).tolist()
     old = _cable(top, {"type": "pinned", "anchor": [7.0, 0.0, -30.0]}, angles, _sim(2.0, 2e-3),
-                 environment=WATER,
+                 environment=WATER, model=kind,
                  length=32.0, diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
                  friction_coefficient=0.02)  # fmt: skip
     a = simulate(load_case(old)).dataset
@@ -161,9 +170,12 @@ def test_a_two_stage_tow_starts_in_balance_with_every_segment_pulled():
     np.testing.assert_allclose(pull, [drag, weight], rtol=1e-8)
 
 
-def test_a_towed_body_hangs_where_todays_statics_puts_it():
+@pytest.mark.parametrize("kind", MODELS)
+def test_a_towed_body_hangs_where_todays_statics_puts_it(kind):
     """One cable and a towed body in a current: the system's statics (Newton on the moment
-    balance) gives the shape of today's statics (shooting from the free end)."""
+    balance), of a 3D or a planar line, gives the shape of today's 3D statics (shooting from
+    the free end; the planar model has none, and added mass plays no part at rest)."""
+    wire = WIRE if kind == "rigid_segments_3d" else PLANAR_WIRE
     water = {**WATER, "current": {"velocity": -2.0}}
     body = {"mass": 400.0, "volume": 0.3, "added_mass": 200.0, "drag_coefficient": 1.0,
             "drag_area": 1.0}  # fmt: skip
@@ -178,8 +190,8 @@ def test_a_towed_body_hangs_where_todays_statics_puts_it():
           "volume": 0.3, "added_mass": [200.0, 200.0, 200.0],
           "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
                               {"model": "drag", "drag_coefficient": 1.0, "area": 1.0}]}],
-        [_line("tow", "ship", "fish", 200.0, 20, kind="wire")], _sim(0.1, 5e-3),
-        environment=water, start="static", types=(WIRE,),
+        [_line("tow", "ship", "fish", 200.0, 20, kind="wire", model=kind)], _sim(0.1, 5e-3),
+        environment=water, start="static", types=(wire,),
     )  # fmt: skip
     a = simulate(load_case(old)).dataset
     b = simulate(load_case(new)).dataset
@@ -205,6 +217,12 @@ ANCHOR = {"name": "anchor", "type": "fixed", "position": [0, 0, -20]}
          r"a ring of rigid-segment lines"),
         ([ANCHOR, {"name": "top", "type": "fixed", "position": [0, 0, 0]}],
          [_line("leg", "top", "anchor", 10.0, 5)], r"lines \(leg\): its ends are 20 m apart"),
+        ([ANCHOR, {"name": "b", "type": "point", "position": [5, 0, -5], "mass": 1.0}],
+         [_line("leg", "b", "anchor", 30.0, 5, model="rigid_links")],
+         r"lines\[0\] \(leg\)\.from: a planar rigid_links line .* dofs include sway"),
+        ([ANCHOR, {"name": "top", "type": "fixed", "position": [0, 3, 0]}],
+         [_line("leg", "top", "anchor", 30.0, 5, model="rigid_links")],
+         r"lines \(leg\): a planar rigid_links line lies in an x-z plane"),
     ],
 )  # fmt: skip
 def test_what_a_sweep_cannot_carry_is_refused_naming_the_line(bodies, lines, message):

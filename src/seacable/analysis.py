@@ -143,6 +143,11 @@ def _inertia_diagonal(built, coords) -> np.ndarray:
             line = int(coords.line[i])
             node = int(p.line_node[line]) + (int(coords.q[i]) - int(p.line_q[line])) // 3 + 1
             out[i] = p.node_mass[node]
+        elif kind >= 3:  # a rigid line's segment: its moment of inertia about its centre
+            line = int(coords.line[i])
+            width = 3 if kind == 3 else 1
+            segment = int(p.rs_seg[line]) + (int(coords.q[i]) - int(p.rs_q[line])) // width
+            out[i] = p.rs_inertia[segment]
         elif kind == 0:
             out[i] = p.body_mass[body] + p.body_added[body, axis, axis]
         else:
@@ -163,6 +168,12 @@ def _coordinate_names(built, coords) -> list[str]:
             name = built.layout.lines[int(line)]
             node = (int(q) - int(built.params.line_q[line])) // 3 + 1
             names.append(f"{name}:node {node}:{'xyz'[int(axis)]}")
+        elif kind >= 3:
+            name = built.layout.rigid[int(line)]
+            width = 3 if kind == 3 else 1
+            segment = (int(q) - int(built.params.rs_q[line])) // width
+            turn = ("t1", "t2")[int(axis)] if kind == 3 else "angle"
+            names.append(f"{name}:segment {segment}:{turn}")
         else:
             dof = (rotations if kind == 1 else translations)[int(axis)]
             names.append(f"{built.case.bodies[int(body)].name}:{dof}")

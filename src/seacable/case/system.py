@@ -269,12 +269,15 @@ class LumpedMassLine(_Model):
     initial: Literal["catenary", "straight"] = "catenary"
 
 
-class RigidSegmentsLine(_Model):
-    """An inextensible line of rigid uniform cylinders in 3D (Jacquot & Marichal 1993), joined
-    by ball joints with bending springs (the line type's EI over the mean span of the two
-    segments; the first joint, at ``from``, against ``base_reference``) and dampers: drag on the
-    velocity relative to the current (normal pressure drag on d l, Richtmyer's tangential
-    friction), normal added mass, apparent weight, each segment as the free surface cuts it.
+class RigidLine(_Model):
+    """An inextensible line of rigid uniform segments joined by joints with bending springs (the
+    line type's EI over the mean span of the two segments; the first joint, at ``from``, against
+    ``base_reference``) and dampers: drag on the velocity relative to the current (normal
+    pressure drag on d l, Richtmyer's tangential friction), apparent weight, each segment as
+    the free surface cuts it. ``rigid_segments_3d``: cylinders in 3D with ball joints and normal
+    added mass (Jacquot & Marichal 1993). ``rigid_links``: Pouzada's planar chain (2015), in
+    the vertical plane x-z, its bodies kept in that plane, no added mass on its links (its line
+    type's added_mass_coefficient must be 0 in water).
 
     Node 0 follows the point ``from``. The last node either carries ``to``, a point body that no
     other rigid-segment line ends on (the body moves with the line's end: a towed fish, a float,
@@ -283,7 +286,7 @@ class RigidSegmentsLine(_Model):
     trajectory)."""
 
     name: Name
-    model: Literal["rigid_segments_3d"]
+    model: Literal["rigid_segments_3d", "rigid_links"]
     from_: str = Field(alias="from")
     to: str
     sections: list[Section] = Field(min_length=1)
@@ -329,7 +332,7 @@ class Tie(_Model):
         return self
 
 
-Line = Annotated[LumpedMassLine | RigidSegmentsLine | Tie, Field(discriminator="model")]
+Line = Annotated[LumpedMassLine | RigidLine | Tie, Field(discriminator="model")]
 
 
 class SystemCase(_Model):

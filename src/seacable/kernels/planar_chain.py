@@ -463,22 +463,34 @@ def _node_force(w, k, lx, lz, pinned):
 
 
 @njit(**JIT)
-def _energies(y, p, w):
-    n = p.n
+def link_energies(n, y, q0, v0, length, mass, inertia, wet_weight, buoyancy, joint_stiffness,
+                  ref_angle, w):  # fmt: skip
+    """Kinetic, gravity and buoyancy potential and joint-spring energy of one line's links
+    (its workspace filled); joint 0 is unloaded at ``ref_angle``."""
     kinetic = 0.0
     gravity = 0.0
     elastic = 0.0
     for i in range(n):
         vcx = 0.5 * (w[_VX, i] + w[_VX, i + 1])
         vcz = 0.5 * (w[_VZ, i] + w[_VZ, i + 1])
-        om = y[n + 1 + i]
-        kinetic += 0.5 * p.mass[i] * (vcx * vcx + vcz * vcz) + 0.5 * p.inertia[i] * om * om
-        gravity += p.wet_weight[i] * 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
+        om = y[v0 + i]
+        kinetic += 0.5 * mass[i] * (vcx * vcx + vcz * vcz) + 0.5 * inertia[i] * om * om
+        gravity += wet_weight[i] * 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
         wet, _, mean_depth = segment_submersion(w[_PZ, i], w[_PZ, i + 1])
         if wet < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
-            gravity += p.buoyancy[i] * (0.5 * (w[_PZ, i] + w[_PZ, i + 1]) - mean_depth)
-        rel = y[i] - (p.top_reference_angle if i == 0 else y[i - 1])
-        elastic += 0.5 * p.joint_stiffness[i] * rel * rel
+            gravity += buoyancy[i] * (0.5 * (w[_PZ, i] + w[_PZ, i + 1]) - mean_depth)
+        rel = y[q0 + i] - (ref_angle if i == 0 else y[q0 + i - 1])
+        elastic += 0.5 * joint_stiffness[i] * rel * rel
+    return kinetic, gravity, elastic
+
+
+@njit(**JIT)
+def _energies(y, p, w):
+    n = p.n
+    kinetic, gravity, elastic = link_energies(
+        n, y, 0, n + 1, p.length, p.mass, p.inertia, p.wet_weight, p.buoyancy,
+        p.joint_stiffness, p.top_reference_angle, w,
+    )  # fmt: skip
     if p.bottom_kind == BOTTOM_FREE:
         mass, _, _, _ = _body_now(p, w[_PZ, n])
         kinetic += 0.5 * mass * (w[_VX, n] ** 2 + w[_VZ, n] ** 2)

@@ -115,8 +115,8 @@ def closure(held, ac, ga, al, target, tip, omega, l0, la, system, rhs):
         else:
             for c in range(3):
                 system[3 * k + c] = 1.0 if k == c else 0.0
-    scale = 1.0
-    for v in al:
+    scale = 0.0  # of the system's entries: a heavy line's are small
+    for v in system:
         scale = max(scale, abs(v))
     for col in range(4):
         for k in range(3):

@@ -20,12 +20,14 @@ from seacable.packing import channel, current_arrays, shape_row, typed
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
+SEGMENTS_3D, PLANAR = 0, 1  # rigid-line models (SystemParams.rs_kind)
 INT_FIELDS = frozenset({
     "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_turns", "point_body",
     "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
+    "rs_kind",
 })  # fmt: skip
 
 
@@ -362,9 +364,9 @@ def _ties(case, layout) -> dict:
     return fields
 
 
-def _rigid(case) -> list[tuple[int, "sch.RigidSegmentsLine"]]:
+def _rigid(case) -> list[tuple[int, "sch.RigidLine"]]:
     return [(k, line) for k, line in enumerate(case.lines)
-            if isinstance(line, sch.RigidSegmentsLine)]  # fmt: skip
+            if isinstance(line, sch.RigidLine)]  # fmt: skip
 
 
 def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
@@ -415,6 +417,36 @@ def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
     return tips
 
 
+def _planar_ends(case, line, where: str, tip: int) -> None:
+    """Refuse a body of a planar line that can move out of the x-z plane."""
+    names = [b.name for b in case.bodies]
+    for end, ref in (("from", line.from_), ("to", line.to)):
+        name = ref.partition(".")[0]
+        if name not in names or (end == "to" and tip >= 0):
+            continue  # unknown: named elsewhere; carried at the tip: moves with the line
+        body = case.bodies[names.index(name)]
+        out_of_plane = ""
+        if isinstance(body, sch.ImposedBody):
+            keys = ("y", "roll_deg", "yaw_deg")
+            still = {k: isinstance(getattr(body, k), sch.Constant) for k in keys}
+            moving = [k for k, constant in still.items() if not constant]
+            moving += [k for k in ("roll_deg", "yaw_deg") if still[k] and getattr(body, k).value]
+            if moving:
+                out_of_plane = f"its {moving} move or turn it out of the plane"
+        elif isinstance(body, sch.PointBody) and "sway" in body.dofs:
+            out_of_plane = "its dofs include sway"
+        elif isinstance(body, sch.RigidBody):
+            extra = sorted(set(body.dofs) - {"surge", "heave", "pitch"})
+            if extra:
+                out_of_plane = f"its dofs include {extra}"
+        if out_of_plane:
+            raise CaseError(
+                f"{where}.{end}: a planar rigid_links line stays in the x-z plane, but body "
+                f"'{name}' can leave it ({out_of_plane}); keep that body in the plane (dofs "
+                "surge, heave, pitch; no y, roll or yaw motion) or use model: rigid_segments_3d"
+            )
+
+
 def _depth(case, tips: dict[int, int], r: int) -> int:
     """How many rigid lines carry line r's base (0: a base that no rigid line carries)."""
     names = [b.name for b in case.bodies]
@@ -429,7 +461,7 @@ def _depth(case, tips: dict[int, int], r: int) -> int:
 def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     """Flat arrays of the rigid-segment lines (system.kernel's ``rs_`` fields); the order of
     their sweeps, children first (a line carried at another's tip before that one)."""
-    keys = ("rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip")
+    keys = ("rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_kind")
     out: dict[str, list] = {k: [] for k in keys}
     held: list = []
     ref: list = []
@@ -452,6 +484,10 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         out["rs_to"].append(_point(case, layout, line.to, f"{where}.to"))
         tip = next((b for b, rr in tips.items() if rr == r), -1)
         out["rs_tip"].append(tip)
+        planar = line.model == "rigid_links"
+        out["rs_kind"].append(PLANAR if planar else SEGMENTS_3D)
+        if planar:
+            _planar_ends(case, line, where, tip)
         held.append(np.ones(3) if tip < 0 else 1.0 - body_free[tip, :3])
         ref.append(
             np.full(3, np.nan)
@@ -461,6 +497,12 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         if line.base_reference is not None and not np.linalg.norm(line.base_reference) > 0:
             raise CaseError(f"{where}.base_reference: a direction needs a non-zero length")
         mass, added = props["mass"], props["added_mass"]
+        if planar and np.any(added > 0):
+            raise CaseError(
+                f"{where}.sections: line type of added_mass_coefficient > 0 in water; the planar "
+                "rigid_links model has no added mass on its links: set the line type's "
+                "added_mass_coefficient to 0, or use model: rigid_segments_3d"
+            )
         # a joint stands for the bending over the mean span of its two segments; the first
         # joint over the first segment
         span = np.concatenate([[lengths[0]], 0.5 * (lengths[1:] + lengths[:-1])])
@@ -476,7 +518,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
             segs[key].append(value)
         seg_count += n
         node_count += n + 1
-        directors += 3 * n
+        directors += (1 if planar else 3) * n
     nr = len(out["rs_n"])
     depth = [_depth(case, tips, r) for r in range(nr)]
     order = sorted(range(nr), key=lambda r: -depth[r])  # children first

@@ -17,6 +17,7 @@ from seacable.forces import linear
 from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
 from seacable.kernels.chain3d_outputs import segment_energies
 from seacable.kernels.lumped_outputs import line_energies
+from seacable.kernels.planar_chain import link_energies
 from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass
@@ -105,13 +106,14 @@ def energies(y, p, w):
     """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs."""
     k1, g1, e1 = _lines(y, p, w)
     k2, g2, e2 = _bodies(y, p, w)
-    k3, g3, e3 = _rigid(p, w)
+    k3, g3, e3 = _rigid(y, p, w)
     return k1 + k2 + k3, g1 + g2 + g3, e1 + e2 + e3
 
 
 @njit(**JIT)
-def _rigid(p, w):
-    """The rigid lines' segments (kernels.chain3d_outputs.segment_energies)."""
+def _rigid(y, p, w):
+    """The rigid lines' segments (kernels.chain3d_outputs.segment_energies, kernels.planar_chain
+    .link_energies)."""
     kinetic = gravity = elastic = 0.0
     ref = np.empty(3)
     for li in range(p.rs_n.shape[0]):
@@ -121,10 +123,18 @@ def _rigid(p, w):
             ref[c] = (w.rot[base, c, 0] * p.rs_ref[li, 0] + w.rot[base, c, 1] * p.rs_ref[li, 1]
                       + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
         e = s0 + n
-        k, g, el = segment_energies(
-            n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_wet_weight[s0:e], p.rs_buoyancy[s0:e],
-            p.rs_joint_stiffness[s0:e], ref, w.rs[:, c0 : c0 + n + 1],
-        )  # fmt: skip
+        ws = w.rs[:, c0 : c0 + n + 1]
+        if p.rs_kind[li] == 1:  # planar
+            k, g, el = link_energies(
+                n, y, p.rs_q[li], p.rs_v[li], p.rs_length[s0:e], p.rs_mass[s0:e],
+                p.rs_inertia[s0:e], p.rs_wet_weight[s0:e], p.rs_buoyancy[s0:e],
+                p.rs_joint_stiffness[s0:e], math.atan2(ref[0], -ref[2]), ws,
+            )  # fmt: skip
+        else:
+            k, g, el = segment_energies(
+                n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_wet_weight[s0:e],
+                p.rs_buoyancy[s0:e], p.rs_joint_stiffness[s0:e], ref, ws,
+            )  # fmt: skip
         kinetic += k
         gravity += g
         elastic += el

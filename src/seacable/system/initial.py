@@ -89,7 +89,7 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
     """Directors of every rigid line from its initial shape, bases before the lines they
     carry; rates zero (node 0 moves with its point)."""
     p, case = built.params, built.case
-    rigid = [line for line in case.lines if isinstance(line, sch.RigidSegmentsLine)]
+    rigid = [line for line in case.lines if isinstance(line, sch.RigidLine)]
     ref = p.rs_ref.copy()
     y = y.copy()
     for li in p.rs_order[::-1]:
@@ -121,8 +121,18 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
             nodes = _reach(nodes, lengths, start, end)
         e = np.diff(nodes, axis=0)
         e /= np.linalg.norm(e, axis=1)[:, None]
-        y[q : q + 3 * n] = e.ravel()
-        y[p.rs_v[li] : p.rs_v[li] + 3 * n] = 0.0
+        if line.model == "rigid_links":
+            if abs(end[1] - start[1]) > 1e-9 * max(1.0, total):
+                raise CaseError(
+                    f"{where}: a planar rigid_links line lies in an x-z plane, but its ends are "
+                    f"at y = {start[1]:.6g} and {end[1]:.6g} m; put both ends at one y, or use "
+                    "model: rigid_segments_3d"
+                )
+            y[q : q + n] = np.arctan2(e[:, 0], -e[:, 2])
+            y[p.rs_v[li] : p.rs_v[li] + n] = 0.0
+        else:
+            y[q : q + 3 * n] = e.ravel()
+            y[p.rs_v[li] : p.rs_v[li] + 3 * n] = 0.0
         if np.isnan(ref[li]).any():
             base = int(p.point_body[p.rs_from[li]])
             w = kernel.make_work(p)
@@ -149,7 +159,7 @@ def _hanging(start, end, lengths, weight):
     return nodes[::-1] if not flip else nodes
 
 
-def _reach(nodes, lengths, start, end, sweeps: int = 200):
+def _reach(nodes, lengths, start, end, sweeps: int = 2000):
     """Nodes moved so that every segment has its length and the chain joins ``start`` to
     ``end`` (forward-and-backward reaching, from a nearby shape: the chords of a catenary are
     a little shorter than its arcs)."""
@@ -164,7 +174,7 @@ def _reach(nodes, lengths, start, end, sweeps: int = 200):
         for i in range(n):
             d = nodes[i + 1] - nodes[i]
             nodes[i + 1] = nodes[i] + lengths[i] * d / np.linalg.norm(d)
-        if np.linalg.norm(nodes[n] - end) < 1e-10 * lengths.sum():
+        if np.linalg.norm(nodes[n] - end) < 1e-14 * lengths.sum():
             break
     return nodes
 

@@ -24,10 +24,10 @@ from seacable.forces import table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import surface
-from seacable.kernels.chain3d_loads import segment_loads
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, rigid_segments, tie
+from seacable.lines import lumped_mass, tie
+from seacable.system import rigid
 
 DYNAMIC = kinematics.DYNAMIC
 IMPOSED = kinematics.IMPOSED
@@ -99,6 +99,7 @@ class SystemParams(NamedTuple):
     rs_to: np.ndarray  # (nr,) int: point of node n
     rs_tip: np.ndarray  # (nr,) int: the point body carried at node n (-1: held on ``to``)
     rs_order: np.ndarray  # (nr,) int: lines in the order of the backward sweeps (children first)
+    rs_kind: np.ndarray  # (nr,) int: 0 rigid segments in 3D (directors), 1 planar links (angles)
     rs_held: np.ndarray  # (nr, 3) 1.0 on the axes the tip is held on
     rs_ref: np.ndarray  # (nr, 3) first joint's unloaded direction, base body frame
     rs_length: np.ndarray  # [m]
@@ -219,7 +220,7 @@ def evaluate(t, y, p, w, ydot):
         p.body_turns, _tf(p), w.pos, w.rot, w.vel, w.omega, w.quat,
     )  # fmt: skip
     if p.rs_n.shape[0] > 0:
-        _rigid_kinematics(y, p, w)
+        rigid.nodes_and_loads(y, p, w)
     kinematics.point_states(
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
     )
@@ -252,12 +253,12 @@ def evaluate(t, y, p, w, ydot):
         for b in range(w.load.shape[0]):  # for the statics' moment balance of rigid lines
             for c in range(3):
                 w.own_load[b, c] = w.load[b, c]
-    if p.rs_n.shape[0] > 0 and not _rigid_backward(t, p, w):
+    if p.rs_n.shape[0] > 0 and not rigid.backward(t, y, p, w):
         status = SINGULAR_CLOSURE
     if not _bodies(y, p, w, ydot):
         status = NON_FINITE
     if p.rs_n.shape[0] > 0:
-        _rigid_forward(t, y, p, w, ydot)
+        rigid.forward(t, y, p, w, ydot)
     return status
 
 
@@ -328,160 +329,6 @@ def _bodies(y, p, w, ydot):
     return ok
 
 
-@njit(inline="always", **JIT)
-def _rs_view(p, w, li):
-    """One rigid line's segment count, first segment, first director/rate and workspace."""
-    n, s0, c0 = p.rs_n[li], p.rs_seg[li], p.rs_node[li]
-    return n, s0, w.rs[:, c0 : c0 + n + 1]
-
-
-@njit(inline="always", **JIT)
-def _rigid_kinematics(y, p, w):
-    """Every rigid line's nodes and loads, bases before the lines they carry; each tip body's
-    position and velocity from its line's last node."""
-    ref = np.empty(3)
-    for j in range(p.rs_order.shape[0] - 1, -1, -1):
-        li = p.rs_order[j]
-        n, s0, ws = _rs_view(p, w, li)
-        a = p.rs_from[li]
-        kinematics.point_state(a, p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega,
-                               w.ppos, w.pvel, w.parm)  # fmt: skip
-        base = p.point_body[a]
-        for c in range(3):
-            ws[c3._P + c, 0] = w.ppos[a, c]
-            ws[c3._V + c, 0] = w.pvel[a, c]
-            ref[c] = (w.rot[base, c, 0] * p.rs_ref[li, 0] + w.rot[base, c, 1] * p.rs_ref[li, 1]
-                      + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
-        e = s0 + n
-        segment_loads(
-            n, y, p.rs_q[li], p.rs_v[li], p.rs_length[s0:e], p.rs_wet_weight[s0:e],
-            p.rs_buoyancy[s0:e], p.rs_drag_normal[s0:e], p.rs_drag_tangential[s0:e],
-            p.rs_added[s0:e], p.rs_inertia[s0:e], p.rs_joint_stiffness[s0:e],
-            p.rs_joint_damping[s0:e], ref, w.omega[base], p.current_z, p.current_u,
-            p.current_v, ws,
-        )  # fmt: skip
-        tip = p.rs_tip[li]
-        if tip >= 0:
-            for c in range(3):
-                w.pos[tip, c] = ws[c3._P + c, n]
-                w.vel[tip, c] = ws[c3._V + c, n]
-
-
-@njit(inline="always", **JIT)
-def _tip_target(t, p, w, li, target, acc):
-    """Position, velocity and acceleration (``target``, 9) a held tip is held to: a tip body
-    where it starts, or the point ``to`` of a fixed or imposed body."""
-    tip = p.rs_tip[li]
-    if tip >= 0:
-        for c in range(3):
-            target[c] = p.body_pose[tip, c]
-            target[3 + c] = target[6 + c] = 0.0
-        return
-    k = p.rs_to[li]
-    kinematics.point_state(k, p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega,
-                           w.ppos, w.pvel, w.parm)  # fmt: skip
-    hb = p.point_body[k]
-    kinematics.point_acceleration(t, p.body_kind[hb], p.body_channel[hb], _tf(p), w.acc[hb],
-                                  w.parm[k], w.omega[hb], acc)  # fmt: skip
-    for c in range(3):
-        target[c] = w.ppos[k, c]
-        target[3 + c] = w.pvel[k, c]
-        target[6 + c] = acc[c]
-
-
-@njit(inline="always", **JIT)
-def _rigid_backward(t, p, w):
-    """Every rigid line's backward sweep, children first: a tip body's mass and loads start its
-    line's sweep; a held tip's force is eliminated (rigid_segments.closure); the base body
-    receives the line's articulated inertia and bias. False when a closure is singular."""
-    m, b, s = np.empty(6), np.empty(3), np.empty(9)
-    ac, ga, al, la = np.empty(3), np.empty(9), np.empty(9), np.empty(9)
-    m9, load, target, tipv = np.empty(9), np.empty(3), np.empty(9), np.empty(6)
-    system, rhs3, acc = np.empty(9), np.empty(3), np.empty(3)
-    ok = True
-    for j in range(p.rs_order.shape[0]):
-        li = p.rs_order[j]
-        n, s0, ws = _rs_view(p, w, li)
-        tip = p.rs_tip[li]
-        held = p.rs_held[li]
-        pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
-        m[:] = 0.0
-        b[:] = 0.0
-        s[:] = 0.0
-        if tip >= 0:
-            mt = w.mass[tip]
-            m[0], m[3], m[5] = mt[0, 0], mt[1, 1], mt[2, 2]
-            m[1], m[2], m[4] = mt[0, 1], mt[0, 2], mt[1, 2]
-            for c in range(3):
-                b[c] = w.bias[tip, c] - w.load[tip, c]
-        if pinned:
-            s[0] = s[4] = s[8] = 1.0
-        rigid_segments.backward(n, p.rs_length[s0 : s0 + n], p.rs_mass[s0 : s0 + n], ws, m, b,
-                                s, pinned)  # fmt: skip
-        m9[0], m9[1], m9[2] = m[0], m[1], m[2]
-        m9[3], m9[4], m9[5] = m[1], m[3], m[4]
-        m9[6], m9[7], m9[8] = m[2], m[4], m[5]
-        for c in range(3):
-            load[c] = -b[c]
-        force = w.rs_force[li]
-        force[:] = 0.0
-        if pinned:
-            rigid_segments.tip_map(n, p.rs_length[s0 : s0 + n], ws, ac, ga, al)
-            _tip_target(t, p, w, li, target, acc)
-            for c in range(3):
-                tipv[c] = ws[c3._P + c, n]
-                tipv[3 + c] = ws[c3._V + c, n]
-            if not rigid_segments.closure(
-                held, ac, ga, al, target, tipv, p.stabilization_frequency, force, la, system, rhs3
-            ):
-                ok = False
-            # lam_0 = (M_0 + S_0 la) A_0 + (b_0 + S_0 l0): s holds S_0
-            for r in range(3):
-                for c in range(3):
-                    m9[3 * r + c] += (s[3 * r] * la[c] + s[3 * r + 1] * la[3 + c]
-                                      + s[3 * r + 2] * la[6 + c])  # fmt: skip
-                load[r] -= s[3 * r] * force[0] + s[3 * r + 1] * force[1] + s[3 * r + 2] * force[2]
-        base = p.point_body[p.rs_from[li]]
-        if kinematics.has_mass(p.body_kind[base]):
-            dynamics.add_point_mass(m9, w.parm[p.rs_from[li]], w.omega[base], load,
-                                    w.mass[base], w.load[base])  # fmt: skip
-        if pinned:
-            for c in range(9):
-                w.rs_la[li, c] = la[c]
-    return ok
-
-
-@njit(inline="always", **JIT)
-def _rigid_forward(t, y, p, w, ydot):
-    """Every rigid line's forward sweep, bases first: node 0's acceleration from its body's,
-    the holding force from it, the directors' accelerations; a tip body's acceleration is its
-    line's last node's."""
-    a0, held_force = np.empty(3), np.empty(3)
-    for j in range(p.rs_order.shape[0] - 1, -1, -1):
-        li = p.rs_order[j]
-        n, s0, ws = _rs_view(p, w, li)
-        a = p.rs_from[li]
-        base = p.point_body[a]
-        kinematics.point_acceleration(t, p.body_kind[base], p.body_channel[base], _tf(p),
-                                      w.acc[base], w.parm[a], w.omega[base], a0)  # fmt: skip
-        held = p.rs_held[li]
-        pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
-        la = w.rs_la[li]
-        for r in range(3):
-            held_force[r] = w.rs_force[li, r]
-            if pinned:
-                held_force[r] += la[3 * r] * a0[0] + la[3 * r + 1] * a0[1] + la[3 * r + 2] * a0[2]
-        for r in range(3):
-            w.rs_force[li, r] = held_force[r]
-        rigid_segments.forward(n, p.rs_length[s0 : s0 + n], ws, a0, held_force, pinned, y,
-                               p.rs_q[li], p.rs_v[li], ydot)  # fmt: skip
-        tip = p.rs_tip[li]
-        if tip >= 0:
-            for c in range(3):
-                w.acc[tip, c] = ws[c3._A + c, n]
-                w.acc[tip, 3 + c] = 0.0
-
-
 @njit(**JIT)
 def rhs(t, y, p, w, ydot):
     status = evaluate(t, y, p, w, ydot)
@@ -496,9 +343,10 @@ def rhs(t, y, p, w, ydot):
 @njit(inline="always", **JIT)
 def projects(p):
     """True when ``project`` changes the state: some dynamic body has an orientation, or some
-    line has rigid segments."""
-    if p.rs_n.shape[0] > 0:
-        return True
+    line has rigid segments in 3D."""
+    for li in range(p.rs_n.shape[0]):
+        if p.rs_kind[li] == rigid.SEGMENTS_3D:
+            return True
     for b in range(p.body_kind.shape[0]):
         if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
             return True
@@ -510,42 +358,11 @@ def project(y, p):
     """Every rigid body's quaternion back to unit length, every rigid segment's director too and
     its rate normal to it (after each accepted step)."""
     for li in range(p.rs_n.shape[0]):
-        c3.project_directors(y, p.rs_n[li], p.rs_q[li], p.rs_v[li])
+        if p.rs_kind[li] == rigid.SEGMENTS_3D:
+            c3.project_directors(y, p.rs_n[li], p.rs_q[li], p.rs_v[li])
     for b in range(p.body_kind.shape[0]):
         if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
             q = p.body_q[b] + 3
             norm = np.sqrt(y[q] ** 2 + y[q + 1] ** 2 + y[q + 2] ** 2 + y[q + 3] ** 2)
             for c in range(4):
                 y[q + c] /= norm
-
-
-@njit(**JIT)
-def rigid_moments(p, w, use, out, march):
-    """After ``rhs`` at rest: every rigid line's moment balance (lines.rigid_segments
-    .moment_balance) into ``out`` (2 per segment, line after line), for the lines with
-    ``use[li]`` (trees whose tips are all free), children first: a tip body's force is its own
-    loads and its carried lines' pull. With ``march``: instead, each segment's director along
-    the pull it carries (lines.rigid_segments.march) into ``out`` (3 per segment)."""
-    lam = np.empty(3)
-    pull = np.zeros((p.body_kind.shape[0], 3))
-    at = np.empty(p.rs_n.shape[0], dtype=np.int64)
-    total = 0
-    for li in range(p.rs_n.shape[0]):
-        at[li] = total
-        total += (3 if march else 2) * p.rs_n[li]
-    for j in range(p.rs_order.shape[0]):
-        li = p.rs_order[j]
-        if not use[li]:
-            continue
-        n, s0, ws = _rs_view(p, w, li)
-        tip = p.rs_tip[li]
-        for c in range(3):
-            lam[c] = -(w.own_load[tip, c] + pull[tip, c])
-        if march:
-            rigid_segments.march(n, ws, lam, out[at[li] : at[li] + 3 * n])
-        else:
-            rigid_segments.moment_balance(n, p.rs_length[s0 : s0 + n], ws, lam,
-                                          out[at[li] : at[li] + 2 * n])  # fmt: skip
-        base = p.point_body[p.rs_from[li]]
-        for c in range(3):
-            pull[base, c] -= lam[c]

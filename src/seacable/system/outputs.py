@@ -10,11 +10,12 @@ from numba import njit
 from seacable.bodies import kinematics
 from seacable.bodies.dynamics import add_force
 from seacable.kernels import chain3d as c3
+from seacable.kernels import planar_chain as pc
 from seacable.kernels.status import OK
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, rigid_segments
+from seacable.lines import lumped_mass, rigid_links, rigid_segments
 from seacable.system import energy as system_energy
-from seacable.system import kernel
+from seacable.system import kernel, rigid
 
 BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, force 3, moment 3
 
@@ -90,32 +91,53 @@ def rigid_rows(p, m: int) -> tuple:
 
 @njit(inline="always", **JIT)
 def _rigid_rows(p, w, on_body, nodes, tension, ends):
-    """Every rigid line's nodes, tensions at its segments' centres and forces on its ends."""
+    """Every rigid line's nodes, axial forces at its segments' centres and forces on its
+    ends."""
     for li in range(p.rs_n.shape[0]):
         n, c0, s0 = p.rs_n[li], p.rs_node[li], p.rs_seg[li]
         ws = w.rs[:, c0 : c0 + n + 1]
-        held = p.rs_held[li]
-        pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
-        force = w.rs_force[li]
-        for k in range(n + 1):
-            for c in range(3):
-                nodes[c0 + k, c] = ws[c3._P + c, k]
-        above = rigid_segments.node_force(ws, 0, force, pinned)
-        for c in range(3):
-            ends[li, 0, c] = -above[c]
-        for i in range(n):
-            below = rigid_segments.node_force(ws, i + 1, force, pinned)
-            e0, e1, e2 = ws[c3._E, i], ws[c3._E + 1, i], ws[c3._E + 2, i]
-            t_top = -(e0 * above[0] + e1 * above[1] + e2 * above[2])
-            t_bottom = -(e0 * below[0] + e1 * below[1] + e2 * below[2])
-            tension[s0 + i] = 0.5 * (t_top + t_bottom)
-            above = below
-        for c in range(3):
-            ends[li, 1, c] = above[c]
+        _rigid_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n], ends[li])
         for end in range(2):
             point = p.rs_from[li] if end == 0 else p.rs_to[li]
             f = ends[li, end]
             add_force(w.parm[point], f[0], f[1], f[2], on_body[p.point_body[point]])
+
+
+@njit(inline="always", **JIT)
+def _rigid_line(p, w, li, ws, n, nodes, tension, ends):
+    """One rigid line's rows: nodes (n + 1, 3), tension (n), ends (2, 3)."""
+    held = p.rs_held[li]
+    force = w.rs_force[li]
+    if p.rs_kind[li] == rigid.PLANAR:
+        pinned = held[0] != 0.0 or held[2] != 0.0
+        plane = w.ppos[p.rs_from[li], 1]
+        for k in range(n + 1):
+            nodes[k, 0], nodes[k, 1], nodes[k, 2] = ws[pc._PX, k], plane, ws[pc._PZ, k]
+        ax, az = rigid_links.node_force(ws, 0, force[0], force[2], pinned)
+        ends[0, 0], ends[0, 1], ends[0, 2] = -ax, 0.0, -az
+        for i in range(n):
+            bx, bz = rigid_links.node_force(ws, i + 1, force[0], force[2], pinned)
+            ex, ez = ws[pc._EX, i], ws[pc._EZ, i]
+            tension[i] = -0.5 * (ex * ax + ez * az + ex * bx + ez * bz)
+            ax, az = bx, bz
+        ends[1, 0], ends[1, 1], ends[1, 2] = ax, 0.0, az
+        return
+    pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
+    for k in range(n + 1):
+        for c in range(3):
+            nodes[k, c] = ws[c3._P + c, k]
+    above = rigid_segments.node_force(ws, 0, force, pinned)
+    for c in range(3):
+        ends[0, c] = -above[c]
+    for i in range(n):
+        below = rigid_segments.node_force(ws, i + 1, force, pinned)
+        e0, e1, e2 = ws[c3._E, i], ws[c3._E + 1, i], ws[c3._E + 2, i]
+        t_top = -(e0 * above[0] + e1 * above[1] + e2 * above[2])
+        t_bottom = -(e0 * below[0] + e1 * below[1] + e2 * below[2])
+        tension[i] = 0.5 * (t_top + t_bottom)
+        above = below
+    for c in range(3):
+        ends[1, c] = above[c]
 
 
 @njit(**JIT)

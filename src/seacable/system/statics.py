@@ -22,7 +22,7 @@ from scipy.sparse.linalg import splu
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface
-from seacable.system import kernel, outputs
+from seacable.system import kernel, outputs, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.initial import settle_lines
 
@@ -33,7 +33,8 @@ class StaticsError(SeacableError):
 
 @dataclass(frozen=True)
 class Coordinates:
-    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node, 3 director;
+    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node, 3 director, 4
+    planar link's angle;
     ``body`` its body (-1 for a node or director); ``axis`` 0..2 (a director's: 0 along t1, 1
     along t2); ``q`` its position in y (translation, node), the body's first quaternion entry
     or the director's first entry; ``v`` the state index of its velocity (a director's first
@@ -68,6 +69,9 @@ def coordinates(p: kernel.SystemParams) -> Coordinates:
     for li in range(len(p.rs_n)):
         q, v = int(p.rs_q[li]), int(p.rs_v[li])
         for i in range(int(p.rs_n[li])):
+            if p.rs_kind[li] == rigid.PLANAR:
+                rows.append((4, -1, 0, q + i, v + i, li))
+                continue
             for axis in range(2):
                 rows.append((3, -1, axis, q + 3 * i, v + 3 * i, li))
     table = np.array(rows, dtype=np.int64).reshape(-1, 6)
@@ -120,7 +124,7 @@ def _tangents(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarr
 def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
     """The state moved by the increments ``dx``."""
     out = y.copy()
-    plain = (coords.kind == 0) | (coords.kind == 2)
+    plain = (coords.kind == 0) | (coords.kind == 2) | (coords.kind == 4)
     np.add.at(out, coords.q[plain], dx[plain])
     turned = np.flatnonzero(coords.kind == 3)
     if turned.size:
@@ -205,7 +209,7 @@ def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> li
         if p.rs_tip[li] >= 0:
             parent[root(("body", int(p.rs_tip[li])))] = root(("line", li))
     members: dict[tuple[str, int], list[int]] = {}
-    for i in np.flatnonzero(coords.kind == 3):
+    for i in np.flatnonzero(coords.kind >= 3):
         members.setdefault(root(("line", int(coords.line[i]))), []).append(int(i))
     for li in range(len(p.rs_n)):
         for b in (int(p.point_body[p.rs_from[li]]), int(p.rs_tip[li])):
@@ -248,16 +252,17 @@ class _Residual:
         # accelerations: the residual of the segments' statics, well scaled whatever the
         # masses carried below them
         self.free = free_trees(p)
-        self.directors = np.flatnonzero(coords.kind == 3)
+        self.directors = np.flatnonzero((coords.kind == 3) | (coords.kind == 4))
         self.moments = np.zeros(len(self.directors))
-        per_segment = np.repeat(np.arange(len(p.rs_n)), 2 * np.asarray(p.rs_n, dtype=int))
+        per_line = np.where(np.asarray(p.rs_kind) == rigid.PLANAR, 1, 2) * np.asarray(p.rs_n)
+        per_segment = np.repeat(np.arange(len(p.rs_n)), per_line)
         self.balanced = self.free[per_segment] if len(p.rs_n) else np.zeros(0, bool)
 
     def __call__(self, y: np.ndarray) -> np.ndarray:
         kernel.rhs(self.time, y, self.p, self.w, self.ydot)
         out = accelerations(y, self.coords, self.ydot)
         if self.balanced.any():
-            kernel.rigid_moments(self.p, self.w, self.free, self.moments, False)
+            rigid.moments(self.p, self.w, self.free, self.moments, False)
             out[self.directors[self.balanced]] = self.moments[self.balanced]
         return out
 
@@ -290,7 +295,7 @@ def accelerations(y: np.ndarray, coords: Coordinates, ydot: np.ndarray) -> np.nd
 
 def _angle(kind: np.ndarray) -> np.ndarray:
     """True for a coordinate that is an angle [rad] (a body's turn, a director's)."""
-    return (kind == 1) | (kind == 3)
+    return (kind == 1) | (kind == 3) | (kind == 4)
 
 
 def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matrix:
@@ -355,25 +360,34 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
 
 def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200):
     """The rigid lines of free trees turned, again and again, along the pull each segment
-    carries (kernel.rigid_moments' march: the statics of a hanging or towed line as a fixed
+    carries (system.rigid.moments' march: the statics of a hanging or towed line as a fixed
     point, tension positive), half a step at a time, until they stop turning: a first shape
     from which Newton converges to the balance with every segment pulled, not to one of the
     balances with segments folded back and pushed."""
     w = kernel.make_work(p)
     ydot = np.zeros_like(y)
+    planar = np.asarray(p.rs_kind) == rigid.PLANAR
+    width = np.where(planar, 1, 3)
     index = np.concatenate([
-        np.arange(p.rs_q[li], p.rs_q[li] + 3 * p.rs_n[li]) for li in range(len(p.rs_n))
+        np.arange(p.rs_q[li], p.rs_q[li] + width[li] * p.rs_n[li]) for li in range(len(p.rs_n))
     ])  # fmt: skip
     turned = np.zeros(len(index))
-    mine = np.repeat(free, 3 * np.asarray(p.rs_n, dtype=int))
+    line_of = np.repeat(np.arange(len(p.rs_n)), width * np.asarray(p.rs_n))
     y = y.copy()
     for _ in range(sweeps):
         kernel.rhs(0.0, y, p, w, ydot)
-        kernel.rigid_moments(p, w, free, turned, True)
-        old = y[index].reshape(-1, 3)
-        new = np.where(mine.reshape(-1, 3), 0.5 * (old + turned.reshape(-1, 3)), old)
-        new /= np.linalg.norm(new, axis=1)[:, None]
-        y[index] = new.ravel()
+        rigid.moments(p, w, free, turned, True)
+        old = y[index]
+        new = old.copy()
+        for li in np.flatnonzero(free):
+            mine = line_of == li
+            if planar[li]:  # angles: half the turn, the short way round
+                step = np.angle(np.exp(1j * (turned[mine] - old[mine])))
+                new[mine] = old[mine] + 0.5 * step
+            else:
+                half = 0.5 * (old[mine] + turned[mine]).reshape(-1, 3)
+                new[mine] = (half / np.linalg.norm(half, axis=1)[:, None]).ravel()
+        y[index] = new
         if np.abs(new - old).max() < 1e-9:
             break
     return y
@@ -533,7 +547,7 @@ def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
         what = ("x", "y", "z")[int(coords.axis[worst])]
         dof = "rotation about" if coords.kind[worst] == 1 else "force along"
         where = f"body '{name}' ({dof} {what}: acceleration {r[worst]:.3g} at rest)"
-    elif coords.kind[worst] == 3:
+    elif coords.kind[worst] >= 3:
         where = f"line '{built.layout.rigid[int(coords.line[worst])]}'"
     else:
         where = f"line '{built.layout.lines[int(coords.line[worst])]}'"
