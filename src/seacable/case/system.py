@@ -269,6 +269,33 @@ class LumpedMassLine(_Model):
     initial: Literal["catenary", "straight"] = "catenary"
 
 
+class LineAngles(_Model):
+    """A rigid line's initial shape given by its segments' angles from the downward vertical,
+    positive towards +x [deg] (in the vertical plane at ``azimuth_deg`` from +x towards +y for
+    a 3D line): ``angles_deg``, one per segment, or ``arc_deg`` [first, last], varying linearly
+    along the line. The line starts from its ``from`` point; a body it carries must be at its
+    end, a held end's point within 1 mm of it."""
+
+    angles_deg: list[float] | None = None
+    arc_deg: tuple[float, float] | None = None
+    azimuth_deg: float = 0.0
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.angles_deg is None) == (self.arc_deg is None):
+            raise ValueError("give exactly one of 'angles_deg' (one per segment) or 'arc_deg' "
+                             "[first, last]")  # fmt: skip
+        return self
+
+    def angles(self, n: int) -> list[float]:
+        """The n angles [deg]."""
+        if self.angles_deg is not None:
+            return list(self.angles_deg)
+        assert self.arc_deg is not None  # _one_form
+        first, last = self.arc_deg
+        return [first + (last - first) * k / max(n - 1, 1) for k in range(n)]
+
+
 class RigidLine(_Model):
     """An inextensible line of rigid uniform segments joined by joints with bending springs (the
     line type's EI over the mean span of the two segments; the first joint, at ``from``, against
@@ -291,9 +318,9 @@ class RigidLine(_Model):
     to: str
     sections: list[Section] = Field(min_length=1)
     # initial shape: the inextensible catenary between the ends (hanging in the vertical plane
-    # through them; a body carried at the tip moves to the line's end), or a straight line
-    # from ``from`` towards ``to`` with the whole length
-    initial: Literal["catenary", "straight"] = "catenary"
+    # through them; a body carried at the tip moves to the line's end), a straight line from
+    # ``from`` towards ``to`` with the whole length, or the segments' angles (LineAngles)
+    initial: Literal["catenary", "straight"] | LineAngles = "catenary"
     joint_damping: NonNeg = 0.0  # [N m s/rad], every joint
     # direction the first joint's spring is unloaded at, in the frame of ``from``'s body
     # (unit vector); by default the first segment's initial direction

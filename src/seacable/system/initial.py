@@ -108,19 +108,12 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
                 f"{where}: its ends are {distance:.6g} m apart, farther than its length "
                 f"{total:.6g} m; an inextensible line cannot reach: lengthen it or move its ends"
             )
-        nodes = None
-        weight = float(p.rs_wet_weight[s0 : s0 + n].sum()) / total
-        if line.initial == "catenary" and distance < total * (1 - 1e-9) and weight > 0:
-            nodes = _hanging(start, end, lengths, weight)
-        if nodes is None:
-            chord = end - start if distance > 0 else np.array([0.0, 0.0, -1.0])
-            unit = chord / np.linalg.norm(chord)
-            arc = np.concatenate([[0.0], np.cumsum(lengths)])
-            nodes = start + arc[:, None] * unit[None, :]
-        if distance <= total:
-            nodes = _reach(nodes, lengths, start, end)
-        e = np.diff(nodes, axis=0)
-        e /= np.linalg.norm(e, axis=1)[:, None]
+        if isinstance(line.initial, sch.LineAngles):
+            e, pose = _given_angles(line, p, li, start, end, where)
+            if pose is not None:
+                p = p._replace(body_pose=pose)
+        else:
+            e = _shaped(line, p, li, start, end, total, distance)
         if line.model == "rigid_links":
             if abs(end[1] - start[1]) > 1e-9 * max(1.0, total):
                 raise CaseError(
@@ -139,6 +132,58 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
             kernel.rhs(0.0, y, p, w, np.zeros_like(y))
             ref[li] = w.rot[base].T @ e[0]
     return y, p._replace(rs_ref=ref)
+
+
+def _shaped(line, p, li, start, end, total, distance) -> np.ndarray:
+    """Unit directors (n, 3) of a catenary or straight initial shape, closed on ``end``."""
+    n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
+    lengths = p.rs_length[s0 : s0 + n]
+    nodes = None
+    weight = float(p.rs_wet_weight[s0 : s0 + n].sum()) / total
+    if line.initial == "catenary" and distance < total * (1 - 1e-9) and weight > 0:
+        nodes = _hanging(start, end, lengths, weight)
+    if nodes is None:
+        chord = end - start if distance > 0 else np.array([0.0, 0.0, -1.0])
+        unit = chord / np.linalg.norm(chord)
+        arc = np.concatenate([[0.0], np.cumsum(lengths)])
+        nodes = start + arc[:, None] * unit[None, :]
+    if distance <= total:
+        nodes = _reach(nodes, lengths, start, end)
+    e = np.diff(nodes, axis=0)
+    return e / np.linalg.norm(e, axis=1)[:, None]
+
+
+def _given_angles(line, p, li, start, end, where):
+    """Unit directors (n, 3) of the angles the case gives, and the bodies' poses with a body
+    carried at the tip put exactly at the shape's end (None when there is none)."""
+    n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
+    angles = line.initial.angles(n)
+    if len(angles) != n:
+        raise CaseError(
+            f"{where}.initial.angles_deg: {len(angles)} angles for a line of {n} segments; give "
+            "one per segment"
+        )
+    a = np.radians(np.asarray(angles, dtype=float))
+    azimuth = np.radians(line.initial.azimuth_deg)
+    if line.model == "rigid_links" and line.initial.azimuth_deg != 0.0:
+        raise CaseError(f"{where}.initial.azimuth_deg: a planar rigid_links line lies in x-z; "
+                        "leave azimuth_deg at 0")  # fmt: skip
+    e = np.column_stack([np.sin(a) * np.cos(azimuth), np.sin(a) * np.sin(azimuth), -np.cos(a)])
+    tip_end = start + (p.rs_length[s0 : s0 + n, None] * e).sum(axis=0)
+    miss = float(np.linalg.norm(tip_end - end))
+    tip = int(p.rs_tip[li])
+    if miss > 1e-3:
+        what = "the body it carries is" if tip >= 0 else "its 'to' point is"
+        raise CaseError(
+            f"{where}.initial: the given angles end the line at {np.round(tip_end, 4).tolist()} "
+            f"m but {what} at {np.round(end, 4).tolist()} m ({miss:.4g} m apart; allowed "
+            "1 mm): move it to the line's end or change the angles"
+        )
+    pose = None
+    if tip >= 0:
+        pose = p.body_pose.copy()
+        pose[tip, :3] = tip_end
+    return e, pose
 
 
 def _hanging(start, end, lengths, weight):
