@@ -489,6 +489,8 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         if planar:
             _planar_ends(case, line, where, tip)
         held.append(np.ones(3) if tip < 0 else 1.0 - body_free[tip, :3])
+        if line.model == "rigid_links":
+            held[-1][1] = 0.0  # the plane holds y
         ref.append(
             np.full(3, np.nan)
             if line.base_reference is None

@@ -9,6 +9,7 @@ from scipy import sparse
 
 from seacable.case import system as sch
 from seacable.system import kernel, outputs, statics, topology
+from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
 from seacable.system.initial import initial_state
@@ -75,6 +76,26 @@ def _line_variables(tension: str) -> dict:
     return out
 
 
+def _rigid_variables(system: BuiltSystem, li: int) -> dict:
+    p = system.params
+    out = _line_variables(RIGID_TENSION)
+    if p.rs_kind[li] == rigid_kind.PLANAR:
+        out["angle"] = (("time", "segment"), "rad",
+                        "link angle from the downward vertical, positive towards +x")  # fmt: skip
+        out["angular_velocity"] = (("time", "segment"), "rad/s", "link angular velocity")
+    else:
+        for c in AXES:
+            out[f"direction_{c}"] = (
+                ("time", "segment"),
+                "1",
+                f"unit vector along the segment, {c}",
+            )
+        out["angular_rate"] = (("time", "segment"), "rad/s", "rate of turn of the segment")
+    if p.rs_held[li].any():
+        out["constraint_error"] = (("time",), "m", "distance of the held end from where it is held")
+    return out
+
+
 LUMPED_TENSION = "axial tension of the segment (no compression)"
 RIGID_TENSION = "axial force at the segment's centre (positive pulling, negative compressed)"
 TIE_VARIABLES = {
@@ -102,8 +123,8 @@ def variables(system: BuiltSystem) -> dict:
     for line in system.layout.lines:
         for name, spec in _line_variables(LUMPED_TENSION).items():
             out[f"lines/{line}/{name}"] = spec
-    for line in system.layout.rigid:
-        for name, spec in _line_variables(RIGID_TENSION).items():
+    for li, line in enumerate(system.layout.rigid):
+        for name, spec in _rigid_variables(system, li).items():
             out[f"lines/{line}/{name}"] = spec
     for line in system.layout.ties:
         for name, spec in TIE_VARIABLES.items():
@@ -181,6 +202,18 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
             out[f"lines/{line}/from_force_{axis}"] = rigid[2][:, li, 0, c]
             out[f"lines/{line}/to_force_{axis}"] = rigid[2][:, li, 1, c]
         out[f"lines/{line}/tension"] = rigid[1][:, s0 : s0 + n]
+        q, v = int(p.rs_q[li]), int(p.rs_v[li])
+        if p.rs_kind[li] == rigid_kind.PLANAR:
+            out[f"lines/{line}/angle"] = states[:, q : q + n]
+            out[f"lines/{line}/angular_velocity"] = states[:, v : v + n]
+        else:
+            e = states[:, q : q + 3 * n].reshape(m, n, 3)
+            for c, axis in enumerate(AXES):
+                out[f"lines/{line}/direction_{axis}"] = e[:, :, c]
+            rates = states[:, v : v + 3 * n].reshape(m, n, 3)
+            out[f"lines/{line}/angular_rate"] = np.linalg.norm(rates, axis=2)
+        if p.rs_held[li].any():
+            out[f"lines/{line}/constraint_error"] = rigid[3][:, li]
     for k, line in enumerate(system.layout.ties):
         out[f"lines/{line}/tension"] = ties[:, k, 0]
         out[f"lines/{line}/distance"] = ties[:, k, 1]

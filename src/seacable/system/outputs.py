@@ -76,7 +76,7 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
             for c in range(3):
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
-        _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j])
+        _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j], rigid[3][j])
         _bodies(y, p, w, on_body, bodies[j])
         energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(y, p, w)
     return status
@@ -86,17 +86,23 @@ def rigid_rows(p, m: int) -> tuple:
     """Arrays of ``m`` rows of the rigid lines' outputs: nodes, tensions, end forces."""
     nodes = int((p.rs_n + 1).sum())
     return (np.empty((m, nodes, 3)), np.empty((m, int(p.rs_n.sum()))),
-            np.empty((m, len(p.rs_n), 2, 3)))  # fmt: skip
+            np.empty((m, len(p.rs_n), 2, 3)), np.empty((m, len(p.rs_n))))  # fmt: skip
 
 
 @njit(inline="always", **JIT)
-def _rigid_rows(p, w, on_body, nodes, tension, ends):
-    """Every rigid line's nodes, axial forces at its segments' centres and forces on its
-    ends."""
+def _rigid_rows(p, w, on_body, nodes, tension, ends, error):
+    """Every rigid line's nodes, axial forces at its segments' centres, forces on its ends and
+    the distance of a held end from where it is held (on the held axes)."""
     for li in range(p.rs_n.shape[0]):
         n, c0, s0 = p.rs_n[li], p.rs_node[li], p.rs_seg[li]
         ws = w.rs[:, c0 : c0 + n + 1]
         _rigid_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n], ends[li])
+        tip = p.rs_tip[li]
+        miss = 0.0
+        for c in range(3):
+            target = p.body_pose[tip, c] if tip >= 0 else w.ppos[p.rs_to[li], c]
+            miss += p.rs_held[li, c] * (nodes[c0 + n, c] - target) ** 2
+        error[li] = math.sqrt(miss)
         for end in range(2):
             point = p.rs_from[li] if end == 0 else p.rs_to[li]
             f = ends[li, end]
