@@ -12,7 +12,7 @@ from seacable.kernels import chain3d as c3
 from seacable.numerics import integrators
 from seacable.simulation import build_system
 
-EXAMPLES = Path(__file__).parent.parent / "examples"
+EXAMPLES = Path(__file__).parent / "legacy_cases"  # the single-cable form of the examples
 RHO = 1025.0
 
 

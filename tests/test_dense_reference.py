@@ -13,9 +13,7 @@ from seacable.models import planar_rigid_links
 sys.path.insert(0, str(Path(__file__).parent.parent / "benchmarks"))
 from dense_reference import DenseThesisModel  # noqa: E402
 
-EXAMPLE = (
-    Path(__file__).parent.parent / "examples" / "thesis_6_1_sim6_submerged_60_links_forced.yaml"
-)
+EXAMPLE = Path(__file__).parent / "legacy_cases" / "thesis_6_1_sim6_submerged_60_links_forced.yaml"
 
 
 @pytest.mark.parametrize("n", [5, 60, 200])

@@ -43,3 +43,14 @@ def test_example_runs_and_plots(path, tmp_path):
 def test_example_runs_in_full(path):
     results = seacable.simulate(seacable.load_case(path))
     assert results.status == "complete"
+
+
+def test_the_case_file_in_the_readme_builds():
+    """The README's case-file block is a valid case whose bodies sit where its line ends."""
+    from seacable.system import model
+
+    text = (Path(__file__).parent.parent / "README.md").read_text()
+    start = text.index("```yaml\nenvironment:") + len("```yaml\n")
+    case = seacable.load_case(text[start : text.index("```", start)])
+    built = model.build(case)
+    assert built.params.rs_n[0] == 60

@@ -242,7 +242,7 @@ def test_adaptive_integrators_converge_with_their_tolerance(integrator):
 
 @pytest.mark.parametrize("integrator", ["cvode", "bdf"])
 def test_stiff_integrators_run_rigid_link_models_with_a_dense_jacobian(integrator):
-    case = seacable.load_case("examples/thesis_6_1_sim2_submerged_12_links.yaml")
+    case = seacable.load_case("tests/legacy_cases/thesis_6_1_sim2_submerged_12_links.yaml")
     reference = case.simulation.model_copy(
         update={"integrator": "dopri5", "duration": 2.0, "rtol": 1e-9, "atol": 1e-11}
     )

@@ -18,7 +18,7 @@ LAYER = {
     "lines": 5, "forces": 5,
     "bodies": 4,
     "packing": 3,
-    "case.system": 2, "case.schema": 2, "timefunctions": 2,
+    "case.system": 2, "case.schema": 2, "timefunctions": 2, "case.legacy": 9,
     "case.base": 1,
     "kernels": 0,
     "errors": 0,

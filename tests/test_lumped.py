@@ -331,9 +331,9 @@ def test_two_floating_structures_like_the_rigid_link_model():
     surge spring-dampers) without joint springs: a steel lumped line (EA of the 20 mm rod)
     under generalized-alpha moves both structures like the rigid-link cable over the first 3 s
     (the lumped line starts unstretched, so a small axial shock runs along it at first)."""
-    data = seacable.load_case("examples/thesis_6_3_sim1_two_floating_structures.yaml").model_dump(
-        mode="json", exclude_unset=True
-    )
+    data = seacable.load_case(
+        "tests/legacy_cases/thesis_6_3_sim1_two_floating_structures.yaml"
+    ).model_dump(mode="json", exclude_unset=True)
     cable = data["cables"][0]
     cable.update(joint_stiffness=0.0, joint_damping=0.0)
     data["simulation"].update(duration=3.0)

@@ -9,6 +9,7 @@ import click
 
 import seacable
 from seacable import analysis, viz
+from seacable.case import legacy
 from seacable.case.system import SystemCase
 
 
@@ -71,6 +72,26 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
     except seacable.SimulationInterrupted as exc:
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 130)
     click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Case file to write.")
+def upgrade(case_file: str, output: str | None) -> None:
+    """Write CASE_FILE (the single-cable form, cables: with top and bottom) in the system form
+    of bodies and lines (to stdout, or OUTPUT next to it: table files keep their names)."""
+    try:
+        case = seacable.load_case(case_file)
+        if isinstance(case, SystemCase):
+            raise seacable.CaseError(f"{case_file} is already a system of bodies and lines")
+        text = legacy.upgrade_text(case)
+    except seacable.CaseError as exc:
+        _fail(str(exc), 2)
+    if output is None:
+        click.echo(text, nl=False)
+        return
+    Path(output).write_text(text)
+    click.echo(f"system form in {output}")
 
 
 @main.command()

@@ -14,6 +14,12 @@ match within 1e-9 of each variable's scale (:func:`compare_to_golden`).
 Run from the repository root::
 
     PYTHONPATH=src python tests/golden/record.py [example stems...]
+
+The goldens were recorded from the single-cable core (``cables:`` with ``top`` and ``bottom``).
+An example rewritten in the system form of bodies and lines (``seacable upgrade``) keeps its
+golden file, which is then frozen: its run is compared through :func:`system_rows`, which names
+the system's variables as the single-cable model named them (``lines/<line>/from_force_x`` was
+``top_force_x``, the top body's height was ``top_heave``), and is never recorded again.
 """
 
 import gzip
@@ -31,6 +37,7 @@ import yaml
 import seacable
 from seacable.case.loader import case_text, derive_case
 from seacable.case.schema import FIXED_STEP_INTEGRATORS
+from seacable.case.system import SystemCase
 from seacable.errors import SimulationDiverged
 from seacable.simulation import rk4_step
 
@@ -61,10 +68,15 @@ def example_path(stem: str) -> Path:
 
 
 def example_stems() -> list[str]:
-    """The examples of the single-cable form (``cables:``), recorded before the system of
-    bodies and lines replaces that core; the system examples (``lines:``) are checked against
-    MoorPy and closed forms instead (tests/test_system*.py)."""
-    return sorted(p.stem for p in EXAMPLES.glob("*.yaml") if "\ncables:" in p.read_text())
+    """The examples with a golden file: recorded from the single-cable form before the system
+    of bodies and lines replaced it; the examples written as systems from the start are checked
+    against MoorPy and closed forms instead (tests/test_system*.py)."""
+    return sorted(p.name.removesuffix(".nc.gz") for p in GOLDEN.glob("*.nc.gz"))
+
+
+def single_cable(stem: str) -> bool:
+    """True for an example still in the single-cable form (its golden can be recorded)."""
+    return "\ncables:" in example_path(stem).read_text()
 
 
 def golden_path(stem: str) -> Path:
@@ -88,11 +100,45 @@ def derived(stem: str, changes: Mapping):
     return derive_case(seacable.load_case(example_path(stem)), dict(changes))
 
 
-def run(stem: str, changes: Mapping) -> xr.Dataset:
-    results = seacable.simulate(derived(stem, changes))
+def run(stem: str, changes: Mapping):
+    """The example's results: a Dataset (single-cable form), or the mapping of
+    :func:`system_rows` (system form)."""
+    case = derived(stem, changes)
+    results = seacable.simulate(case)
     if results.status != "complete":
         raise RuntimeError(f"{stem} with {dict(changes)}: {results.status}: {results.message}")
+    if isinstance(case, SystemCase):
+        return system_rows(results.dataset, case)
     return results.dataset
+
+
+def system_rows(tree, case) -> dict:
+    """A system of one line between two bodies (an upgraded single-cable example) under the
+    single-cable model's names: the line's variables, its end forces as ``top_force_*`` and
+    ``bottom_force_*``, the first body's height and velocities as ``top_heave``,
+    ``top_heave_velocity`` and ``top_velocity_*`` (zero for a fixed body), the second body's
+    velocities as ``bottom_velocity_*``, the energies; the coordinates ``time`` and
+    ``arc_length``."""
+    line = tree[f"lines/{case.lines[0].name}"].to_dataset()
+    top, end = (tree[f"bodies/{body.name}"].to_dataset() for body in case.bodies[:2])
+    zeros = np.zeros(tree["time"].size)
+    out = {
+        name: line[name].values for name in line.data_vars if not name.startswith(("from_", "to_"))
+    }
+    for c in "xyz":
+        out[f"top_force_{c}"] = line[f"from_force_{c}"].values
+        out[f"bottom_force_{c}"] = line[f"to_force_{c}"].values
+        out[f"top_velocity_{c}"] = top[f"velocity_{c}"].values if f"velocity_{c}" in top else zeros
+        out[f"bottom_velocity_{c}"] = (
+            end[f"velocity_{c}"].values if f"velocity_{c}" in end else zeros
+        )
+    out["top_heave"] = top["position_z"].values
+    out["top_heave_velocity"] = out["top_velocity_z"]
+    for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
+        out[name] = tree[name].values
+    out["time"] = tree["time"].values
+    out["arc_length"] = line["arc_length"].values
+    return out
 
 
 def variable_scales(golden: xr.Dataset) -> dict[str, float]:
@@ -244,6 +290,8 @@ def converge(stem: str) -> tuple[dict, xr.Dataset, dict[str, float]]:
 
 def record(stem: str) -> dict:
     """Converge the example, write its golden file, return a summary."""
+    if not single_cable(stem):
+        raise SystemExit(f"{stem}: a system-form example's golden is frozen (see the module)")
     start = time.perf_counter()
     changes, dataset, per_variable = converge(stem)
     variable = max(per_variable, key=per_variable.__getitem__)
@@ -300,7 +348,7 @@ def golden_changes(golden: xr.Dataset) -> dict:
 
 
 def main(stems: list[str]) -> None:
-    for stem in stems or example_stems():
+    for stem in stems or [s for s in example_stems() if single_cable(s)]:
         summary = record(stem)
         settings = {k: v for k, v in summary["settings"]["simulation"].items() if k != "duration"}
         print(

@@ -10,6 +10,7 @@ gravity are given in the body frame, relative to the reference point.
 
 from typing import Annotated, Literal
 
+import numpy as np
 from pydantic import Field, PrivateAttr, field_validator, model_validator
 
 from seacable.case.base import (
@@ -292,8 +293,7 @@ class LineAngles(_Model):
         if self.angles_deg is not None:
             return list(self.angles_deg)
         assert self.arc_deg is not None  # _one_form
-        first, last = self.arc_deg
-        return [first + (last - first) * k / max(n - 1, 1) for k in range(n)]
+        return [float(a) for a in np.linspace(self.arc_deg[0], self.arc_deg[1], n)]
 
 
 class RigidLine(_Model):

@@ -20,4 +20,5 @@ def add_gravity(mass, cog, rot, gravity, rhs):
 def add_buoyancy(volume, cob, fraction, rot, gravity, rho, rhs):
     """rho g V f [N] at the centre of buoyancy ``cob`` (body frame [m])."""
     arm = turn(rot, (cob[0], cob[1], cob[2]))
-    add_force(arm, 0.0, 0.0, rho * gravity * volume * fraction, rhs)
+    # rho V before g: a body whose weight equals its buoyancy (m = rho V) is balanced exactly
+    add_force(arm, 0.0, 0.0, rho * volume * fraction * gravity, rhs)

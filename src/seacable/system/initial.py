@@ -108,8 +108,9 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
                 f"{where}: its ends are {distance:.6g} m apart, farther than its length "
                 f"{total:.6g} m; an inextensible line cannot reach: lengthen it or move its ends"
             )
+        given = None
         if isinstance(line.initial, sch.LineAngles):
-            e, pose = _given_angles(line, p, li, start, end, where)
+            e, pose, given = _given_angles(line, p, li, start, end, where)
             if pose is not None:
                 p = p._replace(body_pose=pose)
         else:
@@ -121,7 +122,7 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
                     f"at y = {start[1]:.6g} and {end[1]:.6g} m; put both ends at one y, or use "
                     "model: rigid_segments_3d"
                 )
-            y[q : q + n] = np.arctan2(e[:, 0], -e[:, 2])
+            y[q : q + n] = np.arctan2(e[:, 0], -e[:, 2]) if given is None else given
             y[p.rs_v[li] : p.rs_v[li] + n] = 0.0
         else:
             y[q : q + 3 * n] = e.ravel()
@@ -154,8 +155,9 @@ def _shaped(line, p, li, start, end, total, distance) -> np.ndarray:
 
 
 def _given_angles(line, p, li, start, end, where):
-    """Unit directors (n, 3) of the angles the case gives, and the bodies' poses with a body
-    carried at the tip put exactly at the shape's end (None when there is none)."""
+    """Unit directors (n, 3) of the angles the case gives, the bodies' poses with a body
+    carried at the tip put exactly at the shape's end (None when there is none), and the
+    angles [rad]."""
     n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
     angles = line.initial.angles(n)
     if len(angles) != n:
@@ -183,7 +185,7 @@ def _given_angles(line, p, li, start, end, where):
     if tip >= 0:
         pose = p.body_pose.copy()
         pose[tip, :3] = tip_end
-    return e, pose
+    return e, pose, a
 
 
 def _hanging(start, end, lengths, weight):
