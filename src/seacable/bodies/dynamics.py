@@ -49,13 +49,7 @@ def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
                 rr += cr[i][k] * cr[k][j]
             m6[3 + i, 3 + j] = ig[i, j] - mass * rr
     if scale_added != 0.0:
-        for i in range(6):
-            for j in range(6):
-                total = 0.0
-                for k in range(6):
-                    for m in range(6):
-                        total += _block(rot, i, k) * added[k, m] * _block(rot, j, m)
-                m6[i, j] += scale_added * total
+        _add_turned(added, rot, scale_added, m6)
     wx, wy, wz = omega[0], omega[1], omega[2]
     # w x r, then w x (w x r)
     ax, ay, az = wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx
@@ -69,12 +63,27 @@ def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
     bias[5] = wx * hy - wy * hx + mass * (rx * cy - ry * cx)
 
 
-@njit(inline="always", **JIT)
-def _block(rot, i, k):
-    """Entry (i, k) of diag(R, R)."""
-    if (i < 3) != (k < 3):
-        return 0.0
-    return rot[i % 3, k % 3]
+@njit(**JIT)
+def _add_turned(added, rot, scale, m6):
+    """m6 += scale diag(R, R) A diag(R, R)^T, block by block (nothing when A is zero)."""
+    empty = True
+    for i in range(6):
+        for j in range(6):
+            if added[i, j] != 0.0:
+                empty = False
+    if empty:
+        return
+    for bi in range(2):
+        for bj in range(2):
+            for i in range(3):
+                for j in range(3):
+                    total = 0.0
+                    for k in range(3):
+                        row = 0.0
+                        for m in range(3):
+                            row += added[3 * bi + k, 3 * bj + m] * rot[j, m]
+                        total += rot[i, k] * row
+                    m6[3 * bi + i, 3 * bj + j] += scale * total
 
 
 @njit(**JIT)
@@ -83,6 +92,12 @@ def add_point_mass(m3, arm, omega, force, m6, rhs):
     reference point and loaded by ``force`` besides its carrier (a line's end node): adds
     Phi^T m3 Phi to ``m6`` and Phi^T (force - m3 w x (w x arm)) to ``rhs``, Phi = [I, -[arm]]."""
     rx, ry, rz = arm[0], arm[1], arm[2]
+    if rx == 0.0 and ry == 0.0 and rz == 0.0:  # at the reference point: Phi = [I, 0]
+        for i in range(3):
+            rhs[i] += force[i]
+            for j in range(3):
+                m6[i, j] += m3[3 * i + j]
+        return
     wx, wy, wz = omega[0], omega[1], omega[2]
     ax, ay, az = wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx
     c = (wy * az - wz * ay, wz * ax - wx * az, wx * ay - wy * ax)
@@ -117,10 +132,21 @@ def add_force(arm, fx, fy, fz, rhs):
     rhs[5] += arm[0] * fy - arm[1] * fx
 
 
-@njit(**JIT)
-def solve_free(m6, rhs, free, out):
-    """Accelerations ``out`` (6) of M a = rhs with a_i = 0 on every held degree of freedom
-    (``free[i] == 0``): Gaussian elimination with partial pivoting. False when singular."""
+@njit(inline="always", **JIT)
+def _single(free):
+    """The one free degree of freedom, or -1 when there are several (or none)."""
+    only = -1
+    for i in range(6):
+        if free[i] != 0.0:
+            if only >= 0:
+                return -1
+            only = i
+    return only
+
+
+@njit(inline="always", **JIT)
+def _held_rows(m6, rhs, free):
+    """Copies of M and rhs with every held degree of freedom's row a_i = 0."""
     a = m6.copy()
     b = rhs.copy()
     for i in range(6):
@@ -129,6 +155,26 @@ def solve_free(m6, rhs, free, out):
                 a[i, j] = 0.0
             a[i, i] = 1.0
             b[i] = 0.0
+    return a, b
+
+
+@njit(inline="always", **JIT)
+def _solve_one(m6, rhs, only, out):
+    for i in range(6):
+        out[i] = 0.0
+    out[only] = rhs[only] / m6[only, only]
+    return m6[only, only] != 0.0
+
+
+@njit(**JIT)
+def solve_free(m6, rhs, free, out):
+    """Accelerations ``out`` (6) of M a = rhs with a_i = 0 on every held degree of freedom
+    (``free[i] == 0``): Gaussian elimination with partial pivoting (one free degree of freedom:
+    a division). False when singular."""
+    only = _single(free)
+    if only >= 0:
+        return _solve_one(m6, rhs, only, out)
+    a, b = _held_rows(m6, rhs, free)
     for k in range(6):
         p = k
         for i in range(k + 1, 6):

@@ -174,13 +174,19 @@ def point_acceleration(t, kind, channel, tf, acc, arm, omega, out):
     """Acceleration (3) of a point at ``arm`` (earth frame) from its body's reference point:
     a + alpha x r + w x (w x r), with the body's ``acc`` (6: a dynamic or tip body's, solved)
     or its channels' (imposed), zero for a fixed body."""
-    a = np.zeros(6)
     if kind == DYNAMIC or kind == TIP:
-        a[:] = acc
+        _carried(acc, arm, omega, out)
     elif kind == IMPOSED:
+        a = np.empty(6)
         imposed_acceleration(t, channel, tf, a)
-    r = arm
-    om = omega
+        _carried(a, arm, omega, out)
+    else:
+        out[0] = out[1] = out[2] = 0.0
+
+
+@njit(inline="always", **JIT)
+def _carried(a, r, om, out):
+    """a + alpha x r + w x (w x r) of a body's twist rates ``a`` (6)."""
     ax, ay, az = (
         om[1] * r[2] - om[2] * r[1],
         om[2] * r[0] - om[0] * r[2],

@@ -21,6 +21,7 @@ from seacable.kernels.planar_chain import link_energies
 from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass
+from seacable.system import rigid
 
 
 @njit(**JIT)
@@ -117,13 +118,13 @@ def _rigid(y, p, w):
     kinetic = gravity = elastic = 0.0
     ref = np.empty(3)
     for li in range(p.rs_n.shape[0]):
-        n, s0, c0 = p.rs_n[li], p.rs_seg[li], p.rs_node[li]
+        n, s0 = p.rs_n[li], p.rs_seg[li]
         base = p.point_body[p.rs_from[li]]
         for c in range(3):
             ref[c] = (w.rot[base, c, 0] * p.rs_ref[li, 0] + w.rot[base, c, 1] * p.rs_ref[li, 1]
                       + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
         e = s0 + n
-        ws = w.rs[:, c0 : c0 + n + 1]
+        ws = rigid.workspace(p, w, li)
         if p.rs_kind[li] == 1:  # planar
             k, g, el = link_energies(
                 n, y, p.rs_q[li], p.rs_v[li], p.rs_length[s0:e], p.rs_mass[s0:e],

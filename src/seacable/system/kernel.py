@@ -151,11 +151,12 @@ class SystemWork(NamedTuple):
     tie_force: np.ndarray  # (nt, 3) on the from point
     rhs6: np.ndarray  # (6,) one body's right-hand side
     quat: np.ndarray  # (nb, 4) orientation quaternions
-    rs: np.ndarray  # (chain3d_layout.N_WORK_ROWS, rigid-line nodes)
+    rs: np.ndarray  # (chain3d_layout.N_WORK_ROWS * rigid-line nodes) flat: system.rigid._view
     rs_force: np.ndarray  # (nr, 3) holding force L at a held tip (its constant part l0 between
     # the backward and the forward sweeps)
     rs_la: np.ndarray  # (nr, 9) dL/dA_0, row-major
     own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
+    scratch: np.ndarray  # (128,) the rigid lines' small vectors of one evaluation
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -171,9 +172,9 @@ def make_work(p: SystemParams) -> SystemWork:
         nodes=np.zeros((lk.N_WORK_ROWS, max(1, len(p.node_mass)))),
         line=np.zeros(6 * (nmax + 1)), end_mass=np.zeros((nl, 2, 9)),
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
-        rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros((c3.N_WORK_ROWS, rs_nodes)),
+        rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
         rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
-        own_load=np.zeros((nb, 3)),
+        own_load=np.zeros((nb, 3)), scratch=np.zeros(128),
     )  # fmt: skip
 
 
@@ -305,7 +306,7 @@ def _lines(y, p, w, ydot):
 @njit(inline="always", **JIT)
 def _bodies(y, p, w, ydot):
     ok = True
-    rhs = np.empty(6)
+    rhs = w.rhs6
     for b in range(p.body_kind.shape[0]):
         if p.body_kind[b] != DYNAMIC:
             continue

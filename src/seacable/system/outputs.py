@@ -95,7 +95,7 @@ def _rigid_rows(p, w, on_body, nodes, tension, ends, error):
     the distance of a held end from where it is held (on the held axes)."""
     for li in range(p.rs_n.shape[0]):
         n, c0, s0 = p.rs_n[li], p.rs_node[li], p.rs_seg[li]
-        ws = w.rs[:, c0 : c0 + n + 1]
+        ws = rigid.workspace(p, w, li)
         _rigid_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n], ends[li])
         tip = p.rs_tip[li]
         miss = 0.0

@@ -27,9 +27,18 @@ def _tf(p):
 
 @njit(inline="always", **JIT)
 def _view(p, w, li):
-    """One rigid line's segment count, first segment and workspace columns."""
+    """One rigid line's segment count, first segment and workspace: a C-contiguous block of
+    (chain3d_layout.N_WORK_ROWS, n + 1) in the flat ``w.rs`` (contiguous rows keep the sweeps
+    as fast as the single cable's)."""
     n, s0, c0 = p.rs_n[li], p.rs_seg[li], p.rs_node[li]
-    return n, s0, w.rs[:, c0 : c0 + n + 1]
+    rows = c3.N_WORK_ROWS
+    return n, s0, w.rs[rows * c0 : rows * (c0 + n + 1)].reshape((rows, n + 1))
+
+
+@njit(**JIT)
+def workspace(p, w, li):
+    """``_view``'s workspace of rigid line ``li`` (outputs, energies)."""
+    return _view(p, w, li)[2]
 
 
 @njit(inline="always", **JIT)
@@ -44,7 +53,7 @@ def _held(p, li):
 def nodes_and_loads(y, p, w):
     """Every rigid line's nodes and loads, bases first; a carried body's position and velocity
     from its line's last node."""
-    ref = np.empty(3)
+    ref = w.scratch[120:123]
     for j in range(p.rs_order.shape[0] - 1, -1, -1):
         li = p.rs_order[j]
         n, s0, ws = _view(p, w, li)
@@ -115,8 +124,8 @@ def backward(t, y, p, w):
     """Every rigid line's backward sweep, children first: a carried body's mass and loads start
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
     the line's articulated inertia ``m9`` and load. False when a closure is singular."""
-    scratch = np.empty(60)
-    m9, load = np.empty(9), np.empty(3)
+    scratch = w.scratch[0:60]
+    m9, load = w.scratch[60:69], w.scratch[69:72]
     ok = True
     for j in range(p.rs_order.shape[0]):
         li = p.rs_order[j]
@@ -137,8 +146,8 @@ def _segments_backward(t, p, w, li, m9, load, scratch):
     n, s0, ws = _view(p, w, li)
     m, b, s = scratch[0:6], scratch[6:9], scratch[9:18]
     ac, ga, al, la = scratch[18:21], scratch[21:30], scratch[30:39], scratch[39:48]
-    target, tipv, system = scratch[48:57], np.empty(6), np.empty(9)
-    rhs3, acc = np.empty(3), np.empty(3)
+    target, tipv, system = scratch[48:57], w.scratch[72:78], w.scratch[78:87]
+    rhs3, acc = w.scratch[87:90], w.scratch[90:93]
     tip = p.rs_tip[li]
     held = p.rs_held[li]
     pinned = _held(p, li)
@@ -237,7 +246,7 @@ def forward(t, y, p, w, ydot):
     """Every rigid line's forward sweep, bases first: node 0's acceleration from its body's,
     the holding force from it, the segments' accelerations; a carried body's acceleration is
     its line's last node's."""
-    a0, held_force = np.empty(3), np.empty(3)
+    a0, held_force = w.scratch[100:103], w.scratch[103:106]
     for j in range(p.rs_order.shape[0] - 1, -1, -1):
         li = p.rs_order[j]
         n, s0, ws = _view(p, w, li)
