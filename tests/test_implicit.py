@@ -158,7 +158,7 @@ def test_newton_converges_in_few_iterations_and_counts_its_work():
 
 
 def _mooring(integrator, duration=6.0, **simulation):
-    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    case = seacable.load_case("tests/legacy_cases/catenary_mooring_line_surge.yaml")
     sim = case.simulation.model_copy(
         update={"integrator": integrator, "duration": duration, **simulation}
     )
@@ -179,7 +179,7 @@ def test_implicit_steps_far_beyond_the_explicit_limit_agree_with_dopri5():
         assert attrs["solver_rhs_evaluations"] <= 3 * attrs["solver_accepted_steps"]
     # the rk4 warning names the axial waves at that step
     omega, what = seacable.simulation.fastest_frequency(
-        build_system(seacable.load_case("examples/catenary_mooring_line_surge.yaml"))
+        build_system(seacable.load_case("tests/legacy_cases/catenary_mooring_line_surge.yaml"))
     )
     assert omega * 0.02 > 6 * 2.8 and "axial" in what
 
@@ -192,7 +192,7 @@ def test_implicit_scheme_needs_a_model_with_a_newton_matrix():
 
 
 def test_unstable_newmark_parameters_are_refused():
-    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    case = seacable.load_case("tests/legacy_cases/catenary_mooring_line_surge.yaml")
     data = case.model_dump(mode="json", exclude_unset=True)
     data["simulation"].update(integrator="newmark", newmark_gamma=0.7, newmark_beta=0.25)
     with pytest.raises(CaseError, match=r"newmark_beta \(0.25\) is below"):
@@ -200,7 +200,7 @@ def test_unstable_newmark_parameters_are_refused():
 
 
 def test_a_newton_failure_stops_with_advice_and_keeps_results(tmp_path):
-    case = seacable.load_case("examples/catenary_mooring_line_surge.yaml")
+    case = seacable.load_case("tests/legacy_cases/catenary_mooring_line_surge.yaml")
     sim = case.simulation.model_copy(
         update={
             "integrator": "newmark",

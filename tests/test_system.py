@@ -19,6 +19,7 @@ from seacable.simulation import simulate
 from seacable.system import model
 
 EXAMPLES = Path(__file__).parent.parent / "examples"
+LEGACY = Path(__file__).parent / "legacy_cases"  # examples in the single-cable form
 
 
 def _sim(duration, dt=None, integrator="rk4", interval=0.1, **more):
@@ -60,7 +61,7 @@ def test_the_catenary_example_matches_the_single_cable_model():
     """The mooring example written as a system (a fixed anchor body, an imposed fairlead body,
     one lumped-mass line) gives today's single-cable results to 1e-9 of each variable's scale,
     both run tightly with dopri5: same initial equilibrium, same dynamics, same end forces."""
-    old = yaml.safe_load((EXAMPLES / "catenary_mooring_line_surge.yaml").read_text())
+    old = yaml.safe_load((LEGACY / "catenary_mooring_line_surge.yaml").read_text())
     cable = old["cables"][0]
     tight = {"duration": 1.0, "output_interval": 0.25, "integrator": "dopri5", "rtol": 1e-10,
              "atol": 1e-12, "build_up": 12.0}  # fmt: skip

@@ -169,7 +169,11 @@ def _short(case, duration=0.1):
 
 
 def test_a_plain_mooring_line_records_no_trajectory_or_servo_variables():
-    case = _short(seacable.load_case(EXAMPLES / "catenary_mooring_line_surge.yaml"))
+    case = _short(
+        seacable.load_case(
+            EXAMPLES.parent / "tests" / "legacy_cases" / "catenary_mooring_line_surge.yaml"
+        )
+    )
     ds = seacable.simulate(case).dataset
     assert not set(TRAJECTORY_NAMES + SERVO_NAMES) & set(ds.data_vars)
     assert "tension" in ds

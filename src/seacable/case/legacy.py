@@ -31,6 +31,7 @@ from seacable.case import schema
 from seacable.errors import CaseError
 
 RIGID = ("rigid_links", "rigid_segments_3d")
+CONVERTED = (*RIGID, "lumped_mass")
 
 
 def upgrade(case: schema.Case) -> dict[str, Any]:
@@ -40,8 +41,10 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         raise CaseError("upgrade: several cables on one body have no system form here yet")
     cable = case.cables[0]
     where = "cables[0]"
-    if cable.model not in RIGID:
+    if cable.model not in CONVERTED:
         raise CaseError(f"{where}.model: '{cable.model}' has no system form here yet")
+    if cable.model == "lumped_mass":
+        return _lumped(case, cable, where)
     if cable.point_bodies:
         raise CaseError(f"{where}.point_bodies: bodies along a cable have no system form here yet")
     for key in ("joint_stiffness", "joint_damping"):
@@ -95,6 +98,37 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         start="as_given",
         simulation=_dump(case.simulation),
     )
+    return out
+
+
+def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
+    """A lumped-mass cable from a top to a pinned anchor, started on its catenary."""
+    if not isinstance(cable.bottom, schema.PinnedBottom) or cable.bottom.anchor is None:
+        raise CaseError(f"{where}.bottom: a lumped-mass cable's system form needs a pinned end "
+                        "with its anchor here")  # fmt: skip
+    if cable.initial.shape != "catenary" or cable.point_bodies:
+        raise CaseError(f"{where}.initial: only a catenary start has a system form here")
+    top, _ = _top(cable.top, case._base_dir)
+    anchor = {"name": "anchor", "type": "fixed", "position": list(schema.xyz(cable.bottom.anchor))}
+    lengths = cable.lengths()
+    line_type: dict[str, Any] = {"name": f"{cable.name} type", "diameter": cable.diameter,
+                                 "mass_per_length": float(cable.masses()[0] / lengths[0]),
+                                 "axial_stiffness": cable.axial_stiffness}  # fmt: skip
+    for key in ("axial_damping_time", "axial_damping_ratio", "bending_stiffness"):
+        if getattr(cable, key) is not None:
+            line_type[key] = getattr(cable, key)
+    line_type["drag_coefficient_normal"] = cable.drag_coefficient_normal
+    for key in ("drag_coefficient_tangential", "friction_coefficient", "added_mass_coefficient"):
+        if getattr(cable, key):
+            line_type[key] = getattr(cable, key)
+    total = cable.length if cable.length is not None else float(lengths.sum())
+    section = {"type": line_type["name"], "segments": cable.links, "length": total}
+    line = {"name": cable.name, "model": "lumped_mass", "from": top["name"], "to": "anchor",
+            "sections": [section]}  # fmt: skip
+    out: dict[str, Any] = {"name": case.name}
+    out.update(environment=_dump(case.environment), bodies=[top, anchor],
+               line_types=[line_type], lines=[line], start="as_given",
+               simulation=_dump(case.simulation))  # fmt: skip
     return out
 
 
