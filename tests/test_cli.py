@@ -10,6 +10,7 @@ from click.testing import CliRunner
 from PIL import Image
 
 from helpers import chain_case
+from seacable.case.loader import load_case
 from seacable.cli import main
 
 
@@ -187,3 +188,28 @@ def test_system_validate_statics_and_modes(tmp_path):
     single = _case_file(tmp_path)
     result = runner.invoke(main, ["statics", str(single)])
     assert result.exit_code == 2 and "statics of the whole system need" in result.output
+
+
+def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
+    """`seacable upgrade` writes the system form (keeping the file's opening comments); a case
+    it cannot write yet, or one already a system, gets one line naming why."""
+    legacy = Path(__file__).parent / "legacy_cases"
+    out = tmp_path / "upgraded.yaml"
+    result = CliRunner().invoke(
+        main, ["upgrade", str(legacy / "thesis_6_2_pinned_exact_60_links.yaml"), "-o", str(out)]
+    )
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    assert text.startswith("# Pouzada (2015)") and "\nlines:\n" in text
+    case = load_case(out)
+    assert [b.type for b in case.bodies] == ["rigid", "fixed"]
+    assert case.lines[0].model == "rigid_links"
+    towed = (
+        Path(__file__).parent.parent
+        / "examples"
+        / "jacquot_marichal_towing_speed_change_and_turn.yaml"
+    )
+    result = CliRunner().invoke(main, ["upgrade", str(towed)])
+    assert result.exit_code == 2 and "has no system form" in result.output
+    result = CliRunner().invoke(main, ["upgrade", str(out)])
+    assert result.exit_code == 2 and "already a system" in result.output
