@@ -4,6 +4,7 @@ import logging
 from pathlib import Path
 
 import numpy as np
+import pytest
 import xarray as xr
 import yaml
 from click.testing import CliRunner
@@ -104,6 +105,7 @@ def test_3d_run_plot_animate(tmp_path):
     assert "rigid_segments_3d" in result.output or "ok: case" in result.output
 
 
+@pytest.mark.slow  # the same run and picture as test_examples' rising_body_four_cables, by the CLI
 def test_star_run_and_plot(tmp_path):
     text = (Path(__file__).parent.parent / "examples" / "rising_body_four_cables.yaml").read_text()
     case = tmp_path / "four.yaml"

@@ -232,16 +232,22 @@ def _size(system: BuiltSystem) -> float:
 
 
 def state_scale(case, system: BuiltSystem) -> np.ndarray:
-    """Typical magnitude of each state: positions the system's length scale L, quaternions 1,
-    velocities sqrt(g L) (angular: sqrt(g / L))."""
+    """Typical magnitude of each state: positions the system's length scale L, quaternions,
+    rigid segments' directors and links' angles 1, velocities sqrt(g L) (angular, and the
+    directors' and angles' rates: sqrt(g / L))."""
     p = system.params
     size = _size(system)
     q = np.full(p.n_q, size)
     v = np.full(p.n_v, math.sqrt(p.gravity * size))
+    turning = math.sqrt(p.gravity / size)
     for b in range(len(p.body_kind)):
         if p.body_q[b] >= 0 and p.body_rigid[b]:
             q[p.body_q[b] + 3 : p.body_q[b] + 7] = 1.0
-            v[p.body_v[b] + 3 : p.body_v[b] + 6] = math.sqrt(p.gravity / size)
+            v[p.body_v[b] + 3 : p.body_v[b] + 6] = turning
+    for li in range(len(p.rs_n)):
+        width = (3 if p.rs_kind[li] == rigid_kind.SEGMENTS_3D else 1) * int(p.rs_n[li])
+        q[p.rs_q[li] : p.rs_q[li] + width] = 1.0
+        v[p.rs_v[li] - p.n_q : p.rs_v[li] - p.n_q + width] = turning
     return np.concatenate([q, v])
 
 
