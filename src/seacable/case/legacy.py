@@ -72,16 +72,15 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         "from": top["name"],
         "to": bottom["name"],
         "sections": [{"type": line_type["name"], "segments": cable.links, "length": total}],
-        "initial": {"angles_deg": angles} if cable.initial.shape == "angles" else {
+        "initial": {"angles_deg": list(cable.initial.angles_deg or [])}
+        if cable.initial.shape == "angles" else {
             "arc_deg": [cable.initial.top_angle_deg, cable.initial.bottom_angle_deg
                         if cable.initial.bottom_angle_deg is not None
                         else cable.initial.top_angle_deg]},
         "base_reference": [math.sin(reference) * math.cos(azimuth),
                            math.sin(reference) * math.sin(azimuth), -math.cos(reference)],
     }  # fmt: skip
-    if azimuth and cable.initial.shape == "angles":
-        line["initial"]["azimuth_deg"] = cable.initial.azimuth_deg
-    elif azimuth:
+    if azimuth:
         line["initial"]["azimuth_deg"] = cable.initial.azimuth_deg
     damping = cable.joint_damping
     damping = damping[0] if isinstance(damping, list) else damping
@@ -234,7 +233,11 @@ def _value_at_zero(function, base_dir) -> float:
 def _bottom(cable: schema.Cable, env: schema.Environment, end: list[float]) -> dict[str, Any]:
     bottom = cable.bottom
     if isinstance(bottom, schema.PinnedBottom):
-        return {"name": "anchor", "type": "fixed", "position": list(end)}
+        # the planar model pins the end of its initial shape, the 3D model the anchor given
+        anchor = end
+        if cable.model == "rigid_segments_3d" and bottom.anchor is not None:
+            anchor = list(schema.xyz(bottom.anchor))
+        return {"name": "anchor", "type": "fixed", "position": list(anchor)}
     if isinstance(bottom, schema.FloatingStructureBottom):
         rest = list(schema.xyz(bottom.rest_position) if bottom.rest_position else end)
         forces: list[dict[str, Any]] = [
