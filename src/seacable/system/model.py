@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 
 from seacable.case import system as sch
-from seacable.system import kernel, outputs, statics, topology
+from seacable.system import coordinates, kernel, outputs, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
@@ -284,10 +284,10 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     """The pattern of d(ydot)/dy (SciPy's stiff integrators colour its columns): positions
     move with their velocities (a quaternion with its angular velocity and itself), every
     acceleration depends on the positions and velocities of the coordinates
-    ``statics.pattern`` couples it to."""
+    ``coordinates.pattern`` couples it to."""
     p = system.params
-    coords = statics.coordinates(p)
-    coupled = statics.pattern(p, coords).tocoo()
+    coords = coordinates.coordinates(p)
+    coupled = coordinates.pattern(p, coords).tocoo()
     n = p.n_q + p.n_v
     rows: list[int] = []
     cols: list[int] = []

@@ -5,18 +5,12 @@ free degree of freedom at rest, with a sparse finite-difference Jacobian (column
 greedy colouring of the system's known sparsity: each line a chain of nodes, its two end
 nodes' neighbours tied to the bodies it hangs from, ties joining bodies), solved by sparse LU.
 
-Coordinates ("increments"): per dynamic body its free translations (earth x, y, z) and its
-free rotations (a rotation vector in the earth frame, applied as exp(theta) to its
-orientation), then every interior node's position, then every rigid segment's turn on the two
-directions t1, t2 normal to its director (kernels.chain3d._basis; the residual is the
-director's acceleration on them). The same coordinates carry the
-linearisation: ``jacobian`` gives d(rates)/d(increments, velocities) about any state.
+The coordinates (system.coordinates: body translations and rotations, interior nodes, rigid
+segments' turns) carry the linearisation too: ``jacobian`` gives d(rates)/d(increments,
+velocities) about any state; ``mooring_stiffness`` the 6x6 stiffness of a body's lines.
 """
 
-from dataclasses import dataclass
-
 import numpy as np
-from scipy import sparse
 from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
@@ -24,299 +18,23 @@ from seacable.errors import SeacableError
 from seacable.kernels import surface
 from seacable.system import kernel, outputs, rigid
 from seacable.system.assemble import BuiltSystem
+from seacable.system.coordinates import (
+    Coordinates,
+    Residual,
+    apply,
+    colour,
+    coordinates,
+    fd_jacobian,
+    is_angle,
+    pattern,
+    rotate,
+    tangents,
+)
 from seacable.system.initial import settle_lines
 
 
 class StaticsError(SeacableError):
     """The static equilibrium was not found; the message names the body or line at fault."""
-
-
-@dataclass(frozen=True)
-class Coordinates:
-    """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node, 3 director, 4
-    planar link's angle;
-    ``body`` its body (-1 for a node or director); ``axis`` 0..2 (a director's: 0 along t1, 1
-    along t2); ``q`` its position in y (translation, node), the body's first quaternion entry
-    or the director's first entry; ``v`` the state index of its velocity (a director's first
-    rate); ``line`` (-1 for a body; a lumped line's index for a node, a rigid line's for a
-    director)."""
-
-    kind: np.ndarray
-    body: np.ndarray
-    axis: np.ndarray
-    q: np.ndarray
-    v: np.ndarray
-    line: np.ndarray
-
-
-def coordinates(p: kernel.SystemParams) -> Coordinates:
-    rows: list[tuple[int, int, int, int, int, int]] = []
-    for b in range(len(p.body_kind)):
-        if p.body_kind[b] != kinematics.DYNAMIC:
-            continue
-        q, v = int(p.body_q[b]), int(p.body_v[b])
-        for c in range(3):
-            if p.body_free[b, c]:
-                rows.append((0, b, c, q + c, v + c, -1))
-        if p.body_rigid[b]:
-            for c in range(3):
-                if p.body_free[b, 3 + c]:
-                    rows.append((1, b, c, q + 3, v + 3 + c, -1))
-    for li in range(len(p.line_n)):
-        q, v = int(p.line_q[li]), int(p.line_v[li])
-        for k in range(3 * (int(p.line_n[li]) - 1)):
-            rows.append((2, -1, k % 3, q + k, v + k, li))
-    for li in range(len(p.rs_n)):
-        q, v = int(p.rs_q[li]), int(p.rs_v[li])
-        for i in range(int(p.rs_n[li])):
-            if p.rs_kind[li] == rigid.PLANAR:
-                rows.append((4, -1, 0, q + i, v + i, li))
-                continue
-            for axis in range(2):
-                rows.append((3, -1, axis, q + 3 * i, v + 3 * i, li))
-    table = np.array(rows, dtype=np.int64).reshape(-1, 6)
-    return Coordinates(*(table[:, c].copy() for c in range(6)))
-
-
-def _rotate(quaternion: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """exp(theta / 2) * q: the orientation turned by the rotation vector theta (earth)."""
-    angle = float(np.linalg.norm(theta))
-    if angle < 1e-300:
-        return quaternion.copy()
-    axis = theta / angle
-    s = float(np.sin(0.5 * angle))
-    dw = float(np.cos(0.5 * angle))
-    dx, dy, dz = (s * float(a) for a in axis)
-    qw, qx, qy, qz = (float(v) for v in quaternion)
-    out = np.array([
-        dw * qw - dx * qx - dy * qy - dz * qz,
-        dw * qx + dx * qw + dy * qz - dz * qy,
-        dw * qy - dx * qz + dy * qw + dz * qx,
-        dw * qz + dx * qy - dy * qx + dz * qw,
-    ])  # fmt: skip
-    return out / np.linalg.norm(out)
-
-
-def normal_basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """t1, t2 (m, 3) normal to the unit vectors e (m, 3), as kernels.chain3d._basis builds
-    them."""
-    a = np.abs(e)
-    t1 = np.where(
-        ((a[:, 0] <= a[:, 1]) & (a[:, 0] <= a[:, 2]))[:, None],
-        np.column_stack([np.zeros(len(e)), e[:, 2], -e[:, 1]]),
-        np.where(
-            (a[:, 1] <= a[:, 2])[:, None],
-            np.column_stack([-e[:, 2], np.zeros(len(e)), e[:, 0]]),
-            np.column_stack([e[:, 1], -e[:, 0], np.zeros(len(e))]),
-        ),
-    )
-    t1 /= np.linalg.norm(t1, axis=1)[:, None]
-    return t1, np.cross(e, t1)
-
-
-def _tangents(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarray:
-    """The direction (m, 3) each director increment of ``which`` turns its director along."""
-    index = coords.q[which][:, None] + np.arange(3)[None, :]
-    t1, t2 = normal_basis(y[index])
-    return np.where((coords.axis[which] == 0)[:, None], t1, t2)
-
-
-def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
-    """The state moved by the increments ``dx``."""
-    out = y.copy()
-    plain = (coords.kind == 0) | (coords.kind == 2) | (coords.kind == 4)
-    np.add.at(out, coords.q[plain], dx[plain])
-    turned = np.flatnonzero(coords.kind == 3)
-    if turned.size:
-        index = coords.q[turned][:, None] + np.arange(3)[None, :]
-        np.add.at(out, index, dx[turned][:, None] * _tangents(y, coords, turned))
-        first = np.unique(coords.q[turned])
-        rows = first[:, None] + np.arange(3)[None, :]
-        out[rows] /= np.linalg.norm(out[rows], axis=1)[:, None]
-    for b in np.unique(coords.body[coords.kind == 1]):
-        mine = (coords.kind == 1) & (coords.body == b)
-        theta = np.zeros(3)
-        theta[coords.axis[mine]] = dx[mine]
-        q = coords.q[mine][0]
-        out[q : q + 4] = _rotate(out[q : q + 4], theta)
-    return out
-
-
-def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
-    """Which increments can change which accelerations (a superset)."""
-    n = len(coords.kind)
-    body_cols: dict[int, list[int]] = {}
-    for i in range(n):
-        if coords.body[i] >= 0:
-            body_cols.setdefault(int(coords.body[i]), []).append(i)
-    node_index: dict[tuple[int, int], list[int]] = {}
-    for i in (int(k) for k in np.flatnonzero(coords.kind == 2)):
-        li = int(coords.line[i])
-        local = int(coords.q[i] - p.line_q[li]) // 3
-        node_index.setdefault((li, local), []).append(i)
-    links: list[tuple[list[int], list[int]]] = []
-    for cols in _rigid_groups(p, coords, body_cols):
-        links.append((cols, cols))
-    moving = set(body_cols)
-    # bodies that share a line or tie are coupled; every body to itself
-    groups: list[list[int]] = [[b] for b in moving]
-    for li in range(len(p.line_n)):
-        ends = [int(p.point_body[p.line_from[li]]), int(p.point_body[p.line_to[li]])]
-        ends = [b for b in ends if b in moving]
-        groups.append(ends)
-        n_int = int(p.line_n[li]) - 1
-        reach = 2  # bending couples nodes two apart
-        for j in range(n_int):
-            near = [
-                node_index[(li, k)] for k in range(max(0, j - reach), min(n_int, j + reach + 1))
-            ]
-            links.append((node_index[(li, j)], [c for cols in near for c in cols]))
-        for j in (*range(min(reach, n_int)), *range(max(0, n_int - reach), n_int)):
-            for b in ends:
-                links.append((node_index[(li, j)], body_cols[b]))
-                links.append((body_cols[b], node_index[(li, j)]))
-    for k in range(len(p.tie_from)):
-        groups.append([b for b in (int(p.point_body[p.tie_from[k]]),
-                                   int(p.point_body[p.tie_to[k]])) if b in moving])  # fmt: skip
-    for group in groups:
-        for a in group:
-            for b in group:
-                links.append((body_cols[a], body_cols[b]))
-    rows, cols = [], []
-    for r, c in links:
-        for i in r:
-            rows.extend([i] * len(c))
-            cols.extend(c)
-    data = np.ones(len(rows))
-    return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
-
-
-def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> list[list[int]]:
-    """The columns of each tree of rigid lines and the bodies they join (coupled densely: a
-    sweep couples every segment of a line); a body carried at a tip gets its tree's columns
-    in ``body_cols`` (its motion is its line's)."""
-    parent: dict[tuple[str, int], tuple[str, int]] = {}
-
-    def root(x):
-        parent.setdefault(x, x)
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    for li in range(len(p.rs_n)):
-        parent[root(("line", li))] = root(("body", int(p.point_body[p.rs_from[li]])))
-        if p.rs_tip[li] >= 0:
-            parent[root(("body", int(p.rs_tip[li])))] = root(("line", li))
-    members: dict[tuple[str, int], list[int]] = {}
-    for i in np.flatnonzero(coords.kind >= 3):
-        members.setdefault(root(("line", int(coords.line[i]))), []).append(int(i))
-    for li in range(len(p.rs_n)):
-        for b in (int(p.point_body[p.rs_from[li]]), int(p.rs_tip[li])):
-            if b >= 0 and b in body_cols and p.body_kind[b] != kinematics.TIP:
-                group = members.setdefault(root(("body", b)), [])
-                group.extend(c for c in body_cols[b] if c not in group)
-    for li in range(len(p.rs_n)):
-        if p.rs_tip[li] >= 0:
-            body_cols[int(p.rs_tip[li])] = members[root(("line", li))]
-    return list(members.values())
-
-
-def colour(structure: sparse.csr_matrix) -> np.ndarray:
-    """Groups of columns that share no row (greedy), for finite differences."""
-    csc = structure.tocsc()
-    n = structure.shape[1]
-    colours = -np.ones(n, dtype=np.int64)
-    row_colours: list[set[int]] = [set() for _ in range(structure.shape[0])]
-    for j in range(n):
-        rows = csc.indices[csc.indptr[j] : csc.indptr[j + 1]]
-        used = set().union(*(row_colours[r] for r in rows)) if len(rows) else set()
-        c = 0
-        while c in used:
-            c += 1
-        colours[j] = c
-        for r in rows:
-            row_colours[r].add(c)
-    return colours
-
-
-class _Residual:
-    """Accelerations of every increment's degree of freedom at a state."""
-
-    def __init__(self, p: kernel.SystemParams, coords: Coordinates, time: float = 0.0):
-        self.p, self.coords, self.time = p, coords, time
-        self.w = kernel.make_work(p)
-        self.ydot = np.zeros(p.n_q + p.n_v)
-
-        # rigid lines whose trees hang free (no held tip) balance moments (N m) rather than
-        # accelerations: the residual of the segments' statics, well scaled whatever the
-        # masses carried below them
-        self.free = free_trees(p)
-        self.directors = np.flatnonzero((coords.kind == 3) | (coords.kind == 4))
-        self.moments = np.zeros(len(self.directors))
-        per_line = np.where(np.asarray(p.rs_kind) == rigid.PLANAR, 1, 2) * np.asarray(p.rs_n)
-        per_segment = np.repeat(np.arange(len(p.rs_n)), per_line)
-        self.balanced = self.free[per_segment] if len(p.rs_n) else np.zeros(0, bool)
-
-    def __call__(self, y: np.ndarray) -> np.ndarray:
-        kernel.rhs(self.time, y, self.p, self.w, self.ydot)
-        out = accelerations(y, self.coords, self.ydot)
-        if self.balanced.any():
-            rigid.moments(self.p, self.w, self.free, self.moments, False)
-            out[self.directors[self.balanced]] = self.moments[self.balanced]
-        return out
-
-
-def free_trees(p: kernel.SystemParams) -> np.ndarray:
-    """Per rigid line: True when no line of its tree (the lines joined through the bodies
-    carried at their tips) is held at its tip."""
-    nr = len(p.rs_n)
-    tree = np.arange(nr)
-    carried_by = {int(p.rs_tip[li]): li for li in range(nr) if p.rs_tip[li] >= 0}
-    for li in range(nr):  # the root of each line: follow its base up while a line carries it
-        at = li
-        while int(p.point_body[p.rs_from[at]]) in carried_by:
-            at = carried_by[int(p.point_body[p.rs_from[at]])]
-        tree[li] = at
-    held = np.asarray(np.asarray(p.rs_held).reshape(-1, 3).sum(axis=1) > 0)
-    return np.array([not held[tree == tree[li]].any() for li in range(nr)], dtype=bool)
-
-
-def accelerations(y: np.ndarray, coords: Coordinates, ydot: np.ndarray) -> np.ndarray:
-    """The acceleration of each coordinate in the rates ``ydot`` (a director's on its turn's
-    direction)."""
-    out = ydot[coords.v].copy()
-    turned = np.flatnonzero(coords.kind == 3)
-    if turned.size:
-        index = coords.v[turned][:, None] + np.arange(3)[None, :]
-        out[turned] = np.einsum("ij,ij->i", ydot[index], _tangents(y, coords, turned))
-    return out
-
-
-def _angle(kind: np.ndarray) -> np.ndarray:
-    """True for a coordinate that is an angle [rad] (a body's turn, a director's)."""
-    return (kind == 1) | (kind == 3) | (kind == 4)
-
-
-def _fd_jacobian(residual, y, coords, structure, colours, r0) -> sparse.csc_matrix:
-    rows_of = structure.tocsc()
-    n = len(coords.kind)
-    data_r, data_c, data_v = [], [], []
-    for c in range(int(colours.max()) + 1 if n else 0):
-        columns = np.flatnonzero(colours == c)
-        scale = np.where(
-            _angle(coords.kind[columns]), 1.0, np.maximum(1.0, np.abs(y[coords.q[columns]]))
-        )
-        step = 1e-7 * scale
-        dx = np.zeros(n)
-        dx[columns] = step
-        dr = residual(apply(y, coords, dx)) - r0
-        for j, h in zip(columns, step, strict=True):
-            rows = rows_of.indices[rows_of.indptr[j] : rows_of.indptr[j + 1]]
-            data_r.extend(rows)
-            data_c.extend([j] * len(rows))
-            data_v.extend(dr[rows] / h)
-    return sparse.csc_matrix((data_v, (data_r, data_c)), shape=(n, n))
 
 
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
@@ -335,7 +53,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     y[p.n_q :] = 0.0
     if not len(coords.kind):
         return y
-    residual = _Residual(p, coords)
+    residual = Residual(p, coords)
     if residual.balanced.any():
         y = _hang(p, y, residual.free)
     scale = float(np.abs(residual(y)).max()) + 1.0
@@ -348,7 +66,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
         nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
         r = residual(nested)
         nodes = np.flatnonzero(coords.kind == 2)
-        r[nodes] = _Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
+        r[nodes] = Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
         if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
             return nested
     followed = _homotopy(built, coords, residual, y, tolerance * scale)
@@ -427,7 +145,7 @@ def _direct(built, coords, residual, y, iterations, tolerance):
     for _ in range(iterations):
         if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
             break
-        jac = _fd_jacobian(residual, y, coords, structure, colours, r)
+        jac = fd_jacobian(residual, y, coords, structure, colours, r)
         try:
             step = splu(jac).solve(-r)
         except RuntimeError:
@@ -530,7 +248,7 @@ def _step_limit(built: BuiltSystem, coords: Coordinates, shortest: bool = False)
         ]
     )
     metres = max(1.0, 0.1 * (min(lengths) if shortest else sum(lengths))) if lengths else 1.0
-    limit = np.where(_angle(coords.kind), 0.1, metres)
+    limit = np.where(is_angle(coords.kind), 0.1, metres)
     for i in np.flatnonzero((coords.kind == 0) & (coords.axis == 2)):
         shape = p.body_shape[coords.body[i]]
         if shape[0] != surface.POINT:
@@ -567,11 +285,11 @@ def jacobian(
     p = built.params
     coords = coordinates(p)
     n = len(coords.kind)
-    residual = _Residual(p, coords, time)
+    residual = Residual(p, coords, time)
     a = np.zeros((2 * n, 2 * n))
     a[:n, n:] = np.eye(n)
     for j in range(n):
-        h = 1e-6 * (1.0 if _angle(coords.kind[j : j + 1])[0] else max(1.0, abs(y[coords.q[j]])))
+        h = 1e-6 * (1.0 if is_angle(coords.kind[j : j + 1])[0] else max(1.0, abs(y[coords.q[j]])))
         dx = np.zeros(n)
         dx[j] = h
         a[n:, j] = (residual(apply(y, coords, dx)) - residual(apply(y, coords, -dx))) / (2 * h)
@@ -579,7 +297,7 @@ def jacobian(
         up, down = y.copy(), y.copy()
         if coords.kind[j] == 3:  # the director's rate along its turn's direction
             at = coords.v[j] + np.arange(3)
-            step = hv * _tangents(y, coords, np.array([j]))[0]
+            step = hv * tangents(y, coords, np.array([j]))[0]
             up[at] += step
             down[at] -= step
         else:
@@ -678,7 +396,7 @@ def mooring_stiffness(
                 else:
                     theta = np.zeros(3)
                     theta[j - 3] = sign * h / steps
-                    moved[q + 3 : q + 7] = _rotate(moved[q + 3 : q + 7], theta)
+                    moved[q + 3 : q + 7] = rotate(moved[q + 3 : q + 7], theta)
                 moved = _settle(built, moved, body)
             loads.append(line_loads(built, moved, at_rest=True)[b])
         stiffness[:, j] = -(loads[0] - loads[1]) / (2.0 * h)
