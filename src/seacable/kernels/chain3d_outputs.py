@@ -11,7 +11,6 @@ from seacable.kernels.chain3d import (
     _E,
     _P,
     _SA,
-    _SF,
     _SJ,
     _U,
     _V,
@@ -26,7 +25,7 @@ from seacable.kernels.chain3d import (
     solve,
     target_motion,
 )
-from seacable.kernels.surface import point_potential, segment_submersion
+from seacable.kernels.surface import point_potential, segment_potential
 from seacable.kernels.timefn import JIT
 
 
@@ -49,10 +48,8 @@ def segment_energies(n, length, mass, wet_weight, buoyancy, joint_stiffness, ref
         u2 = w[_U, i] ** 2 + w[_U + 1, i] ** 2 + w[_U + 2, i] ** 2
         kinetic += 0.5 * mass[i] * v2 + 0.5 * w[_SA, i] * (v2 - va * va)
         kinetic += 0.5 * w[_SJ, i] * u2
-        gravity += wet_weight[i] * (w[_P + 2, i] + 0.5 * li * ez)
-        if w[_SF, i] < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
-            _, _, mean_depth = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
-            gravity += buoyancy[i] * (w[_P + 2, i] + 0.5 * li * ez - mean_depth)
+        gravity += segment_potential(wet_weight[i], buoyancy[i], w[_P + 2, i], w[_P + 2, i + 1],
+                                     w[_P + 2, i] + 0.5 * li * ez)  # fmt: skip
         if i == 0:
             ax, ay, az = ref[0], ref[1], ref[2]
         else:

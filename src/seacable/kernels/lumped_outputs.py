@@ -25,7 +25,7 @@ from seacable.kernels.lumped import (
     target_state,
 )
 from seacable.kernels.status import OK
-from seacable.kernels.surface import point_potential, segment_submersion
+from seacable.kernels.surface import point_potential, segment_potential
 from seacable.kernels.timefn import JIT
 
 
@@ -60,9 +60,7 @@ def line_energies(
     for i in range(n):
         s = s0 + i
         za, zb = yl[3 * i + 2], yl[3 * i + 5]
-        zc = 0.5 * (za + zb)
-        _, _, mean_depth = segment_submersion(za, zb)
-        gravity += wet_weight[s] * zc + buoyancy[s] * (zc - mean_depth)
+        gravity += segment_potential(wet_weight[s], buoyancy[s], za, zb, 0.5 * (za + zb))
         dx = yl[3 * i + 3] - yl[3 * i]
         dy = yl[3 * i + 4] - yl[3 * i + 1]
         dz = yl[3 * i + 5] - yl[3 * i + 2]

@@ -30,7 +30,12 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
-from seacable.kernels.surface import point_potential, segment_submersion, submersion
+from seacable.kernels.surface import (
+    point_potential,
+    segment_potential,
+    segment_submersion,
+    submersion,
+)
 from seacable.kernels.timefn import JIT
 from seacable.kernels.timefn import of_params as tf_of_params
 
@@ -475,10 +480,8 @@ def link_energies(n, y, q0, v0, length, mass, inertia, wet_weight, buoyancy, joi
         vcz = 0.5 * (w[_VZ, i] + w[_VZ, i + 1])
         om = y[v0 + i]
         kinetic += 0.5 * mass[i] * (vcx * vcx + vcz * vcz) + 0.5 * inertia[i] * om * om
-        gravity += wet_weight[i] * 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
-        wet, _, mean_depth = segment_submersion(w[_PZ, i], w[_PZ, i + 1])
-        if wet < 1.0:  # buoyancy's potential -rho g A l mean(min(z, 0)) (kernels.surface)
-            gravity += buoyancy[i] * (0.5 * (w[_PZ, i] + w[_PZ, i + 1]) - mean_depth)
+        gravity += segment_potential(wet_weight[i], buoyancy[i], w[_PZ, i], w[_PZ, i + 1],
+                                     0.5 * (w[_PZ, i] + w[_PZ, i + 1]))  # fmt: skip
         rel = y[q0 + i] - (ref_angle if i == 0 else y[q0 + i - 1])
         elastic += 0.5 * joint_stiffness[i] * rel * rel
     return kinetic, gravity, elastic

@@ -118,6 +118,17 @@ def segment_submersion(za, zb):
 
 
 @njit(inline="always", **JIT)
+def segment_potential(wet_weight, buoyancy, za, zb, zc):
+    """Gravity and buoyancy potential [J] of a straight segment between elevations za and zb,
+    centre at zc, apparent weight ``wet_weight`` and buoyancy ``buoyancy`` [N] when wholly
+    submerged: wet_weight zc - rho g A l (mean of min(z, 0) - zc)."""
+    wet, _, mean_depth = segment_submersion(za, zb)
+    if wet < 1.0:
+        return wet_weight * zc + buoyancy * (zc - mean_depth)
+    return wet_weight * zc
+
+
+@njit(inline="always", **JIT)
 def point_potential(z, wet_weight, buoyancy, row):
     """Gravity and buoyancy potential [J] of a body at elevation z [m] whose apparent weight
     when wholly submerged is ``wet_weight`` [N] and buoyancy ``buoyancy`` = rho g V [N]:
