@@ -206,12 +206,10 @@ def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
     case = load_case(out)
     assert [b.type for b in case.bodies] == ["rigid", "fixed"]
     assert case.lines[0].model == "rigid_links"
-    towed = (
-        Path(__file__).parent.parent
-        / "examples"
-        / "jacquot_marichal_towing_speed_change_and_turn.yaml"
+    string = (
+        Path(__file__).parent.parent / "examples" / "poth_string_pendulum_natural_variables.yaml"
     )
-    result = CliRunner().invoke(main, ["upgrade", str(towed)])
+    result = CliRunner().invoke(main, ["upgrade", str(string)])
     assert result.exit_code == 2 and "has no system form" in result.output
     result = CliRunner().invoke(main, ["upgrade", str(out)])
     assert result.exit_code == 2 and "already a system" in result.output

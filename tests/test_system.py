@@ -214,10 +214,58 @@ def test_imposed_angular_acceleration_is_the_rate_of_the_angular_velocity():
         return out
 
     t, h = 1.3, 1e-5
-    acc = np.empty(6)
-    kinematics.imposed_acceleration(t, 0, tf, acc)
+    acc, work = np.empty(6), np.empty(18)
+    kinematics.imposed_channels(t, 0, kinematics.TURNS, p.body_track[0], tf, work)
+    kinematics.imposed_acceleration(work, acc)
     np.testing.assert_allclose(acc[3:], (omega(t + h) - omega(t - h)) / (2 * h), atol=1e-8)
     assert acc[0] == pytest.approx(-((2 * math.pi / 7) ** 2) * math.sin(2 * math.pi * t / 7))
+
+
+def test_a_ship_on_its_track_turns_on_its_circle_with_its_rates():
+    """A track at 30 deg, speeding up, turning right on a 200 m circle from t = 40 s: the
+    straight line, then the circle tangent to it; velocity, acceleration and yaw rate are the
+    derivatives of position and yaw; the yaw is the direction of travel."""
+    distance = {
+        "kind": "acceleration_profile",
+        "initial_velocity": 2.0,
+        "phases": [{"duration": 60.0, "acceleration": 0.02}],
+    }
+    track = {
+        "start": [10.0, -5.0],
+        "heading_deg": 30.0,
+        "distance": distance,
+        "turn": {"start_time": 40.0, "radius": 200.0, "side": "right"},
+    }
+    case = _case([{"name": "ship", "type": "imposed", "track": track}, ANCHOR],
+                 [_tie("t", "ship", "ground", length=100.0)], _sim(1.0))  # fmt: skip
+    p = model.build(load_case(case)).params
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
+    assert p.body_motion[0] == kinematics.TRACK
+
+    def state(t):
+        work = np.empty(18)
+        kinematics.imposed_channels(t, p.body_channel[0], p.body_motion[0], p.body_track[0], tf,
+                                    work)  # fmt: skip
+        return work
+
+    h0 = math.radians(30.0)
+    s_turn = 2.0 * 40.0 + 0.01 * 40.0**2
+    for t in (20.0, 39.0, 70.0, 130.0):
+        w, h = state(t), 1e-4
+        ahead, behind = state(t + h), state(t - h)
+        np.testing.assert_allclose(w[6:12], (ahead[:6] - behind[:6]) / (2 * h), atol=1e-7)
+        np.testing.assert_allclose(w[12:18], (ahead[6:12] - behind[6:12]) / (2 * h), atol=1e-7)
+        assert math.atan2(w[7], w[6]) == pytest.approx(w[5], abs=1e-12)
+        s = 2.0 * t + 0.01 * min(t, 60.0) ** 2 + 1.2 * max(t - 60.0, 0.0)
+        assert np.hypot(w[6], w[7]) == pytest.approx(2.0 + 0.02 * min(t, 60.0), rel=1e-12)
+        if t <= 40.0:
+            np.testing.assert_allclose(w[:2], [10 + s * math.cos(h0), -5 + s * math.sin(h0)])
+            assert w[5] == pytest.approx(h0, abs=1e-14)
+            continue
+        centre = np.array([10.0, -5.0]) + s_turn * np.array([math.cos(h0), math.sin(h0)])
+        centre += 200.0 * np.array([math.sin(h0), -math.cos(h0)])  # to the right
+        assert np.hypot(*(w[:2] - centre)) == pytest.approx(200.0, rel=1e-12)
+        assert w[5] == pytest.approx(h0 - (s - s_turn) / 200.0, abs=1e-12)
 
 
 MISTAKES = [

@@ -10,7 +10,6 @@ Euler angles (roll phi, pitch theta, yaw psi) compose as R = Rz(psi) Ry(theta) R
 
 import math
 
-import numpy as np
 from numba import njit
 
 from seacable.kernels.timefn import JIT, evaluate
@@ -20,6 +19,11 @@ IMPOSED = 1  # moved by six time functions (BodyKind.IMPOSED)
 DYNAMIC = 2  # moved by its equations of motion (BodyKind.DYNAMIC)
 TIP = 3  # a point body carried at the tip of a rigid-segment line: its motion is the tip's,
 # its mass and loads join the line's (no state of its own; lines.rigid_segments)
+
+# how an imposed body moves (``motion``)
+MOVES = 0  # translates only: its angle channels are all zero
+TURNS = 1  # translates and turns by its channels
+TRACK = 2  # along a ship's track (``track_point``), turning with it
 
 
 @njit(inline="always", **JIT)
@@ -78,16 +82,13 @@ def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
 
 
 @njit(**JIT)
-def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, rot, vel, omega,
-                quat):  # fmt: skip
+def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, motion, track, tf, pos, rot, vel,
+                omega, quat, work):  # fmt: skip
     """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
-    (nb, 3, 3), ``quat`` (nb, 4), ``vel`` and ``omega`` (nb, 3). ``tf`` is the tuple of
-    time-function arrays (breaks, coefs, count, sine, build_up); an imposed body's channels
-    are x, y, z [m], roll, pitch, yaw [rad] from ``channel[b]`` on (its angles read only when
-    ``turns[b]``)."""
-    breaks, coefs, count, sine, build_up = tf
-    angles = np.empty(3)
-    rates = np.empty(3)
+    (nb, 3, 3), ``quat`` (nb, 4), ``vel`` and ``omega`` (nb, 3). An imposed body moves by its
+    channels (``imposed_channels``: ``channel[b]``, ``motion[b]``, ``track[b]``); ``tf`` is the
+    tuple of time-function arrays (breaks, coefs, count, sine, build_up); ``work`` (18) is
+    scratch."""
     for b in range(kind.shape[0]):
         if kind[b] == DYNAMIC:
             q, v = q_at[b], v_at[b]
@@ -103,24 +104,17 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, r
             else:
                 _still(b, rot, omega, quat)
         elif kind[b] == IMPOSED:
-            first = channel[b]
+            imposed_channels(t, channel[b], motion[b], track[b], tf, work)
             for c in range(3):
-                f, df, _ = evaluate(breaks, coefs, count, sine, build_up, first + c, t)
-                pos[b, c] = f
-                vel[b, c] = df
-            if turns[b] == 0:
+                pos[b, c] = work[c]
+                vel[b, c] = work[6 + c]
+            if motion[b] == MOVES:
                 _still(b, rot, omega, quat)
                 continue
-            for c in range(3):
-                a, da, _ = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
-                angles[c] = a
-                rates[c] = da
-            qw, qx, qy, qz = euler_quaternion(angles[0], angles[1], angles[2])
+            qw, qx, qy, qz = euler_quaternion(work[3], work[4], work[5])
             rotation(qw, qx, qy, qz, rot[b])
             quat[b, 0], quat[b, 1], quat[b, 2], quat[b, 3] = qw, qx, qy, qz
-            euler_rates_omega(
-                angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], omega[b]
-            )
+            euler_rates_omega(work[3], work[4], work[5], work[9], work[10], work[11], omega[b])
         elif kind[b] == FIXED:
             for c in range(3):
                 pos[b, c] = pose0[b, c]
@@ -131,6 +125,50 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, turns, tf, pos, r
                 quat[b, c] = pose0[b, 3 + c]
         else:  # TIP: its position and velocity come from its line (lines.rigid_segments)
             _still(b, rot, omega, quat)
+
+
+@njit(**JIT)
+def imposed_channels(t, first, motion, track, tf, work):
+    """An imposed body's x, y, z [m], roll, pitch, yaw [rad] at time t (``work[0:6]``), their
+    rates (``work[6:12]``) and second derivatives (``work[12:18]``), from its six channels
+    starting at ``first``. ``motion`` MOVES: the angles are zero (not evaluated); TURNS: from
+    their channels; TRACK: x, y and the yaw's heading from the distance travelled along the
+    track (the x channel; ``track_point``), the yaw channel an offset from that heading."""
+    breaks, coefs, count, sine, build_up = tf
+    used = 3 if motion == MOVES else 6
+    for c in range(used):
+        work[c], work[6 + c], work[12 + c] = evaluate(breaks, coefs, count, sine, build_up,
+                                                      first + c, t)  # fmt: skip
+    for c in range(used, 6):
+        work[c] = work[6 + c] = work[12 + c] = 0.0
+    if motion == TRACK:
+        track_point(track, work)
+
+
+@njit(inline="always", **JIT)
+def track_point(track, work):
+    """x, y and yaw (``work`` as ``imposed_channels`` fills it) on a ship's track from the
+    distance s travelled along it (in place of x): ``track`` = (x0, y0, heading [rad], distance
+    where the turn starts [m], signed radius [m]: positive turns towards the left, 0 no turn).
+    A straight line from (x0, y0) along the heading, then a circle tangent to it."""
+    s, sd, sdd = work[0], work[6], work[12]
+    x0, y0, h0, turn_at, r = track[0], track[1], track[2], track[3], track[4]
+    c0, s0 = math.cos(h0), math.sin(h0)
+    if r == 0.0 or s <= turn_at:
+        work[0], work[6], work[12] = x0 + s * c0, sd * c0, sdd * c0
+        work[1], work[7], work[13] = y0 + s * s0, sd * s0, sdd * s0
+        work[5] += h0
+        return
+    heading = h0 + (s - turn_at) / r
+    ch, sh = math.cos(heading), math.sin(heading)
+    cx = x0 + turn_at * c0 - r * s0  # the circle's centre, left of the track for r > 0
+    cy = y0 + turn_at * s0 + r * c0
+    kappa = sd * sd / r
+    work[0], work[6], work[12] = cx + r * sh, sd * ch, sdd * ch - kappa * sh
+    work[1], work[7], work[13] = cy - r * ch, sd * sh, sdd * sh + kappa * ch
+    work[5] += heading
+    work[11] += sd / r
+    work[17] += sdd / r
 
 
 @njit(inline="always", **JIT)
@@ -170,16 +208,17 @@ def point_state(k, body, offset, pos, rot, vel, omega, ppos, pvel, parm):
 
 
 @njit(**JIT)
-def point_acceleration(t, kind, channel, tf, acc, arm, omega, out):
+def point_acceleration(t, kind, channel, motion, track, tf, acc, arm, omega, work, out):
     """Acceleration (3) of a point at ``arm`` (earth frame) from its body's reference point:
     a + alpha x r + w x (w x r), with the body's ``acc`` (6: a dynamic or tip body's, solved)
-    or its channels' (imposed), zero for a fixed body."""
+    or its channels' (imposed: ``imposed_channels``, ``work`` (24) scratch), zero for a fixed
+    body."""
     if kind == DYNAMIC or kind == TIP:
         _carried(acc, arm, omega, out)
     elif kind == IMPOSED:
-        a = np.empty(6)
-        imposed_acceleration(t, channel, tf, a)
-        _carried(a, arm, omega, out)
+        imposed_channels(t, channel, motion, track, tf, work)
+        imposed_acceleration(work, work[18:24])
+        _carried(work[18:24], arm, omega, out)
     else:
         out[0] = out[1] = out[2] = 0.0
 
@@ -208,18 +247,15 @@ def turn(rot, v):
 
 
 @njit(**JIT)
-def imposed_acceleration(t, first, tf, out):
-    """Acceleration (3) and angular acceleration (3, earth frame) of an imposed body, from
-    its channels' second derivatives: alpha = d/dt (dyaw e_z + dpitch Rz e_y + droll Rz Ry e_x)."""
-    breaks, coefs, count, sine, build_up = tf
-    ang = np.empty(3)
-    rate = np.empty(3)
-    acc = np.empty(3)
+def imposed_acceleration(work, out):
+    """Acceleration (3) and angular acceleration (3, earth frame) of an imposed body from its
+    channels (``work`` as ``imposed_channels`` fills it):
+    alpha = d/dt (dyaw e_z + dpitch Rz e_y + droll Rz Ry e_x)."""
     for c in range(3):
-        _, _, out[c] = evaluate(breaks, coefs, count, sine, build_up, first + c, t)
-        ang[c], rate[c], acc[c] = evaluate(breaks, coefs, count, sine, build_up, first + 3 + c, t)
-    roll, pitch, yaw = ang[0], ang[1], ang[2]
-    dr, dp, dy = rate[0], rate[1], rate[2]
+        out[c] = work[12 + c]
+    pitch, yaw = work[4], work[5]
+    dr, dp, dy = work[9], work[10], work[11]
+    ar, ap, ay = work[15], work[16], work[17]
     cy, sy, cp, sp = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
     ey = (-sy, cy, 0.0)  # Rz e_y
     ex = (cp * cy, cp * sy, -sp)  # Rz Ry e_x
@@ -232,6 +268,5 @@ def imposed_acceleration(t, first, tf, out):
         w1[0] * ex[1] - w1[1] * ex[0],
     )
     for c in range(3):
-        out[3 + c] = acc[1] * ey[c] + dp * dey[c] + acc[0] * ex[c] + dr * dex[c]
-    out[5] += acc[2]
-    _ = roll
+        out[3 + c] = ap * ey[c] + dp * dey[c] + ar * ex[c] + dr * dex[c]
+    out[5] += ay

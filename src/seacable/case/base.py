@@ -109,6 +109,15 @@ class AccelerationProfile(_Model):
     phases: list[AccelerationPhase] = Field(min_length=1)
 
 
+class Turn(_Model):
+    """A turning circle: from ``start_time`` [s] the ship follows a circle of ``radius`` [m]
+    turning to the ``side`` given (left: towards +y when heading along +x)."""
+
+    start_time: NonNeg
+    radius: Pos
+    side: Literal["left", "right"] = "left"
+
+
 class Table(_Model):
     """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
     clamped cubic spline; held constant outside the table. ``file`` is relative to the case."""

@@ -45,8 +45,6 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         raise CaseError(f"{where}.model: '{cable.model}' has no system form here yet")
     if cable.model == "lumped_mass":
         return _lumped(case, cable, where)
-    if cable.point_bodies:
-        raise CaseError(f"{where}.point_bodies: bodies along a cable have no system form here yet")
     for key in ("joint_stiffness", "joint_damping"):
         value = getattr(cable, key)
         if isinstance(value, list) and len(set(value)) > 1:
@@ -54,47 +52,55 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
     lengths = cable.lengths()
     if len(set(lengths.tolist())) > 1:
         raise CaseError(f"{where}.link_lengths: unequal links have no system form here yet")
-    angles = [math.degrees(a) for a in cable.initial.angles(cable.links)]
-    if cable.initial.shape not in ("arc", "angles"):
+    static = cable.initial.shape == "static"
+    if cable.initial.shape not in ("arc", "angles", "static"):
         raise CaseError(f"{where}.initial.shape: '{cable.initial.shape}' has no system form here")
+    if static and not isinstance(cable.bottom, schema.FreeBottom):
+        raise CaseError(f"{where}.initial.shape: a static start has a system form here with a "
+                        "free end only")  # fmt: skip
+    # a static start: the statics starts from the line hanging straight down
+    angles = [0.0] * cable.links if static else cable.initial.angles(cable.links)
     azimuth = math.radians(cable.initial.azimuth_deg)
     top, start = _top(cable.top, case._base_dir)
-    a = np.radians(angles)
+    a = np.asarray(angles, dtype=float)
     e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth), -np.cos(a)])
-    end = np.asarray(start) + (lengths[:, None] * e).sum(axis=0)
-    bottom = _bottom(cable, case.environment, [float(v) for v in end])
+    nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
+    bottom = _bottom(cable, case.environment, [float(v) for v in nodes[-1]])
     line_type = _line_type(cable, lengths)
-    reference = math.radians(cable.top_reference_angle_deg)
+    joints = _joints(cable, where)
+    along = [_point(f"joint {pb.node}", pb, case.environment, [float(v) for v in nodes[pb.node]])
+             for pb in sorted(cable.point_bodies, key=lambda pb: pb.node)]  # fmt: skip
+    names = [top["name"], *(body["name"] for body in along), bottom["name"]]
+    cuts = [0, *(pb.node for pb in sorted(cable.point_bodies, key=lambda pb: pb.node)),
+            cable.links]  # fmt: skip
     total = cable.length if cable.length is not None else float(lengths.sum())
-    line: dict[str, Any] = {
-        "name": cable.name,
-        "model": cable.model,
-        "from": top["name"],
-        "to": bottom["name"],
-        "sections": [{"type": line_type["name"], "segments": cable.links, "length": total}],
-        "initial": {"angles_deg": list(cable.initial.angles_deg or [])}
-        if cable.initial.shape == "angles" else {
-            "arc_deg": [cable.initial.top_angle_deg, cable.initial.bottom_angle_deg
-                        if cable.initial.bottom_angle_deg is not None
-                        else cable.initial.top_angle_deg]},
-        "base_reference": [math.sin(reference) * math.cos(azimuth),
-                           math.sin(reference) * math.sin(azimuth), -math.cos(reference)],
-    }  # fmt: skip
-    if azimuth:
-        line["initial"]["azimuth_deg"] = cable.initial.azimuth_deg
-    damping = cable.joint_damping
-    damping = damping[0] if isinstance(damping, list) else damping
-    if damping:
-        line["joint_damping"] = float(damping)
+    lines = []
+    for k in range(len(cuts) - 1):
+        count = cuts[k + 1] - cuts[k]
+        line: dict[str, Any] = {
+            "name": cable.name if len(cuts) == 2 else f"{cable.name} {k + 1}",
+            "model": cable.model, "from": names[k], "to": names[k + 1],
+            "sections": [{"type": line_type["name"], "segments": count,
+                          "length": total if len(cuts) == 2 else total * count / cable.links}],
+            "initial": _initial(cable, static, a, (cuts[k], cuts[k + 1])),
+        }  # fmt: skip
+        if k == 0:
+            reference = math.radians(cable.top_reference_angle_deg)
+            line["base_reference"] = [math.sin(reference) * math.cos(azimuth),
+                                      math.sin(reference) * math.sin(azimuth),
+                                      -math.cos(reference)]  # fmt: skip
+        if joints:
+            line["joint_damping"] = joints
+        lines.append(line)
     out: dict[str, Any] = {"name": case.name}
     if case.description:
         out["description"] = case.description
     out.update(
         environment=_dump(case.environment),
-        bodies=[top, bottom],
+        bodies=[top, bottom, *along],
         line_types=[line_type],
-        lines=[line],
-        start="as_given",
+        lines=lines,
+        start="static" if static else "as_given",
         simulation=_dump(case.simulation),
     )
     return out
@@ -128,6 +134,38 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
     out.update(environment=_dump(case.environment), bodies=[top, anchor],
                line_types=[line_type], lines=[line], start="as_given",
                simulation=_dump(case.simulation))  # fmt: skip
+    return out
+
+
+def _joints(cable: schema.Cable, where: str) -> float:
+    """The joint damping of the line; refused across a point body along the cable (there the
+    system's lines meet at a body, with no joint between them)."""
+    damping = cable.joint_damping
+    damping = float(damping[0] if isinstance(damping, list) else damping)
+    stiff = cable.joint_stiffness is not None or cable.bending_stiffness is not None
+    if cable.point_bodies and (damping or stiff):
+        raise CaseError(f"{where}.point_bodies: a joint's stiffness or damping at a body along "
+                        "the cable has no system form (the lines meet at the body, with no "
+                        "joint between them)")  # fmt: skip
+    return damping
+
+
+def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple[int, int]):
+    """A line's initial shape: the cable's angles as written (its ``arc`` or ``angles_deg``),
+    or those of its ``piece`` (first and end segment) between two bodies along it."""
+    initial = cable.initial
+    if static:
+        return "straight"
+    if initial.shape == "angles":
+        out: dict[str, Any] = {"angles_deg": list(initial.angles_deg or [])[slice(*piece)]}
+    elif piece == (0, cable.links):
+        last = initial.bottom_angle_deg
+        out = {"arc_deg": [initial.top_angle_deg,
+                           last if last is not None else initial.top_angle_deg]}  # fmt: skip
+    else:
+        out = {"angles_deg": [float(v) for v in np.degrees(angles[slice(*piece)])]}
+    if initial.azimuth_deg:
+        out["azimuth_deg"] = initial.azimuth_deg
     return out
 
 
@@ -220,6 +258,19 @@ def _top(top, base_dir) -> tuple[dict[str, Any], tuple[float, float, float]]:
             body["added_mass"] = [0.0, 0.0, top.added_mass, 0.0, 0.0, 0.0]
         body.update({"dofs": ["heave"], "external forces": forces})
         return body, start
+    if isinstance(top, schema.TowingShipTop):
+        x, y, z = schema.xyz(top.position)
+        track: dict[str, Any] = {"start": [x, y], "heading_deg": top.heading_deg}
+        if top.speed is not None:
+            track["speed"] = top.speed
+        else:
+            track["distance"] = _function(top.distance)
+        if top.turn is not None:
+            track["turn"] = _dump(top.turn)
+        body = {"name": "top", "type": "imposed", "track": track}
+        if z:
+            body["z"] = {"kind": "constant", "value": z}
+        return body, (x, y, z)
     raise CaseError(f"cables[0].top.type: '{top.type}' has no system form here yet")
 
 
@@ -259,8 +310,26 @@ def _bottom(cable: schema.Cable, env: schema.Environment, end: list[float]) -> d
 
 
 def _free_end(cable, bottom: schema.FreeBottom, env, end: list[float]) -> dict[str, Any]:
-    body = bottom.body
-    out: dict[str, Any] = {"name": "end", "type": "point", "position": list(end),
+    out = _point("end", bottom.body, env, end)
+    forces = out.pop("external forces")
+    if bottom.tie is not None:
+        tie = bottom.tie
+        rest = list(schema.xyz(tie.rest_position) if tie.rest_position else end)
+        forces.append({"model": "linear_stiffness", "equilibrium_position": rest, "diagonal": [
+            tie.stiffness_x, tie.stiffness_y, tie.stiffness_z, 0, 0, 0]})  # fmt: skip
+        forces.append({"model": "linear_damping", "diagonal": [
+            tie.damping_x, tie.damping_y, tie.damping_z, 0, 0, 0]})  # fmt: skip
+    if bottom.hold_axes:
+        out["dofs"] = [dof for axis, dof in zip("xyz", ("surge", "sway", "heave"), strict=True)
+                       if axis not in bottom.hold_axes]  # fmt: skip
+    out["external forces"] = forces
+    return out
+
+
+def _point(name: str, body: schema.Body | schema.PointBody, env, at: list[float]) -> dict:
+    """A point body of the system form: the free end's body, or a float or clump weight along
+    the cable (``point_bodies``), at ``at``."""
+    out: dict[str, Any] = {"name": name, "type": "point", "position": list(at),
                            "mass": body.mass}  # fmt: skip
     forces: list[dict[str, Any]] = [{"model": "gravity"}]
     if body.shape is not None:
@@ -276,19 +345,10 @@ def _free_end(cable, bottom: schema.FreeBottom, env, end: list[float]) -> dict[s
     if body.drag_coefficient and any(area) and not env.in_air:
         forces.append({"model": "drag", "drag_coefficient": body.drag_coefficient,
                        "area": list(area)})  # fmt: skip
+    zero = schema.Constant(value=0.0)
     applied = {f"force_{a}": _function(getattr(body, f"force_{a}")) for a in "xyz"
-               if getattr(body, f"force_{a}") != schema.Constant(value=0.0)}  # fmt: skip
+               if getattr(body, f"force_{a}", zero) != zero}  # fmt: skip
     if applied:
         forces.append({"model": "applied", **applied})
-    if bottom.tie is not None:
-        tie = bottom.tie
-        rest = list(schema.xyz(tie.rest_position) if tie.rest_position else end)
-        forces.append({"model": "linear_stiffness", "equilibrium_position": rest, "diagonal": [
-            tie.stiffness_x, tie.stiffness_y, tie.stiffness_z, 0, 0, 0]})  # fmt: skip
-        forces.append({"model": "linear_damping", "diagonal": [
-            tie.damping_x, tie.damping_y, tie.damping_z, 0, 0, 0]})  # fmt: skip
-    if bottom.hold_axes:
-        out["dofs"] = [dof for axis, dof in zip("xyz", ("surge", "sway", "heave"), strict=True)
-                       if axis not in bottom.hold_axes]  # fmt: skip
     out["external forces"] = forces
     return out

@@ -35,6 +35,7 @@ from seacable.case.base import (
     Sphere,
     Table,
     TimeFunction,
+    Turn,
     VerticalCylinder,
     VolumeTable,
     _Model,
@@ -78,15 +79,6 @@ class FloatingStructureTop(_Model):
     force: TimeFunction = Constant(value=0.0)  # u(t), vertical, positive up [N]
     initial_heave: float = 0.0  # initial z offset from `position` [m]
     initial_heave_velocity: float = 0.0  # [m/s]
-
-
-class Turn(_Model):
-    """A turning circle: from ``start_time`` [s] the ship follows a circle of ``radius`` [m]
-    turning to the ``side`` given (left: towards +y when heading along +x)."""
-
-    start_time: NonNeg
-    radius: Pos
-    side: Literal["left", "right"] = "left"
 
 
 class TowingShipTop(_Model):

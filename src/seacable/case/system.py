@@ -22,6 +22,7 @@ from seacable.case.base import (
     Shape,
     Simulation,
     TimeFunction,
+    Turn,
     _Model,
 )
 
@@ -138,10 +139,33 @@ class FixedBody(_Body):
     orientation_deg: Vector = (0.0, 0.0, 0.0)  # roll, pitch, yaw [deg]
 
 
+class Track(_Model):
+    """A towing ship's track in the horizontal plane: from ``start`` [x, y] (m) along the
+    heading ``heading_deg`` (from +x towards +y), then, from ``turn.start_time``, a turning
+    circle tangent to it. The ship travels a constant ``speed`` [m/s] or the ``distance`` [m]
+    given as a time function (an acceleration_profile gives speed changes with exact
+    accelerations). The track is exempt from the case's build-up: a tow starts in its steady
+    state."""
+
+    start: tuple[float, float] = (0.0, 0.0)  # [m]
+    heading_deg: float = 0.0
+    speed: float | None = None  # [m/s]
+    distance: TimeFunction | None = None  # [m]
+    turn: Turn | None = None
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.speed is None) == (self.distance is None):
+            raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
+        return self
+
+
 class ImposedBody(_Body):
     """Moves as its time functions say, whatever the lines pull: a vessel's or a crane's
     motion, a vehicle's trajectory. Position of the reference point [m] and orientation angles
-    [deg] (roll, pitch, yaw) as functions of time."""
+    [deg] (roll, pitch, yaw) as functions of time. Or a ship on a ``track``: x, y and the yaw
+    follow the track (the yaw along its heading; ``yaw_deg`` is then an offset from it, a crab
+    angle), z, roll and pitch their time functions."""
 
     type: Literal["imposed"]
     x: TimeFunction = Constant(value=0.0)  # [m]
@@ -150,6 +174,18 @@ class ImposedBody(_Body):
     roll_deg: TimeFunction = Constant(value=0.0)  # [deg]
     pitch_deg: TimeFunction = Constant(value=0.0)  # [deg]
     yaw_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    track: Track | None = None
+
+    @model_validator(mode="after")
+    def _track_or_xy(self):
+        if self.track is not None:
+            given = [k for k in ("x", "y") if getattr(self, k) != Constant(value=0.0)]
+            if given:
+                raise ValueError(
+                    f"{given} and 'track' both place the body in the horizontal plane; give "
+                    "the start of the track as track.start [x, y] and leave out x and y"
+                )
+        return self
 
 
 class _Dynamic(_Body):

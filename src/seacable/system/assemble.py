@@ -11,6 +11,7 @@ import numpy as np
 from seacable import timefunctions as tfn
 from seacable.bodies import kinematics
 from seacable.case import system as sch
+from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
 from seacable.forces import applied, drag, linear
@@ -22,7 +23,7 @@ from seacable.system.kernel import SystemParams
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
 SEGMENTS_3D, PLANAR = 0, 1  # rigid-line models (SystemParams.rs_kind)
 INT_FIELDS = frozenset({
-    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_turns", "point_body",
+    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_motion", "point_body",
     "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
@@ -49,6 +50,25 @@ class BuiltSystem:
     y0: np.ndarray
     layout: Layout
     case: sch.SystemCase
+
+
+def _track(track: sch.Track, base_dir, where: str) -> tuple[tfn.Piecewise, list[float]]:
+    """The distance travelled along a track (a channel exempt from the build-up) and its
+    kinematics.track_point row."""
+    if track.speed is not None:
+        distance = tfn.build(AccelerationProfile(
+            kind="acceleration_profile", initial_velocity=track.speed,
+            phases=[AccelerationPhase(duration=1.0, acceleration=0.0)],
+        ))  # fmt: skip
+    else:
+        distance = channel(track.distance, base_dir, f"{where}.track.distance")
+    distance = tfn.steady(distance)
+    turn_at, radius = 0.0, 0.0
+    if track.turn is not None:
+        turn_at = float(tfn.evaluate(distance, track.turn.start_time)[0])
+        radius = track.turn.radius * (1.0 if track.turn.side == "left" else -1.0)
+    row = [*track.start, math.radians(track.heading_deg), turn_at, radius]
+    return distance, row
 
 
 def _rad(function: tfn.Piecewise) -> tfn.Piecewise:
@@ -102,7 +122,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     data: list[float] = []
     arrays = {
         "body_kind": np.zeros(nb), "body_rigid": np.zeros(nb), "body_q": -np.ones(nb),
-        "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_turns": np.zeros(nb),
+        "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_motion": np.zeros(nb),
+        "body_track": np.zeros((nb, 5)),
         "body_pose": np.zeros((nb, 7)),
         "body_mass": np.zeros(nb), "body_cog": np.zeros((nb, 3)),
         "body_inertia": np.zeros((nb, 3, 3)), "body_added": np.zeros((nb, 6, 6)),
@@ -128,7 +149,11 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             for angle in ("roll_deg", "pitch_deg", "yaw_deg"):
                 channels.append(_rad(channel(getattr(body, angle), base_dir, f"{where}.{angle}")))
                 if getattr(body, angle) != sch.Constant(value=0.0):
-                    arrays["body_turns"][b] = 1
+                    arrays["body_motion"][b] = kinematics.TURNS
+            if body.track is not None:
+                arrays["body_motion"][b] = kinematics.TRACK
+                distance, arrays["body_track"][b] = _track(body.track, base_dir, where)
+                channels[int(arrays["body_channel"][b])] = distance
             continue
         rigid = isinstance(body, sch.RigidBody)
         arrays["body_kind"][b] = kinematics.TIP if b in tips else kinematics.DYNAMIC

@@ -7,7 +7,6 @@ import math
 import numpy as np
 from numba import njit
 
-from seacable.bodies import kinematics
 from seacable.bodies.dynamics import add_force
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
@@ -16,16 +15,9 @@ from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass, rigid_links, rigid_segments
 from seacable.system import energy as system_energy
 from seacable.system import kernel, rigid
+from seacable.system.rigid import point_acceleration
 
 BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, force 3, moment 3
-
-
-@njit(inline="always", **JIT)
-def _point_acceleration(t, p, w, k, out):
-    b = p.point_body[k]
-    kinematics.point_acceleration(
-        t, p.body_kind[b], p.body_channel[b], kernel._tf(p), w.acc[b], w.parm[k], w.omega[b], out
-    )
 
 
 @njit(**JIT)
@@ -56,7 +48,7 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
                 tension[j, s0 + i] = w.nodes[lumped_mass.T_ROW, c0 + i]
             for end in range(2):
                 point = p.line_from[li] if end == 0 else p.line_to[li]
-                _point_acceleration(t, p, w, point, a)
+                point_acceleration(t, p, w, point, a)
                 m3 = w.end_mass[li, end]
                 for c in range(3):
                     inertia = m3[3 * c] * a[0] + m3[3 * c + 1] * a[1] + m3[3 * c + 2] * a[2]

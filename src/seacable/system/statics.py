@@ -39,7 +39,9 @@ class StaticsError(SeacableError):
 
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
                 tolerance: float = 1e-9) -> np.ndarray:  # fmt: skip
-    """The state at rest in balance, from ``y0``'s positions (velocities set to zero).
+    """The state at rest in balance, from ``y0``'s positions (velocities set to zero; or, when
+    every fixed and imposed body moves at t = 0 with one velocity and without turning, a tow,
+    everything moving with it: ``steady_velocities``).
 
     First Newton over every coordinate at once (sparse Jacobian); when that fails, Newton over
     the free bodies' degrees of freedom alone (a small dense system), each line settled at its
@@ -50,7 +52,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     p = built.params
     coords = coordinates(p)
     y = y0.copy()
-    y[p.n_q :] = 0.0
+    y[p.n_q :] = steady_velocities(p, y)
     if not len(coords.kind):
         return y
     residual = Residual(p, coords)
@@ -74,6 +76,36 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
     raise StaticsError(_blame(built, coords, r))
+
+
+def steady_velocities(p: kernel.SystemParams, y: np.ndarray) -> np.ndarray:
+    """The velocities (``y[n_q:]``) of a steady motion at t = 0: when every fixed or imposed
+    body moves with one velocity V and none turns (a ship towing at constant speed, and nothing
+    fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
+    lines do not turn (their nodes move with their bases); otherwise everything at rest.
+    The statics then balances the loads of that motion (drag on the velocity relative to the
+    current): the steady tow, which stays steady while the kinematic bodies keep V."""
+    w = kernel.make_work(p)
+    moving = y.copy()
+    moving[p.n_q :] = 0.0
+    kernel.rhs(0.0, moving, p, w, np.zeros_like(y))
+    kinematic = np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED)
+    v = np.zeros(len(y) - p.n_q)
+    if not kinematic.size:
+        return v
+    velocity = w.vel[kinematic]
+    common = velocity[0]
+    scale = float(np.abs(velocity).max())
+    if scale == 0.0 or np.abs(velocity - common).max() > 1e-12 * scale:
+        return v
+    if np.abs(w.omega[kinematic]).max() > 0.0:
+        return v
+    for b in np.flatnonzero(np.asarray(p.body_kind) == kinematics.DYNAMIC):
+        v[p.body_v[b] - p.n_q : p.body_v[b] - p.n_q + 3] = common
+    for li in range(len(p.line_n)):
+        first = p.line_v[li] - p.n_q
+        v[first : first + 3 * (p.line_n[li] - 1)] = np.tile(common, p.line_n[li] - 1)
+    return v
 
 
 def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200):
