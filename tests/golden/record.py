@@ -154,12 +154,18 @@ def system_rows(tree, case) -> dict:
     out["top_heave"] = top["position_z"].values
     out["top_heave_velocity"] = out["top_velocity_z"]
     held = getattr(case.bodies[1], "dofs", ["surge", "sway", "heave"]) != ["surge", "sway", "heave"]
+    position = np.column_stack([end[f"position_{c}"].values for c in "xyz"])
     if case.bodies[1].type == "point" and held:
-        target = np.asarray(case.bodies[1].position)
-        position = np.column_stack([end[f"position_{c}"].values for c in "xyz"])
+        target = np.asarray(case.bodies[1].position)[None, :] + 0.0 * position
+        tracking = np.linalg.norm(position - target, axis=1)
+    elif case.bodies[1].type == "imposed":  # a trajectory: the line's end is held on it
+        target = position
+        tip = np.column_stack([out[f"node_{c}"][:, -1] for c in "xyz"])
+        tracking = np.linalg.norm(tip - target, axis=1)
+    if case.bodies[1].type == "imposed" or (case.bodies[1].type == "point" and held):
         for c, axis in enumerate("xyz"):
-            out[f"target_{axis}"] = np.full(len(zeros), target[c])
-        out["tracking_error"] = np.linalg.norm(position - target, axis=1)
+            out[f"target_{axis}"] = target[:, c]
+        out["tracking_error"] = tracking
     for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
         out[name] = tree[name].values
     out["time"] = tree["time"].values

@@ -82,13 +82,16 @@ def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
 
 
 @njit(**JIT)
-def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, motion, track, tf, pos, rot, vel,
-                omega, quat, work):  # fmt: skip
+def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, motion, track, parent, tf, pos,
+                rot, vel, omega, acc, quat, work):  # fmt: skip
     """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
-    (nb, 3, 3), ``quat`` (nb, 4), ``vel`` and ``omega`` (nb, 3). An imposed body moves by its
-    channels (``imposed_channels``: ``channel[b]``, ``motion[b]``, ``track[b]``); ``tf`` is the
-    tuple of time-function arrays (breaks, coefs, count, sine, build_up); ``work`` (18) is
-    scratch."""
+    (nb, 3, 3), ``quat`` (nb, 4), ``vel`` and ``omega`` (nb, 3); and an imposed body's
+    acceleration and angular acceleration (``acc`` (nb, 6), earth frame; a fixed body's zero).
+    An imposed body moves by its channels (``imposed_channels``: ``channel[b]``, ``motion[b]``,
+    ``track[b]``), its position offset, in earth axes, from the reference point of the imposed
+    body ``parent[b]`` when that is not -1 (``parent`` names no body that has a parent itself);
+    ``tf`` is the tuple of time-function arrays (breaks, coefs, count, sine, build_up); ``work``
+    (18) is scratch."""
     for b in range(kind.shape[0]):
         if kind[b] == DYNAMIC:
             q, v = q_at[b], v_at[b]
@@ -105,26 +108,42 @@ def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, motion, track, tf
                 _still(b, rot, omega, quat)
         elif kind[b] == IMPOSED:
             imposed_channels(t, channel[b], motion[b], track[b], tf, work)
-            for c in range(3):
-                pos[b, c] = work[c]
-                vel[b, c] = work[6 + c]
-            if motion[b] == MOVES:
-                _still(b, rot, omega, quat)
-                continue
-            qw, qx, qy, qz = euler_quaternion(work[3], work[4], work[5])
-            rotation(qw, qx, qy, qz, rot[b])
-            quat[b, 0], quat[b, 1], quat[b, 2], quat[b, 3] = qw, qx, qy, qz
-            euler_rates_omega(work[3], work[4], work[5], work[9], work[10], work[11], omega[b])
+            _imposed_state(b, motion[b], work, pos, rot, vel, omega, acc, quat)
         elif kind[b] == FIXED:
             for c in range(3):
                 pos[b, c] = pose0[b, c]
                 vel[b, c] = 0.0
                 omega[b, c] = 0.0
+            for c in range(6):
+                acc[b, c] = 0.0
             rotation(pose0[b, 3], pose0[b, 4], pose0[b, 5], pose0[b, 6], rot[b])
             for c in range(4):
                 quat[b, c] = pose0[b, 3 + c]
         else:  # TIP: its position and velocity come from its line (lines.rigid_segments)
             _still(b, rot, omega, quat)
+    for b in range(kind.shape[0]):  # offsets from another imposed body, once it is placed
+        a = parent[b]
+        if a >= 0:
+            for c in range(3):
+                pos[b, c] += pos[a, c]
+                vel[b, c] += vel[a, c]
+                acc[b, c] += acc[a, c]
+
+
+@njit(inline="always", **JIT)
+def _imposed_state(b, motion, work, pos, rot, vel, omega, acc, quat):
+    """Body b's pose, twist and acceleration from its channels (``imposed_channels``)."""
+    imposed_acceleration(work, acc[b])
+    for c in range(3):
+        pos[b, c] = work[c]
+        vel[b, c] = work[6 + c]
+    if motion == MOVES:
+        _still(b, rot, omega, quat)
+        return
+    qw, qx, qy, qz = euler_quaternion(work[3], work[4], work[5])
+    rotation(qw, qx, qy, qz, rot[b])
+    quat[b, 0], quat[b, 1], quat[b, 2], quat[b, 3] = qw, qx, qy, qz
+    euler_rates_omega(work[3], work[4], work[5], work[9], work[10], work[11], omega[b])
 
 
 @njit(**JIT)
@@ -207,20 +226,15 @@ def point_state(k, body, offset, pos, rot, vel, omega, ppos, pvel, parm):
     pvel[k, 2] = vel[b, 2] + wx * ry - wy * rx
 
 
-@njit(**JIT)
-def point_acceleration(t, kind, channel, motion, track, tf, acc, arm, omega, work, out):
+@njit(inline="always", **JIT)
+def point_acceleration(kind, acc, arm, omega, out):
     """Acceleration (3) of a point at ``arm`` (earth frame) from its body's reference point:
-    a + alpha x r + w x (w x r), with the body's ``acc`` (6: a dynamic or tip body's, solved)
-    or its channels' (imposed: ``imposed_channels``, ``work`` (24) scratch), zero for a fixed
-    body."""
-    if kind == DYNAMIC or kind == TIP:
-        _carried(acc, arm, omega, out)
-    elif kind == IMPOSED:
-        imposed_channels(t, channel, motion, track, tf, work)
-        imposed_acceleration(work, work[18:24])
-        _carried(work[18:24], arm, omega, out)
-    else:
+    a + alpha x r + w x (w x r), with the body's ``acc`` (6: solved for a dynamic or tip body,
+    from its channels for an imposed one: ``body_states``), zero for a fixed body."""
+    if kind == FIXED:
         out[0] = out[1] = out[2] = 0.0
+    else:
+        _carried(acc, arm, omega, out)
 
 
 @njit(inline="always", **JIT)

@@ -55,17 +55,22 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
     static = cable.initial.shape == "static"
     if cable.initial.shape not in ("arc", "angles", "static"):
         raise CaseError(f"{where}.initial.shape: '{cable.initial.shape}' has no system form here")
-    if static and not isinstance(cable.bottom, schema.FreeBottom):
+    held = isinstance(cable.bottom, schema.TrajectoryBottom)
+    if static and not isinstance(cable.bottom, schema.FreeBottom) and not held:
         raise CaseError(f"{where}.initial.shape: a static start has a system form here with a "
-                        "free end only")  # fmt: skip
-    # a static start: the statics starts from the line hanging straight down
+                        "free end or a trajectory only")  # fmt: skip
+    # a static start: the statics starts from the line hanging straight down (or, held on a
+    # trajectory, on its catenary between its ends)
     angles = [0.0] * cable.links if static else cable.initial.angles(cable.links)
     azimuth = math.radians(cable.initial.azimuth_deg)
     top, start = _top(cable.top, case._base_dir)
     a = np.asarray(angles, dtype=float)
     e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth), -np.cos(a)])
     nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
-    bottom = _bottom(cable, case.environment, [float(v) for v in nodes[-1]])
+    if isinstance(cable.bottom, schema.TrajectoryBottom):
+        bottom = _trajectory(cable.bottom, top["name"], where)
+    else:
+        bottom = _bottom(cable, case.environment, [float(v) for v in nodes[-1]])
     line_type = _line_type(cable, lengths)
     joints = _joints(cable, where)
     along = [_point(f"joint {pb.node}", pb, case.environment, [float(v) for v in nodes[pb.node]])
@@ -82,7 +87,8 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
             "model": cable.model, "from": names[k], "to": names[k + 1],
             "sections": [{"type": line_type["name"], "segments": count,
                           "length": total if len(cuts) == 2 else total * count / cable.links}],
-            "initial": _initial(cable, static, a, (cuts[k], cuts[k + 1])),
+            "initial": "catenary" if static and held else _initial(cable, static, a,
+                                                                   (cuts[k], cuts[k + 1])),
         }  # fmt: skip
         if k == 0:
             reference = math.radians(cable.top_reference_angle_deg)
@@ -135,6 +141,21 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
                line_types=[line_type], lines=[line], start="as_given",
                simulation=_dump(case.simulation))  # fmt: skip
     return out
+
+
+def _trajectory(bottom: schema.TrajectoryBottom, top: str, where: str) -> dict[str, Any]:
+    """A vehicle's trajectory (the exact end force) as an imposed body the line's end is held
+    on, relative to the top body when the trajectory is."""
+    if bottom.method != "exact":
+        raise CaseError(f"{where}.bottom.method: '{bottom.method}' has no system form here yet "
+                        "(the servo as a force model)")  # fmt: skip
+    body: dict[str, Any] = {"name": "end", "type": "imposed"}
+    for axis in "xyz":
+        if getattr(bottom, axis) != schema.Constant(value=0.0):
+            body[axis] = _function(getattr(bottom, axis))
+    if bottom.relative_to_top:
+        body["relative_to"] = top
+    return body
 
 
 def _joints(cable: schema.Cable, where: str) -> float:

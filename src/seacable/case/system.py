@@ -165,7 +165,9 @@ class ImposedBody(_Body):
     motion, a vehicle's trajectory. Position of the reference point [m] and orientation angles
     [deg] (roll, pitch, yaw) as functions of time. Or a ship on a ``track``: x, y and the yaw
     follow the track (the yaw along its heading; ``yaw_deg`` is then an offset from it, a crab
-    angle), z, roll and pitch their time functions."""
+    angle), z, roll and pitch their time functions. With ``relative_to`` (another imposed body,
+    itself not relative), x, y, z are offsets in earth axes from that body's reference point: a
+    vehicle's trajectory relative to its ship."""
 
     type: Literal["imposed"]
     x: TimeFunction = Constant(value=0.0)  # [m]
@@ -175,6 +177,7 @@ class ImposedBody(_Body):
     pitch_deg: TimeFunction = Constant(value=0.0)  # [deg]
     yaw_deg: TimeFunction = Constant(value=0.0)  # [deg]
     track: Track | None = None
+    relative_to: Name | None = None
 
     @model_validator(mode="after")
     def _track_or_xy(self):

@@ -23,8 +23,8 @@ from seacable.system.kernel import SystemParams
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
 SEGMENTS_3D, PLANAR = 0, 1  # rigid-line models (SystemParams.rs_kind)
 INT_FIELDS = frozenset({
-    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_motion", "point_body",
-    "force_kind",
+    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_motion", "body_parent",
+    "point_body", "force_kind",
     "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
     "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
@@ -50,6 +50,25 @@ class BuiltSystem:
     y0: np.ndarray
     layout: Layout
     case: sch.SystemCase
+
+
+def _parent(case: sch.SystemCase, body: sch.ImposedBody, where: str) -> int:
+    """The index of the imposed body ``body`` moves relative to (-1: none)."""
+    if body.relative_to is None:
+        return -1
+    names = [b.name for b in case.bodies]
+    name = body.relative_to
+    parent = case.bodies[names.index(name)] if name in names else None
+    if parent is None or parent is body or not isinstance(parent, sch.ImposedBody):
+        what = "names no body" if parent is None else (
+            "is the body itself" if parent is body else f"is a {parent.type} body")  # fmt: skip
+        raise CaseError(f"{where}.relative_to: '{name}' {what}; an imposed body moves relative "
+                        "to another imposed body: name one")  # fmt: skip
+    if parent.relative_to is not None:
+        raise CaseError(f"{where}.relative_to: '{name}' moves relative to "
+                        f"'{parent.relative_to}' itself; give '{body.name}' relative to "
+                        f"'{parent.relative_to}' (one level)")  # fmt: skip
+    return names.index(name)
 
 
 def _track(track: sch.Track, base_dir, where: str) -> tuple[tfn.Piecewise, list[float]]:
@@ -123,7 +142,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     arrays = {
         "body_kind": np.zeros(nb), "body_rigid": np.zeros(nb), "body_q": -np.ones(nb),
         "body_v": -np.ones(nb), "body_channel": -np.ones(nb), "body_motion": np.zeros(nb),
-        "body_track": np.zeros((nb, 5)),
+        "body_track": np.zeros((nb, 5)), "body_parent": -np.ones(nb),
         "body_pose": np.zeros((nb, 7)),
         "body_mass": np.zeros(nb), "body_cog": np.zeros((nb, 3)),
         "body_inertia": np.zeros((nb, 3, 3)), "body_added": np.zeros((nb, 6, 6)),
@@ -150,6 +169,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 channels.append(_rad(channel(getattr(body, angle), base_dir, f"{where}.{angle}")))
                 if getattr(body, angle) != sch.Constant(value=0.0):
                     arrays["body_motion"][b] = kinematics.TURNS
+            arrays["body_parent"][b] = _parent(case, body, where)
             if body.track is not None:
                 arrays["body_motion"][b] = kinematics.TRACK
                 distance, arrays["body_track"][b] = _track(body.track, base_dir, where)

@@ -47,6 +47,8 @@ class SystemParams(NamedTuple):
     body_motion: np.ndarray  # (nb,) int: how an imposed body moves (kinematics.MOVES, TURNS,
     # TRACK)
     body_track: np.ndarray  # (nb, 5) an imposed body's track (kinematics.track_point)
+    body_parent: np.ndarray  # (nb,) int: the imposed body an imposed body's position is
+    # relative to (-1: none)
     body_pose: np.ndarray  # (nb, 7) fixed bodies: position, quaternion
     body_mass: np.ndarray  # (nb,) [kg]
     body_cog: np.ndarray  # (nb, 3) centre of gravity, body frame [m]
@@ -159,7 +161,7 @@ class SystemWork(NamedTuple):
     rs_la: np.ndarray  # (nr, 9) dL/dA_0, row-major
     own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
     scratch: np.ndarray  # (128,) the rigid lines' small vectors of one evaluation
-    imposed: np.ndarray  # (24,) an imposed body's channels and accelerations (kinematics)
+    imposed: np.ndarray  # (18,) an imposed body's channels (kinematics.imposed_channels)
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -177,7 +179,7 @@ def make_work(p: SystemParams) -> SystemWork:
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
         rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
-        own_load=np.zeros((nb, 3)), scratch=np.zeros(128), imposed=np.zeros(24),
+        own_load=np.zeros((nb, 3)), scratch=np.zeros(128), imposed=np.zeros(18),
     )  # fmt: skip
 
 
@@ -221,7 +223,8 @@ def evaluate(t, y, p, w, ydot):
     status = OK
     kinematics.body_states(
         t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
-        p.body_motion, p.body_track, _tf(p), w.pos, w.rot, w.vel, w.omega, w.quat, w.imposed,
+        p.body_motion, p.body_track, p.body_parent, _tf(p), w.pos, w.rot, w.vel, w.omega, w.acc,
+        w.quat, w.imposed,
     )  # fmt: skip
     if p.rs_n.shape[0] > 0:
         rigid.nodes_and_loads(y, p, w)

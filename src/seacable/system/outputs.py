@@ -48,7 +48,7 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
                 tension[j, s0 + i] = w.nodes[lumped_mass.T_ROW, c0 + i]
             for end in range(2):
                 point = p.line_from[li] if end == 0 else p.line_to[li]
-                point_acceleration(t, p, w, point, a)
+                point_acceleration(p, w, point, a)
                 m3 = w.end_mass[li, end]
                 for c in range(3):
                     inertia = m3[3 * c] * a[0] + m3[3 * c + 1] * a[1] + m3[3 * c + 2] * a[2]

@@ -26,14 +26,12 @@ def _tf(p):
     return (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
 
 
-@njit(**JIT)
-def point_acceleration(t, p, w, k, out):
+@njit(inline="always", **JIT)
+def point_acceleration(p, w, k, out):
     """Acceleration (3) of point k (``w.parm``, ``w.omega`` and, of a dynamic body, ``w.acc``
     filled): kinematics.point_acceleration."""
     b = p.point_body[k]
-    kinematics.point_acceleration(t, p.body_kind[b], p.body_channel[b], p.body_motion[b],
-                                  p.body_track[b], _tf(p), w.acc[b], w.parm[k], w.omega[b],
-                                  w.imposed, out)  # fmt: skip
+    kinematics.point_acceleration(p.body_kind[b], w.acc[b], w.parm[k], w.omega[b], out)
 
 
 @njit(inline="always", **JIT)
@@ -121,7 +119,7 @@ def _tip_target(t, p, w, li, target, acc):
     k = p.rs_to[li]
     kinematics.point_state(k, p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega,
                            w.ppos, w.pvel, w.parm)  # fmt: skip
-    point_acceleration(t, p, w, k, acc)
+    point_acceleration(p, w, k, acc)
     for c in range(3):
         target[c] = w.ppos[k, c]
         target[3 + c] = w.pvel[k, c]
@@ -260,7 +258,7 @@ def forward(t, y, p, w, ydot):
         li = p.rs_order[j]
         n, s0, ws = _view(p, w, li)
         a = p.rs_from[li]
-        point_acceleration(t, p, w, a, a0)
+        point_acceleration(p, w, a, a0)
         pinned = _held(p, li)
         la = w.rs_la[li]
         for r in range(3):
