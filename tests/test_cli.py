@@ -206,10 +206,21 @@ def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
     case = load_case(out)
     assert [b.type for b in case.bodies] == ["rigid", "fixed"]
     assert case.lines[0].model == "rigid_links"
-    string = (
-        Path(__file__).parent.parent / "examples" / "poth_string_pendulum_natural_variables.yaml"
-    )
-    result = CliRunner().invoke(main, ["upgrade", str(string)])
-    assert result.exit_code == 2 and "has no system form" in result.output
+    lumped = tmp_path / "lumped.yaml"  # a lumped-mass cable ending free: no system form yet
+    data = yaml.safe_load((legacy / "catenary_mooring_line_surge.yaml").read_text())
+    data["cables"][0]["bottom"] = {"type": "free", "body": {"mass": 100.0}}
+    data["cables"][0]["initial"] = {"shape": "arc", "top_angle_deg": 10.0}
+    lumped.write_text(yaml.safe_dump(data))
+    result = CliRunner().invoke(main, ["upgrade", str(lumped)])
+    assert result.exit_code == 2 and "system form needs a pinned end" in result.output
     result = CliRunner().invoke(main, ["upgrade", str(out)])
     assert result.exit_code == 2 and "already a system" in result.output
+    star = tmp_path / "star.yaml"  # cables on a shared body: lines from it back to the anchors
+    result = CliRunner().invoke(
+        main, ["upgrade", str(legacy / "rising_body_four_cables.yaml"), "-o", str(star)]
+    )
+    assert result.exit_code == 0, result.output
+    case = load_case(star)
+    assert [line.from_ for line in case.lines[:2]] == ["buoy", "cable 1 joint 13"]
+    assert [line.to for line in case.lines[:2]] == ["cable 1 joint 13", "cable 1 top"]
+    assert case.lines[0].initial.angles_deg[:6] == [-180.0] * 5 + [10.59 - 180.0]

@@ -35,7 +35,7 @@ def test_example_matches_its_golden_result(stem):
     failures = compare_to_golden(golden, results, label=stem)
     for name in golden.coords:
         if name not in results:  # a system names its segments and nodes by arc length
-            assert name in ("node", "segment", "link_length"), name
+            assert name in ("node", "segment", "link_length", "cable"), name
             continue
         if not np.allclose(np.asarray(results[name]), golden[name].values, rtol=1e-12, atol=0.0):
             failures.append(f"{stem}: coordinate '{name}' differs from the golden one")

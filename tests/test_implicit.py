@@ -185,7 +185,7 @@ def test_implicit_steps_far_beyond_the_explicit_limit_agree_with_dopri5():
 
 
 def test_implicit_scheme_needs_a_model_with_a_newton_matrix():
-    case = seacable.load_case("examples/rising_body_four_cables.yaml")  # a star of cables
+    case = seacable.load_case("tests/legacy_cases/rising_body_four_cables.yaml")  # a star of cables
     sim = case.simulation.model_copy(update={"integrator": "newmark"})
     with pytest.raises(CaseError, match=r"simulation.integrator: 'newmark' needs a model"):
         seacable.simulate(case.model_copy(update={"simulation": sim}))
@@ -259,7 +259,7 @@ def test_default_generalized_alpha_survives_snapping_slack_segments():
     at 5 ms steps the default generalized-alpha keeps the energy bounded and rises like rk4 at
     its stable step (with rho_infinity 0.8 the energy grew 25 times and the body rose twice
     as far)."""
-    data = seacable.load_case("examples/rising_body_single_cable_guided.yaml").model_dump(
+    data = seacable.load_case("tests/legacy_cases/rising_body_single_cable_guided.yaml").model_dump(
         mode="json", exclude_unset=True
     )
     data["cables"][0].update(model="lumped_mass", axial_stiffness=1e8)

@@ -13,7 +13,7 @@ from seacable.models import lumped_star
 from seacable.numerics import stiff
 from seacable.simulation import build_system
 
-EXAMPLES = Path(__file__).parent.parent / "examples"
+EXAMPLES = Path(__file__).parent / "legacy_cases"  # the single-cable form of the examples
 FORCE = ("top_force_x", "top_force_y", "top_force_z")
 
 

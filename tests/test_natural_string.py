@@ -109,3 +109,39 @@ def test_natural_string_refuses_water_and_a_missing_end_mass():
     data["cables"][0]["bottom"] = {"type": "free"}
     with pytest.raises(CaseError, match="end mass"):
         seacable.simulate(seacable.load_case(data))
+
+
+# ---- the same string as a line of a system of bodies and lines ----------------------------------
+def _system(tangent="angle", **changes):
+    """The pendulum in the system form (seacable upgrade of the single-cable case)."""
+    from seacable.case.legacy import upgrade
+
+    data = upgrade(_pendulum(tangent=tangent))
+    for key, value in changes.items():
+        data[key] = value
+    return seacable.load_case(data)
+
+
+@pytest.mark.parametrize("tangent", ["angle", "cartesian"])
+def test_the_system_string_is_the_single_cable_one(tangent):
+    """A natural_string line carrying its end mass moves as the single-cable string (same
+    variables, same dopri5 steps): nodes, tension and energies to round-off."""
+    single = seacable.simulate(_pendulum(tangent=tangent)).dataset
+    tree = seacable.simulate(_system(tangent)).dataset
+    line = tree["lines/cable"]
+    for name in ("node_x", "node_z", "tension", "strain"):
+        scale = np.abs(single[name].values).max()
+        np.testing.assert_allclose(line[name].values, single[name].values, rtol=0,
+                                   atol=1e-10 * scale)  # fmt: skip
+    np.testing.assert_allclose(tree["bodies/end/position_x"].values, single["end_x"].values,
+                               rtol=0, atol=1e-10)  # fmt: skip
+    energy = np.abs(single["total_energy"].values).max()
+    np.testing.assert_allclose(tree["total_energy"].values, single["total_energy"].values,
+                               rtol=0, atol=1e-9 * max(energy, 1.0))  # fmt: skip
+
+
+def test_a_system_string_starts_as_given_in_air():
+    with pytest.raises(CaseError, match=r"lines\[0\] \(cable\)\.model: .* set start: as_given"):
+        seacable.simulate(_system(start="static"))
+    with pytest.raises(CaseError, match=r"string pendulum in air"):
+        seacable.simulate(_system(environment={"water_density": 1025.0}))

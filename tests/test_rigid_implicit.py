@@ -312,7 +312,7 @@ def test_3d_implicit_runs_agree_with_a_tight_adaptive_reference(name):
 
 
 def test_servo_end_is_refused_by_the_implicit_schemes():
-    case = seacable.load_case("examples/jacquot_marichal_trajectory_servo.yaml")
+    case = seacable.load_case("tests/legacy_cases/jacquot_marichal_trajectory_servo.yaml")
     sim = case.simulation.model_copy(update={"integrator": "newmark"})
     with pytest.raises(seacable.CaseError, match="servo"):
         seacable.simulate(case.model_copy(update={"simulation": sim}))

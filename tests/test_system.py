@@ -286,6 +286,24 @@ def test_a_mistake_names_the_body_or_line_at_fault(change, message):
         model.build(load_case(case))
 
 
+@pytest.mark.parametrize(
+    ("relative_to", "message"),
+    [
+        ("float", r"bodies\[2\] \(vehicle\)\.relative_to: 'float' is a rigid body"),
+        ("nobody", r"'nobody' names no body"),
+        ("vehicle", r"'vehicle' is the body itself"),
+        ("ship", r"'ship' moves relative to 'tug' itself; give 'vehicle' relative to 'tug'"),
+    ],
+)
+def test_an_imposed_body_moves_relative_to_one_imposed_body(relative_to, message):
+    tug = {"name": "tug", "type": "imposed", "track": {"speed": 1.0}}
+    ship = {"name": "ship", "type": "imposed", "relative_to": "tug"}
+    vehicle = {"name": "vehicle", "type": "imposed", "relative_to": relative_to}
+    case = _case([tug, _rigid(), vehicle, ship], [_tie("t", "float", "vehicle")], _sim(1.0))
+    with pytest.raises(seacable.CaseError, match=message):
+        model.build(load_case(case))
+
+
 def test_a_lumped_line_needs_a_known_line_type():
     case = _case(
         [ANCHOR, {"name": "top", "type": "fixed", "position": [10.0, 0.0, -40.0]}],

@@ -105,8 +105,13 @@ def output_interval(interval: float) -> float:
 
 def derived(stem: str, changes: Mapping):
     """The example's case with ``changes`` (a nested mapping of case keys, as
-    :func:`seacable.case.loader.derive_case` takes) applied through the loader's validation."""
-    return derive_case(seacable.load_case(example_path(stem)), dict(changes))
+    :func:`seacable.case.loader.derive_case` takes) applied through the loader's validation.
+    An example written as a system drops the single-cable keys (``cables``: the servo's step,
+    kept at the example's while the time step was refined, is written in the system example)."""
+    case = seacable.load_case(example_path(stem))
+    if isinstance(case, SystemCase):
+        changes = {key: value for key, value in changes.items() if key != "cables"}
+    return derive_case(case, dict(changes))
 
 
 def run(stem: str, changes: Mapping):
@@ -117,8 +122,47 @@ def run(stem: str, changes: Mapping):
     if results.status != "complete":
         raise RuntimeError(f"{stem} with {dict(changes)}: {results.status}: {results.message}")
     if isinstance(case, SystemCase):
+        if sum(line.from_ == case.bodies[0].name for line in case.lines) > 1:
+            return star_rows(results.dataset, case)
         return system_rows(results.dataset, case)
     return results.dataset
+
+
+def star_rows(tree, case) -> dict:
+    """A star (an upgraded case of cables from their tops to the body they share, the first
+    body: each cable lines from that body back to its top, through the bodies along it) under
+    the single-cable star's names: per cable, from its top, ``node_*``, ``tension`` and
+    ``angular_rate`` (cable, node or segment), its top's load as ``top_force_*``, the shared
+    body's position and velocity as ``body_*`` and ``body_velocity_*``."""
+    shared = case.bodies[0].name
+    out: dict = {}
+    chains = []
+    for first in (line for line in case.lines if line.from_ == shared):
+        chain = [first]
+        while True:
+            following = [line for line in case.lines if line.from_ == chain[-1].to]
+            if not following:
+                break
+            chain.append(following[0])
+        chains.append([tree[f"lines/{line.name}"].to_dataset() for line in chain][::-1])
+    for name in ("node_x", "node_y", "node_z", "tension", "angular_rate"):
+        per_cable = []
+        for chain in chains:
+            parts = [line[name].values[:, ::-1] for line in chain]
+            if name.startswith("node_"):
+                parts = parts[:1] + [part[:, 1:] for part in parts[1:]]
+            per_cable.append(np.concatenate(parts, axis=1))
+        out[name] = np.stack(per_cable, axis=1)
+    body = tree[f"bodies/{shared}"].to_dataset()
+    for c in "xyz":
+        out[f"top_force_{c}"] = np.stack([chain[0][f"to_force_{c}"].values for chain in chains],
+                                         axis=1)  # fmt: skip
+        out[f"body_{c}"] = body[f"position_{c}"].values
+        out[f"body_velocity_{c}"] = body[f"velocity_{c}"].values
+    out["time"] = tree["time"].values
+    spans = np.concatenate([np.diff(line["arc_length"].values)[::-1] for line in chains[0]])
+    out["arc_length"] = np.concatenate([[0.0], np.cumsum(spans)])  # from the top (all alike)
+    return out
 
 
 def system_rows(tree, case) -> dict:
@@ -145,13 +189,15 @@ def system_rows(tree, case) -> dict:
             parts = parts[:1] + [part[:, 1:] for part in parts[1:]]  # each line's node 0: the last
         out[name] = np.concatenate(parts, axis=-1) if parts[0].ndim > 1 else parts[0]
     for c in "xyz":
-        out[f"top_force_{c}"] = lines[0][f"from_force_{c}"].values
-        out[f"bottom_force_{c}"] = lines[-1][f"to_force_{c}"].values
+        if f"from_force_{c}" in lines[0]:  # a natural string reports none
+            out[f"top_force_{c}"] = lines[0][f"from_force_{c}"].values
+            out[f"bottom_force_{c}"] = lines[-1][f"to_force_{c}"].values
         out[f"top_velocity_{c}"] = top[f"velocity_{c}"].values if f"velocity_{c}" in top else zeros
         out[f"bottom_velocity_{c}"] = (
             end[f"velocity_{c}"].values if f"velocity_{c}" in end else zeros
         )
     out["top_heave"] = top["position_z"].values
+    out["end_x"], out["end_z"] = end["position_x"].values, end["position_z"].values
     out["top_heave_velocity"] = out["top_velocity_z"]
     held = getattr(case.bodies[1], "dofs", ["surge", "sway", "heave"]) != ["surge", "sway", "heave"]
     position = np.column_stack([end[f"position_{c}"].values for c in "xyz"])
@@ -166,6 +212,10 @@ def system_rows(tree, case) -> dict:
         for c, axis in enumerate("xyz"):
             out[f"target_{axis}"] = target[:, c]
         out["tracking_error"] = tracking
+    if "servo_force_x" in end:  # the servo's end: its force, target and error
+        for name in ("servo_force_x", "servo_force_y", "servo_force_z", "target_x", "target_y",
+                     "target_z", "tracking_error"):  # fmt: skip
+            out[name] = end[name].values
     for name in ("kinetic_energy", "gravity_potential_energy", "elastic_energy", "total_energy"):
         out[name] = tree[name].values
     out["time"] = tree["time"].values

@@ -164,6 +164,22 @@ TimeFunction = Annotated[
 ]
 
 
+class ShipTravel(_Model):
+    """How far a towing ship has gone along its track: a constant ``speed`` [m/s] or the
+    ``distance`` [m] as a time function (an acceleration_profile gives speed changes with
+    exact accelerations), exactly one; then optionally a turning circle (``turn``)."""
+
+    speed: float | None = None  # [m/s]
+    distance: TimeFunction | None = None  # [m]
+    turn: Turn | None = None
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.speed is None) == (self.distance is None):
+            raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
+        return self
+
+
 # ---- environment ---------------------------------------------------------------------------------
 class Current(_Model):
     """Current flowing towards ``direction_deg`` (from +x towards +y; 0 = along +x): either a

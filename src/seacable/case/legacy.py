@@ -31,20 +31,68 @@ from seacable.case import schema
 from seacable.errors import CaseError
 
 RIGID = ("rigid_links", "rigid_segments_3d")
-CONVERTED = (*RIGID, "lumped_mass")
+CONVERTED = (*RIGID, "lumped_mass", "natural_string")
 
 
 def upgrade(case: schema.Case) -> dict[str, Any]:
     """The system-form mapping of a single-cable ``case`` (its table files' names unchanged:
     write it next to the case)."""
-    if len(case.cables) != 1 or case.bodies:
-        raise CaseError("upgrade: several cables on one body have no system form here yet")
+    if case.bodies:
+        return _star(case)
+    if len(case.cables) != 1:
+        raise CaseError("upgrade: several cables need a body they share (bodies:)")
     cable = case.cables[0]
     where = "cables[0]"
     if cable.model not in CONVERTED:
         raise CaseError(f"{where}.model: '{cable.model}' has no system form here yet")
     if cable.model == "lumped_mass":
         return _lumped(case, cable, where)
+    if cable.model == "natural_string":
+        return _natural(case, cable, where)
+    bodies, line_type, lines, static = _rigid(case, cable, where)
+    return _case(case, bodies, [line_type], lines, "static" if static else "as_given")
+
+
+def _case(case: schema.Case, bodies, line_types, lines, start: str) -> dict[str, Any]:
+    out: dict[str, Any] = {"name": case.name}
+    if case.description:
+        out["description"] = case.description
+    out.update(environment=_dump(case.environment), bodies=bodies, line_types=line_types,
+               lines=lines, start=start, simulation=_dump(case.simulation))  # fmt: skip
+    return out
+
+
+def _star(case: schema.Case) -> dict[str, Any]:
+    """Cables from their tops to bodies they share (a star): each cable becomes lines from its
+    shared body to its top (reversed: a rigid line may end held on a fixed or imposed body, and
+    several may start on one body), cut at the bodies along it."""
+    bodies = [_point(b.name, b, case.environment, list(schema.xyz(b.position)))
+              for b in case.bodies]  # fmt: skip
+    line_types, lines = [], []
+    for k, cable in enumerate(case.cables):
+        where = f"cables[{k}]"
+        if not isinstance(cable.bottom, schema.AttachedBottom) or cable.model not in RIGID:
+            raise CaseError(f"{where}: a star's system form here needs rigid-segment cables "
+                            "attached to their shared body")  # fmt: skip
+        if not isinstance(cable.top, schema.FixedTop | schema.ImposedTop):
+            raise CaseError(f"{where}.top.type: '{cable.top.type}' has no system form in a star "
+                            "(a rigid line held on a moving body's point)")  # fmt: skip
+        if cable.joint_stiffness is not None or cable.bending_stiffness is not None:
+            raise CaseError(f"{where}.joint_stiffness: a star's cables start at the shared body "
+                            "in the system form; their joints' springs there have no system "
+                            "form: leave them out")  # fmt: skip
+        more, line_type, mine, _ = _rigid(case, cable, where, shared=cable.bottom.body)
+        bodies += more
+        line_types.append(line_type)
+        lines += mine
+    return _case(case, bodies, line_types, lines, "as_given")
+
+
+def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | None = None):
+    """The bodies, line type and lines of a rigid cable, and whether it starts from its statics:
+    from its top to its end (the top body, the end body, those along it); or, ending on the
+    body ``shared`` (a star), from that body back to its top (the top body and those along
+    it, named after the cable)."""
     for key in ("joint_stiffness", "joint_damping"):
         value = getattr(cable, key)
         if isinstance(value, list) and len(set(value)) > 1:
@@ -67,30 +115,45 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
     a = np.asarray(angles, dtype=float)
     e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth), -np.cos(a)])
     nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
-    if isinstance(cable.bottom, schema.TrajectoryBottom):
-        bottom = _trajectory(cable.bottom, top["name"], where)
+    prefix = "" if shared is None else f"{cable.name} "
+    if shared is not None:
+        top["name"] = f"{cable.name} top"
+        bottom = None
+    elif isinstance(cable.bottom, schema.TrajectoryBottom):
+        bottom = _trajectory(cable.bottom, top["name"])
+        if cable.bottom.method == "stiffness_servo":  # the line's end, pulled by the servo
+            vehicle, held = bottom, False
+            vehicle["name"] = "vehicle"
+            bottom = {"name": "end", "type": "point", "position": [float(v) for v in nodes[-1]],
+                      "mass": 0.0, "external forces": [
+                          {"model": "servo", "target": "vehicle",
+                           **_dump(cable.bottom.servo)}]}  # fmt: skip
     else:
         bottom = _bottom(cable, case.environment, [float(v) for v in nodes[-1]])
     line_type = _line_type(cable, lengths)
     joints = _joints(cable, where)
-    along = [_point(f"joint {pb.node}", pb, case.environment, [float(v) for v in nodes[pb.node]])
-             for pb in sorted(cable.point_bodies, key=lambda pb: pb.node)]  # fmt: skip
-    names = [top["name"], *(body["name"] for body in along), bottom["name"]]
-    cuts = [0, *(pb.node for pb in sorted(cable.point_bodies, key=lambda pb: pb.node)),
-            cable.links]  # fmt: skip
+    ordered = sorted(cable.point_bodies, key=lambda pb: pb.node)
+    along = [_point(f"{prefix}joint {pb.node}", pb, case.environment,
+                    [float(v) for v in nodes[pb.node]]) for pb in ordered]  # fmt: skip
+    end = bottom["name"] if bottom is not None else shared
+    names = [top["name"], *(body["name"] for body in along), end]
+    cuts = [0, *(pb.node for pb in ordered), cable.links]
+    pieces = [(cuts[k], cuts[k + 1], names[k], names[k + 1]) for k in range(len(cuts) - 1)]
+    if shared is not None:  # from the shared body back to the top
+        pieces = [(first, last, b, a) for first, last, a, b in reversed(pieces)]
     total = cable.length if cable.length is not None else float(lengths.sum())
     lines = []
-    for k in range(len(cuts) - 1):
-        count = cuts[k + 1] - cuts[k]
+    for k, (first, last, start_at, end_at) in enumerate(pieces):
+        count = last - first
         line: dict[str, Any] = {
-            "name": cable.name if len(cuts) == 2 else f"{cable.name} {k + 1}",
-            "model": cable.model, "from": names[k], "to": names[k + 1],
+            "name": cable.name if len(pieces) == 1 else f"{cable.name} {k + 1}",
+            "model": cable.model, "from": start_at, "to": end_at,
             "sections": [{"type": line_type["name"], "segments": count,
-                          "length": total if len(cuts) == 2 else total * count / cable.links}],
-            "initial": "catenary" if static and held else _initial(cable, static, a,
-                                                                   (cuts[k], cuts[k + 1])),
+                          "length": total if len(pieces) == 1 else total * count / cable.links}],
+            "initial": "catenary" if static and held else _initial(
+                cable, static, a, (first, last), reverse=shared is not None),
         }  # fmt: skip
-        if k == 0:
+        if k == 0 and shared is None:
             reference = math.radians(cable.top_reference_angle_deg)
             line["base_reference"] = [math.sin(reference) * math.cos(azimuth),
                                       math.sin(reference) * math.sin(azimuth),
@@ -98,18 +161,47 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         if joints:
             line["joint_damping"] = joints
         lines.append(line)
-    out: dict[str, Any] = {"name": case.name}
-    if case.description:
-        out["description"] = case.description
-    out.update(
-        environment=_dump(case.environment),
-        bodies=[top, bottom, *along],
-        line_types=[line_type],
-        lines=lines,
-        start="static" if static else "as_given",
-        simulation=_dump(case.simulation),
-    )
-    return out
+    bodies = [top, *([bottom] if bottom is not None else []), *along]
+    if isinstance(cable.bottom, schema.TrajectoryBottom) and not held:
+        bodies.append(vehicle)
+    return bodies, line_type, lines, static
+
+
+def _natural(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
+    """Poth's string pendulum: a natural_string line from a fixed pivot to its end mass."""
+    if not isinstance(cable.top, schema.FixedTop) or not isinstance(
+        cable.bottom, schema.FreeBottom
+    ):
+        raise CaseError(f"{where}: a natural_string's system form needs a fixed top and a free "
+                        "end")  # fmt: skip
+    top, start = _top(cable.top, case._base_dir)
+    a = cable.initial.angles(cable.links)  # the end of the links' shape (the body is carried)
+    tip = np.asarray(start) + (cable.lengths()[:, None] * np.column_stack(
+        [np.sin(a), np.zeros_like(a), -np.cos(a)])).sum(axis=0)  # fmt: skip
+    end = {
+        "name": "end",
+        "type": "point",
+        "position": [float(v) for v in tip],
+        "mass": cable.bottom.body.mass,
+        "external forces": [{"model": "gravity"}],
+    }
+    length = float(cable.lengths().sum())
+    line_type: dict[str, Any] = {"name": f"{cable.name} type", "diameter": cable.diameter,
+                                 "mass_per_length": float(cable.masses().sum()) / length,
+                                 "axial_stiffness": cable.axial_stiffness}  # fmt: skip
+    if cable.axial_damping_time is not None:
+        line_type["axial_damping_time"] = cable.axial_damping_time
+    initial = cable.initial
+    shape: dict[str, Any] = (
+        {"angles_deg": list(initial.angles_deg or [])} if initial.shape == "angles" else
+        {"arc_deg": [initial.top_angle_deg, initial.bottom_angle_deg
+                     if initial.bottom_angle_deg is not None else initial.top_angle_deg]}
+    )  # fmt: skip
+    line = {"name": cable.name, "model": "natural_string", "from": "top", "to": "end",
+            "tangent": cable.tangent, "initial": shape,
+            "sections": [{"type": line_type["name"], "segments": cable.links,
+                          "length": length}]}  # fmt: skip
+    return _case(case, [top, end], [line_type], [line], "as_given")
 
 
 def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
@@ -136,19 +228,12 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
     section = {"type": line_type["name"], "segments": cable.links, "length": total}
     line = {"name": cable.name, "model": "lumped_mass", "from": top["name"], "to": "anchor",
             "sections": [section]}  # fmt: skip
-    out: dict[str, Any] = {"name": case.name}
-    out.update(environment=_dump(case.environment), bodies=[top, anchor],
-               line_types=[line_type], lines=[line], start="as_given",
-               simulation=_dump(case.simulation))  # fmt: skip
-    return out
+    return _case(case, [top, anchor], [line_type], [line], "as_given")
 
 
-def _trajectory(bottom: schema.TrajectoryBottom, top: str, where: str) -> dict[str, Any]:
-    """A vehicle's trajectory (the exact end force) as an imposed body the line's end is held
-    on, relative to the top body when the trajectory is."""
-    if bottom.method != "exact":
-        raise CaseError(f"{where}.bottom.method: '{bottom.method}' has no system form here yet "
-                        "(the servo as a force model)")  # fmt: skip
+def _trajectory(bottom: schema.TrajectoryBottom, top: str) -> dict[str, Any]:
+    """A vehicle's trajectory as an imposed body (the line's end held on it with the exact end
+    force; the servo's target), relative to the top body when the trajectory is."""
     body: dict[str, Any] = {"name": "end", "type": "imposed"}
     for axis in "xyz":
         if getattr(bottom, axis) != schema.Constant(value=0.0):
@@ -171,14 +256,21 @@ def _joints(cable: schema.Cable, where: str) -> float:
     return damping
 
 
-def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple[int, int]):
+def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple[int, int],
+             reverse: bool = False):  # fmt: skip
     """A line's initial shape: the cable's angles as written (its ``arc`` or ``angles_deg``),
-    or those of its ``piece`` (first and end segment) between two bodies along it."""
+    or those of its ``piece`` (first and end segment) between two bodies along it; ``reverse``:
+    the piece run from its end to its start (each segment turned by 180 deg)."""
     initial = cable.initial
     if static:
         return "straight"
-    if initial.shape == "angles":
-        out: dict[str, Any] = {"angles_deg": list(initial.angles_deg or [])[slice(*piece)]}
+    if reverse:
+        written = initial.angles_deg if initial.shape == "angles" else np.degrees(angles)
+        out: dict[str, Any] = {
+            "angles_deg": [float(v) - 180.0 for v in list(written or [])[slice(*piece)][::-1]]
+        }
+    elif initial.shape == "angles":
+        out = {"angles_deg": list(initial.angles_deg or [])[slice(*piece)]}
     elif piece == (0, cable.links):
         last = initial.bottom_angle_deg
         out = {"arc_deg": [initial.top_angle_deg,
@@ -347,7 +439,8 @@ def _free_end(cable, bottom: schema.FreeBottom, env, end: list[float]) -> dict[s
     return out
 
 
-def _point(name: str, body: schema.Body | schema.PointBody, env, at: list[float]) -> dict:
+def _point(name: str, body: schema.Body | schema.PointBody | schema.SharedBody, env,
+           at: list[float]) -> dict:  # fmt: skip
     """A point body of the system form: the free end's body, or a float or clump weight along
     the cable (``point_bodies``), at ``at``."""
     out: dict[str, Any] = {"name": name, "type": "point", "position": list(at),

@@ -30,6 +30,7 @@ from seacable.case.base import (
     Ramp,
     Seabed,
     Shape,
+    ShipTravel,
     Simulation,
     Sine,
     Sphere,
@@ -81,7 +82,7 @@ class FloatingStructureTop(_Model):
     initial_heave_velocity: float = 0.0  # [m/s]
 
 
-class TowingShipTop(_Model):
+class TowingShipTop(ShipTravel):
     """Tow point on a ship (3D model): starts at ``position`` [x, y, z] (m) heading
     ``heading_deg`` (from +x towards +y) and moves along a straight track, then optionally a
     turning circle. Give a constant ``speed`` [m/s] or the ``distance`` travelled [m] as a time
@@ -90,15 +91,6 @@ class TowingShipTop(_Model):
     type: Literal["towing_ship"]
     position: Point = (0.0, 0.0, 0.0)
     heading_deg: float = 0.0
-    speed: float | None = None
-    distance: TimeFunction | None = None
-    turn: Turn | None = None
-
-    @model_validator(mode="after")
-    def _one_law(self):
-        if (self.speed is None) == (self.distance is None):
-            raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
-        return self
 
 
 class Tie(_Model):

@@ -20,9 +20,9 @@ from seacable.case.base import (
     PerAxis,
     Pos,
     Shape,
+    ShipTravel,
     Simulation,
     TimeFunction,
-    Turn,
     _Model,
 )
 
@@ -112,8 +112,28 @@ class LinearDamping(_MatrixOrDiagonal):
     diagonal: tuple[NonNeg, NonNeg, NonNeg, NonNeg, NonNeg, NonNeg] | None = None
 
 
+class ServoForce(_Model):
+    """Jacquot & Marichal's trajectory servo (1993, section 4): a force F on the body, at its
+    reference point, that brings it to the point ``target`` (``body`` or ``body.point``): the
+    correction dF = K (a dE - b dt dE') once per servo step dt (dE the target less the body's
+    position, dE' its rate), integrated as a rate, dF/dt = K (a dE / dt - b dE'). F is a state of
+    the system. K is the stiffness of the body's lines: static equilibria with the body held
+    on a sphere of ``sphere_radius`` around the target (every kinematic body in its steady
+    motion), linearised by least squares; F starts as the force that holds the body at the
+    target. ``recompute_interval`` refreshes K about the current target during the run. A gain
+    and step whose loop would let an error grow by more than e over the run are refused."""
+
+    model: Literal["servo"]
+    target: str
+    gain: Annotated[float, Field(gt=0, le=2)] = 1.0  # a
+    rate_gain: Annotated[float, Field(ge=0, lt=1)] = 0.0  # b
+    step: Pos | None = None  # dt [s]; default: the integration step
+    sphere_radius: Pos = 1.0  # [m]
+    recompute_interval: Pos | None = None  # [s]
+
+
 ForceModel = Annotated[
-    Gravity | Buoyancy | Drag | AppliedForce | LinearStiffness | LinearDamping,
+    Gravity | Buoyancy | Drag | AppliedForce | LinearStiffness | LinearDamping | ServoForce,
     Field(discriminator="model"),
 ]
 
@@ -139,7 +159,7 @@ class FixedBody(_Body):
     orientation_deg: Vector = (0.0, 0.0, 0.0)  # roll, pitch, yaw [deg]
 
 
-class Track(_Model):
+class Track(ShipTravel):
     """A towing ship's track in the horizontal plane: from ``start`` [x, y] (m) along the
     heading ``heading_deg`` (from +x towards +y), then, from ``turn.start_time``, a turning
     circle tangent to it. The ship travels a constant ``speed`` [m/s] or the ``distance`` [m]
@@ -149,15 +169,6 @@ class Track(_Model):
 
     start: tuple[float, float] = (0.0, 0.0)  # [m]
     heading_deg: float = 0.0
-    speed: float | None = None  # [m/s]
-    distance: TimeFunction | None = None  # [m]
-    turn: Turn | None = None
-
-    @model_validator(mode="after")
-    def _one_law(self):
-        if (self.speed is None) == (self.distance is None):
-            raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
-        return self
 
 
 class ImposedBody(_Body):
@@ -366,6 +377,25 @@ class RigidLine(_Model):
     base_reference: Vector | None = None
 
 
+class NaturalStringLine(_Model):
+    """Poth's extensible string in natural variables (2002): the strain and the tangent's
+    direction at each of its nodes (``tangent: angle``, the angle from the downward vertical;
+    or ``cartesian``, the tangent's components kept of unit length), in the vertical plane x-z,
+    in air. It hangs from a point of a fixed body (``from``) and carries a point body (``to``)
+    as its end mass: the body's mass, gravity its only force model. One section of a line type
+    with axial_stiffness EA and, optionally, axial_damping_time alpha (N = EA (eps + alpha
+    d eps/dt), no compression). It starts unstretched at rest at the angles ``initial`` gives
+    (each node between two segments at their mean angle)."""
+
+    name: Name
+    model: Literal["natural_string"]
+    from_: str = Field(alias="from")
+    to: str
+    sections: list[Section] = Field(min_length=1, max_length=1)
+    tangent: Literal["angle", "cartesian"] = "angle"
+    initial: LineAngles
+
+
 class Tie(_Model):
     """A massless elastic tie (a hawser, a mooring spring) between two body points: tension
     k (d - L0) + c dd/dt when stretched (d the distance between the points), or from the
@@ -398,7 +428,7 @@ class Tie(_Model):
         return self
 
 
-Line = Annotated[LumpedMassLine | RigidLine | Tie, Field(discriminator="model")]
+Line = Annotated[LumpedMassLine | RigidLine | NaturalStringLine | Tie, Field(discriminator="model")]
 
 
 class SystemCase(_Model):

@@ -9,8 +9,9 @@ Contract of a force model (every module of this package follows it):
    the earth frame, to the body's 6-vector; it reads only its row, the body's pose and twist,
    the time and the environment, and never allocates.
 3. It is tested alone against a closed form (tests/test_system_forces.py).
-A model with internal states (radiation memory, a servo) will declare them here and get them
-after the velocities of the state vector; none exists yet.
+4. A model with internal states (the servo's force; radiation memory next) declares how many
+   in ``STATES``; they follow the velocities in the state vector (``SystemParams.force_state``:
+   the first, -1 for none), first-order, with their rates from its compiled ``rates(...)``.
 """
 
 from enum import IntEnum
@@ -25,6 +26,7 @@ class ForceKind(IntEnum):
     APPLIED = 3
     LINEAR_STIFFNESS = 4
     LINEAR_DAMPING = 5
+    SERVO = 6
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -33,3 +35,5 @@ DRAG = int(ForceKind.DRAG)
 APPLIED = int(ForceKind.APPLIED)
 LINEAR_STIFFNESS = int(ForceKind.LINEAR_STIFFNESS)
 LINEAR_DAMPING = int(ForceKind.LINEAR_DAMPING)
+SERVO = int(ForceKind.SERVO)
+STATES = {SERVO: 3}  # states of the models that have some

@@ -4,7 +4,7 @@ acts on body ``body[f]``, reads its floats from ``data[at[f]:]`` and its channel
 
 from numba import njit
 
-from seacable.forces import applied, drag, linear, weight
+from seacable.forces import applied, drag, linear, servo, weight
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
@@ -12,16 +12,18 @@ from seacable.forces.kinds import (
     GRAVITY,
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
+    SERVO,
 )
 from seacable.kernels.timefn import JIT
 
 
 @njit(inline="always", **JIT)  # inlined: a call would pass and count every array
 def add_all(
-    t, kind, body, at, first, data, mass, cog, volume, cob, fraction, quat, pos, rot, vel,
-    omega, gravity, rho, current_z, current_u, current_v, tf, rhs,
+    t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos, rot,
+    vel, omega, gravity, rho, current_z, current_u, current_v, tf, rhs,
 ):  # fmt: skip
-    """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6)."""
+    """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6); a model
+    with states reads them from ``y`` at ``state[f]``."""
     for f in range(kind.shape[0]):
         b = body[f]
         row = data[at[f] :]
@@ -39,3 +41,16 @@ def add_all(
             linear.add_stiffness(row, pos[b], quat[b], rhs[b])
         elif k == LINEAR_DAMPING:
             linear.add_damping(row, vel[b], omega[b], rhs[b])
+        elif k == SERVO:
+            servo.add(row, y, state[f], rhs[b])
+
+
+@njit(inline="always", **JIT)
+def state_rates(kind, body, at, state, data, pos, vel, ppos, pvel, ydot):
+    """The rates of every force model's states into ``ydot``."""
+    for f in range(kind.shape[0]):
+        if state[f] < 0:
+            continue
+        if kind[f] == SERVO:
+            b = body[f]
+            servo.rates(data[at[f] :], pos[b], vel[b], ppos, pvel, state[f], ydot)

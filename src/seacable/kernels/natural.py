@@ -63,7 +63,7 @@ def make_workspace(n):
 
 
 @njit(**JIT)
-def _fields(y, p, w):
+def fields(y, p, w):
     """q, q', F = N t and N of every node from the state."""
     n = p.n
     b = 3 if p.cartesian == 1 else 2
@@ -96,7 +96,7 @@ def rhs(t, y, p, w, ydot):
     n = p.n
     b = 3 if p.cartesian == 1 else 2
     v0 = b * (n + 1)
-    _fields(y, p, w)
+    fields(y, p, w)
     k, span = float(n), p.length
     c = k * k / (p.mu * span * span)
     for i in range(n + 1):
@@ -155,20 +155,25 @@ def project(y, p):
     """Cartesian tangents: back to |t| = 1 and t . t' = 0 (no-op for the angle form)."""
     if p.cartesian != 1:
         return
-    n = p.n
-    v0 = 3 * (n + 1)
+    project_tangents(y, p.n, 0, 3 * (p.n + 1))
+
+
+@njit(**JIT)
+def project_tangents(y, n, q, v):
+    """The cartesian tangents of n + 1 nodes, (eps, t_x, t_z) from ``y[q]`` and their rates
+    from ``y[v]``, back to |t| = 1 and t . t' = 0."""
     for i in range(n + 1):
-        tx, tz = y[3 * i + 1], y[3 * i + 2]
+        tx, tz = y[q + 3 * i + 1], y[q + 3 * i + 2]
         norm = math.sqrt(tx * tx + tz * tz)
         if norm == 0.0:
             continue
         tx /= norm
         tz /= norm
-        y[3 * i + 1], y[3 * i + 2] = tx, tz
-        dtx, dtz = y[v0 + 3 * i + 1], y[v0 + 3 * i + 2]
+        y[q + 3 * i + 1], y[q + 3 * i + 2] = tx, tz
+        dtx, dtz = y[v + 3 * i + 1], y[v + 3 * i + 2]
         along = dtx * tx + dtz * tz
-        y[v0 + 3 * i + 1] = dtx - along * tx
-        y[v0 + 3 * i + 2] = dtz - along * tz
+        y[v + 3 * i + 1] = dtx - along * tx
+        y[v + 3 * i + 2] = dtz - along * tz
 
 
 @njit(**JIT)
@@ -177,7 +182,7 @@ def outputs(t, y, p, w, node_pos, strain, tension, scalars):
     energies (trapezoidal quadrature of the string's integrals)."""
     n = p.n
     b = 3 if p.cartesian == 1 else 2
-    _fields(y, p, w)
+    fields(y, p, w)
     h = p.length / n
     x = z = vx = vz = 0.0
     kinetic = gravity = elastic = 0.0

@@ -19,80 +19,26 @@ are slow against the step, so the continuous form integrated here is the paper's
 against runs at rest: at a/dt = 1500 and 2000 /s the predicted growth (2.20 and 5.21 /s) is the
 measured one within 0.3 and 3 % (``benchmarks/trajectory_servo_scan.py``)."""
 
-from dataclasses import dataclass
-
 import numpy as np
-from scipy.linalg import expm
 
 from seacable.case import schema
 from seacable.errors import CaseError
 from seacable.numerics import integrators
-
-_GAIN_LIMIT = 2.0  # the schema's largest gain a
-
-
-@dataclass(frozen=True)
-class ServoLoop:
-    """The linearised closed loop of a servo end: ``J0``, ``G`` (per unit a/dt [1/s]) and ``H``
-    (per unit b), all (ny, ny)."""
-
-    J0: np.ndarray
-    G: np.ndarray
-    H: np.ndarray
-
-    def growth_rate(self, gain: float, rate_gain: float, step: float) -> float:
-        """Largest real part [1/s] of the loop's eigenvalues with gain a, rate gain b and servo
-        step dt [s]."""
-        jacobian = self.J0 + (gain / step) * self.G + rate_gain * self.H
-        return float(np.max(np.linalg.eigvals(jacobian).real))
-
-    def sampled_growth_rate(self, gain: float, rate_gain: float, step: float) -> float:
-        """The same [1/s] for the law as the paper writes it, a correction once per servo step
-        (the force held in between): y -> (I + a G + b dt H) expm(J0 dt) y per step, the growth
-        rate ln(largest |eigenvalue|) / dt."""
-        size = self.J0.shape[0]
-        jump = np.eye(size) + gain * self.G + rate_gain * step * self.H
-        largest = np.max(np.abs(np.linalg.eigvals(jump @ expm(self.J0 * step))))
-        return float(np.log(largest) / step)
-
-    def largest_stable_gain(self, rate_gain: float, step: float, growth: float) -> float:
-        """The largest gain a <= 2 whose growth rate stays at or below ``growth`` [1/s]
-        (bisection; 0 if none)."""
-        if self.growth_rate(_GAIN_LIMIT, rate_gain, step) <= growth:
-            return _GAIN_LIMIT
-        low, high = 0.0, _GAIN_LIMIT
-        for _ in range(20):
-            middle = 0.5 * (low + high)
-            if self.growth_rate(middle, rate_gain, step) <= growth:
-                low = middle
-            else:
-                high = middle
-        return low
+from seacable.system.servo import ServoLoop, loop_of
 
 
 def servo_loop(params, y0: np.ndarray, workspace) -> ServoLoop:
     """Linearise the model (any whose parameters carry ``servo_gain``, ``servo_rate_gain`` and
     ``servo_step``) with its servo about ``y0`` at t = 0: central differences of its compiled
-    right-hand side, one Jacobian per term of J (6 ny evaluations: 0.16 s for the published
-    case at 50 links, 1.8 s at 200 links with the dense eigenvalues of the check)."""
+    right-hand side, one Jacobian per term of J (``system.servo.loop_of``; 6 ny evaluations:
+    0.16 s for the published case at 50 links, 1.8 s at 200 links with the dense eigenvalues
+    of the check)."""
 
-    def jacobian(gain, rate_gain):
+    def rates(gain, rate_gain, y, out):
         p = params._replace(servo_gain=gain, servo_rate_gain=rate_gain, servo_step=1.0)
-        size = y0.shape[0]
-        result = np.empty((size, size))
-        plus, minus = np.empty(size), np.empty(size)
-        for i in range(size):
-            h = 1e-6 * max(1.0, abs(y0[i]))
-            y = y0.copy()
-            y[i] += h
-            integrators.evaluate_rhs(0.0, y, p, workspace, plus)
-            y[i] -= 2.0 * h
-            integrators.evaluate_rhs(0.0, y, p, workspace, minus)
-            result[:, i] = (plus - minus) / (2.0 * h)
-        return result
+        integrators.evaluate_rhs(0.0, y, p, workspace, out)
 
-    frozen = jacobian(0.0, 0.0)
-    return ServoLoop(frozen, jacobian(1.0, 0.0) - frozen, jacobian(0.0, 1.0) - frozen)
+    return loop_of(rates, y0)
 
 
 def check_servo_loop(case: schema.Case, params, y0: np.ndarray, workspace) -> float | None:

@@ -19,6 +19,7 @@ from seacable.errors import SeacableError
 from seacable.kernels import chain3d as c3
 from seacable.kernels import chain3d_statics as c3s
 from seacable.kernels.status import Status
+from seacable.system.servo import sphere_directions
 
 
 class StaticsError(SeacableError):
@@ -192,15 +193,6 @@ def end_force(params, y0, point, time: float = 0.0) -> np.ndarray:
     top, vel, _ = c3.top_motion(time, y0, params)
     _, forces = _pinned(held_at(params, point), top, vel, time)
     return -forces[-1]
-
-
-def sphere_directions() -> np.ndarray:
-    """The 14 unit directions the end is moved along to measure its stiffness: the six axis
-    directions and the eight diagonals."""
-    directions = [np.eye(3)[k] * sign for k in range(3) for sign in (1.0, -1.0)]
-    directions += [np.array([a, b, c]) / math.sqrt(3.0)
-                   for a in (1, -1) for b in (1, -1) for c in (1, -1)]  # fmt: skip
-    return np.array(directions)
 
 
 def end_stiffness(params, y0, time: float, radius: float):

@@ -14,21 +14,22 @@ from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import applied, drag, linear
-from seacable.forces.kinds import ForceKind
+from seacable.forces import applied, drag, linear, servo
+from seacable.forces.kinds import STATES, ForceKind
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, typed
+from seacable.system import natural_lines, topology
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
 SEGMENTS_3D, PLANAR = 0, 1  # rigid-line models (SystemParams.rs_kind)
 INT_FIELDS = frozenset({
     "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_motion", "body_parent",
-    "point_body", "force_kind",
-    "force_body", "force_at", "force_first", "line_n", "line_seg", "line_node", "line_q",
-    "line_v", "line_from", "line_to", "tie_from", "tie_to", "tie_first", "tie_count",
+    "point_body", "force_kind", "force_body", "force_at", "force_first", "force_state",
+    "line_n", "line_seg", "line_node", "line_q", "line_v", "line_from", "line_to", "tie_from",
+    "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
-    "rs_kind",
+    "rs_kind", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
 })  # fmt: skip
 
 
@@ -40,6 +41,7 @@ class Layout:
     lines: list[str] = field(default_factory=list)  # lumped-mass lines
     rigid: list[str] = field(default_factory=list)  # rigid-segment lines
     ties: list[str] = field(default_factory=list)
+    natural: list[str] = field(default_factory=list)  # natural-variables strings
     points: list[tuple[int, str]] = field(default_factory=list)  # (body, point name)
     point_index: dict = field(default_factory=dict)  # "body.point" -> index
 
@@ -137,7 +139,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         if isinstance(b, sch.PointBody | sch.RigidBody) and isinstance(b.shape, VolumeTable)
     ]  # fmt: skip
     width = surface.HEADER + 2 * max(tables or [0])
-    f: dict[str, list] = {k: [] for k in ("kind", "body", "at", "first")}
+    f: dict[str, list] = {k: [] for k in ("kind", "body", "at", "first", "state")}
     data: list[float] = []
     arrays = {
         "body_kind": np.zeros(nb), "body_rigid": np.zeros(nb), "body_q": -np.ones(nb),
@@ -149,7 +151,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
         "body_cob": np.zeros((nb, 3)), "body_shape": np.zeros((nb, width)),
     }  # fmt: skip
-    tips = rigid_tips(case)
+    tips = topology.rigid_tips(case)
+    carried = set(tips) | natural_lines.tips(case)  # no state: a line's end carries them
     q_at = v_at = 0
     y_q: list[float] = []
     y_v: list[float] = []
@@ -176,9 +179,9 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 channels[int(arrays["body_channel"][b])] = distance
             continue
         rigid = isinstance(body, sch.RigidBody)
-        arrays["body_kind"][b] = kinematics.TIP if b in tips else kinematics.DYNAMIC
+        arrays["body_kind"][b] = kinematics.TIP if b in carried else kinematics.DYNAMIC
         arrays["body_rigid"][b] = 1 if rigid else 0
-        if b not in tips:
+        if b not in carried:
             arrays["body_q"][b], arrays["body_v"][b] = q_at, v_at
         arrays["body_mass"][b] = body.mass
         arrays["body_volume"][b] = body.displaced_volume()
@@ -201,7 +204,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             arrays["body_added"][b, :3, :3] = np.diag(
                 np.zeros(3) if env.in_air else np.array(per_axis(body.added_mass), float)
             )
-            if b in tips:  # no state: the line's tip carries it; held axes stay here
+            if b in carried:  # no state: the line's tip carries it; held axes stay here
                 arrays["body_pose"][b, :3] = body.position
             else:
                 y_q += list(body.position)
@@ -212,6 +215,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             f["body"].append(b)
             f["at"].append(len(data))
             f["first"].append(len(channels))
+            states = STATES.get(f["kind"][-1], 0)
+            f["state"].append(sum(STATES.get(k, 0) for k in f["kind"][:-1]) if states else -1)
             data += _force_row(case, layout, spec, body, rho, base_dir, channels,
                                f"{where}.external forces[{k}]")  # fmt: skip
     bodies_q, bodies_v = q_at, v_at
@@ -221,18 +226,27 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     rigid_lines = _rigid_lines(case, layout, rho, q_at, v_at, tips, arrays["body_free"])
     n_q = q_at + rigid_lines.pop("directors")
     n_v = v_at + rigid_lines.pop("rates")
+    strings, string_q = natural_lines.table(
+        case, layout, lambda ref, where: _point(case, layout, ref, where), n_q, n_v
+    )
+    strings["nat_v"] = strings["nat_v"] + n_q + len(string_q)  # absolute, as below
+    first_string = n_q
+    n_q, n_v = n_q + len(string_q), n_v + len(string_q)
     # velocity offsets are absolute: after every position
     arrays["body_v"] = np.where(arrays["body_v"] >= 0, arrays["body_v"] + n_q, -1)
     lines["line_v"] = lines["line_v"] + n_q
     rigid_lines["rs_v"] = rigid_lines["rs_v"] + n_q
+    n_s = sum(STATES.get(k, 0) for k in f["kind"])
+    f["state"] = [s + n_q + n_v if s >= 0 else -1 for s in f["state"]]
     ties = _ties(case, layout)
     points = np.array([b for b, _ in layout.points], dtype=np.int64)
     offsets = np.array([_offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
     current_z, current_u, current_v = current_arrays(env)
     seabed = env.seabed
     fields: dict[str, Any] = dict(
-        n_q=n_q, n_v=n_v, **arrays, point_body=points, point_offset=offsets,
+        n_q=n_q, n_v=n_v, n_s=n_s, **arrays, point_body=points, point_offset=offsets,
         force_kind=f["kind"], force_body=f["body"], force_at=f["at"], force_first=f["first"],
+        force_state=f["state"], **strings,
         force_data=np.array(data + [0.0]), **lines, **rigid_lines, **ties, slack_allowed=1,
         stabilization_frequency=case.simulation.constraint_stabilization_frequency,
         gravity=env.gravity, rho=rho,
@@ -243,9 +257,10 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
     params = typed(SystemParams, fields, INT_FIELDS)
-    y0 = np.zeros(n_q + n_v)
+    y0 = np.zeros(n_q + n_v + n_s)
     y0[:bodies_q] = y_q
     y0[n_q : n_q + bodies_v] = y_v
+    y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
 
@@ -275,6 +290,11 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         return [*linear.matrix(spec).ravel(), *position, *quaternion]
     if isinstance(spec, sch.LinearDamping):
         return list(linear.matrix(spec).ravel())
+    if isinstance(spec, sch.ServoForce):
+        target = _point(case, layout, spec.target, f"{where}.target")
+        sim = case.simulation
+        step = spec.step or sim.time_step or min(0.01, sim.output_interval)
+        return servo.pack(spec.gain, spec.rate_gain, step, target)
     return []  # gravity, buoyancy: the body's own fields
 
 
@@ -409,100 +429,6 @@ def _ties(case, layout) -> dict:
     return fields
 
 
-def _rigid(case) -> list[tuple[int, "sch.RigidLine"]]:
-    return [(k, line) for k, line in enumerate(case.lines)
-            if isinstance(line, sch.RigidLine)]  # fmt: skip
-
-
-def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
-    """{body index: rigid-line number} of the point bodies carried at a rigid-segment line's
-    tip. Refuses a tip that no sweep can carry: a rigid body, a body two such lines end on, a
-    ring of lines each carried by the next."""
-    names = [b.name for b in case.bodies]
-    tips: dict[int, int] = {}
-    base: dict[int, int] = {}  # rigid-line number -> base body
-    for r, (k, line) in enumerate(_rigid(case)):
-        where = f"lines[{k}] ({line.name}).to"
-        body_name = line.to.partition(".")[0]
-        start = line.from_.partition(".")[0]
-        if body_name not in names or start not in names:
-            continue  # named in the error of the point's resolution
-        b = names.index(body_name)
-        base[r] = names.index(start)
-        body = case.bodies[b]
-        if isinstance(body, sch.FixedBody | sch.ImposedBody):
-            continue  # held on a kinematic point
-        if isinstance(body, sch.RigidBody):
-            raise CaseError(
-                f"{where}: '{line.to}' is on the rigid body '{body_name}'; a rigid-segment "
-                "line's last node carries a point body or is held on a fixed or imposed body "
-                "(a rigid body there, closing a loop, is not supported yet): swap 'from' and "
-                "'to' so that the line starts at the rigid body"
-            )
-        if b in tips:
-            other = _rigid(case)[tips[b]][1].name
-            raise CaseError(
-                f"{where}: the point body '{body_name}' is already carried at the end of line "
-                f"'{other}'; one rigid-segment line may end on a point body (closing a loop of "
-                "inextensible lines is not supported yet): swap 'from' and 'to' of one of them"
-            )
-        tips[b] = r
-    for b, r in tips.items():  # walk down from each tip to its root: a ring never ends
-        seen, at = {b}, base[r]
-        while at in tips:
-            if at in seen:
-                ring = sorted(_rigid(case)[tips[x]][1].name for x in seen)
-                raise CaseError(
-                    f"lines {ring}: a ring of rigid-segment lines, each carried at the end of "
-                    "the next, with nothing fixed, imposed or free to start from; swap 'from' "
-                    "and 'to' of one of them"
-                )
-            seen.add(at)
-            at = base[tips[at]]
-    return tips
-
-
-def _planar_ends(case, line, where: str, tip: int) -> None:
-    """Refuse a body of a planar line that can move out of the x-z plane."""
-    names = [b.name for b in case.bodies]
-    for end, ref in (("from", line.from_), ("to", line.to)):
-        name = ref.partition(".")[0]
-        if name not in names or (end == "to" and tip >= 0):
-            continue  # unknown: named elsewhere; carried at the tip: moves with the line
-        body = case.bodies[names.index(name)]
-        out_of_plane = ""
-        if isinstance(body, sch.ImposedBody):
-            keys = ("y", "roll_deg", "yaw_deg")
-            still = {k: isinstance(getattr(body, k), sch.Constant) for k in keys}
-            moving = [k for k, constant in still.items() if not constant]
-            moving += [k for k in ("roll_deg", "yaw_deg") if still[k] and getattr(body, k).value]
-            if moving:
-                out_of_plane = f"its {moving} move or turn it out of the plane"
-        elif isinstance(body, sch.PointBody) and "sway" in body.dofs:
-            out_of_plane = "its dofs include sway"
-        elif isinstance(body, sch.RigidBody):
-            extra = sorted(set(body.dofs) - {"surge", "heave", "pitch"})
-            if extra:
-                out_of_plane = f"its dofs include {extra}"
-        if out_of_plane:
-            raise CaseError(
-                f"{where}.{end}: a planar rigid_links line stays in the x-z plane, but body "
-                f"'{name}' can leave it ({out_of_plane}); keep that body in the plane (dofs "
-                "surge, heave, pitch; no y, roll or yaw motion) or use model: rigid_segments_3d"
-            )
-
-
-def _depth(case, tips: dict[int, int], r: int) -> int:
-    """How many rigid lines carry line r's base (0: a base that no rigid line carries)."""
-    names = [b.name for b in case.bodies]
-    lines = _rigid(case)
-    depth, at = 0, names.index(lines[r][1].from_.partition(".")[0])
-    while at in tips:
-        depth += 1
-        at = names.index(lines[tips[at]][1].from_.partition(".")[0])
-    return depth
-
-
 def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     """Flat arrays of the rigid-segment lines (system.kernel's ``rs_`` fields); the order of
     their sweeps, children first (a line carried at another's tip before that one)."""
@@ -514,7 +440,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         "length", "mass", "added", "inertia", "wet_weight", "buoyancy", "drag_normal",
         "drag_tangential", "joint_stiffness", "joint_damping")}  # fmt: skip
     seg_count = node_count = directors = 0
-    for r, (k, line) in enumerate(_rigid(case)):
+    for r, (k, line) in enumerate(topology.rigid_lines(case)):
         where = f"lines[{k}] ({line.name})"
         layout.rigid.append(line.name)
         props = _sections(case, line, rho, extensible=False)
@@ -532,7 +458,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         planar = line.model == "rigid_links"
         out["rs_kind"].append(PLANAR if planar else SEGMENTS_3D)
         if planar:
-            _planar_ends(case, line, where, tip)
+            topology.planar_ends(case, line, where, tip)
         held.append(np.ones(3) if tip < 0 else 1.0 - body_free[tip, :3])
         if line.model == "rigid_links":
             held[-1][1] = 0.0  # the plane holds y
@@ -567,7 +493,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         node_count += n + 1
         directors += (1 if planar else 3) * n
     nr = len(out["rs_n"])
-    depth = [_depth(case, tips, r) for r in range(nr)]
+    depth = [topology.depth(case, tips, r) for r in range(nr)]
     order = sorted(range(nr), key=lambda r: -depth[r])  # children first
     fields: dict[str, Any] = {k: np.array(v, dtype=np.int64) for k, v in out.items()}
     fields["rs_order"] = np.array(order, dtype=np.int64)

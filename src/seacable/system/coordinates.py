@@ -232,7 +232,7 @@ class Residual:
     def __init__(self, p: kernel.SystemParams, coords: Coordinates, time: float = 0.0):
         self.p, self.coords, self.time = p, coords, time
         self.w = kernel.make_work(p)
-        self.ydot = np.zeros(p.n_q + p.n_v)
+        self.ydot = np.zeros(p.n_q + p.n_v + p.n_s)
 
         # rigid lines whose trees hang free (no held tip) balance moments (N m) rather than
         # accelerations: the residual of the segments' statics, well scaled whatever the

@@ -20,7 +20,7 @@ from seacable.kernels.lumped_outputs import line_energies
 from seacable.kernels.planar_chain import link_energies
 from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass
+from seacable.lines import lumped_mass, natural_string
 from seacable.system import rigid
 
 
@@ -108,6 +108,9 @@ def energies(y, p, w):
     k1, g1, e1 = _lines(y, p, w)
     k2, g2, e2 = _bodies(y, p, w)
     k3, g3, e3 = _rigid(y, p, w)
+    for li in range(p.nat_n.shape[0]):  # natural strings
+        k, g, e = natural_string.own(y, p, w, li)
+        k3, g3, e3 = k3 + k, g3 + g, e3 + e
     return k1 + k2 + k3, g1 + g2 + g3, e1 + e2 + e3
 
 

@@ -1,9 +1,10 @@
 """The compiled right-hand side of a system of bodies and lines.
 
-State: ``y = [Q, V]``. Q holds, per dynamic body, its reference point's position (3) and, for a
-rigid body, its orientation quaternion (4); then the interior nodes of every lumped-mass line
+State: ``y = [Q, V, S]``. Q holds, per dynamic body, its reference point's position (3) and, for
+a rigid body, its orientation quaternion (4); then the interior nodes of every lumped-mass line
 (3 each). V holds, per dynamic body, its velocity (3) and, for a rigid body, its angular
-velocity (3, earth frame); then the interior nodes' velocities. The offsets are
+velocity (3, earth frame); then the interior nodes' velocities. S holds the force models'
+states (first-order: a servo's force; ``force_state``). The offsets are
 ``body_q``/``body_v`` and ``line_q``/``line_v`` (system.assemble): every array is flat with
 offsets, so the compiled types depend on no count.
 
@@ -23,10 +24,10 @@ from seacable.bodies import dynamics, kinematics
 from seacable.forces import table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
-from seacable.kernels import surface
+from seacable.kernels import natural, surface
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, tie
+from seacable.lines import lumped_mass, natural_string, tie
 from seacable.system import rigid
 
 DYNAMIC = kinematics.DYNAMIC
@@ -39,6 +40,7 @@ class SystemParams(NamedTuple):
 
     n_q: int  # position variables
     n_v: int  # velocity variables
+    n_s: int  # force models' states, after the velocities
     body_kind: np.ndarray  # (nb,) int: kinematics.FIXED, IMPOSED or DYNAMIC
     body_rigid: np.ndarray  # (nb,) int: 1 with an orientation state
     body_q: np.ndarray  # (nb,) int: offset of the position in y (-1: none)
@@ -64,6 +66,7 @@ class SystemParams(NamedTuple):
     force_body: np.ndarray  # (nf,) int
     force_at: np.ndarray  # (nf,) int: first float of the row in force_data
     force_first: np.ndarray  # (nf,) int: first channel
+    force_state: np.ndarray  # (nf,) int: first state in y (-1: none; forces.kinds.STATES)
     force_data: np.ndarray  # floats of every row
     line_n: np.ndarray  # (nl,) int: segments
     line_seg: np.ndarray  # (nl,) int: first segment in the segment arrays
@@ -116,6 +119,17 @@ class SystemParams(NamedTuple):
     rs_drag_tangential: np.ndarray  # [N s^2/m^2]
     rs_joint_stiffness: np.ndarray  # joint i at the top of segment i [N m/rad]
     rs_joint_damping: np.ndarray  # [N m s/rad]
+    # natural-variables strings (lines.natural_string): per line
+    nat_n: np.ndarray  # (nn,) int: elements
+    nat_q: np.ndarray  # (nn,) int: first node variable in y
+    nat_v: np.ndarray  # (nn,) int: first rate in y
+    nat_from: np.ndarray  # (nn,) int: the pivot's point
+    nat_tip: np.ndarray  # (nn,) int: the end body
+    nat_cartesian: np.ndarray  # (nn,) int: 1 (eps, t_x, t_z), 0 (eps, phi)
+    nat_length: np.ndarray  # [m]
+    nat_mu: np.ndarray  # mass per unstretched length [kg/m]
+    nat_ea: np.ndarray  # EA [N]
+    nat_alpha: np.ndarray  # axial damping time [s]
     stabilization_frequency: float  # held tips, Baumgarte [rad/s]
     gravity: float  # [m/s^2]
     rho: float  # water density, 0 in air [kg/m^3]
@@ -162,6 +176,10 @@ class SystemWork(NamedTuple):
     own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
     scratch: np.ndarray  # (128,) the rigid lines' small vectors of one evaluation
     imposed: np.ndarray  # (18,) an imposed body's channels (kinematics.imposed_channels)
+    nat: np.ndarray  # (6 (max n + 1),) a natural string's state in the kernel's layout
+    nat_dot: np.ndarray  # its rates
+    nat_work: np.ndarray  # (9, max n + 1) kernels.natural's workspace
+    nat_out: np.ndarray  # (max n + 1, 4) a string's nodes: x, z from the pivot, strain, tension
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -169,6 +187,7 @@ def make_work(p: SystemParams) -> SystemWork:
     nr = len(p.rs_n)
     rs_nodes = int((p.rs_n + 1).sum()) if nr else 1
     nmax = int(p.line_n.max()) if nl else 1
+    nat = int(p.nat_n.max()) + 1 if len(p.nat_n) else 2
     return SystemWork(
         pos=np.zeros((nb, 3)), rot=np.zeros((nb, 3, 3)), vel=np.zeros((nb, 3)),
         omega=np.zeros((nb, 3)), acc=np.zeros((nb, 6)), fraction=np.ones(nb),
@@ -180,6 +199,8 @@ def make_work(p: SystemParams) -> SystemWork:
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
         rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
         own_load=np.zeros((nb, 3)), scratch=np.zeros(128), imposed=np.zeros(18),
+        nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
+        nat_out=np.zeros((nat, 4)),
     )  # fmt: skip
 
 
@@ -228,6 +249,8 @@ def evaluate(t, y, p, w, ydot):
     )  # fmt: skip
     if p.rs_n.shape[0] > 0:
         rigid.nodes_and_loads(y, p, w)
+    for li in range(p.nat_n.shape[0]):
+        natural_string.carry(y, p, w, li)
     kinematics.point_states(
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
     )
@@ -252,10 +275,14 @@ def evaluate(t, y, p, w, ydot):
         status = NON_FINITE
     # force models
     table.add_all(
-        t, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_data, p.body_mass,
-        p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat, w.pos, w.rot, w.vel,
-        w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, _tf(p), w.load,
+        t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
+        p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
+        w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
+        _tf(p), w.load,
     )  # fmt: skip
+    if p.n_s > 0:
+        table.state_rates(p.force_kind, p.force_body, p.force_at, p.force_state, p.force_data,
+                          w.pos, w.vel, w.ppos, w.pvel, ydot)  # fmt: skip
     if p.rs_n.shape[0] > 0:
         for b in range(w.load.shape[0]):  # for the statics' moment balance of rigid lines
             for c in range(3):
@@ -266,6 +293,9 @@ def evaluate(t, y, p, w, ydot):
         status = NON_FINITE
     if p.rs_n.shape[0] > 0:
         rigid.forward(t, y, p, w, ydot)
+    for li in range(p.nat_n.shape[0]):
+        if natural_string.rates(t, y, p, w, li, ydot) != OK:
+            status = NON_FINITE
     return status
 
 
@@ -354,6 +384,9 @@ def projects(p):
     for li in range(p.rs_n.shape[0]):
         if p.rs_kind[li] == rigid.SEGMENTS_3D:
             return True
+    for li in range(p.nat_n.shape[0]):
+        if p.nat_cartesian[li] == 1:
+            return True
     for b in range(p.body_kind.shape[0]):
         if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
             return True
@@ -367,6 +400,9 @@ def project(y, p):
     for li in range(p.rs_n.shape[0]):
         if p.rs_kind[li] == rigid.SEGMENTS_3D:
             c3.project_directors(y, p.rs_n[li], p.rs_q[li], p.rs_v[li])
+    for li in range(p.nat_n.shape[0]):
+        if p.nat_cartesian[li] == 1:
+            natural.project_tangents(y, p.nat_n[li], p.nat_q[li], p.nat_v[li])
     for b in range(p.body_kind.shape[0]):
         if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
             q = p.body_q[b] + 3

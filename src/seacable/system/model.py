@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 from scipy import sparse
+from scipy.spatial.transform import Rotation
 
 from seacable.case import system as sch
-from seacable.system import coordinates, kernel, outputs, statics, topology
+from seacable.system import coordinates, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
@@ -23,16 +24,40 @@ AXES = "xyz"
 def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     """Parameters and initial state: lines at their static shape, and with ``start: static``
     every free body at its static equilibrium too (the velocities the case gives are kept)."""
+    servo.check_body(case)
     built = _assemble(case, base_dir)
     if case.start == "static":
         topology.check_held(case)
     y0, params = initial_state(built)
     built = BuiltSystem(params=params, y0=built.y0, layout=built.layout, case=case)
-    if case.start == "static":
-        velocities = y0[built.params.n_q :].copy()
+    p = built.params
+    if p.n_s:  # the servos' stiffness and their start: each body held at its target
+        p, held = servo.start(built, y0)
+        if case.start == "static":
+            y0 = held
+        else:
+            y0[p.n_q + p.n_v :] = held[p.n_q + p.n_v :]
+        built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
+    elif case.start == "static":
+        given = y0[p.n_q : p.n_q + p.n_v].copy()
         y0 = statics.equilibrium(built, y0)
-        y0[built.params.n_q :] = velocities
-    return BuiltSystem(params=built.params, y0=y0, layout=built.layout, case=case)
+        steady = statics.steady_velocities(p, y0)  # a tow keeps its steady motion
+        y0[p.n_q : p.n_q + p.n_v] = steady if steady.any() else given
+    built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
+    servo.check(built, y0)
+    return built
+
+
+def refresh_interval(case: sch.SystemCase) -> float | None:
+    """How often [s] the run must call :func:`refresh` (None: never)."""
+    return servo.refresh_interval(case)
+
+
+def refresh(case: sch.SystemCase, p: kernel.SystemParams, time: float, y: np.ndarray):
+    """Parameters for the next stretch of the run: the servos' K about the current target."""
+    built = _assemble(case, case._base_dir)
+    built = BuiltSystem(params=p, y0=built.y0, layout=built.layout, case=case)
+    return servo.refresh(built, p, time, y)
 
 
 def workspace(system: BuiltSystem) -> kernel.SystemWork:
@@ -60,6 +85,12 @@ def _body_variables(body) -> dict:
                 ("time",), "N m",
                 f"moment of the lines and ties about the reference point, {c}",
             )  # fmt: skip
+    if any(spec.model == "servo" for spec in getattr(body, "external_forces", [])):
+        for c in AXES:
+            out[f"servo_force_{c}"] = (("time",), "N", f"force the servo applies to the body, {c}")
+        for c in AXES:
+            out[f"target_{c}"] = (("time",), "m", f"the servo's target point, {c}")
+        out["tracking_error"] = (("time",), "m", "distance of the body from its target")
     return out
 
 
@@ -116,7 +147,7 @@ ENERGY_VARIABLES = {
 
 def variables(system: BuiltSystem) -> dict:
     """Every output variable, its name prefixed by its group (the energies at the top)."""
-    out = dict(ENERGY_VARIABLES)
+    out: dict[str, tuple] = dict(ENERGY_VARIABLES)
     for body in system.case.bodies:
         for name, spec in _body_variables(body).items():
             out[f"bodies/{body.name}/{name}"] = spec
@@ -129,7 +160,18 @@ def variables(system: BuiltSystem) -> dict:
     for line in system.layout.ties:
         for name, spec in TIE_VARIABLES.items():
             out[f"lines/{line}/{name}"] = spec
+    for line in system.layout.natural:
+        for name, spec in STRING_VARIABLES.items():
+            out[f"lines/{line}/{name}"] = spec
     return out
+
+
+STRING_VARIABLES = {
+    **{f"node_{c}": (("time", "node"), "m", f"node position, {c} (trapezoidal integral of the "
+                                            "tangent from the pivot)") for c in AXES},
+    "strain": (("time", "node"), "1", "axial strain at the node"),
+    "tension": (("time", "node"), "N", "axial tension at the node (no compression)"),
+}  # fmt: skip
 
 
 def sizes(system: BuiltSystem) -> dict:
@@ -141,6 +183,8 @@ def sizes(system: BuiltSystem) -> dict:
     for li, line in enumerate(system.layout.rigid):
         out[f"lines/{line}/segment"] = int(p.rs_n[li])
         out[f"lines/{line}/node"] = int(p.rs_n[li]) + 1
+    for li, line in enumerate(system.layout.natural):
+        out[f"lines/{line}/node"] = int(p.nat_n[li]) + 1
     return out
 
 
@@ -157,6 +201,11 @@ def coords(system: BuiltSystem) -> dict:
         n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
         arc = np.concatenate([[0.0], np.cumsum(p.rs_length[s0 : s0 + n])])
         out[f"lines/{line}/arc_length"] = ("node", arc, "m", "arc length from the 'from' end")
+    for li, line in enumerate(system.layout.natural):
+        arc = np.linspace(0.0, float(p.nat_length[li]), int(p.nat_n[li]) + 1)
+        out[f"lines/{line}/arc_length"] = (
+            "node", arc, "m", "unstretched arc length from the pivot",
+        )  # fmt: skip
     return out
 
 
@@ -188,6 +237,7 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     for b, body in enumerate(system.case.bodies):
         for k, name in enumerate(BODY_NAMES):
             out[f"bodies/{body.name}/{name}"] = bodies[:, b, k]
+    _servo_rows(system, states, bodies, out)
     for li, line in enumerate(system.layout.lines):
         n, c0, s0 = int(p.line_n[li]), int(p.line_node[li]), int(p.line_seg[li])
         for c, axis in enumerate(AXES):
@@ -214,6 +264,7 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
             out[f"lines/{line}/angular_rate"] = np.linalg.norm(rates, axis=2)
         if p.rs_held[li].any():
             out[f"lines/{line}/constraint_error"] = rigid[3][:, li]
+    _string_rows(system, rigid[4], out)
     for k, line in enumerate(system.layout.ties):
         out[f"lines/{line}/tension"] = ties[:, k, 0]
         out[f"lines/{line}/distance"] = ties[:, k, 1]
@@ -223,18 +274,55 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     return out, status
 
 
+def _servo_rows(system: BuiltSystem, states, bodies, out: dict) -> None:
+    """Each servo's force (its state), target and the body's distance from it."""
+    p = system.params
+    for f, b, spec in servo.servos(system):
+        group = f"bodies/{system.case.bodies[b].name}"
+        s = int(p.force_state[f])
+        k = system.layout.point_index[spec.target]
+        target = _point_rows(bodies, int(p.point_body[k]), p.point_offset[k])
+        for c, axis in enumerate(AXES):
+            out[f"{group}/servo_force_{axis}"] = states[:, s + c]
+            out[f"{group}/target_{axis}"] = target[:, c]
+        position = bodies[:, b, :3]
+        out[f"{group}/tracking_error"] = np.linalg.norm(target - position, axis=1)
+
+
+def _string_rows(system: BuiltSystem, strings, out: dict) -> None:
+    """Each natural string's nodes, strain and tension (outputs.rigid_rows' fifth array)."""
+    at = 0
+    for li, line in enumerate(system.layout.natural):
+        n = int(system.params.nat_n[li])
+        for c, axis in enumerate(AXES):
+            out[f"lines/{line}/node_{axis}"] = strings[:, at : at + n + 1, c]
+        out[f"lines/{line}/strain"] = strings[:, at : at + n + 1, 3]
+        out[f"lines/{line}/tension"] = strings[:, at : at + n + 1, 4]
+        at += n + 1
+
+
+def _point_rows(bodies: np.ndarray, b: int, offset: np.ndarray) -> np.ndarray:
+    """(m, 3) positions of a point at ``offset`` (body frame) of body b, from the bodies' rows
+    (position, then roll, pitch, yaw [deg]: R = Rz Ry Rx, scipy's extrinsic "xyz")."""
+    if not np.any(offset):
+        return bodies[:, b, :3].copy()
+    turn = Rotation.from_euler("xyz", bodies[:, b, 3:6], degrees=True)
+    return bodies[:, b, :3] + turn.apply(np.asarray(offset, float))
+
+
 def _size(system: BuiltSystem) -> float:
     """A length scale of the system [m]: its lines' total length, else 1 m."""
     p = system.params
     total = (p.seg_length.sum() if len(p.line_n) else 0.0) + (
-        p.rs_length.sum() if len(p.rs_n) else 0.0)  # fmt: skip
+        p.rs_length.sum() if len(p.rs_n) else 0.0) + float(np.sum(p.nat_length))  # fmt: skip
     return float(max(1.0, total))
 
 
 def state_scale(case, system: BuiltSystem) -> np.ndarray:
     """Typical magnitude of each state: positions the system's length scale L, quaternions,
     rigid segments' directors and links' angles 1, velocities sqrt(g L) (angular, and the
-    directors' and angles' rates: sqrt(g / L))."""
+    directors' and angles' rates: sqrt(g / L)), force models' states (forces [N]) their
+    largest start value (at least 1 N)."""
     p = system.params
     size = _size(system)
     q = np.full(p.n_q, size)
@@ -248,7 +336,19 @@ def state_scale(case, system: BuiltSystem) -> np.ndarray:
         width = (3 if p.rs_kind[li] == rigid_kind.SEGMENTS_3D else 1) * int(p.rs_n[li])
         q[p.rs_q[li] : p.rs_q[li] + width] = 1.0
         v[p.rs_v[li] - p.n_q : p.rs_v[li] - p.n_q + width] = turning
-    return np.concatenate([q, v])
+    for li in range(len(p.nat_n)):  # strains: the string's weight over EA; angles, tangents 1
+        block = 3 if p.nat_cartesian[li] else 2
+        size_li = block * (int(p.nat_n[li]) + 1)
+        strain = p.nat_mu[li] * p.nat_length[li] * p.gravity / p.nat_ea[li]
+        per_node = np.ones(block)
+        per_node[0] = strain
+        q[p.nat_q[li] : p.nat_q[li] + size_li] = np.tile(per_node, int(p.nat_n[li]) + 1)
+        v[p.nat_v[li] - p.n_q : p.nat_v[li] - p.n_q + size_li] = (
+            np.tile(per_node, int(p.nat_n[li]) + 1) * turning
+        )
+    states = system.y0[p.n_q + p.n_v :]
+    s = np.full(p.n_s, max(1.0, float(np.abs(states).max())) if p.n_s else 1.0)
+    return np.concatenate([q, v, s])
 
 
 def positions(system: BuiltSystem) -> int:
@@ -258,7 +358,7 @@ def positions(system: BuiltSystem) -> int:
 def rates(system: BuiltSystem, y) -> np.ndarray:
     """Speed of every dynamic body and interior node [m/s] (divergence messages)."""
     p = system.params
-    v = y[p.n_q :]
+    v = y[p.n_q : p.n_q + p.n_v]
     return np.abs(v) if len(v) else np.zeros(1)
 
 
@@ -288,7 +388,7 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     p = system.params
     coords = coordinates.coordinates(p)
     coupled = coordinates.pattern(p, coords).tocoo()
-    n = p.n_q + p.n_v
+    n = p.n_q + p.n_v + p.n_s
     rows: list[int] = []
     cols: list[int] = []
 
@@ -312,6 +412,22 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
             for k in (*positions(j), *velocities(j)):
                 rows.append(v)
                 cols.append(k)
+    for li in range(len(p.nat_n)):  # a natural string: each node with its neighbours
+        block, nodes = (3 if p.nat_cartesian[li] else 2), int(p.nat_n[li]) + 1
+        q0, v0 = int(p.nat_q[li]), int(p.nat_v[li])
+        for i in range(nodes):
+            mine = range(block * i, block * (i + 1))
+            near = range(block * max(0, i - 1), block * min(nodes, i + 2))
+            for r in mine:
+                rows.extend([q0 + r] * block)
+                cols.extend(v0 + c for c in mine)
+                rows.extend([v0 + r] * (2 * len(near)))
+                cols.extend([q0 + c for c in near] + [v0 + c for c in near])
+    for s in range(p.n_q + p.n_v, n):  # a force model's state: its rates read the state, and
+        rows.extend([s] * n)  # its force reaches the accelerations (taken as coupled to all)
+        cols.extend(range(n))
+        rows.extend(range(p.n_q, p.n_q + p.n_v))
+        cols.extend([s] * p.n_v)
     return sparse.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
 
 

@@ -12,7 +12,7 @@ from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.status import OK
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, rigid_links, rigid_segments
+from seacable.lines import lumped_mass, natural_string, rigid_links, rigid_segments
 from seacable.system import energy as system_energy
 from seacable.system import kernel, rigid
 from seacable.system.rigid import point_acceleration
@@ -69,16 +69,37 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
         _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j], rigid[3][j])
+        _string_rows(y, p, w, rigid[4][j])
         _bodies(y, p, w, on_body, bodies[j])
         energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(y, p, w)
     return status
 
 
+@njit(inline="always", **JIT)
+def _string_rows(y, p, w, out):
+    """Every natural string's nodes (x, y, z), strain and tension, node after node."""
+    at = 0
+    for li in range(p.nat_n.shape[0]):
+        n = p.nat_n[li]
+        natural_string.own(y, p, w, li)
+        k = p.nat_from[li]
+        for i in range(n + 1):
+            out[at + i, 0] = w.ppos[k, 0] + w.nat_out[i, 0]
+            out[at + i, 1] = w.ppos[k, 1]
+            out[at + i, 2] = w.ppos[k, 2] + w.nat_out[i, 1]
+            out[at + i, 3] = w.nat_out[i, 2]
+            out[at + i, 4] = w.nat_out[i, 3]
+        at += n + 1
+
+
 def rigid_rows(p, m: int) -> tuple:
-    """Arrays of ``m`` rows of the rigid lines' outputs: nodes, tensions, end forces."""
+    """Arrays of ``m`` rows of the rigid lines' outputs (nodes, tensions, end forces, held
+    ends' errors) and of the natural strings' (nodes, strain and tension: 5 per node)."""
     nodes = int((p.rs_n + 1).sum())
+    strings = int((p.nat_n + 1).sum())
     return (np.empty((m, nodes, 3)), np.empty((m, int(p.rs_n.sum()))),
-            np.empty((m, len(p.rs_n), 2, 3)), np.empty((m, len(p.rs_n))))  # fmt: skip
+            np.empty((m, len(p.rs_n), 2, 3)), np.empty((m, len(p.rs_n))),
+            np.empty((m, strings, 5)))  # fmt: skip
 
 
 @njit(inline="always", **JIT)

@@ -38,7 +38,7 @@ class StaticsError(SeacableError):
 
 
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
-                tolerance: float = 1e-9) -> np.ndarray:  # fmt: skip
+                tolerance: float = 1e-9, time: float = 0.0) -> np.ndarray:  # fmt: skip
     """The state at rest in balance, from ``y0``'s positions (velocities set to zero; or, when
     every fixed and imposed body moves at t = 0 with one velocity and without turning, a tow,
     everything moving with it: ``steady_velocities``).
@@ -50,14 +50,15 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     lose its way in the kinks of the seabed's contact or of the free surface. Raises
     StaticsError naming the body or line that stays out of balance."""
     p = built.params
+    _no_strings(built)
     coords = coordinates(p)
     y = y0.copy()
-    y[p.n_q :] = steady_velocities(p, y)
+    y[p.n_q : p.n_q + p.n_v] = steady_velocities(p, y, time)
     if not len(coords.kind):
         return y
-    residual = Residual(p, coords)
+    residual = Residual(p, coords, time)
     if residual.balanced.any():
-        y = _hang(p, y, residual.free)
+        y = _hang(p, y, residual.free, time=time)
     scale = float(np.abs(residual(y)).max()) + 1.0
     direct = _direct(built, coords, residual, y, iterations, tolerance * scale)
     r = residual(direct)
@@ -68,7 +69,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
         nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
         r = residual(nested)
         nodes = np.flatnonzero(coords.kind == 2)
-        r[nodes] = Residual(p._replace(slack_allowed=0), coords)(nested)[nodes]
+        r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(nested)[nodes]
         if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
             return nested
     followed = _homotopy(built, coords, residual, y, tolerance * scale)
@@ -78,19 +79,27 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     raise StaticsError(_blame(built, coords, r))
 
 
-def steady_velocities(p: kernel.SystemParams, y: np.ndarray) -> np.ndarray:
-    """The velocities (``y[n_q:]``) of a steady motion at t = 0: when every fixed or imposed
-    body moves with one velocity V and none turns (a ship towing at constant speed, and nothing
-    fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
+def _no_strings(built: BuiltSystem) -> None:
+    if len(built.params.nat_n):
+        raise StaticsError(
+            f"statics: the natural_string line '{built.layout.natural[0]}' has no statics or "
+            "linearisation here; start it as given"
+        )
+
+
+def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) -> np.ndarray:
+    """The velocities (``y[n_q:n_q + n_v]``) of a steady motion at ``time``: when every fixed or
+    imposed body moves with one velocity V and none turns (a ship towing at constant speed, and
+    nothing fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
     lines do not turn (their nodes move with their bases); otherwise everything at rest.
     The statics then balances the loads of that motion (drag on the velocity relative to the
     current): the steady tow, which stays steady while the kinematic bodies keep V."""
     w = kernel.make_work(p)
     moving = y.copy()
-    moving[p.n_q :] = 0.0
-    kernel.rhs(0.0, moving, p, w, np.zeros_like(y))
+    moving[p.n_q : p.n_q + p.n_v] = 0.0
+    kernel.rhs(time, moving, p, w, np.zeros_like(y))
     kinematic = np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED)
-    v = np.zeros(len(y) - p.n_q)
+    v = np.zeros(p.n_v)
     if not kinematic.size:
         return v
     velocity = w.vel[kinematic]
@@ -108,7 +117,8 @@ def steady_velocities(p: kernel.SystemParams, y: np.ndarray) -> np.ndarray:
     return v
 
 
-def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200):
+def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200,
+          time: float = 0.0):  # fmt: skip
     """The rigid lines of free trees turned, again and again, along the pull each segment
     carries (system.rigid.moments' march: the statics of a hanging or towed line as a fixed
     point, tension positive), half a step at a time, until they stop turning: a first shape
@@ -125,7 +135,7 @@ def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int =
     line_of = np.repeat(np.arange(len(p.rs_n)), width * np.asarray(p.rs_n))
     y = y.copy()
     for _ in range(sweeps):
-        kernel.rhs(0.0, y, p, w, ydot)
+        kernel.rhs(time, y, p, w, ydot)
         rigid.moments(p, w, free, turned, True)
         old = y[index]
         new = old.copy()
@@ -315,6 +325,7 @@ def jacobian(
     """A = d(rates)/d(increments, velocities) of the free degrees of freedom about ``y``
     (dense, central differences): the linearised system dz/dt = A z with z = (dx, dv)."""
     p = built.params
+    _no_strings(built)
     coords = coordinates(p)
     n = len(coords.kind)
     residual = Residual(p, coords, time)
@@ -339,7 +350,8 @@ def jacobian(
     return a, coords
 
 
-def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False) -> np.ndarray:
+def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False,
+               time: float = 0.0) -> np.ndarray:  # fmt: skip
     """(bodies, 6): force [N] and moment about the reference point [N m] of every body's lines
     and ties at the state ``y``, earth frame.
 
@@ -356,7 +368,7 @@ def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False) -> np.n
     w = kernel.make_work(p)
     rigid = outputs.rigid_rows(p, 1)
     outputs.outputs_chunk(
-        np.zeros(1), y[None, :], p, w, bodies,
+        np.full(1, time), y[None, :], p, w, bodies,
         np.empty((1, len(p.node_mass), 3)), np.empty((1, len(p.seg_length))),
         np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)), np.empty((1, 3)), rigid,
     )  # fmt: skip

@@ -1,7 +1,9 @@
 """The graph of a system: bodies joined by lines and ties. A group of bodies joined to no fixed
 or imposed body, with no restoring force of its own (a ``linear_stiffness``, or buoyancy of a
 shape the free surface cuts, which holds heave alone), has no static equilibrium: the statics
-refuses it, naming the bodies."""
+refuses it, naming the bodies. Rigid lines form trees: a line carries the point body at its end,
+which may start further lines (``rigid_tips``, their sweep order by ``depth``); a planar line's
+bodies must stay in its plane (``planar_ends``)."""
 
 from seacable.case import system as sch
 from seacable.errors import CaseError
@@ -44,3 +46,98 @@ def check_held(case: sch.SystemCase) -> None:
                 "fixed body with a line or a tie, give one of them a linear_stiffness, or use "
                 "start: as_given to let it drift"
             )
+
+
+# ---- trees of rigid lines and the bodies they carry ----------------------------------------------
+def rigid_lines(case) -> list[tuple[int, "sch.RigidLine"]]:
+    return [(k, line) for k, line in enumerate(case.lines)
+            if isinstance(line, sch.RigidLine)]  # fmt: skip
+
+
+def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
+    """{body index: rigid-line number} of the point bodies carried at a rigid-segment line's
+    tip. Refuses a tip that no sweep can carry: a rigid body, a body two such lines end on, a
+    ring of lines each carried by the next."""
+    names = [b.name for b in case.bodies]
+    tips: dict[int, int] = {}
+    base: dict[int, int] = {}  # rigid-line number -> base body
+    for r, (k, line) in enumerate(rigid_lines(case)):
+        where = f"lines[{k}] ({line.name}).to"
+        body_name = line.to.partition(".")[0]
+        start = line.from_.partition(".")[0]
+        if body_name not in names or start not in names:
+            continue  # named in the error of the point's resolution
+        b = names.index(body_name)
+        base[r] = names.index(start)
+        body = case.bodies[b]
+        if isinstance(body, sch.FixedBody | sch.ImposedBody):
+            continue  # held on a kinematic point
+        if isinstance(body, sch.RigidBody):
+            raise CaseError(
+                f"{where}: '{line.to}' is on the rigid body '{body_name}'; a rigid-segment "
+                "line's last node carries a point body or is held on a fixed or imposed body "
+                "(a rigid body there, closing a loop, is not supported yet): swap 'from' and "
+                "'to' so that the line starts at the rigid body"
+            )
+        if b in tips:
+            other = rigid_lines(case)[tips[b]][1].name
+            raise CaseError(
+                f"{where}: the point body '{body_name}' is already carried at the end of line "
+                f"'{other}'; one rigid-segment line may end on a point body (closing a loop of "
+                "inextensible lines is not supported yet): swap 'from' and 'to' of one of them"
+            )
+        tips[b] = r
+    for b, r in tips.items():  # walk down from each tip to its root: a ring never ends
+        seen, at = {b}, base[r]
+        while at in tips:
+            if at in seen:
+                ring = sorted(rigid_lines(case)[tips[x]][1].name for x in seen)
+                raise CaseError(
+                    f"lines {ring}: a ring of rigid-segment lines, each carried at the end of "
+                    "the next, with nothing fixed, imposed or free to start from; swap 'from' "
+                    "and 'to' of one of them"
+                )
+            seen.add(at)
+            at = base[tips[at]]
+    return tips
+
+
+def planar_ends(case, line, where: str, tip: int) -> None:
+    """Refuse a body of a planar line that can move out of the x-z plane."""
+    names = [b.name for b in case.bodies]
+    for end, ref in (("from", line.from_), ("to", line.to)):
+        name = ref.partition(".")[0]
+        if name not in names or (end == "to" and tip >= 0):
+            continue  # unknown: named elsewhere; carried at the tip: moves with the line
+        body = case.bodies[names.index(name)]
+        out_of_plane = ""
+        if isinstance(body, sch.ImposedBody):
+            keys = ("y", "roll_deg", "yaw_deg")
+            still = {k: isinstance(getattr(body, k), sch.Constant) for k in keys}
+            moving = [k for k, constant in still.items() if not constant]
+            moving += [k for k in ("roll_deg", "yaw_deg") if still[k] and getattr(body, k).value]
+            if moving:
+                out_of_plane = f"its {moving} move or turn it out of the plane"
+        elif isinstance(body, sch.PointBody) and "sway" in body.dofs:
+            out_of_plane = "its dofs include sway"
+        elif isinstance(body, sch.RigidBody):
+            extra = sorted(set(body.dofs) - {"surge", "heave", "pitch"})
+            if extra:
+                out_of_plane = f"its dofs include {extra}"
+        if out_of_plane:
+            raise CaseError(
+                f"{where}.{end}: a planar rigid_links line stays in the x-z plane, but body "
+                f"'{name}' can leave it ({out_of_plane}); keep that body in the plane (dofs "
+                "surge, heave, pitch; no y, roll or yaw motion) or use model: rigid_segments_3d"
+            )
+
+
+def depth(case, tips: dict[int, int], r: int) -> int:
+    """How many rigid lines carry line r's base (0: a base that no rigid line carries)."""
+    names = [b.name for b in case.bodies]
+    lines = rigid_lines(case)
+    depth, at = 0, names.index(lines[r][1].from_.partition(".")[0])
+    while at in tips:
+        depth += 1
+        at = names.index(lines[tips[at]][1].from_.partition(".")[0])
+    return depth

@@ -98,14 +98,15 @@ def _draw_view(ax, tree, rows, a: str, b: str, plt, env: dict) -> None:
 
 
 def _draw_range(ax, tree, last: int) -> None:
-    """Least, mean and largest tension [kN] along each lumped line over the finite rows."""
+    """Least, mean and largest tension [kN] along each line over the finite rows (at the
+    segments' centres, or at the nodes for a line that gives it there)."""
     drawn = False
     for name, ds in _groups(tree, "lines").items():
         if "tension" not in ds or ds["tension"].ndim != 2:
             continue
         tension = ds["tension"].values[:last] / 1e3
         arc = ds["arc_length"].values
-        centres = 0.5 * (arc[1:] + arc[:-1])
+        centres = 0.5 * (arc[1:] + arc[:-1]) if tension.shape[1] == arc.size - 1 else arc
         (line,) = ax.plot(centres, tension.mean(axis=0), label=f"{name} mean")
         ax.fill_between(centres, tension.min(axis=0), tension.max(axis=0), alpha=0.25,
                         color=line.get_color(), label=f"{name} least to largest")  # fmt: skip
