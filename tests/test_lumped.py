@@ -291,6 +291,7 @@ def _heaving(model, **simulation):
     )
 
 
+@pytest.mark.slow  # 13 s; a heaving body over a line is checked on the system path by the goldens
 def test_floating_structure_top_heaves_like_the_rigid_link_model():
     """A stiff lumped line under a heaving structure against the planar rigid-link cable: the
     structure's heave and the end mass agree to the difference of the two discretisations

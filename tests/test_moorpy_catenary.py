@@ -79,6 +79,7 @@ def test_static_shape_passes_through_both_ends():
     np.testing.assert_allclose(end, ANCHOR, atol=1e-8)
 
 
+@pytest.mark.slow  # 16 s; the system's lines against MoorPy: tests/test_system_moorpy.py
 def test_slow_motion_is_quasi_static_like_moorpy():
     """The fairlead moves 10 m in x over 200 s (smooth start): the tensions follow MoorPy's
     static catenary at the instantaneous position."""

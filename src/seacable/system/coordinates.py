@@ -87,17 +87,19 @@ def normal_basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """t1, t2 (m, 3) normal to the unit vectors e (m, 3), as kernels.chain3d._basis builds
     them."""
     a = np.abs(e)
-    t1 = np.where(
-        ((a[:, 0] <= a[:, 1]) & (a[:, 0] <= a[:, 2]))[:, None],
-        np.column_stack([np.zeros(len(e)), e[:, 2], -e[:, 1]]),
-        np.where(
-            (a[:, 1] <= a[:, 2])[:, None],
-            np.column_stack([-e[:, 2], np.zeros(len(e)), e[:, 0]]),
-            np.column_stack([e[:, 1], -e[:, 0], np.zeros(len(e))]),
-        ),
-    )
-    t1 /= np.linalg.norm(t1, axis=1)[:, None]
-    return t1, np.cross(e, t1)
+    smallest = np.where((a[:, 0] <= a[:, 1]) & (a[:, 0] <= a[:, 2]), 0,
+                        np.where(a[:, 1] <= a[:, 2], 1, 2))  # fmt: skip
+    t1 = np.zeros_like(e)  # e x (the axis of its smallest component), as chain3d._basis
+    rows = np.arange(len(e))
+    after, before = (smallest + 1) % 3, (smallest + 2) % 3
+    t1[rows, after] = e[rows, before]
+    t1[rows, before] = -e[rows, after]
+    t1 /= np.sqrt((t1 * t1).sum(axis=1))[:, None]
+    t2 = np.empty_like(e)
+    t2[:, 0] = e[:, 1] * t1[:, 2] - e[:, 2] * t1[:, 1]
+    t2[:, 1] = e[:, 2] * t1[:, 0] - e[:, 0] * t1[:, 2]
+    t2[:, 2] = e[:, 0] * t1[:, 1] - e[:, 1] * t1[:, 0]
+    return t1, t2
 
 
 def tangents(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarray:
@@ -112,7 +114,7 @@ def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
     out = y.copy()
     plain = (coords.kind == 0) | (coords.kind == 2) | (coords.kind == 4)
     np.add.at(out, coords.q[plain], dx[plain])
-    turned = np.flatnonzero(coords.kind == 3)
+    turned = np.flatnonzero((coords.kind == 3) & (dx != 0.0))  # the directors that turn
     if turned.size:
         index = coords.q[turned][:, None] + np.arange(3)[None, :]
         np.add.at(out, index, dx[turned][:, None] * tangents(y, coords, turned))

@@ -16,7 +16,7 @@ linear in a/dt and b): ``ServoLoop`` gives its growth rate; a gain and step whos
 grow by more than e over the run are refused (``check``)."""
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import expm
@@ -115,7 +115,7 @@ def start(built: BuiltSystem, y: np.ndarray):
     p = built.params
     held, solved, forces, targets = _equilibria(built, y, 0.0)
     for f, b, spec in servos(built):
-        p = with_stiffness(p, f, _stiffness(built, solved, forces, targets, b, spec, 0.0))
+        p = with_stiffness(p, f, _stiffness(held, solved, forces, targets, b, spec, 0.0))
     out = _restored(built, held, solved)
     for f, b, _ in servos(built):
         out[p.force_state[f] : p.force_state[f] + 3] = forces[b]
@@ -127,9 +127,9 @@ def refresh(built: BuiltSystem, p: kernel.SystemParams, time: float, y: np.ndarr
     that ask (``recompute_interval``)."""
     asked = [(f, b, spec) for f, b, spec in servos(built) if spec.recompute_interval is not None]
     if asked:
-        _, solved, forces, targets = _equilibria(built, y, time)
+        held, solved, forces, targets = _equilibria(built, y, time)
         for f, b, spec in asked:
-            p = with_stiffness(p, f, _stiffness(built, solved, forces, targets, b, spec, time))
+            p = with_stiffness(p, f, _stiffness(held, solved, forces, targets, b, spec, time))
     return p
 
 
@@ -179,19 +179,29 @@ def _equilibria(built: BuiltSystem, y: np.ndarray, time: float):
     return held, solved, {b: -loads[b, :3] for b in targets}, targets
 
 
-def _stiffness(built, solved, forces, targets, b: int, spec: sch.ServoForce, time: float):
+def _stiffness(held, solved, forces, targets, b: int, spec: sch.ServoForce, time: float):
     """K [N/m] of body b's lines: its holding force with the body moved on the sphere around
     its target (the other servo bodies held at theirs), by least squares."""
     displacements = spec.sphere_radius * sphere_directions()
     found = []
     for d in displacements:
-        moved = dict(targets)
-        moved[b] = (targets[b][0] + d, targets[b][1])
-        system = _held_at(built, moved)
+        system = replace(held, params=_moved(held.params, b, targets[b][0] + d))
         state = statics.equilibrium(system, solved, tolerance=TOLERANCE, time=time)
         found.append(-statics.line_loads(system, state, at_rest=True, time=time)[b, :3])
     k_transposed, *_ = np.linalg.lstsq(displacements, np.array(found) - forces[b], rcond=None)
     return k_transposed.T
+
+
+def _moved(p: kernel.SystemParams, b: int, offset: np.ndarray) -> kernel.SystemParams:
+    """``p`` (of ``_held_at``) with the held body b at ``offset``: its x, y, z channels are
+    constants, their values the first coefficient of their one piece (and their value at t = 0
+    for a build-up)."""
+    coefs, ramps = p.tf_coefs.copy(), p.tf_build_up.copy()
+    first = int(p.body_channel[b])
+    for c in range(3):
+        coefs[first + c, 0, 0] = offset[c]
+        ramps[first + c, 1] = offset[c]
+    return p._replace(tf_coefs=coefs, tf_build_up=ramps)
 
 
 def _held_at(built: BuiltSystem, targets: dict[int, tuple]) -> BuiltSystem:
