@@ -20,12 +20,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import expm
+from scipy.sparse.linalg import splu
 
 from seacable.case import system as sch
 from seacable.errors import CaseError
 from seacable.forces import servo
 from seacable.forces.kinds import SERVO
-from seacable.system import assemble, kernel, statics
+from seacable.system import assemble, coordinates, kernel, statics
 from seacable.system.assemble import BuiltSystem
 from seacable.system.initial import initial_state
 
@@ -183,13 +184,38 @@ def _stiffness(held, solved, forces, targets, b: int, spec: sch.ServoForce, time
     """K [N/m] of body b's lines: its holding force with the body moved on the sphere around
     its target (the other servo bodies held at theirs), by least squares."""
     displacements = spec.sphere_radius * sphere_directions()
+    coords = coordinates.coordinates(held.params)
+    structure = coordinates.pattern(held.params, coords)
+    centre = coordinates.Residual(held.params, coords, time)
+    colours = coordinates.colour(structure)
+    jacobian = coordinates.fd_jacobian(centre, solved, coords, structure, colours, centre(solved))
+    factor = splu(jacobian.tocsc())
     found = []
     for d in displacements:
         system = replace(held, params=_moved(held.params, b, targets[b][0] + d))
-        state = statics.equilibrium(system, solved, tolerance=TOLERANCE, time=time)
+        state = _chord(system, coords, factor, solved, time)
+        if state is None:  # farther than the centre's Jacobian reaches: Newton
+            state = statics.equilibrium(system, solved, tolerance=TOLERANCE, time=time)
         found.append(-statics.line_loads(system, state, at_rest=True, time=time)[b, :3])
     k_transposed, *_ = np.linalg.lstsq(displacements, np.array(found) - forces[b], rcond=None)
     return k_transposed.T
+
+
+def _chord(system: BuiltSystem, coords, factor, start: np.ndarray, time: float):
+    """The equilibrium near ``start`` by chord iterations with the centre's Jacobian (its LU
+    ``factor``): a point of the sphere is a small move of the held body; None when they do
+    not converge (to ``TOLERANCE`` of the first residual, as ``statics.equilibrium``)."""
+    residual = coordinates.Residual(system.params, coords, time)
+    y, r = start, residual(start)
+    tolerance = TOLERANCE * (float(np.abs(r).max()) + 1.0)
+    for _ in range(40):
+        if not np.all(np.isfinite(r)):
+            return None
+        if np.abs(r).max() < tolerance:
+            return y
+        y = coordinates.apply(y, coords, -factor.solve(r))
+        r = residual(y)
+    return None
 
 
 def _moved(p: kernel.SystemParams, b: int, offset: np.ndarray) -> kernel.SystemParams:
