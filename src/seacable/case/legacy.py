@@ -7,17 +7,22 @@ and mappings), which ``seacable upgrade old.yaml`` prints. Ends map as:
 - ``fixed`` top -> a fixed body ``top``; ``imposed`` -> an imposed body with the same time
   functions; ``floating_structure`` -> a rigid body with ``dofs: [heave]``, its heave spring and
   damper as ``linear_stiffness`` and ``linear_damping`` about its rest elevation, its force and
-  net weight as ``applied`` forces;
+  net weight as ``applied`` forces; ``towing_ship`` -> an imposed body on its ``track``;
 - ``free`` bottom -> a point body ``end`` carried at the line's end (gravity, buoyancy, drag and
   applied forces as force models, its ties as linear stiffness and damping about their rest
   position, ``hold_axes`` as the axes its ``dofs`` leave out); ``pinned`` -> a fixed body
   ``anchor`` at the end of the initial shape; ``floating_structure`` -> a point body moving in
-  surge and heave on its springs, weight equal to buoyancy.
+  surge and heave on its springs, weight equal to buoyancy; ``trajectory`` -> an imposed body
+  ``end`` (``relative_to`` the top when the trajectory is) the line is held on (``exact``), or
+  the ``vehicle`` a massless ``end`` follows with a ``servo`` force model (``stiffness_servo``).
 
 The line keeps the cable's model (``rigid_links`` or ``rigid_segments_3d``), its initial angles
-and its joints (a joint stiffness k as the bending stiffness k l of its links). Cables that have
-no system form yet (lumped-mass and natural-string cables, towing ships, trajectories, point
-bodies along the cable, several cables on one body) are refused, naming what is missing.
+and its joints (a joint stiffness k as the bending stiffness k l of its links); bodies along
+the cable (``point_bodies``) cut it into lines, each body carried between two; a static start
+becomes ``start: static``. Cables on a shared body (a star) become lines from that body back
+to each top. A lumped-mass cable from a top to its anchor and Poth's natural string have their
+line models. What has no system form yet (a lumped-mass cable ending free or on a body,
+unequal links, a joint's spring at a body along the cable) is refused, naming what is missing.
 """
 
 import math
