@@ -176,6 +176,14 @@ def project_tangents(y, n, q, v):
         y[v + 3 * i + 2] = dtz - along * tz
 
 
+@njit(inline="always", **JIT)
+def trapezoid(w, h, i):
+    """The position and velocity of node i less those of node i - 1 (the trapezoidal rule on
+    the tangent field q and its rate in the workspace ``w``, elements of length h)."""
+    return (0.5 * h * (w[0, i - 1] + w[0, i]), 0.5 * h * (w[1, i - 1] + w[1, i]),
+            0.5 * h * (w[2, i - 1] + w[2, i]), 0.5 * h * (w[3, i - 1] + w[3, i]))  # fmt: skip
+
+
 @njit(**JIT)
 def outputs(t, y, p, w, node_pos, strain, tension, scalars):
     """Node positions (trapezoidal integral of q), strain and tension per node, end mass and
@@ -188,10 +196,8 @@ def outputs(t, y, p, w, node_pos, strain, tension, scalars):
     kinetic = gravity = elastic = 0.0
     for i in range(n + 1):
         if i > 0:
-            x += 0.5 * h * (w[0, i - 1] + w[0, i])
-            z += 0.5 * h * (w[1, i - 1] + w[1, i])
-            vx += 0.5 * h * (w[2, i - 1] + w[2, i])
-            vz += 0.5 * h * (w[3, i - 1] + w[3, i])
+            dx, dz, dvx, dvz = trapezoid(w, h, i)
+            x, z, vx, vz = x + dx, z + dz, vx + dvx, vz + dvz
         node_pos[i, 0] = x
         node_pos[i, 1] = z
         eps = y[b * i]

@@ -61,12 +61,9 @@ def carry(y, p, w, li):
     nk.fields(w.nat, line_params(p, li, 1.0), w.nat_work)
     h = p.nat_length[li] / n
     x = z = vx = vz = 0.0
-    wn = w.nat_work
     for i in range(1, n + 1):
-        x += 0.5 * h * (wn[0, i - 1] + wn[0, i])
-        z += 0.5 * h * (wn[1, i - 1] + wn[1, i])
-        vx += 0.5 * h * (wn[2, i - 1] + wn[2, i])
-        vz += 0.5 * h * (wn[3, i - 1] + wn[3, i])
+        dx, dz, dvx, dvz = nk.trapezoid(w.nat_work, h, i)
+        x, z, vx, vz = x + dx, z + dz, vx + dvx, vz + dvz
     tip = p.nat_tip[li]
     w.pos[tip, 0] = w.ppos[k, 0] + x
     w.pos[tip, 1] = w.ppos[k, 1]
