@@ -227,12 +227,17 @@ def _bent(model, n=20, **simulation):
 
 def test_bending_forces_are_the_gradient_of_the_bending_energy():
     """No damping: total energy, bending energy included, is kept to the integrator's
-    tolerance; and a stiff lumped line with bending swings like the rigid-segment cable with
-    the same joint springs, closer as the segments get shorter (their masses differ by the
-    segments' rotational inertia)."""
+    tolerance."""
     ds = seacable.simulate(_bent("lumped_mass")).dataset
     energy = ds["total_energy"].values
     assert np.max(np.abs(energy - energy[0])) < 1e-6 * np.ptp(ds["kinetic_energy"].values)
+
+
+@pytest.mark.slow  # 10 s: six runs
+def test_a_bent_lumped_line_swings_like_the_rigid_segment_cable():
+    """A stiff lumped line with bending swings like the rigid-segment cable with the same
+    joint springs, closer as the segments get shorter (their masses differ by the segments'
+    rotational inertia)."""
     gaps = []
     for n in (10, 20, 40):
         a = seacable.simulate(_bent("lumped_mass", n=n)).dataset
