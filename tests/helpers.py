@@ -30,3 +30,28 @@ def chain_case(n=20, top=None, bottom=None, initial=None, simulation=None, envir
 
 def run(data, **kwargs):
     return seacable.simulate(seacable.load_case(data), **kwargs)
+
+
+def turning_body_case(simulation):
+    """A rigid body (off-centre points, turning) hung in air from a fixed point by a lumped line
+    of six segments and tied by a spring to a point body, swinging in 3D without drag or
+    damping: its energy is constant."""
+    rope = {"name": "rope", "diameter": 0.01, "mass_per_length": 2.0, "axial_stiffness": 2.0e5,
+            "drag_coefficient_normal": 0.0}  # fmt: skip
+    box = {"name": "float", "type": "rigid", "position": [3.0, 1.0, -6.0], "mass": 50.0,
+           "inertia": [4.0, 6.0, 8.0], "centre_of_gravity": [0.1, 0.0, -0.2],
+           "velocity": [0.0, 1.0, 0.0], "angular_velocity": [0.3, -0.2, 0.5],
+           "points": {"hook": [0.2, 0.1, 0.5], "eye": [-0.3, 0.0, -0.4]},
+           "external forces": [{"model": "gravity"}]}  # fmt: skip
+    weight = {"name": "weight", "type": "point", "position": [3.5, 1.0, -8.0], "mass": 5.0,
+              "external forces": [{"model": "gravity"}]}  # fmt: skip
+    top = {"name": "top", "type": "fixed", "position": [0.0, 0.0, 0.0]}
+    lines = [
+        {"name": "rope", "model": "lumped_mass", "from": "top", "to": "float.hook",
+         "sections": [{"type": "rope", "length": 6.5, "segments": 6}], "initial": "straight"},
+        {"name": "spring", "model": "tie", "from": "float.eye", "to": "weight",
+         "unstretched_length": 1.0, "stiffness": 3000.0},
+    ]  # fmt: skip
+    return {"name": "turning body", "start": "as_given", "environment": {"in_air": True},
+            "bodies": [top, box, weight], "lines": lines, "line_types": [rope],
+            "simulation": simulation}  # fmt: skip

@@ -11,6 +11,7 @@ import yaml
 from scipy.spatial.transform import Rotation
 
 import seacable
+from helpers import turning_body_case
 from seacable import viz
 from seacable.bodies import kinematics
 from seacable.case.loader import load_case
@@ -420,23 +421,7 @@ def test_energy_of_bodies_on_lines_is_conserved_without_damping():
     line and tied to a point body by a spring tie, swinging in 3D: no drag, no axial damping,
     so kinetic + gravity potential + elastic energy is constant (rk4, small step). It checks
     the coupling: an end node's mass and loads carried by a turning body."""
-    rope = {"name": "rope", "diameter": 0.01, "mass_per_length": 2.0, "axial_stiffness": 2.0e5,
-            "drag_coefficient_normal": 0.0}  # fmt: skip
-    box = _rigid(position=[3.0, 1.0, -6.0], mass=50.0, inertia=[4.0, 6.0, 8.0],
-                 centre_of_gravity=[0.1, 0.0, -0.2], velocity=[0.0, 1.0, 0.0],
-                 angular_velocity=[0.3, -0.2, 0.5],
-                 points={"hook": [0.2, 0.1, 0.5], "eye": [-0.3, 0.0, -0.4]},
-                 **{"external forces": [{"model": "gravity"}]})  # fmt: skip
-    weight = {"name": "weight", "type": "point", "position": [3.5, 1.0, -8.0], "mass": 5.0,
-              "external forces": [{"model": "gravity"}]}  # fmt: skip
-    top = {"name": "top", "type": "fixed", "position": [0.0, 0.0, 0.0]}
-    case = _case(
-        [top, box, weight],
-        [{"name": "rope", "model": "lumped_mass", "from": "top", "to": "float.hook",
-          "sections": [{"type": "rope", "length": 6.5, "segments": 6}], "initial": "straight"},
-         _tie("spring", "float.eye", "weight", length=1.0, stiffness=3000.0)],
-        _sim(2.0, dt=2e-5, interval=0.1), line_types=[rope],
-    )  # fmt: skip
+    case = turning_body_case(_sim(2.0, dt=2e-5, interval=0.1))
     tree = simulate(load_case(case)).dataset
     total = tree["total_energy"].values
     kinetic = tree["kinetic_energy"].values

@@ -22,7 +22,7 @@ from seacable.models import (
 )
 from seacable.models.common import case_variables
 from seacable.models.servo_loop import check_servo_loop
-from seacable.numerics import implicit, integrators, stiff
+from seacable.numerics import implicit, integrators, stiff, system_implicit
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -222,7 +222,11 @@ class _Run:
         self.stages = np.zeros((7, len(self.y)))
         self.fsal = np.zeros(1, dtype=np.int64)
         self.carry = None
-        if self.sim.integrator in IMPLICIT:
+        self.newton = None  # a system's implicit steps: how increments move, the matrix layout
+        if self.sim.integrator in IMPLICIT and model is system_model:
+            self.newton = system_implicit.newton(case, system)
+            self.carry = system_implicit.carry(system, self.newton[1])
+        elif self.sim.integrator in IMPLICIT:
             self.carry = implicit.newmark_carry(self.y, self.p)
         self.atol, self.magnitude = absolute_tolerance(case, model, system)
         # adaptive integrators: state values at output times whose error weight atol set
@@ -262,9 +266,13 @@ class _Run:
         elif sim.integrator in stiff.STIFF:
             integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT:
-            if implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
+            first = system_implicit if self.newton else implicit
+            if first.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
-            carry = implicit.newmark_carry(y, self.p)
+            if self.newton:
+                carry = system_implicit.carry(self.system, self.newton[1])
+            else:
+                carry = implicit.newmark_carry(y, self.p)
             self._newmark(y, 1, 0, empty, np.empty(0), work, carry)
         else:
             integrators.dopri5_chunk(
@@ -318,6 +326,12 @@ class _Run:
     def _newmark(self, y, steps, count, states, times, work, carry):
         sim = self.sim
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
+        if self.newton:
+            return system_implicit.chunk(
+                self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
+                sim.max_newton_iterations, self.p, self.w, *self.newton, carry, states, times,
+                work,
+            )  # fmt: skip
         return implicit.newmark_chunk(
             self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
             sim.max_newton_iterations, self.p, self.w, states, times, work, carry,

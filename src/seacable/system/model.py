@@ -9,6 +9,7 @@ from scipy import sparse
 from scipy.spatial.transform import Rotation
 
 from seacable.case import system as sch
+from seacable.errors import CaseError
 from seacable.system import coordinates, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
@@ -16,7 +17,7 @@ from seacable.system.assemble import build as _assemble
 from seacable.system.initial import initial_state
 
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
-NEWTON = False  # the implicit schemes do not serve systems yet
+NEWTON = True  # the implicit schemes serve systems (numerics.system_implicit)
 DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
 AXES = "xyz"
 
@@ -46,6 +47,19 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
     servo.check(built, y0)
     return built
+
+
+def check_implicit(case: sch.SystemCase) -> None:
+    """The implicit schemes advance second-order states only: a servo's force is not one."""
+    for body in case.bodies:
+        for k, force in enumerate(getattr(body, "external_forces", [])):
+            if isinstance(force, sch.ServoForce):
+                raise CaseError(
+                    f"simulation.integrator: '{case.simulation.integrator}' cannot advance the "
+                    f"servo's force (bodies.{body.name}.external forces[{k}], a first-order "
+                    "state); use rk4 or dopri5 with the servo, or hold the body on its "
+                    "trajectory (an imposed body)"
+                )
 
 
 def refresh_interval(case: sch.SystemCase) -> float | None:
@@ -352,7 +366,8 @@ def state_scale(case, system: BuiltSystem) -> np.ndarray:
 
 
 def positions(system: BuiltSystem) -> int:
-    return int(system.params.n_q)
+    """The accelerations the implicit schemes solve for: one per velocity variable."""
+    return int(system.params.n_v)
 
 
 def rates(system: BuiltSystem, y) -> np.ndarray:

@@ -1,0 +1,252 @@
+"""Sparse Newton matrices of systems of bodies and lines: banded blocks bordered by a few dense
+rows and columns, factorised in O(total unknowns) (numba).
+
+The unknowns are ordered so that each *block* (the unknowns of one line, or of lines that
+couple directly, such as a tree of rigid lines) is contiguous and banded, and the *border*
+(the bodies' degrees of freedom) comes last::
+
+    [ A_1            B_1 ] [x_1]   [r_1]
+    [      ...       ... ] [...] = [...]
+    [           A_m  B_m ] [x_m]   [r_m]
+    [ C_1  ...  C_m  D   ] [x_b]   [r_b]
+
+Blocks couple to each other only through the border. Each A_l is factorised by banded
+Gaussian elimination with partial pivoting (LINPACK's scheme: the upper band grows by the lower
+bandwidth), then the border's Schur complement S = D - sum_l C_l A_l^-1 B_l is formed and
+factorised densely (it is stored as a band as wide as itself). B_l and C_l keep only the border
+columns and rows that block l touches. A factorisation costs O(sum_l n_l kl_l (kl_l + ku_l) +
+n_l t_l (kl_l + ku_l) + border^3) for blocks of n_l unknowns, bandwidths kl_l, ku_l and t_l
+touched border unknowns; a solve, the same without the cubes.
+
+Every matrix entry lives in one flat array ``mat`` (bands first, the border's band, then every
+B_l and every C_l); ``structure`` maps each non-zero (row, column) of a pattern to its place
+(``dest``) so that a finite-difference Jacobian is written straight into it.
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+from scipy import sparse
+
+from seacable.kernels.timefn import JIT
+
+
+class Bordered(NamedTuple):
+    """Where each unknown and each matrix entry goes (all flat, with offsets; see the module
+    docstring). Blocks 0..m-1 are the banded blocks, block m the border."""
+
+    order: np.ndarray  # (N,) int: the unknown at each position
+    start: np.ndarray  # (m + 2,) int: first position of each block (the border last), then N
+    kl: np.ndarray  # (m + 1,) int: lower bandwidth
+    ku: np.ndarray  # (m + 1,) int: upper bandwidth
+    band: np.ndarray  # (m + 1,) int: first entry of the block's band in ``mat``
+    touch_at: np.ndarray  # (m + 1,) int: first entry of the block's touched border in touch
+    touch: np.ndarray  # border positions (relative to the border's start) each block touches
+    b_at: np.ndarray  # (m,) int: first entry of B_l in ``mat`` (n_l x t_l, row-major)
+    c_at: np.ndarray  # (m,) int: first entry of C_l in ``mat`` (t_l x n_l, row-major)
+    size: int  # entries of ``mat``
+    nz_ptr: np.ndarray  # (N + 1,) int: the pattern's non-zeros of each column (unknown)
+    nz_row: np.ndarray  # row (unknown) of each non-zero
+    nz_dest: np.ndarray  # its entry in ``mat``
+    colour_ptr: np.ndarray  # (colours + 1,) int: columns of each colour in colour_cols
+    colour_cols: np.ndarray  # columns (unknowns) that share no row, colour by colour
+
+
+def _width(kl: int, ku: int) -> int:
+    return 2 * kl + ku + 1
+
+
+def structure(pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray) -> Bordered:
+    """The layout for a square ``pattern`` (the non-zeros of the matrix; the diagonal is added)
+    whose unknowns ``border`` (a boolean mask) form the border; ``colours`` groups columns that
+    share no row (``system.coordinates.colour``). Unknowns outside the border that couple
+    directly are put in one block."""
+    n = pattern.shape[0]
+    coo = (sparse.csr_matrix(pattern) + sparse.identity(n, format="csr")).tocoo()
+    rows, cols = coo.row.astype(np.int64), coo.col.astype(np.int64)
+    border = np.asarray(border, dtype=bool)
+    inner = ~border[rows] & ~border[cols]
+    link = sparse.coo_matrix((np.ones(int(inner.sum())), (rows[inner], cols[inner])), (n, n))
+    _, label = sparse.csgraph.connected_components(link, directed=False)
+    label = np.where(border, -1, label)
+    blocks = [np.flatnonzero(label == g) for g in np.unique(label[~border])]
+    blocks.sort(key=lambda b: int(b[0]))
+    order = np.concatenate([*blocks, np.flatnonzero(border)]).astype(np.int64)
+    position = np.empty(n, dtype=np.int64)
+    position[order] = np.arange(n)
+    m = len(blocks)
+    start = np.zeros(m + 2, dtype=np.int64)
+    start[1 : m + 1] = np.cumsum([len(b) for b in blocks])
+    start[m + 1] = n
+    block_of = np.full(n, m, dtype=np.int64)  # by position
+    for g in range(m):
+        block_of[start[g] : start[g + 1]] = g
+    pr, pc = position[rows], position[cols]
+    kl = np.zeros(m + 1, dtype=np.int64)
+    ku = np.zeros(m + 1, dtype=np.int64)
+    nb = int(n - start[m])
+    kl[m] = ku[m] = max(nb - 1, 0)
+    same = block_of[pr] == block_of[pc]
+    np.maximum.at(kl, block_of[pr][same], np.maximum(pr - pc, 0)[same])
+    np.maximum.at(ku, block_of[pr][same], np.maximum(pc - pr, 0)[same])
+    kl[m] = ku[m] = max(nb - 1, 0)
+    band = np.zeros(m + 1, dtype=np.int64)
+    at = 0
+    for g in range(m + 1):
+        band[g] = at
+        at += int(start[g + 1] - start[g]) * _width(int(kl[g]), int(ku[g]))
+    # the border each block touches: keys g * nb + (border position), sorted
+    cross = ~same
+    r_in = block_of[pr[cross]] < m
+    g_of = np.where(r_in, block_of[pr[cross]], block_of[pc[cross]])
+    b_of = np.where(r_in, pc[cross], pr[cross]) - start[m]
+    keys = np.unique(g_of * max(nb, 1) + b_of)
+    touch = (keys % max(nb, 1)).astype(np.int64)
+    touch_at = np.searchsorted(keys // max(nb, 1), np.arange(m + 1)).astype(np.int64)
+    count = np.diff(touch_at)
+    sizes = np.diff(start[: m + 1])
+    b_at = (at + np.cumsum(sizes * count) - sizes * count).astype(np.int64)
+    at += int(np.sum(sizes * count))
+    c_at = (at + np.cumsum(sizes * count) - sizes * count).astype(np.int64)
+    at += int(np.sum(sizes * count))
+    # where each non-zero goes
+    dest = np.empty(len(rows), dtype=np.int64)
+    g = block_of[pr[same]]
+    i, j = pr[same] - start[g], pc[same] - start[g]
+    dest[same] = band[g] + i * (2 * kl[g] + ku[g] + 1) + (j - i + kl[g])
+    t = np.searchsorted(keys, g_of * max(nb, 1) + b_of)
+    t = t - touch_at[g_of]
+    local = np.where(r_in, pr[cross], pc[cross]) - start[g_of]
+    dest[cross] = np.where(
+        r_in,
+        b_at[np.minimum(g_of, m - 1)] + local * count[np.minimum(g_of, m - 1)] + t,
+        c_at[np.minimum(g_of, m - 1)] + t * sizes[np.minimum(g_of, m - 1)] + local,
+    )
+    by_col = np.argsort(cols, kind="stable")
+    nz_ptr = np.zeros(n + 1, dtype=np.int64)
+    nz_ptr[1:] = np.cumsum(np.bincount(cols, minlength=n))
+    colours = np.asarray(colours, dtype=np.int64)
+    colour_cols = np.argsort(colours, kind="stable").astype(np.int64)
+    colour_ptr = np.zeros(int(colours.max(initial=-1)) + 2, dtype=np.int64)
+    colour_ptr[1:] = np.cumsum(np.bincount(colours, minlength=len(colour_ptr) - 1))
+    return Bordered(
+        order=order, start=start, kl=kl, ku=ku, band=band, touch_at=touch_at, touch=touch,
+        b_at=b_at, c_at=c_at, size=at, nz_ptr=nz_ptr, nz_row=rows[by_col],
+        nz_dest=dest[by_col], colour_ptr=colour_ptr, colour_cols=colour_cols,
+    )  # fmt: skip
+
+
+@njit(**JIT)
+def _band_factor(mat, at, n, kl, ku, piv, p0):
+    """Banded LU with partial pivoting, in place (rows of width 2 kl + ku + 1 from column
+    i - kl); row swaps in piv[p0 + k]. False on a zero or non-finite pivot."""
+    w = 2 * kl + ku + 1
+    for k in range(n):
+        last = min(n - 1, k + kl)
+        best = k
+        big = abs(mat[at + k * w + kl])
+        for r in range(k + 1, last + 1):
+            v = abs(mat[at + r * w + (k - r + kl)])
+            if v > big:
+                best, big = r, v
+        if big == 0.0 or not np.isfinite(big):
+            return False
+        piv[p0 + k] = best
+        right = min(n - 1, k + kl + ku)
+        if best != k:
+            for c in range(k, right + 1):
+                a = at + k * w + (c - k + kl)
+                b = at + best * w + (c - best + kl)
+                mat[a], mat[b] = mat[b], mat[a]
+        pivot = mat[at + k * w + kl]
+        for r in range(k + 1, last + 1):
+            rk = at + r * w + (k - r + kl)
+            f = mat[rk] / pivot
+            mat[rk] = f
+            if f != 0.0:
+                for c in range(k + 1, right + 1):
+                    mat[at + r * w + (c - r + kl)] -= f * mat[at + k * w + (c - k + kl)]
+    return True
+
+
+@njit(**JIT)
+def _band_solve(mat, at, n, kl, ku, piv, p0, x, x0, stride):
+    """Solve in place with ``_band_factor``'s factors for the vector x[x0 + i * stride]."""
+    w = 2 * kl + ku + 1
+    for k in range(n):
+        p = piv[p0 + k]
+        if p != k:
+            a, b = x0 + k * stride, x0 + p * stride
+            x[a], x[b] = x[b], x[a]
+        xk = x[x0 + k * stride]
+        if xk != 0.0:
+            for r in range(k + 1, min(n - 1, k + kl) + 1):
+                x[x0 + r * stride] -= mat[at + r * w + (k - r + kl)] * xk
+    for k in range(n - 1, -1, -1):
+        acc = x[x0 + k * stride]
+        for c in range(k + 1, min(n - 1, k + kl + ku) + 1):
+            acc -= mat[at + k * w + (c - k + kl)] * x[x0 + c * stride]
+        x[x0 + k * stride] = acc / mat[at + k * w + kl]
+
+
+@njit(**JIT)
+def factor(s, mat, piv):
+    """Factorise the matrix in ``mat`` (laid out by ``s``) in place: every block, B_l replaced
+    by A_l^-1 B_l, the border's Schur complement. False when a pivot is zero or not finite."""
+    m = s.start.shape[0] - 2
+    nb = s.start[m + 1] - s.start[m]
+    wb = 2 * s.kl[m] + s.ku[m] + 1
+    for g in range(m):
+        n = s.start[g + 1] - s.start[g]
+        if not _band_factor(mat, s.band[g], n, s.kl[g], s.ku[g], piv, s.start[g]):
+            return False
+        t0, t1 = s.touch_at[g], s.touch_at[g + 1]
+        nt = t1 - t0
+        for j in range(nt):  # X = A^-1 B, column by column
+            _band_solve(mat, s.band[g], n, s.kl[g], s.ku[g], piv, s.start[g], mat, s.b_at[g] + j,
+                        nt)  # fmt: skip
+        for a in range(nt):  # S[ta, tb] -= C[a, :] X[:, b]
+            ra = s.touch[t0 + a]
+            for b in range(nt):
+                acc = 0.0
+                for k in range(n):
+                    acc += mat[s.c_at[g] + a * n + k] * mat[s.b_at[g] + k * nt + b]
+                cb = s.touch[t0 + b]
+                mat[s.band[m] + ra * wb + (cb - ra + s.kl[m])] -= acc
+    if nb > 0:
+        return _band_factor(mat, s.band[m], nb, s.kl[m], s.ku[m], piv, s.start[m])
+    return True
+
+
+@njit(**JIT)
+def solve(s, mat, piv, rhs, x, z):
+    """x = matrix^-1 rhs with ``factor``'s factors (vectors indexed by unknown; ``z`` scratch
+    of the same length)."""
+    m = s.start.shape[0] - 2
+    n_all = s.start[m + 1]
+    b0 = s.start[m]
+    nb = n_all - b0
+    for i in range(n_all):
+        z[i] = rhs[s.order[i]]
+    for g in range(m):
+        n = s.start[g + 1] - s.start[g]
+        _band_solve(mat, s.band[g], n, s.kl[g], s.ku[g], piv, s.start[g], z, s.start[g], 1)
+        t0, nt = s.touch_at[g], s.touch_at[g + 1] - s.touch_at[g]
+        for a in range(nt):  # r_b -= C A^-1 r_l
+            acc = 0.0
+            for k in range(n):
+                acc += mat[s.c_at[g] + a * n + k] * z[s.start[g] + k]
+            z[b0 + s.touch[t0 + a]] -= acc
+    if nb > 0:
+        _band_solve(mat, s.band[m], nb, s.kl[m], s.ku[m], piv, b0, z, b0, 1)
+        for g in range(m):  # x_l = A^-1 r_l - X x_b
+            n = s.start[g + 1] - s.start[g]
+            t0, nt = s.touch_at[g], s.touch_at[g + 1] - s.touch_at[g]
+            for k in range(n):
+                acc = 0.0
+                for b in range(nt):
+                    acc += mat[s.b_at[g] + k * nt + b] * z[b0 + s.touch[t0 + b]]
+                z[s.start[g] + k] -= acc
+    for i in range(n_all):
+        x[s.order[i]] = z[i]

@@ -1,0 +1,335 @@
+"""The fixed-step implicit schemes of ``numerics.implicit`` (implicit Euler, theta, Newmark,
+generalized-alpha) on a system of bodies and lines.
+
+The unknowns of a step are the accelerations a1 of every velocity variable of the system
+(``y = [Q, V]``: bodies, lumped nodes, rigid segments' director rates, links' angle rates,
+natural strings' rates). The step's increment of the positions, d = h v0 + h^2 (pa a0 + b a1),
+moves each position variable additively, except a rigid body's orientation, which turns by the
+rotation vector d (earth frame): q1 = exp(d / 2) q0 (``Increments``); the alpha point is the
+same move by (1 - af) d. After the step the state is projected (unit quaternions and
+directors), as after every explicit step.
+
+Newton's matrix, d(residual)/d(a1), is built by finite differences of the residual over groups
+of accelerations that share no equation (``system.coordinates.colour`` of the Jacobian pattern
+of ``system.model.jacobian_sparsity``): a lumped line costs about nine residuals whatever its
+length. It is laid out and factorised by ``numerics.bordered``: each line (or tree of rigid
+lines) a banded block, the bodies' degrees of freedom the border, so a factorisation costs
+O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement
+(a rigid-segment line's accelerations depend on all its angles: its block is dense). The
+factors are kept from step to step while they serve (modified Newton: rebuilt when an
+iteration contracts slower than ``implicit.SLOW`` or after ``implicit.REFRESH`` iterations on
+one matrix, and whenever the step length changes), so most steps cost two or three residuals.
+The convergence test and the work counters are those of ``numerics.implicit``; with the
+matrix from differences, a Jacobian counts its residuals in the rhs evaluations.
+"""
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from seacable.bodies import kinematics
+from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
+from seacable.kernels.timefn import JIT
+from seacable.numerics import bordered
+from seacable.numerics.implicit import MAX_SUBSTEPS, REFRESH, SLOW
+from seacable.numerics.integrators import step_time
+from seacable.system import coordinates, model, rigid
+from seacable.system import kernel as system_kernel
+
+FD_STEP = 1.5e-8  # relative change of a position for the difference quotients
+
+
+class Increments(NamedTuple):
+    """How the velocity variables move the positions, and their scales."""
+
+    q_of_v: np.ndarray  # (n_v,) int: the position a velocity moves additively (-1: a rotation)
+    quat_q: np.ndarray  # (k,) int: first quaternion entry of each rigid body in y
+    quat_v: np.ndarray  # (k,) int: first angular-velocity entry, relative to V's start
+    scale: np.ndarray  # (n_v,) typical size of each position (difference quotients)
+    weight: np.ndarray  # (n_v,) metres per unit of each position (convergence test)
+
+
+def increments(case, system: model.BuiltSystem) -> Increments:
+    p = system.params
+    nq, nv = int(p.n_q), int(p.n_v)
+    q_of_v = np.full(nv, -1, dtype=np.int64)
+    used_q = np.zeros(nq, dtype=bool)
+    quat_q: list[int] = []
+    quat_v: list[int] = []
+    weight = np.ones(nv)
+    radius = np.ones(len(p.body_kind))
+    for i, b in enumerate(p.point_body):
+        radius[b] = max(radius[b], float(np.linalg.norm(p.point_offset[i])))
+    for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
+        q, v = int(p.body_q[b]), int(p.body_v[b]) - nq
+        q_of_v[v : v + 3] = np.arange(q, q + 3)
+        used_q[q : q + 3] = True
+        if p.body_rigid[b]:
+            quat_q.append(q + 3)
+            quat_v.append(v + 3)
+            used_q[q + 3 : q + 7] = True
+            weight[v + 3 : v + 6] = radius[b]
+    free_v = np.flatnonzero(q_of_v < 0)
+    free_v = np.setdiff1d(free_v, [v + c for v in quat_v for c in range(3)])
+    free_q = np.flatnonzero(~used_q)
+    if len(free_v) != len(free_q):
+        raise AssertionError("the system's positions and velocities do not pair")
+    q_of_v[free_v] = free_q
+    for li in range(len(p.rs_n)):
+        per = 1 if p.rs_kind[li] == rigid.PLANAR else 3
+        n, seg, v = int(p.rs_n[li]), int(p.rs_seg[li]), int(p.rs_v[li]) - nq
+        weight[v : v + per * n] = np.repeat(p.rs_length[seg : seg + n], per)
+    for li in range(len(p.nat_n)):
+        size = (3 if p.nat_cartesian[li] else 2) * (int(p.nat_n[li]) + 1)
+        v = int(p.nat_v[li]) - nq
+        weight[v : v + size] = p.nat_length[li] / p.nat_n[li]
+    positions = model.state_scale(case, system)[:nq]
+    scale = np.where(q_of_v >= 0, positions[np.maximum(q_of_v, 0)], 1.0)
+    return Increments(
+        q_of_v=q_of_v, quat_q=np.array(quat_q, dtype=np.int64),
+        quat_v=np.array(quat_v, dtype=np.int64), scale=scale, weight=weight,
+    )  # fmt: skip
+
+
+def layout(system: model.BuiltSystem) -> bordered.Bordered:
+    """Newton's matrix over the accelerations: the pattern of d(accelerations)/d(positions,
+    velocities) folded onto the velocity variables, the bodies' as the border."""
+    p = system.params
+    nq, nv = int(p.n_q), int(p.n_v)
+    full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
+    inc_q = np.full(nq, -1, dtype=np.int64)
+    rows, cols = [full.row[full.col >= nq]], [full.col[full.col >= nq] - nq]
+    body_v = np.zeros(nv, dtype=bool)
+    for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
+        v = int(p.body_v[b]) - nq
+        body_v[v : v + (6 if p.body_rigid[b] else 3)] = True
+    # a position's column goes to the velocities that move it (a quaternion: all three)
+    pairs_q: list[np.ndarray] = []
+    pairs_v: list[np.ndarray] = []
+    for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
+        q, v = int(p.body_q[b]), int(p.body_v[b]) - nq
+        inc_q[q : q + 3] = np.arange(v, v + 3)
+        if p.body_rigid[b]:
+            for c in range(4):
+                pairs_q.append(np.full(3, q + 3 + c))
+                pairs_v.append(np.arange(v + 3, v + 6))
+            inc_q[q + 3 : q + 7] = -2
+    free_q = np.flatnonzero(inc_q == -1)
+    free_v = np.flatnonzero(~body_v)
+    inc_q[free_q] = free_v
+    in_q = full.col < nq
+    direct = inc_q[full.col[in_q]] >= 0
+    rows.append(full.row[in_q][direct])
+    cols.append(inc_q[full.col[in_q]][direct])
+    if pairs_q:
+        turning = np.concatenate(pairs_q), np.concatenate(pairs_v)
+        by_q = {int(q): turning[1][turning[0] == q] for q in np.unique(turning[0])}
+        for r, c in zip(full.row[in_q][~direct], full.col[in_q][~direct], strict=True):
+            rows.append(np.full(3, r))
+            cols.append(by_q[int(c)])
+    row, col = np.concatenate(rows), np.concatenate(cols)
+    pattern = coordinates.sparse.csr_matrix((np.ones(len(row)), (row, col)), shape=(nv, nv))
+    pattern = pattern + coordinates.sparse.identity(nv, format="csr")
+    return bordered.structure(pattern, body_v, coordinates.colour(pattern))
+
+
+@njit(**JIT)
+def _advance(y0, d, frac, y, inc):
+    """The positions of y moved from y0's by frac times the increment d (velocity-sized)."""
+    for i in range(d.shape[0]):
+        q = inc.q_of_v[i]
+        if q >= 0:
+            y[q] = y0[q] + frac * d[i]
+    for k in range(inc.quat_q.shape[0]):
+        q, v = inc.quat_q[k], inc.quat_v[k]
+        tx, ty, tz = frac * d[v], frac * d[v + 1], frac * d[v + 2]
+        angle = math.sqrt(tx * tx + ty * ty + tz * tz)
+        qw, qx, qy, qz = y0[q], y0[q + 1], y0[q + 2], y0[q + 3]
+        if angle < 1e-300:
+            y[q], y[q + 1], y[q + 2], y[q + 3] = qw, qx, qy, qz
+            continue
+        s = math.sin(0.5 * angle) / angle
+        dw, dx, dy, dz = math.cos(0.5 * angle), s * tx, s * ty, s * tz
+        y[q] = dw * qw - dx * qx - dy * qy - dz * qz
+        y[q + 1] = dw * qx + dx * qw + dy * qz - dz * qy
+        y[q + 2] = dw * qy - dx * qz + dy * qw + dz * qx
+        y[q + 3] = dw * qz + dx * qy - dy * qx + dz * qw
+
+
+@njit(**JIT)
+def _state(y0, acc, a1, h, coef, frac, inc, y, d, nq):
+    """y: the state at the fraction ``frac`` (1: the step's end, 1 - af: the alpha point) of
+    the step from y0 with end acceleration a1 (positions moved, velocities blended)."""
+    pa, b, g = coef[0], coef[1], coef[2]
+    nv = a1.shape[0]
+    y[nq + nv :] = y0[nq + nv :]
+    for i in range(nv):
+        d[i] = h * y0[nq + i] + h * h * (pa * acc[i] + b * a1[i])
+        v1 = y0[nq + i] + h * ((1.0 - g) * acc[i] + g * a1[i])
+        y[nq + i] = frac * v1 + (1.0 - frac) * y0[nq + i]
+    _advance(y0, d, frac, y, inc)
+
+
+@njit(**JIT)
+def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res):
+    """res = (1 - am) a1 + am a0 - a(t + (1 - af) h, alpha point); returns the status."""
+    am, af = coef[3], coef[4]
+    _state(y0, acc, a1, h, coef, 1.0 - af, inc, ya, d, p.n_q)
+    status = system_kernel.rhs(t + (1.0 - af) * h, ya, p, w, ydot)
+    nq = p.n_q
+    for i in range(a1.shape[0]):
+        res[i] = (1.0 - am) * a1[i] + am * acc[i] - ydot[nq + i]
+    return status
+
+
+@njit(**JIT)
+def _jacobian(t, y0, acc, a1, h, coef, p, w, inc, lay, mat, r0, vec, work):
+    """Newton's matrix by differences of the residual, colour by colour, into ``mat``."""
+    nv = a1.shape[0]
+    ya, ydot, d, ap, rp, eps = vec[0], vec[1], vec[2][:nv], vec[3][:nv], vec[4][:nv], vec[5][:nv]
+    mat[:] = 0.0
+    reach = (1.0 - coef[4]) * coef[1] * h * h  # d(alpha-point position) / d(a1)
+    for c in range(lay.colour_ptr.shape[0] - 1):
+        ap[:] = a1
+        for k in range(lay.colour_ptr[c], lay.colour_ptr[c + 1]):
+            j = lay.colour_cols[k]
+            q = inc.q_of_v[j]
+            size = max(abs(y0[q]), inc.scale[j]) if q >= 0 else inc.scale[j]
+            eps[j] = FD_STEP * size / reach
+            ap[j] += eps[j]
+        status = _residual(t, y0, acc, ap, h, coef, p, w, inc, ya, ydot, d, rp)
+        work[2] += 1
+        if status != OK:
+            return status
+        for k in range(lay.colour_ptr[c], lay.colour_ptr[c + 1]):
+            j = lay.colour_cols[k]
+            for z in range(lay.nz_ptr[j], lay.nz_ptr[j + 1]):
+                r = lay.nz_row[z]
+                mat[lay.nz_dest[z]] += (rp[r] - r0[r]) / eps[j]
+    return OK
+
+
+@njit(**JIT)
+def _step(t, y, acc, h, coef, tol, max_iter, p, w, inc, lay, carry, vec, work):
+    """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds
+    (``implicit._step``'s iteration, with the matrix of ``_jacobian``)."""
+    q, fresh, mat, piv = carry
+    a1, trend = q[0], q[1]
+    nv = a1.shape[0]
+    ya, ydot, d, res, da, z = vec[0], vec[1], vec[2][:nv], vec[6][:nv], vec[7][:nv], vec[8][:nv]
+    b = coef[1]
+    a1[:] = acc
+    if fresh[2] == h:
+        a1 += trend
+    uses = 0
+    previous = math.inf
+    for _ in range(max_iter):
+        status = _residual(t, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res)
+        work[2] += 1
+        if status == OK and (fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH):
+            status = _jacobian(t, y, acc, a1, h, coef, p, w, inc, lay, mat, res, vec, work)
+            work[4] += 1
+            if status == OK and not bordered.factor(lay, mat, piv):
+                status = NON_FINITE
+            fresh[0], fresh[1] = 1.0, h
+            uses = 0
+            previous = math.inf
+        if status != OK:
+            work[3] += 1
+            fresh[0] = 0.0
+            return status
+        uses += 1
+        work[5] += 1
+        bordered.solve(lay, mat, piv, res, da, z)
+        largest = 0.0
+        for i in range(a1.shape[0]):
+            a1[i] -= da[i]
+            largest = max(largest, abs(da[i]) * inc.weight[i])
+        if not math.isfinite(largest):
+            work[3] += 1
+            fresh[0] = 0.0
+            return NON_FINITE
+        if largest > SLOW * previous:
+            uses = REFRESH
+        previous = largest
+        if b * h * h * largest <= tol:
+            _state(y, acc, a1, h, coef, 1.0, inc, ya, d, p.n_q)
+            system_kernel.project(ya, p)
+            y[:] = ya
+            for i in range(a1.shape[0]):
+                trend[i] = a1[i] - acc[i]
+            fresh[2] = h
+            acc[:] = a1
+            work[0] += 1
+            return OK
+    fresh[0] = 0.0
+    fresh[2] = 0.0
+    return NEWTON_FAILED
+
+
+def newton(case, system: model.BuiltSystem) -> tuple[Increments, bordered.Bordered]:
+    """What a system's implicit steps need besides its parameters."""
+    return increments(case, system), layout(system)
+
+
+def carry(system: model.BuiltSystem, lay: bordered.Bordered):
+    """The arrays a run carries from step to step (``numerics.integrators``, contract point
+    5): [a1, the last step's change of acceleration], [factors valid, their step length, the
+    step length of that change], the factors and their row swaps."""
+    nv = int(system.params.n_v)
+    return (
+        np.zeros((2, nv)), np.zeros(3), np.zeros(lay.size), np.zeros(nv, dtype=np.int64)
+    )  # fmt: skip
+
+
+@njit(**JIT)
+def initial_acceleration(t, y, p, w, acc):
+    """The system's accelerations at (t, y): the a0 a run starts from. Returns the status."""
+    ydot = np.empty_like(y)
+    status = system_kernel.rhs(t, y, p, w, ydot)
+    acc[:] = ydot[p.n_q : p.n_q + p.n_v]
+    return status
+
+
+@njit(**JIT)
+def chunk(
+    first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
+    w, inc, lay, carried, states, times, work,
+):  # fmt: skip
+    """``implicit.newmark_chunk`` for a system: the same steps, retries in 2, 4, ...
+    MAX_SUBSTEPS parts after a failed Newton iteration, output rows and counters."""
+    ny = y.shape[0]
+    nv = acc.shape[0]
+    dt = output_interval / steps_per_output
+    vec = np.empty((9, ny))
+    y_saved = np.empty(ny)
+    acc_saved = np.empty(nv)
+    step = 0
+    for j in range(n_outputs):
+        for _ in range(steps_per_output):
+            t = step_time(first_output, output_interval, steps_per_output, step, dt)
+            y_saved[:] = y
+            acc_saved[:] = acc
+            parts = 1
+            while True:
+                status = OK
+                h = dt / parts
+                for k in range(parts):
+                    status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, w, inc, lay,
+                                   carried, vec, work)  # fmt: skip
+                    if status != OK:
+                        break
+                if status == OK:
+                    break
+                work[1] += 1
+                y[:] = y_saved
+                acc[:] = acc_saved
+                if parts >= MAX_SUBSTEPS:
+                    return j, status
+                parts *= 2
+            step += 1
+        states[j, :] = y
+        times[j] = (first_output + j + 1) * output_interval
+    return n_outputs, OK

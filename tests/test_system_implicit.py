@@ -1,0 +1,181 @@
+"""The fixed-step implicit schemes on systems of bodies and lines (numerics.system_implicit):
+the bordered banded solver against a dense solve, second-order convergence of Newmark and
+generalized-alpha on a spinning rigid body (its orientation moved by rotation vectors), and
+every line model against a tight dopri5 run at steps far beyond the explicit limit."""
+
+import numpy as np
+import pytest
+from scipy import sparse
+from scipy.spatial.transform import Rotation
+
+import seacable
+from helpers import turning_body_case
+from seacable.numerics import bordered
+from seacable.system.coordinates import colour
+
+
+def _bordered_matrix(rng, sizes, n_border, bandwidth):
+    """A random matrix of blocks (banded, of the given sizes) coupled through ``n_border``
+    unknowns scattered among them, and the border's mask."""
+    n = sum(sizes) + n_border
+    border = np.zeros(n, dtype=bool)
+    border[rng.choice(n, n_border, replace=False)] = True
+    inner = np.flatnonzero(~border)
+    where = np.flatnonzero(border)
+    a = np.zeros((n, n))
+    first = 0
+    for size in sizes:
+        block = inner[first : first + size]
+        first += size
+        for i in range(size):
+            for j in range(max(0, i - bandwidth), min(size, i + bandwidth + 1)):
+                a[block[i], block[j]] = rng.normal()
+            for b in where[:2]:
+                a[block[i], b] = rng.normal() * (i % 3 == 0)
+                a[b, block[i]] = rng.normal() * (i % 4 == 0)
+    a[np.ix_(where, where)] = rng.normal(size=(n_border, n_border))
+    return a + 3.0 * np.eye(n), border
+
+
+@pytest.mark.parametrize(
+    ("sizes", "n_border", "bandwidth"),
+    [([10, 20], 3, 2), ([50], 0, 1), ([], 4, 0), ([5, 5, 5], 6, 4), ([12], 2, 11)],
+)
+def test_bordered_solver_matches_a_dense_solve(sizes, n_border, bandwidth):
+    rng = np.random.default_rng(len(sizes) + n_border)
+    a, border = _bordered_matrix(rng, sizes, n_border, bandwidth)
+    pattern = sparse.csr_matrix(a != 0.0)
+    layout = bordered.structure(pattern, border, colour(pattern))
+    assert len(layout.start) - 2 == len(sizes)  # blocks that do not couple stay apart
+    piv = np.zeros(len(a), dtype=np.int64)
+    mat = np.zeros(layout.size)
+    for j in range(len(a)):  # as a finite-difference Jacobian fills it
+        for k in range(layout.nz_ptr[j], layout.nz_ptr[j + 1]):
+            mat[layout.nz_dest[k]] += a[layout.nz_row[k], j]
+    assert bordered.factor(layout, mat, piv)
+    rhs = rng.normal(size=len(a))
+    x, scratch = np.empty_like(rhs), np.empty_like(rhs)
+    bordered.solve(layout, mat, piv, rhs, x, scratch)
+    assert np.abs(x - np.linalg.solve(a, rhs)).max() < 1e-12 * np.abs(x).max()
+
+
+def test_a_singular_block_is_reported():
+    a = np.eye(4)
+    a[1, 1] = 0.0
+    pattern = sparse.csr_matrix(np.ones((4, 4)))
+    layout = bordered.structure(pattern, np.zeros(4, dtype=bool), colour(pattern))
+    mat = np.zeros(layout.size)
+    for j in range(4):
+        for k in range(layout.nz_ptr[j], layout.nz_ptr[j + 1]):
+            mat[layout.nz_dest[k]] += a[layout.nz_row[k], j]
+    assert not bordered.factor(layout, mat, np.zeros(4, dtype=np.int64))
+
+
+def _spinning(integrator, dt=None, **simulation):
+    """A rigid body (asymmetric inertia, off-centre gravity) on 6x6 linear springs, spinning
+    and swinging; a lumped line between two fixed points beside it (a system needs a line)."""
+    sim = {"duration": 1.0, "output_interval": 0.1, "integrator": integrator, **simulation}
+    if dt is not None:
+        sim["time_step"] = dt
+    case = turning_body_case(sim)
+    case["bodies"] = [*case["bodies"][:2], {"name": "low", "type": "fixed",
+                                            "position": [0.0, 0.0, -6.5]}]  # fmt: skip
+    case["lines"] = [{**case["lines"][0], "to": "low"}]
+    case["bodies"][1]["external forces"].append(
+        {"model": "linear_stiffness", "diagonal": [2000.0, 2000.0, 2000.0, 40.0, 30.0, 20.0]}
+    )
+    return seacable.simulate(seacable.load_case(case)).dataset["bodies/float"]
+
+
+def _errors(body, reference):
+    position = max(
+        float(np.abs(body[k].values - reference[k].values).max())
+        for k in ("position_x", "position_y", "position_z")
+    )
+
+    def turn(rows):
+        angles = np.c_[rows["roll"].values, rows["pitch"].values, rows["yaw"].values]
+        return Rotation.from_euler("xyz", angles)
+
+    return position, float((turn(body) * turn(reference).inv()).magnitude().max())
+
+
+@pytest.mark.parametrize("integrator", ["newmark", "generalized_alpha"])
+def test_a_spinning_rigid_body_converges_at_second_order(integrator):
+    """Halving the step divides the position and the orientation errors by four: the
+    orientation's increments (rotation vectors) are consistent with the scheme."""
+    reference = _spinning("dopri5", rtol=1e-12)
+    assert np.ptp(reference["yaw"].values) > 1.0  # it turns
+    coarse = _errors(_spinning(integrator, 5e-3, newton_tolerance=1e-12), reference)
+    fine = _errors(_spinning(integrator, 2.5e-3, newton_tolerance=1e-12), reference)
+    for c, f in zip(coarse, fine, strict=True):
+        assert 3.5 < c / f < 4.5
+    assert fine[1] < 0.03
+
+
+def _example(name, integrator, duration, **simulation):
+    case = seacable.load_case(f"examples/{name}.yaml")
+    sim = case.simulation.model_copy(
+        update={"integrator": integrator, "duration": duration, **simulation}
+    )
+    return seacable.simulate(case.model_copy(update={"simulation": sim})).dataset
+
+
+def _worst(ds, reference) -> tuple[float, str]:
+    """The largest difference of any output over the largest magnitude of its kind (the three
+    components of a vector together)."""
+    worst = (0.0, "")
+    for node in reference.subtree:
+        rows = node.ds
+        for name, values in rows.data_vars.items():
+            if name.endswith("energy") or name == "constraint_error":
+                continue
+            kind = name[:-2] if name[-2:] in ("_x", "_y", "_z") else name
+            family = [k for k in rows.data_vars if k == name or k[:-2] == kind]
+            scale = max(float(np.nanmax(np.abs(rows[k].values))) for k in family)
+            if scale < 1e-6:
+                continue
+            gap = float(np.nanmax(np.abs(ds[node.path][name].values - values.values))) / scale
+            worst = max(worst, (gap, f"{node.path}/{name}"))
+    return worst
+
+
+@pytest.mark.parametrize(
+    ("example", "integrator", "dt", "duration", "within"),
+    [
+        # 40 lumped segments, part on the seabed, fairlead surging: 0.02 s is six times the
+        # rk4 stability limit (omega dt = 2.8)
+        ("catenary_mooring_line_surge", "generalized_alpha", 0.02, 6.0, 2e-3),
+        ("catenary_mooring_line_surge", "newmark", 0.01, 6.0, 1e-5),
+        ("two_buoys_moored_with_hawser", "newmark", 0.01, 2.0, 1e-4),  # a loop, point bodies
+        ("platform_three_catenary_lines", "newmark", 0.01, 2.0, 1e-3),  # a 6-DOF rigid body
+        ("thesis_6_1_sim2_submerged_12_links", "newmark", 0.01, 2.0, 1e-3),  # planar links
+        ("thesis_6_3_sim1_two_floating_structures", "newmark", 0.005, 2.0, 5e-3),
+        ("rising_body_four_cables", "newmark", 0.005, 2.0, 1e-3),  # 3D rigid segments
+    ],
+)
+def test_implicit_runs_of_the_examples_agree_with_dopri5(example, integrator, dt, duration,
+                                                         within):  # fmt: skip
+    reference = _example(example, "dopri5", duration, rtol=1e-9)
+    ds = _example(example, integrator, duration, time_step=dt)
+    assert ds.attrs["status"] == "complete"
+    gap, where = _worst(ds, reference)
+    assert gap < within, where
+    attrs = ds.attrs
+    assert 0 < attrs["solver_jacobian_evaluations"] <= attrs["solver_linear_solves"]
+
+
+def test_natural_string_converges_at_second_order():
+    """Poth's string in its natural variables (strain and angle per node) with Newmark."""
+    name, duration = "poth_string_pendulum_natural_variables", 1.0
+    reference = _example(name, "dopri5", duration, rtol=1e-10)
+    coarse = _worst(_example(name, "newmark", duration, time_step=0.01), reference)[0]
+    fine = _worst(_example(name, "newmark", duration, time_step=0.005), reference)[0]
+    assert 3.5 < coarse / fine < 4.5
+
+
+def test_the_servo_is_refused_by_the_implicit_schemes():
+    case = seacable.load_case("examples/jacquot_marichal_trajectory_servo.yaml")
+    sim = case.simulation.model_copy(update={"integrator": "newmark"})
+    with pytest.raises(seacable.CaseError, match=r"cannot advance the servo's force \(bodies\."):
+        seacable.simulate(case.model_copy(update={"simulation": sim}))
