@@ -11,6 +11,13 @@ import pytest
 
 import seacable
 from helpers import chain_case
+from seacable.case import legacy
+
+
+def _as_system(data):
+    """The case as a system of bodies and lines (``seacable upgrade``)."""
+    return legacy.upgrade(seacable.load_case(data))
+
 
 TIMING_ATTRIBUTES = ("created",)
 ALL_AT_ONCE = 10**9
@@ -19,44 +26,46 @@ ALL_AT_ONCE = 10**9
 def _lumped_line(integrator, **simulation):
     """An eight-segment mooring chain with part of it on the seabed (contact, friction), its
     fairlead surging: Newton's iteration and the adaptive steps have work to do."""
-    return {
-        "environment": {
-            "water_depth": 200.0,
-            "seabed": {"stiffness": 3.0e5, "damping": 3.0e3, "friction_coefficient": 0.5},
-        },
-        "cables": [
-            {
-                "model": "lumped_mass",
-                "links": 8,
-                "length": 250.0,
-                "diameter": 0.137,
-                "mass_per_length": 126.0,
-                "axial_stiffness": 5.8e8,
-                "axial_damping_time": 0.002,
-                "drag_coefficient_normal": 1.2,
-                "drag_coefficient_tangential": 0.1,
-                "top": {
-                    "type": "imposed",
-                    "x": {"kind": "sine", "amplitude": 5.0, "period": 2.0},
-                    "z": -10.0,
-                },
-                "bottom": {"type": "pinned", "anchor": [-100.0, 0.0, -200.0]},
-                "initial": {"shape": "catenary"},
-            }
-        ],
-        "simulation": {
-            "duration": 2.0,
-            "output_interval": 0.1,
-            "integrator": integrator,
-            **simulation,
-        },
-    }
+    return _as_system(
+        {
+            "environment": {
+                "water_depth": 200.0,
+                "seabed": {"stiffness": 3.0e5, "damping": 3.0e3, "friction_coefficient": 0.5},
+            },
+            "cables": [
+                {
+                    "model": "lumped_mass",
+                    "links": 8,
+                    "length": 250.0,
+                    "diameter": 0.137,
+                    "mass_per_length": 126.0,
+                    "axial_stiffness": 5.8e8,
+                    "axial_damping_time": 0.002,
+                    "drag_coefficient_normal": 1.2,
+                    "drag_coefficient_tangential": 0.1,
+                    "top": {
+                        "type": "imposed",
+                        "x": {"kind": "sine", "amplitude": 5.0, "period": 2.0},
+                        "z": -10.0,
+                    },
+                    "bottom": {"type": "pinned", "anchor": [-100.0, 0.0, -200.0]},
+                    "initial": {"shape": "catenary"},
+                }
+            ],
+            "simulation": {
+                "duration": 2.0,
+                "output_interval": 0.1,
+                "integrator": integrator,
+                **simulation,
+            },
+        }
+    )
 
 
 def _rigid_chain(integrator, **simulation):
     """A planar chain of six rigid links swinging in water from a heaving floating structure:
     the implicit schemes keep its factorised Newton matrix from step to step."""
-    return chain_case(
+    return _as_system(chain_case(
         n=6,
         environment={"water_density": 1025.0},
         top={
@@ -68,13 +77,25 @@ def _rigid_chain(integrator, **simulation):
         initial={"shape": "arc", "top_angle_deg": 30.0, "bottom_angle_deg": 60.0},
         simulation={"duration": 2.0, "output_interval": 0.1, "integrator": integrator,
                     **simulation},
-    )  # fmt: skip
+    ))  # fmt: skip
+
+
+def _buoys(integrator, **simulation):
+    """Two moored buoys joined by a hawser (a loop of lumped lines through point bodies), the
+    first 2 s: the implicit schemes' border of body unknowns."""
+    case = seacable.load_case("examples/two_buoys_moored_with_hawser.yaml")
+    data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
+    data["start"] = "as_given"  # lines at rest between the buoys where the case puts them
+    data["simulation"] = {"duration": 2.0, "output_interval": 0.1, "integrator": integrator,
+                          **simulation}  # fmt: skip
+    return data
 
 
 CASES = {
     "rk4 rigid": (_rigid_chain, "rk4", {"time_step": 0.002}),
     "dopri5 rigid": (_rigid_chain, "dopri5", {"rtol": 1e-7}),
     "dopri5 lumped": (_lumped_line, "dopri5", {}),
+    "newmark point body": (_buoys, "newmark", {"time_step": 0.01}),
     "implicit_euler lumped": (_lumped_line, "implicit_euler", {"time_step": 0.01}),
     "theta lumped": (_lumped_line, "theta", {"time_step": 0.01, "theta": 0.6}),
     "newmark lumped": (_lumped_line, "newmark", {"time_step": 0.01}),
