@@ -28,7 +28,7 @@ def _as_3d(case, **update):
 @pytest.mark.parametrize(
     "example",
     [
-        "thesis_6_1_sim6_submerged_60_links_forced",
+        pytest.param("thesis_6_1_sim6_submerged_60_links_forced", marks=pytest.mark.slow),
         "thesis_6_2_pinned_exact_60_links",
         "thesis_6_3_sim3_two_floating_structures",
         "thesis_6_4_sim2_end_forces",

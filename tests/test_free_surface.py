@@ -204,9 +204,8 @@ def test_undamped_buoy_leaping_out_of_the_water_keeps_its_energy(model):
     assert np.ptp(energy) < 1e-7 * swing
 
 
-@pytest.mark.parametrize(
-    "model", ["lumped_mass", pytest.param("rigid_segments_3d", marks=pytest.mark.slow)]
-)
+@pytest.mark.slow  # the single-cable core (25 s); systems: tests/test_system_implicit.py
+@pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
 def test_implicit_scheme_floats_the_buoy_as_rk4(model):
     # 0.3 m off equilibrium: the waterplane area, so the heave stiffness in the Newton matrix,
     # changes by a quarter over the swing
@@ -219,6 +218,7 @@ def test_implicit_scheme_floats_the_buoy_as_rk4(model):
     np.testing.assert_allclose(_heave(implicit)[1], _heave(explicit)[1], atol=2e-3)
 
 
+@pytest.mark.slow  # the single-cable core's star (35 s)
 @pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
 def test_shared_body_of_a_star_floats_at_its_draft(model):
     draft = _sphere_draft()
@@ -442,6 +442,7 @@ def test_planar_and_3d_chains_agree_through_the_surface():
                                atol=1e-6)  # fmt: skip
 
 
+@pytest.mark.slow  # the single-cable core (36 s); systems: tests/test_system_implicit.py
 @pytest.mark.parametrize("model", ["rigid_links", "rigid_segments_3d"])
 def test_implicit_scheme_swings_the_chain_through_the_surface_as_rk4(model):
     # the Newton matrix leaves out the change of submerged length (the residual is exact): it

@@ -40,6 +40,7 @@ def _rising(integrator, name):
 IMPLICIT = pytest.param("generalized_alpha", marks=pytest.mark.slow)
 
 
+@pytest.mark.slow  # the single-cable core's star (19 s); systems: the golden four-cable body
 @pytest.mark.parametrize("integrator", ["rk4", IMPLICIT])
 def test_star_of_four_is_its_guided_quarter(integrator):
     """Symmetry holds the shared body on its vertical: each cable of the star then moves as

@@ -3,9 +3,12 @@ the bordered banded solver against a dense solve, second-order convergence of Ne
 generalized-alpha on a spinning rigid body (its orientation moved by rotation vectors), and
 every line model against a tight dopri5 run at steps far beyond the explicit limit."""
 
+import math
+
 import numpy as np
 import pytest
 from scipy import sparse
+from scipy.optimize import brentq
 from scipy.spatial.transform import Rotation
 
 import seacable
@@ -179,3 +182,31 @@ def test_the_servo_is_refused_by_the_implicit_schemes():
     sim = case.simulation.model_copy(update={"integrator": "newmark"})
     with pytest.raises(seacable.CaseError, match=r"cannot advance the servo's force \(bodies\."):
         seacable.simulate(case.model_copy(update={"simulation": sim}))
+
+
+def _buoy(integrator, dt):
+    """A sphere (radius 1 m, 800 kg, 400 kg added mass wholly submerged) released 0.3 m below
+    its draft on a slack, light line (3 g/m in water) from an anchor 20 m down: its waterplane, so
+    its heave stiffness, changes by a quarter over the swing."""
+    radius, mass, rho = 1.0, 800.0, 1025.0
+    draft = brentq(lambda d: rho * math.pi * d * d * (3 * radius - d) / 3 - mass, 0.0, 2.0)
+    rope = {"name": "rope", "diameter": 0.002, "mass_per_length": 2.0 * rho * math.pi * 1e-6,
+            "axial_stiffness": 1e5, "drag_coefficient_normal": 0.0,
+            "added_mass_coefficient": 0.0}  # fmt: skip
+    buoy = {"name": "buoy", "type": "point", "position": [5.0, 0.0, radius - draft - 0.3],
+            "mass": mass, "added_mass": 400.0, "shape": {"kind": "sphere", "radius": radius},
+            "external forces": [{"model": "gravity"}, {"model": "buoyancy"}]}  # fmt: skip
+    anchor = {"name": "anchor", "type": "fixed", "position": [0.0, 0.0, -20.0]}
+    case = {"name": "buoy", "start": "as_given", "environment": {"water_depth": 30.0},
+            "bodies": [anchor, buoy], "line_types": [rope],
+            "lines": [{"name": "line", "model": "lumped_mass", "from": "anchor", "to": "buoy",
+                       "sections": [{"type": "rope", "length": 30.0, "segments": 2}]}],
+            "simulation": {"duration": 3.0, "output_interval": 0.005, "integrator": integrator,
+                           "time_step": dt}}  # fmt: skip
+    return seacable.simulate(seacable.load_case(case)).dataset["bodies/buoy/position_z"].values
+
+
+def test_a_buoy_through_its_waterline_floats_as_with_rk4():
+    explicit = _buoy("rk4", 1e-3)
+    assert np.ptp(explicit) > 0.5  # it swings through its draft
+    np.testing.assert_allclose(_buoy("newmark", 2.5e-3), explicit, atol=3e-4)  # measured 6e-5
