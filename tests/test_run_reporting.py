@@ -93,9 +93,9 @@ def _diverge(data):
 def test_divergence_advice_names_only_options_the_model_takes():
     lumped = _diverge(_lumped_line("newmark", time_step=0.01))
     assert "joint damping" not in lumped and "joint_damping" not in lumped
-    assert "axial_damping_time" in lumped
+    assert "axial_damping_ratio" in lumped
     rigid = _diverge(_rigid_chain("newmark", time_step=0.01))
-    assert "joint_damping" in rigid and "axial_damping_time" not in rigid
+    assert "joint_damping" in rigid and "axial_damping" not in rigid
 
 
 def test_a_slow_compilation_is_announced(caplog, monkeypatch):

@@ -200,13 +200,6 @@ def test_lumped_servo_error_shrinks_with_a_refreshed_stiffness(lumped):
     assert refreshed["tracking_error"].values.max() < 0.9 * error
 
 
-def test_lumped_servo_refuses_implicit_schemes():
-    case = _lumped("stiffness_servo")
-    sim = case.simulation.model_copy(update={"integrator": "generalized_alpha"})
-    with pytest.raises(seacable.CaseError, match="servo's force"):
-        seacable.simulate(case.model_copy(update={"simulation": sim}))
-
-
 # ---- what a result records -----------------------------------------------------------------------
 TRAJECTORY_NAMES = ("target_x", "target_y", "target_z", "tracking_error")
 SERVO_NAMES = ("servo_force_x", "servo_force_y", "servo_force_z")

@@ -22,7 +22,7 @@ from seacable.models import (
 )
 from seacable.models.common import case_variables
 from seacable.models.servo_loop import check_servo_loop
-from seacable.numerics import implicit, integrators, stiff, system_implicit
+from seacable.numerics import integrators, stiff, system_implicit
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -46,8 +46,8 @@ DEFAULT_ATOL = (
 _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
 
 
-# fixed-step implicit schemes of ``numerics.implicit`` (models with a block-tridiagonal Newton
-# matrix: those whose module sets NEWTON = True)
+# fixed-step implicit schemes of ``numerics.system_implicit`` (systems of bodies and lines: the
+# model modules that set NEWTON = True)
 IMPLICIT = ("implicit_euler", "theta", "newmark", "generalized_alpha")
 FIXED_STEP = ("rk4", *IMPLICIT)
 
@@ -128,7 +128,7 @@ def _solver_settings(sim: schema.Simulation) -> dict:
 
 
 def _scheme(sim: schema.Simulation) -> np.ndarray:
-    return implicit.scheme(
+    return system_implicit.scheme(
         sim.integrator,
         theta=sim.theta,
         gamma=sim.newmark_gamma,
@@ -141,10 +141,10 @@ def _check_integrator(case: schema.Case | SystemCase, model) -> None:
     integrator = case.simulation.integrator
     if integrator in IMPLICIT and not model.NEWTON:
         raise CaseError(
-            f"simulation.integrator: '{integrator}' needs a model with a block-tridiagonal "
-            f"Newton matrix (rigid_links, rigid_segments_3d, lumped_mass, natural_string); "
-            f"this case runs with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, "
-            "lsoda, cvode)"
+            f"simulation.integrator: '{integrator}' runs systems of bodies and lines only; "
+            "write this single-cable case as one (seacable upgrade case.yaml -o system.yaml), "
+            "or run it with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, "
+            "cvode)"
         )
     if integrator in IMPLICIT:
         getattr(model, "check_implicit", lambda case: None)(case)
@@ -223,11 +223,9 @@ class _Run:
         self.fsal = np.zeros(1, dtype=np.int64)
         self.carry = None
         self.newton = None  # a system's implicit steps: how increments move, the matrix layout
-        if self.sim.integrator in IMPLICIT and model is system_model:
+        if self.sim.integrator in IMPLICIT:
             self.newton = system_implicit.newton(case, system)
             self.carry = system_implicit.carry(system, self.newton[1])
-        elif self.sim.integrator in IMPLICIT:
-            self.carry = implicit.newmark_carry(self.y, self.p)
         self.atol, self.magnitude = absolute_tolerance(case, model, system)
         # adaptive integrators: state values at output times whose error weight atol set
         # (above rtol |y|, and above rtol times the largest |y| so far when that is tracked),
@@ -265,14 +263,10 @@ class _Run:
             integrators.rk4_chunk(0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
         elif sim.integrator in stiff.STIFF:
             integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
-        elif sim.integrator in IMPLICIT:
-            first = system_implicit if self.newton else implicit
-            if first.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
+        elif sim.integrator in IMPLICIT and self.newton is not None:
+            if system_implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
-            if self.newton:
-                carry = system_implicit.carry(self.system, self.newton[1])
-            else:
-                carry = implicit.newmark_carry(y, self.p)
+            carry = system_implicit.carry(self.system, self.newton[1])
             self._newmark(y, 1, 0, empty, np.empty(0), work, carry)
         else:
             integrators.dopri5_chunk(
@@ -326,15 +320,9 @@ class _Run:
     def _newmark(self, y, steps, count, states, times, work, carry):
         sim = self.sim
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
-        if self.newton:
-            return system_implicit.chunk(
-                self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
-                sim.max_newton_iterations, self.p, self.w, *self.newton, carry, states, times,
-                work,
-            )  # fmt: skip
-        return implicit.newmark_chunk(
+        return system_implicit.chunk(
             self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
-            sim.max_newton_iterations, self.p, self.w, states, times, work, carry,
+            sim.max_newton_iterations, self.p, self.w, *self.newton, carry, states, times, work,
         )  # fmt: skip
 
     def advance(self, count: int) -> int:
@@ -584,8 +572,9 @@ def _divergence_message(run: _Run, status: int, settings: dict) -> str:
         )
     else:
         advice = "tighten rtol/atol or set max_step"
+    damping = getattr(run.model, "damping_advice", lambda system: run.model.DAMPING_ADVICE)
     return (
         f"simulation diverged after t = {run.t:.6g} s: {what}; fastest motion at {where}. Try: "
-        f"{advice}; {run.model.DAMPING_ADVICE}; check very stiff ties or springs. Results up to "
+        f"{advice}; {damping(run.system)}; check very stiff ties or springs. Results up to "
         f"t = {run.t:.6g} s are kept."
     )

@@ -12,14 +12,10 @@ from seacable.kernels.lumped import (
     _SF,
     _SK,
     _TX,
-    BOTTOM_PINNED,
-    BOTTOM_TRAJECTORY,
     _free_axes,
     _node_mass_into,
     is_held,
     rhs,
-    target_state,
-    top_state,
 )
 from seacable.kernels.timefn import JIT
 
@@ -287,26 +283,109 @@ def _held_rows(p, diag, lower, res):
         res[3 * n + r] = 0.0
 
 
+# ---- the block-tridiagonal solver (3x3 blocks; O(n)) -------------------------------------------
+@njit(**JIT)
+def _inverse3(a, out):
+    """out = inverse of the 3x3 row-major ``a``; returns the determinant (0: singular)."""
+    c00 = a[4] * a[8] - a[5] * a[7]
+    c01 = a[5] * a[6] - a[3] * a[8]
+    c02 = a[3] * a[7] - a[4] * a[6]
+    det = a[0] * c00 + a[1] * c01 + a[2] * c02
+    if det == 0.0 or not math.isfinite(det):
+        return 0.0
+    inv = 1.0 / det
+    out[0] = c00 * inv
+    out[1] = (a[2] * a[7] - a[1] * a[8]) * inv
+    out[2] = (a[1] * a[5] - a[2] * a[4]) * inv
+    out[3] = c01 * inv
+    out[4] = (a[0] * a[8] - a[2] * a[6]) * inv
+    out[5] = (a[2] * a[3] - a[0] * a[5]) * inv
+    out[6] = c02 * inv
+    out[7] = (a[1] * a[6] - a[0] * a[7]) * inv
+    out[8] = (a[0] * a[4] - a[1] * a[3]) * inv
+    return det
+
+
+@njit(**JIT)
+def _matmul3(a, b, out):
+    for r in range(3):
+        for c in range(3):
+            out[3 * r + c] = a[3 * r] * b[c] + a[3 * r + 1] * b[3 + c] + a[3 * r + 2] * b[6 + c]
+
+
+@njit(**JIT)
+def block_tridiagonal_factor(diag, upper, lower, factor, chain=0):
+    """Block LU (Thomas) of the block-tridiagonal matrix with 3x3 blocks (row-major, 9 values
+    each): ``diag[k]`` on the diagonal, ``upper[k]`` at (k, k+1), ``lower[k]`` at (k+1, k).
+    Overwrites ``diag`` with the inverted pivots and fills ``factor[k] = lower[k] pivot[k]^-1``
+    (``factor`` as long as ``lower``); O(n). Returns False when a pivot is singular.
+
+    With ``chain`` > 0 the matrix is a star (``kernels.lumped_star``): chains of ``chain`` nodes
+    one after another, then one hub node (the last) coupled to each chain's last node, whose
+    ``upper``/``lower`` entries hold that coupling; chains do not couple to each other. Each
+    chain is eliminated towards the hub, then the hub. ``chain`` = 0: one chain (the plain
+    block-tridiagonal matrix)."""
+    m = diag.shape[0]
+    hub = m - 1
+    if chain <= 0:
+        chain = max(hub, 1)
+    inv = np.empty(9)
+    tmp = np.empty(9)
+    for k in range(hub):
+        if _inverse3(diag[k], inv) == 0.0:
+            return False
+        for c in range(9):
+            diag[k, c] = inv[c]
+        # eliminate node k from the next one's rows (a chain's last node: the hub's)
+        following = hub if k % chain == chain - 1 else k + 1
+        _matmul3(lower[k], diag[k], factor[k])
+        _matmul3(factor[k], upper[k], tmp)
+        for c in range(9):
+            diag[following, c] -= tmp[c]
+    if _inverse3(diag[hub], inv) == 0.0:
+        return False
+    for c in range(9):
+        diag[hub, c] = inv[c]
+    return True
+
+
 @njit(inline="always", **JIT)
-def prescribe(t, y, acc, p):
-    """Put the prescribed nodes (the top; a pinned end) at their exact position, velocity and
-    acceleration at time t."""
-    n = p.n
-    v0 = 3 * (n + 1)
-    pos, vel, a = top_state(t, y, p)
-    for c in range(2 if p.top_kind == c3.TOP_HEAVE else 3):
-        y[c] = pos[c]
-        y[v0 + c] = vel[c]
-        acc[c] = a[c]
-    if p.bottom_kind == BOTTOM_PINNED:  # a pin or a guide: at rest on its held axes
-        for c in range(3):
-            if p.constrained[c] != 0.0:
-                y[3 * n + c] = p.pin[c]
-                y[v0 + 3 * n + c] = 0.0
-                acc[3 * n + c] = 0.0
-    elif p.bottom_kind == BOTTOM_TRAJECTORY:
-        tpos, tvel, tacc = target_state(t, y, p)
-        for c in range(3):
-            y[3 * n + c] = tpos[c]
-            y[v0 + 3 * n + c] = tvel[c]
-            acc[3 * n + c] = tacc[c]
+def _less_product(x, k, g, v, j):
+    """x[k] -= g v[j] for 3-vectors at block k of x and j of v and the 3x3 block g."""
+    p0, p1, p2 = v[3 * j], v[3 * j + 1], v[3 * j + 2]
+    x[3 * k] -= g[0] * p0 + g[1] * p1 + g[2] * p2
+    x[3 * k + 1] -= g[3] * p0 + g[4] * p1 + g[5] * p2
+    x[3 * k + 2] -= g[6] * p0 + g[7] * p1 + g[8] * p2
+
+
+@njit(**JIT)
+def block_tridiagonal_apply(diag, upper, factor, rhs, x, chain=0):
+    """Solve with the factors of ``block_tridiagonal_factor`` (forward, then back
+    substitution); O(n). ``chain`` as given to the factorisation."""
+    m = diag.shape[0]
+    hub = m - 1
+    if chain <= 0:
+        chain = max(hub, 1)
+    x[: 3 * m] = rhs[: 3 * m]
+    for k in range(hub):
+        _less_product(x, hub if k % chain == chain - 1 else k + 1, factor[k], x, k)
+    for k in range(m - 1, -1, -1):
+        if k < hub:
+            _less_product(x, k, upper[k], x, hub if k % chain == chain - 1 else k + 1)
+        d = diag[k]
+        r0, r1, r2 = x[3 * k], x[3 * k + 1], x[3 * k + 2]
+        x[3 * k] = d[0] * r0 + d[1] * r1 + d[2] * r2
+        x[3 * k + 1] = d[3] * r0 + d[4] * r1 + d[5] * r2
+        x[3 * k + 2] = d[6] * r0 + d[7] * r1 + d[8] * r2
+
+
+@njit(**JIT)
+def block_tridiagonal_solve(diag, upper, lower, rhs, x, chain=0):
+    """Solve the block-tridiagonal (or, with ``chain``, star) system (see
+    ``block_tridiagonal_factor``; ``diag`` is overwritten). Returns False when a pivot is
+    singular."""
+    factor = np.empty((max(diag.shape[0] - 1, 1), 9))
+    if not block_tridiagonal_factor(diag, upper, lower, factor, chain):
+        return False
+    block_tridiagonal_apply(diag, upper, factor, rhs, x, chain)
+    return True

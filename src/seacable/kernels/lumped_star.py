@@ -13,12 +13,6 @@ Every chain's nodes but the last keep their own 3x3 equations: the step is O(tot
 State: ``[x, v]`` with x the positions of chain 0's nodes 0..n-1, chain 1's, ..., then the
 body's (3), and v the velocities in the same order. Each kernel gathers a chain's own lumped
 state (its nodes, then the body) into the workspace and calls ``kernels.lumped`` on it.
-
-Implicit steps: each chain's Newton system is block-tridiagonal; the body couples the chains'
-last nodes, so the star's matrix is block tridiagonal but for those couplings (an arrowhead).
-``numerics.implicit.block_tridiagonal_factor`` eliminates each chain towards the body, then
-the body: O(total nodes) too. In the star's arrays, ``upper``/``lower`` at a chain's last node
-hold its coupling with the body (the body is that node's next one).
 """
 
 import math
@@ -29,7 +23,6 @@ from numba import njit
 
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
-from seacable.kernels import lumped_newton as lkn
 from seacable.kernels import lumped_outputs as lko
 from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
@@ -128,60 +121,6 @@ def rhs(t, y, p, ws, ydot):
     if det == 0.0 or not math.isfinite(acc[0] + acc[1] + acc[2]):
         status = NON_FINITE
     return status
-
-
-@njit(**JIT)
-def newton_system(t, y, a_alpha, p, ws, ydot, cm, cx, cv, diag, upper, lower, res, matrix=True):
-    """The star's Newton residual and matrix (see ``kernels.lumped_newton.newton_system``): each
-    chain's system, its last node's rows and columns moved onto the body's."""
-    cables = len(p.chains)
-    n = p.n
-    nq = 3 * (cables * n + 1)
-    body = cables * n
-    for c in range(3):
-        res[3 * body + c] = 0.0
-    if matrix:
-        for c in range(9):
-            diag[body, c] = 0.0
-    status = OK
-    for k in range(cables):
-        pk = p.chains[k]
-        yk, ak = ws.y[k], ws.acc[k]
-        _gather(y, k, n, cables, nq, yk)
-        _gather(a_alpha, k, n, cables, nq, ak)
-        dk, uk, lo, rk = ws.diag[k], ws.upper[k], ws.lower[k], ws.res[k]
-        st = lkn.newton_system(t, yk, ak, pk, ws.w[k], ws.ydot[k], cm, cx, cv, dk, uk, lo, rk,
-                              matrix)  # fmt: skip
-        if st != OK:
-            status = st
-        _scatter(rk, k, n, cables, nq, res)
-        for c in range(3):
-            res[3 * body + c] += rk[3 * n + c]
-        if matrix:
-            o = k * n
-            for j in range(n):
-                for c in range(9):
-                    diag[o + j, c] = dk[j, c]
-                    upper[o + j, c] = uk[j, c]  # j = n - 1: the coupling with the body
-                    lower[o + j, c] = lo[j, c]
-            for c in range(9):
-                diag[body, c] += dk[n, c]
-    return status
-
-
-@njit(**JIT)
-def prescribe(t, y, acc, p, ws):
-    """Each chain's top at its exact motion at time t (the body is free)."""
-    cables = len(p.chains)
-    n = p.n
-    nq = 3 * (cables * n + 1)
-    for k in range(cables):
-        yk, ak = ws.y[k], ws.acc[k]
-        _gather(y, k, n, cables, nq, yk)
-        _gather(acc, k, n, cables, nq, ak)
-        lkn.prescribe(t, yk, ak, p.chains[k])
-        _scatter(yk, k, n, cables, nq, y)
-        _scatter(ak, k, n, cables, nq, acc)
 
 
 @njit(**JIT)

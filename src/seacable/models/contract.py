@@ -23,8 +23,8 @@ class RunModel(Protocol):
        what sets it, ``state_scale(case, system)``: each state's typical size (the adaptive
        integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
        schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
-    6. ``NEWTON``: True when the fixed-step implicit schemes serve it (then it has a branch in
-       every overload of ``numerics.dispatch``).
+    6. ``NEWTON``: True when the fixed-step implicit schemes serve it
+       (``numerics.system_implicit``: systems of bodies and lines only).
     Optional: ``VARIABLES`` (a single-cable model's records) or ``variables(system)`` (a
     system's, per group); ``positions``, ``node_block``/``node_graph`` or
     ``jacobian_sparsity`` (stiff integrators' Jacobian structure), ``check_implicit``,

@@ -25,7 +25,7 @@ from seacable.models.common import (
     typed,
     xyz_variables,
 )
-from seacable.numerics import implicit, stiff
+from seacable.numerics import stiff
 
 
 @dataclass(frozen=True)
@@ -309,7 +309,7 @@ def _newton_equilibrium(params, y0, iterations):
     for _ in range(iterations):
         if np.abs(r).max() < 1e-9 * scale:
             break
-        if not implicit.block_tridiagonal_solve(diag, upper, lower, r, step):
+        if not lkn.block_tridiagonal_solve(diag, upper, lower, r, step):
             break
         candidates = [(d, True) for d in (1.0, 0.5, 0.25, 0.1)]
         # when no shorter step lowers the residual (erratic Newton steps on a stiff line), the
@@ -386,7 +386,7 @@ VARIABLES = {
 
 
 RATE_WHAT = ("node", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
-NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 
 def shortest_segment(system: LumpedSystem) -> float:
@@ -466,7 +466,6 @@ def positions(system: LumpedSystem) -> int:
     return 3 * (system.n_links + 1)
 
 
-check_implicit = seg.check_implicit  # the implicit schemes cannot advance a servo's force
 refresh_interval = seg.refresh_interval
 
 

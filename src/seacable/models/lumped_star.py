@@ -102,7 +102,7 @@ VARIABLES = {
 }
 
 RATE_WHAT = ("node (counted over the cables one after another)", "speed", "m/s", 0)
-NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 sizes = star_3d.sizes
 coords = star_3d.coords

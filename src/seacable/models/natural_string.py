@@ -101,7 +101,7 @@ VARIABLES = {
 }
 
 RATE_WHAT = ("node", "strain rate", "1/s", 0)
-NEWTON = True  # the implicit schemes of numerics.implicit serve this model (coloured FD)
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 
 def shortest_segment(system: NaturalSystem) -> float:

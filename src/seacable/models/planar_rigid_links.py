@@ -272,7 +272,7 @@ def rows(times, states, system: PlanarSystem, w) -> tuple[dict, int]:
     return add_total_energy(out), status
 
 
-NEWTON = True  # the implicit schemes of numerics.implicit serve this model
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 
 def shortest_segment(system: PlanarSystem) -> float:

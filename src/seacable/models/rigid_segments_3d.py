@@ -454,18 +454,7 @@ def rows(times, states, system: System3D, w) -> tuple[dict, int]:
     return add_total_energy(out), status
 
 
-NEWTON = True  # the implicit schemes of numerics.implicit serve this model
-
-
-def check_implicit(case: schema.Case) -> None:
-    """The implicit schemes advance second-order states only: the servo's force is not one."""
-    bottom = case.cables[0].bottom
-    if isinstance(bottom, schema.TrajectoryBottom) and bottom.method == "stiffness_servo":
-        raise CaseError(
-            f"simulation.integrator: '{case.simulation.integrator}' cannot advance the servo's "
-            "force (a first-order state); use rk4 or dopri5 with method: stiffness_servo, or "
-            "follow the trajectory exactly (cables[0].bottom.method: exact)"
-        )
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 
 def shortest_segment(system: System3D) -> float:

@@ -167,7 +167,7 @@ def state_scale(case: schema.Case, system: StarSystem[star3d.StarParams]) -> np.
 
 
 RATE_WHAT = ("segment (counted over the cables one after another)", "angular rate", "rad/s", 0)
-NEWTON = False  # the fixed-step implicit schemes do not serve a star of rigid segments
+NEWTON = False  # the implicit schemes run systems of bodies and lines only
 
 
 def shortest_segment(system: StarSystem[star3d.StarParams]) -> float:

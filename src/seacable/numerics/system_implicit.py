@@ -1,5 +1,24 @@
-"""The fixed-step implicit schemes of ``numerics.implicit`` (implicit Euler, theta, Newmark,
-generalized-alpha) on a system of bodies and lines.
+"""The fixed-step implicit schemes (implicit Euler, the theta-method, Newmark (gamma, beta) and
+the generalized-alpha method of Chung and Hulbert (1993), as in WHOI Cable) on a system of bodies
+and lines.
+
+Every scheme is written for ``a = f(t, x, v)`` with the acceleration of the step's end, ``a1``,
+as the unknown:
+
+    x1 = x0 + h v0 + h^2 (pa a0 + b a1),     v1 = v0 + h ((1 - g) a0 + g a1),
+    (1 - am) a1 + am a0 = f(t0 + (1 - af) h, (1 - af) x1 + af x0, (1 - af) v1 + af v0)
+
+    scheme              pa               b               g                am, af
+    implicit Euler      0                1               1                0, 0
+    theta-method        theta(1-theta)   theta^2         theta            0, 0
+    Newmark             1/2 - beta       beta            gamma            0, 0
+    generalized-alpha   1/2 - beta       beta            1/2 - am + af    (2r-1)/(r+1), r/(r+1)
+
+(generalized-alpha: beta = (1 - am + af)^2 / 4, r the spectral radius at infinite frequency).
+The theta-method with theta = 1/2 (the trapezoidal rule) and Newmark's average acceleration
+(beta = 1/4, gamma = 1/2) are the same scheme here. The integrator follows the contract of
+``numerics.integrators``; its work counters add Jacobian evaluations (matrices built and
+factorised) and linear solves (Newton iterations).
 
 The unknowns of a step are the accelerations a1 of every velocity variable of the system
 (``y = [Q, V]``: bodies, lumped nodes, rigid segments' director rates, links' angle rates,
@@ -17,10 +36,9 @@ lines) a banded block, the bodies' degrees of freedom the border, so a factorisa
 O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement
 (a rigid-segment line's accelerations depend on all its angles: its block is dense). The
 factors are kept from step to step while they serve (modified Newton: rebuilt when an
-iteration contracts slower than ``implicit.SLOW`` or after ``implicit.REFRESH`` iterations on
-one matrix, and whenever the step length changes), so most steps cost two or three residuals.
-The convergence test and the work counters are those of ``numerics.implicit``; with the
-matrix from differences, a Jacobian counts its residuals in the rhs evaluations.
+iteration contracts slower than ``SLOW`` or after ``REFRESH`` iterations on one matrix, and
+whenever the step length changes), so most steps cost two or three residuals.
+A Jacobian counts its residuals in the rhs evaluations.
 """
 
 import math
@@ -33,12 +51,35 @@ from seacable.bodies import kinematics
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics import bordered
-from seacable.numerics.implicit import MAX_SUBSTEPS, REFRESH, SLOW
 from seacable.numerics.integrators import step_time
 from seacable.system import coordinates, model, rigid
 from seacable.system import kernel as system_kernel
 
 FD_STEP = 1.5e-8  # relative change of a position for the difference quotients
+MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
+REFRESH = 3  # modified Newton: the matrix is rebuilt after REFRESH iterations on one matrix
+SLOW = 0.5  # ... or as soon as a correction is larger than SLOW times the one before
+
+
+# coefficient vector layout: pa, b, g, am, af
+SCHEME_SIZE = 5
+
+
+def scheme(name: str, theta=0.5, gamma=0.5, beta=0.25, spectral_radius=0.8) -> np.ndarray:
+    """The coefficients (pa, b, g, am, af) of a named scheme (see the module docstring)."""
+    if name == "implicit_euler":
+        return np.array([0.0, 1.0, 1.0, 0.0, 0.0])
+    if name == "theta":
+        return np.array([theta * (1.0 - theta), theta * theta, theta, 0.0, 0.0])
+    if name == "newmark":
+        return np.array([0.5 - beta, beta, gamma, 0.0, 0.0])
+    if name == "generalized_alpha":
+        r = spectral_radius
+        am = (2.0 * r - 1.0) / (r + 1.0)
+        af = r / (r + 1.0)
+        b = 0.25 * (1.0 - am + af) ** 2
+        return np.array([0.5 - b, b, 0.5 - am + af, am, af])
+    raise ValueError(f"unknown implicit scheme {name!r}")
 
 
 class Increments(NamedTuple):
@@ -298,8 +339,17 @@ def chunk(
     first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
     w, inc, lay, carried, states, times, work,
 ):  # fmt: skip
-    """``implicit.newmark_chunk`` for a system: the same steps, retries in 2, 4, ...
-    MAX_SUBSTEPS parts after a failed Newton iteration, output rows and counters."""
+    """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps
+    ``output_interval / steps_per_output`` [s], from output index ``first_output``.
+
+    ``acc`` holds the scheme's acceleration a0 at the start (the system's acceleration at the
+    first call; the algorithmic one after), and is updated; ``carried`` is ``carry``'s tuple,
+    updated. ``tol`` [m] bounds the last Newton correction of the positions (b h^2 |da|, each
+    unknown in metres through ``Increments.weight``). A step whose iteration fails (regularised
+    seabed friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS
+    equal parts, each retry counted as a rejected step. Returns (completed, status); ``work``
+    gets [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations, linear
+    solves] (a Jacobian's residuals count as rhs evaluations; accepted counts substeps)."""
     ny = y.shape[0]
     nv = acc.shape[0]
     dt = output_interval / steps_per_output

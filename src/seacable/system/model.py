@@ -19,6 +19,7 @@ from seacable.system.initial import initial_state
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
 NEWTON = True  # the implicit schemes serve systems (numerics.system_implicit)
 DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
+JOINT_ADVICE = "add joint damping (lines[k].joint_damping [N m s/rad])"
 AXES = "xyz"
 
 
@@ -47,6 +48,16 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
     servo.check(built, y0)
     return built
+
+
+def damping_advice(system: BuiltSystem) -> str:
+    """What a divergence message suggests: axial damping for lumped lines and strings, joint
+    damping for rigid lines, whichever the system has."""
+    p = system.params
+    advice = [DAMPING_ADVICE] if len(p.line_n) or len(p.nat_n) else []
+    if len(p.rs_n):
+        advice.append(JOINT_ADVICE)
+    return " or ".join(advice) if advice else "add damping to the ties (lines[k].damping)"
 
 
 def check_implicit(case: sch.SystemCase) -> None:
