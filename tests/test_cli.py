@@ -206,13 +206,18 @@ def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
     case = load_case(out)
     assert [b.type for b in case.bodies] == ["rigid", "fixed"]
     assert case.lines[0].model == "rigid_links"
-    lumped = tmp_path / "lumped.yaml"  # a lumped-mass cable ending free: no system form yet
+    lumped = tmp_path / "lumped.yaml"  # ending free, started on a catenary: no system form
     data = yaml.safe_load((legacy / "catenary_mooring_line_surge.yaml").read_text())
     data["cables"][0]["bottom"] = {"type": "free", "body": {"mass": 100.0}}
-    data["cables"][0]["initial"] = {"shape": "arc", "top_angle_deg": 10.0}
     lumped.write_text(yaml.safe_dump(data))
     result = CliRunner().invoke(main, ["upgrade", str(lumped)])
-    assert result.exit_code == 2 and "system form needs a pinned end" in result.output
+    assert result.exit_code == 2 and "a catenary start has a system form with a pinned" in (
+        result.output
+    )
+    data["cables"][0]["initial"] = {"shape": "arc", "top_angle_deg": 10.0}  # at given angles
+    lumped.write_text(yaml.safe_dump(data))
+    result = CliRunner().invoke(main, ["upgrade", str(lumped)])
+    assert result.exit_code == 0, result.output
     result = CliRunner().invoke(main, ["upgrade", str(out)])
     assert result.exit_code == 2 and "already a system" in result.output
     star = tmp_path / "star.yaml"  # cables on a shared body: lines from it back to the anchors

@@ -8,6 +8,7 @@ import pytest
 
 import seacable
 from helpers import chain_case
+from seacable.case import legacy
 from seacable.lines import catenary
 from seacable.models import lumped_mass
 
@@ -525,3 +526,55 @@ def test_axial_damping_is_given_one_way():
         r"'natural_string'\); give axial_damping_time",
     ):
         seacable.load_case(data)
+
+
+def _upgraded_gap(case) -> float:
+    """Largest gap [m] between the single-cable run's nodes and those of its system form
+    (``seacable upgrade``: the cable's lines joined end to end)."""
+    old = seacable.simulate(case).dataset
+    system = legacy.upgrade(case)
+    new = seacable.simulate(seacable.load_case(system)).dataset
+    lines = [new[f"lines/{line['name']}"] for line in system["lines"]]
+    gap = 0.0
+    for axis in ("node_x", "node_z"):
+        parts = [lines[0][axis].values, *(ln[axis].values[:, 1:] for ln in lines[1:])]
+        joined = np.concatenate(parts, axis=1)
+        gap = max(gap, float(np.abs(joined - old[axis].values).max()))
+    return gap
+
+
+ARC = {"shape": "arc", "top_angle_deg": 30.0, "bottom_angle_deg": 60.0}
+
+
+@pytest.mark.parametrize(
+    "bottom",
+    [
+        {"type": "free", "body": {"mass": 20.0, "volume": 0.005, "drag_coefficient": 1.0,
+                                  "drag_area": 0.2}, "hold_axes": ["x", "y"]},
+        {"type": "pinned"},
+        {"type": "free", "body": {"mass": 20.0}},
+    ],
+    ids=["guided", "pinned", "free"],
+)  # fmt: skip
+def test_upgraded_lumped_cable_moves_as_the_single_cable(bottom):
+    """seacable upgrade writes a lumped cable started at given angles as a system (its nodes at
+    those angles, the end body where the shape ends): the same motion to round-off."""
+    assert _upgraded_gap(_held_case("lumped_mass", bottom, ARC, duration=2.0)) < 1e-9
+
+
+def test_upgraded_lumped_cable_with_a_float_along_it_moves_as_the_single_cable():
+    """A float at node 10 of 30: the cable cut into two lines that meet at a point body."""
+    case = _held_case("lumped_mass", {"type": "pinned"}, ARC, duration=2.0)
+    data = case.model_dump(mode="json", exclude_unset=True)
+    data["cables"][0]["point_bodies"] = [{"node": 10, "mass": 30.0, "volume": 0.1,
+                                          "drag_coefficient": 0.8, "drag_area": 0.3}]  # fmt: skip
+    assert _upgraded_gap(seacable.load_case(data)) < 1e-9
+
+
+def test_a_lumped_line_at_given_angles_must_reach_its_end_point():
+    case = _held_case("lumped_mass", {"type": "pinned"}, ARC, duration=0.1)
+    system = legacy.upgrade(case)
+    system["bodies"][1]["position"][0] += 0.5  # the anchor, moved off the shape's end
+    with pytest.raises(seacable.CaseError, match=r"lines \(cable\)\.initial: the given angles "
+                       r"end the line at .* \(0\.5 m apart; allowed 1 mm\)"):  # fmt: skip
+        seacable.simulate(seacable.load_case(system))

@@ -210,30 +210,87 @@ def _natural(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, An
 
 
 def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
-    """A lumped-mass cable from a top to a pinned anchor, started on its catenary."""
-    if not isinstance(cable.bottom, schema.PinnedBottom) or cable.bottom.anchor is None:
-        raise CaseError(f"{where}.bottom: a lumped-mass cable's system form needs a pinned end "
-                        "with its anchor here")  # fmt: skip
-    if cable.initial.shape != "catenary" or cable.point_bodies:
-        raise CaseError(f"{where}.initial: only a catenary start has a system form here")
-    top, _ = _top(cable.top, case._base_dir)
-    anchor = {"name": "anchor", "type": "fixed", "position": list(schema.xyz(cable.bottom.anchor))}
+    """A lumped-mass cable from its top to its end: started on its catenary to a pinned anchor,
+    or at its given angles (``arc``, ``angles``) to whatever its end is (an anchor, a free body,
+    a guided one, a floating structure, an exact trajectory); cut into lines at the bodies
+    along it (each line keeps at least two segments)."""
+    shape = cable.initial.shape
+    anchor = cable.bottom.anchor if isinstance(cable.bottom, schema.PinnedBottom) else None
+    if shape == "catenary" and anchor is None:
+        raise CaseError(f"{where}.initial: a catenary start has a system form with a pinned "
+                        "end and its anchor only; give the start as angles (arc or "
+                        "angles)")  # fmt: skip
+    if shape not in ("catenary", "arc", "angles"):
+        raise CaseError(f"{where}.initial.shape: '{shape}' has no system form for a lumped-mass "
+                        "cable")  # fmt: skip
+    if isinstance(cable.bottom, schema.TrajectoryBottom) and cable.bottom.method != "exact":
+        raise CaseError(f"{where}.bottom.method: a lumped-mass cable's servo has no system form "
+                        "here; follow the trajectory exactly (method: exact)")  # fmt: skip
+    top, start = _top(cable.top, case._base_dir)
     lengths = cable.lengths()
-    line_type: dict[str, Any] = {"name": f"{cable.name} type", "diameter": cable.diameter,
-                                 "mass_per_length": float(cable.masses()[0] / lengths[0]),
-                                 "axial_stiffness": cable.axial_stiffness}  # fmt: skip
-    for key in ("axial_damping_time", "axial_damping_ratio", "bending_stiffness"):
-        if getattr(cable, key) is not None:
-            line_type[key] = getattr(cable, key)
-    line_type["drag_coefficient_normal"] = cable.drag_coefficient_normal
-    for key in ("drag_coefficient_tangential", "friction_coefficient", "added_mass_coefficient"):
-        if getattr(cable, key):
-            line_type[key] = getattr(cable, key)
+    nodes = None
+    if anchor is not None and shape == "catenary":
+        end = list(schema.xyz(anchor))
+    else:
+        a = np.asarray(cable.initial.angles(cable.links), dtype=float)  # [rad]
+        azimuth = math.radians(cable.initial.azimuth_deg)
+        e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth),
+                             -np.cos(a)])  # fmt: skip
+        nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, 0)])
+        end = [float(v) for v in nodes[-1]]
+    if isinstance(cable.bottom, schema.TrajectoryBottom):
+        bottom = _trajectory(cable.bottom, top["name"])
+    elif anchor is not None:
+        bottom = {"name": "anchor", "type": "fixed", "position": list(schema.xyz(anchor))}
+    else:
+        bottom = _bottom(cable, case.environment, end)
+    line_type = _lumped_type(cable, lengths, where)
+    ordered = sorted(cable.point_bodies, key=lambda pb: pb.node)
+    along = []
+    for pb in ordered:
+        if nodes is None:
+            raise CaseError(f"{where}.point_bodies: bodies along a cable started on its "
+                            "catenary have no system form here; give the start as "
+                            "angles")  # fmt: skip
+        along.append(_point(f"joint {pb.node}", pb, case.environment,
+                            [float(v) for v in nodes[pb.node]]))  # fmt: skip
+    names = [top["name"], *(body["name"] for body in along), bottom["name"]]
+    cuts = [0, *(pb.node for pb in ordered), cable.links]
     total = cable.length if cable.length is not None else float(lengths.sum())
-    section = {"type": line_type["name"], "segments": cable.links, "length": total}
-    line = {"name": cable.name, "model": "lumped_mass", "from": top["name"], "to": "anchor",
-            "sections": [section]}  # fmt: skip
-    return _case(case, [top, anchor], [line_type], [line], "as_given")
+    lines = []
+    for k in range(len(cuts) - 1):
+        count = cuts[k + 1] - cuts[k]
+        if count < 2:
+            raise CaseError(f"{where}.point_bodies: a lumped-mass line between bodies needs at "
+                            f"least two segments (nodes {cuts[k]} to {cuts[k + 1]})")  # fmt: skip
+        line: dict[str, Any] = {
+            "name": cable.name if len(cuts) == 2 else f"{cable.name} {k + 1}",
+            "model": "lumped_mass", "from": names[k], "to": names[k + 1],
+            "sections": [{"type": line_type["name"], "segments": count,
+                          "length": total if len(cuts) == 2 else total * count / cable.links}],
+        }  # fmt: skip
+        if nodes is not None:
+            line["initial"] = _initial(cable, False, np.asarray(cable.initial.angles(
+                cable.links), dtype=float), (cuts[k], cuts[k + 1]))  # fmt: skip
+        lines.append(line)
+    return _case(case, [top, bottom, *along], [line_type], lines, "as_given")
+
+
+def _lumped_type(cable: schema.Cable, lengths: np.ndarray, where: str) -> dict[str, Any]:
+    """A lumped-mass cable's line type: EA, axial damping and, from its joint springs (the top
+    joint is a pin in a lumped line), its bending stiffness."""
+    out = _line_type(cable, lengths)
+    if isinstance(cable.joint_stiffness, list):
+        springs = set(cable.joint_stiffness[1:])
+        if len(springs) > 1:
+            raise CaseError(f"{where}.joint_stiffness: one value per joint has no system form; "
+                            "give one")  # fmt: skip
+        out["bending_stiffness"] = _bending(float(springs.pop()) if springs else 0.0, lengths[0])
+    out["axial_stiffness"] = cable.axial_stiffness
+    for key in ("axial_damping_time", "axial_damping_ratio"):
+        if getattr(cable, key) is not None:
+            out[key] = getattr(cable, key)
+    return out
 
 
 def _trajectory(bottom: schema.TrajectoryBottom, top: str) -> dict[str, Any]:

@@ -307,25 +307,13 @@ class Section(_Model):
     segments: int = Field(ge=1, le=100_000)
 
 
-class LumpedMassLine(_Model):
-    """An extensible line of lumped masses (Poth's displacement variables, as MoorDyn): its
-    end nodes follow the points ``from`` and ``to`` (``body`` or ``body.point``) and give them
-    their mass and the line's force."""
-
-    name: Name
-    model: Literal["lumped_mass"]
-    from_: str = Field(alias="from")
-    to: str
-    sections: list[Section] = Field(min_length=1)
-    initial: Literal["catenary", "straight"] = "catenary"
-
-
 class LineAngles(_Model):
-    """A rigid line's initial shape given by its segments' angles from the downward vertical,
+    """A line's initial shape given by its segments' angles from the downward vertical,
     positive towards +x [deg] (in the vertical plane at ``azimuth_deg`` from +x towards +y for
     a 3D line): ``angles_deg``, one per segment, or ``arc_deg`` [first, last], varying linearly
-    along the line. The line starts from its ``from`` point; a body it carries must be at its
-    end, a held end's point within 1 mm of it."""
+    along the line, each segment at its unstretched length. The line starts from its ``from``
+    point; a body a rigid line carries must be at its end, a held end's point (and a lumped
+    line's ``to`` point) within 1 mm of it."""
 
     angles_deg: list[float] | None = None
     arc_deg: tuple[float, float] | None = None
@@ -344,6 +332,20 @@ class LineAngles(_Model):
             return list(self.angles_deg)
         assert self.arc_deg is not None  # _one_form
         return [float(a) for a in np.linspace(self.arc_deg[0], self.arc_deg[1], n)]
+
+
+class LumpedMassLine(_Model):
+    """An extensible line of lumped masses (Poth's displacement variables, as MoorDyn): its
+    end nodes follow the points ``from`` and ``to`` (``body`` or ``body.point``) and give them
+    their mass and the line's force."""
+
+    name: Name
+    model: Literal["lumped_mass"]
+    from_: str = Field(alias="from")
+    to: str
+    sections: list[Section] = Field(min_length=1)
+    # its static shape between its ends (with the seabed), a straight line, or given angles
+    initial: Literal["catenary", "straight"] | LineAngles = "catenary"
 
 
 class RigidLine(_Model):

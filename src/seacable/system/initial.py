@@ -72,7 +72,9 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
         arc /= arc[-1]
         where = f"lines ({line.name})"
         nodes = None
-        if line.initial == "catenary":
+        if isinstance(line.initial, sch.LineAngles):
+            nodes = _lumped_angles(line, p.seg_length[s0 : s0 + n], start, end, where)
+        elif line.initial == "catenary":
             nodes = _catenary(p, li, start, end, case.environment, where)
         if nodes is None:
             nodes = start + arc[:, None] * (end - start)[None, :]
@@ -81,8 +83,41 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
         va, vb = pvel[p.line_from[li]], pvel[p.line_to[li]]
         y[v : v + 3 * (n - 1)] = (va + arc[1:-1, None] * (vb - va)[None, :]).ravel()
     if lumped and any(line.initial == "catenary" for line in lumped):
-        y = static_lines(p, y)
+        kept = [(p.line_q[li], p.line_v[li], 3 * (p.line_n[li] - 1))
+                for li, line in enumerate(lumped) if line.initial != "catenary"]  # fmt: skip
+        settled = static_lines(p, y)
+        for q, v, size in kept:  # straight lines and given angles stay as they are
+            settled[q : q + size] = y[q : q + size]
+            settled[v : v + size] = y[v : v + size]
+        y = settled
     return y, p
+
+
+def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
+    """A lumped line's nodes (n + 1, 3) at the angles the case gives, each segment at its
+    unstretched length from ``start``; its last node is its ``to`` point, which must be within
+    1 mm of the shape's end."""
+    n = len(lengths)
+    angles = line.initial.angles(n)
+    if len(angles) != n:
+        raise CaseError(
+            f"{where}.initial.angles_deg: {len(angles)} angles for a line of {n} segments; give "
+            "one per segment"
+        )
+    a = np.radians(np.asarray(angles, dtype=float))
+    azimuth = np.radians(line.initial.azimuth_deg)
+    e = np.column_stack([np.sin(a) * np.cos(azimuth), np.sin(a) * np.sin(azimuth), -np.cos(a)])
+    nodes = start + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
+    miss = float(np.linalg.norm(nodes[-1] - end))
+    if miss > 1e-3:
+        raise CaseError(
+            f"{where}.initial: the given angles end the line at "
+            f"{np.round(nodes[-1], 4).tolist()} m but its 'to' point is at "
+            f"{np.round(end, 4).tolist()} m ({miss:.4g} m apart; allowed 1 mm): move that point "
+            "to the line's end or change the angles"
+        )
+    nodes[-1] = end
+    return nodes
 
 
 def _rigid_initial(built: BuiltSystem, y: np.ndarray):
