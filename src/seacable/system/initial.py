@@ -93,11 +93,9 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
     return y, p
 
 
-def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
-    """A lumped line's nodes (n + 1, 3) at the angles the case gives, each segment at its
-    unstretched length from ``start``; its last node is its ``to`` point, which must be within
-    1 mm of the shape's end."""
-    n = len(lengths)
+def _directors(line, n: int, where: str) -> tuple[np.ndarray, np.ndarray]:
+    """Unit directors (n, 3) of the segment angles a line's ``initial`` gives, and the angles
+    [rad]; refused unless one per segment."""
     angles = line.initial.angles(n)
     if len(angles) != n:
         raise CaseError(
@@ -107,6 +105,14 @@ def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
     a = np.radians(np.asarray(angles, dtype=float))
     azimuth = np.radians(line.initial.azimuth_deg)
     e = np.column_stack([np.sin(a) * np.cos(azimuth), np.sin(a) * np.sin(azimuth), -np.cos(a)])
+    return e, a
+
+
+def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
+    """A lumped line's nodes (n + 1, 3) at the angles the case gives, each segment at its
+    unstretched length from ``start``; its last node is its ``to`` point, which must be within
+    1 mm of the shape's end."""
+    e, _ = _directors(line, len(lengths), where)
     nodes = start + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
     miss = float(np.linalg.norm(nodes[-1] - end))
     if miss > 1e-3:
@@ -194,18 +200,10 @@ def _given_angles(line, p, li, start, end, where):
     carried at the tip put exactly at the shape's end (None when there is none), and the
     angles [rad]."""
     n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
-    angles = line.initial.angles(n)
-    if len(angles) != n:
-        raise CaseError(
-            f"{where}.initial.angles_deg: {len(angles)} angles for a line of {n} segments; give "
-            "one per segment"
-        )
-    a = np.radians(np.asarray(angles, dtype=float))
-    azimuth = np.radians(line.initial.azimuth_deg)
     if line.model == "rigid_links" and line.initial.azimuth_deg != 0.0:
         raise CaseError(f"{where}.initial.azimuth_deg: a planar rigid_links line lies in x-z; "
                         "leave azimuth_deg at 0")  # fmt: skip
-    e = np.column_stack([np.sin(a) * np.cos(azimuth), np.sin(a) * np.sin(azimuth), -np.cos(a)])
+    e, a = _directors(line, n, where)
     tip_end = start + (p.rs_length[s0 : s0 + n, None] * e).sum(axis=0)
     miss = float(np.linalg.norm(tip_end - end))
     tip = int(p.rs_tip[li])
