@@ -78,6 +78,8 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
     """Every node's position and velocity from node 0's (rows _P, _V of column 0, set by the
     caller) and the directors; every segment's loads (rows _F), joint and buoyancy moments
     (_TQ) and its share of the free surface (_SF, _SA, _SJ, _SQ). One line's arrays."""
+    uniform = cz_.shape[0] == 1  # read once: a call per segment with the current's arrays
+    u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
@@ -91,7 +93,10 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         w[_V + 1, i + 1] = w[_V + 1, i] + li * uy
         w[_V + 2, i + 1] = w[_V + 2, i] + li * uz
         zc = w[_P + 2, i] + 0.5 * li * ez
-        cu, cv = _current(cz_, cu_, cv_, zc)
+        if uniform:
+            cu, cv = u_uniform, v_uniform
+        else:
+            cu, cv = _current(cz_, cu_, cv_, zc)
         rx = w[_V, i] + 0.5 * li * ux - cu
         ry = w[_V + 1, i] + 0.5 * li * uy - cv
         rz = w[_V + 2, i] + 0.5 * li * uz

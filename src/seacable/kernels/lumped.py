@@ -163,6 +163,8 @@ def segment_loads(
     ``slack``: 1 no compression, 0 linear), its nodes' workspace columns ``c0 + k``. Every
     line model and every line of a system computes its segment loads here."""
     v0 = 3 * (n + 1)
+    uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
+    u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
     for k in range(c0, c0 + n + 1):
         for c in range(3):
             w[_F + c, k] = 0.0
@@ -194,7 +196,10 @@ def segment_loads(
         # its submerged part (kernels.surface), the buoyancy at that part's centroid
         zc = 0.5 * (y[a + 2] + y[b + 2])
         wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
-        cu, cv = c3._current(current_z, current_u, current_v, zc)
+        if uniform:
+            cu, cv = u_uniform, v_uniform
+        else:
+            cu, cv = c3._current(current_z, current_u, current_v, zc)
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])

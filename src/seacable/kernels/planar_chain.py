@@ -185,6 +185,8 @@ def link_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tan
     loads (_FX, _FZ) and torque (_Q): apparent weight, drag on the relative velocity, the free
     surface's share, joint springs and dampers (joint 0 against ``ref_angle`` turning at
     ``ref_rate``). One line's arrays."""
+    uniform = current_z.shape[0] == 1  # the current's value, read once: a call per link with
+    u_uniform = current_u[0]  # the arrays would take and drop two references each time
     for i in range(n):
         th = y[q0 + i]
         om = y[v0 + i]
@@ -199,7 +201,8 @@ def link_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tan
         w[_VZ, i + 1] = w[_VZ, i] + li * om * s
         # loads at the link centre: apparent weight and quadratic drag on the relative velocity
         zc = 0.5 * (w[_PZ, i] + w[_PZ, i + 1])
-        vrx = 0.5 * (w[_VX, i] + w[_VX, i + 1]) - _current(current_z, current_u, zc)
+        current = u_uniform if uniform else _current(current_z, current_u, zc)
+        vrx = 0.5 * (w[_VX, i] + w[_VX, i + 1]) - current
         vrz = 0.5 * (w[_VZ, i] + w[_VZ, i + 1])
         vn = vrx * c + vrz * s
         vt = vrx * s - vrz * c
