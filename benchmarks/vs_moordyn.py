@@ -4,7 +4,11 @@
 the seabed 100 m from the fairlead, about 40 m of it lying on the seabed; the fairlead, 10 m
 below the surface, surges 5 - 5 cos(2 pi t / 12) m. Both codes run in this process, with the same
 line properties, drag and added-mass coefficients and seabed spring-damper (MoorDyn's defaults),
-and no seabed friction (MoorDyn's default). Axial damping (``--damping``):
+and no seabed friction (MoorDyn's default). seacable runs the line as a system of bodies and
+lines: a fixed body ``anchor``, an imposed body ``fairlead`` moving with the sine, and one
+lumped-mass line ``chain`` between them; its fairlead tension is the magnitude of the line's
+force on the fairlead body (``bodies/fairlead/line_force_x, _y, _z``, the end node's inertia
+included). Axial damping (``--damping``):
 
 * ``critical`` (the default): each segment critically damped, as MoorDyn users set it
   (BA = -1 in its line-type table; seacable ``axial_damping_ratio: 1``): alpha = l sqrt(mu / EA),
@@ -25,14 +29,14 @@ For 20, 40, 80 and 160 segments:
   at a 0.1 ms step; MoorDyn has no acceleration input). Its time is also measured with 10 ms
   ``Step`` calls (the same internal steps, fewer Python calls; the velocity held through
   10 ms changes the tension, reported too): the speed-up is taken against the faster;
-* seacable runs generalized-alpha (implicit, an O(n) Newton iteration per step, converged to
-  1e-7 of a segment; spectral radius 0.5, its default, and 0.8) at the largest step of a ladder
-  whose fairlead-tension error against its own converged solution (dopri5, rtol 1e-9) stays
-  within the larger of MoorDyn's own error (its chosen step against its converged run) and
-  1e-3 of the peak tension (equal accuracy, or 0.1 % where MoorDyn's error is smaller: the
-  table gives both errors), and rk4 at the largest stable step within the same
-  bound; the fastest is reported, the others too. Its fairlead moves exactly (the sine is
-  evaluated at every stage).
+* seacable runs generalized-alpha (implicit, an O(n) Newton iteration per step: its matrix
+  from finite differences over colour groups, banded; converged to 1e-7 of a segment; spectral
+  radius 0.5, its default, and 0.8) at the largest step of a ladder whose fairlead-tension
+  error against its own converged solution (dopri5, rtol 1e-9) stays within the larger of
+  MoorDyn's own error (its chosen step against its converged run) and 1e-3 of the peak tension
+  (equal accuracy, or 0.1 % where MoorDyn's error is smaller: the table gives both errors), and
+  rk4 at the largest stable step within the same bound; the fastest is reported, the others
+  too. Its fairlead moves exactly (the sine is evaluated at every stage).
 
 It prints both fairlead tensions at a few times, each code's error against its own converged
 run, their largest relative difference after the start-up (t >= 6 s), and the CPU time per
@@ -254,7 +258,17 @@ def moordyn_run(segments, duration, ba, times, peak):
 
 # ---- seacable ------------------------------------------------------------------------------------
 def case(segments, duration, integrator, damping, time_step=None, **simulation):
+    """The race's line as a system: a fixed body ``anchor``, an imposed body ``fairlead`` that
+    surges with the sine, and the lumped-mass line ``chain`` from the fairlead to the anchor,
+    started on its discrete catenary between them."""
     field, value, _ = DAMPING[damping]
+    surge = {
+        "kind": "sine",
+        "amplitude": AMPLITUDE,
+        "period": PERIOD,
+        "phase": -math.pi / 2,
+        "offset": AMPLITUDE,
+    }
     return seacable.load_case(
         {
             "name": f"benchmark chain, {segments} segments",
@@ -263,11 +277,13 @@ def case(segments, duration, integrator, damping, time_step=None, **simulation):
                 "water_depth": DEPTH,
                 "seabed": {"stiffness": SEABED_K, "damping": SEABED_C, "friction_coefficient": 0},
             },
-            "cables": [
+            "bodies": [
+                {"name": "fairlead", "type": "imposed", "x": surge, "z": FAIRLEAD_Z},
+                {"name": "anchor", "type": "fixed", "position": list(ANCHOR)},
+            ],
+            "line_types": [
                 {
-                    "model": "lumped_mass",
-                    "links": segments,
-                    "length": LENGTH,
+                    "name": "chain",
                     "diameter": DIAMETER,
                     "mass_per_length": MASS,
                     "axial_stiffness": EA,
@@ -275,21 +291,19 @@ def case(segments, duration, integrator, damping, time_step=None, **simulation):
                     "drag_coefficient_normal": CD_N,
                     "drag_coefficient_tangential": CD_T,
                     "added_mass_coefficient": CA,
-                    "top": {
-                        "type": "imposed",
-                        "x": {
-                            "kind": "sine",
-                            "amplitude": AMPLITUDE,
-                            "period": PERIOD,
-                            "phase": -math.pi / 2,
-                            "offset": AMPLITUDE,
-                        },
-                        "z": FAIRLEAD_Z,
-                    },
-                    "bottom": {"type": "pinned", "anchor": list(ANCHOR)},
-                    "initial": {"shape": "catenary"},
                 }
             ],
+            "lines": [
+                {
+                    "name": "chain",
+                    "model": "lumped_mass",
+                    "from": "fairlead",
+                    "to": "anchor",
+                    "sections": [{"type": "chain", "segments": segments, "length": LENGTH}],
+                    "initial": "catenary",
+                }
+            ],
+            "start": "as_given",
             "simulation": {
                 "duration": duration,
                 "output_interval": OUTPUT,
@@ -314,7 +328,8 @@ def run_seacable(segments, duration, integrator, damping, time_step=None, **simu
     start = CLOCK()
     ds = seacable.simulate(c).dataset
     cpu = CLOCK() - start
-    force = np.sqrt(ds["top_force_x"] ** 2 + ds["top_force_y"] ** 2 + ds["top_force_z"] ** 2)
+    # the force of the line on the fairlead body (the end node's inertia included)
+    force = np.sqrt(sum(ds[f"bodies/fairlead/line_force_{c}"] ** 2 for c in "xyz"))
     # drop t = 0: MoorDyn reports from the first step
     return force.values[1:], max(cpu - startup, 1e-9), startup, ds.attrs
 
