@@ -9,11 +9,16 @@ steps) for the fixed-step schemes (theta = 1/2, Newmark gamma = 1/2, beta = 1/4)
 1e-7 for the adaptive ones and for Newton's iteration.
 
 Formulations: displacement variables (``lumped_mass``), natural variables with cartesian tangent
-(eps, t) and with an angle (eps, phi) (``natural_string``). Integrators: SUNDIALS CVODE (BDF, the
-successor of the DASSL the paper found fastest), SciPy BDF, Radau and LSODA, and seacable's
-compiled implicit Euler, theta-method, Newmark and generalized-alpha. CPU times are wall times of
-the whole run (kernels compiled beforehand), scaled like the paper's figures by the (eps, phi)
-formulation with CVODE at EA = 1e4. Run: ``python benchmarks/string_pendulum.py [--quick]``.
+(eps, t) and with an angle (eps, phi) (``natural_string``), each run as a system of bodies and
+lines: the fixed body ``pivot``, the point body ``end`` (the end mass, gravity its one force
+model) and the line ``string`` between them (a lumped line started ``straight``, a natural
+string at 90 degrees); the end mass's position is ``bodies/end/position_x, _z``. Integrators:
+SUNDIALS CVODE (BDF, the successor of the DASSL the paper found fastest), SciPy BDF, Radau and
+LSODA, and seacable's compiled implicit Euler, theta-method, Newmark and generalized-alpha
+(Newton's matrix from finite differences over colour groups, ``numerics.system_implicit``).
+CPU times are wall times of the whole run (kernels compiled beforehand), scaled like the
+paper's figures by the (eps, phi) formulation with CVODE at EA = 1e4.
+Run: ``python benchmarks/string_pendulum.py [--quick]``.
 """
 
 import argparse
@@ -37,41 +42,65 @@ FIXED = ("implicit_euler", "theta", "newmark", "generalized_alpha")
 
 
 def case(formulation, ea, integrator, duration=DURATION):
+    """The pendulum as a system: the fixed body ``pivot``, the point body ``end`` (the end mass,
+    at the end of the horizontal string) and the line ``string`` between them, at rest and
+    unstretched (a lumped line ``straight`` between its ends; a natural string at 90 deg)."""
     model, tangent = FORMULATIONS[formulation]
-    cable = {
+    line = {
+        "name": "string",
         "model": model,
-        "links": K,
-        "length": LENGTH,
-        "diameter": 0.01,
-        "mass_per_length": MU,
-        "axial_stiffness": ea,
-        "axial_damping_time": ALPHA,
-        "top": {"type": "fixed"},
-        "bottom": {"type": "free", "body": {"mass": END_MASS}},
-        "initial": {"shape": "arc", "top_angle_deg": 90.0, "bottom_angle_deg": 90.0},
+        "from": "pivot",
+        "to": "end",
+        "sections": [{"type": "string", "segments": K, "length": LENGTH}],
     }
     if tangent:
-        cable["tangent"] = tangent
+        line.update(tangent=tangent, initial={"arc_deg": [90.0, 90.0]})
+    else:
+        line["initial"] = "straight"
     simulation = {"duration": duration, "output_interval": 0.1, "integrator": integrator}
     if integrator in FIXED:
         simulation.update(time_step=STEP, newton_tolerance=TOL, max_newton_iterations=20)
     else:
         simulation.update(rtol=TOL, atol=TOL)
     return seacable.load_case(
-        {"environment": {"in_air": True}, "cables": [cable], "simulation": simulation}
+        {
+            "environment": {"in_air": True},
+            "bodies": [
+                {"name": "pivot", "type": "fixed", "position": [0.0, 0.0, 0.0]},
+                {
+                    "name": "end",
+                    "type": "point",
+                    "position": [LENGTH, 0.0, 0.0],
+                    "mass": END_MASS,
+                    "external forces": [{"model": "gravity"}],
+                },
+            ],
+            "line_types": [
+                {
+                    "name": "string",
+                    "diameter": 0.01,
+                    "mass_per_length": MU,
+                    "axial_stiffness": ea,
+                    "axial_damping_time": ALPHA,
+                }
+            ],
+            "lines": [line],
+            "start": "as_given",
+            "simulation": simulation,
+        }
     )
 
 
 def run(formulation, ea, integrator):
     """(wall time [s], end mass x, z at the end, work attributes) or None when it fails."""
-    seacable.simulate(case(formulation, ea, integrator, duration=0.1))  # compile first
-    start = time.perf_counter()
     try:
+        seacable.simulate(case(formulation, ea, integrator, duration=0.1))  # compile first
+        start = time.perf_counter()
         ds = seacable.simulate(case(formulation, ea, integrator)).dataset
-    except seacable.SimulationDiverged:
+    except seacable.SimulationDiverged:  # a failing first step fails the short run too
         return None
     wall = time.perf_counter() - start
-    x, z = ds["node_x"].values[-1, -1], ds["node_z"].values[-1, -1]
+    x, z = (ds[f"bodies/end/position_{a}"].values[-1] for a in "xz")
     return wall, x, z, dict(ds.attrs)
 
 
@@ -108,7 +137,7 @@ def main(argv=None):
     )  # fmt: skip
     displacement = {(ea, i): run("displacement", ea, i) for ea in stiffness for i in FIXED}
     table(
-        "Fixed-step schemes on the displacement formulation (analytic Newton matrix)",
+        "Fixed-step schemes on the displacement formulation (Newton matrix from differences)",
         stiffness, FIXED, displacement, scale,
     )  # fmt: skip
     print("End mass at t = 2 s: distance between formulations (CVODE) and to the (eps, phi) run")
