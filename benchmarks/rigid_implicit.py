@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 import seacable
+from seacable.system import model as system_model
 
 LENGTH, DURATION, IMPLICIT_STEPS = 120.0, 2.0, (0.005, 0.02)
 # [s] the fixed steps must divide it (the schema refuses a step that does not, within 1 %)
@@ -110,20 +111,10 @@ def run(model, n, integrator, step):
 
 
 def zigzag_frequency(model, n):
-    """The fastest natural frequency of the line [rad/s], the zigzag mode: an inner link
-    turning about its centre against its two joint springs (EI / l each) and the tension,
-    omega^2 = (4 EI / l + T l) / J, J = (m + m_a) l^2 / 12 its inertia (with the normal added
-    mass in 3D), T bounded by the apparent weight of the line and the clump (and in 3D the
-    current's drag on the whole line)."""
-    section = math.pi * DIAMETER**2 / 4  # [m^2]
-    link = LENGTH / n
-    tension = (MU - RHO * section) * G * LENGTH + (CLUMP_MASS - RHO * CLUMP_VOLUME) * G
-    added = 0.0
-    if model == "rigid_segments_3d":
-        tension += 0.5 * (0.5 * RHO * CD_N * DIAMETER * LENGTH) * CURRENT**2
-        added = RHO * section * link  # Ca = 1
-    inertia = (MU * link + added) * link**2 / 12.0
-    return math.sqrt((4.0 * EI / link + tension * link) / inertia)
+    """The fastest natural frequency of the line [rad/s]: the system's own estimate, the
+    zigzag mode of a link against its joint springs and the tension
+    (``seacable.system.model.fastest_frequency``)."""
+    return system_model.fastest_frequency(system_model.build(case(model, n, "rk4", OUTPUT)))[0]
 
 
 def rk4_stable(model, n):

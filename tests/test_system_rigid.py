@@ -3,11 +3,13 @@ end, a floating structure above a pinned end, a towed body's static shape), an i
 (energy of a tree of lines and bodies without damping) and the static balance of the bodies
 they carry; the cases the sweep cannot carry are refused naming the line."""
 
+import contextlib
 import math
 
 import numpy as np
 import pytest
 
+import seacable
 from seacable.case.loader import load_case
 from seacable.errors import CaseError
 from seacable.simulation import simulate
@@ -229,3 +231,16 @@ def test_what_a_sweep_cannot_carry_is_refused_naming_the_line(bodies, lines, mes
     case = load_case(_system(bodies, lines, _sim(1.0, 1e-3)))
     with pytest.raises(CaseError, match=message):
         model.build(case)
+
+
+def test_a_too_long_rk4_step_on_rigid_lines_is_warned_with_their_zigzag(caplog):
+    """The thesis umbilical (a system with one rigid-link line): its zigzag mode, about
+    42 rad/s as the single-cable model estimated it, sets rk4's limit near 0.067 s; 0.1 s is
+    warned before the run."""
+    case = load_case("examples/thesis_6_1_sim4_submerged_60_links.yaml")
+    omega, what = model.fastest_frequency(model.build(case))
+    assert omega == pytest.approx(41.7, rel=0.02) and "zigzag of segment 0" in what
+    sim = case.simulation.model_copy(update={"time_step": 0.1, "duration": 0.2})
+    with contextlib.suppress(seacable.SimulationDiverged):
+        seacable.simulate(case.model_copy(update={"simulation": sim}))
+    assert "too long for rk4" in caplog.text and "zigzag" in caplog.text
