@@ -96,6 +96,9 @@ class Increments(NamedTuple):
 
 
 def increments(case, system: model.BuiltSystem) -> Increments:
+    """The pairing of every velocity variable with the position it moves (the bodies' first,
+    then, in order, every other variable, one for one), each rigid body's quaternion, and the
+    scales of the difference quotients and of the convergence test."""
     p = system.params
     nq, nv = int(p.n_q), int(p.n_v)
     q_of_v = np.full(nv, -1, dtype=np.int64)
