@@ -118,8 +118,7 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     azimuth = math.radians(cable.initial.azimuth_deg)
     top, start = _top(cable.top, case._base_dir)
     a = np.asarray(angles, dtype=float)
-    e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth), -np.cos(a)])
-    nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
+    nodes = _nodes(a, azimuth, start, lengths)
     prefix = "" if shared is None else f"{cable.name} "
     if shared is not None:
         top["name"] = f"{cable.name} top"
@@ -170,6 +169,14 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     if isinstance(cable.bottom, schema.TrajectoryBottom) and not held:
         bodies.append(vehicle)
     return bodies, line_type, lines, static
+
+
+def _nodes(angles: np.ndarray, azimuth: float, start, lengths: np.ndarray) -> np.ndarray:
+    """The nodes (n + 1, 3) of segments at ``angles`` [rad] from the downward vertical, in the
+    vertical plane at ``azimuth`` [rad], from ``start``."""
+    e = np.column_stack([np.sin(angles) * math.cos(azimuth), np.sin(angles) * math.sin(azimuth),
+                         -np.cos(angles)])  # fmt: skip
+    return np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, axis=0)])
 
 
 def _natural(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
@@ -233,10 +240,7 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
         end = list(schema.xyz(anchor))
     else:
         a = np.asarray(cable.initial.angles(cable.links), dtype=float)  # [rad]
-        azimuth = math.radians(cable.initial.azimuth_deg)
-        e = np.column_stack([np.sin(a) * math.cos(azimuth), np.sin(a) * math.sin(azimuth),
-                             -np.cos(a)])  # fmt: skip
-        nodes = np.asarray(start) + np.vstack([np.zeros(3), np.cumsum(lengths[:, None] * e, 0)])
+        nodes = _nodes(a, math.radians(cable.initial.azimuth_deg), start, lengths)
         end = [float(v) for v in nodes[-1]]
     if isinstance(cable.bottom, schema.TrajectoryBottom):
         bottom = _trajectory(cable.bottom, top["name"])

@@ -140,45 +140,35 @@ def increments(case, system: model.BuiltSystem) -> Increments:
     )  # fmt: skip
 
 
-def layout(system: model.BuiltSystem) -> bordered.Bordered:
+def layout(system: model.BuiltSystem, inc: Increments) -> bordered.Bordered:
     """Newton's matrix over the accelerations: the pattern of d(accelerations)/d(positions,
-    velocities) folded onto the velocity variables, the bodies' as the border."""
+    velocities) folded onto the velocity variables (a position's column onto the velocity that
+    moves it, ``inc``; a quaternion's onto its body's three angular velocities), the bodies'
+    as the border."""
     p = system.params
     nq, nv = int(p.n_q), int(p.n_v)
     full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
-    inc_q = np.full(nq, -1, dtype=np.int64)
     rows, cols = [full.row[full.col >= nq]], [full.col[full.col >= nq] - nq]
+    moved_by = np.full(nq, -1, dtype=np.int64)  # the velocity that moves each position
+    paired = np.flatnonzero(inc.q_of_v >= 0)
+    moved_by[inc.q_of_v[paired]] = paired
+    turned_by = np.full(nq, -1, dtype=np.int64)  # a quaternion entry's first angular velocity
+    for q, v in zip(inc.quat_q, inc.quat_v, strict=True):
+        turned_by[q : q + 4] = v
+    row, col = full.row[full.col < nq], full.col[full.col < nq]
+    direct = moved_by[col] >= 0
+    rows.append(row[direct])
+    cols.append(moved_by[col[direct]])
+    turn = turned_by[col] >= 0
+    rows.append(np.repeat(row[turn], 3))
+    cols.append((turned_by[col[turn]][:, None] + np.arange(3)[None, :]).ravel())
+    row, col = np.concatenate(rows), np.concatenate(cols)
+    pattern = coordinates.sparse.csr_matrix((np.ones(len(row)), (row, col)), shape=(nv, nv))
+    pattern = pattern + coordinates.sparse.identity(nv, format="csr")  # coloured with it
     body_v = np.zeros(nv, dtype=bool)
     for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
         v = int(p.body_v[b]) - nq
         body_v[v : v + (6 if p.body_rigid[b] else 3)] = True
-    # a position's column goes to the velocities that move it (a quaternion: all three)
-    pairs_q: list[np.ndarray] = []
-    pairs_v: list[np.ndarray] = []
-    for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
-        q, v = int(p.body_q[b]), int(p.body_v[b]) - nq
-        inc_q[q : q + 3] = np.arange(v, v + 3)
-        if p.body_rigid[b]:
-            for c in range(4):
-                pairs_q.append(np.full(3, q + 3 + c))
-                pairs_v.append(np.arange(v + 3, v + 6))
-            inc_q[q + 3 : q + 7] = -2
-    free_q = np.flatnonzero(inc_q == -1)
-    free_v = np.flatnonzero(~body_v)
-    inc_q[free_q] = free_v
-    in_q = full.col < nq
-    direct = inc_q[full.col[in_q]] >= 0
-    rows.append(full.row[in_q][direct])
-    cols.append(inc_q[full.col[in_q]][direct])
-    if pairs_q:
-        turning = np.concatenate(pairs_q), np.concatenate(pairs_v)
-        by_q = {int(q): turning[1][turning[0] == q] for q in np.unique(turning[0])}
-        for r, c in zip(full.row[in_q][~direct], full.col[in_q][~direct], strict=True):
-            rows.append(np.full(3, r))
-            cols.append(by_q[int(c)])
-    row, col = np.concatenate(rows), np.concatenate(cols)
-    pattern = coordinates.sparse.csr_matrix((np.ones(len(row)), (row, col)), shape=(nv, nv))
-    pattern = pattern + coordinates.sparse.identity(nv, format="csr")
     return bordered.structure(pattern, body_v, coordinates.colour(pattern))
 
 
@@ -331,7 +321,8 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, inc, lay, carry, vec, work):
 
 def newton(case, system: model.BuiltSystem) -> tuple[Increments, bordered.Bordered]:
     """What a system's implicit steps need besides its parameters."""
-    return increments(case, system), layout(system)
+    inc = increments(case, system)
+    return inc, layout(system, inc)
 
 
 def carry(system: model.BuiltSystem, lay: bordered.Bordered):
