@@ -322,7 +322,8 @@ class _Run:
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return system_implicit.chunk(
             self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
-            sim.max_newton_iterations, self.p, self.w, *self.newton, carry, states, times, work,
+            sim.max_newton_iterations, self.p, system_implicit.frozen(self.p), self.w,
+            *self.newton, carry, states, times, work,
         )  # fmt: skip
 
     def advance(self, count: int) -> int:

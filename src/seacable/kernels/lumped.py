@@ -65,7 +65,17 @@ _L = 13  # stretched length of each segment
 _SF = 14  # submerged fraction of the node's body (1 without a shape)
 _SK = 15  # hydrostatic heave stiffness rho g A_wp [N/m]
 _PM = 16  # 3 rows: point_mass less the emerged share of the added mass [kg]
-N_WORK_ROWS = 19
+# the laws' branches at the last evaluation with ``slack`` LAW (the active set), read back
+# with ``slack`` FROZEN: 1.0 where segment i is taut, where node k touches the seabed
+_TAUT = 19
+_CONTACT = 20
+N_WORK_ROWS = 21
+
+# ``slack`` modes of segment_loads and seabed_loads
+LINEAR = 0  # the axial law linear in tension and compression (smooth static solves)
+LAW = 1  # the physical laws: no compression, the seabed pushes only; records the active set
+FROZEN = 2  # the laws on the recorded active set: a semismooth Newton's matrix (its
+# difference quotients never straddle a kink: a slack segment stays slack, a taut one taut)
 
 
 class LumpedParams(NamedTuple):
@@ -160,8 +170,9 @@ def segment_loads(
     """Tension, tangent, hydrodynamic and weight loads of the n segments of one line, shared
     to its nodes: the line's nodes at ``y = [r_0 .. r_n, v_0 .. v_n]`` (3 each), its segment
     properties at ``[s0 + i]`` of the flat arrays (EA ``stiffness`` [N], alpha ``damping`` [s],
-    ``slack``: 1 no compression, 0 linear), its nodes' workspace columns ``c0 + k``. Every
-    line model and every line of a system computes its segment loads here."""
+    ``slack``: LAW no compression, LINEAR linear, FROZEN the recorded active set), its nodes'
+    workspace columns ``c0 + k``. Every line model and every line of a system computes its
+    segment loads here."""
     v0 = 3 * (n + 1)
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
@@ -187,7 +198,10 @@ def segment_loads(
         strain = length_now / l0 - 1.0
         strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
         tension = stiffness[s] * (strain + damping[s] * strain_rate)
-        if tension < 0.0 and slack == 1:
+        if slack == LAW:
+            w[_TAUT, ka] = 1.0 if tension > 0.0 else 0.0
+            tension = max(tension, 0.0)
+        elif slack == FROZEN and w[_TAUT, ka] == 0.0:
             tension = 0.0
         w[_T, ka] = tension
         w[_TX, ka], w[_TX + 1, ka], w[_TX + 2, ka] = tx, ty, tz
@@ -243,25 +257,31 @@ def segment_loads(
 def _seabed(y, p, w):
     seabed_loads(
         y, p.n, 0, p.seabed_z, p.seabed_stiffness, p.seabed_damping, p.seabed_friction,
-        p.seabed_slip_speed, w,
+        p.seabed_slip_speed, LAW, w,
     )  # fmt: skip
 
 
 @njit(**JIT)
-def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, w):
+def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, mode, w):
     """Seabed contact of the n + 1 nodes of one line (``y`` as in segment_loads; per-node
     stiffness [N/m] and damping [N s/m] at ``[c0 + k]``, as its workspace columns): a
-    vertical spring-damper below ``seabed_z`` and regularised Coulomb friction along it."""
+    vertical spring-damper below ``seabed_z`` that only pushes, and regularised Coulomb
+    friction along it. ``mode`` FROZEN: on the contacts recorded by the last evaluation in
+    any other mode (see segment_loads)."""
     v0 = 3 * (n + 1)
     for j in range(n + 1):
         k = c0 + j
         depth = seabed_z - y[3 * j + 2]
-        if depth <= 0.0:
-            continue
         vz = y[v0 + 3 * j + 2]
         normal = stiffness[k] * depth - damping[k] * vz
-        if normal < 0.0:
-            normal = 0.0
+        if mode == FROZEN:
+            if w[_CONTACT, k] == 0.0:
+                continue
+        else:
+            touching = depth > 0.0 and normal > 0.0
+            w[_CONTACT, k] = 1.0 if touching else 0.0
+            if not touching:
+                continue
         w[_F + 2, k] += normal
         vx, vy = y[v0 + 3 * j], y[v0 + 3 * j + 1]
         speed = math.sqrt(vx * vx + vy * vy + slip_speed**2)

@@ -37,14 +37,15 @@ def loads(
     buoyancy, added_mass, node_bend, seabed_k, seabed_c, seabed_z, friction, slip, current_z,
     current_u, current_v, w,
 ):  # fmt: skip
-    """Every load on the line's nodes into the workspace columns c0 .. c0 + n (``slack`` 1:
-    no compression, the physical law; 0: linear, for smooth static solves)."""
+    """Every load on the line's nodes into the workspace columns c0 .. c0 + n (``slack``:
+    kernels.lumped's LAW, the physical laws; LINEAR, for smooth static solves; FROZEN, the
+    laws' branches of the last LAW evaluation, for Newton's matrix)."""
     lk.segment_loads(
         yl, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
         buoyancy, added_mass, current_z, current_u, current_v, w,
     )  # fmt: skip
     lk.bending(n, c0, node_bend, w)
-    lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, w)
+    lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, slack, w)
 
 
 @njit(inline="always", **JIT)

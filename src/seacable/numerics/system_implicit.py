@@ -51,6 +51,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import kinematics
+from seacable.kernels import lumped
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
 from seacable.kernels.timefn import JIT
 from seacable.numerics import bordered
@@ -62,6 +63,7 @@ FD_STEP = 1.5e-8  # relative change of a position for the difference quotients
 MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
 REFRESH = 3  # modified Newton: the matrix is rebuilt after REFRESH iterations on one matrix
 SLOW = 0.5  # ... or as soon as a correction is larger than SLOW times the one before
+SEARCH = 4  # a correction that does not lower the residual is halved up to SEARCH times
 
 
 # coefficient vector layout: pa, b, g, am, af
@@ -223,8 +225,9 @@ def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
 
 
 @njit(**JIT)
-def _jacobian(t, y0, acc, a1, h, coef, p, w, inc, lay, mat, r0, vec, work):
-    """Newton's matrix by differences of the residual, colour by colour, into ``mat``."""
+def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, mat, r0, vec, work):
+    """Newton's matrix by differences of the residual, colour by colour, into ``mat``; the
+    residuals with the parameters ``pj`` (``frozen``: the laws' branches of the residual r0)."""
     nv = a1.shape[0]
     ya, ydot, d, ap, rp, eps = vec[0], vec[1], vec[2][:nv], vec[3][:nv], vec[4][:nv], vec[5][:nv]
     f0 = vec[9][:nv]
@@ -238,7 +241,7 @@ def _jacobian(t, y0, acc, a1, h, coef, p, w, inc, lay, mat, r0, vec, work):
             size = max(abs(y0[q]), inc.scale[j]) if q >= 0 else inc.scale[j]
             eps[j] = FD_STEP * size / reach
             ap[j] += eps[j]
-        status = _residual(t, y0, acc, ap, h, coef, p, w, inc, ya, ydot, d, rp, f0)
+        status = _residual(t, y0, acc, ap, h, coef, pj, w, inc, ya, ydot, d, rp, f0)
         work[2] += 1
         if status != OK:
             return status
@@ -250,12 +253,50 @@ def _jacobian(t, y0, acc, a1, h, coef, p, w, inc, lay, mat, r0, vec, work):
     return OK
 
 
+@njit(inline="always", **JIT)
+def _merit(res, weight):
+    """The residual's size for the line search: sum of (residual x metres per unit)^2."""
+    total = 0.0
+    for i in range(res.shape[0]):
+        r = res[i] * weight[i]
+        total += r * r
+    return total
+
+
 @njit(**JIT)
-def _step(t, y, acc, h, coef, tol, max_iter, p, w, inc, lay, carry, vec, work):
+def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
+    """a1 -= s da with s = 1, 1/2, ... (SEARCH halvings at most) until the residual's merit
+    falls (Armijo's test); the residual at the new a1 into vec[6]. Returns (status, merit,
+    whether the correction was cut)."""
+    nv = a1.shape[0]
+    ya, ydot, d, res, f0 = vec[0], vec[1], vec[2][:nv], vec[6][:nv], vec[9][:nv]
+    trial, res_trial = vec[3][:nv], vec[4][:nv]
+    fraction = 1.0
+    status = OK
+    trial_merit = math.inf
+    for cut in range(SEARCH + 1):
+        for i in range(nv):
+            trial[i] = a1[i] - fraction * da[i]
+        status = _residual(t, y, acc, trial, h, coef, p, w, inc, ya, ydot, d, res_trial, f0)
+        work[2] += 1
+        trial_merit = _merit(res_trial, inc.weight) if status == OK else math.inf
+        if trial_merit <= (1.0 - 1e-4 * fraction) * merit or cut == SEARCH:
+            break
+        fraction *= 0.5
+    a1[:] = trial
+    res[:] = res_trial
+    return status, trial_merit, fraction < 1.0
+
+
+@njit(**JIT)
+def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, work):
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     A modified Newton iteration on the matrix of ``_jacobian``, kept from step to step while
     it serves: rebuilt when it has taken REFRESH iterations, when a correction shrinks by less
-    than SLOW, or when the step length changes."""
+    than SLOW, when a line search cut the step, or when the step length changes. Each
+    correction that does not meet the tolerance is damped by halving (at most SEARCH times)
+    until the residual's ``_merit`` falls: the laws' kinks (a segment going slack, a node
+    touching the seabed) otherwise make Newton cycle between their branches."""
     q, fresh, mat, piv = carry
     a1, trend = q[0], q[1]
     nv = a1.shape[0]
@@ -275,11 +316,12 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, inc, lay, carry, vec, work):
         a1 += trend
     uses = 0
     previous = math.inf
+    status = _residual(t, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
+    work[2] += 1
+    merit = _merit(res, inc.weight)
     for _ in range(max_iter):
-        status = _residual(t, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
-        work[2] += 1
         if status == OK and (fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH):
-            status = _jacobian(t, y, acc, a1, h, coef, p, w, inc, lay, mat, res, vec, work)
+            status = _jacobian(t, y, acc, a1, h, coef, pj, w, inc, lay, mat, res, vec, work)
             work[4] += 1
             if status == OK and not bordered.factor(lay, mat, piv):
                 status = NON_FINITE
@@ -294,26 +336,29 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, w, inc, lay, carry, vec, work):
         work[5] += 1
         bordered.solve(lay, mat, piv, res, da, z)
         largest = 0.0
-        for i in range(a1.shape[0]):
-            a1[i] -= da[i]
+        for i in range(nv):
             largest = max(largest, abs(da[i]) * inc.weight[i])
         if not math.isfinite(largest):
             work[3] += 1
             fresh[0] = 0.0
             return NON_FINITE
-        if largest > SLOW * previous:
-            uses = REFRESH
-        previous = largest
         if b * h * h * largest <= tol:
+            a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
             system_kernel.project(ya, p)
             y[:] = ya
-            for i in range(a1.shape[0]):
+            for i in range(nv):
                 trend[i] = a1[i] - acc[i]
             fresh[2] = h
             acc[:] = a1
             work[0] += 1
             return OK
+        if largest > SLOW * previous:
+            uses = REFRESH
+        previous = largest
+        status, merit, cut = _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work)
+        if cut:
+            uses = REFRESH
     fresh[0] = 0.0
     fresh[2] = 0.0
     return NEWTON_FAILED
@@ -323,6 +368,16 @@ def newton(case, system: model.BuiltSystem) -> tuple[Increments, bordered.Border
     """What a system's implicit steps need besides its parameters."""
     inc = increments(case, system)
     return inc, layout(system, inc)
+
+
+def frozen(p):
+    """The parameters Newton's matrix is built with: a lumped line's laws on the branches
+    (slack or taut segment, seabed contact or not) of the residual they are taken at
+    (kernels.lumped FROZEN), so that no difference quotient straddles a kink. Forward
+    differences across a kink gave a slack segment its taut stiffness: on a slack string of EA
+    1e7 N released at rest (benchmarks/string_pendulum.py) the iteration then crept (each
+    correction 0.9998 times the one before) and every step failed."""
+    return p._replace(slack_allowed=lumped.FROZEN) if p.slack_allowed == lumped.LAW else p
 
 
 def carry(system: model.BuiltSystem, lay: bordered.Bordered):
@@ -347,13 +402,14 @@ def initial_acceleration(t, y, p, w, acc):
 @njit(**JIT)
 def chunk(
     first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
-    w, inc, lay, carried, states, times, work,
+    pj, w, inc, lay, carried, states, times, work,
 ):  # fmt: skip
     """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps
     ``output_interval / steps_per_output`` [s], from output index ``first_output``.
 
     ``acc`` holds the scheme's acceleration a0 at the start (the system's acceleration at the
-    first call; the algorithmic one after), and is updated; ``carried`` is ``carry``'s tuple,
+    first call; the algorithmic one after), and is updated; ``pj`` is ``frozen(p)``, the
+    parameters of Newton's matrix; ``carried`` is ``carry``'s tuple,
     updated. ``tol`` [m] bounds the last Newton correction of the positions (b h^2 |da|, each
     unknown in metres through ``Increments.weight``). A step whose iteration fails (regularised
     seabed friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS
@@ -377,8 +433,8 @@ def chunk(
                 status = OK
                 h = dt / parts
                 for k in range(parts):
-                    status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, w, inc, lay,
-                                   carried, vec, work)  # fmt: skip
+                    status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
+                                   lay, carried, vec, work)  # fmt: skip
                     if status != OK:
                         break
                 if status == OK:

@@ -78,7 +78,7 @@ class SystemParams(NamedTuple):
     seg_length: np.ndarray  # unstretched [m]
     seg_stiffness: np.ndarray  # EA [N]
     seg_damping: np.ndarray  # alpha [s]
-    slack_allowed: int  # 1: no compression (the law); 0: linear (smooth static solves)
+    slack_allowed: int  # kernels.lumped LAW (no compression), LINEAR (statics), FROZEN (Newton)
     seg_drag_normal: np.ndarray  # 0.5 rho Cd_n d li [N s^2/m^2]
     seg_drag_tangential: np.ndarray  # [N s^2/m^2]
     seg_wet_weight: np.ndarray  # positive down [N]
