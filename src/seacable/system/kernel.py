@@ -255,7 +255,13 @@ def rhs(t, y, p, w, ydot):
             w.scratch[120:123],
         )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
-        natural_string.carry(y, p, w, li)
+        natural_string.carry(
+            y, natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
+                                          p.nat_alpha, p.nat_cartesian, p.gravity, li, 1.0),
+            p.nat_q[li], p.nat_v[li], p.nat_from[li], p.nat_tip[li], p.point_body,
+            p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.nat,
+            w.nat_work,
+        )  # fmt: skip
     kinematics.point_states(
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
     )
@@ -265,11 +271,11 @@ def rhs(t, y, p, w, ydot):
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
         p.body_shape, w.fraction, w.rot, w.omega, w.mass, w.bias,
     )  # fmt: skip
-    # ties
-    tie.forces(
-        w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
-        p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
-    )  # fmt: skip
+    if p.tie_from.shape[0] > 0:  # ties (a call with arrays costs even with none to do)
+        tie.forces(
+            w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
+            p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
+        )  # fmt: skip
     for k in range(p.tie_from.shape[0]):
         f = w.tie_force[k]
         a, b = p.tie_from[k], p.tie_to[k]
@@ -316,7 +322,11 @@ def rhs(t, y, p, w, ydot):
             w.parm, w.rs, w.rs_force, w.rs_la, w.scratch, ydot,
         )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
-        if natural_string.rates(t, y, p, w, li, ydot) != OK:
+        params = natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
+                                            p.nat_alpha, p.nat_cartesian, p.gravity, li,
+                                            p.body_mass[p.nat_tip[li]])  # fmt: skip
+        if natural_string.rates(t, y, params, p.nat_q[li], p.nat_v[li], w.nat, w.nat_work,
+                                w.nat_dot, ydot) != OK:  # fmt: skip
             status = NON_FINITE
     total = 0.0
     for v in ydot:
