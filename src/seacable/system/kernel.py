@@ -204,11 +204,6 @@ def make_work(p: SystemParams) -> SystemWork:
     )  # fmt: skip
 
 
-@njit(inline="always", **JIT)
-def _tf(p):
-    return (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
-
-
 @njit(**JIT)
 def _fractions(kind, shape, pos, fraction):
     for b in range(kind.shape[0]):
@@ -238,19 +233,35 @@ def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, ro
         )
 
 
-@njit(inline="always", **JIT)
-def evaluate(t, y, p, w, ydot):
-    """Fill the workspace and ``ydot``; returns a status (kernels.planar_chain codes)."""
+@njit(**JIT)
+def rhs(t, y, p, w, ydot):
+    """Fill the workspace and ``ydot``; returns a status (kernels.status codes). The parameter
+    and work tuples are read here only: every call from here takes the arrays it needs, none
+    the tuples (docs/architecture.md, "Calls cost reference counts")."""
     status = OK
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     kinematics.body_states(
         t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
-        p.body_motion, p.body_track, p.body_parent, _tf(p), w.pos, w.rot, w.vel, w.omega, w.acc,
+        p.body_motion, p.body_track, p.body_parent, tf, w.pos, w.rot, w.vel, w.omega, w.acc,
         w.quat, w.imposed,
     )  # fmt: skip
     if p.rs_n.shape[0] > 0:
-        rigid.nodes_and_loads(y, p, w)
+        rigid.nodes_and_loads(
+            y, p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
+            p.rs_tip, p.rs_ref, p.rs_length, p.rs_wet_weight, p.rs_buoyancy, p.rs_drag_normal,
+            p.rs_drag_tangential, p.rs_added, p.rs_inertia, p.rs_joint_stiffness,
+            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, p.point_body,
+            p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.rs,
+            w.scratch[120:123],
+        )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
-        natural_string.carry(y, p, w, li)
+        natural_string.carry(
+            y, natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
+                                          p.nat_alpha, p.nat_cartesian, p.gravity, li, 1.0),
+            p.nat_q[li], p.nat_v[li], p.nat_from[li], p.nat_tip[li], p.point_body,
+            p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.nat,
+            w.nat_work,
+        )  # fmt: skip
     kinematics.point_states(
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
     )
@@ -260,89 +271,103 @@ def evaluate(t, y, p, w, ydot):
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
         p.body_shape, w.fraction, w.rot, w.omega, w.mass, w.bias,
     )  # fmt: skip
-    # ties
-    tie.forces(
-        w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
-        p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
-    )  # fmt: skip
+    if p.tie_from.shape[0] > 0:  # ties (a call with arrays costs even with none to do)
+        tie.forces(
+            w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
+            p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
+        )  # fmt: skip
     for k in range(p.tie_from.shape[0]):
         f = w.tie_force[k]
         a, b = p.tie_from[k], p.tie_to[k]
         dynamics.add_force(w.parm[a], f[0], f[1], f[2], w.load[p.point_body[a]])
         dynamics.add_force(w.parm[b], -f[0], -f[1], -f[2], w.load[p.point_body[b]])
     # lumped-mass lines
-    if not _lines(y, p, w, ydot):
+    if p.line_n.shape[0] > 0 and not _lumped_lines(
+        y, p.line_n, p.line_seg, p.line_node, p.line_q, p.line_v, p.line_from, p.line_to,
+        p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed, p.seg_drag_normal,
+        p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
+        p.node_mass, p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z,
+        p.seabed_friction, p.seabed_slip_speed, p.current_z, p.current_u, p.current_v,
+        p.point_body, p.body_kind, w.ppos, w.pvel, w.parm, w.omega, w.line, w.nodes, w.end_mass,
+        w.end_load, w.mass, w.load, ydot,
+    ):  # fmt: skip
         status = NON_FINITE
     # force models
     table.add_all(
         t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
         p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
         w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-        _tf(p), w.load,
+        tf, w.load,
     )  # fmt: skip
     if p.n_s > 0:
         table.state_rates(p.force_kind, p.force_body, p.force_at, p.force_state, p.force_data,
                           w.pos, w.vel, w.ppos, w.pvel, ydot)  # fmt: skip
-    if p.rs_n.shape[0] > 0:
-        for b in range(w.load.shape[0]):  # for the statics' moment balance of rigid lines
-            for c in range(3):
-                w.own_load[b, c] = w.load[b, c]
-    if p.rs_n.shape[0] > 0 and not rigid.backward(t, y, p, w):
+    if p.rs_n.shape[0] > 0:  # for the statics' moment balance of rigid lines
+        w.own_load[:, :] = w.load[:, 0:3]
+    if p.rs_n.shape[0] > 0 and not rigid.backward(
+        p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_v, p.rs_from, p.rs_to,
+        p.rs_tip, p.rs_held, p.rs_length, p.rs_mass, p.rs_inertia, p.stabilization_frequency,
+        p.point_body, p.point_offset, p.body_kind, p.body_pose, y, w.pos, w.rot, w.vel, w.omega,
+        w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias, w.load, w.rs, w.rs_force, w.rs_la,
+        w.scratch,
+    ):  # fmt: skip
         status = SINGULAR_CLOSURE
-    if not _bodies(y, p, w, ydot):
+    if not _solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, w.load,
+                         w.bias, w.mass, w.acc, w.rhs6, ydot):  # fmt: skip
         status = NON_FINITE
     if p.rs_n.shape[0] > 0:
-        rigid.forward(t, y, p, w, ydot)
+        rigid.forward(
+            p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
+            p.rs_tip, p.rs_held, p.rs_length, p.point_body, p.body_kind, y, w.omega, w.acc,
+            w.parm, w.rs, w.rs_force, w.rs_la, w.scratch, ydot,
+        )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
-        if natural_string.rates(t, y, p, w, li, ydot) != OK:
+        params = natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
+                                            p.nat_alpha, p.nat_cartesian, p.gravity, li,
+                                            p.body_mass[p.nat_tip[li]])  # fmt: skip
+        if natural_string.rates(t, y, params, p.nat_q[li], p.nat_v[li], w.nat, w.nat_work,
+                                w.nat_dot, ydot) != OK:  # fmt: skip
             status = NON_FINITE
+    total = 0.0
+    for v in ydot:
+        total += v
+    if not np.isfinite(total):
+        status = NON_FINITE
     return status
 
 
-@njit(inline="always", **JIT)  # inlined: a call that passes the parameter tuple copies it
-def _line_loads(y, p, w, li):
-    n, s0, c0 = p.line_n[li], p.line_seg[li], p.line_node[li]
-    lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
-                       p.line_to[li], w.line)  # fmt: skip
-    lumped_mass.loads(
-        w.line, n, s0, c0, p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed,
-        p.seg_drag_normal,
-        p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
-        p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z, p.seabed_friction,
-        p.seabed_slip_speed, p.current_z, p.current_u, p.current_v, w.nodes,
-    )  # fmt: skip
-
-
-@njit(inline="always", **JIT)
-def _lines(y, p, w, ydot):
+@njit(**JIT)
+def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, line_to, length,
+                  stiffness, damping, slack_allowed, drag_normal, drag_tangential, wet_weight,
+                  buoyancy, added_mass, bend, node_mass, seabed_stiffness, seabed_damping,
+                  seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u, current_v,
+                  point_body, body_kind, ppos, pvel, parm, omega, line, nodes, end_mass,
+                  end_load, body_mass, load, ydot):  # fmt: skip
+    """Every lumped-mass line: its loads, its interior nodes' rates into ``ydot``, its end
+    nodes' mass and loads handed to their bodies (``body_mass`` = ``w.mass``). False when a
+    rate is not finite. The arrays come one by one, as in ``_solve_bodies``."""
     ok = True
-    for li in range(p.line_n.shape[0]):
-        _line_loads(y, p, w, li)
-        n, c0 = p.line_n[li], p.line_node[li]
-        ok = (
-            lumped_mass.interior_rates(
-                w.line, n, p.line_q[li], p.line_v[li], c0, p.node_mass, w.nodes, ydot
-            )
-            and ok
-        )
+    for li in range(line_n.shape[0]):
+        n, s0, c0 = line_n[li], line_seg[li], line_node[li]
+        lumped_mass.gather(y, n, line_q[li], line_v[li], ppos, pvel, line_from[li], line_to[li],
+                           line)  # fmt: skip
+        lumped_mass.loads(
+            line, n, s0, c0, length, stiffness, damping, slack_allowed, drag_normal,
+            drag_tangential, wet_weight, buoyancy, added_mass, bend, seabed_stiffness,
+            seabed_damping, seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u,
+            current_v, nodes,
+        )  # fmt: skip
+        ok = lumped_mass.interior_rates(line, n, line_q[li], line_v[li], c0, node_mass, nodes,
+                                        ydot) and ok  # fmt: skip
         for end in range(2):
-            point = p.line_from[li] if end == 0 else p.line_to[li]
-            lumped_mass.end_mass_force(
-                p.node_mass, w.nodes, c0 + end * n, w.end_mass[li, end], w.end_load[li, end]
-            )
-            b = p.point_body[point]
-            if kinematics.has_mass(p.body_kind[b]):
-                dynamics.add_point_mass(
-                    w.end_mass[li, end], w.parm[point], w.omega[b], w.end_load[li, end],
-                    w.mass[b], w.load[b],
-                )  # fmt: skip
+            point = line_from[li] if end == 0 else line_to[li]
+            lumped_mass.end_mass_force(node_mass, nodes, c0 + end * n, end_mass[li, end],
+                                       end_load[li, end])  # fmt: skip
+            b = point_body[point]
+            if kinematics.has_mass(body_kind[b]):
+                dynamics.add_point_mass(end_mass[li, end], parm[point], omega[b],
+                                        end_load[li, end], body_mass[b], load[b])  # fmt: skip
     return ok
-
-
-@njit(inline="always", **JIT)
-def _bodies(y, p, w, ydot):
-    return _solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, w.load,
-                         w.bias, w.mass, w.acc, w.rhs6, ydot)  # fmt: skip
 
 
 @njit(**JIT)
@@ -372,17 +397,6 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, load, bias, mass, a
             for c in range(3):
                 ydot[v + 3 + c] = acc[b, 3 + c]
     return ok
-
-
-@njit(**JIT)
-def rhs(t, y, p, w, ydot):
-    status = evaluate(t, y, p, w, ydot)
-    total = 0.0
-    for v in ydot:
-        total += v
-    if not np.isfinite(total):
-        status = NON_FINITE
-    return status
 
 
 @njit(inline="always", **JIT)

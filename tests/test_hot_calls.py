@@ -1,0 +1,38 @@
+"""The project rule for hot code (docs/architecture.md, "Calls cost reference counts"): in a
+system's right-hand side only ``system.kernel.rhs`` receives the parameter and work tuples; every
+call it makes passes arrays or small tuples, never ``p`` or ``w`` themselves (numba takes and
+drops a reference to each of the tuples' 124 arrays at every such call, about 1.2 us per
+evaluation; an inlined helper copies them just the same). Read from the source: no compilation."""
+
+import ast
+import inspect
+import textwrap
+
+from seacable.system import kernel
+
+TUPLES = {"p", "w"}
+
+
+def _calls_passing_tuples(function) -> list[str]:
+    """Each call in ``function`` that passes one of ``TUPLES`` as an argument, as source text."""
+    tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        arguments = list(node.args) + [keyword.value for keyword in node.keywords]
+        if any(isinstance(a, ast.Name) and a.id in TUPLES for a in arguments):
+            found.append(ast.unparse(node))
+    return found
+
+
+def test_rhs_passes_no_whole_tuple():
+    assert _calls_passing_tuples(kernel.rhs.py_func) == []
+
+
+def test_the_check_finds_a_call_that_passes_a_tuple():
+    def breach(t, y, p, w, ydot):
+        ok = kernel.project(y, p)
+        return ok
+
+    assert _calls_passing_tuples(breach) == ["kernel.project(y, p)"]
