@@ -15,6 +15,7 @@ import io
 import sys
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 import seacable
@@ -22,6 +23,7 @@ from seacable.case import legacy
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from golden.record import save_golden, system_rows  # noqa: E402
+from golden.record import star_rows as rigid_star_rows  # noqa: E402
 
 CASES = Path(__file__).resolve().parent.parent / "legacy_cases" / "gaps"
 GOLDEN = Path(__file__).resolve().parent / "gaps"
@@ -29,7 +31,8 @@ GOLDEN = Path(__file__).resolve().parent / "gaps"
 # servo's force where there is one
 VARIABLES = ("node_x", "node_y", "node_z", "tension", "top_force_x", "top_force_y",
              "top_force_z", "bottom_force_x", "bottom_force_y", "bottom_force_z",
-             "servo_force_x", "servo_force_y", "servo_force_z")  # fmt: skip
+             "servo_force_x", "servo_force_y", "servo_force_z", "body_x", "body_y",
+             "body_z")  # fmt: skip
 
 
 def stems() -> list[str]:
@@ -42,7 +45,13 @@ def single_cable(stem: str) -> xr.Dataset:
     if results.status != "complete":
         raise RuntimeError(f"{stem}: {results.status}: {results.message}")
     dataset = results.dataset
-    dataset = dataset[[name for name in VARIABLES if name in dataset]]
+    names = [name for name in VARIABLES if name in dataset]
+    if "servo_force_x" in dataset or "body_x" in dataset:  # a servo's end, a star's body:
+        # the single-cable core's bottom_force is the last segment's pull alone, the system's
+        # the end node's loads less its inertia (its weight and drag too); a servo's force and
+        # the body's motion are compared instead
+        names = [name for name in names if not name.startswith("bottom_force")]
+    dataset = dataset[names]
     dataset.attrs = {"golden_case": stem, "golden_source": "single-cable core"}
     return dataset
 
@@ -54,7 +63,27 @@ def upgraded(stem: str) -> dict:
     results = seacable.simulate(case)
     if results.status != "complete":
         raise RuntimeError(f"{stem} upgraded: {results.status}: {results.message}")
+    if sum(line.to == case.bodies[0].name for line in case.lines) > 1:
+        return star_rows(results.dataset, case)
+    if sum(line.from_ == case.bodies[0].name for line in case.lines) > 1:
+        return rigid_star_rows(results.dataset, case)  # lines from the body back to the tops
     return system_rows(results.dataset, case)
+
+
+def star_rows(tree, case) -> dict:
+    """A star of lumped-mass cables (lines from each top to the shared body, the first body)
+    under the single-cable star's names: per cable ``node_*`` and ``tension``, its end loads
+    as ``top_force_*`` and ``bottom_force_*``, the shared body's position as ``body_*``."""
+    lines = [tree[f"lines/{line.name}"].to_dataset() for line in case.lines]
+    body = tree[f"bodies/{case.bodies[0].name}"].to_dataset()
+    out = {"time": tree["time"].values}
+    for name in ("node_x", "node_y", "node_z", "tension"):
+        out[name] = np.stack([line[name].values for line in lines], axis=1)
+    for c in "xyz":
+        out[f"top_force_{c}"] = np.stack([line[f"from_force_{c}"].values for line in lines], 1)
+        out[f"bottom_force_{c}"] = np.stack([line[f"to_force_{c}"].values for line in lines], 1)
+        out[f"body_{c}"] = body[f"position_{c}"].values
+    return out
 
 
 def path(stem: str) -> Path:

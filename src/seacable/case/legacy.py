@@ -22,8 +22,11 @@ link masses and one spring or damper per joint become sections (``legacy_section
 along the cable (``point_bodies``) cut it into lines, each body carried between two (the joint
 at such a body must have no spring and no damper: the lines meet there with no joint); a
 static start becomes ``start: static``. Cables on a shared body (a star) become lines from that
-body back to each top. A lumped-mass cable and Poth's natural string have their line models.
-What has no system form yet is refused, naming what is missing.
+body back to each top. A lumped-mass cable and Poth's natural string have their line models;
+a lumped-mass cable started on its catenary to a trajectory (exact or servo), or with bodies
+along it, starts from the system's statics (``start: static``: in a tow, its steady motion);
+a star's lumped-mass cables become lines from each top to the shared body. What has no
+system form yet is refused, naming what is missing.
 """
 
 import math
@@ -70,24 +73,29 @@ def _case(case: schema.Case, bodies, line_types, lines, start: str) -> dict[str,
 
 
 def _star(case: schema.Case) -> dict[str, Any]:
-    """Cables from their tops to bodies they share (a star): each cable becomes lines from its
-    shared body to its top (reversed: a rigid line may end held on a fixed or imposed body, and
-    several may start on one body), cut at the bodies along it."""
+    """Cables from their tops to bodies they share (a star): each rigid cable becomes lines
+    from its shared body to its top (reversed: a rigid line may end held on a fixed or imposed
+    body, and several may start on one body), each lumped-mass cable lines from its top to the
+    shared body; cut at the bodies along them."""
     bodies = [_point(b.name, b, case.environment, list(schema.xyz(b.position)))
               for b in case.bodies]  # fmt: skip
-    line_types, lines = [], []
+    line_types: list[dict[str, Any]] = []
+    lines: list[dict[str, Any]] = []
+    shared = {b.name: b for b in case.bodies}
     for k, cable in enumerate(case.cables):
         where = f"cables[{k}]"
-        if not isinstance(cable.bottom, schema.AttachedBottom) or cable.model not in RIGID:
-            raise CaseError(f"{where}: a star's system form here needs rigid-segment cables "
-                            "attached to their shared body")  # fmt: skip
+        if not isinstance(cable.bottom, schema.AttachedBottom):
+            raise CaseError(f"{where}.bottom: a star's system form here needs every cable "
+                            "attached to a shared body")  # fmt: skip
+        if cable.model == "lumped_mass":  # lines from the top to the shared body
+            more, types, mine, _ = _lumped_parts(case, cable, where, shared[cable.bottom.body])
+            bodies, line_types, lines = bodies + more, line_types + types, lines + mine
+            continue
+        if cable.model not in RIGID:
+            raise CaseError(f"{where}.model: '{cable.model}' has no system form in a star")
         if not isinstance(cable.top, schema.FixedTop | schema.ImposedTop):
             raise CaseError(f"{where}.top.type: '{cable.top.type}' has no system form in a star "
                             "(a rigid line held on a moving body's point)")  # fmt: skip
-        if cable.joint_stiffness is not None or cable.bending_stiffness is not None:
-            raise CaseError(f"{where}.joint_stiffness: a star's cables start at the shared body "
-                            "in the system form; their joints' springs there have no system "
-                            "form: leave them out")  # fmt: skip
         more, types, mine, _ = _rigid(case, cable, where, shared=cable.bottom.body)
         bodies += more
         line_types += types
@@ -133,11 +141,7 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     end = bottom["name"] if bottom is not None else shared
     names = [top["name"], *(body["name"] for body in along), end]
     cuts = [0, *(pb.node for pb in ordered), cable.links]
-    plan = sections.Plan(cable, _line_type(cable), cuts, where)
-    if shared is not None and plan.per_joint_dampers:
-        raise CaseError(f"{where}.joint_damping: one value per joint has no system form in a "
-                        "star (its lines run from the shared body back to the top); give "
-                        "one")  # fmt: skip
+    plan = sections.Plan(cable, _line_type(cable), cuts, where, reverse=shared is not None)
     pieces = [(cuts[k], cuts[k + 1], names[k], names[k + 1]) for k in range(len(cuts) - 1)]
     if shared is not None:  # from the shared body back to the top
         pieces = [(first, last, b, a) for first, last, a, b in reversed(pieces)]
@@ -146,7 +150,7 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
         line: dict[str, Any] = {
             "name": cable.name if len(pieces) == 1 else f"{cable.name} {k + 1}",
             "model": cable.model, "from": start_at, "to": end_at,
-            "sections": plan.sections(first, last, reverse=shared is not None),
+            "sections": plan.sections(first, last),
             "initial": "catenary" if static and held else _initial(
                 cable, static, a, (first, last), reverse=shared is not None),
         }  # fmt: skip
@@ -211,24 +215,37 @@ def _natural(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, An
 
 
 def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
-    """A lumped-mass cable from its top to its end: started on its catenary to a pinned anchor,
-    or at its given angles (``arc``, ``angles``) to whatever its end is (an anchor, a free body,
-    a guided one, a floating structure, an exact trajectory); cut into lines at the bodies
-    along it (each line keeps at least two segments)."""
+    """A lumped-mass cable as a system (``_lumped_parts``)."""
+    bodies, line_types, lines, start = _lumped_parts(case, cable, where)
+    return _case(case, bodies, line_types, lines, start)
+
+
+def _lumped_parts(case: schema.Case, cable: schema.Cable, where: str,
+                  shared: schema.SharedBody | None = None):  # fmt: skip
+    """The bodies, line types and lines of a lumped-mass cable from its top to its end, and
+    how the system starts: started on its catenary to a pinned anchor, a trajectory or the
+    body ``shared`` with other cables (a star; its bodies named after the cable), or at its
+    given angles (``arc``, ``angles``) to whatever its end is (an anchor, a free body, a guided
+    one, a floating structure, a trajectory); cut into lines at the bodies along it (each
+    line keeps at least two segments)."""
     shape = cable.initial.shape
     anchor = cable.bottom.anchor if isinstance(cable.bottom, schema.PinnedBottom) else None
     trajectory = isinstance(cable.bottom, schema.TrajectoryBottom)
-    if shape == "catenary" and anchor is None and not trajectory:
+    if shape == "catenary" and anchor is None and not trajectory and shared is None:
         raise CaseError(f"{where}.initial: a catenary start needs the end's anchor or its "
                         "trajectory; give the start as angles (arc or angles)")  # fmt: skip
     if shape not in ("catenary", "arc", "angles"):
         raise CaseError(f"{where}.initial.shape: '{shape}' has no system form for a lumped-mass "
                         "cable")  # fmt: skip
     top, start = _top(cable.top, case._base_dir)
+    prefix = "" if shared is None else f"{cable.name} "
+    top["name"] = f"{prefix}{top['name']}"
     lengths = cable.lengths()
     nodes = None
     if anchor is not None and shape == "catenary":
         end = list(schema.xyz(anchor))
+    elif shared is not None and shape == "catenary":
+        end = list(schema.xyz(shared.position))
     elif isinstance(cable.bottom, schema.TrajectoryBottom) and shape == "catenary":
         # to the trajectory's start (the line at its static shape to it)
         end = _trajectory_start(cable.bottom, start, case._base_dir)
@@ -237,7 +254,10 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
         nodes = _nodes(a, math.radians(cable.initial.azimuth_deg), start, lengths)
         end = [float(v) for v in nodes[-1]]
     vehicle = None
-    if isinstance(cable.bottom, schema.TrajectoryBottom):
+    bottom: dict[str, Any] | None = None
+    if shared is not None:  # the shared body (the star's)
+        pass
+    elif isinstance(cable.bottom, schema.TrajectoryBottom):
         bottom = _trajectory(cable.bottom, top["name"])
         if cable.bottom.method == "stiffness_servo":
             vehicle, bottom = _servo_end(cable.bottom, bottom, end)
@@ -247,14 +267,15 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
         bottom = _bottom(cable, case.environment, end)
     ordered = sorted(cable.point_bodies, key=lambda pb: pb.node)
     along = []
+    arc = np.concatenate([[0.0], np.cumsum(lengths)]) / lengths.sum()
     for pb in ordered:
-        if nodes is None:
-            raise CaseError(f"{where}.point_bodies: bodies along a cable started on its "
-                            "catenary have no system form here; give the start as "
-                            "angles")  # fmt: skip
-        along.append(_point(f"joint {pb.node}", pb, case.environment,
-                            [float(v) for v in nodes[pb.node]]))  # fmt: skip
-    names = [top["name"], *(body["name"] for body in along), bottom["name"]]
+        if nodes is None:  # a first guess on the chord: the statics places it
+            at = [float(a + arc[pb.node] * (b - a)) for a, b in zip(start, end, strict=True)]
+        else:
+            at = [float(v) for v in nodes[pb.node]]
+        along.append(_point(f"{prefix}joint {pb.node}", pb, case.environment, at))
+    end_name = shared.name if shared is not None else bottom["name"]  # type: ignore[index]
+    names = [top["name"], *(body["name"] for body in along), end_name]
     cuts = [0, *(pb.node for pb in ordered), cable.links]
     plan = sections.Plan(cable, _lumped_type(cable), cuts, where)
     lines = []
@@ -272,10 +293,12 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
             line["initial"] = _initial(cable, False, np.asarray(cable.initial.angles(
                 cable.links), dtype=float), (cuts[k], cuts[k + 1]))  # fmt: skip
         lines.append(line)
-    bodies = [top, bottom, *along, *([vehicle] if vehicle is not None else [])]
-    # a catenary start on a trajectory: the towed equilibrium through the target
-    towed = trajectory and shape == "catenary"
-    return _case(case, bodies, plan.types, lines, "static" if towed else "as_given")
+    bodies = [top, *([bottom] if bottom is not None else []), *along,
+              *([vehicle] if vehicle is not None else [])]  # fmt: skip
+    # a catenary start on a trajectory (the towed equilibrium through the target) or with
+    # bodies along the cable (the equilibrium of the lines and those bodies)
+    balanced = shape == "catenary" and (trajectory or bool(along))
+    return bodies, plan.types, lines, "static" if balanced else "as_given"
 
 
 def _lumped_type(cable: schema.Cable) -> dict[str, Any]:
@@ -330,7 +353,10 @@ def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple
     if reverse:
         written = initial.angles_deg if initial.shape == "angles" else np.degrees(angles)
         out: dict[str, Any] = {
-            "angles_deg": [float(v) - 180.0 for v in list(written or [])[slice(*piece)][::-1]]
+            "angles_deg": [
+                float(v) - 180.0
+                for v in list(written if written is not None else [])[slice(*piece)][::-1]
+            ]
         }
     elif initial.shape == "angles":
         out = {"angles_deg": list(initial.angles_deg or [])[slice(*piece)]}

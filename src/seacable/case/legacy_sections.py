@@ -48,24 +48,15 @@ def joints(cable: schema.Cable, lengths: np.ndarray) -> tuple[np.ndarray, np.nda
     return springs.astype(float), dampers.astype(float)
 
 
-def _bending(k: float, length: float) -> float:
-    """EI whose joint stiffness EI / l is k to the last bit (k l, or one of its neighbours)."""
-    ei = float(k * length)
+def _product(quotient: float, divisor: float) -> float:
+    """x near quotient * divisor with x / divisor == quotient to the last bit (or that product):
+    an EI whose joint stiffness EI / l is k, a section length whose segments are l."""
+    x = float(quotient * divisor)
     for _ in range(8):
-        if ei / length == k:
-            return ei
-        ei = float(np.nextafter(ei, np.inf if ei / length < k else -np.inf))
-    return float(k * length)
-
-
-def _total(length: float, count: int) -> float:
-    """A section's length [m] whose ``count`` equal segments are ``length`` to the last bit."""
-    total = float(length * count)
-    for _ in range(8):
-        if total / count == length:
-            return total
-        total = float(np.nextafter(total, np.inf if total / count < length else -np.inf))
-    return float(length * count)
+        if x / divisor == quotient:
+            return x
+        x = float(np.nextafter(x, np.inf if x / divisor < quotient else -np.inf))
+    return float(quotient * divisor)
 
 
 class Plan:
@@ -73,13 +64,23 @@ class Plan:
     link's type name, and whether its joints go into the line types' EI and the lines' damping
     or into the sections (``per_joint_springs``, ``per_joint_dampers``)."""
 
-    def __init__(self, cable: schema.Cable, base: dict[str, Any], cuts: list[int], where: str):
+    def __init__(self, cable: schema.Cable, base: dict[str, Any], cuts: list[int], where: str,
+                 reverse: bool = False):  # fmt: skip
         """``base``: the line type's fields but its name, mass per length and EI; ``cuts``: the
         links' indices where the lines start and end (0, the bodies' nodes along the cable,
-        the number of links)."""
-        self.cable, self.where = cable, where
+        the number of links); ``reverse``: the lines run from the cable's end to its top (a
+        star's), where the line ends held with no joint (its joint 0 must have none) and each
+        joint sits at the start of the segment below it."""
+        self.cable, self.where, self.reverse = cable, where, reverse
         self.lengths = cable.lengths()
         self.springs, self.dampers = joints(cable, self.lengths)
+        if reverse and (self.springs[0] or self.dampers[0]):
+            raise CaseError(
+                f"{where}.joint_stiffness: the joint at the top has a spring or a damper; in a "
+                "star the cable runs from the shared body and ends held on its top, with no "
+                "joint there: give joint 0 no stiffness and no damping (joint_stiffness and "
+                "joint_damping as one value per joint)"
+            )
         for node in cuts[1:-1]:
             if self.springs[node] or self.dampers[node]:
                 raise CaseError(
@@ -95,14 +96,16 @@ class Plan:
         from_bending = cable.bending_stiffness is not None or (
             not isinstance(cable.joint_stiffness, list) and equal
         )
-        self.per_joint_springs = bool(np.any(self.springs)) and (len(cuts) > 2 or not from_bending)
+        self.per_joint_springs = bool(np.any(self.springs)) and (
+            len(cuts) > 2 or not from_bending or reverse
+        )
         self.per_joint_dampers = len(set(self.dampers.tolist())) > 1
         bending = 0.0
         if np.any(self.springs) and not self.per_joint_springs:
             bending = (
                 cable.bending_stiffness
                 if cable.bending_stiffness is not None
-                else _bending(float(self.springs[0]), float(self.lengths[0]))  # one k, equal links
+                else _product(float(self.springs[0]), float(self.lengths[0]))  # one k, equal links
             )
         self.types: list[dict[str, Any]] = []
         names: dict[float, str] = {}
@@ -118,17 +121,22 @@ class Plan:
                 self.types.append(line_type)
         self.type_of = [names[value] for value in mu.tolist()]
 
-    def sections(self, first: int, last: int, reverse: bool = False) -> list[dict[str, Any]]:
-        """The sections of the line over links ``first`` .. ``last`` - 1 (``reverse``: run from
-        its end to its start)."""
+    def sections(self, first: int, last: int) -> list[dict[str, Any]]:
+        """The sections of the line over links ``first`` .. ``last`` - 1 (run from its end to
+        its start when the plan is ``reverse``: link i's joint is then the one below it, i + 1,
+        none below the last link)."""
         links = range(first, last)
-        if reverse:
+        if self.reverse:
             links = links[::-1]
+        n = len(self.lengths)
         runs: list[list] = []
         for i in links:
+            joint = (i + 1 if i + 1 < n else None) if self.reverse else i
+            spring = float(self.springs[joint]) if joint is not None else 0.0
+            damper = float(self.dampers[joint]) if joint is not None else 0.0
             key = (float(self.lengths[i]), self.type_of[i],
-                   float(self.springs[i]) if self.per_joint_springs else None,
-                   float(self.dampers[i]) if self.per_joint_dampers else None)  # fmt: skip
+                   spring if self.per_joint_springs else None,
+                   damper if self.per_joint_dampers else None)  # fmt: skip
             if runs and runs[-1][0] == key:
                 runs[-1][1] += 1
             else:
@@ -136,7 +144,7 @@ class Plan:
         out = []
         for (length, name, spring, damper), count in runs:
             section: dict[str, Any] = {"type": name, "segments": count,
-                                       "length": _total(length, count)}  # fmt: skip
+                                       "length": _product(length, count)}  # fmt: skip
             if spring is not None:
                 section["joint_stiffness"] = spring
             if damper is not None:
