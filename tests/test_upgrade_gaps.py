@@ -15,9 +15,10 @@ from golden import record_gaps
 from golden.record import compare_to_golden
 from seacable.case import legacy
 
-# a lumped line started on its towed equilibrium: the single-cable core's Newton stops at 1e-9
-# of its residual's scale, the system's at 1e-13 (measured: 4e-9 of the top force's scale)
-TOLERANCES = {"lumped_exact_tow": 1e-8, "lumped_servo_tow": 1e-8}
+# started from a static balance: the single-cable core's Newton stops at 1e-9 of its
+# residual's scale, the system's tighter (measured: 4e-9 of the top force's scale in the tows,
+# 7e-9 of the anchor force's at t = 0 in the rigid line's static start)
+TOLERANCES = {"lumped_exact_tow": 1e-8, "lumped_servo_tow": 1e-8, "rigid_static_to_anchor": 1e-8}
 
 
 @pytest.mark.parametrize("stem", record_gaps.stems())

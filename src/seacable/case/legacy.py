@@ -21,7 +21,8 @@ and its joints (a joint stiffness k as the bending stiffness k l of its links); 
 link masses and one spring or damper per joint become sections (``legacy_sections``); bodies
 along the cable (``point_bodies``) cut it into lines, each body carried between two (the joint
 at such a body must have no spring and no damper: the lines meet there with no joint); a
-static start becomes ``start: static``. Cables on a shared body (a star) become lines from that
+static start becomes ``start: static`` (a line held on an anchor or a trajectory starting
+on its catenary). Cables on a shared body (a star) become lines from that
 body back to each top. A lumped-mass cable and Poth's natural string have their line models;
 a lumped-mass cable started on its catenary to a trajectory (exact or servo), or with bodies
 along it, starts from the system's statics (``start: static``: in a tow, its steady motion);
@@ -114,11 +115,12 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     if cable.initial.shape not in ("arc", "angles", "static"):
         raise CaseError(f"{where}.initial.shape: '{cable.initial.shape}' has no system form here")
     held = isinstance(cable.bottom, schema.TrajectoryBottom)
-    if static and not isinstance(cable.bottom, schema.FreeBottom) and not held:
+    anchored = isinstance(cable.bottom, schema.PinnedBottom) and cable.bottom.anchor is not None
+    if static and not isinstance(cable.bottom, schema.FreeBottom) and not (held or anchored):
         raise CaseError(f"{where}.initial.shape: a static start has a system form here with a "
-                        "free end or a trajectory only")  # fmt: skip
+                        "free end, an anchor or a trajectory only")  # fmt: skip
     # a static start: the statics starts from the line hanging straight down (or, held on a
-    # trajectory, on its catenary between its ends)
+    # trajectory or an anchor, on its catenary between its ends)
     angles = [0.0] * cable.links if static else cable.initial.angles(cable.links)
     azimuth = math.radians(cable.initial.azimuth_deg)
     top, start = _top(cable.top, case._base_dir)
@@ -151,7 +153,7 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
             "name": cable.name if len(pieces) == 1 else f"{cable.name} {k + 1}",
             "model": cable.model, "from": start_at, "to": end_at,
             "sections": plan.sections(first, last),
-            "initial": "catenary" if static and held else _initial(
+            "initial": "catenary" if static and (held or anchored) else _initial(
                 cable, static, a, (first, last), reverse=shared is not None),
         }  # fmt: skip
         if k == 0 and shared is None:
