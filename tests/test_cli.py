@@ -211,7 +211,7 @@ def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
     data["cables"][0]["bottom"] = {"type": "free", "body": {"mass": 100.0}}
     lumped.write_text(yaml.safe_dump(data))
     result = CliRunner().invoke(main, ["upgrade", str(lumped)])
-    assert result.exit_code == 2 and "a catenary start has a system form with a pinned" in (
+    assert result.exit_code == 2 and "a catenary start needs the end's anchor or its" in (
         result.output
     )
     data["cables"][0]["initial"] = {"shape": "arc", "top_angle_deg": 10.0}  # at given angles

@@ -17,12 +17,17 @@ and mappings), which ``seacable upgrade old.yaml`` prints. Ends map as:
   the ``vehicle`` a massless ``end`` follows with a ``servo`` force model (``stiffness_servo``).
 
 The line keeps the cable's model (``rigid_links`` or ``rigid_segments_3d``), its initial angles
-and its joints (a joint stiffness k as the bending stiffness k l of its links); bodies along
-the cable (``point_bodies``) cut it into lines, each body carried between two; a static start
-becomes ``start: static``. Cables on a shared body (a star) become lines from that body back
-to each top. A lumped-mass cable from a top to its anchor and Poth's natural string have their
-line models. What has no system form yet (a lumped-mass cable ending free or on a body,
-unequal links, a joint's spring at a body along the cable) is refused, naming what is missing.
+and its joints (a joint stiffness k as the bending stiffness k l of its links); unequal links,
+link masses and one spring or damper per joint become sections (``legacy_sections``); bodies
+along the cable (``point_bodies``) cut it into lines, each body carried between two (the joint
+at such a body must have no spring and no damper: the lines meet there with no joint); a
+static start becomes ``start: static`` (a line held on an anchor or a trajectory starting
+on its catenary). Cables on a shared body (a star) become lines from that
+body back to each top. A lumped-mass cable and Poth's natural string have their line models;
+a lumped-mass cable started on its catenary to a trajectory (exact or servo), or with bodies
+along it, starts from the system's statics (``start: static``: in a tow, its steady motion);
+a star's lumped-mass cables become lines from each top to the shared body. What has no
+system form yet is refused, naming what is missing.
 """
 
 import math
@@ -32,6 +37,7 @@ import numpy as np
 import yaml
 
 from seacable import timefunctions as tfn
+from seacable.case import legacy_sections as sections
 from seacable.case import schema
 from seacable.errors import CaseError
 
@@ -54,8 +60,8 @@ def upgrade(case: schema.Case) -> dict[str, Any]:
         return _lumped(case, cable, where)
     if cable.model == "natural_string":
         return _natural(case, cable, where)
-    bodies, line_type, lines, static = _rigid(case, cable, where)
-    return _case(case, bodies, [line_type], lines, "static" if static else "as_given")
+    bodies, line_types, lines, static = _rigid(case, cable, where)
+    return _case(case, bodies, line_types, lines, "static" if static else "as_given")
 
 
 def _case(case: schema.Case, bodies, line_types, lines, start: str) -> dict[str, Any]:
@@ -68,52 +74,53 @@ def _case(case: schema.Case, bodies, line_types, lines, start: str) -> dict[str,
 
 
 def _star(case: schema.Case) -> dict[str, Any]:
-    """Cables from their tops to bodies they share (a star): each cable becomes lines from its
-    shared body to its top (reversed: a rigid line may end held on a fixed or imposed body, and
-    several may start on one body), cut at the bodies along it."""
+    """Cables from their tops to bodies they share (a star): each rigid cable becomes lines
+    from its shared body to its top (reversed: a rigid line may end held on a fixed or imposed
+    body, and several may start on one body), each lumped-mass cable lines from its top to the
+    shared body; cut at the bodies along them."""
     bodies = [_point(b.name, b, case.environment, list(schema.xyz(b.position)))
               for b in case.bodies]  # fmt: skip
-    line_types, lines = [], []
+    line_types: list[dict[str, Any]] = []
+    lines: list[dict[str, Any]] = []
+    shared = {b.name: b for b in case.bodies}
     for k, cable in enumerate(case.cables):
         where = f"cables[{k}]"
-        if not isinstance(cable.bottom, schema.AttachedBottom) or cable.model not in RIGID:
-            raise CaseError(f"{where}: a star's system form here needs rigid-segment cables "
-                            "attached to their shared body")  # fmt: skip
+        if not isinstance(cable.bottom, schema.AttachedBottom):
+            raise CaseError(f"{where}.bottom: a star's system form here needs every cable "
+                            "attached to a shared body")  # fmt: skip
+        if cable.model == "lumped_mass":  # lines from the top to the shared body
+            more, types, mine, _ = _lumped_parts(case, cable, where, shared[cable.bottom.body])
+            bodies, line_types, lines = bodies + more, line_types + types, lines + mine
+            continue
+        if cable.model not in RIGID:
+            raise CaseError(f"{where}.model: '{cable.model}' has no system form in a star")
         if not isinstance(cable.top, schema.FixedTop | schema.ImposedTop):
             raise CaseError(f"{where}.top.type: '{cable.top.type}' has no system form in a star "
                             "(a rigid line held on a moving body's point)")  # fmt: skip
-        if cable.joint_stiffness is not None or cable.bending_stiffness is not None:
-            raise CaseError(f"{where}.joint_stiffness: a star's cables start at the shared body "
-                            "in the system form; their joints' springs there have no system "
-                            "form: leave them out")  # fmt: skip
-        more, line_type, mine, _ = _rigid(case, cable, where, shared=cable.bottom.body)
+        more, types, mine, _ = _rigid(case, cable, where, shared=cable.bottom.body)
         bodies += more
-        line_types.append(line_type)
+        line_types += types
         lines += mine
     return _case(case, bodies, line_types, lines, "as_given")
 
 
 def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | None = None):
-    """The bodies, line type and lines of a rigid cable, and whether it starts from its statics:
-    from its top to its end (the top body, the end body, those along it); or, ending on the
-    body ``shared`` (a star), from that body back to its top (the top body and those along
-    it, named after the cable)."""
-    for key in ("joint_stiffness", "joint_damping"):
-        value = getattr(cable, key)
-        if isinstance(value, list) and len(set(value)) > 1:
-            raise CaseError(f"{where}.{key}: one value per joint has no system form; give one")
+    """The bodies, line types and lines of a rigid cable, and whether it starts from its
+    statics: from its top to its end (the top body, the end body, those along it); or, ending
+    on the body ``shared`` (a star), from that body back to its top (the top body and those
+    along it, named after the cable). Unequal links and one value per joint become sections
+    (``legacy_sections``)."""
     lengths = cable.lengths()
-    if len(set(lengths.tolist())) > 1:
-        raise CaseError(f"{where}.link_lengths: unequal links have no system form here yet")
     static = cable.initial.shape == "static"
     if cable.initial.shape not in ("arc", "angles", "static"):
         raise CaseError(f"{where}.initial.shape: '{cable.initial.shape}' has no system form here")
     held = isinstance(cable.bottom, schema.TrajectoryBottom)
-    if static and not isinstance(cable.bottom, schema.FreeBottom) and not held:
+    anchored = isinstance(cable.bottom, schema.PinnedBottom) and cable.bottom.anchor is not None
+    if static and not isinstance(cable.bottom, schema.FreeBottom) and not (held or anchored):
         raise CaseError(f"{where}.initial.shape: a static start has a system form here with a "
-                        "free end or a trajectory only")  # fmt: skip
+                        "free end, an anchor or a trajectory only")  # fmt: skip
     # a static start: the statics starts from the line hanging straight down (or, held on a
-    # trajectory, on its catenary between its ends)
+    # trajectory or an anchor, on its catenary between its ends)
     angles = [0.0] * cable.links if static else cable.initial.angles(cable.links)
     azimuth = math.radians(cable.initial.azimuth_deg)
     top, start = _top(cable.top, case._base_dir)
@@ -126,35 +133,27 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     elif isinstance(cable.bottom, schema.TrajectoryBottom):
         bottom = _trajectory(cable.bottom, top["name"])
         if cable.bottom.method == "stiffness_servo":  # the line's end, pulled by the servo
-            vehicle, held = bottom, False
-            vehicle["name"] = "vehicle"
-            bottom = {"name": "end", "type": "point", "position": [float(v) for v in nodes[-1]],
-                      "mass": 0.0, "external forces": [
-                          {"model": "servo", "target": "vehicle",
-                           **_dump(cable.bottom.servo)}]}  # fmt: skip
+            vehicle, bottom = _servo_end(cable.bottom, bottom, [float(v) for v in nodes[-1]])
+            held = False
     else:
         bottom = _bottom(cable, case.environment, [float(v) for v in nodes[-1]])
-    line_type = _line_type(cable, lengths)
-    joints = _joints(cable, where)
     ordered = sorted(cable.point_bodies, key=lambda pb: pb.node)
     along = [_point(f"{prefix}joint {pb.node}", pb, case.environment,
                     [float(v) for v in nodes[pb.node]]) for pb in ordered]  # fmt: skip
     end = bottom["name"] if bottom is not None else shared
     names = [top["name"], *(body["name"] for body in along), end]
     cuts = [0, *(pb.node for pb in ordered), cable.links]
+    plan = sections.Plan(cable, _line_type(cable), cuts, where, reverse=shared is not None)
     pieces = [(cuts[k], cuts[k + 1], names[k], names[k + 1]) for k in range(len(cuts) - 1)]
     if shared is not None:  # from the shared body back to the top
         pieces = [(first, last, b, a) for first, last, a, b in reversed(pieces)]
-    total = cable.length if cable.length is not None else float(lengths.sum())
     lines = []
     for k, (first, last, start_at, end_at) in enumerate(pieces):
-        count = last - first
         line: dict[str, Any] = {
             "name": cable.name if len(pieces) == 1 else f"{cable.name} {k + 1}",
             "model": cable.model, "from": start_at, "to": end_at,
-            "sections": [{"type": line_type["name"], "segments": count,
-                          "length": total if len(pieces) == 1 else total * count / cable.links}],
-            "initial": "catenary" if static and held else _initial(
+            "sections": plan.sections(first, last),
+            "initial": "catenary" if static and (held or anchored) else _initial(
                 cable, static, a, (first, last), reverse=shared is not None),
         }  # fmt: skip
         if k == 0 and shared is None:
@@ -162,13 +161,14 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
             line["base_reference"] = [math.sin(reference) * math.cos(azimuth),
                                       math.sin(reference) * math.sin(azimuth),
                                       -math.cos(reference)]  # fmt: skip
-        if joints:
-            line["joint_damping"] = joints
+        damping = plan.line_damping(first)
+        if damping:
+            line["joint_damping"] = damping
         lines.append(line)
     bodies = [top, *([bottom] if bottom is not None else []), *along]
     if isinstance(cable.bottom, schema.TrajectoryBottom) and not held:
         bodies.append(vehicle)
-    return bodies, line_type, lines, static
+    return bodies, plan.types, lines, static
 
 
 def _nodes(angles: np.ndarray, azimuth: float, start, lengths: np.ndarray) -> np.ndarray:
@@ -217,50 +217,69 @@ def _natural(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, An
 
 
 def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any]:
-    """A lumped-mass cable from its top to its end: started on its catenary to a pinned anchor,
-    or at its given angles (``arc``, ``angles``) to whatever its end is (an anchor, a free body,
-    a guided one, a floating structure, an exact trajectory); cut into lines at the bodies
-    along it (each line keeps at least two segments)."""
+    """A lumped-mass cable as a system (``_lumped_parts``)."""
+    bodies, line_types, lines, start = _lumped_parts(case, cable, where)
+    return _case(case, bodies, line_types, lines, start)
+
+
+def _lumped_parts(case: schema.Case, cable: schema.Cable, where: str,
+                  shared: schema.SharedBody | None = None):  # fmt: skip
+    """The bodies, line types and lines of a lumped-mass cable from its top to its end, and
+    how the system starts: started on its catenary to a pinned anchor, a trajectory or the
+    body ``shared`` with other cables (a star; its bodies named after the cable), or at its
+    given angles (``arc``, ``angles``) to whatever its end is (an anchor, a free body, a guided
+    one, a floating structure, a trajectory); cut into lines at the bodies along it (each
+    line keeps at least two segments)."""
     shape = cable.initial.shape
     anchor = cable.bottom.anchor if isinstance(cable.bottom, schema.PinnedBottom) else None
-    if shape == "catenary" and anchor is None:
-        raise CaseError(f"{where}.initial: a catenary start has a system form with a pinned "
-                        "end and its anchor only; give the start as angles (arc or "
-                        "angles)")  # fmt: skip
+    trajectory = isinstance(cable.bottom, schema.TrajectoryBottom)
+    if shape == "catenary" and anchor is None and not trajectory and shared is None:
+        raise CaseError(f"{where}.initial: a catenary start needs the end's anchor or its "
+                        "trajectory; give the start as angles (arc or angles)")  # fmt: skip
     if shape not in ("catenary", "arc", "angles"):
         raise CaseError(f"{where}.initial.shape: '{shape}' has no system form for a lumped-mass "
                         "cable")  # fmt: skip
-    if isinstance(cable.bottom, schema.TrajectoryBottom) and cable.bottom.method != "exact":
-        raise CaseError(f"{where}.bottom.method: a lumped-mass cable's servo has no system form "
-                        "here; follow the trajectory exactly (method: exact)")  # fmt: skip
     top, start = _top(cable.top, case._base_dir)
+    prefix = "" if shared is None else f"{cable.name} "
+    top["name"] = f"{prefix}{top['name']}"
     lengths = cable.lengths()
     nodes = None
     if anchor is not None and shape == "catenary":
         end = list(schema.xyz(anchor))
+    elif shared is not None and shape == "catenary":
+        end = list(schema.xyz(shared.position))
+    elif isinstance(cable.bottom, schema.TrajectoryBottom) and shape == "catenary":
+        # to the trajectory's start (the line at its static shape to it)
+        end = _trajectory_start(cable.bottom, start, case._base_dir)
     else:
         a = np.asarray(cable.initial.angles(cable.links), dtype=float)  # [rad]
         nodes = _nodes(a, math.radians(cable.initial.azimuth_deg), start, lengths)
         end = [float(v) for v in nodes[-1]]
-    if isinstance(cable.bottom, schema.TrajectoryBottom):
+    vehicle = None
+    bottom: dict[str, Any] | None = None
+    if shared is not None:  # the shared body (the star's)
+        pass
+    elif isinstance(cable.bottom, schema.TrajectoryBottom):
         bottom = _trajectory(cable.bottom, top["name"])
+        if cable.bottom.method == "stiffness_servo":
+            vehicle, bottom = _servo_end(cable.bottom, bottom, end)
     elif anchor is not None:
         bottom = {"name": "anchor", "type": "fixed", "position": list(schema.xyz(anchor))}
     else:
         bottom = _bottom(cable, case.environment, end)
-    line_type = _lumped_type(cable, lengths, where)
     ordered = sorted(cable.point_bodies, key=lambda pb: pb.node)
     along = []
+    arc = np.concatenate([[0.0], np.cumsum(lengths)]) / lengths.sum()
     for pb in ordered:
-        if nodes is None:
-            raise CaseError(f"{where}.point_bodies: bodies along a cable started on its "
-                            "catenary have no system form here; give the start as "
-                            "angles")  # fmt: skip
-        along.append(_point(f"joint {pb.node}", pb, case.environment,
-                            [float(v) for v in nodes[pb.node]]))  # fmt: skip
-    names = [top["name"], *(body["name"] for body in along), bottom["name"]]
+        if nodes is None:  # a first guess on the chord: the statics places it
+            at = [float(a + arc[pb.node] * (b - a)) for a, b in zip(start, end, strict=True)]
+        else:
+            at = [float(v) for v in nodes[pb.node]]
+        along.append(_point(f"{prefix}joint {pb.node}", pb, case.environment, at))
+    end_name = shared.name if shared is not None else bottom["name"]  # type: ignore[index]
+    names = [top["name"], *(body["name"] for body in along), end_name]
     cuts = [0, *(pb.node for pb in ordered), cable.links]
-    total = cable.length if cable.length is not None else float(lengths.sum())
+    plan = sections.Plan(cable, _lumped_type(cable), cuts, where)
     lines = []
     for k in range(len(cuts) - 1):
         count = cuts[k + 1] - cuts[k]
@@ -270,26 +289,25 @@ def _lumped(case: schema.Case, cable: schema.Cable, where: str) -> dict[str, Any
         line: dict[str, Any] = {
             "name": cable.name if len(cuts) == 2 else f"{cable.name} {k + 1}",
             "model": "lumped_mass", "from": names[k], "to": names[k + 1],
-            "sections": [{"type": line_type["name"], "segments": count,
-                          "length": total if len(cuts) == 2 else total * count / cable.links}],
+            "sections": plan.sections(cuts[k], cuts[k + 1]),
         }  # fmt: skip
         if nodes is not None:
             line["initial"] = _initial(cable, False, np.asarray(cable.initial.angles(
                 cable.links), dtype=float), (cuts[k], cuts[k + 1]))  # fmt: skip
         lines.append(line)
-    return _case(case, [top, bottom, *along], [line_type], lines, "as_given")
+    bodies = [top, *([bottom] if bottom is not None else []), *along,
+              *([vehicle] if vehicle is not None else [])]  # fmt: skip
+    # a catenary start on a trajectory (the towed equilibrium through the target) or with
+    # bodies along the cable (the equilibrium of the lines and those bodies)
+    balanced = shape == "catenary" and (trajectory or bool(along))
+    return bodies, plan.types, lines, "static" if balanced else "as_given"
 
 
-def _lumped_type(cable: schema.Cable, lengths: np.ndarray, where: str) -> dict[str, Any]:
-    """A lumped-mass cable's line type: EA, axial damping and, from its joint springs (the top
-    joint is a pin in a lumped line), its bending stiffness."""
-    out = _line_type(cable, lengths)
-    if isinstance(cable.joint_stiffness, list):
-        springs = set(cable.joint_stiffness[1:])
-        if len(springs) > 1:
-            raise CaseError(f"{where}.joint_stiffness: one value per joint has no system form; "
-                            "give one")  # fmt: skip
-        out["bending_stiffness"] = _bending(float(springs.pop()) if springs else 0.0, lengths[0])
+def _lumped_type(cable: schema.Cable) -> dict[str, Any]:
+    """A lumped-mass cable's line type but its name, mass per length and EI: EA and axial
+    damping (its joints' springs: ``legacy_sections.Plan``; the top joint is a pin in a
+    lumped line)."""
+    out = _line_type(cable)
     out["axial_stiffness"] = cable.axial_stiffness
     for key in ("axial_damping_time", "axial_damping_ratio"):
         if getattr(cable, key) is not None:
@@ -309,17 +327,21 @@ def _trajectory(bottom: schema.TrajectoryBottom, top: str) -> dict[str, Any]:
     return body
 
 
-def _joints(cable: schema.Cable, where: str) -> float:
-    """The joint damping of the line; refused across a point body along the cable (there the
-    system's lines meet at a body, with no joint between them)."""
-    damping = cable.joint_damping
-    damping = float(damping[0] if isinstance(damping, list) else damping)
-    stiff = cable.joint_stiffness is not None or cable.bending_stiffness is not None
-    if cable.point_bodies and (damping or stiff):
-        raise CaseError(f"{where}.point_bodies: a joint's stiffness or damping at a body along "
-                        "the cable has no system form (the lines meet at the body, with no "
-                        "joint between them)")  # fmt: skip
-    return damping
+def _servo_end(bottom: schema.TrajectoryBottom, path: dict[str, Any], at: list[float]):
+    """The vehicle (the trajectory ``path`` as an imposed body, the servo's target) and the
+    line's end it pulls: a point body of no mass at ``at`` with the servo force model."""
+    vehicle = dict(path, name="vehicle")
+    end = {"name": "end", "type": "point", "position": list(at), "mass": 0.0,
+           "external forces": [{"model": "servo", "target": "vehicle",
+                                **_dump(bottom.servo)}]}  # fmt: skip
+    return vehicle, end
+
+
+def _trajectory_start(bottom: schema.TrajectoryBottom, top, base_dir) -> list[float]:
+    """Where the trajectory starts [m] (from the top's start ``top`` when relative to it)."""
+    offset = [_value_at_zero(getattr(bottom, axis), base_dir) for axis in "xyz"]
+    origin = top if bottom.relative_to_top else (0.0, 0.0, 0.0)
+    return [float(o + d) for o, d in zip(origin, offset, strict=True)]
 
 
 def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple[int, int],
@@ -333,7 +355,10 @@ def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple
     if reverse:
         written = initial.angles_deg if initial.shape == "angles" else np.degrees(angles)
         out: dict[str, Any] = {
-            "angles_deg": [float(v) - 180.0 for v in list(written or [])[slice(*piece)][::-1]]
+            "angles_deg": [
+                float(v) - 180.0
+                for v in list(written if written is not None else [])[slice(*piece)][::-1]
+            ]
         }
     elif initial.shape == "angles":
         out = {"angles_deg": list(initial.angles_deg or [])[slice(*piece)]}
@@ -366,18 +391,9 @@ def _dump(model) -> dict:
     return model.model_dump(mode="json", by_alias=True, exclude_defaults=True)
 
 
-def _line_type(cable: schema.Cable, lengths: np.ndarray) -> dict[str, Any]:
-    mass = cable.masses()
-    out: dict[str, Any] = {"name": f"{cable.name} type", "diameter": cable.diameter}
-    if cable.density is not None:  # the same arithmetic as the cable's masses
-        out["mass_per_length"] = cable.density * math.pi * cable.diameter**2 / 4
-    else:
-        out["mass_per_length"] = float(mass[0] / lengths[0])
-    if cable.joint_stiffness is not None:
-        k = cable.joint_stiffness
-        out["bending_stiffness"] = _bending(float(k[0] if isinstance(k, list) else k), lengths[0])
-    elif cable.bending_stiffness is not None:
-        out["bending_stiffness"] = cable.bending_stiffness
+def _line_type(cable: schema.Cable) -> dict[str, Any]:
+    """A cable's line type but its name, mass per length and EI (``legacy_sections.Plan``)."""
+    out: dict[str, Any] = {"diameter": cable.diameter}
     out["drag_coefficient_normal"] = cable.drag_coefficient_normal
     if cable.drag_coefficient_tangential:
         out["drag_coefficient_tangential"] = cable.drag_coefficient_tangential
@@ -388,16 +404,6 @@ def _line_type(cable: schema.Cable, lengths: np.ndarray) -> dict[str, Any]:
     elif cable.added_mass_coefficient is not None:
         out["added_mass_coefficient"] = cable.added_mass_coefficient
     return out
-
-
-def _bending(k: float, length: float) -> float:
-    """EI whose joint stiffness EI / l is k to the last bit (k l, or one of its neighbours)."""
-    ei = float(k * length)
-    for _ in range(8):
-        if ei / length == k:
-            return ei
-        ei = float(np.nextafter(ei, np.inf if ei / length < k else -np.inf))
-    return float(k * length)
 
 
 def _function(f) -> Any:

@@ -300,11 +300,19 @@ class LineType(_Model):
 
 class Section(_Model):
     """A stretch of a line: ``length`` [m] of line type ``type`` in ``segments`` equal
-    segments."""
+    segments. Sections of different lengths, types and joints make a line of unequal segments.
+
+    The joint at the start of each of its segments (between that segment and the one before;
+    a rigid line's first joint against ``base_reference``, a lumped line's first node a pin)
+    has the spring ``joint_stiffness`` [N m/rad] when given, instead of the line types' EI over
+    the mean span of its two segments, and (rigid lines) the damper ``joint_damping``
+    [N m s/rad] when given, instead of the line's."""
 
     type: Name
     length: Pos  # unstretched [m]
     segments: int = Field(ge=1, le=100_000)
+    joint_stiffness: NonNeg | None = None  # [N m/rad]
+    joint_damping: NonNeg | None = None  # [N m s/rad] (rigid lines)
 
 
 class LineAngles(_Model):

@@ -304,7 +304,8 @@ def _sections(case, line, rho, extensible=True):
     env = case.environment
     out: dict[str, list] = {k: [] for k in (
         "length", "mass", "stiffness", "damping", "drag_normal", "drag_tangential",
-        "wet_weight", "buoyancy", "added_mass", "bend")}  # fmt: skip
+        "wet_weight", "buoyancy", "added_mass", "bend", "joint_stiffness",
+        "joint_damping")}  # fmt: skip
     for k, section in enumerate(line.sections):
         where = f"lines ({line.name}).sections[{k}]"
         if section.type not in types:
@@ -339,7 +340,17 @@ def _sections(case, line, rho, extensible=True):
         out["buoyancy"].append(rho * area * length * env.gravity)
         out["added_mass"].append(ca * rho * area * length)
         out["bend"].append(np.full(n, t.bending_stiffness))
+        # the section's own joints (NaN: from EI, and the line's damping)
+        for key in ("joint_stiffness", "joint_damping"):
+            value = getattr(section, key)
+            out[key].append(np.full(n, math.nan if value is None else value))
     return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def _joint_springs(from_bending, given):
+    """Each joint's spring [N m/rad]: its section's ``joint_stiffness`` where given, else
+    ``from_bending`` (EI over the mean span)."""
+    return np.where(np.isnan(given), from_bending, given)
 
 
 def _lines(case, layout, rho, q_at, v_at) -> dict:
@@ -377,7 +388,11 @@ def _lines(case, layout, rho, q_at, v_at) -> dict:
         bend = np.zeros(n + 1)
         # EI over the mean span of the two segments at each interior node
         mean = 0.5 * (props["length"][1:] + props["length"][:-1])
-        bend[1:-1] = props["bend"][1:] / mean
+        bend[1:-1] = _joint_springs(props["bend"][1:] / mean, props["joint_stiffness"][1:])
+        if not np.all(np.isnan(props["joint_damping"])):
+            raise CaseError(f"{where}.sections: joint_damping is for rigid lines; a "
+                            "lumped-mass line's bending has no damper (axial damping damps "
+                            "it)")  # fmt: skip
         nodes["mass"].append(mass)
         nodes["k"].append((seabed.stiffness if seabed else 0.0) * span)
         nodes["c"].append((seabed.damping if seabed else 0.0) * span)
@@ -480,12 +495,14 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         # joint over the first segment
         span = np.concatenate([[lengths[0]], 0.5 * (lengths[1:] + lengths[:-1])])
         bend = np.concatenate([[props["bend"][0]], 0.5 * (props["bend"][1:] + props["bend"][:-1])])
+        damping = props["joint_damping"]
         values = {
             "length": lengths, "mass": mass, "added": added,
             "inertia": (mass + added) * lengths**2 / 12.0, "wet_weight": props["wet_weight"],
             "buoyancy": props["buoyancy"], "drag_normal": props["drag_normal"],
-            "drag_tangential": props["drag_tangential"], "joint_stiffness": bend / span,
-            "joint_damping": np.full(n, line.joint_damping),
+            "drag_tangential": props["drag_tangential"],
+            "joint_stiffness": _joint_springs(bend / span, props["joint_stiffness"]),
+            "joint_damping": np.where(np.isnan(damping), line.joint_damping, damping),
         }  # fmt: skip
         for key, value in values.items():
             segs[key].append(value)

@@ -8,6 +8,7 @@ velocity to the other's."""
 import numpy as np
 from scipy.linalg import solve_banded
 
+from seacable.bodies import kinematics
 from seacable.case import system as sch
 from seacable.errors import CaseError
 from seacable.lines import catenary
@@ -266,23 +267,54 @@ def _interior(p, at):
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
 
 
-def static_lines(p, y0, iterations: int = 30) -> np.ndarray:
-    """Every line's interior nodes at rest in balance, bodies held: Newton on the nodes'
+def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) -> np.ndarray:
+    """The velocities (``y[n_q:n_q + n_v]``) of a steady motion at ``time``: when every fixed or
+    imposed body moves with one velocity V and none turns (a ship towing at constant speed, and
+    nothing fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
+    lines do not turn (their nodes move with their bases); otherwise everything at rest.
+    The statics then balances the loads of that motion (drag on the velocity relative to the
+    current): the steady tow, which stays steady while the kinematic bodies keep V."""
+    w = kernel.make_work(p)
+    moving = y.copy()
+    moving[p.n_q : p.n_q + p.n_v] = 0.0
+    kernel.rhs(time, moving, p, w, np.zeros_like(y))
+    kinematic = np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED)
+    v = np.zeros(p.n_v)
+    if not kinematic.size:
+        return v
+    velocity = w.vel[kinematic]
+    common = velocity[0]
+    scale = float(np.abs(velocity).max())
+    if scale == 0.0 or np.abs(velocity - common).max() > 1e-12 * scale:
+        return v
+    if np.abs(w.omega[kinematic]).max() > 0.0:
+        return v
+    for b in np.flatnonzero(np.asarray(p.body_kind) == kinematics.DYNAMIC):
+        v[p.body_v[b] - p.n_q : p.body_v[b] - p.n_q + 3] = common
+    for li in range(len(p.line_n)):
+        first = p.line_v[li] - p.n_q
+        v[first : first + 3 * (p.line_n[li] - 1)] = np.tile(common, p.line_n[li] - 1)
+    return v
+
+
+def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
+    """Every line's interior nodes at rest in balance (in a tow's steady motion:
+    ``steady_velocities``), bodies held where they are at ``time`` [s]: Newton on the nodes'
     accelerations, EA raised in steps of ten from a thousandth of its value (a nearly
     inextensible line makes Newton's steps erratic), each stage from the last one's result."""
     linear = p._replace(slack_allowed=0)
-    direct = _newton(linear, y0, iterations)
-    if _settled(linear, direct):  # a start near the balance (a catenary) needs no stages
+    direct = _newton(linear, y0, iterations, time)
+    if _settled(linear, direct, time):  # a start near the balance (a catenary) needs no stages
         return direct
     y = y0.copy()
     target = p.seg_stiffness
     for factor in (1e-3, 1e-2, 1e-1, 1.0):
         stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
-        y = _newton(stage, y, iterations)
+        y = _newton(stage, y, iterations, time)
     return y
 
 
-def _settled(p, y) -> bool:
+def _settled(p, y, time: float = 0.0) -> bool:
     """True when every interior node's acceleration at rest is below 1e-6 g."""
     index = _interior(p, p.line_v)
     if not len(index):
@@ -290,7 +322,8 @@ def _settled(p, y) -> bool:
     ydot = np.zeros_like(y)
     at_rest = y.copy()
     at_rest[p.n_q :] = 0.0
-    kernel.rhs(0.0, at_rest, p, kernel.make_work(p), ydot)
+    at_rest[p.n_q : p.n_q + p.n_v] = steady_velocities(p, at_rest, time)
+    kernel.rhs(time, at_rest, p, kernel.make_work(p), ydot)
     return bool(np.all(np.abs(ydot[index]) < 1e-6 * p.gravity))
 
 
@@ -303,7 +336,7 @@ def settle_lines(p, y0, iterations: int = 30, slack: int = 0) -> np.ndarray:
     return _newton(stage, y0, iterations)
 
 
-def _newton(p, y0, iterations):
+def _newton(p, y0, iterations, time: float = 0.0):
     index = _interior(p, p.line_q)
     m = len(index)
     if m == 0:
@@ -313,11 +346,12 @@ def _newton(p, y0, iterations):
     velocity = _interior(p, p.line_v)  # the accelerations sit at the velocities' offsets
 
     def residual(y):
-        kernel.rhs(0.0, y, p, w, ydot)
+        kernel.rhs(time, y, p, w, ydot)
         return ydot[velocity].copy()
 
     y = y0.copy()
     y[p.n_q :] = 0.0
+    y[p.n_q : p.n_q + p.n_v] = steady_velocities(p, y, time)  # a tow: its steady motion's drag
     r = residual(y)
     best, best_norm = y, np.linalg.norm(r)
     scale = float(np.abs(r).max()) + 1e-6
@@ -333,7 +367,7 @@ def _newton(p, y0, iterations):
             trial[index[columns]] += step
             dr = residual(trial) - r
             for col, h in zip(columns, step, strict=True):
-                node = col // 3  # rows of this node and its two neighbours
+                node = int(col) // 3  # rows of this node and its two neighbours
                 rows = np.arange(3 * max(0, node - 1), min(m, 3 * (node + 2)))
                 ab[half + rows - col, col] = dr[rows] / h
         delta = solve_banded((half, half), ab, -r)

@@ -71,6 +71,10 @@ def table(case: sch.SystemCase, layout, point, q_at: int, v_at: int):
         if kind.axial_stiffness is None:
             raise CaseError(f"{where}.sections[0].type: line type '{kind.name}' has no "
                             "axial_stiffness; a natural_string needs EA [N]")  # fmt: skip
+        joints = [key for key in ("joint_stiffness", "joint_damping") if getattr(section, key)]
+        if joints:
+            raise CaseError(f"{where}.sections[0].{joints[0]}: a natural_string has no joints; "
+                            "leave it out")  # fmt: skip
         n = section.segments
         links = np.radians(line.initial.angles(n))
         if len(links) != n:

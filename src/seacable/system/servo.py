@@ -28,7 +28,7 @@ from seacable.forces import servo
 from seacable.forces.kinds import SERVO
 from seacable.system import assemble, coordinates, kernel, statics
 from seacable.system.assemble import BuiltSystem
-from seacable.system.initial import initial_state
+from seacable.system.initial import initial_state, static_lines
 
 GAIN_LIMIT = 2.0  # the schema's largest gain a
 TOLERANCE = 1e-13  # of the equilibria: K is a difference of holding forces 1e4 times larger
@@ -194,8 +194,11 @@ def _stiffness(held, solved, forces, targets, b: int, spec: sch.ServoForce, time
     for d in displacements:
         system = replace(held, params=_moved(held.params, b, targets[b][0] + d))
         state = _chord(system, coords, factor, solved, time)
-        if state is None:  # farther than the centre's Jacobian reaches: Newton
-            state = statics.equilibrium(system, solved, tolerance=TOLERANCE, time=time)
+        if state is None:  # farther than the centre's Jacobian reaches: Newton, from the
+            # lumped lines settled to the moved body (EA in stages: a stiff line's first
+            # strain, all in its last segment, throws Newton off)
+            begin = static_lines(system.params, solved, time=time)
+            state = statics.equilibrium(system, begin, tolerance=TOLERANCE, time=time)
         found.append(-statics.line_loads(system, state, at_rest=True, time=time)[b, :3])
     k_transposed, *_ = np.linalg.lstsq(displacements, np.array(found) - forces[b], rcond=None)
     return k_transposed.T

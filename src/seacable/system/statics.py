@@ -30,7 +30,7 @@ from seacable.system.coordinates import (
     rotate,
     tangents,
 )
-from seacable.system.initial import settle_lines
+from seacable.system.initial import settle_lines, steady_velocities
 
 
 class StaticsError(SeacableError):
@@ -85,36 +85,6 @@ def _no_strings(built: BuiltSystem) -> None:
             f"statics: the natural_string line '{built.layout.natural[0]}' has no statics or "
             "linearisation here; start it as given"
         )
-
-
-def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) -> np.ndarray:
-    """The velocities (``y[n_q:n_q + n_v]``) of a steady motion at ``time``: when every fixed or
-    imposed body moves with one velocity V and none turns (a ship towing at constant speed, and
-    nothing fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
-    lines do not turn (their nodes move with their bases); otherwise everything at rest.
-    The statics then balances the loads of that motion (drag on the velocity relative to the
-    current): the steady tow, which stays steady while the kinematic bodies keep V."""
-    w = kernel.make_work(p)
-    moving = y.copy()
-    moving[p.n_q : p.n_q + p.n_v] = 0.0
-    kernel.rhs(time, moving, p, w, np.zeros_like(y))
-    kinematic = np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED)
-    v = np.zeros(p.n_v)
-    if not kinematic.size:
-        return v
-    velocity = w.vel[kinematic]
-    common = velocity[0]
-    scale = float(np.abs(velocity).max())
-    if scale == 0.0 or np.abs(velocity - common).max() > 1e-12 * scale:
-        return v
-    if np.abs(w.omega[kinematic]).max() > 0.0:
-        return v
-    for b in np.flatnonzero(np.asarray(p.body_kind) == kinematics.DYNAMIC):
-        v[p.body_v[b] - p.n_q : p.body_v[b] - p.n_q + 3] = common
-    for li in range(len(p.line_n)):
-        first = p.line_v[li] - p.n_q
-        v[first : first + 3 * (p.line_n[li] - 1)] = np.tile(common, p.line_n[li] - 1)
-    return v
 
 
 def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200,
