@@ -39,9 +39,34 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
     Raises
     ------
     CaseError
-        With one line per problem: the path in the file (``cables[0].links``), the value, what
+        With one line per problem: the path in the file (``lines[0].sections``), the value, what
         is allowed and, for unknown keys, the valid keys.
     """
+    data, text, base_dir = _read(source)
+    root: type[Case] | type[SystemCase] = SystemCase if "lines" in data else Case
+    return _validated(root, data, text, base_dir)
+
+
+def load_single_cable(source: str | Path | dict) -> Case:
+    """Load and validate a case in the single-cable form (``cables:`` with ``top`` and
+    ``bottom``), which only ``seacable upgrade`` reads (``case.legacy.upgrade``): a path, a YAML
+    string or a dict, as :func:`load_case`.
+
+    Raises
+    ------
+    CaseError
+        As :func:`load_case`; for a system of bodies and lines, that it is one already.
+    """
+    data, text, base_dir = _read(source)
+    if "lines" in data:
+        raise CaseError("the case is already a system of bodies and lines (lines:)")
+    case = _validated(Case, data, text, base_dir)
+    assert isinstance(case, Case)
+    return case
+
+
+def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
+    """The mapping of a case source, its YAML text (None for a dict) and its folder."""
     base_dir = None
     text = None
     if isinstance(source, dict):
@@ -61,7 +86,10 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
             raise CaseError(f"case file is not valid YAML: {exc}") from None
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
-    root: type[Case] | type[SystemCase] = SystemCase if "lines" in data else Case
+    return data, text, base_dir
+
+
+def _validated(root, data: dict, text: str | None, base_dir: Path | None) -> Case | SystemCase:
     try:
         case = root.model_validate(data)
     except ValidationError as exc:
