@@ -144,9 +144,24 @@ def case_base_dir(case: Case | SystemCase):
     return case._base_dir
 
 
+# pydantic's labels of the members of a union in an error's location: ``literal['a','b']``,
+# ``function-after[_check(), Model]``; never a field name
+_MEMBER = re.compile(r"^[a-z][a-z-]*\[.*\]$")
+
+
+def _relevant(errors: list) -> list:
+    """The errors without those of a union's word (a ``Literal``) where a mapping was given:
+    the mapping's own errors say what is wrong with it."""
+    kept = [
+        e for e in errors if not (e["type"] == "literal_error" and isinstance(e.get("input"), dict))
+    ]
+    return kept or errors
+
+
 def format_errors(exc: ValidationError, root: Any = Case) -> str:
-    lines = [f"invalid case ({exc.error_count()} problem{'s' * (exc.error_count() > 1)}):"]
-    for error in exc.errors():
+    errors = _relevant(exc.errors())
+    lines = [f"invalid case ({len(errors)} problem{'s' * (len(errors) > 1)}):"]
+    for error in errors:
         path, model = _walk(error["loc"], root)
         where = path or "(top level)"
         if error["type"] == "extra_forbidden":
@@ -186,6 +201,8 @@ def _walk(loc, root: Any = Case) -> tuple[str, type[BaseModel] | None]:
     text = ""
     annotation: Any = root
     for item in loc:
+        if isinstance(item, str) and _MEMBER.match(item):
+            continue  # pydantic's label of a union member (``function-after[...]``)
         model = _as_model(annotation, item)
         if model is not None and item in _tag_values(annotation):
             annotation = model
