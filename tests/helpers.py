@@ -36,6 +36,12 @@ def chain_case(n=20, top=None, bottom=None, initial=None, simulation=None, envir
     return copy.deepcopy(data)
 
 
+def system_data(source) -> dict:
+    """The mapping ``seacable upgrade`` writes for a single-cable case (a mapping or a file):
+    a system of bodies and lines."""
+    return legacy.upgrade(loader.load_single_cable(source))
+
+
 def upgraded(source) -> SystemCase:
     """The system of bodies and lines that ``seacable upgrade`` writes for a single-cable case
     (a mapping, or a file whose table files it keeps reading from the file's folder)."""
