@@ -60,7 +60,8 @@ def rows(case: SystemCase, **kwargs) -> dict[str, np.ndarray]:
 
 
 def run(data, **kwargs):
-    return seacable.simulate(seacable.load_case(data), **kwargs)
+    """Run a single-cable case on the single-cable core (for what has no system form yet)."""
+    return seacable.simulate(loader.load_single_cable(data), **kwargs)
 
 
 def run_rows(data, **kwargs) -> dict[str, np.ndarray]:

@@ -204,3 +204,12 @@ def test_missing_table_file_names_the_field():
     case = _load(lambda d: _top(d, type="imposed", x={"kind": "table", "file": "nope.csv"}))
     with pytest.raises(CaseError, match=r"bodies\[0\] \(top\)\.x: table file 'nope.csv' does not"):
         seacable.simulate(case)
+
+
+def test_the_single_cable_form_is_refused_with_the_command_that_rewrites_it(tmp_path):
+    path = tmp_path / "old.yaml"
+    path.write_text("cables:\n- {links: 5, length: 10.0, diameter: 0.01, mass_per_length: 1.0}\n")
+    with pytest.raises(CaseError, match=rf"^cables: .* seacable upgrade {path} -o system\.yaml$"):
+        seacable.load_case(path)
+    with pytest.raises(CaseError, match=r"^cables: .* seacable upgrade FILE -o system\.yaml$"):
+        seacable.load_case({"cables": []})

@@ -192,7 +192,7 @@ def test_system_validate_statics_and_modes(tmp_path):
     single = tmp_path / "single.yaml"
     single.write_text(yaml.safe_dump(chain_case(n=8)))
     result = runner.invoke(main, ["statics", str(single)])
-    assert result.exit_code == 2 and "statics of the whole system need" in result.output
+    assert result.exit_code == 2 and f"seacable upgrade {single} -o system.yaml" in result.output
 
 
 def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):

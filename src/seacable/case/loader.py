@@ -33,8 +33,10 @@ def _parse(text: str):
     return yaml.load(text, Loader=_CaseYAML)  # a SafeLoader: never constructs objects
 
 
-def load_case(source: str | Path | dict) -> Case | SystemCase:
-    """Load and validate a case from a YAML file path, a YAML string or a dict.
+def load_case(source: str | Path | dict) -> SystemCase:
+    """Load and validate a case (a system of bodies and lines) from a YAML file path, a YAML
+    string or a dict. The single-cable form (``cables:``) is refused with the command that
+    rewrites it (``seacable upgrade``, which reads it with :func:`load_single_cable`).
 
     Raises
     ------
@@ -43,8 +45,16 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
         is allowed and, for unknown keys, the valid keys.
     """
     data, text, base_dir = _read(source)
-    root: type[Case] | type[SystemCase] = SystemCase if "lines" in data else Case
-    return _validated(root, data, text, base_dir)
+    if "cables" in data:
+        name = str(source) if base_dir is not None else "FILE"
+        raise CaseError(
+            "cables: the single-cable form (cables: with top and bottom) is not read any more; "
+            f"write the case as a system of bodies and lines: seacable upgrade {name} "
+            "-o system.yaml"
+        )
+    case = _validated(SystemCase, data, text, base_dir)
+    assert isinstance(case, SystemCase)
+    return case
 
 
 def load_single_cable(source: str | Path | dict) -> Case:
@@ -114,7 +124,8 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
         When the derived case is invalid, as for a file.
     """
     data = _parse(case_text(case))
-    derived = load_case(_merged(data, changes))
+    merged = _merged(data, changes)
+    derived = load_case(merged) if isinstance(case, SystemCase) else load_single_cable(merged)
     derived._base_dir = case._base_dir
     return derived
 
