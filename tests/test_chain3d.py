@@ -48,7 +48,7 @@ def _directors(built, line=0):
 @pytest.mark.parametrize(
     "example",
     [
-        pytest.param("thesis_6_1_sim6_submerged_60_links_forced", marks=pytest.mark.slow),
+        "thesis_6_1_sim6_submerged_60_links_forced",
         "thesis_6_2_pinned_exact_60_links",
         "thesis_6_3_sim3_two_floating_structures",
         "thesis_6_4_sim2_end_forces",
