@@ -18,17 +18,82 @@ l_i n_i . (F_i / 2 + sum_{k>i} F_k + F_body), exactly the physics seacable uses,
 integrate the same equations and can be compared at the same accuracy.
 """
 
+import math
+from types import SimpleNamespace
+
 import numpy as np
 
-from seacable.kernels import planar_chain as pc
+from seacable.case import system as sch
+from seacable.system.assemble import BuiltSystem
+
+
+def thesis_chain(built: BuiltSystem) -> SimpleNamespace:
+    """The thesis's first case read from a system of bodies and lines (as the examples write
+    it): a rigid body ``top`` free in heave only on a linear spring and damper, with a sine
+    force, a planar rigid-link line from it to a point body ``end`` (gravity, buoyancy, drag),
+    in a uniform current. The line's links come from the assembled parameters; the bodies from
+    the case (SI units). State layout of the dense model: [theta (n), z_top, omega (n), z_top
+    rate]: ``dense_state`` and ``system_rates`` translate."""
+    case, p = built.case, built.params
+    top, end = case.bodies[0], case.bodies[1]
+    if not (
+        isinstance(top, sch.RigidBody) and top.dofs == ["heave"]
+        and isinstance(end, sch.PointBody) and len(case.lines) == 1
+        and case.lines[0].model == "rigid_links"
+    ):  # fmt: skip
+        raise ValueError("the dense reference covers the thesis's first case only")
+    env = case.environment
+    forces = {f.model: f for f in top.external_forces}
+    end_forces = {f.model: f for f in end.external_forces}
+    sine = forces["applied"].force_z if "applied" in forces else None
+    drag = end_forces.get("drag")
+    buoyancy = env.water_density * end.volume if "buoyancy" in end_forces else 0.0
+    current = env.current.velocity if env.current is not None else 0.0
+    ref = p.rs_ref[0]
+    return SimpleNamespace(
+        n=int(p.rs_n[0]), length=p.rs_length, mass=p.rs_mass, inertia=p.rs_inertia,
+        wet_weight=p.rs_wet_weight, drag_normal=p.rs_drag_normal,
+        drag_tangential=p.rs_drag_tangential, joint_stiffness=p.rs_joint_stiffness,
+        joint_damping=p.rs_joint_damping, top_reference_angle=math.atan2(ref[0], -ref[2]),
+        current_u=float(current or 0.0), top_mass=top.mass,
+        top_stiffness=forces["linear_stiffness"].diagonal[2],
+        top_damping=forces["linear_damping"].diagonal[2] if "linear_damping" in forces else 0.0,
+        top_rest_z=(forces["linear_stiffness"].equilibrium_position or top.position)[2],
+        top_net_weight=0.0,
+        body_mass=end.mass + _axis_z(end.added_mass),
+        body_wet_weight=(end.mass - buoyancy) * env.gravity,
+        body_drag=0.0 if drag is None
+        else 0.5 * env.water_density * drag.drag_coefficient * _axis_z(drag.area),
+        force=(0.0, 0.0, 0.0, 0.0) if sine is None else (
+            sine.offset, sine.amplitude,
+            sine.angular_frequency or 2 * math.pi / sine.period, sine.phase),
+        rs_q=int(p.rs_q[0]), rs_v=int(p.rs_v[0]), top_q=int(p.body_q[0]) + 2,
+        top_v=int(p.body_v[0]) + 2,
+    )  # fmt: skip
+
+
+def _axis_z(value) -> float:
+    """The vertical value of a per-axis quantity (one number, or x, y, z)."""
+    return float(value) if np.ndim(value) == 0 else float(value[2])
+
+
+def dense_state(chain: SimpleNamespace, y: np.ndarray) -> np.ndarray:
+    """The dense model's state from a system's."""
+    n = chain.n
+    return np.concatenate([y[chain.rs_q : chain.rs_q + n], [y[chain.top_q]],
+                           y[chain.rs_v : chain.rs_v + n], [y[chain.top_v]]])  # fmt: skip
+
+
+def system_rates(chain: SimpleNamespace, ydot: np.ndarray) -> np.ndarray:
+    """A system's rates in the dense model's layout."""
+    return dense_state(chain, ydot)
 
 
 class DenseThesisModel:
-    """Floating structure in heave at the top, free end with a point body (the thesis's case 1)."""
+    """Floating structure in heave at the top, free end with a point body (the thesis's case 1),
+    described by :func:`thesis_chain`."""
 
-    def __init__(self, p: pc.ChainParams):
-        if p.top_kind != pc.TOP_HEAVE or p.bottom_kind != pc.BOTTOM_FREE:
-            raise ValueError("the dense reference covers the thesis's first case only")
+    def __init__(self, p: SimpleNamespace):
         self.p = p
         n = p.n
         m = p.mass
@@ -40,8 +105,7 @@ class DenseThesisModel:
         self.mu_pair = self.mu[np.maximum.outer(index, index)]
         self.ll = np.outer(p.length, p.length)
         self.total_mass = p.top_mass + m.sum() + p.body_mass
-        self.u_amp, self.u_omega, self.u_phase = p.tf_sine[pc.CH_TOP_FORCE]
-        self.u_const = p.tf_coefs[pc.CH_TOP_FORCE, 0, 0]
+        self.u_const, self.u_amp, self.u_omega, self.u_phase = p.force
 
     def rhs(self, t, y):
         p = self.p
@@ -69,7 +133,7 @@ class DenseThesisModel:
         # node velocities and link loads (the same loads as seacable's kernel)
         vx_nodes = np.concatenate([[0.0], np.cumsum(lengths * om * c)])
         vz_nodes = zsd + np.concatenate([[0.0], np.cumsum(lengths * om * s)])
-        vcx = 0.5 * (vx_nodes[:-1] + vx_nodes[1:]) - p.current_u[0]
+        vcx = 0.5 * (vx_nodes[:-1] + vx_nodes[1:]) - p.current_u
         vcz = 0.5 * (vz_nodes[:-1] + vz_nodes[1:])
         vn = vcx * c + vcz * s
         vt = vcx * s - vcz * c
@@ -77,7 +141,7 @@ class DenseThesisModel:
         ft = -p.drag_tangential * np.abs(vt) * vt
         fx = fn * c + ft * s
         fz = fn * s - ft * c - p.wet_weight
-        bvx = vx_nodes[-1] - p.current_u[0]
+        bvx = vx_nodes[-1] - p.current_u
         bvz = vz_nodes[-1]
         speed = np.hypot(bvx, bvz)
         bfx = -p.body_drag * speed * bvx

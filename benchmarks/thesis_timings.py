@@ -5,8 +5,8 @@ For each n, seacable (compiled O(n) recursion, RK4) and a faithful dense-mass-ma
 implementation of the thesis's approach (benchmarks/dense_reference.py) integrate the same
 equations with the same RK4 step, so they reach the same accuracy (the final states are compared
 and the largest difference printed). The dense code stops when a run would exceed the budget.
-seacable is timed twice: the case as a system of bodies and lines (the example's form, what a
-user runs) and in the single-cable form (tests/legacy_cases/, the core the system replaces).
+seacable runs the example's system of bodies and lines with n links (its joints' stiffness,
+the thesis's k = 5/6 n E I / L, is the line type's bending stiffness 5/6 E I over the link).
 
 Run: python benchmarks/thesis_timings.py [--dense-budget SECONDS] [--repeat N]
 """
@@ -26,40 +26,32 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import seacable  # noqa: E402
-from dense_reference import DenseThesisModel  # noqa: E402
-from seacable.case import legacy  # noqa: E402
-from seacable.models import planar_rigid_links  # noqa: E402
-from seacable.simulation import fastest_frequency  # noqa: E402
+from dense_reference import DenseThesisModel, dense_state, thesis_chain  # noqa: E402
+from seacable.case.loader import derive_case  # noqa: E402
+from seacable.system import model  # noqa: E402
 
 EXAMPLE = HERE.parent / "examples" / "thesis_6_1_sim4_submerged_60_links.yaml"
-SINGLE_CABLE = HERE.parent / "tests" / "legacy_cases" / "thesis_6_1_sim4_submerged_60_links.yaml"
 THESIS_SECONDS = {20: 56, 40: 173, 60: 408, 80: 806, 100: 1272, 120: 1856}  # table 6.6, MATLAB
 SIZES = (20, 40, 60, 80, 100, 120, 480, 960)
 DURATION = 10.0
 OUTPUT_INTERVAL = 0.1
 
 
-def system_for(case):
-    """The single-cable case as a system of bodies and lines (``seacable upgrade``)."""
-    return seacable.load_case(legacy.upgrade(case))
-
-
 def case_for(n: int, time_step: float):
-    """The single-cable case with n links."""
-    base = seacable.load_case(SINGLE_CABLE)
-    stiffness = 5 / 6 * n * 8e10 * math.pi * 0.01**4 / 4 / 240  # table 6.1
-    cable = base.cables[0].model_copy(update={"links": n, "joint_stiffness": stiffness})
-    sim = base.simulation.model_copy(
-        update={"duration": DURATION, "output_interval": OUTPUT_INTERVAL, "time_step": time_step}
-    )
-    return base.model_copy(update={"cables": [cable], "simulation": sim})
+    """The example with n links (the bending stiffness of table 6.1 unchanged: the joints'
+    stiffness follows n)."""
+    base = seacable.load_case(EXAMPLE)
+    lines = [base.lines[0].model_dump(mode="json", by_alias=True, exclude_none=True)]
+    lines[0]["sections"][0]["segments"] = n
+    sim = {"duration": DURATION, "output_interval": OUTPUT_INTERVAL, "time_step": time_step}
+    return derive_case(base, {"lines": lines, "simulation": sim})
 
 
 def stable_step(n: int) -> float:
     """A step <= 5 ms dividing the output interval that RK4 takes safely: 1 / omega, with omega
     seacable's estimate of the fastest motion (RK4's limit is 2.8 / omega; the margin covers the
     start-up transient, whose tension exceeds the static weight the estimate uses)."""
-    omega, _ = fastest_frequency(planar_rigid_links.build(case_for(n, 0.005)))
+    omega, _ = model.fastest_frequency(model.build(case_for(n, 0.005)))
     wanted = min(0.005, 1.0 / omega)
     return OUTPUT_INTERVAL / math.ceil(OUTPUT_INTERVAL / wanted - 1e-9)
 
@@ -82,12 +74,13 @@ def final_state(results):
 
 
 def time_dense(case, dt: float):
-    system = planar_rigid_links.build(case)
-    model = DenseThesisModel(system.params)
+    built = model.build(case)
+    chain = thesis_chain(built)
+    dense = DenseThesisModel(chain)
     steps = round(DURATION / dt)
     start = time.perf_counter()
-    y = model.run_rk4(system.y0, dt, steps)
-    return time.perf_counter() - start, np.concatenate([y[: system.n_links], [y[system.n_links]]])
+    y = dense.run_rk4(dense_state(chain, built.y0), dt, steps)
+    return time.perf_counter() - start, y[: chain.n + 1]
 
 
 def first_run_seconds() -> tuple[float, float]:
@@ -116,7 +109,7 @@ def main() -> None:
 
     print("thesis table 6.6 case: floating structure + 60 kg terminal mass, submerged, 10 s")
     header = (
-        f"{'n':>5} {'step [ms]':>9} {'seacable [s]':>12} {'single [s]':>10} "
+        f"{'n':>5} {'step [ms]':>9} {'seacable [s]':>12} "
         f"{'dense NumPy [s]':>15} {'dense/seacable':>14} {'thesis MATLAB [s]':>17} "
         f"{'MATLAB/seacable':>15} "
         f"{'max |dx|':>9}"
@@ -127,8 +120,7 @@ def main() -> None:
     for n in SIZES:
         dt = stable_step(n)
         case = case_for(n, dt)
-        wall, results = time_seacable(system_for(case), args.repeat)
-        single, _ = time_seacable(case, args.repeat)
+        wall, results = time_seacable(case, args.repeat)
         ours, _ = final_state(results)
         dense_text, ratio_text, diff_text = "skipped", "", ""
         predicted = None if dense_last is None else dense_last[1] * (n / dense_last[0]) ** 3
@@ -143,15 +135,15 @@ def main() -> None:
         thesis_text = f"{thesis}" if thesis else ""
         matlab_ratio = f"{thesis / wall:.0f}x" if thesis else ""
         print(
-            f"{n:>5} {dt * 1e3:>9.3f} {wall:>12.4f} {single:>10.4f} {dense_text:>15} "
+            f"{n:>5} {dt * 1e3:>9.3f} {wall:>12.4f} {dense_text:>15} "
             f"{ratio_text:>14} {thesis_text:>17} {matlab_ratio:>15} {diff_text:>9}",
             flush=True,
         )
         rows[n] = wall
 
     same_step = stable_step(960)
-    t120, _ = time_seacable(system_for(case_for(120, same_step)), args.repeat)
-    t960, _ = time_seacable(system_for(case_for(960, same_step)), args.repeat)
+    t120, _ = time_seacable(case_for(120, same_step), args.repeat)
+    t960, _ = time_seacable(case_for(960, same_step), args.repeat)
     first, cached = first_run_seconds()
     print(
         f"same step {same_step * 1e3:.3f} ms: n=120 {t120:.4f} s, n=960 {t960:.4f} s, "

@@ -1,8 +1,16 @@
 """Small builders of cases for the tests."""
 
 import copy
+from pathlib import Path
+
+import numpy as np
 
 import seacable
+from golden.record import system_rows
+from seacable.case import legacy, loader
+from seacable.case.system import SystemCase
+
+LEGACY = Path(__file__).parent / "legacy_cases"  # the single-cable form of some examples
 
 
 def chain_case(n=20, top=None, bottom=None, initial=None, simulation=None, environment=None,
@@ -28,8 +36,37 @@ def chain_case(n=20, top=None, bottom=None, initial=None, simulation=None, envir
     return copy.deepcopy(data)
 
 
+def system_data(source) -> dict:
+    """The mapping ``seacable upgrade`` writes for a single-cable case (a mapping or a file):
+    a system of bodies and lines."""
+    return legacy.upgrade(loader.load_single_cable(source))
+
+
+def upgraded(source) -> SystemCase:
+    """The system of bodies and lines that ``seacable upgrade`` writes for a single-cable case
+    (a mapping, or a file whose table files it keeps reading from the file's folder)."""
+    single = loader.load_single_cable(source)
+    case = seacable.load_case(legacy.upgrade(single))
+    assert isinstance(case, SystemCase)
+    case._base_dir = single._base_dir
+    return case
+
+
+def rows(case: SystemCase, **kwargs) -> dict[str, np.ndarray]:
+    """A run of a system of lines end to end between two bodies (an upgraded single cable)
+    under the single-cable names (``golden.record.system_rows``: ``tension``, ``node_x``,
+    ``top_force_z``, ...)."""
+    return system_rows(seacable.simulate(case, **kwargs).dataset, case)
+
+
 def run(data, **kwargs):
-    return seacable.simulate(seacable.load_case(data), **kwargs)
+    """Run a single-cable case on the single-cable core (for what has no system form yet)."""
+    return seacable.simulate(loader.load_single_cable(data), **kwargs)
+
+
+def run_rows(data, **kwargs) -> dict[str, np.ndarray]:
+    """The upgraded single-cable case ``data`` run: :func:`rows`."""
+    return rows(upgraded(data), **kwargs)
 
 
 def turning_body_case(simulation):

@@ -7,21 +7,31 @@ M(q, t) qdd = f(q, qd, t). A pinned end adds the holonomic constraint r_n(q, t) 
 Lagrange multiplier.
 """
 
+from types import SimpleNamespace
+
 import numpy as np
 import sympy as sp
 
-from seacable.kernels import planar_chain as pc
-
 
 class SymbolicChain:
-    """Accelerations of the chain from sympy, for ``params`` (a ChainParams) and the top motion
-    given as sympy expressions of ``t`` (used when the top is imposed)."""
+    """Accelerations of the chain from sympy, for its description ``p`` and the top motion
+    given as sympy expressions of ``t`` (used when the top is neither fixed nor heaving).
 
-    def __init__(self, p: pc.ChainParams, top_motion=None, forces=None):
+    ``p`` (SI units): ``n`` links; ``heave`` (a floating structure at the top, ``top_x``,
+    ``top_mass``, ``top_stiffness``, ``top_damping``, ``top_rest_z``, ``top_net_weight``
+    positive down); ``pinned`` (the end held where it is); per link ``length``, ``mass``,
+    ``inertia`` (about its centre), ``wet_weight`` (positive down), ``drag_normal`` and
+    ``drag_tangential`` (0.5 rho Cd d l), ``joint_stiffness`` and ``joint_damping`` (joint i
+    between links i-1 and i, the first against ``top_reference_angle``); the current's profile
+    ``current_z``, ``current_u``; the end body's ``body_mass`` (added mass in), ``body_wet_weight``,
+    ``body_drag`` (0.5 rho Cd A) and its ties ``tie_kx``, ``tie_kz``, ``tie_cx``, ``tie_cz``
+    about ``tie_x0``, ``tie_z0``."""
+
+    def __init__(self, p: SimpleNamespace, top_motion=None, forces=None):
         t = sp.Symbol("t")
         n = p.n
-        heave = p.top_kind == pc.TOP_HEAVE
-        pinned = p.bottom_kind == pc.BOTTOM_PINNED
+        heave = p.heave
+        pinned = p.pinned
         forces = forces or {}
         nq = n + (1 if heave else 0)
         qf = [sp.Function(f"q{j}")(t) for j in range(nq)]

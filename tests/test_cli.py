@@ -10,15 +10,17 @@ import yaml
 from click.testing import CliRunner
 from PIL import Image
 
-from helpers import chain_case
+from helpers import chain_case, system_data
 from seacable.case.loader import load_case
 from seacable.cli import main
 
 
 def _case_file(tmp_path, **kwargs) -> Path:
+    """A planar chain of 8 links hanging from a fixed point (the system ``seacable upgrade``
+    writes for helpers.chain_case)."""
     path = tmp_path / "case.yaml"
     data = chain_case(n=8, initial={"shape": "arc", "top_angle_deg": 30.0}, **kwargs)
-    path.write_text(yaml.safe_dump(data))
+    path.write_text(yaml.safe_dump(system_data(data), sort_keys=False))
     return path
 
 
@@ -28,10 +30,10 @@ def test_validate_ok_and_bad(tmp_path):
     result = runner.invoke(main, ["validate", str(good)])
     assert result.exit_code == 0 and "ok: case" in result.output
     bad = tmp_path / "bad.yaml"
-    bad.write_text(good.read_text().replace("links: 8", "links: -1"))
+    bad.write_text(good.read_text().replace("segments: 8", "segments: -1"))
     result = runner.invoke(main, ["validate", str(bad)])
     assert result.exit_code == 2
-    assert "cables[0].links" in result.output
+    assert "lines[0].sections[0].segments" in result.output
 
 
 def test_run_plot_animate(tmp_path):
@@ -50,7 +52,7 @@ def test_run_plot_animate(tmp_path):
     assert result.exit_code == 0, result.output
     assert gif.read_bytes()[:3] == b"GIF"
     result = runner.invoke(main, ["animate", str(out), "-o", str(tmp_path / "x.avi")])
-    assert result.exit_code == 2 and "use a .gif or .mp4" in result.output
+    assert result.exit_code == 2 and "systems are animated to .gif" in result.output
 
 
 def test_run_reports_divergence(tmp_path):
@@ -62,7 +64,7 @@ def test_run_reports_divergence(tmp_path):
     data["cables"][0]["bottom"] = {"type": "free", "body": {"mass": 0.01},
                                    "tie": {"stiffness_x": 1e7, "stiffness_z": 1e7}}  # fmt: skip
     case = tmp_path / "stiff.yaml"
-    case.write_text(yaml.safe_dump(data))
+    case.write_text(yaml.safe_dump(system_data(data)))
     out = tmp_path / "stiff.nc"
     result = CliRunner().invoke(main, ["run", str(case), "-o", str(out), "--no-progress"])
     assert result.exit_code == 3
@@ -90,7 +92,7 @@ def test_3d_run_plot_animate(tmp_path):
         "simulation": {"duration": 3.0, "output_interval": 0.5, "time_step": 0.01},
     }  # fmt: skip
     case = tmp_path / "tow.yaml"
-    case.write_text(yaml.safe_dump(data))
+    case.write_text(yaml.safe_dump(system_data(data)))
     runner = CliRunner()
     out = tmp_path / "tow.nc"
     result = runner.invoke(main, ["run", str(case), "-o", str(out), "--no-progress"])
@@ -120,20 +122,22 @@ def test_star_run_and_plot(tmp_path):
 
 
 def _long_result(path, steps: int, nodes: int = 11):
-    """A result of ``steps`` output times (0.05 s apart): a straight 10 m line swinging in 3D."""
+    """A system's result of ``steps`` output times (0.05 s apart): a straight 10 m line
+    swinging in 3D."""
     times = 0.05 * np.arange(steps)
     angle = 0.5 * np.sin(0.3 * times)[:, None]
     s = np.linspace(0.0, 10.0, nodes)[None, :]
-    ds = xr.Dataset(
+    line = xr.Dataset(
         {
             "node_x": (("time", "node"), s * np.sin(angle)),
             "node_y": (("time", "node"), 0.1 * s * np.cos(angle)),
             "node_z": (("time", "node"), -s * np.cos(angle)),
         },
         coords={"time": times},
-        attrs={"case": "name: swinging line", "status": "complete"},
     )
-    ds.to_netcdf(path, engine="h5netcdf")
+    root = xr.Dataset(coords={"time": times},
+                      attrs={"case": "name: swinging line", "status": "complete"})  # fmt: skip
+    xr.DataTree.from_dict({"/": root, "/lines/line": line}).to_netcdf(path, engine="h5netcdf")
 
 
 def test_animate_caps_frames_and_streams(tmp_path, caplog):
@@ -155,7 +159,7 @@ def test_animate_caps_frames_and_streams(tmp_path, caplog):
         first = np.asarray(picture.convert("RGB"))
         picture.seek(3)
         middle = np.asarray(picture.convert("RGB"))
-    assert first.shape == (600, 1400, 3)
+    assert first.shape == (480, 1120, 3)  # plan and elevation, 14 x 6 in at 80 dpi
     assert np.any(first != middle)  # the line moves from frame to frame
     # --every below the cap: one frame per 150 s of the 600 s run, no cap
     result = runner.invoke(
@@ -187,9 +191,10 @@ def test_system_validate_statics_and_modes(tmp_path):
     assert result.exit_code == 0, result.output
     lines = result.output.splitlines()
     assert lines[0].startswith("mode  period [s]") and len(lines) == 5
-    single = _case_file(tmp_path)
+    single = tmp_path / "single.yaml"
+    single.write_text(yaml.safe_dump(chain_case(n=8)))
     result = runner.invoke(main, ["statics", str(single)])
-    assert result.exit_code == 2 and "statics of the whole system need" in result.output
+    assert result.exit_code == 2 and f"seacable upgrade {single} -o system.yaml" in result.output
 
 
 def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):

@@ -4,30 +4,19 @@ import ast
 import inspect
 import typing
 
-import pytest
-
-from seacable import simulation
 from seacable.case import system as sch
 from seacable.forces import kinds, table
-from seacable.models import lumped_star, star_3d
-from seacable.models.contract import RunModel
 from seacable.system import model as system_model
+from seacable.system.contract import RunModel
 
-MODELS = [*simulation.MODELS.values(), star_3d, lumped_star, system_model]
 
-
-@pytest.mark.parametrize("module", MODELS, ids=lambda m: m.__name__)
-def test_every_model_is_a_run_model(module):
+def test_the_system_model_is_a_run_model():
     members = {n for n in vars(RunModel) if not n.startswith("_")}
     members |= set(RunModel.__annotations__)
-    missing = sorted(name for name in members if not hasattr(module, name))
-    assert not missing, f"{module.__name__} lacks {missing} of RunModel"
-    assert isinstance(module, RunModel)
-    assert hasattr(module, "VARIABLES") or hasattr(module, "variables")
-
-
-def test_every_model_the_run_loop_picks_is_listed():
-    assert set(simulation.SYSTEM_MODELS.values()) <= set(MODELS)
+    missing = sorted(name for name in members if not hasattr(system_model, name))
+    assert not missing, f"system.model lacks {missing} of RunModel"
+    assert isinstance(system_model, RunModel)
+    assert hasattr(system_model, "variables")
 
 
 def _schema_force_models() -> list[str]:

@@ -1,6 +1,10 @@
 """The free surface z = 0 for bodies: the submerged-fraction kernel against closed forms, and a
 buoy floating at its waterline in the lumped-mass, 3D rigid-segment and planar models (its
-equilibrium draft and heave period against closed forms, energy, implicit against rk4)."""
+equilibrium draft and heave period against closed forms, energy, implicit against rk4).
+
+Cases are written in the single-cable form and run as the systems ``seacable upgrade`` writes
+(``helpers.system_data``); a lumped-mass line is the rigid-segment system with its lines'
+model changed (upgrade writes a lumped-mass cable only when it ends on an anchor)."""
 
 import math
 
@@ -10,11 +14,19 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import seacable
-from seacable.case import legacy, schema
+from golden.record import system_rows
+from helpers import rows, system_data
+from seacable.case import schema
+from seacable.case.loader import derive_case
 from seacable.case.schema import VolumeTable
 from seacable.errors import CaseError
+from seacable.kernels import chain3d as c3
+from seacable.kernels import lumped as lk
+from seacable.kernels import planar_chain as pc
 from seacable.kernels import surface
-from seacable.models.common import shape_row
+from seacable.packing import shape_row
+from seacable.system import kernel, model, rigid
+from seacable.system.assemble import BuiltSystem
 
 RHO, G = 1025.0, 9.81
 SPHERE_R, SPHERE_MASS, SPHERE_ADDED = 1.0, 800.0, 400.0  # m, kg, kg (wholly submerged)
@@ -37,14 +49,15 @@ def _line_mass():
 
 def _line(model, z0, azimuth=0.0):
     """A slack, neutrally buoyant, drag-free line of two 15 m links from an anchor 20 m down to
-    a body at z0, folded towards ``azimuth`` [deg]: it exerts (almost) nothing on the body."""
+    a body at z0, folded towards ``azimuth`` [deg]: it exerts (almost) nothing on the body.
+    (A single cable: a lumped-mass one is written as rigid segments and changed by _system.)"""
     top_z, half = -20.0, 15.0
     h = (z0 - top_z) / 2
     x1 = math.sqrt(half**2 - h**2)
     angles = [math.degrees(math.atan2(x1, -h)), math.degrees(math.atan2(-x1, -h))]
     cable = {
         "name": f"line {azimuth:g}",
-        "model": model,
+        "model": "rigid_segments_3d" if model == "lumped_mass" else model,
         "links": 2,
         "length": 2 * half,
         "diameter": 0.002,
@@ -59,27 +72,44 @@ def _line(model, z0, azimuth=0.0):
     if model != "rigid_links":
         cable["added_mass_coefficient"] = 0.0
         cable["initial"]["azimuth_deg"] = azimuth
-    if model == "lumped_mass":
-        cable["axial_stiffness"] = 1e5
     return cable
 
 
-def _simulate(cables, duration, integrator, dt, bodies=()):
+def _system(cables, duration, integrator, dt, bodies=(), model="rigid_segments_3d"):
+    """The system of the single cables (``seacable upgrade``), its lines' model ``model`` (a
+    lumped-mass line: EA 1e5 N)."""
     simulation = {"duration": duration, "output_interval": 0.005, "integrator": integrator,
                   "time_step": dt}  # fmt: skip
-    case = {"name": "buoy", "cables": cables, "bodies": list(bodies), "simulation": simulation}
-    return seacable.simulate(seacable.load_case(case)).dataset
+    data = system_data(
+        {"name": "buoy", "cables": cables, "bodies": list(bodies), "simulation": simulation}
+    )
+    if model == "lumped_mass":
+        for line in data["lines"]:
+            line.update(model="lumped_mass")
+            line.pop("base_reference", None)
+        for line_type in data["line_types"]:
+            line_type["axial_stiffness"] = 1e5
+    return seacable.load_case(data)
+
+
+def _simulate(cables, duration, integrator, dt, bodies=(), model="rigid_segments_3d"):
+    """The run's variables under the single-cable names (golden.record.system_rows); with
+    ``bodies`` (a star) the results."""
+    case = _system(cables, duration, integrator, dt, bodies, model)
+    results = seacable.simulate(case)
+    assert results.status == "complete"
+    return results.dataset if bodies else system_rows(results.dataset, case)
 
 
 def _buoy(model, shape, mass, z0, added=0.0, duration=5.0, integrator="rk4", dt=1e-3):
     """A body released at rest at z0 on a slack line (_line)."""
     cable = _line(model, z0)
     cable["bottom"] = {"type": "free", "body": {"mass": mass, "shape": shape, "added_mass": added}}
-    return _simulate([cable], duration, integrator, dt)
+    return _simulate([cable], duration, integrator, dt, model=model)
 
 
 def _heave(ds):
-    return ds["time"].values, ds["node_z"].values[:, -1]
+    return ds["time"], ds["node_z"][:, -1]
 
 
 def _period_and_mean(t, z):
@@ -129,6 +159,19 @@ def test_cylinder_and_table_fractions():
         np.testing.assert_allclose(surface.submersion(z, row), surface.submersion(z, cylinder))
 
 
+def _body_case(**buoy):
+    """A point body ``buoy`` on a lumped-mass line from a fixed point 10 m above it."""
+    return {
+        "bodies": [{"name": "top", "type": "fixed", "position": [0.0, 0.0, 0.0]},
+                   {"name": "buoy", "type": "point", "position": [0.0, 0.0, -10.0], **buoy}],
+        "line_types": [{"name": "rope", "diameter": 0.01, "mass_per_length": 1.0,
+                        "axial_stiffness": 1e6}],
+        "lines": [{"name": "rope", "model": "lumped_mass", "from": "top", "to": "buoy",
+                   "sections": [{"type": "rope", "length": 10.0, "segments": 2}]}],
+        "simulation": {"duration": 1.0, "output_interval": 0.1},
+    }  # fmt: skip
+
+
 @pytest.mark.parametrize(
     "table, match",
     [
@@ -138,26 +181,17 @@ def test_cylinder_and_table_fractions():
     ],
 )
 def test_bad_table_is_refused(table, match):
-    case = {
-        "cables": [{"model": "lumped_mass", "links": 2, "length": 10.0, "diameter": 0.01,
-                    "mass_per_length": 1.0, "axial_stiffness": 1e6, "top": {"type": "fixed"},
-                    "bottom": {"type": "free", "body": {"mass": 1.0, "shape": {
-                        "kind": "table", "submerged_volume": table}}}}],
-        "simulation": {"duration": 1.0, "output_interval": 0.1},
-    }  # fmt: skip
-    with pytest.raises(CaseError, match=match):
-        seacable.load_case(case)
+    shape = {"kind": "table", "submerged_volume": table}
+    with pytest.raises(CaseError, match=r"bodies\[1\]\.shape.*" + match):
+        seacable.load_case(_body_case(mass=1.0, shape=shape))
 
 
 def test_volume_and_shape_together_are_refused():
-    body = {"mass": 1.0, "volume": 1.0, "shape": {"kind": "sphere", "radius": 0.5}}
-    case = {
-        "cables": [{"links": 2, "length": 10.0, "diameter": 0.01, "mass_per_length": 1.0,
-                    "top": {"type": "fixed"}, "bottom": {"type": "free", "body": body}}],
-        "simulation": {"duration": 1.0, "output_interval": 0.1},
-    }  # fmt: skip
-    with pytest.raises(CaseError, match=r"bottom\.body.*volume.*remove 'volume'"):
-        seacable.load_case(case)
+    shape = {"kind": "sphere", "radius": 0.5}
+    with pytest.raises(
+        CaseError, match=r"bodies\[1\]: give 'volume' \[m\^3\] or 'shape', not both"
+    ):
+        seacable.load_case(_body_case(mass=1.0, volume=1.0, shape=shape))
 
 
 # ---- a floating buoy --------------------------------------------------------------------------
@@ -167,7 +201,6 @@ def test_sphere_floats_at_its_draft_with_the_closed_form_heave_period(model):
     z_eq = SPHERE_R - draft
     shape = {"kind": "sphere", "radius": SPHERE_R}
     ds = _buoy(model, shape, SPHERE_MASS, z_eq - 0.01, added=SPHERE_ADDED)
-    assert ds.attrs["status"] == "complete"
     period, mean = _period_and_mean(*_heave(ds))
     # the mean of the extremes differs from the equilibrium by O(amplitude^2)
     assert abs(mean - z_eq) < 5e-5
@@ -197,14 +230,13 @@ def test_undamped_buoy_leaping_out_of_the_water_keeps_its_energy(model):
     # measure rk4's error on it rather than the free surface's energy
     shape = {"kind": "sphere", "radius": SPHERE_R}
     ds = _buoy(model, shape, SPHERE_MASS, -1.5, duration=6.0)
-    z = ds["node_z"].values[:, -1]
+    z = ds["node_z"][:, -1]
     assert z.min() < -1.4 and z.max() > 6.0  # wholly under, then clear of the water
-    energy = ds["total_energy"].values
-    swing = np.ptp(ds["kinetic_energy"].values)
+    energy = ds["total_energy"]
+    swing = np.ptp(ds["kinetic_energy"])
     assert np.ptp(energy) < 1e-7 * swing
 
 
-@pytest.mark.slow  # the single-cable core's star (35 s)
 @pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
 def test_shared_body_of_a_star_floats_at_its_draft(model):
     draft = _sphere_draft()
@@ -214,8 +246,8 @@ def test_shared_body_of_a_star_floats_at_its_draft(model):
     cables = [_line(model, z_eq - 0.01, azimuth) for azimuth in (0.0, 180.0)]
     for cable in cables:
         cable["bottom"] = {"type": "attached", "body": "buoy"}
-    ds = _simulate(cables, 4.0, "rk4", 1e-3, bodies=[body])
-    period, mean = _period_and_mean(ds["time"].values, ds["body_z"].values)
+    ds = _simulate(cables, 4.0, "rk4", 1e-3, bodies=[body], model=model)
+    period, mean = _period_and_mean(ds["time"].values, ds["bodies/buoy/position_z"].values)
     assert abs(mean - z_eq) < 5e-5
     waterplane = math.pi * (2 * SPHERE_R * draft - draft**2)
     mass = SPHERE_MASS + (2 * _line_mass() if model == "lumped_mass" else 0.0)
@@ -223,15 +255,12 @@ def test_shared_body_of_a_star_floats_at_its_draft(model):
 
 
 # ---- cable segments ---------------------------------------------------------------------------
-def _hanging_line(model):
-    """20 m of line (2000 kg/m^3, 5 cm) hanging straight from 5.5 m above the water."""
-    cable = {
-        "model": model, "links": 20, "length": 20.0, "diameter": 0.05, "density": 2000.0,
-        "top": {"type": "fixed", "position": [0.0, 0.0, 5.5]}, "bottom": {"type": "free"},
-        "axial_stiffness": 1e8,
-    }  # fmt: skip
-    simulation = {"duration": 1.0, "output_interval": 0.5, "time_step": 2e-4}
-    return seacable.load_case({"cables": [cable], "simulation": simulation})
+def _evaluated(case) -> tuple[BuiltSystem, kernel.SystemWork]:
+    """The system at its start and its workspace after one evaluation of its rates."""
+    built = model.build(case)
+    w = model.workspace(built)
+    kernel.rhs(0.0, built.y0, built.params, w, np.zeros_like(built.y0))
+    return built, w
 
 
 def _weight_above_and_below():
@@ -241,20 +270,29 @@ def _weight_above_and_below():
 
 def test_lumped_line_hanging_from_above_the_surface_weighs_its_part_in_air_fully():
     # the loads on the unstretched line's nodes (its internal forces cancel in the sum): the
-    # segment crossing the surface carries half its buoyancy, at its submerged half's centroid
-    from seacable.kernels import lumped as lk
-    from seacable.models import lumped_mass
-
-    system = lumped_mass.build(_hanging_line("lumped_mass"))
-    work = lk.make_workspace(system.n_links)
-    lk.rhs(0.0, system.y0, system.params, work, np.zeros_like(system.y0))
-    loads = work[lk._F + 2]
+    # segment crossing the surface carries half its buoyancy, at its submerged half's centroid.
+    # 20 m of line (2000 kg/m^3, 5 cm) hanging straight from 5.5 m above the water
+    area = math.pi * 0.05**2 / 4
+    case = seacable.load_case({
+        "environment": {"water_density": RHO},
+        "bodies": [{"name": "top", "type": "fixed", "position": [0.0, 0.0, 5.5]},
+                   {"name": "end", "type": "point", "position": [0.0, 0.0, -14.5], "mass": 0.0}],
+        "line_types": [{"name": "rope", "diameter": 0.05, "mass_per_length": 2000.0 * area,
+                        "axial_stiffness": 1e8}],
+        "lines": [{"name": "rope", "model": "lumped_mass", "from": "top", "to": "end",
+                   "sections": [{"type": "rope", "length": 20.0, "segments": 20}],
+                   "initial": "straight"}],
+        "start": "as_given",
+        "simulation": {"duration": 1.0, "output_interval": 0.5},
+    })  # fmt: skip
+    built, w = _evaluated(case)
+    loads = w.nodes[lk._F + 2, :21]  # the line's 21 nodes, its ends' included
     assert loads.sum() == pytest.approx(-_weight_above_and_below(), rel=1e-12)
-    heights = system.y0[2 : 3 * (system.n_links + 1) : 3]
-    assert heights[5] == pytest.approx(0.5) and heights[6] == pytest.approx(-0.5)
+    first = int(built.params.line_q[0])  # interior nodes 1 ... 19 in the state
+    heights = built.y0[first + 2 : first + 3 * 19 : 3]
+    assert heights[4] == pytest.approx(0.5) and heights[5] == pytest.approx(-0.5)
     # nodes 5 and 6 each carry a metre of line (halves of two segments); segment 5 between
     # them is half submerged, its buoyancy B / 2 at z = -0.25 m: a quarter of it on node 5
-    area = math.pi * 0.05**2 / 4
     weight, buoyancy = 2000.0 * area * G, RHO * area * G  # of a metre of line [N]
     assert loads[5] == pytest.approx(-weight + 0.25 * 0.5 * buoyancy, rel=1e-12)
     assert loads[6] == pytest.approx(-weight + (0.75 * 0.5 + 0.5) * buoyancy, rel=1e-12)
@@ -262,19 +300,19 @@ def test_lumped_line_hanging_from_above_the_surface_weighs_its_part_in_air_fully
 
 @pytest.mark.parametrize("model", ["lumped_mass", "rigid_segments_3d"])
 def test_float_at_a_joint_floats_at_its_draft(model):
-    # a sphere of 0.5 m at the joint between a slack line (_line) and a third link lying
+    # a sphere of 0.5 m at the joint between a slack line (_line) and two more links lying
     # horizontal; heavy enough that the joint, its centre, stays under water
     radius, mass = 0.5, 400.0
     draft = brentq(lambda d: RHO * _cap_volume(d, radius) - mass, 0.0, 2 * radius)
     z_eq = radius - draft
     cable = _line(model, z_eq - 0.01)
-    cable["links"], cable["length"] = 3, 45.0
-    cable["initial"]["angles_deg"].append(90.0)
+    cable["links"], cable["length"] = 4, 60.0  # a lumped-mass line needs two segments
+    cable["initial"]["angles_deg"] += [90.0, 90.0]
     cable["bottom"] = {"type": "free"}
     cable["point_bodies"] = [{"node": 2, "mass": mass, "drag_coefficient": 0.0,
                               "shape": {"kind": "sphere", "radius": radius}}]  # fmt: skip
-    ds = _simulate([cable], 4.0, "rk4", 1e-3)
-    period, mean = _period_and_mean(ds["time"].values, ds["node_z"].values[:, 2])
+    ds = _simulate([cable], 4.0, "rk4", 1e-3, model=model)
+    period, mean = _period_and_mean(ds["time"], ds["node_z"][:, 2])
     assert abs(mean - z_eq) < 5e-5
     waterplane = math.pi * (2 * radius * draft - draft**2)
     expected = 2 * math.pi * math.sqrt(mass / (RHO * G * waterplane))
@@ -305,7 +343,9 @@ def _chain(
         cable["initial"]["azimuth_deg"] = azimuth
     simulation = {"duration": duration, "output_interval": 0.01, "integrator": "rk4",
                   "time_step": dt}  # fmt: skip
-    return seacable.load_case({"name": "chain", "cables": [cable], "simulation": simulation})
+    return seacable.load_case(
+        system_data({"name": "chain", "cables": [cable], "simulation": simulation})
+    )
 
 
 def _submerged_part(za, zb):
@@ -333,15 +373,9 @@ CROSSING_TOP, CROSSING_ANGLES = 0.8, (40.0, 100.0, 140.0, 120.0)
 
 
 def test_planar_links_partly_above_the_water_carry_the_buoyancy_of_their_submerged_part():
-    from seacable.kernels import planar_chain as pc
-    from seacable.models import planar_rigid_links
-
-    system = planar_rigid_links.build(
-        _chain("rigid_links", CROSSING_TOP, CROSSING_ANGLES, joints=0.0)
-    )
-    p, n = system.params, system.n_links
-    w = pc.make_workspace(n)
-    pc._kinematics_and_loads(0.0, system.y0, p, w)
+    built, work = _evaluated(_chain("rigid_links", CROSSING_TOP, CROSSING_ANGLES, joints=0.0))
+    w = rigid.workspace(built.params, work, 0)
+    n = 4
     weight, buoyancy = _link_loads_at_rest()
     heights = w[pc._PZ, : n + 1]
     assert heights[1] < 0.0 and heights[2] < 0.0 and heights[3] > 0.0 and heights[4] > 0.0
@@ -357,23 +391,12 @@ def test_planar_links_partly_above_the_water_carry_the_buoyancy_of_their_submerg
 
 
 def test_3d_segments_partly_above_the_water_carry_the_buoyancy_of_their_submerged_part():
-    from seacable.kernels import chain3d as c3
-    from seacable.models import rigid_segments_3d
-
     azimuth = 35.0
-    system = rigid_segments_3d.build(
-        _chain(
-            "rigid_segments_3d",
-            CROSSING_TOP,
-            CROSSING_ANGLES,
-            azimuth=azimuth,
-            added=1.0,
-            joints=0.0,
-        )
-    )
-    p, n = system.params, system.n_links
-    w = c3.make_workspace(n)
-    c3._kinematics_and_loads(0.0, system.y0, p, w)
+    case = _chain("rigid_segments_3d", CROSSING_TOP, CROSSING_ANGLES, azimuth=azimuth, added=1.0,
+                  joints=0.0)  # fmt: skip
+    built, work = _evaluated(case)
+    w = rigid.workspace(built.params, work, 0)
+    n = 4
     weight, buoyancy = _link_loads_at_rest()
     heights = w[c3._P + 2, : n + 1]
     added = RHO * math.pi * CHAIN_D**2 / 4 * CHAIN_LINK
@@ -403,10 +426,10 @@ def test_undamped_chain_swinging_through_the_surface_keeps_its_energy(model):
     # its energy to 2e-11 of the kinetic energy's swing at 1 ms, 6e-14 at 0.25 ms)
     swings = []
     for dt in (1e-3, 2.5e-4):
-        ds = seacable.simulate(_chain(model, 2.0, [80.0] * 4, duration=3.0, dt=dt)).dataset
-        z = ds["node_z"].values
+        ds = rows(_chain(model, 2.0, [80.0] * 4, duration=3.0, dt=dt))
+        z = ds["node_z"]
         assert z[0, -1] > 0.0 and z.min() < -5.0  # wholly in the air, then mostly under water
-        swings.append(np.ptp(ds["total_energy"].values) / np.ptp(ds["kinetic_energy"].values))
+        swings.append(np.ptp(ds["total_energy"]) / np.ptp(ds["kinetic_energy"]))
     assert swings[0] < 2e-7 and swings[1] < 1e-8  # measured: 9.8e-8 and 3.7e-9
     assert swings[1] < swings[0] / 8  # converges (measured: by 27)
 
@@ -414,35 +437,28 @@ def test_undamped_chain_swinging_through_the_surface_keeps_its_energy(model):
 def test_planar_and_3d_chains_agree_through_the_surface():
     # a planar swing through the surface with drag, in both models (no added mass in 3D: the
     # planar model has none)
-    case = _chain("rigid_links", 2.0, [80.0] * 4, drag=1.2, duration=2.0)
-    planar = seacable.simulate(case).dataset
-    spatial = seacable.simulate(
-        _chain("rigid_segments_3d", 2.0, [80.0] * 4, drag=1.2, duration=2.0)
-    ).dataset
-    z = planar["node_z"].values
+    planar = rows(_chain("rigid_links", 2.0, [80.0] * 4, drag=1.2, duration=2.0))
+    spatial = rows(_chain("rigid_segments_3d", 2.0, [80.0] * 4, drag=1.2, duration=2.0))
+    z = planar["node_z"]
     assert z[0, -1] > 0.0 and z.min() < -1.5
     for name in ("node_x", "node_z"):
-        np.testing.assert_allclose(spatial[name].values, planar[name].values, rtol=0, atol=1e-9)
-    assert np.max(np.abs(spatial["node_y"].values)) == 0.0
-    np.testing.assert_allclose(spatial["tension"].values, planar["tension"].values, rtol=1e-7,
-                               atol=1e-6)  # fmt: skip
+        np.testing.assert_allclose(spatial[name], planar[name], rtol=0, atol=1e-9)
+    assert np.max(np.abs(spatial["node_y"])) == 0.0
+    np.testing.assert_allclose(spatial["tension"], planar["tension"], rtol=1e-7, atol=1e-6)
 
 
 @pytest.mark.parametrize("model", ["rigid_links", "rigid_segments_3d"])
 def test_implicit_scheme_swings_the_chain_through_the_surface_as_rk4(model):
-    """The chain written as a system (seacable upgrade): Newmark at 2 ms against rk4 at
-    0.25 ms while the links cross the surface (their submerged length changes)."""
+    """Newmark at 2 ms against rk4 at 0.25 ms while the links cross the surface (their
+    submerged length changes)."""
 
     def run(integrator, dt):
         case = _chain(model, 2.0, [80.0] * 4, drag=1.2, added=1.0, duration=2.0, dt=dt)
-        system = legacy.upgrade(case)
-        system["simulation"].update(integrator=integrator)
-        ds = seacable.simulate(seacable.load_case(system)).dataset
-        return ds[f"lines/{system['lines'][0]['name']}"]
+        return rows(derive_case(case, {"simulation": {"integrator": integrator}}))
 
     reference = run("rk4", 2.5e-4)
     implicit = run("newmark", 2e-3)
-    z = reference["node_z"].values
+    z = reference["node_z"]
     assert z[0, -1] > 0.0 and z.min() < -1.5
     for name in ("node_x", "node_z"):
-        np.testing.assert_allclose(implicit[name].values, reference[name].values, atol=1e-4)
+        np.testing.assert_allclose(implicit[name], reference[name], atol=1e-4)

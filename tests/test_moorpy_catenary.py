@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import seacable
+from seacable.case.loader import load_single_cable
 from seacable.simulation import build_system
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
@@ -20,7 +21,7 @@ WET = (MASS - RHO * math.pi * DIAMETER**2 / 4) * 9.81  # N/m
 
 
 def _case(n, top=None, duration=1.0):
-    return seacable.load_case(
+    return load_single_cable(
         {
             "environment": {"water_density": RHO},
             "cables": [

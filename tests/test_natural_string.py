@@ -7,6 +7,7 @@ import pytest
 
 import seacable
 from seacable.case import legacy
+from seacable.case.loader import load_single_cable
 from seacable.errors import CaseError
 
 
@@ -28,7 +29,7 @@ def _pendulum(model="natural_string", tangent="angle", k=20, ea=1e5, **simulatio
     sim = {"duration": 1.0, "output_interval": 0.1, "integrator": "dopri5", "rtol": 1e-9}
     sim["atol"] = 1e-9
     sim.update(simulation)
-    return seacable.load_case(
+    return load_single_cable(
         {"environment": {"in_air": True}, "cables": [cable], "simulation": sim}
     )
 
@@ -103,7 +104,7 @@ def test_energy_decreases_with_damping_and_is_nearly_kept_without():
     case = _pendulum(ea=1e4)
     data = case.model_dump(mode="json", exclude_unset=True)
     data["cables"][0]["axial_damping_time"] = 0.0
-    energy = seacable.simulate(seacable.load_case(data)).dataset["total_energy"].values
+    energy = seacable.simulate(load_single_cable(data)).dataset["total_energy"].values
     swing = 10.0 * 9.81 * 10.0  # the end mass falls about its string's length
     assert np.max(np.abs(energy - energy[0])) < 0.02 * swing
 
@@ -112,11 +113,11 @@ def test_natural_string_refuses_water_and_a_missing_end_mass():
     data = _pendulum().model_dump(mode="json", exclude_unset=True)
     data["environment"]["in_air"] = False
     with pytest.raises(CaseError, match="in air"):
-        seacable.simulate(seacable.load_case(data))
+        seacable.simulate(load_single_cable(data))
     data = _pendulum().model_dump(mode="json", exclude_unset=True)
     data["cables"][0]["bottom"] = {"type": "free"}
     with pytest.raises(CaseError, match="end mass"):
-        seacable.simulate(seacable.load_case(data))
+        seacable.simulate(load_single_cable(data))
 
 
 # ---- the same string as a line of a system of bodies and lines ----------------------------------

@@ -12,11 +12,12 @@ import pytest
 import seacable
 from helpers import chain_case
 from seacable.case import legacy
+from seacable.case.loader import load_single_cable
 
 
 def _as_system(data):
     """The case as a system of bodies and lines (``seacable upgrade``)."""
-    return legacy.upgrade(seacable.load_case(data))
+    return legacy.upgrade(load_single_cable(data))
 
 
 TIMING_ATTRIBUTES = ("created",)

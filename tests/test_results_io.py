@@ -6,6 +6,7 @@ import pytest
 import seacable
 from helpers import chain_case
 from seacable import simulation as simulate_module
+from seacable.case.loader import load_single_cable
 
 
 def _swing(**simulation):
@@ -18,7 +19,7 @@ def _swing(**simulation):
 
 def test_netcdf_has_units_long_names_and_provenance(tmp_path):
     path = tmp_path / "out.nc"
-    results = seacable.simulate(seacable.load_case(_swing()), output=path)
+    results = seacable.simulate(load_single_cable(_swing()), output=path)
     assert results.status == "complete"
     reread = seacable.Results.open(path)
     ds = reread.dataset
@@ -41,7 +42,7 @@ def test_diverging_run_keeps_partial_results_marked(tmp_path, caplog):
     }
     path = tmp_path / "diverged.nc"
     with pytest.raises(seacable.SimulationDiverged) as info:
-        seacable.simulate(seacable.load_case(data), output=path)
+        seacable.simulate(load_single_cable(data), output=path)
     message = str(info.value)
     assert "simulation diverged after t =" in message
     assert "reduce simulation.time_step" in message
@@ -67,7 +68,7 @@ def test_interrupted_run_keeps_partial_results(tmp_path, monkeypatch):
     monkeypatch.setattr(simulate_module._Run, "advance", interrupt_later)
     path = tmp_path / "interrupted.nc"
     with pytest.raises(seacable.SimulationInterrupted):
-        seacable.simulate(seacable.load_case(_swing(duration=10.0)), output=path)
+        seacable.simulate(load_single_cable(_swing(duration=10.0)), output=path)
     on_disk = seacable.Results.open(path)
     assert on_disk.status == "interrupted"
     assert 1 < on_disk.dataset.sizes["time"] < 101
@@ -86,6 +87,6 @@ def test_file_is_readable_while_running(tmp_path, monkeypatch):
         return status
 
     monkeypatch.setattr(simulate_module._Run, "advance", peek)
-    seacable.simulate(seacable.load_case(_swing(duration=2.0)), output=path)
+    seacable.simulate(load_single_cable(_swing(duration=2.0)), output=path)
     assert seen[0].status == "incomplete"
     assert seen[0].dataset.sizes["time"] >= 2

@@ -9,6 +9,7 @@ import pytest
 import seacable
 from helpers import chain_case
 from seacable.case import legacy
+from seacable.case.loader import load_single_cable
 
 HEAVE_TOP = {
     "type": "floating_structure",
@@ -56,7 +57,7 @@ CASES = {
 def _run(data):
     """The single-cable case ``data`` run as a system; the last line's end node (x, z) or
     (x, y, z) over time and the run's attributes."""
-    system = legacy.upgrade(seacable.load_case(data))
+    system = legacy.upgrade(load_single_cable(data))
     ds = seacable.simulate(seacable.load_case(system)).dataset
     line = ds[f"lines/{system['lines'][-1]['name']}"]
     axes = "xyz" if "node_y" in line else "xz"

@@ -27,8 +27,6 @@ def _run(name, duration=None, **updates):
     if updates:
         case = seacable.load_case(_patched(case, **updates))
     out = seacable.simulate(case).dataset
-    if "bodies" not in getattr(out, "children", {}):  # the single-cable form
-        return out
     if "buoy" in out["bodies"].children:  # the four cables: lines from the buoy to the anchors
         return star_rows(out, case)
     ds = {f"body_{c}": out[f"bodies/body/position_{c}"].values for c in "xyz"}
@@ -52,13 +50,6 @@ def _patched(case, neutral=False):
         for line_type in data.get("line_types", []):
             area = np.pi * line_type["diameter"] ** 2 / 4
             line_type["mass_per_length"] = rho * area
-        for cable in data.get("cables", []):
-            area = np.pi * cable["diameter"] ** 2 / 4
-            cable["mass_per_length"] = rho * area
-            cable["point_bodies"] = []
-            if isinstance(cable["bottom"].get("body"), dict):
-                cable["bottom"]["body"].pop("shape", None)
-                cable["bottom"]["body"]["volume"] = cable["bottom"]["body"]["mass"] / rho
     return data
 
 

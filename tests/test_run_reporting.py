@@ -10,53 +10,58 @@ import yaml
 from click.testing import CliRunner
 
 import seacable
-from helpers import chain_case
+from helpers import chain_case, system_data, upgraded
 from seacable import simulation
 from seacable.cli import main
 from seacable.errors import CaseError
+from seacable.system import model
 from test_reproducible import _lumped_line, _rigid_chain
 
 
 def _small_swing(**sim):
-    """Five links in air released on a small arc (amplitude 0.017 rad)."""
+    """Five links in air released on a small arc (amplitude 0.017 rad): the results' attributes
+    and the links' angles [rad]."""
     data = chain_case(
         n=5,
         initial={"shape": "arc", "top_angle_deg": 0.5},
         simulation={"duration": 4.0, "output_interval": 0.1, "integrator": "dopri5", **sim},
     )
-    return seacable.simulate(seacable.load_case(data)).dataset
+    tree = seacable.simulate(upgraded(data)).dataset
+    return tree.attrs, tree["lines/cable/angle"].values
 
 
 def test_dopri5_default_atol_lets_rtol_set_the_accuracy_of_a_small_swing():
     """With atol fixed at 1e-8 (the old default) rtol 1e-7 gave 1.5e-6 of the amplitude; by
     default each state's error is measured against its own amplitude, so the error follows
     rtol and the results say the relative tolerance governed."""
-    reference = _small_swing(rtol=1e-12, atol=1e-14).angle.values
+    reference = _small_swing(rtol=1e-12, atol=1e-14)[1]
     amplitude = np.abs(reference).max()
     errors = {}
     for rtol in (1e-5, 1e-7):
-        ds = _small_swing(rtol=rtol)
-        errors[rtol] = np.abs(ds.angle.values - reference).max() / amplitude
-        assert ds.attrs["solver_atol"] == simulation.DEFAULT_ATOL
-        assert ds.attrs["solver_tolerance_governing"].startswith("relative")
-        assert ds.attrs["solver_atol_smallest"] > 0.0
+        attrs, angle = _small_swing(rtol=rtol)
+        errors[rtol] = np.abs(angle - reference).max() / amplitude
+        assert attrs["solver_atol"] == simulation.DEFAULT_ATOL
+        assert attrs["solver_tolerance_governing"].startswith("relative")
+        assert attrs["solver_atol_smallest"] > 0.0
     assert errors[1e-7] < 1e-6, errors
     assert errors[1e-5] > 10.0 * errors[1e-7], errors
-    fixed = _small_swing(rtol=1e-7, atol=1e-8)
-    assert fixed.attrs["solver_atol"] == 1e-8
-    assert fixed.attrs["solver_tolerance_governing"].startswith("absolute")
+    attrs, _ = _small_swing(rtol=1e-7, atol=1e-8)
+    assert attrs["solver_atol"] == 1e-8
+    assert attrs["solver_tolerance_governing"].startswith("absolute")
 
 
 def test_default_atol_floor_follows_each_state_scale():
-    """The floor is rtol x 1e-3 x the model's scale: 1 rad for angles, the cable's length for
-    the heave of the top, those times sqrt(g / L) for their rates."""
+    """The floor is rtol x 1e-3 x the model's scale: the line's length L for the position of
+    the heaving top, 1 for its quaternion and the links' angles [rad], those times sqrt(g / L)
+    for their rates (the top's three velocities, its three angular velocities, the four links'
+    rates)."""
     sim = {"duration": 1.0, "output_interval": 0.1, "integrator": "dopri5", "rtol": 1e-6}
-    case = seacable.load_case(chain_case(n=4, simulation=sim))
-    model = simulation.model_of(case)
-    system = simulation.build_system(case)
+    heaving = {"type": "floating_structure", "mass": 20.0, "heave_stiffness": 300.0}
+    case = upgraded(chain_case(n=4, simulation=sim, top=heaving))
+    system = model.build(case)
     floor, magnitude = simulation.absolute_tolerance(case, model, system)
     omega = np.sqrt(9.81 / 10.0)
-    expected = 1e-9 * np.array([1, 1, 1, 1, 10, omega, omega, omega, omega, 10 * omega])
+    expected = 1e-9 * np.array([10] * 3 + [1] * 8 + [10 * omega] * 3 + [omega] * 7)
     np.testing.assert_allclose(floor, expected, rtol=1e-12)
     np.testing.assert_array_equal(magnitude, np.abs(system.y0))
 
@@ -69,7 +74,8 @@ def test_default_atol_floor_follows_each_state_scale():
     ],
 )
 def test_time_step_not_dividing_the_output_interval_is_refused(step, advice):
-    data = chain_case(simulation={"duration": 1.0, "output_interval": 0.01, "time_step": step})
+    data = system_data(chain_case())
+    data["simulation"] = {"duration": 1.0, "output_interval": 0.01, "time_step": step}
     with pytest.raises(
         CaseError,
         match=rf"simulation\.time_step: {step} s does not divide output_interval.*{advice}",
@@ -79,7 +85,7 @@ def test_time_step_not_dividing_the_output_interval_is_refused(step, advice):
 
 def test_time_step_within_one_percent_of_a_divisor_is_used_as_that_divisor():
     data = chain_case(simulation={"duration": 0.1, "output_interval": 0.01, "time_step": 0.00334})
-    results = seacable.simulate(seacable.load_case(data))
+    results = seacable.simulate(upgraded(data))
     assert results.dataset.attrs["solver_time_step"] == pytest.approx(0.01 / 3, rel=1e-15)
 
 

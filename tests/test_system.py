@@ -14,13 +14,12 @@ import seacable
 from helpers import turning_body_case
 from seacable import viz
 from seacable.bodies import kinematics
-from seacable.case.loader import load_case
+from seacable.case.loader import derive_case, load_case
 from seacable.kernels.timefn import evaluate
 from seacable.simulation import simulate
 from seacable.system import model
 
 EXAMPLES = Path(__file__).parent.parent / "examples"
-LEGACY = Path(__file__).parent / "legacy_cases"  # examples in the single-cable form
 
 
 def _sim(duration, dt=None, integrator="rk4", interval=0.1, **more):
@@ -58,42 +57,15 @@ def _tie(name, a, b, length=1.0, stiffness=1.0):
             "stiffness": stiffness}  # fmt: skip
 
 
-def test_the_catenary_example_matches_the_single_cable_model():
-    """The mooring example written as a system (a fixed anchor body, an imposed fairlead body,
-    one lumped-mass line) gives today's single-cable results to 1e-9 of each variable's scale,
-    both run tightly with dopri5: same initial equilibrium, same dynamics, same end forces."""
-    old = yaml.safe_load((LEGACY / "catenary_mooring_line_surge.yaml").read_text())
-    cable = old["cables"][0]
-    tight = {"duration": 1.0, "output_interval": 0.25, "integrator": "dopri5", "rtol": 1e-10,
-             "atol": 1e-12, "build_up": 12.0}  # fmt: skip
-    old["simulation"] = tight
-    top = cable["top"]
-    keys = ("diameter", "mass_per_length", "axial_stiffness", "axial_damping_time",
-            "drag_coefficient_normal", "drag_coefficient_tangential")  # fmt: skip
-    new = _case(
-        [
-            {"name": "anchor", "type": "fixed", "position": cable["bottom"]["anchor"]},
-            {"name": "fairlead", "type": "imposed", "x": top["x"], "z": top["z"]},
-        ],
-        [{"name": "chain", "model": "lumped_mass", "from": "fairlead", "to": "anchor",
-          "sections": [{"type": "chain", "length": cable["length"],
-                        "segments": cable["links"]}]}],
-        tight,
-        environment=old["environment"],
-        line_types=[{"name": "chain", **{k: cable[k] for k in keys}}],
-    )  # fmt: skip
-    reference = simulate(load_case(old)).dataset
-    tree = simulate(load_case(new)).dataset
-    line = tree["lines/chain"].to_dataset()
-    pairs = {"node_x": "node_x", "node_z": "node_z", "tension": "tension",
-             "top_force_x": "from_force_x", "top_force_z": "from_force_z",
-             "bottom_force_x": "to_force_x", "bottom_force_z": "to_force_z"}  # fmt: skip
-    for old_name, new_name in pairs.items():
-        a, b = reference[old_name].values, line[new_name].values
-        error = np.abs(a - b).max() / np.abs(a).max()
-        assert error < 1e-9, f"{old_name}: {error:.2e} of its scale"
-    force = tree["bodies/anchor"].to_dataset()["line_force_x"].values
-    np.testing.assert_allclose(force, reference["bottom_force_x"].values, rtol=1e-8)
+def test_a_body_feels_the_force_its_line_reports_on_it():
+    """The anchor of the mooring example (its agreement with the single-cable model is
+    test_golden's): the lines' force on the body is the line's force on its 'to' point."""
+    case = load_case(EXAMPLES / "catenary_mooring_line_surge.yaml")
+    tree = simulate(derive_case(case, {"simulation": {"duration": 1.0}})).dataset
+    for c in "xyz":
+        np.testing.assert_array_equal(
+            tree[f"bodies/anchor/line_force_{c}"].values, tree[f"lines/chain/to_force_{c}"].values
+        )
 
 
 def test_heave_float_decays_at_its_natural_period():

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import seacable
-from seacable.case.loader import load_case
+from seacable.case.loader import load_case, load_single_cable
 from seacable.errors import CaseError
 from seacable.simulation import simulate
 from seacable.system import model
@@ -73,7 +73,7 @@ def test_a_body_at_the_end_moves_as_todays_free_end(kind):
         [_line("chain", "pin", "ball", 10.0, 10, initial="straight", model=kind)],
         _sim(1.0, 1e-3),
     )  # fmt: skip
-    a = simulate(load_case(old)).dataset
+    a = simulate(load_single_cable(old)).dataset
     b = simulate(load_case(new)).dataset
     assert _gap(a["node_x"].values[:, -1], b["bodies/ball/position_x"].values) < 1e-12
     assert _gap(a["node_z"].values[:, -1], b["bodies/ball/position_z"].values) < 1e-12
@@ -117,7 +117,7 @@ def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure
                  environment=WATER, model=kind,
                  length=32.0, diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
                  friction_coefficient=0.02)  # fmt: skip
-    a = simulate(load_case(old)).dataset
+    a = simulate(load_single_cable(old)).dataset
     b = simulate(load_case(new)).dataset
     assert _gap(a["node_z"].values[:, 0], b["bodies/buoy/position_z"].values) < 1e-9
     assert _gap(a["tension"].values, b["lines/leg/tension"].values) < 1e-9
@@ -195,7 +195,7 @@ def test_a_towed_body_hangs_where_todays_statics_puts_it(kind):
         [_line("tow", "ship", "fish", 200.0, 20, kind="wire", model=kind)], _sim(0.1, 5e-3),
         environment=water, start="static", types=(wire,),
     )  # fmt: skip
-    a = simulate(load_case(old)).dataset
+    a = simulate(load_single_cable(old)).dataset
     b = simulate(load_case(new)).dataset
     for c in "xz":
         np.testing.assert_allclose(b[f"lines/tow/node_{c}"].values[0], a[f"node_{c}"].values[0],

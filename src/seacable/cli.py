@@ -9,7 +9,7 @@ import click
 
 import seacable
 from seacable import analysis, viz
-from seacable.case import legacy
+from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
 
 
@@ -81,10 +81,7 @@ def upgrade(case_file: str, output: str | None) -> None:
     """Write CASE_FILE (the single-cable form, cables: with top and bottom) in the system form
     of bodies and lines (to stdout, or OUTPUT next to it: table files keep their names)."""
     try:
-        case = seacable.load_case(case_file)
-        if isinstance(case, SystemCase):
-            raise seacable.CaseError(f"{case_file} is already a system of bodies and lines")
-        text = legacy.upgrade_text(case)
+        text = legacy.upgrade_text(loader.load_single_cable(case_file))
     except seacable.CaseError as exc:
         _fail(str(exc), 2)
     if output is None:

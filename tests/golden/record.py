@@ -39,7 +39,7 @@ import xarray as xr
 import yaml
 
 import seacable
-from seacable.case.loader import case_text, derive_case
+from seacable.case.loader import case_text, derive_case, load_single_cable
 from seacable.case.schema import FIXED_STEP_INTEGRATORS
 from seacable.case.system import SystemCase
 from seacable.errors import SimulationDiverged
@@ -424,7 +424,7 @@ def roundoff_changes(stem: str) -> dict[str, float]:
     for factor in ROUNDOFF_FACTORS:
         changed = yaml.safe_load(yaml.safe_dump(data))
         changed["cables"][0]["mass_per_length"] *= 1.0 + factor
-        case = derive_case(seacable.load_case(changed), golden_changes(golden))
+        case = derive_case(load_single_cable(changed), golden_changes(golden))
         case._base_dir = str(single_cable_path(stem).parent)
         dataset = seacable.simulate(case).dataset
         actual = {name: dataset[name].values for name in dataset.data_vars}

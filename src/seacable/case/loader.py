@@ -33,15 +33,50 @@ def _parse(text: str):
     return yaml.load(text, Loader=_CaseYAML)  # a SafeLoader: never constructs objects
 
 
-def load_case(source: str | Path | dict) -> Case | SystemCase:
-    """Load and validate a case from a YAML file path, a YAML string or a dict.
+def load_case(source: str | Path | dict) -> SystemCase:
+    """Load and validate a case (a system of bodies and lines) from a YAML file path, a YAML
+    string or a dict. The single-cable form (``cables:``) is refused with the command that
+    rewrites it (``seacable upgrade``, which reads it with :func:`load_single_cable`).
 
     Raises
     ------
     CaseError
-        With one line per problem: the path in the file (``cables[0].links``), the value, what
+        With one line per problem: the path in the file (``lines[0].sections``), the value, what
         is allowed and, for unknown keys, the valid keys.
     """
+    data, text, base_dir = _read(source)
+    if "cables" in data:
+        name = str(source) if base_dir is not None else "FILE"
+        raise CaseError(
+            "cables: the single-cable form (cables: with top and bottom) is not read any more; "
+            f"write the case as a system of bodies and lines: seacable upgrade {name} "
+            "-o system.yaml"
+        )
+    case = _validated(SystemCase, data, text, base_dir)
+    assert isinstance(case, SystemCase)
+    return case
+
+
+def load_single_cable(source: str | Path | dict) -> Case:
+    """Load and validate a case in the single-cable form (``cables:`` with ``top`` and
+    ``bottom``), which only ``seacable upgrade`` reads (``case.legacy.upgrade``): a path, a YAML
+    string or a dict, as :func:`load_case`.
+
+    Raises
+    ------
+    CaseError
+        As :func:`load_case`; for a system of bodies and lines, that it is one already.
+    """
+    data, text, base_dir = _read(source)
+    if "lines" in data:
+        raise CaseError("the case is already a system of bodies and lines (lines:)")
+    case = _validated(Case, data, text, base_dir)
+    assert isinstance(case, Case)
+    return case
+
+
+def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
+    """The mapping of a case source, its YAML text (None for a dict) and its folder."""
     base_dir = None
     text = None
     if isinstance(source, dict):
@@ -61,7 +96,10 @@ def load_case(source: str | Path | dict) -> Case | SystemCase:
             raise CaseError(f"case file is not valid YAML: {exc}") from None
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
-    root: type[Case] | type[SystemCase] = SystemCase if "lines" in data else Case
+    return data, text, base_dir
+
+
+def _validated(root, data: dict, text: str | None, base_dir: Path | None) -> Case | SystemCase:
     try:
         case = root.model_validate(data)
     except ValidationError as exc:
@@ -86,7 +124,8 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
         When the derived case is invalid, as for a file.
     """
     data = _parse(case_text(case))
-    derived = load_case(_merged(data, changes))
+    merged = _merged(data, changes)
+    derived = load_case(merged) if isinstance(case, SystemCase) else load_single_cable(merged)
     derived._base_dir = case._base_dir
     return derived
 
@@ -116,9 +155,24 @@ def case_base_dir(case: Case | SystemCase):
     return case._base_dir
 
 
+# pydantic's labels of the members of a union in an error's location: ``literal['a','b']``,
+# ``function-after[_check(), Model]``; never a field name
+_MEMBER = re.compile(r"^[a-z][a-z-]*\[.*\]$")
+
+
+def _relevant(errors: list) -> list:
+    """The errors without those of a union's word (a ``Literal``) where a mapping was given:
+    the mapping's own errors say what is wrong with it."""
+    kept = [
+        e for e in errors if not (e["type"] == "literal_error" and isinstance(e.get("input"), dict))
+    ]
+    return kept or errors
+
+
 def format_errors(exc: ValidationError, root: Any = Case) -> str:
-    lines = [f"invalid case ({exc.error_count()} problem{'s' * (exc.error_count() > 1)}):"]
-    for error in exc.errors():
+    errors = _relevant(exc.errors())
+    lines = [f"invalid case ({len(errors)} problem{'s' * (len(errors) > 1)}):"]
+    for error in errors:
         path, model = _walk(error["loc"], root)
         where = path or "(top level)"
         if error["type"] == "extra_forbidden":
@@ -158,6 +212,8 @@ def _walk(loc, root: Any = Case) -> tuple[str, type[BaseModel] | None]:
     text = ""
     annotation: Any = root
     for item in loc:
+        if isinstance(item, str) and _MEMBER.match(item):
+            continue  # pydantic's label of a union member (``function-after[...]``)
         model = _as_model(annotation, item)
         if model is not None and item in _tag_values(annotation):
             annotation = model

@@ -332,6 +332,9 @@ class LineAngles(_Model):
         if (self.angles_deg is None) == (self.arc_deg is None):
             raise ValueError("give exactly one of 'angles_deg' (one per segment) or 'arc_deg' "
                              "[first, last]")  # fmt: skip
+        given = [*(self.angles_deg or []), *(self.arc_deg or []), self.azimuth_deg]
+        if any(abs(angle) > 360.0 for angle in given):
+            raise ValueError("angles are in degrees and should lie within [-360, 360]")
         return self
 
     def angles(self, n: int) -> list[float]:

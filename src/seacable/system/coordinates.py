@@ -229,9 +229,12 @@ def colour(structure: sparse.csr_matrix) -> np.ndarray:
 
 
 class Residual:
-    """Accelerations of every increment's degree of freedom at a state."""
+    """Accelerations of every increment's degree of freedom at a state (with ``balance``, the
+    segments of rigid trees that hang free give their moment balance instead: statics; without,
+    every coordinate its acceleration: linearised dynamics)."""
 
-    def __init__(self, p: kernel.SystemParams, coords: Coordinates, time: float = 0.0):
+    def __init__(self, p: kernel.SystemParams, coords: Coordinates, time: float = 0.0,
+                 balance: bool = True):  # fmt: skip
         self.p, self.coords, self.time = p, coords, time
         self.w = kernel.make_work(p)
         self.ydot = np.zeros(p.n_q + p.n_v + p.n_s)
@@ -245,6 +248,7 @@ class Residual:
         per_line = np.where(np.asarray(p.rs_kind) == rigid.PLANAR, 1, 2) * np.asarray(p.rs_n)
         per_segment = np.repeat(np.arange(len(p.rs_n)), per_line)
         self.balanced = self.free[per_segment] if len(p.rs_n) else np.zeros(0, bool)
+        self.balanced &= balance
 
     def __call__(self, y: np.ndarray) -> np.ndarray:
         kernel.rhs(self.time, y, self.p, self.w, self.ydot)

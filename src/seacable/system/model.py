@@ -356,7 +356,8 @@ def state_scale(case, system: BuiltSystem) -> np.ndarray:
     for b in range(len(p.body_kind)):
         if p.body_q[b] >= 0 and p.body_rigid[b]:
             q[p.body_q[b] + 3 : p.body_q[b] + 7] = 1.0
-            v[p.body_v[b] + 3 : p.body_v[b] + 6] = turning
+            at = p.body_v[b] - p.n_q  # body_v is an offset in y, v holds the velocities only
+            v[at + 3 : at + 6] = turning
     for li in range(len(p.rs_n)):
         width = (3 if p.rs_kind[li] == rigid_kind.SEGMENTS_3D else 1) * int(p.rs_n[li])
         q[p.rs_q[li] : p.rs_q[li] + width] = 1.0

@@ -298,7 +298,7 @@ def jacobian(
     _no_strings(built)
     coords = coordinates(p)
     n = len(coords.kind)
-    residual = Residual(p, coords, time)
+    residual = Residual(p, coords, time, balance=False)  # accelerations: dynamics
     a = np.zeros((2 * n, 2 * n))
     a[:n, n:] = np.eye(n)
     for j in range(n):

@@ -1,5 +1,5 @@
-"""The contract of a model the run loop (``simulation``) reaches, as a Protocol with its rules
-(``tests/test_contracts.py`` checks every model module against it)."""
+"""The contract of what the run loop (``simulation``) reaches of a model, as a Protocol with
+its rules (``tests/test_contracts.py`` checks ``system.model`` against it)."""
 
 from typing import Any, Protocol, runtime_checkable
 
