@@ -19,6 +19,7 @@ LAYER = {
     "bodies": 4,
     "packing": 3,
     "case.system": 2, "case.schema": 2, "timefunctions": 2, "case.legacy": 9,
+    "case.legacy_sections": 8,
     "case.base": 1,
     "kernels": 0,
     "errors": 0,
