@@ -12,6 +12,23 @@ from seacable.case import legacy
 from seacable.lines import catenary
 from seacable.models import lumped_mass
 
+
+def _load(source):
+    """A case of either form: the single-cable form (``cables:``) through
+    ``load_single_cable`` while the single-cable core exists, a system through ``load_case``."""
+    from pathlib import Path
+
+    from seacable.case import loader
+
+    text = (
+        Path(source).read_text()
+        if isinstance(source, (str, Path)) and Path(str(source)).exists()
+        else source
+    )
+    single = ("cables" in text) if isinstance(text, dict) else ("\ncables:" in "\n" + str(text))
+    return loader.load_single_cable(source) if single else seacable.load_case(source)
+
+
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
 
 RHO = 1025.0
@@ -29,7 +46,7 @@ def test_closed_form_catenary_matches_moorpy(span):
 
 
 def mooring(n=40, duration=20.0, top=None, **simulation):
-    return seacable.load_case(
+    return _load(
         {
             "environment": {
                 "water_density": RHO,
@@ -79,7 +96,7 @@ def test_mooring_line_starts_in_discrete_equilibrium_near_the_closed_form():
 
 
 def test_energy_is_conserved_without_damping():
-    case = seacable.load_case(
+    case = _load(
         {
             "environment": {"in_air": True},
             "cables": [
@@ -113,7 +130,7 @@ def test_energy_is_conserved_without_damping():
 def test_axial_frequency_of_a_hanging_mass():
     """A light elastic line with a heavy end mass bounces at omega = sqrt(EA / (L (M + m/3)))."""
     length, ea, end_mass, line_mass = 20.0, 1.0e6, 500.0, 5.0
-    case = seacable.load_case(
+    case = _load(
         {
             "environment": {"in_air": True},
             "cables": [
@@ -165,7 +182,7 @@ def test_lumped_model_needs_axial_stiffness():
         "simulation": {"duration": 1.0, "output_interval": 0.5},
     }
     with pytest.raises(seacable.CaseError, match=r"axial_stiffness: a lumped-mass cable needs EA"):
-        seacable.simulate(seacable.load_case(data))
+        seacable.simulate(_load(data))
 
 
 def test_clump_weight_adds_its_weight_to_the_tension_above_it():
@@ -173,7 +190,7 @@ def test_clump_weight_adds_its_weight_to_the_tension_above_it():
     the tension steps by the clump's weight plus one segment's across it, and every segment
     carries what hangs below it."""
     g, mu, body, clump = 9.81, 1.0, 10.0, 5.0
-    case = seacable.load_case(
+    case = _load(
         {
             "environment": {"in_air": True, "gravity": g},
             "cables": [
@@ -220,9 +237,7 @@ def _bent(model, n=20, **simulation):
         cable.update(axial_stiffness=1e5)
     sim = {"duration": 1.0, "output_interval": 0.05, "integrator": "dopri5", "rtol": 1e-9}
     sim.update({"atol": 1e-10, **simulation})
-    return seacable.load_case(
-        {"environment": {"in_air": True}, "cables": [cable], "simulation": sim}
-    )
+    return _load({"environment": {"in_air": True}, "cables": [cable], "simulation": sim})
 
 
 def test_bending_forces_are_the_gradient_of_the_bending_energy():
@@ -271,9 +286,7 @@ def _heaving(model, **simulation):
         cable["axial_stiffness"] = 1e8
     sim = {"duration": 4.0, "output_interval": 0.1, "integrator": "dopri5", "rtol": 1e-9}
     sim.update({"atol": 1e-10, **simulation})
-    return seacable.load_case(
-        {"environment": {"in_air": True}, "cables": [cable], "simulation": sim}
-    )
+    return _load({"environment": {"in_air": True}, "cables": [cable], "simulation": sim})
 
 
 @pytest.mark.slow  # 13 s; a heaving body over a line is checked on the system path by the goldens
@@ -300,7 +313,7 @@ def test_floating_structure_energy_balance():
     data = case.model_dump(mode="json", exclude_unset=True)
     data["cables"][0]["top"]["force"] = 0.0
     data["cables"][0]["top"]["initial_heave"] = 0.3
-    ds = seacable.simulate(seacable.load_case(data)).dataset
+    ds = seacable.simulate(_load(data)).dataset
     energy = ds["total_energy"].values
     assert np.max(np.abs(energy - energy[0])) < 1e-6 * np.ptp(ds["kinetic_energy"].values)
 
@@ -310,18 +323,18 @@ def test_two_floating_structures_like_the_rigid_link_model():
     surge spring-dampers) without joint springs, as a system, both lines started on their
     catenary: a steel lumped line (EA of the 20 mm rod) under generalized-alpha moves both
     structures like the rigid-link line over the first 3 s."""
-    case = seacable.load_case("examples/thesis_6_3_sim1_two_floating_structures.yaml")
+    case = _load("examples/thesis_6_3_sim1_two_floating_structures.yaml")
     data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
     data["line_types"][0].pop("bending_stiffness")
     data["lines"][0].update(joint_damping=0.0, initial="catenary")  # both lines start on it
     data["simulation"].update(duration=3.0)
-    rigid = seacable.simulate(seacable.load_case(data)).dataset
+    rigid = seacable.simulate(_load(data)).dataset
     data["line_types"][0]["axial_stiffness"] = 2.1e11 * math.pi * 0.01**2
     data["lines"][0] = {k: v for k, v in data["lines"][0].items()
                         if k in ("name", "from", "to", "sections")}  # fmt: skip
     data["lines"][0].update(model="lumped_mass", initial="catenary")
     data["simulation"].update(integrator="generalized_alpha", time_step=2e-3)
-    lumped = seacable.simulate(seacable.load_case(data)).dataset
+    lumped = seacable.simulate(_load(data)).dataset
     for body in ("top", "end"):
         for axis in ("position_x", "position_z"):
             a, b = lumped[f"bodies/{body}/{axis}"].values, rigid[f"bodies/{body}/{axis}"].values
@@ -344,7 +357,7 @@ def _held_case(model, bottom, shape, duration=8.0, links=30):
     if model == "lumped_mass":
         cable.update(axial_stiffness=1e8, axial_damping_time=0.001)
     simulation = {"duration": duration, "output_interval": 0.1, "integrator": "dopri5"}
-    return seacable.load_case(
+    return _load(
         {"environment": {"water_depth": 200.0}, "cables": [cable], "simulation": simulation}
     )
 
@@ -464,7 +477,7 @@ def _lone_segment(ratio, ea=100.0, mass=1.0, pull=20.0, duration=1.5):
         axial_stiffness=ea,
         axial_damping_ratio=ratio,
     )
-    return seacable.load_case(data)
+    return _load(data)
 
 
 @pytest.mark.parametrize("ratio", [0.5, 1.0])
@@ -501,12 +514,12 @@ def test_axial_damping_ratio_is_the_fraction_of_each_segments_critical_damping()
         "bottom": {"type": "free"},
     }
     data = {"cables": [cable], "simulation": {"duration": 1.0, "output_interval": 0.5}}
-    alpha = lumped_mass.build(seacable.load_case(data)).params.axial_damping
+    alpha = lumped_mass.build(_load(data)).params.axial_damping
     mu = np.array(masses) / np.array(lengths)
     np.testing.assert_allclose(ea * alpha, ratio * np.array(lengths) * np.sqrt(ea * mu), rtol=1e-14)
     del cable["axial_damping_ratio"]
     cable["axial_damping_time"] = 0.003
-    alpha = lumped_mass.build(seacable.load_case(data)).params.axial_damping
+    alpha = lumped_mass.build(_load(data)).params.axial_damping
     np.testing.assert_array_equal(alpha, [0.003] * 3)
 
 
@@ -518,14 +531,14 @@ def test_axial_damping_is_given_one_way():
         match=r"cables\[0\]: give at most one of 'axial_damping_time' \[s\] or "
         r"'axial_damping_ratio'",
     ):
-        seacable.load_case(data)
+        _load(data)
     data = chain_case(3, model="natural_string", axial_stiffness=1e6, axial_damping_ratio=1.0)
     with pytest.raises(
         seacable.CaseError,
         match=r"cables\[0\]: axial_damping_ratio is for model 'lumped_mass' \(got model "
         r"'natural_string'\); give axial_damping_time",
     ):
-        seacable.load_case(data)
+        _load(data)
 
 
 def _upgraded_gap(case) -> float:
@@ -533,7 +546,7 @@ def _upgraded_gap(case) -> float:
     (``seacable upgrade``: the cable's lines joined end to end)."""
     old = seacable.simulate(case).dataset
     system = legacy.upgrade(case)
-    new = seacable.simulate(seacable.load_case(system)).dataset
+    new = seacable.simulate(_load(system)).dataset
     lines = [new[f"lines/{line['name']}"] for line in system["lines"]]
     gap = 0.0
     for axis in ("node_x", "node_z"):
@@ -568,7 +581,7 @@ def test_upgraded_lumped_cable_with_a_float_along_it_moves_as_the_single_cable()
     data = case.model_dump(mode="json", exclude_unset=True)
     data["cables"][0]["point_bodies"] = [{"node": 10, "mass": 30.0, "volume": 0.1,
                                           "drag_coefficient": 0.8, "drag_area": 0.3}]  # fmt: skip
-    assert _upgraded_gap(seacable.load_case(data)) < 1e-9
+    assert _upgraded_gap(_load(data)) < 1e-9
 
 
 def test_a_lumped_line_at_given_angles_must_reach_its_end_point():
@@ -577,4 +590,4 @@ def test_a_lumped_line_at_given_angles_must_reach_its_end_point():
     system["bodies"][1]["position"][0] += 0.5  # the anchor, moved off the shape's end
     with pytest.raises(seacable.CaseError, match=r"lines \(cable\)\.initial: the given angles "
                        r"end the line at .* \(0\.5 m apart; allowed 1 mm\)"):  # fmt: skip
-        seacable.simulate(seacable.load_case(system))
+        seacable.simulate(_load(system))

@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 
 import seacable
-from seacable.case import legacy
+from seacable.case import legacy, loader
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from golden.record import save_golden, system_rows  # noqa: E402
@@ -41,7 +41,7 @@ def stems() -> list[str]:
 
 def single_cable(stem: str) -> xr.Dataset:
     """The single-cable core's run of the case: the golden's variables."""
-    results = seacable.simulate(seacable.load_case(CASES / f"{stem}.yaml"))
+    results = seacable.simulate(loader.load_single_cable(CASES / f"{stem}.yaml"))
     if results.status != "complete":
         raise RuntimeError(f"{stem}: {results.status}: {results.message}")
     dataset = results.dataset
@@ -59,7 +59,7 @@ def single_cable(stem: str) -> xr.Dataset:
 def upgraded(stem: str) -> dict:
     """The upgraded system's run of the case under the single-cable names
     (:func:`golden.record.system_rows`)."""
-    case = seacable.load_case(legacy.upgrade(seacable.load_case(CASES / f"{stem}.yaml")))
+    case = seacable.load_case(legacy.upgrade(loader.load_single_cable(CASES / f"{stem}.yaml")))
     results = seacable.simulate(case)
     if results.status != "complete":
         raise RuntimeError(f"{stem} upgraded: {results.status}: {results.message}")

@@ -344,6 +344,12 @@ def _trajectory_start(bottom: schema.TrajectoryBottom, top, base_dir) -> list[fl
     return [float(o + d) for o, d in zip(origin, offset, strict=True)]
 
 
+def _turned(angle: float) -> float:
+    """A segment's angle [deg] turned by 180 deg, kept within the schema's [-360, 360]."""
+    turned = angle - 180.0
+    return turned + 360.0 if turned < -360.0 else turned
+
+
 def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple[int, int],
              reverse: bool = False):  # fmt: skip
     """A line's initial shape: the cable's angles as written (its ``arc`` or ``angles_deg``),
@@ -356,7 +362,7 @@ def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple
         written = initial.angles_deg if initial.shape == "angles" else np.degrees(angles)
         out: dict[str, Any] = {
             "angles_deg": [
-                float(v) - 180.0
+                _turned(float(v))
                 for v in list(written if written is not None else [])[slice(*piece)][::-1]
             ]
         }
@@ -368,8 +374,9 @@ def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple
                            last if last is not None else initial.top_angle_deg]}  # fmt: skip
     else:
         out = {"angles_deg": [float(v) for v in np.degrees(angles[slice(*piece)])]}
-    if initial.azimuth_deg:
-        out["azimuth_deg"] = initial.azimuth_deg
+    if initial.azimuth_deg:  # the schema's [-360, 360]: the single-cable form took any
+        az = initial.azimuth_deg
+        out["azimuth_deg"] = math.fmod(az, 360.0) if abs(az) > 360.0 else az
     return out
 
 
