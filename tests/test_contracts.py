@@ -3,6 +3,7 @@
 import ast
 import inspect
 import typing
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -50,7 +51,7 @@ def _rigid_line_at_a_moving_state(example: str, seed: int):
     from seacable.system import kernel
     from seacable.system import rigid as system_rigid
 
-    case = seacable.load_case(f"examples/{example}.yaml")
+    case = seacable.load_case(Path(__file__).parent.parent / "examples" / f"{example}.yaml")
     built = system_model.build(derive_case(case, {"simulation": {"duration": 0.1}}))
     p, y = built.params, built.y0.copy()
     li = 0
