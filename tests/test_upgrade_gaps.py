@@ -1,8 +1,8 @@
-"""What ``seacable upgrade`` once refused, now written as systems: each single-cable case of
-tests/legacy_cases/gaps/ and its upgraded system run with the same integrator give the same
-positions, tensions and end loads within 1e-9 of each variable's scale, and match the golden
-the single-cable core recorded (tests/golden/record_gaps.py: the comparison that remains when
-that core is deleted). The new physics of each is checked against something independent."""
+"""What ``seacable upgrade`` once refused, now written as systems: the upgraded system of each
+single-cable case of tests/legacy_cases/gaps/, run with the case's integrator, gives the
+positions, tensions and end loads of the golden the single-cable core recorded
+(tests/golden/record_gaps.py) within 1e-9 of each variable's scale. The new physics of each
+is checked against something independent."""
 
 import math
 
@@ -13,7 +13,7 @@ import yaml
 import seacable
 from golden import record_gaps
 from golden.record import compare_to_golden
-from seacable.case import legacy
+from seacable.case import legacy, loader
 
 # started from a static balance: the single-cable core's Newton stops at 1e-9 of its
 # residual's scale, the system's tighter (measured: 4e-9 of the top force's scale in the tows,
@@ -22,15 +22,12 @@ TOLERANCES = {"lumped_exact_tow": 1e-8, "lumped_servo_tow": 1e-8, "rigid_static_
 
 
 @pytest.mark.parametrize("stem", record_gaps.stems())
-def test_upgraded_case_moves_as_the_single_cable_and_its_golden(stem):
+def test_upgraded_case_moves_as_its_golden(stem):
     golden = record_gaps.load(stem)
     rows = record_gaps.upgraded(stem)
     tolerance = TOLERANCES.get(stem, 1e-9)
     failures = compare_to_golden(golden, rows, tolerance=tolerance,
                                  label=f"{stem} (system against golden)")  # fmt: skip
-    old = record_gaps.single_cable(stem)  # while the single-cable core exists
-    failures += compare_to_golden(old, rows, tolerance=tolerance,
-                                  label=f"{stem} (system against single cable)")  # fmt: skip
     assert not failures, "\n".join(failures)
 
 
@@ -91,7 +88,7 @@ def test_a_lumped_tow_starts_in_its_steady_motion(method):
     cable["bottom"].update(method=method, x={"kind": "constant", "value": 60.0},
                            z={"kind": "constant", "value": -60.0})  # fmt: skip
     data["simulation"].update(duration=0.5, output_interval=0.1)
-    system = seacable.load_case(legacy.upgrade(seacable.load_case(data)))
+    system = seacable.load_case(legacy.upgrade(loader.load_single_cable(data)))
     ds = seacable.simulate(system).dataset
     tension = ds["lines/umbilical/tension"].values
     assert np.abs(tension - tension[0]).max() < 1e-9 * np.abs(tension).max()
@@ -106,7 +103,7 @@ def _star_with(**joints):
     data = yaml.safe_load((record_gaps.CASES / "rigid_star_jointed.yaml").read_text())
     for cable in data["cables"]:
         cable.update(joints)
-    return seacable.load_case(data)
+    return loader.load_single_cable(data)
 
 
 @pytest.mark.parametrize(
@@ -131,7 +128,7 @@ def test_a_spring_at_a_body_along_the_cable_is_refused():
     data["cables"][0]["joint_stiffness"] = 40.0
     with pytest.raises(seacable.CaseError, match=r"cables\[0\]\.point_bodies: the joint at node "
                        r"3 has a spring or a damper"):  # fmt: skip
-        legacy.upgrade(seacable.load_case(data))
+        legacy.upgrade(loader.load_single_cable(data))
 
 
 @pytest.mark.parametrize("model", ["lumped_mass", "natural_string"])

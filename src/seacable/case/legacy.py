@@ -369,7 +369,7 @@ def _initial(cable: schema.Cable, static: bool, angles: np.ndarray, piece: tuple
     else:
         out = {"angles_deg": [float(v) for v in np.degrees(angles[slice(*piece)])]}
     if initial.azimuth_deg:
-        out["azimuth_deg"] = initial.azimuth_deg
+        out["azimuth_deg"] = initial.azimuth_deg % 360.0  # the system's range: within 360 deg
     return out
 
 
