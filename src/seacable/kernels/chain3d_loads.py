@@ -1,6 +1,7 @@
-"""Loads on the 3D chain's segments and point bodies: joint bending and damping moments,
-kinematics of the nodes, drag, added mass and apparent weight on the relative velocity, the
-free surface's share of each (numba; rows of ``chain3d_layout``)."""
+"""Loads on the 3D chain's segments: joint bending and damping moments (``joint_torques``),
+kinematics of the nodes, drag, added mass and apparent weight on the relative velocity
+(``segment_loads``), the free surface's share of each (``segment_surface``; numba; rows of
+``chain3d_layout``)."""
 
 import math
 

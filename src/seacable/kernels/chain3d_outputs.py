@@ -1,5 +1,5 @@
-"""Outputs of the 3D rigid-segment chain: node positions, tensions, forces on its ends,
-energies and the scalar records of ``SCALAR_NAMES`` (numba)."""
+"""Energies of a 3D rigid-segment line (``segment_energies``: kinetic, gravity potential and
+joint springs; the system's ``system.energy``; numba)."""
 
 import math
 

@@ -1,5 +1,5 @@
-"""Outputs of the extensible lumped-mass cable: node positions, tensions, the forces on its
-ends, energies and the scalar records of ``kernels.lumped.SCALAR_NAMES`` (numba)."""
+"""Energies of an extensible lumped-mass line (``line_energies``: kinetic, gravity potential,
+axial and bending; the system's ``system.energy``; numba)."""
 
 import math
 
