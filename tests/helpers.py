@@ -59,11 +59,6 @@ def rows(case: SystemCase, **kwargs) -> dict[str, np.ndarray]:
     return system_rows(seacable.simulate(case, **kwargs).dataset, case)
 
 
-def run(data, **kwargs):
-    """Run a single-cable case on the single-cable core (for what has no system form yet)."""
-    return seacable.simulate(loader.load_single_cable(data), **kwargs)
-
-
 def run_rows(data, **kwargs) -> dict[str, np.ndarray]:
     """The upgraded single-cable case ``data`` run: :func:`rows`."""
     return rows(upgraded(data), **kwargs)

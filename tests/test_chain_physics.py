@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from scipy.special import jn_zeros
 
-from helpers import chain_case, run, run_rows, upgraded
+import seacable
+from helpers import chain_case, run_rows, system_data, upgraded
 from seacable.analysis import system_modes
 
 
@@ -164,8 +165,8 @@ def test_seabed_fixed_end_three_ways_agree():
 
 
 def test_static_tension_with_unequal_links_and_masses():
-    """Links of different lengths and masses: tension at rest = weight hanging below. (Unequal
-    links have no system form yet: this runs the single-cable core.)"""
+    """Links of different lengths and masses (sections of one segment each): tension at rest =
+    weight hanging below; a body carried off the end of the given shape is refused."""
     lengths = [1.0, 2.5, 0.5, 3.0, 1.5]
     masses = [2.0, 0.5, 4.0, 1.0, 3.0]
     data = chain_case(n=5, bottom={"type": "free", "body": {"mass": 1.5}})
@@ -173,8 +174,16 @@ def test_static_tension_with_unequal_links_and_masses():
     cable.pop("length")
     cable.pop("mass_per_length")
     cable.update(link_lengths=lengths, link_masses=masses)
-    results = run(data | {"simulation": {"duration": 0.2, "output_interval": 0.1}})
+    results = run_rows(data | {"simulation": {"duration": 0.2, "output_interval": 0.1}})
     below = np.concatenate([np.cumsum(masses[::-1])[::-1][1:], [0.0]])
     expected = 9.81 * (1.5 + below + 0.5 * np.array(masses))
-    np.testing.assert_allclose(results["tension"].values[-1], expected, rtol=1e-9)
-    np.testing.assert_allclose(results["node_z"].values[-1, -1], -sum(lengths), rtol=1e-12)
+    np.testing.assert_allclose(results["tension"][-1], expected, rtol=1e-9)
+    np.testing.assert_allclose(results["node_z"][-1, -1], -sum(lengths), rtol=1e-12)
+    system = system_data(data)
+    system["bodies"][1]["position"] = [10.0, 0.0, -20.0]
+    refusal = (
+        r"lines \(cable\)\.initial: the given angles end the line at \[0\.0, 0\.0, -8\.5\] m but "
+        r"the body it carries is at \[10\.0, 0\.0, -20\.0\] m \(15\.24 m apart"
+    )
+    with pytest.raises(seacable.CaseError, match=refusal):
+        seacable.simulate(seacable.load_case(system))

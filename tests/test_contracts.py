@@ -33,7 +33,7 @@ def _schema_force_models() -> list[str]:
     return [typing.get_args(cls.model_fields["model"].annotation)[0] for cls in union]
 
 
-def test_every_force_model_of_the_schema_has_a_kind_and_a_branch():
+def test_every_force_model_in_the_schema_has_a_kind_and_a_branch():
     """Each ``model:`` of ``external forces`` has a ForceKind, and forces.table evaluates each
     kind (a kind nobody evaluates would be accepted and silently do nothing)."""
     names = _schema_force_models()

@@ -12,7 +12,6 @@ LAYER = {
     "__init__": 11,
     "simulation": 10, "analysis": 10,
     "case.loader": 9, "results": 9,
-    "models": 8,
     "numerics": 7,
     "system": 6,
     "lines": 5, "forces": 5,

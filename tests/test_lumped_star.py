@@ -1,6 +1,7 @@
-"""Lumped-mass cables on one shared body (a star of extensible cables): the four-cable rising
-body against its symmetric quarter (one cable on an exact vertical guide), symmetry, energy
-conservation of an asymmetric star in air, implicit against explicit, refusals."""
+"""Lumped-mass cables on one shared body (a star of extensible lines, the systems that
+``seacable upgrade`` writes): the four-cable rising body against its symmetric quarter (one
+cable on an exact vertical guide), energy conservation and Newton's law of an asymmetric star
+in air, implicit against explicit, the sparsity pattern, refusals."""
 
 from pathlib import Path
 
@@ -8,63 +9,68 @@ import numpy as np
 import pytest
 
 import seacable
-from seacable.kernels import lumped_star as ls
-from seacable.models import lumped_star
-from seacable.numerics import stiff
-from seacable.simulation import build_system
-
-
-def _load(source):
-    """A case of either form: the single-cable form (``cables:``) through
-    ``load_single_cable`` while the single-cable core exists, a system through ``load_case``."""
-    from pathlib import Path
-
-    from seacable.case import loader
-
-    text = (
-        Path(source).read_text()
-        if isinstance(source, (str, Path)) and Path(str(source)).exists()
-        else source
-    )
-    single = ("cables" in text) if isinstance(text, dict) else ("\ncables:" in "\n" + str(text))
-    return loader.load_single_cable(source) if single else seacable.load_case(source)
-
+from helpers import system_data, upgraded
+from seacable.case import loader
+from seacable.system import kernel, model
 
 EXAMPLES = Path(__file__).parent / "legacy_cases"  # the single-cable form of the examples
-FORCE = ("top_force_x", "top_force_y", "top_force_z")
 
 
 def _lumped(name, duration=3.0, integrator="rk4", time_step=0.0005):
-    data = _load(EXAMPLES / f"{name}.yaml").model_dump(mode="json", exclude_unset=True)
+    """The example ``name`` with lumped-mass cables (EA 1e7 N), upgraded and run: the case and
+    its results' tree."""
+    data = loader.load_single_cable(EXAMPLES / f"{name}.yaml").model_dump(
+        mode="json", exclude_unset=True
+    )
     data["simulation"].update(duration=duration, integrator=integrator, time_step=time_step)
     for cable in data["cables"]:
         cable.update(model="lumped_mass", axial_stiffness=1e7)
-    return seacable.simulate(_load(data)).dataset
+    case = upgraded(data)
+    return case, seacable.simulate(case).dataset
 
 
-@pytest.mark.slow  # the single-cable core's star (19 s); systems: the golden four-cable body
+def _cable(case, tree, body, first):
+    """Tension [N] of the lines joining ``first`` (a fixed top) to ``body``, from the top
+    down (m, segments), and the force on the top [N] (m, 3)."""
+    chain, tensions, point = [], [], first
+    lines = list(case.lines)
+    while point != body:
+        line = next(ln for ln in lines if point in (ln.from_, ln.to) and ln not in chain)
+        chain.append(line)
+        forward = line.from_ == point
+        tension = tree[f"lines/{line.name}/tension"].values
+        tensions.append(tension if forward else tension[:, ::-1])
+        point = line.to if forward else line.from_
+    top, end = chain[0], "from" if chain[0].from_ == first else "to"
+    force = np.stack([tree[f"lines/{top.name}/{end}_force_{c}"].values for c in "xyz"], axis=1)
+    return np.concatenate(tensions, axis=1), force
+
+
+@pytest.mark.slow  # 20 s: two runs of 6 s (systems: the golden four-cable body too)
 def test_star_of_four_is_its_guided_quarter():
     """Symmetry holds the shared body on its vertical: each cable of the star then moves as
     the single cable with a quarter of the body on an exact vertical guide."""
-    one = _lumped("rising_body_single_cable_guided")
-    four = _lumped("rising_body_four_cables")
-    end = one["node_z"].values[:, -1]
+    one_case, one = _lumped("rising_body_single_cable_guided")
+    four_case, four = _lumped("rising_body_four_cables")
+    end = one["bodies/end/position_z"].values
     assert end[-1] - end[0] > 5.0  # it rises
-    assert np.abs(four["body_z"].values - end).max() < 1e-8
-    assert np.hypot(four["body_x"].values, four["body_y"].values).max() < 1e-9
-    scale = np.abs(one["tension"].values).max()
+    assert np.abs(four["bodies/buoy/position_z"].values - end).max() < 1e-8
+    buoy = np.hypot(four["bodies/buoy/position_x"].values, four["bodies/buoy/position_y"].values)
+    assert buoy.max() < 1e-9
+    tension, anchor = _cable(one_case, one, "end", "top")
+    scale = np.abs(tension).max()
     for k in range(4):
-        diff = np.abs(four["tension"].values[:, k] - one["tension"].values).max()
+        leg, force = _cable(four_case, four, "buoy", f"cable {k + 1} top")
+        diff = np.abs(leg - tension).max()
         assert diff < 1e-3 * scale, (k, diff)
-    force = np.linalg.norm(np.stack([four[f].values for f in FORCE]), axis=0)
-    anchor = np.linalg.norm(np.stack([one[f].values for f in FORCE]), axis=0)
-    np.testing.assert_allclose(force, anchor[:, None] * np.ones((1, 4)), atol=1e-3 * scale)
+        np.testing.assert_allclose(np.linalg.norm(force, axis=1), np.linalg.norm(anchor, axis=1),
+                                   atol=1e-3 * scale)  # fmt: skip
 
 
 LEGS = ((0.0, 45.0), (100.0, 50.0), (160.0, 46.0), (230.0, 48.0))  # azimuth [deg], length [m]
 
 
-def _asymmetric(integrator="rk4", time_step=0.001, duration=2.0):
+def _asymmetric(integrator="rk4", time_step=0.001, duration=2.0, output_interval=0.05):
     """Four cables of different lengths from four points in air to a 300 kg body below,
     started on their catenaries with the body off its balance (four, as in the rising-body
     star: a star's kernels are compiled for its number of cables)."""
@@ -79,12 +85,12 @@ def _asymmetric(integrator="rk4", time_step=0.001, duration=2.0):
             "bottom": {"type": "attached", "body": "weight"},
             "initial": {"shape": "catenary"},
         })  # fmt: skip
-    return _load({
+    return upgraded({
         "environment": {"in_air": True},
         "bodies": [{"name": "weight", "position": [3.0, -2.0, -30.0], "mass": 300.0}],
         "cables": cables,
-        "simulation": {"duration": duration, "output_interval": 0.05, "integrator": integrator,
-                       "time_step": time_step},
+        "simulation": {"duration": duration, "output_interval": output_interval,
+                       "integrator": integrator, "time_step": time_step},
     })  # fmt: skip
 
 
@@ -94,27 +100,34 @@ def test_asymmetric_star_conserves_energy():
     motion = np.abs(ds["kinetic_energy"].values).max()
     assert motion > 100.0  # it swings
     assert np.ptp(energy) < 1e-4 * motion
-    # Newton's law on the body's node (the body and the half segments next to it): the legs'
-    # pulls and its weight
-    mass = 300.0 + sum(0.5 * 2.0 * length / 8 for _, length in LEGS)
+
+
+def test_the_star_body_follows_newtons_law():
+    """The body (300 kg: the legs' half segments next to it are theirs) under the legs' pulls
+    and its weight: its momentum changes by their impulse, Simpson's rule over two rk4 steps
+    (output at every step)."""
+    h, mass = 0.001, 300.0
+    body = seacable.simulate(_asymmetric(duration=0.2, output_interval=h)).dataset["bodies/weight"]
     for a in "xyz":
-        pull = ds[f"bottom_force_{a}"].values.sum(axis=1) - (mass * 9.81 if a == "z" else 0.0)
-        acc = ds[f"body_acceleration_{a}"].values
-        np.testing.assert_allclose(mass * acc, pull, atol=1e-6 * np.abs(pull).max())
+        pull = body[f"line_force_{a}"].values - (mass * 9.81 if a == "z" else 0.0)
+        velocity = body[f"velocity_{a}"].values
+        change = mass * (velocity[2::2] - velocity[:-2:2])
+        impulse = h / 3 * (pull[:-2:2] + 4 * pull[1:-1:2] + pull[2::2])
+        np.testing.assert_allclose(change, impulse, atol=1e-6 * np.abs(pull).max() * 2 * h)
 
 
-def test_a_star_shares_one_model():
-    data = _load(EXAMPLES / "rising_body_four_cables.yaml").model_dump(
+def test_a_star_leg_must_reach_the_shared_body():
+    data = loader.load_single_cable(EXAMPLES / "rising_body_four_cables.yaml").model_dump(
         mode="json", exclude_unset=True
     )
-    data["cables"][1].update(model="lumped_mass", axial_stiffness=1e7)
-    with pytest.raises(seacable.CaseError, match=r"cables\[1\]\.model: value 'lumped_mass'"):
-        seacable.simulate(_load(data))
     for cable in data["cables"]:
         cable.update(model="lumped_mass", axial_stiffness=1e7)
     data["cables"][2]["initial"]["azimuth_deg"] = 10.0
-    with pytest.raises(seacable.CaseError, match=r"cables\[2\]\.initial .*body 'buoy'"):
-        seacable.simulate(_load(data))
+    refusal = (
+        r"lines \(cable 3 2\)\.initial: the given angles end the line at .* but its 'to' point"
+    )
+    with pytest.raises(seacable.CaseError, match=refusal):
+        model.build(seacable.load_case(system_data(data)))
 
 
 def test_sparse_bdf_star_agrees_with_rk4():
@@ -127,35 +140,30 @@ def test_sparse_bdf_star_agrees_with_rk4():
     )
     bdf = seacable.simulate(case.model_copy(update={"simulation": sim})).dataset
     for a in "xyz":
-        diff = np.abs(explicit[f"body_{a}"].values - bdf[f"body_{a}"].values).max()
+        name = f"bodies/weight/position_{a}"
+        diff = np.abs(explicit[name].values - bdf[name].values).max()
         assert diff < 1e-4, (a, diff)
 
 
 def test_star_jacobian_lies_in_its_sparsity_pattern():
     """Every entry of the star's Jacobian (dense finite differences of the compiled right-hand
-    side, mid-motion) falls inside the pattern SciPy's coloured differences assume."""
-    case = _asymmetric(duration=0.3)
-    system = build_system(case)
-    model = lumped_star
-    ds = seacable.simulate(case).dataset
-    y = system.y0.copy()
+    side, in a moving state) falls inside the pattern SciPy's coloured differences assume."""
+    system = model.build(_asymmetric(duration=0.3))
+    p = system.params
     w = model.workspace(system)
-    ydot = np.empty_like(y)
-    # a moving state: the run's last positions and velocities (velocities from the nodes)
-    hub = 3 * system.cables * system.n_links
-    for c, a in enumerate("xyz"):
-        y[hub + c] = ds[f"body_{a}"].values[-1]
-        y[len(y) // 2 + hub + c] = ds[f"body_velocity_{a}"].values[-1]
-    base = np.empty_like(y)
-    ls.rhs(0.3, y, system.params, w, base)
+    y = system.y0.copy()
+    moving = np.random.default_rng(1).normal(size=len(y))
+    y[p.n_q :] += 0.5 * moving[p.n_q :]  # every velocity
+    base, ydot = np.empty_like(y), np.empty_like(y)
+    kernel.rhs(0.3, y, p, w, base)
     jac = np.zeros((len(y), len(y)))
     for j in range(len(y)):
         step = 1e-6 * max(1.0, abs(y[j]))
         bumped = y.copy()
         bumped[j] += step
-        ls.rhs(0.3, bumped, system.params, w, ydot)
+        kernel.rhs(0.3, bumped, p, w, ydot)
         jac[:, j] = (ydot - base) / step
-    pattern = stiff.graph_sparsity(model.node_graph(system), 3).toarray() != 0
+    pattern = model.jacobian_sparsity(system).toarray() != 0
     assert np.abs(jac).max() > 1.0
     outside = np.abs(jac[~pattern]).max()
     assert outside == 0.0, outside

@@ -6,9 +6,7 @@ import math
 import numpy as np
 import pytest
 
-import seacable
-from seacable.case.loader import load_single_cable
-from seacable.simulation import build_system
+from helpers import rows, upgraded
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
 
@@ -21,7 +19,8 @@ WET = (MASS - RHO * math.pi * DIAMETER**2 / 4) * 9.81  # N/m
 
 
 def _case(n, top=None, duration=1.0):
-    return load_single_cable(
+    """The cable as ``seacable upgrade`` writes it: a system of one line between two bodies."""
+    return upgraded(
         {
             "environment": {"water_density": RHO},
             "cables": [
@@ -54,10 +53,9 @@ def _moorpy(top):
     return np.array([fa_h, fa_v, fb_h, fb_v])
 
 
-def _ours(results, index=-1):
-    ds = results.dataset
-    bottom = np.array([ds[f"bottom_force_{a}"].values[index] for a in "xyz"])
-    top = np.array([ds[f"top_force_{a}"].values[index] for a in "xyz"])
+def _ours(ds, index=-1):
+    bottom = np.array([ds[f"bottom_force_{a}"][index] for a in "xyz"])
+    top = np.array([ds[f"top_force_{a}"][index] for a in "xyz"])
     # MoorPy: end A (anchor) and end B (fairlead) horizontal and vertical tension magnitudes
     return np.array([np.hypot(*bottom[:2]), abs(bottom[2]), np.hypot(*top[:2]), abs(top[2])])
 
@@ -66,18 +64,18 @@ def test_static_catenary_matches_moorpy_and_converges():
     expected = np.abs(_moorpy((60.0, 20.0, -10.0)))
     errors = []
     for n in (25, 50, 100):
-        results = seacable.simulate(_case(n))
+        results = rows(_case(n))
         errors.append(np.max(np.abs(_ours(results) / expected - 1)))
     assert errors[-1] < 2e-4, errors
     assert errors[0] > errors[1] > errors[2]
 
 
 def test_static_shape_passes_through_both_ends():
-    system = build_system(_case(60))
-    p = system.params
-    e = system.y0[: 3 * 60].reshape(60, 3)
-    end = np.array([60.0, 20.0, -10.0]) + (p.length[:, None] * e).sum(axis=0)
-    np.testing.assert_allclose(end, ANCHOR, atol=1e-8)
+    start = rows(_case(60, duration=0.02))
+    first = np.array([start[f"node_{a}"][0, 0] for a in "xyz"])
+    last = np.array([start[f"node_{a}"][0, -1] for a in "xyz"])
+    np.testing.assert_allclose(first, [60.0, 20.0, -10.0], atol=1e-8)
+    np.testing.assert_allclose(last, ANCHOR, atol=1e-8)
 
 
 @pytest.mark.slow  # 16 s; the system's lines against MoorPy: tests/test_system_moorpy.py
@@ -92,9 +90,8 @@ def test_slow_motion_is_quasi_static_like_moorpy():
         "offset": 65.0,
     }  # x = 60 -> 70 m, zero initial velocity
     top = {"type": "imposed", "x": motion, "y": 20.0, "z": -10.0}
-    results = seacable.simulate(_case(60, top=top, duration=200.0))
-    ds = results.dataset
+    results = rows(_case(60, top=top, duration=200.0))
     for index in (5, 10):
-        x = ds["node_x"].values[index, 0]
+        x = results["node_x"][index, 0]
         expected = np.abs(_moorpy((x, 20.0, -10.0)))
         np.testing.assert_allclose(_ours(results, index), expected, rtol=3e-3)

@@ -4,9 +4,8 @@ import numpy as np
 import pytest
 
 import seacable
-from helpers import chain_case
+from helpers import chain_case, upgraded
 from seacable import simulation as simulate_module
-from seacable.case.loader import load_single_cable
 
 
 def _swing(**simulation):
@@ -19,18 +18,20 @@ def _swing(**simulation):
 
 def test_netcdf_has_units_long_names_and_provenance(tmp_path):
     path = tmp_path / "out.nc"
-    results = seacable.simulate(load_single_cable(_swing()), output=path)
+    results = seacable.simulate(upgraded(_swing()), output=path)
     assert results.status == "complete"
     reread = seacable.Results.open(path)
     ds = reread.dataset
-    assert ds.sizes == {"time": 11, "segment": 10, "node": 11}
-    for name, var in ds.variables.items():
-        assert "units" in var.attrs and "long_name" in var.attrs, name
+    assert dict(ds["lines/cable"].sizes) == {"time": 11, "segment": 10, "node": 11}
+    for group in ds.subtree:
+        for name, var in group.variables.items():
+            assert "units" in var.attrs and "long_name" in var.attrs, (group.path, name)
     assert ds.attrs["status"] == "complete"
     assert ds.attrs["seacable_version"] == seacable.__version__
-    assert "links: 10" in ds.attrs["case"]
+    assert "segments: 10" in ds.attrs["case"]
     assert ds.attrs["solver_integrator"] == "rk4"
-    np.testing.assert_allclose(ds["tension"].values, results["tension"].values)
+    tension = ds["lines/cable/tension"].values
+    np.testing.assert_allclose(tension, results.dataset["lines/cable/tension"].values)
 
 
 def test_diverging_run_keeps_partial_results_marked(tmp_path, caplog):
@@ -42,16 +43,16 @@ def test_diverging_run_keeps_partial_results_marked(tmp_path, caplog):
     }
     path = tmp_path / "diverged.nc"
     with pytest.raises(seacable.SimulationDiverged) as info:
-        seacable.simulate(load_single_cable(data), output=path)
+        seacable.simulate(upgraded(data), output=path)
     message = str(info.value)
     assert "simulation diverged after t =" in message
     assert "reduce simulation.time_step" in message
-    assert "link" in message
+    assert "fastest motion at component" in message
     assert "too long for rk4" in caplog.text  # warned before the run
     on_disk = seacable.Results.open(path)
     assert on_disk.status == "diverged"
     assert on_disk.dataset.sizes["time"] >= 1
-    assert np.all(np.isfinite(on_disk["node_x"].values))
+    assert np.all(np.isfinite(on_disk.dataset["lines/cable/node_x"].values))
     assert info.value.results.status == "diverged"
 
 
@@ -68,7 +69,7 @@ def test_interrupted_run_keeps_partial_results(tmp_path, monkeypatch):
     monkeypatch.setattr(simulate_module._Run, "advance", interrupt_later)
     path = tmp_path / "interrupted.nc"
     with pytest.raises(seacable.SimulationInterrupted):
-        seacable.simulate(load_single_cable(_swing(duration=10.0)), output=path)
+        seacable.simulate(upgraded(_swing(duration=10.0)), output=path)
     on_disk = seacable.Results.open(path)
     assert on_disk.status == "interrupted"
     assert 1 < on_disk.dataset.sizes["time"] < 101
@@ -87,6 +88,6 @@ def test_file_is_readable_while_running(tmp_path, monkeypatch):
         return status
 
     monkeypatch.setattr(simulate_module._Run, "advance", peek)
-    seacable.simulate(load_single_cable(_swing(duration=2.0)), output=path)
+    seacable.simulate(upgraded(_swing(duration=2.0)), output=path)
     assert seen[0].status == "incomplete"
     assert seen[0].dataset.sizes["time"] >= 2

@@ -1,16 +1,15 @@
-"""Rigid-segment lines in a system: against today's single-cable model (a body carried at the
-end, a floating structure above a pinned end, a towed body's static shape), an invariant
+"""Rigid-segment lines in a system: planar against 3D lines (a body carried at the end, a
+heaving body above an anchored line, a towed body's static shape), an invariant
 (energy of a tree of lines and bodies without damping) and the static balance of the bodies
 they carry; the cases the sweep cannot carry are refused naming the line."""
 
 import contextlib
-import math
 
 import numpy as np
 import pytest
 
 import seacable
-from seacable.case.loader import load_case, load_single_cable
+from seacable.case.loader import load_case
 from seacable.errors import CaseError
 from seacable.simulation import simulate
 from seacable.system import model
@@ -42,30 +41,11 @@ def _system(bodies, lines, simulation, environment=None, start="as_given", types
             "lines": lines, "simulation": simulation}  # fmt: skip
 
 
-def _cable(top, bottom, angles, simulation, environment=None, model="rigid_segments_3d", **more):
-    """Today's single cable: 10 m of ``ROPE`` (or ``more``) at ``angles`` from the vertical."""
-    cable = {"name": "cable", "model": model, "links": len(angles), "length": 10.0,
-             "diameter": 0.02, "mass_per_length": 1.5, "drag_coefficient_normal": 0.0,
-             "top": top, "bottom": bottom, "initial": {"shape": "angles", "azimuth_deg": 0.0,
-                                                       "angles_deg": list(angles)}}  # fmt: skip
-    cable.update(more)
-    return {"name": "single cable", "environment": environment or {"in_air": True, "gravity": 9.81},
-            "cables": [cable], "simulation": simulation}  # fmt: skip
-
-
 def _gap(a, b) -> float:
     return float(np.abs(a - b).max() / np.abs(a).max())
 
 
-@pytest.mark.parametrize("kind", MODELS)
-def test_a_body_at_the_end_moves_as_todays_free_end(kind):
-    """A fixed body, a 10-segment line in air and a point body with its weight at the end give
-    the motion and tensions of today's cable with a fixed top and a free end carrying the same
-    body (the body absorbed into the line's sweep as the free end's), in 3D and planar."""
-    angle = math.degrees(math.atan2(6.0, 8.0))
-    fixed, free = {"type": "fixed", "position": [0.0, 0.0, 0.0]}, {"type": "free", "body": {
-        "mass": 20.0}}  # fmt: skip
-    old = _cable(fixed, free, [angle] * 10, _sim(1.0, 1e-3), model=kind)
+def _body_at_the_end(kind):
     new = _system(
         [{"name": "pin", "type": "fixed", "position": [0, 0, 0]},
          {"name": "ball", "type": "point", "position": [6.0, 0.0, -8.0], "mass": 20.0,
@@ -73,20 +53,21 @@ def test_a_body_at_the_end_moves_as_todays_free_end(kind):
         [_line("chain", "pin", "ball", 10.0, 10, initial="straight", model=kind)],
         _sim(1.0, 1e-3),
     )  # fmt: skip
-    a = simulate(load_single_cable(old)).dataset
-    b = simulate(load_case(new)).dataset
-    assert _gap(a["node_x"].values[:, -1], b["bodies/ball/position_x"].values) < 1e-12
-    assert _gap(a["node_z"].values[:, -1], b["bodies/ball/position_z"].values) < 1e-12
-    assert _gap(a["tension"].values, b["lines/chain/tension"].values) < 1e-12
-    assert _gap(a["total_energy"].values, b["total_energy"].values) < 1e-12
+    return simulate(load_case(new)).dataset
 
 
-@pytest.mark.parametrize("kind", MODELS)
-def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure(kind):
-    """A rigid body with dofs [heave] (stiffness, damping, a sine force) over a line held on a
-    fixed anchor gives today's floating-structure top over a pinned end: the holding force is
-    eliminated into the body's articulated inertia through the tip's map dA_n/dA_0."""
-    wire = WIRE if kind == "rigid_segments_3d" else PLANAR_WIRE
+def test_a_body_at_the_end_moves_alike_on_a_planar_and_a_3d_line():
+    """A fixed body, a 10-segment line in air and a point body with its weight at the end: the
+    planar line (angles) and the 3D line (directors) swinging in their plane give the same
+    motion and tensions (two kernels, one physics)."""
+    a, b = (_body_at_the_end(kind) for kind in MODELS)
+    for name in ("bodies/ball/position_x", "bodies/ball/position_z", "lines/chain/tension",
+                 "total_energy"):  # fmt: skip
+        assert _gap(a[name].values, b[name].values) < 1e-12, name
+
+
+def _heaving_body(kind):
+    wire = PLANAR_WIRE  # the same added mass (none) on both lines
     sine = {"kind": "sine", "amplitude": 20000.0, "period": 6.0}
     new = _system(
         [{"name": "anchor", "type": "fixed", "position": [7.0, 0.0, -30.0]},
@@ -101,27 +82,16 @@ def test_a_heaving_body_over_an_anchored_line_moves_as_todays_floating_structure
         [_line("leg", "buoy", "anchor", 32.0, 16, kind="wire", model=kind)], _sim(2.0, 2e-3),
         environment=WATER, types=(wire,),
     )  # fmt: skip
-    built = model.build(load_case(new))
-    p = built.params
-    if kind == "rigid_links":
-        angles = built.y0[p.rs_q[0] : p.rs_q[0] + 16]
-        e = np.column_stack([np.sin(angles), 0 * angles, -np.cos(angles)])
-    else:
-        e = built.y0[p.rs_q[0] : p.rs_q[0] + 48].reshape(-1, 3)
-    assert np.allclose(e[:, 1], 0.0)
-    top = {"type": "floating_structure", "position": [0.0, 0.3], "mass": 5000.0,
-           "added_mass": 2000.0, "heave_stiffness": 8e4, "heave_damping": 1000.0,
-           "initial_heave": -0.3, "initial_heave_velocity": 0.5, "force": sine}  # fmt: skip
-    angles = np.degrees(np.arctan2(e[:, 0], -e[:, 2])).tolist()
-    old = _cable(top, {"type": "pinned", "anchor": [7.0, 0.0, -30.0]}, angles, _sim(2.0, 2e-3),
-                 environment=WATER, model=kind,
-                 length=32.0, diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
-                 friction_coefficient=0.02)  # fmt: skip
-    a = simulate(load_single_cable(old)).dataset
-    b = simulate(load_case(new)).dataset
-    assert _gap(a["node_z"].values[:, 0], b["bodies/buoy/position_z"].values) < 1e-9
-    assert _gap(a["tension"].values, b["lines/leg/tension"].values) < 1e-9
-    assert _gap(a["bottom_force_z"].values, b["lines/leg/to_force_z"].values) < 1e-9
+    return simulate(load_case(new)).dataset
+
+
+def test_a_heaving_body_over_an_anchored_line_moves_alike_on_a_planar_and_a_3d_line():
+    """A rigid body with dofs [heave] (stiffness, damping, a sine force) over a line held on a
+    fixed anchor (the holding force eliminated into the body's articulated inertia through the
+    tip's map dA_n/dA_0): the planar and the 3D line give the same heave and tensions."""
+    a, b = (_heaving_body(kind) for kind in MODELS)
+    for name in ("bodies/buoy/position_z", "lines/leg/tension", "lines/leg/to_force_z"):
+        assert _gap(a[name].values, b[name].values) < 1e-8, name  # two kernels' round-off
 
 
 def _tree(start, environment, types, simulation, ship=None):
@@ -172,20 +142,9 @@ def test_a_two_stage_tow_starts_in_balance_with_every_segment_pulled():
     np.testing.assert_allclose(pull, [drag, weight], rtol=1e-8)
 
 
-@pytest.mark.parametrize("kind", MODELS)
-def test_a_towed_body_hangs_where_todays_statics_puts_it(kind):
-    """One cable and a towed body in a current: the system's statics (Newton on the moment
-    balance), of a 3D or a planar line, gives the shape of today's 3D statics (shooting from
-    the free end; the planar model has none, and added mass plays no part at rest)."""
+def _towed_body_start(kind):
     wire = WIRE if kind == "rigid_segments_3d" else PLANAR_WIRE
     water = {**WATER, "current": {"velocity": -2.0}}
-    body = {"mass": 400.0, "volume": 0.3, "added_mass": 200.0, "drag_coefficient": 1.0,
-            "drag_area": 1.0}  # fmt: skip
-    old = _cable({"type": "fixed", "position": [0.0, 0.0, 0.0]}, {"type": "free", "body": body},
-                 [30.0] * 20, _sim(0.1, 5e-3), environment=water, length=200.0,
-                 diameter=0.03, mass_per_length=2.5, drag_coefficient_normal=1.8,
-                 friction_coefficient=0.02)  # fmt: skip
-    old["cables"][0]["initial"] = {"shape": "static"}
     new = _system(
         [{"name": "ship", "type": "fixed", "position": [0, 0, 0]},
          {"name": "fish", "type": "point", "position": [-100, 0, -170], "mass": 400.0,
@@ -195,11 +154,17 @@ def test_a_towed_body_hangs_where_todays_statics_puts_it(kind):
         [_line("tow", "ship", "fish", 200.0, 20, kind="wire", model=kind)], _sim(0.1, 5e-3),
         environment=water, start="static", types=(wire,),
     )  # fmt: skip
-    a = simulate(load_single_cable(old)).dataset
-    b = simulate(load_case(new)).dataset
+    return simulate(load_case(new)).dataset
+
+
+def test_a_towed_body_hangs_alike_on_a_planar_and_a_3d_line():
+    """One cable and a towed body in a current: the system's statics (Newton on the moment
+    balance) puts a planar and a 3D line in the same shape (added mass plays no part at rest)."""
+    a, b = (_towed_body_start(kind) for kind in MODELS)
     for c in "xz":
-        np.testing.assert_allclose(b[f"lines/tow/node_{c}"].values[0], a[f"node_{c}"].values[0],
-                                   rtol=0, atol=1e-6)  # fmt: skip
+        np.testing.assert_allclose(b[f"lines/tow/node_{c}"].values[0],
+                                   a[f"lines/tow/node_{c}"].values[0], rtol=0,
+                                   atol=1e-6)  # fmt: skip
 
 
 ANCHOR = {"name": "anchor", "type": "fixed", "position": [0, 0, -20]}

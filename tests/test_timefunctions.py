@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from helpers import chain_case, run
+from helpers import chain_case, run_rows
 from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.kernels.timefn import evaluate
@@ -163,12 +163,12 @@ def test_models_move_an_imposed_top_through_the_build_up(cable):
     simulation = {"duration": 2.0, "output_interval": 0.1, "build_up": 1.5, "time_step": 0.002}
     data = chain_case(n=6, top={"type": "imposed", "x": sine, "z": 0.0}, simulation=simulation,
                       **cable)  # fmt: skip
-    results = run(data)
-    t = results["time"].values
+    results = run_rows(data)
+    t = results["time"]
     f = 0.5 * np.sin(np.pi * t + 0.3)
     start = 0.5 * np.sin(0.3)
     expected = start + _RAMP(np.minimum(t / 1.5, 1.0)) * (f - start)
-    np.testing.assert_allclose(results["node_x"].values[:, 0], expected, atol=1e-9)
+    np.testing.assert_allclose(results["node_x"][:, 0], expected, atol=1e-9)
     assert abs(expected[1] - start) < 0.01 * abs(f[1] - start)  # the ramp holds the top back
 
 
@@ -183,5 +183,5 @@ def test_towing_ship_keeps_its_speed_through_the_build_up():
         environment={"water_density": 1025.0},
         simulation={"duration": 1.0, "output_interval": 0.1, "build_up": 5.0},
     )
-    x = run(data)["node_x"].values[:, 0]
+    x = run_rows(data)["node_x"][:, 0]
     np.testing.assert_allclose(np.diff(x) / 0.1, 1.5, rtol=1e-12)

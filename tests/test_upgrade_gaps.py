@@ -1,8 +1,8 @@
-"""What ``seacable upgrade`` once refused, now written as systems: each single-cable case of
-tests/legacy_cases/gaps/ and its upgraded system run with the same integrator give the same
-positions, tensions and end loads within 1e-9 of each variable's scale, and match the golden
-the single-cable core recorded (tests/golden/record_gaps.py: the comparison that remains when
-that core is deleted). The new physics of each is checked against something independent."""
+"""What ``seacable upgrade`` once refused, now written as systems: the upgraded system of each
+single-cable case of tests/legacy_cases/gaps/, run with the case's integrator, gives the
+positions, tensions and end loads of the golden the single-cable core recorded
+(tests/golden/record_gaps.py) within 1e-9 of each variable's scale. The new physics of each
+is checked against something independent."""
 
 import math
 
@@ -13,24 +13,7 @@ import yaml
 import seacable
 from golden import record_gaps
 from golden.record import compare_to_golden
-from seacable.case import legacy
-
-
-def _load(source):
-    """A case of either form: the single-cable form (``cables:``) through
-    ``load_single_cable`` while the single-cable core exists, a system through ``load_case``."""
-    from pathlib import Path
-
-    from seacable.case import loader
-
-    text = (
-        Path(source).read_text()
-        if isinstance(source, (str, Path)) and Path(str(source)).exists()
-        else source
-    )
-    single = ("cables" in text) if isinstance(text, dict) else ("\ncables:" in "\n" + str(text))
-    return loader.load_single_cable(source) if single else seacable.load_case(source)
-
+from seacable.case import legacy, loader
 
 # started from a static balance: the single-cable core's Newton stops at 1e-9 of its
 # residual's scale, the system's tighter (measured: 4e-9 of the top force's scale in the tows,
@@ -39,15 +22,12 @@ TOLERANCES = {"lumped_exact_tow": 1e-8, "lumped_servo_tow": 1e-8, "rigid_static_
 
 
 @pytest.mark.parametrize("stem", record_gaps.stems())
-def test_upgraded_case_moves_as_the_single_cable_and_its_golden(stem):
+def test_upgraded_case_moves_as_its_golden(stem):
     golden = record_gaps.load(stem)
     rows = record_gaps.upgraded(stem)
     tolerance = TOLERANCES.get(stem, 1e-9)
     failures = compare_to_golden(golden, rows, tolerance=tolerance,
                                  label=f"{stem} (system against golden)")  # fmt: skip
-    old = record_gaps.single_cable(stem)  # while the single-cable core exists
-    failures += compare_to_golden(old, rows, tolerance=tolerance,
-                                  label=f"{stem} (system against single cable)")  # fmt: skip
     assert not failures, "\n".join(failures)
 
 
@@ -71,7 +51,7 @@ def test_sections_give_each_joint_its_spring_on_unequal_links():
            -l1 * math.cos(angles[0]) - l2 * math.cos(angles[1])]  # fmt: skip
     types = [{"name": name, "diameter": 0.02, "mass_per_length": mu,
               "added_mass_coefficient": 0.0} for name, mu in (("a", mu1), ("b", mu2))]  # fmt: skip
-    case = _load({
+    case = seacable.load_case({
         "environment": {"in_air": True, "gravity": g}, "start": "as_given",
         "bodies": [{"name": "pin", "type": "fixed", "position": [0, 0, 0]},
                    {"name": "end", "type": "point", "position": end, "mass": tip,
@@ -108,7 +88,7 @@ def test_a_lumped_tow_starts_in_its_steady_motion(method):
     cable["bottom"].update(method=method, x={"kind": "constant", "value": 60.0},
                            z={"kind": "constant", "value": -60.0})  # fmt: skip
     data["simulation"].update(duration=0.5, output_interval=0.1)
-    system = _load(legacy.upgrade(_load(data)))
+    system = seacable.load_case(legacy.upgrade(loader.load_single_cable(data)))
     ds = seacable.simulate(system).dataset
     tension = ds["lines/umbilical/tension"].values
     assert np.abs(tension - tension[0]).max() < 1e-9 * np.abs(tension).max()
@@ -123,7 +103,7 @@ def _star_with(**joints):
     data = yaml.safe_load((record_gaps.CASES / "rigid_star_jointed.yaml").read_text())
     for cable in data["cables"]:
         cable.update(joints)
-    return _load(data)
+    return loader.load_single_cable(data)
 
 
 @pytest.mark.parametrize(
@@ -148,7 +128,7 @@ def test_a_spring_at_a_body_along_the_cable_is_refused():
     data["cables"][0]["joint_stiffness"] = 40.0
     with pytest.raises(seacable.CaseError, match=r"cables\[0\]\.point_bodies: the joint at node "
                        r"3 has a spring or a damper"):  # fmt: skip
-        legacy.upgrade(_load(data))
+        legacy.upgrade(loader.load_single_cable(data))
 
 
 @pytest.mark.parametrize("model", ["lumped_mass", "natural_string"])
@@ -159,7 +139,7 @@ def test_section_joints_a_line_model_has_not_are_refused(model):
     line = {"name": "l", "model": model, "from": "pin", "to": "ball", "sections": [section]}
     if model == "natural_string":
         line.update(initial={"arc_deg": [10.0, 10.0]})
-    case = _load({
+    case = seacable.load_case({
         "environment": {"in_air": True},
         "bodies": [{"name": "pin", "type": "fixed", "position": [0, 0, 0]},
                    {"name": "ball", "type": "point", "position": [0, 0, -10.0], "mass": 1.0,

@@ -4,12 +4,12 @@ Public API::
 
     case = seacable.load_case("examples/thesis_6_1_sim6_submerged_60_links_forced.yaml")
     results = seacable.simulate(case, output="run.nc")
-    results.dataset["tension"]
+    results.dataset["lines/umbilical/tension"]  # a DataTree: a group per body and per line
 """
 
 from seacable.analysis import statics
 from seacable.case.loader import load_case
-from seacable.case.schema import Case
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError, SeacableError, SimulationDiverged, SimulationInterrupted
 from seacable.results import Results
 from seacable.simulation import simulate
@@ -17,12 +17,12 @@ from seacable.simulation import simulate
 __version__ = "0.1.0"
 
 __all__ = [
-    "Case",
     "CaseError",
     "Results",
     "SeacableError",
     "SimulationDiverged",
     "SimulationInterrupted",
+    "SystemCase",
     "__version__",
     "load_case",
     "simulate",

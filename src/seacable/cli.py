@@ -4,8 +4,10 @@ import logging
 import math
 import sys
 from pathlib import Path
+from typing import NoReturn
 
 import click
+import xarray as xr
 
 import seacable
 from seacable import analysis, viz
@@ -13,7 +15,7 @@ from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
 
 
-def _fail(message: str, code: int = 1):
+def _fail(message: str, code: int = 1) -> NoReturn:
     click.echo(f"error: {message}", err=True)
     sys.exit(code)
 
@@ -172,6 +174,17 @@ def modes(case_file: str, count: int) -> None:
         )
 
 
+def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
+    """The results' tree of groups (a system's), or a clear exit for a file without groups."""
+    if not isinstance(results.dataset, xr.DataTree):
+        _fail(
+            f"{results_file}: results of the single-cable core (retired after commit 4911bc8); "
+            "run the case as a system (seacable upgrade case.yaml -o system.yaml) and draw those",
+            2,
+        )
+    return results.dataset
+
+
 @main.command()
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Picture (default .png).")
@@ -180,14 +193,14 @@ def plot(results_file: str, output: str | None, every: float | None) -> None:
     """Draw cable snapshots and time series from RESULTS_FILE."""
     output = output or str(Path(results_file).with_suffix(".png"))
     results = seacable.Results.open(results_file)
-    viz.plot_results(results.dataset, output, every=every)
+    viz.plot_results(_tree(results, results_file), output, every=every)
     click.echo(f"picture written: {output}")
 
 
 @main.command()
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
-              help="Animation file: .gif (always) or .mp4 (needs ffmpeg).")  # fmt: skip
+              help="Animation file (.gif).")  # fmt: skip
 @click.option("--fps", type=int, default=20, help="Frames per second of video.")
 @click.option("--speed", type=float, default=1.0, help="Simulated seconds per second of video.")
 @click.option("--every", type=float, default=None,
@@ -208,7 +221,7 @@ def animate(
     results = seacable.Results.open(results_file, lazy=True)
     try:
         viz.animate_results(
-            results.dataset,
+            _tree(results, results_file),
             output,
             fps=fps,
             speed=speed,

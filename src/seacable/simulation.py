@@ -12,16 +12,6 @@ from seacable.case import loader, schema
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels.status import Status
-from seacable.models import (
-    lumped_mass,
-    lumped_star,
-    natural_string,
-    planar_rigid_links,
-    rigid_segments_3d,
-    star_3d,
-)
-from seacable.models.common import case_variables
-from seacable.models.servo_loop import check_servo_loop
 from seacable.numerics import integrators, stiff, system_implicit
 from seacable.results import (
     STATUS_COMPLETE,
@@ -32,7 +22,6 @@ from seacable.results import (
     provenance,
 )
 from seacable.system import model as system_model
-from seacable.system.assemble import BuiltSystem
 
 log = logging.getLogger(__name__)
 
@@ -41,13 +30,12 @@ ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each sta
 # the solver_atol attribute of a run with the default absolute tolerance (absolute_tolerance)
 DEFAULT_ATOL = (
     "rtol times each state's largest magnitude (dopri5: so far; stiff integrators: at the start), "
-    f"at least {ATOL_FLOOR:g} rtol times the state's scale (models.common.state_scale)"
+    f"at least {ATOL_FLOOR:g} rtol times the state's scale (system.model.state_scale)"
 )
 _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C, streaming)
 
 
-# fixed-step implicit schemes of ``numerics.system_implicit`` (systems of bodies and lines: the
-# model modules that set NEWTON = True)
+# fixed-step implicit schemes of ``numerics.system_implicit``
 IMPLICIT = ("implicit_euler", "theta", "newmark", "generalized_alpha")
 FIXED_STEP = ("rk4", *IMPLICIT)
 
@@ -62,44 +50,9 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     return sim.output_interval / steps, steps
 
 
-MODELS = {
-    "rigid_links": planar_rigid_links,
-    "rigid_segments_3d": rigid_segments_3d,
-    "lumped_mass": lumped_mass,
-    "natural_string": natural_string,
-}
-
-
-def model_of(case: schema.Case | SystemCase):
-    """The model module of the case (build, VARIABLES, rows, rates, ...): a system of bodies and
-    lines (``lines:``), several cables on a shared body form a star (of rigid-segment or of
-    lumped-mass cables, as the first cable's model says), else the one cable's model."""
-    if isinstance(case, SystemCase):
-        return system_model
-    if case.bodies:
-        return lumped_star if case.cables[0].model == "lumped_mass" else star_3d
-    return MODELS[case.cables[0].model]
-
-
-def build_system(case: schema.Case):
-    """The model's system (parameters, initial state) for ``case``."""
-    return model_of(case).build(case, loader.case_base_dir(case))
-
-
-SYSTEM_MODELS = {
-    planar_rigid_links.PlanarSystem: planar_rigid_links,
-    rigid_segments_3d.System3D: rigid_segments_3d,
-    star_3d.StarSystem: star_3d,
-    lumped_star.LumpedStarSystem: lumped_star,
-    lumped_mass.LumpedSystem: lumped_mass,
-    natural_string.NaturalSystem: natural_string,
-    BuiltSystem: system_model,
-}
-
-
 def fastest_frequency(system) -> tuple[float, str]:
     """Estimate of the fastest natural frequency of a built system [rad/s], and what sets it."""
-    return SYSTEM_MODELS[type(system)].fastest_frequency(system)
+    return system_model.fastest_frequency(system)
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
@@ -137,22 +90,17 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
     )
 
 
-def _check_integrator(case: schema.Case | SystemCase, model) -> None:
-    integrator = case.simulation.integrator
-    if integrator in IMPLICIT and not model.NEWTON:
+def _check_case(case: SystemCase, model) -> None:
+    if not isinstance(case, SystemCase):
         raise CaseError(
-            f"simulation.integrator: '{integrator}' runs systems of bodies and lines only; "
-            "write this single-cable case as one (seacable upgrade case.yaml -o system.yaml), "
-            "or run it with rk4, dopri5 or the adaptive stiff integrators (bdf, radau, lsoda, "
-            "cvode)"
+            "the case is in the single-cable form (cables:), which does not run any more; write "
+            "it as a system of bodies and lines: seacable upgrade case.yaml -o system.yaml"
         )
-    if integrator in IMPLICIT:
-        getattr(model, "check_implicit", lambda case: None)(case)
+    if case.simulation.integrator in IMPLICIT:
+        model.check_implicit(case)
 
 
-def absolute_tolerance(
-    case: schema.Case | SystemCase, model, system
-) -> tuple[np.ndarray, np.ndarray]:
+def absolute_tolerance(case: SystemCase, model, system) -> tuple[np.ndarray, np.ndarray]:
     """The adaptive integrators' absolute tolerance of each state and, for dopri5's default,
     the largest magnitude of each state so far (empty when not tracked).
 
@@ -198,7 +146,7 @@ def _tolerance_attrs(run) -> dict:
 class _Run:
     """One integration: holds the compiled state and writes rows to the sink."""
 
-    def __init__(self, case: schema.Case | SystemCase, model, system, sink: _Sink):
+    def __init__(self, case: SystemCase, model, system, sink: _Sink):
         self.case = case
         self.sim = case.simulation
         self.model = model
@@ -296,13 +244,11 @@ class _Run:
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()
 
-        block, graph = _node_structure(self.model, self.system)
-        sparsity = getattr(self.model, "jacobian_sparsity", lambda system: None)(self.system)
         return stiff.StiffStepper(
             sim.integrator, fun, self.t, self.y,
             rtol=sim.rtol, atol=self.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
-            first_step=sim.initial_step, block=block, graph=graph, sparsity=sparsity,
+            first_step=sim.initial_step, sparsity=self.model.jacobian_sparsity(self.system),
         )  # fmt: skip
 
     def _advance_stiff(self, count, states, times):
@@ -361,7 +307,7 @@ class _Run:
 
 
 def simulate(
-    case: schema.Case | SystemCase,
+    case: SystemCase,
     output=None,
     progress: bool = False,
     chunk_outputs: int | None = None,
@@ -390,11 +336,9 @@ def simulate(
     SimulationInterrupted
         Ctrl-C; ``results`` hold everything computed before.
     """
-    model = model_of(case)
-    _check_integrator(case, model)
+    model = system_model
+    _check_case(case, model)
     system = model.build(case, loader.case_base_dir(case))
-    if not isinstance(case, SystemCase):
-        check_servo_loop(case, system.params, system.y0, model.workspace(system))
     sim = case.simulation
     settings = _solver_settings(sim)
     warning = _step_warning(sim, system)
@@ -402,10 +346,7 @@ def simulate(
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
-    if isinstance(case, SystemCase):
-        variables = model.variables(system)
-    else:
-        variables = case_variables(model.VARIABLES, case)
+    variables = model.variables(system)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
     run = _Run(case, model, system, sink)
     _compile(run)
@@ -501,26 +442,10 @@ def _work(run: _Run) -> dict:
     return {**counters, **_tolerance_attrs(run)}
 
 
-def _node_structure(model, system):
-    """(variables per node, node neighbours) when the model's Jacobian is node-neighbour
-    structured (``node_block``, and ``node_graph`` or one chain), else (None, None)."""
-    block = getattr(model, "node_block", lambda system: None)(system)
-    if block is None:
-        return None, None
-    graph = getattr(model, "node_graph", None)
-    if graph is not None:
-        return block, graph(system)
-    return block, stiff.chain_graph(len(system.y0) // (2 * block))
-
-
 def _step_warning(sim: schema.Simulation, system) -> str | None:
-    model = SYSTEM_MODELS[type(system)]
     size = len(system.y0)
-    _, graph = _node_structure(model, system)
-    dense = graph is None or (sim.integrator == "cvode" and not stiff.banded(graph))
-    if hasattr(model, "jacobian_sparsity"):  # a system: SciPy colours its sparse pattern
-        dense = sim.integrator in ("cvode", "lsoda")
-    if sim.integrator in stiff.STIFF and dense and size > 200:
+    dense = sim.integrator in ("cvode", "lsoda")  # bdf and radau colour the sparse pattern
+    if dense and size > 200:
         return (
             f"simulation.integrator {sim.integrator} builds a dense Jacobian for this model "
             f"({size} states: {size} right-hand sides and a dense factorisation per Jacobian); "

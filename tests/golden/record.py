@@ -1,64 +1,51 @@
-"""Golden results of every example: record them from today's code, and compare a run to them.
+"""Golden results of every example, and the comparison of a run to them.
 
-Each example is shortened to a 1 s run and integrated with its own integrator at settings tight
+Each example was shortened to a 1 s run and integrated with its own integrator at settings tight
 enough that the results are the physics of the model, not of the step: a fixed-step scheme's
-step is halved, an adaptive scheme's rtol divided by 10, until one more refinement changes no
-variable by more than TARGET of its scale. The recorded file (``tests/golden/<example>.nc``)
+step halved, an adaptive scheme's rtol divided by 10, until one more refinement changed no
+variable by more than 1e-11 of its scale. The recorded file (``tests/golden/<example>.nc.gz``)
 holds every variable and coordinate of that run, the case changes that derive it from the
 example (attribute ``golden_changes``, JSON) and the change measured on the last refinement
 (``golden_refinement_change``: the estimated discretisation error, a fraction of each
-variable's scale). A reformulated model (another state layout, an end's position from its time
-function instead of integrated, ...) run with the same integrator at these settings must then
-match within 1e-9 of each variable's scale (:func:`compare_to_golden`).
+variable's scale), and where measured how far round-off alone moves each variable
+(``golden_roundoff_change``; a comparison then allows twice that where it exceeds 1e-9). A run
+of the example with the same integrator at these settings must match within 1e-9 of each
+variable's scale (:func:`compare_to_golden`).
 
-Run from the repository root::
+The goldens were recorded by the single-cable core (``cables:`` with ``top`` and ``bottom``),
+retired after commit 4911bc8: they are frozen. Each example is now a system of bodies and lines
+(``seacable upgrade``); its run is compared through :func:`system_rows`, which names the
+system's variables as the single-cable model named them (``lines/<line>/from_force_x`` was
+``top_force_x``, the top body's height was ``top_heave``). To re-record a golden, check that
+commit out (``git worktree add /tmp/old 4911bc8``) and run there, from its root::
 
     PYTHONPATH=src python tests/golden/record.py [example stems...]
     PYTHONPATH=src python tests/golden/record.py --roundoff [example stems...]
-
-The second measures how far round-off alone moves each variable (``roundoff_changes``) and
-writes it into the golden file; a comparison then allows twice that where it exceeds 1e-9.
-
-The goldens were recorded from the single-cable core (``cables:`` with ``top`` and ``bottom``).
-An example rewritten in the system form of bodies and lines (``seacable upgrade``) keeps its
-golden file, which is then frozen: its run is compared through :func:`system_rows`, which names
-the system's variables as the single-cable model named them (``lines/<line>/from_force_x`` was
-``top_force_x``, the top body's height was ``top_heave``), and is never recorded again.
 """
 
 import gzip
 import io
 import json
 import sys
-import time
 from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
-import yaml
 
 import seacable
-from seacable.case.loader import case_text, derive_case, load_single_cable
-from seacable.case.schema import FIXED_STEP_INTEGRATORS
-from seacable.case.system import SystemCase
-from seacable.errors import SimulationDiverged
-from seacable.simulation import rk4_step
+from seacable.case.loader import derive_case
 
 GOLDEN = Path(__file__).resolve().parent
 EXAMPLES = GOLDEN.parent.parent / "examples"
 DURATION = 1.0  # [s] of every golden run
 MIN_ROWS = 5  # an example's output interval is kept when it gives at least this many rows
 SHORT_INTERVAL = 0.1  # [s] output interval otherwise
-TARGET = 1e-11  # one more refinement changes no variable by more than this fraction of its scale
 TOLERANCE = 1e-9  # a run matches its golden result within this fraction of each scale
 # ... or within twice the change round-off alone makes (``roundoff_changes``), where that is
 # larger: an ill-conditioned variable (measured, and written in the golden file)
 ROUNDOFF = "golden_roundoff_change"
 ROUNDOFF_MARGIN = 2.0
-ROUNDOFF_FACTORS = (1e-15, 1e-14, 1e-13)
-MAX_HALVINGS = 8  # fixed-step schemes: at most the example's step / 2^8
-RTOLS = (1e-9, 1e-10, 1e-11, 1e-12, 1e-13)  # adaptive schemes: tried in this order
 # a variable is measured against at least this fraction of the largest of the variables in its
 # units: one that is nearly zero by the physics (the velocity of a huge end mass that stands for
 # a pin) has round-off errors that are large against its own magnitude but not against the
@@ -83,11 +70,6 @@ def example_stems() -> list[str]:
     return sorted(p.name.removesuffix(".nc.gz") for p in GOLDEN.glob("*.nc.gz"))
 
 
-def single_cable(stem: str) -> bool:
-    """True for an example still in the single-cable form (its golden can be recorded)."""
-    return "\ncables:" in example_path(stem).read_text()
-
-
 def golden_path(stem: str) -> Path:
     """NetCDF-3 (classic, 64-bit offsets), gzip-compressed: a third of the size of NetCDF-4's
     HDF5 for these small files; ``gunzip -k`` gives a file any NetCDF tool reads."""
@@ -106,26 +88,23 @@ def output_interval(interval: float) -> float:
 def derived(stem: str, changes: Mapping):
     """The example's case with ``changes`` (a nested mapping of case keys, as
     :func:`seacable.case.loader.derive_case` takes) applied through the loader's validation.
-    An example written as a system drops the single-cable keys (``cables``: the servo's step,
-    kept at the example's while the time step was refined, is written in the system example)."""
+    The single-cable keys are dropped (``cables``: the servo's step, kept at the example's
+    while the time step was refined, is written in the system example)."""
     case = seacable.load_case(example_path(stem))
-    if isinstance(case, SystemCase):
-        changes = {key: value for key, value in changes.items() if key != "cables"}
-    return derive_case(case, dict(changes))
+    changes = {key: value for key, value in changes.items() if key != "cables"}
+    return derive_case(case, changes)
 
 
-def run(stem: str, changes: Mapping):
-    """The example's results: a Dataset (single-cable form), or the mapping of
-    :func:`system_rows` (system form)."""
+def run(stem: str, changes: Mapping) -> dict:
+    """The example's results under the single-cable names (the mapping of :func:`system_rows`,
+    or of :func:`star_rows` for lines from one body)."""
     case = derived(stem, changes)
     results = seacable.simulate(case)
     if results.status != "complete":
         raise RuntimeError(f"{stem} with {dict(changes)}: {results.status}: {results.message}")
-    if isinstance(case, SystemCase):
-        if sum(line.from_ == case.bodies[0].name for line in case.lines) > 1:
-            return star_rows(results.dataset, case)
-        return system_rows(results.dataset, case)
-    return results.dataset
+    if sum(line.from_ == case.bodies[0].name for line in case.lines) > 1:
+        return star_rows(results.dataset, case)
+    return system_rows(results.dataset, case)
 
 
 def star_rows(tree, case) -> dict:
@@ -315,155 +294,6 @@ def compare_to_golden(
     return failures
 
 
-def refinement_changes(coarse: xr.Dataset, fine: xr.Dataset) -> dict[str, float]:
-    """Largest change of each variable from ``fine`` to ``coarse`` (fraction of its scale in
-    ``fine``)."""
-    return {name: error[0] for name, error in relative_errors(fine, coarse).items()}
-
-
-def _refinements(stem: str):
-    """The changes of the example's case tried in turn, coarsest first."""
-    example = seacable.load_case(example_path(stem))
-    sim = example.simulation
-    base = {"duration": DURATION, "output_interval": output_interval(sim.output_interval)}
-    cables = _servo_steps_kept(example)
-    if sim.integrator in FIXED_STEP_INTEGRATORS:
-        step = rk4_step(derived(stem, {"simulation": base}).simulation)[0]
-        for k in range(MAX_HALVINGS + 1):
-            yield {"simulation": {**base, "time_step": step / 2**k}, **cables}
-    else:
-        for rtol in RTOLS:  # atol None: rtol times each state's scale
-            yield {"simulation": {**base, "rtol": rtol, "atol": None}, **cables}
-
-
-def _servo_steps_kept(case) -> dict:
-    """Changes that write out a trajectory servo's step where it defaults to the integration
-    step, so that refining the step does not change the servo law (its correction rate is gain
-    times the error over the servo step). Empty when no servo takes its step by default."""
-    data = yaml.safe_load(case_text(case))
-    changed = False
-    for cable in data["cables"]:
-        servo = cable.get("bottom", {}).get("servo")
-        if isinstance(servo, dict) and servo.get("step") is None:
-            servo["step"] = rk4_step(case.simulation)[0]
-            changed = True
-    return {"cables": data["cables"]} if changed else {}
-
-
-def converge(stem: str) -> tuple[dict, xr.Dataset, dict[str, float]]:
-    """Refine the example's settings until one more refinement changes no variable by more
-    than TARGET, or the change stops falling (round-off has overtaken the discretisation error),
-    or a finer run fails. The coarser run of the pair with the smallest change: its changes, its
-    results and each variable's change on that refinement."""
-    previous = None
-    best = None
-    for changes in _refinements(stem):
-        try:
-            dataset = run(stem, changes)
-        except (RuntimeError, SimulationDiverged) as exc:
-            if previous is None:
-                raise
-            print(f"{stem}: {changes} failed, refinement stops: {exc}", flush=True)
-            break
-        if previous is not None:
-            per_variable = refinement_changes(previous[1], dataset)
-            change = max(per_variable.values())
-            if best is not None and change > max(best[2].values()):
-                break
-            best = (*previous, per_variable)
-            if change <= TARGET:
-                break
-        previous = (changes, dataset)
-    assert best is not None
-    return best
-
-
-def record(stem: str) -> dict:
-    """Converge the example, write its golden file, return a summary."""
-    if not single_cable(stem):
-        raise SystemExit(f"{stem}: a system-form example's golden is frozen (see the module)")
-    start = time.perf_counter()
-    changes, dataset, per_variable = converge(stem)
-    variable = max(per_variable, key=per_variable.__getitem__)
-    change = per_variable[variable]
-    dataset = dataset.copy()
-    dataset.attrs.pop("created", None)
-    dataset.attrs.update(
-        golden_example=stem,
-        golden_changes=json.dumps(changes),
-        golden_refined_changes=json.dumps(_refined(changes)),
-        golden_refinement_change=change,
-        golden_refinement_worst_variable=variable,
-        golden_converged=int(change <= TARGET),
-        golden_target=TARGET,
-    )
-    for name, value in per_variable.items():
-        dataset[name].attrs["golden_refinement_change"] = value
-    save_golden(dataset, golden_path(stem))
-    return {
-        "example": stem,
-        "integrator": dataset.attrs["solver_integrator"],
-        "settings": changes,
-        "change": change,
-        "variable": variable,
-        "converged": change <= TARGET,
-        "seconds": time.perf_counter() - start,
-        "bytes": golden_path(stem).stat().st_size,
-    }
-
-
-def roundoff_changes(stem: str) -> dict[str, float]:
-    """How far round-off alone moves each variable of the golden run: its largest change (a
-    fraction of its scale) when the cable's mass per length changes by 1e-15, 1e-14 and 1e-13
-    of itself, run in the single-cable form the golden was recorded from. A variable this
-    sensitive (the force on a body with 5e8 kg of added mass, through its tiny acceleration)
-    cannot be matched more closely by the same physics with its sums in another order."""
-    golden = load_golden(stem)
-    data = yaml.safe_load(single_cable_path(stem).read_text())
-    worst = dict.fromkeys(golden.data_vars, 0.0)
-    for factor in ROUNDOFF_FACTORS:
-        changed = yaml.safe_load(yaml.safe_dump(data))
-        changed["cables"][0]["mass_per_length"] *= 1.0 + factor
-        case = derive_case(load_single_cable(changed), golden_changes(golden))
-        case._base_dir = str(single_cable_path(stem).parent)
-        dataset = seacable.simulate(case).dataset
-        actual = {name: dataset[name].values for name in dataset.data_vars}
-        for name, (error, *_) in relative_errors(golden, actual).items():
-            worst[name] = max(worst[name], error)
-    return worst
-
-
-def record_roundoff(stem: str) -> dict[str, float]:
-    """Write ``roundoff_changes`` into the golden file (attribute ``golden_roundoff_change`` of
-    each variable; its data unchanged) and return them."""
-    golden = load_golden(stem)
-    worst = roundoff_changes(stem)
-    for name, value in worst.items():
-        golden[name].attrs[ROUNDOFF] = value
-    save_golden(golden, golden_path(stem))
-    return worst
-
-
-def single_cable_path(stem: str) -> Path:
-    """The example in the single-cable form its golden was recorded from."""
-    legacy = Path(__file__).parent.parent / "legacy_cases" / f"{stem}.yaml"
-    return legacy if legacy.exists() else example_path(stem)
-
-
-def _refined(changes: dict) -> dict:
-    sim = dict(changes["simulation"])
-    if "time_step" in sim:
-        sim["time_step"] /= 2
-    else:
-        sim["rtol"] /= 10
-    return {**changes, "simulation": sim}
-
-
-def save_golden(dataset: xr.Dataset, path: Path) -> None:
-    raw = dataset.to_netcdf(None, format="NETCDF3_64BIT", engine="scipy")
-    path.write_bytes(gzip.compress(bytes(raw), compresslevel=9, mtime=0))
-
-
 def load_golden(stem: str) -> xr.Dataset:
     raw = gzip.decompress(golden_path(stem).read_bytes())
     with xr.open_dataset(io.BytesIO(raw), engine="scipy") as dataset:
@@ -476,22 +306,11 @@ def golden_changes(golden: xr.Dataset) -> dict:
 
 
 def main(stems: list[str]) -> None:
-    if stems[:1] == ["--roundoff"]:
-        for stem in stems[1:]:
-            worst = record_roundoff(stem)
-            name = max(worst, key=worst.__getitem__)
-            print(f"{stem}: round-off moves '{name}' by {worst[name]:.2g} of its scale")
-        return
-    for stem in stems or [s for s in example_stems() if single_cable(s)]:
-        summary = record(stem)
-        settings = {k: v for k, v in summary["settings"]["simulation"].items() if k != "duration"}
-        print(
-            f"{stem}: {summary['integrator']} {settings} change on refinement "
-            f"{summary['change']:.2g} ({summary['variable']})"
-            f"{'' if summary['converged'] else ' NOT CONVERGED'}, "
-            f"{summary['seconds']:.1f} s, {summary['bytes'] / 1000:.0f} kB",
-            flush=True,
-        )
+    del stems
+    sys.exit(
+        "the goldens were recorded by the single-cable core, retired after commit 4911bc8: "
+        "check that commit out (git worktree add /tmp/old 4911bc8) and run this script there"
+    )
 
 
 if __name__ == "__main__":

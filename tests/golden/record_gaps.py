@@ -1,11 +1,11 @@
 """Golden results of the single-cable cases that ``seacable upgrade`` once refused
 (tests/legacy_cases/gaps/): the single-cable core's run of each case as written (its own
-integrator and step, no refinement), the variables its upgraded system must reproduce.
+integrator and step, no refinement), the variables its upgraded system must reproduce
+(tests/test_upgrade_gaps.py: :func:`golden.record.compare_to_golden`, within 1e-9 of each
+variable's scale).
 
-While the single-cable core exists, tests/test_upgrade_gaps.py runs both forms and compares
-them; once it is gone, the upgraded system is compared to these files instead (the same
-:func:`golden.record.compare_to_golden`, within 1e-9 of each variable's scale). Run from the
-repository root::
+The files were recorded by the single-cable core, retired after commit 4911bc8; to re-record
+them, check that commit out and run there, from the repository root::
 
     PYTHONPATH=src python tests/golden/record_gaps.py [case stems...]
 """
@@ -22,8 +22,8 @@ import seacable
 from seacable.case import legacy, loader
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from golden.record import save_golden, system_rows  # noqa: E402
 from golden.record import star_rows as rigid_star_rows  # noqa: E402
+from golden.record import system_rows  # noqa: E402
 
 CASES = Path(__file__).resolve().parent.parent / "legacy_cases" / "gaps"
 GOLDEN = Path(__file__).resolve().parent / "gaps"
@@ -37,23 +37,6 @@ VARIABLES = ("node_x", "node_y", "node_z", "tension", "top_force_x", "top_force_
 
 def stems() -> list[str]:
     return sorted(p.stem for p in CASES.glob("*.yaml"))
-
-
-def single_cable(stem: str) -> xr.Dataset:
-    """The single-cable core's run of the case: the golden's variables."""
-    results = seacable.simulate(loader.load_single_cable(CASES / f"{stem}.yaml"))
-    if results.status != "complete":
-        raise RuntimeError(f"{stem}: {results.status}: {results.message}")
-    dataset = results.dataset
-    names = [name for name in VARIABLES if name in dataset]
-    if "servo_force_x" in dataset or "body_x" in dataset:  # a servo's end, a star's body:
-        # the single-cable core's bottom_force is the last segment's pull alone, the system's
-        # the end node's loads less its inertia (its weight and drag too); a servo's force and
-        # the body's motion are compared instead
-        names = [name for name in names if not name.startswith("bottom_force")]
-    dataset = dataset[names]
-    dataset.attrs = {"golden_case": stem, "golden_source": "single-cable core"}
-    return dataset
 
 
 def upgraded(stem: str) -> dict:
@@ -97,10 +80,11 @@ def load(stem: str) -> xr.Dataset:
 
 
 def main(names: list[str]) -> None:
-    GOLDEN.mkdir(exist_ok=True)
-    for stem in names or stems():
-        save_golden(single_cable(stem), path(stem))
-        print(f"{stem}: {path(stem).stat().st_size / 1000:.1f} kB", flush=True)
+    del names
+    sys.exit(
+        "the gap goldens were recorded by the single-cable core, retired after commit 4911bc8: "
+        "check that commit out (git worktree add /tmp/old 4911bc8) and run this script there"
+    )
 
 
 if __name__ == "__main__":

@@ -313,7 +313,7 @@ class Simulation(_Model):
     # state). Default (None): rtol alone sets the accuracy: dopri5 measures each state's error
     # against rtol times the largest magnitude that state has reached (so small angles and
     # rates are followed to rtol of their own amplitude), with a floor of 1e-3 rtol times the
-    # state's scale (models.common.state_scale: angles 1 rad, coordinates the cable's length
+    # state's scale (system.model.state_scale: angles 1 rad, coordinates the cable's length
     # L, rates those times sqrt(g / L), forces the cable's weight); bdf, radau, lsoda and cvode
     # take a fixed tolerance, rtol times the larger of the state's start value and that floor.
     # The results' attribute solver_tolerance_governing says which tolerance governed

@@ -1,20 +1,11 @@
-"""Three-dimensional chain of rigid cylindrical segments: O(n) dynamics and loads (numba).
+"""Three-dimensional chain of rigid cylindrical segments: the articulated sweep of the system's
+3D rigid lines (``lines.rigid_segments``, ``system.rigid``; numba).
 
 Frame: x, y horizontal, z up. Segment ``i`` joins node ``i`` (top) to node ``i + 1``; its
 orientation is the unit **director** ``e_i`` (top -> bottom) and its rate ``u_i = de_i/dt`` with
 ``u_i . e_i = 0``. Directors have no singular direction (unlike the two Euler angles of
 Jacquot & Marichal, singular along one axis); rotation about the segment's own axis carries no
 inertia or stiffness for an axisymmetric slender cylinder and is not a degree of freedom.
-
-State layout (flat float64, length ``6 n + 5``)::
-
-    y = [e_0 (3) .. e_{n-1} (3), z_top, u_0 (3) .. u_{n-1} (3), zdot_top, F_servo (3)]
-
-The servo force (the force a trajectory-following vehicle applies to the cable end, updated by
-the stiffness-matrix servo of Jacquot & Marichal) is zero unless the lower end is a servo end.
-
-After every integration step the state is projected back (|e| = 1, u . e = 0):
-:func:`project`.
 
 Method: the articulated recursion of ``planar_chain`` in 3D. ``lam_k = M_k A_k + b_k`` with a
 symmetric 3x3 ``M_k``; each segment solves a 2x2 system in the plane normal to its director
@@ -29,23 +20,10 @@ import math
 import numpy as np
 from numba import njit
 
-from seacable.kernels.chain3d_ends import (
-    is_closed,
-    servo_rates,
-    target_channels,
-    target_from,
-    target_motion,
-    top_motion,
-)
 from seacable.kernels.chain3d_layout import (
     _A,
     _B,
-    _BD,
-    _BK,
-    _BM,
-    _BW,
     _E,
-    _EDD,
     _F,
     _H,
     _ID11,
@@ -56,99 +34,24 @@ from seacable.kernels.chain3d_layout import (
     _RS,
     _S,
     _SA,
-    _SF,
     _SJ,
-    _SQ,
     _T1,
     _T2,
     _TQ,
     _U,
     _V,
     _W,
-    _XC,
-    _XL,
-    BOTTOM_SERVO,
-    BOTTOM_TRAJECTORY,
-    CH_BODY_FX,
-    CH_BODY_FY,
-    CH_BODY_FZ,
-    CH_TARGET_X,
-    CH_TARGET_Y,
-    CH_TARGET_Z,
-    CH_TOP_FORCE,
-    CH_TOP_X,
-    CH_TOP_Y,
-    CH_TOP_Z,
-    CH_TRACK_S,
-    N_CHANNELS,
-    N_SCALARS,
     N_WORK_ROWS,
-    SCALAR_NAMES,
-    SERVO_STATES,
-    TOP_TRACK,
-    Chain3DParams,
     _current,
-    _tf,
-    make_workspace,
-    state_size,
 )
-from seacable.kernels.chain3d_loads import (
-    _hydrostatics,
-    _kinematics_and_loads,
-    _point_force,
-    _point_loads,
-    joint_torques,
-    segment_surface,
-)
-from seacable.kernels.planar_chain import (
-    BOTTOM_FREE,
-    BOTTOM_PINNED,
-    TOP_HEAVE,
-    TOP_IMPOSED,
-)
-from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.timefn import JIT
 
 # re-exported: the chain's other kernels and the lumped-mass kernel read them as ``c3.X``
 __all__ = [
-    "_hydrostatics",
-    "joint_torques",
-    "_kinematics_and_loads",
-    "_point_force",
-    "_point_loads",
-    "segment_surface",
-    "BOTTOM_FREE",
-    "BOTTOM_PINNED",
-    "BOTTOM_SERVO",
-    "BOTTOM_TRAJECTORY",
-    "CH_BODY_FX",
-    "CH_BODY_FY",
-    "CH_BODY_FZ",
-    "CH_TARGET_X",
-    "CH_TARGET_Y",
-    "CH_TARGET_Z",
-    "CH_TOP_FORCE",
-    "CH_TOP_X",
-    "CH_TOP_Y",
-    "CH_TOP_Z",
-    "CH_TRACK_S",
-    "Chain3DParams",
-    "N_CHANNELS",
-    "N_SCALARS",
     "N_WORK_ROWS",
-    "SCALAR_NAMES",
-    "SERVO_STATES",
-    "TOP_HEAVE",
-    "TOP_IMPOSED",
-    "TOP_TRACK",
     "_A",
     "_B",
-    "_BD",
-    "_BK",
-    "_BM",
-    "_BW",
     "_E",
-    "_EDD",
     "_F",
     "_H",
     "_ID11",
@@ -159,27 +62,14 @@ __all__ = [
     "_RS",
     "_S",
     "_SA",
-    "_SF",
     "_SJ",
-    "_SQ",
     "_T1",
     "_T2",
     "_TQ",
     "_U",
     "_V",
     "_W",
-    "_XC",
-    "_XL",
     "_current",
-    "_tf",
-    "is_closed",
-    "make_workspace",
-    "servo_rates",
-    "state_size",
-    "target_channels",
-    "target_from",
-    "target_motion",
-    "top_motion",
 ]
 
 
@@ -298,39 +188,6 @@ def segment_back(i, li, mi, w, m, b, s, pinned):
 
 
 @njit(**JIT)
-def _backward_sweep(t, y, p, w):
-    n = p.n
-    pinned = is_closed(p)
-    m = np.zeros(6)
-    b = np.zeros(3)
-    s = np.zeros(9)
-    fx, fy, fz = _point_force(p, n, w, t)
-    if p.bottom_kind == BOTTOM_SERVO:
-        servo = 6 * n + 2
-        fx += y[servo]
-        fy += y[servo + 1]
-        fz += y[servo + 2]
-    m[0], m[3], m[5] = w[_BM, n], w[_BM + 1, n], w[_BM + 2, n]
-    b[0], b[1], b[2] = -fx, -fy, -fz
-    if pinned:  # the holding force L adds to the force below the end node: S = I
-        s[0] = s[4] = s[8] = 1.0
-    _store_node(w, n, m, b, s)
-    for i in range(n - 1, -1, -1):
-        segment_back(i, p.length[i], p.mass[i], w, m, b, s, pinned)
-        if i > 0:  # a point body at the top node of this segment joins the part below it
-            nm = p.node_mass[i]
-            if nm[0] != 0.0 or nm[1] != 0.0 or nm[2] != 0.0 or p.node_wet_weight[i] != 0.0:
-                fx, fy, fz = _point_force(p, i, w, t)
-                m[0] += w[_BM, i]
-                m[3] += w[_BM + 1, i]
-                m[5] += w[_BM + 2, i]
-                b[0] -= fx
-                b[1] -= fy
-                b[2] -= fz
-        _store_node(w, i, m, b, s)
-
-
-@njit(**JIT)
 def _solve3(a, r):
     """Solve the 3x3 system a x = r (a row-major, 9 values); returns x and the determinant."""
     c00 = a[4] * a[8] - a[5] * a[7]
@@ -351,159 +208,6 @@ def _solve3(a, r):
         c02 * r[0] + (a[1] * a[6] - a[0] * a[7]) * r[1] + (a[0] * a[4] - a[1] * a[3]) * r[2]
     ) * inv
     return x, det
-
-
-@njit(**JIT)
-def _top_acceleration(t, y, p, w, ac, al):
-    """Top node acceleration, affine in the pinned reaction L: A0 = ac + al L (al row-major)."""
-    n = p.n
-    if p.top_kind == TOP_HEAVE:
-        u, _, _ = _tf(p, CH_TOP_FORCE, t)
-        f_structure = -p.top_stiffness * (y[3 * n] - p.top_rest_z) - p.top_damping * y[6 * n + 1]
-        den = p.top_mass + w[_M + 5, 0]
-        ac[2] = (f_structure + u - p.top_net_weight - w[_B + 2, 0]) / den
-        for c in range(3):
-            al[6 + c] = -w[_S + 6 + c, 0] / den
-    else:
-        _, _, acc = top_motion(t, y, p)
-        ac[:] = acc
-
-
-@njit(**JIT)
-def _forward_sweep(y, p, w, ac, al, pinned):
-    """Director accelerations, affine in L; leaves the end acceleration in (ac, al)."""
-    n = p.n
-    u0 = 3 * n + 1
-    for i in range(n):
-        li = p.length[i]
-        u2 = y[u0 + 3 * i] ** 2 + y[u0 + 3 * i + 1] ** 2 + y[u0 + 3 * i + 2] ** 2
-        h1 = (w[_H, i], w[_H + 2, i], w[_H + 4, i])
-        h2 = (w[_H + 1, i], w[_H + 3, i], w[_H + 5, i])
-        i11, i12, i22 = w[_ID11, i], w[_ID12, i], w[_ID22, i]
-        r1 = w[_W, i] - (h1[0] * ac[0] + h1[1] * ac[1] + h1[2] * ac[2])
-        r2 = w[_W + 1, i] - (h2[0] * ac[0] + h2[1] * ac[1] + h2[2] * ac[2])
-        x1 = i11 * r1 + i12 * r2
-        x2 = i12 * r1 + i22 * r2
-        w[_XC, i] = x1
-        w[_XC + 1, i] = x2
-        for k in range(3):
-            ac[k] += li * (x1 * w[_T1 + k, i] + x2 * w[_T2 + k, i] - u2 * y[3 * i + k])
-        if pinned:
-            for c in range(3):
-                q1 = w[_RS + c, i] - (h1[0] * al[c] + h1[1] * al[3 + c] + h1[2] * al[6 + c])
-                q2 = w[_RS + 3 + c, i] - (h2[0] * al[c] + h2[1] * al[3 + c] + h2[2] * al[6 + c])
-                xl1 = i11 * q1 + i12 * q2
-                xl2 = i12 * q1 + i22 * q2
-                w[_XL + c, i] = xl1
-                w[_XL + 3 + c, i] = xl2
-                for k in range(3):
-                    al[3 * k + c] += li * (xl1 * w[_T1 + k, i] + xl2 * w[_T2 + k, i])
-
-
-@njit(**JIT)
-def _closure(t, y, p, w, ac, al):
-    """Holding force L at a closed lower end: on each held axis the end acceleration equals the
-    Baumgarte-stabilised target; on a free axis L is zero."""
-    n = p.n
-    omega = p.stabilization_frequency
-    pos, vel, acc = target_motion(t, y, p)
-    system = np.zeros(9)
-    rhs_ = np.zeros(3)
-    for k in range(3):
-        if p.constrained[k] != 0.0:
-            for c in range(3):
-                system[3 * k + c] = al[3 * k + c]
-            rhs_[k] = (
-                acc[k] - 2.0 * omega * (w[_V + k, n] - vel[k])
-                - omega * omega * (w[_P + k, n] - pos[k]) - ac[k]
-            )  # fmt: skip
-        else:
-            system[3 * k + k] = 1.0
-    reaction, det = _solve3(system, rhs_)
-    scale = 1.0
-    for v in al:
-        scale = max(scale, abs(v))
-    return reaction, abs(det) > 1e-12 * scale**3
-
-
-@njit(**JIT)
-def _final_accelerations(y, p, w, acc_top, al_top, reaction, pinned):
-    n = p.n
-    u0 = 3 * n + 1
-    for k in range(3):
-        w[_A + k, 0] = acc_top[k] + (
-            al_top[3 * k] * reaction[0] + al_top[3 * k + 1] * reaction[1]
-            + al_top[3 * k + 2] * reaction[2]
-        )  # fmt: skip
-    for i in range(n):
-        li = p.length[i]
-        u2 = y[u0 + 3 * i] ** 2 + y[u0 + 3 * i + 1] ** 2 + y[u0 + 3 * i + 2] ** 2
-        x1 = w[_XC, i]
-        x2 = w[_XC + 1, i]
-        if pinned:
-            for c in range(3):
-                x1 += w[_XL + c, i] * reaction[c]
-                x2 += w[_XL + 3 + c, i] * reaction[c]
-        for k in range(3):
-            edd = x1 * w[_T1 + k, i] + x2 * w[_T2 + k, i] - u2 * y[3 * i + k]
-            w[_EDD + k, i] = edd
-            w[_A + k, i + 1] = w[_A + k, i] + li * edd
-
-
-@njit(**JIT)
-def solve(t, y, p, w):
-    """Kinematics, loads and accelerations at (t, y) into ``w``.
-
-    Returns (status, top_heave_acceleration, L) with L the pinned-end reaction (3,).
-    """
-    n = p.n
-    pinned = is_closed(p)
-    _kinematics_and_loads(t, y, p, w)
-    _backward_sweep(t, y, p, w)
-    ac = np.zeros(3)
-    al = np.zeros(9)
-    _top_acceleration(t, y, p, w, ac, al)
-    acc_top = ac.copy()
-    al_top = al.copy()
-    _forward_sweep(y, p, w, ac, al, pinned)
-    reaction = np.zeros(3)
-    if pinned:
-        reaction, sound = _closure(t, y, p, w, ac, al)
-        if not sound:
-            return SINGULAR_CLOSURE, 0.0, reaction
-    _final_accelerations(y, p, w, acc_top, al_top, reaction, pinned)
-    status = OK
-    if not math.isfinite(w[_A, n] + w[_A + 1, n] + w[_A + 2, n] + w[_A + 2, 0]):
-        status = NON_FINITE
-    top_acc = w[_A + 2, 0] if p.top_kind == TOP_HEAVE else 0.0
-    return status, top_acc, reaction
-
-
-@njit(**JIT)
-def rhs(t, y, p, w, ydot):
-    """Time derivative of the state; returns a status code."""
-    n = p.n
-    status, top_acc, _ = solve(t, y, p, w)
-    u0 = 3 * n + 1
-    for i in range(n):
-        for k in range(3):
-            ydot[3 * i + k] = y[u0 + 3 * i + k]
-            ydot[u0 + 3 * i + k] = w[_EDD + k, i]
-    ydot[3 * n] = y[6 * n + 1] if p.top_kind == TOP_HEAVE else 0.0
-    ydot[6 * n + 1] = top_acc
-    servo = 6 * n + 2
-    for c in range(3):
-        ydot[servo + c] = 0.0
-    if p.bottom_kind == BOTTOM_SERVO:
-        pos, vel, _ = target_motion(t, y, p)
-        servo_rates(p, pos, vel, w[_P : _P + 3, n], w[_V : _V + 3, n], ydot, servo)
-    return status
-
-
-@njit(**JIT)
-def project(y, p):
-    """Put the state back on its manifold: unit directors, rates normal to them."""
-    project_directors(y, p.n, 0, 3 * p.n + 1)
 
 
 @njit(**JIT)
@@ -536,18 +240,3 @@ def _node_force(w, k, reaction, pinned):
             for c in range(3):
                 f[r] += w[_S + 3 * r + c, k] * reaction[c]
     return f
-
-
-@njit(**JIT)
-def _below_point_body(p, w, k, t, force_above):
-    """Force on the segment below node k, given the force the part above exerts at node k: the
-    point body there (if any) takes its share, m a - F (its inertia less its own loads)."""
-    nm = p.node_mass[k]
-    if nm[0] == 0.0 and nm[1] == 0.0 and nm[2] == 0.0 and p.node_wet_weight[k] == 0.0:
-        return force_above
-    fx, fy, fz = _point_force(p, k, w, t)
-    out = np.empty(3)
-    out[0] = force_above[0] + fx - w[_BM, k] * w[_A, k]
-    out[1] = force_above[1] + fy - w[_BM + 1, k] * w[_A + 1, k]
-    out[2] = force_above[2] + fz - w[_BM + 2, k] * w[_A + 2, k]
-    return out

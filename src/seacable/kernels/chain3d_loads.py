@@ -1,17 +1,13 @@
-"""Loads on the 3D chain's segments and point bodies: joint bending and damping moments,
-kinematics of the nodes, drag, added mass and apparent weight on the relative velocity, the
-free surface's share of each (numba; rows of ``chain3d_layout``)."""
+"""Loads on the 3D chain's segments: joint bending and damping moments (``joint_torques``),
+kinematics of the nodes, drag, added mass and apparent weight on the relative velocity
+(``segment_loads``), the free surface's share of each (``segment_surface``; numba; rows of
+``chain3d_layout``)."""
 
 import math
 
-import numpy as np
 from numba import njit
 
-from seacable.kernels.chain3d_ends import top_motion
 from seacable.kernels.chain3d_layout import (
-    _BD,
-    _BM,
-    _BW,
     _E,
     _F,
     _P,
@@ -22,13 +18,9 @@ from seacable.kernels.chain3d_layout import (
     _TQ,
     _U,
     _V,
-    CH_BODY_FX,
-    CH_BODY_FY,
-    CH_BODY_FZ,
     _current,
-    _tf,
 )
-from seacable.kernels.surface import POINT, segment_submersion, submersion
+from seacable.kernels.surface import segment_submersion
 from seacable.kernels.timefn import JIT
 
 
@@ -125,20 +117,6 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
             w[_TQ + 1, i] -= w[_SQ, i] * w[_E, i]
 
 
-@njit(**JIT)
-def _kinematics_and_loads(t, y, p, w):
-    pos, vel, _ = top_motion(t, y, p)
-    for k in range(3):
-        w[_P + k, 0] = pos[k]
-        w[_V + k, 0] = vel[k]
-    segment_loads(
-        p.n, y, 0, 3 * p.n + 1, p.length, p.wet_weight, p.buoyancy, p.drag_normal,
-        p.drag_tangential, p.added_mass, p.inertia, p.joint_stiffness, p.joint_damping,
-        p.top_reference, np.zeros(3), p.current_z, p.current_u, p.current_v, w,
-    )  # fmt: skip
-    _hydrostatics(p, w)
-
-
 @njit(inline="always", **JIT)
 def segment_surface(added_mass, inertia, length, buoyancy, w, i):
     """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
@@ -158,57 +136,3 @@ def segment_surface(added_mass, inertia, length, buoyancy, w, i):
         w[_SJ, i] = inertia[i]
         w[_SQ, i] = 0.0
     return wet
-
-
-@njit(inline="always", **JIT)
-def _point_loads(p, k, z, out):
-    """Mass (3), apparent weight, drag factor (3) and heave stiffness of the point body at node k
-    (the end body at k = n) with its reference point at elevation z: the submerged fraction f
-    scales the buoyancy, the added mass and the drag (kernels.surface)."""
-    if k == p.n:
-        mass, weight = p.body_mass, p.body_wet_weight
-        drag0, drag1, drag2 = p.body_drag[0], p.body_drag[1], p.body_drag[2]
-    else:
-        mass, weight = p.node_mass[k], p.node_wet_weight[k]
-        drag0 = drag1 = drag2 = p.node_drag[k]
-    if p.node_shape[k, 0] == POINT:  # always submerged: the values as given
-        out[0], out[1], out[2], out[3] = mass[0], mass[1], mass[2], weight
-        out[4], out[5], out[6], out[7] = drag0, drag1, drag2, 0.0
-        return
-    f, slope, _ = submersion(z, p.node_shape[k])
-    lost = 1.0 - f
-    for c in range(3):
-        out[c] = mass[c] - lost * p.node_added[k, c]
-    out[3] = weight + lost * p.node_buoyancy[k]
-    out[4], out[5], out[6] = f * drag0, f * drag1, f * drag2
-    out[7] = -slope * p.node_buoyancy[k]
-
-
-@njit(inline="always", **JIT)
-def _hydrostatics(p, w):
-    """Rows _BM, _BW, _BD, _BK of every node from its elevation (node 0 carries none)."""
-    loads = np.empty(8)
-    for k in range(1, p.n + 1):
-        _point_loads(p, k, w[_P + 2, k], loads)
-        for r in range(8):
-            w[_BM + r, k] = loads[r]
-
-
-@njit(**JIT)
-def _point_force(p, k, w, t):
-    """Force on the point body at node k (not the cable): weight, drag (and at the bottom,
-    applied forces and ties)."""
-    vx, vy, vz = w[_V, k], w[_V + 1, k], w[_V + 2, k]
-    cu, cv = _current(p.current_z, p.current_u, p.current_v, w[_P + 2, k])
-    rx, ry, rz = vx - cu, vy - cv, vz
-    speed = math.sqrt(rx * rx + ry * ry + rz * rz)
-    dx, dy, dz = w[_BD, k] * speed, w[_BD + 1, k] * speed, w[_BD + 2, k] * speed
-    if k < p.n:
-        return -dx * rx, -dy * ry, -dz * rz - w[_BW, k]
-    fx, _, _ = _tf(p, CH_BODY_FX, t)
-    fy, _, _ = _tf(p, CH_BODY_FY, t)
-    fz, _, _ = _tf(p, CH_BODY_FZ, t)
-    fx -= dx * rx + p.tie_k[0] * (w[_P, k] - p.tie_rest[0]) + p.tie_c[0] * vx
-    fy -= dy * ry + p.tie_k[1] * (w[_P + 1, k] - p.tie_rest[1]) + p.tie_c[1] * vy
-    fz -= dz * rz + p.tie_k[2] * (w[_P + 2, k] - p.tie_rest[2]) + p.tie_c[2] * vz
-    return fx, fy, fz - w[_BW, k]

@@ -27,14 +27,10 @@ State ``y = [node variables (B per node), their rates]``; every node is free.
 import math
 from typing import NamedTuple
 
-import numpy as np
 from numba import njit
 
 from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
-
-SCALAR_NAMES = ("end_x", "end_z", "kinetic_energy", "gravity_potential_energy", "elastic_energy")
-N_SCALARS = len(SCALAR_NAMES)
 
 
 class NaturalParams(NamedTuple):
@@ -47,19 +43,6 @@ class NaturalParams(NamedTuple):
     slack_allowed: int
     gravity: float  # g [m/s^2], acting along -z
     cartesian: int  # 1: (eps, t_x, t_z); 0: (eps, phi)
-
-
-def block(p):
-    return 3 if p.cartesian == 1 else 2
-
-
-def state_size(n, cartesian):
-    return 2 * (3 if cartesian else 2) * (n + 1)
-
-
-def make_workspace(n):
-    """Rows: q_x, q_z, qdot_x, qdot_z, F_x, F_z, N, acc_x, acc_z (one column per node)."""
-    return np.zeros((9, n + 1))
 
 
 @njit(**JIT)
@@ -151,14 +134,6 @@ def rhs(t, y, p, w, ydot):
 
 
 @njit(**JIT)
-def project(y, p):
-    """Cartesian tangents: back to |t| = 1 and t . t' = 0 (no-op for the angle form)."""
-    if p.cartesian != 1:
-        return
-    project_tangents(y, p.n, 0, 3 * (p.n + 1))
-
-
-@njit(**JIT)
 def project_tangents(y, n, q, v):
     """The cartesian tangents of n + 1 nodes, (eps, t_x, t_z) from ``y[q]`` and their rates
     from ``y[v]``, back to |t| = 1 and t . t' = 0."""
@@ -215,10 +190,3 @@ def outputs(t, y, p, w, node_pos, strain, tension, scalars):
     scalars[2] = kinetic
     scalars[3] = gravity
     scalars[4] = elastic
-
-
-@njit(**JIT)
-def outputs_chunk(times, states, p, w, node_pos, strain, tension, scalars):
-    for j in range(times.shape[0]):
-        outputs(times[j], states[j], p, w, node_pos[j], strain[j], tension[j], scalars[j])
-    return OK

@@ -126,24 +126,3 @@ def segment_potential(wet_weight, buoyancy, za, zb, zc):
     if wet < 1.0:
         return wet_weight * zc + buoyancy * (zc - mean_depth)
     return wet_weight * zc
-
-
-@njit(inline="always", **JIT)
-def point_potential(z, wet_weight, buoyancy, row):
-    """Gravity and buoyancy potential [J] of a body at elevation z [m] whose apparent weight
-    when wholly submerged is ``wet_weight`` [N] and buoyancy ``buoyancy`` = rho g V [N]:
-    m g z - rho g V I(z), exactly ``wet_weight * z`` for a point volume."""
-    if row[0] == POINT:
-        return wet_weight * z
-    _, _, integral = submersion(z, row)
-    return wet_weight * z + buoyancy * (z - integral)
-
-
-def fraction_at(z: float, row: np.ndarray) -> float:
-    """f(z) from Python (statics, checks)."""
-    return submersion(float(z), np.ascontiguousarray(row, dtype=float))[0]
-
-
-def waterplane_area(z: float, row: np.ndarray, volume: float) -> float:
-    """A_wp [m^2] = -V df/dz at elevation z [m] (zero for a point volume)."""
-    return -volume * submersion(float(z), np.ascontiguousarray(row, dtype=float))[1]

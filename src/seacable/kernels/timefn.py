@@ -58,12 +58,6 @@ def evaluate(breaks, coefs, count, sine, build_up, channel, t):
     return start + r * g, dr * g + r * df, ddr * g + 2.0 * dr * df + r * ddf
 
 
-@njit(inline="always", **JIT)
-def of_params(p, channel, t):
-    """``evaluate`` on the ``tf_*`` arrays of a kernel's parameters ``p``."""
-    return evaluate(p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up, channel, t)
-
-
 @njit(**JIT)
 def _unramped(breaks, coefs, count, sine, channel, t):
     """The time function itself: piecewise cubic plus sine."""

@@ -1,8 +1,8 @@
-"""Compiled explicit time integrators (rk4, dopri5) for every model.
+"""Compiled explicit time integrators (rk4, dopri5) of a system of bodies and lines.
 
 Contract shared by every integrator here (a new one must follow it):
 
-0. It calls the model only through ``numerics.dispatch`` (``model_rhs``, ``model_project``),
+0. It calls the system only through ``system.kernel`` (``rhs``, ``project``, ``projects``),
    and projects the state after every accepted step.
 1. It advances the flat state ``y`` in place over a *chunk* of ``n_outputs`` output intervals of
    length ``output_interval``, starting at the global output index ``first_output``, and writes
@@ -33,7 +33,7 @@ from numba import njit
 
 from seacable.kernels.status import NON_FINITE, OK
 from seacable.kernels.timefn import JIT
-from seacable.numerics.dispatch import model_project, model_projects, model_rhs
+from seacable.system import kernel
 
 WORK_NAMES = (
     "accepted_steps",
@@ -93,7 +93,7 @@ def rk4_chunk(
                     h = _RK4_NODES[s] * dt
                     for i in range(ny):
                         stage[i] = y[i] + h * k[s - 1, i]
-                status |= model_rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
+                status |= kernel.rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
             work[2] += 4
             for i in range(ny):
                 acc[i] = y[i] + dt * (
@@ -105,7 +105,7 @@ def rk4_chunk(
             if status != OK or not _all_finite(acc):
                 work[3] += 1
                 return j, (status if status != OK else NON_FINITE)
-            model_project(acc, p)
+            kernel.project(acc, p)
             y[:] = acc
             work[0] += 1
             step += 1
@@ -143,7 +143,7 @@ def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
             ytmp[i] = y[i] + h * acc
         if s == 6:
             ynew[:] = ytmp
-        status |= model_rhs(t + _C[s] * h, ytmp, p, w, k[s])
+        status |= kernel.rhs(t + _C[s] * h, ytmp, p, w, k[s])
     return status
 
 
@@ -184,7 +184,7 @@ def dopri5_chunk(
     ynew = np.empty(ny)
     t = first_output * output_interval
     if n_outputs > 0 and fsal[0] == 0:
-        status = model_rhs(t, y, p, w, k[0])
+        status = kernel.rhs(t, y, p, w, k[0])
         work[2] += 1
         if status != OK:
             work[3] += 1
@@ -211,13 +211,13 @@ def dopri5_chunk(
                 continue
             if err <= 1.0:
                 t = t_target if last else t + h_try
-                model_project(ynew, p)
+                kernel.project(ynew, p)
                 y[:] = ynew
                 for i in range(magnitude.shape[0]):
                     magnitude[i] = max(magnitude[i], abs(y[i]))
-                if model_projects(p):
+                if kernel.projects(p):
                     work[2] += 1
-                    if model_rhs(t, y, p, w, k[0]) != OK:
+                    if kernel.rhs(t, y, p, w, k[0]) != OK:
                         work[3] += 1
                         fsal[0] = 0
                         return j, NON_FINITE, h
@@ -244,4 +244,4 @@ def dopri5_chunk(
 @njit(**JIT)
 def evaluate_rhs(t, y, p, w, ydot):
     """The model's right-hand side, callable from Python (for SciPy and SUNDIALS)."""
-    return model_rhs(t, y, p, w, ydot)
+    return kernel.rhs(t, y, p, w, ydot)

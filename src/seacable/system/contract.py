@@ -23,17 +23,15 @@ class RunModel(Protocol):
        what sets it, ``state_scale(case, system)``: each state's typical size (the adaptive
        integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
        schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
-    6. ``NEWTON``: True when the fixed-step implicit schemes serve it
-       (``numerics.system_implicit``: systems of bodies and lines only).
-    Optional: ``VARIABLES`` (a single-cable model's records) or ``variables(system)`` (a
-    system's, per group); ``positions``, ``node_block``/``node_graph`` or
-    ``jacobian_sparsity`` (stiff integrators' Jacobian structure), ``check_implicit``,
-    ``refresh_interval``/``refresh`` (parameters replaced during a run: the servo).
+    6. ``variables(system)``: what it records, per group; ``jacobian_sparsity(system)``: the
+       Jacobian's pattern (SciPy's stiff integrators); ``check_implicit(case)``: what the
+       fixed-step implicit schemes (``numerics.system_implicit``) cannot run, refused.
+    Optional: ``positions``, ``refresh_interval``/``refresh`` (parameters replaced during a run:
+    the servo).
     """
 
     RATE_WHAT: tuple
     DAMPING_ADVICE: str
-    NEWTON: bool
 
     def build(self, case, base_dir=None) -> Any: ...
     def workspace(self, system) -> Any: ...
@@ -44,3 +42,6 @@ class RunModel(Protocol):
     def fastest_frequency(self, system) -> tuple[float, str]: ...
     def state_scale(self, case, system) -> np.ndarray: ...
     def shortest_segment(self, system) -> float: ...
+    def variables(self, system) -> dict: ...
+    def jacobian_sparsity(self, system) -> Any: ...
+    def check_implicit(self, case) -> None: ...

@@ -17,7 +17,6 @@ from seacable.system.assemble import build as _assemble
 from seacable.system.initial import initial_state
 
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
-NEWTON = True  # the implicit schemes serve systems (numerics.system_implicit)
 DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
 JOINT_ADVICE = "add joint damping (lines[k].joint_damping [N m s/rad])"
 AXES = "xyz"

@@ -1,5 +1,5 @@
-"""Pictures of results: snapshots, time series, range graphs and animations, for one cable
-(``viz.cable``) and for a system of bodies and lines (``viz.system``).
+"""Pictures of results of a system of bodies and lines (``viz.system``): snapshots, time series,
+range graphs and animations.
 
 matplotlib is imported lazily with the non-interactive Agg backend, so importing seacable
 configures nothing.
@@ -9,23 +9,17 @@ from pathlib import Path
 
 import xarray as xr
 
-from seacable.viz import cable, system
+from seacable.viz import system
 
 
-def plot_results(ds: xr.Dataset | xr.DataTree, path, every: float | None = None) -> Path:
-    """The picture of a run's results (see ``viz.cable.plot_results`` and
-    ``viz.system.plot_system``)."""
-    if isinstance(ds, xr.DataTree):
-        return system.plot_system(ds, path, every=every)
-    return cable.plot_results(ds, path, every=every)
+def plot_results(tree: xr.DataTree, path, every: float | None = None) -> Path:
+    """The picture of a run's results (``viz.system.plot_system``)."""
+    return system.plot_system(tree, path, every=every)
 
 
-def animate_results(ds: xr.Dataset | xr.DataTree, path, **options) -> Path:
-    """An animation of a run's results (GIF, or MP4 with ffmpeg); the options of
-    ``viz.cable.animate_results``."""
-    if isinstance(ds, xr.DataTree):
-        return system.animate_system(ds, path, **options)
-    return cable.animate_results(ds, path, **options)
+def animate_results(tree: xr.DataTree, path, **options) -> Path:
+    """An animation of a run's results (GIF; the options of ``viz.system.animate_system``)."""
+    return system.animate_system(tree, path, **options)
 
 
 __all__ = ["animate_results", "plot_results"]

@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from seacable.viz.cable import (
+from seacable.viz.common import (
     _finish,
     _frame_indices,
     _gif_stream,
@@ -214,8 +214,9 @@ def animate_system(
     max_frames: int = 600,
     progress: bool = True,
 ) -> Path:
-    """Animate a system in plan and elevation (the options of ``viz.cable.animate_results``),
-    one frame at a time."""
+    """Animate a system in plan and elevation to a GIF, one frame at a time: ``fps`` frames per
+    second showing ``speed`` s of results each second (or one frame every ``every`` s of
+    results), at most ``max_frames``; ``progress``: a progress bar."""
     plt = _pyplot()
     path = Path(path)
     if path.suffix.lower() != ".gif":
