@@ -295,7 +295,12 @@ def compare_to_golden(
 
 
 def load_golden(stem: str) -> xr.Dataset:
-    raw = gzip.decompress(golden_path(stem).read_bytes())
+    return read_gzipped(golden_path(stem))
+
+
+def read_gzipped(path: Path) -> xr.Dataset:
+    """A golden file (gzipped NetCDF 3) read whole into memory."""
+    raw = gzip.decompress(path.read_bytes())
     with xr.open_dataset(io.BytesIO(raw), engine="scipy") as dataset:
         return dataset.load()
 
@@ -305,10 +310,11 @@ def golden_changes(golden: xr.Dataset) -> dict:
     return json.loads(golden.attrs["golden_changes"])
 
 
-def main(stems: list[str]) -> None:
+def main(stems: list[str], what: str = "goldens") -> None:
+    """Recording needs the retired single-cable core: say where it is, and exit."""
     del stems
     sys.exit(
-        "the goldens were recorded by the single-cable core, retired after commit 4911bc8: "
+        f"the {what} were recorded by the single-cable core, retired after commit 4911bc8: "
         "check that commit out (git worktree add /tmp/old 4911bc8) and run this script there"
     )
 

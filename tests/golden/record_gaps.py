@@ -10,8 +10,6 @@ them, check that commit out and run there, from the repository root::
     PYTHONPATH=src python tests/golden/record_gaps.py [case stems...]
 """
 
-import gzip
-import io
 import sys
 from pathlib import Path
 
@@ -22,8 +20,9 @@ import seacable
 from seacable.case import legacy, loader
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from golden.record import main as retired  # noqa: E402
+from golden.record import read_gzipped, system_rows  # noqa: E402
 from golden.record import star_rows as rigid_star_rows  # noqa: E402
-from golden.record import system_rows  # noqa: E402
 
 CASES = Path(__file__).resolve().parent.parent / "legacy_cases" / "gaps"
 GOLDEN = Path(__file__).resolve().parent / "gaps"
@@ -74,17 +73,11 @@ def path(stem: str) -> Path:
 
 
 def load(stem: str) -> xr.Dataset:
-    raw = gzip.decompress(path(stem).read_bytes())
-    with xr.open_dataset(io.BytesIO(raw), engine="scipy") as dataset:
-        return dataset.load()
+    return read_gzipped(path(stem))
 
 
 def main(names: list[str]) -> None:
-    del names
-    sys.exit(
-        "the gap goldens were recorded by the single-cable core, retired after commit 4911bc8: "
-        "check that commit out (git worktree add /tmp/old 4911bc8) and run this script there"
-    )
+    retired(names, what="gap goldens")
 
 
 if __name__ == "__main__":
