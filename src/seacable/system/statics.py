@@ -87,14 +87,63 @@ def _no_strings(built: BuiltSystem) -> None:
         )
 
 
-def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int = 200,
-          time: float = 0.0):  # fmt: skip
+def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, time: float = 0.0,
+          iterations: int = 30):  # fmt: skip
+    """A first shape of the rigid lines of free trees, from which Newton converges to the
+    balance with every segment pulled, not to one of the balances with segments folded back
+    and pushed.
+
+    For given loads on the bodies the trees carry at their tips, ``_march`` hangs the lines
+    along them. Those loads depend on where the lines put the bodies (a tie, a stiffness, the
+    free surface): marching with the loads of each new shape is a fixed point whose gain is
+    the load's stiffness times the line's length over its tension (500 N/m x 100 m / 700 N,
+    about 70, for an end body tied sideways) and runs away. Instead the tip loads F are the
+    unknowns (3 per carried body): Newton on G(F) = own loads at the shape hung on F - F,
+    with a finite-difference Jacobian (each column a march), each step halved until |G|
+    drops. Loads that do not depend on the position give G = 0 at the first march."""
+    tips = np.unique(np.asarray(p.rs_tip)[free & (np.asarray(p.rs_tip) >= 0)])
+    w = kernel.make_work(p)
+    ydot = np.zeros_like(y)
+
+    def gap(state, loads):
+        kernel.rhs(time, state, p, w, ydot)
+        return w.own_load[tips].ravel() - loads
+
+    kernel.rhs(time, y, p, w, ydot)
+    loads = w.own_load[tips].ravel().copy()
+    shaped = _march(p, w, y, free, tips, loads, time)
+    g = gap(shaped, loads)
+    weights = [float(np.abs(p.rs_wet_weight[p.rs_seg[li] : p.rs_seg[li] + p.rs_n[li]]).sum())
+               for li in np.flatnonzero(free)]  # fmt: skip
+    scale = float(np.abs(loads).max(initial=0.0)) + sum(weights) + 1.0
+    for _ in range(iterations):
+        if not g.size or np.abs(g).max() < 1e-10 * scale:
+            break
+        h = 1e-6 * scale
+        jac = np.empty((g.size, g.size))
+        for j in range(g.size):
+            pushed = loads.copy()
+            pushed[j] += h
+            jac[:, j] = (gap(_march(p, w, shaped, free, tips, pushed, time), pushed) - g) / h
+        step = np.linalg.lstsq(jac, -g, rcond=None)[0]
+        for fraction in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125):
+            trial = loads + fraction * step
+            hung = _march(p, w, shaped, free, tips, trial, time)
+            gt = gap(hung, trial)
+            if np.linalg.norm(gt) < np.linalg.norm(g):
+                break
+        else:
+            break
+        loads, shaped, g = trial, hung, gt
+    return shaped
+
+
+def _march(p, w, y, free, tips, loads, time, sweeps: int = 400, tolerance: float = 1e-12):
     """The rigid lines of free trees turned, again and again, along the pull each segment
     carries (system.rigid.moments' march: the statics of a hanging or towed line as a fixed
-    point, tension positive), half a step at a time, until they stop turning: a first shape
-    from which Newton converges to the balance with every segment pulled, not to one of the
-    balances with segments folded back and pushed."""
-    w = kernel.make_work(p)
+    point, tension positive), half a step at a time, until they stop turning, the bodies
+    ``tips`` carried at their tips loaded by ``loads`` (3 each, N, earth frame) whatever
+    their place."""
     ydot = np.zeros_like(y)
     planar = np.asarray(p.rs_kind) == rigid.PLANAR
     width = np.where(planar, 1, 3)
@@ -106,6 +155,7 @@ def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int =
     y = y.copy()
     for _ in range(sweeps):
         kernel.rhs(time, y, p, w, ydot)
+        w.own_load[tips] = loads.reshape(-1, 3)
         rigid.moments(p, w, free, turned, True)
         old = y[index]
         new = old.copy()
@@ -118,7 +168,7 @@ def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, sweeps: int =
                 half = 0.5 * (old[mine] + turned[mine]).reshape(-1, 3)
                 new[mine] = (half / np.linalg.norm(half, axis=1)[:, None]).ravel()
         y[index] = new
-        if np.abs(new - old).max() < 1e-9:
+        if np.abs(new - old).max() < tolerance:
             break
     return y
 
