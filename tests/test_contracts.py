@@ -12,6 +12,7 @@ import seacable
 from seacable.bodies.contract import BodyDynamics, BodyKinematics
 from seacable.case import system as sch
 from seacable.forces import kinds, table
+from seacable.forces.contract import ForceTable, StatefulForceModel
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.lines import lumped_mass, natural_string, rigid_links, rigid_segments
@@ -428,3 +429,104 @@ def test_bodies_at_rigid_line_tips_are_carried_at_their_last_nodes():
         np.testing.assert_allclose(w.vel[tip], speed, rtol=0, atol=1e-12 * np.abs(speed).max())
         tips += 1
     assert tips == 2
+
+
+def _lone_box(forces: list[dict], **more) -> dict:
+    """A turned rigid box under water with only ``forces`` on it (its one line, a tie to an
+    anchor, is slack)."""
+    box = {"name": "box", "type": "rigid", "position": [1.0, -2.0, -8.0], "mass": 40.0,
+           "inertia": [3.0, 4.0, 5.0], "centre_of_gravity": [0.2, -0.1, -0.3], "volume": 0.05,
+           "centre_of_buoyancy": [-0.1, 0.3, 0.4], "orientation_deg": [20.0, -35.0, 60.0],
+           "external forces": forces} | more  # fmt: skip
+    anchor = {"name": "anchor", "type": "fixed", "position": [0.0, 0.0, -8.0]}
+    slack = {"name": "slack", "model": "tie", "from": "anchor", "to": "box",
+             "unstretched_length": 100.0, "stiffness": 1e3}  # fmt: skip
+    return {"name": "box", "start": "as_given", "bodies": [box, anchor], "lines": [slack],
+            "simulation": {"duration": 0.1, "output_interval": 0.1}}  # fmt: skip
+
+
+STIFFNESS = [[9e3, 1e3, 0.0, 0.0, 2e2, 0.0], [1e3, 8e3, 0.0, 0.0, 0.0, 0.0],
+             [0.0, 0.0, 3e4, 5e2, 0.0, 0.0], [0.0, 0.0, 5e2, 4e4, 0.0, 0.0],
+             [2e2, 0.0, 0.0, 0.0, 5e4, 1e3], [0.0, 0.0, 0.0, 0.0, 1e3, 6e4]]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("force", "turns"),
+    [({"model": "gravity"}, True), ({"model": "buoyancy"}, True),
+     ({"model": "linear_stiffness", "matrix": STIFFNESS, "equilibrium_position": [0, 0, -7],
+       "equilibrium_orientation_deg": [0.0, 10.0, 0.0]}, False)],
+)  # fmt: skip
+def test_conservative_force_models_derive_from_their_potential(force, turns):
+    """ForceTable rules 2 and 3: along random small motions of a turned box (translations, and
+    rotations about earth axes where the rule is exact), the virtual work F . dx + M . dtheta
+    of the model's force and moment about the reference point is minus the change of the
+    potential ``system.energy`` reports (central differences, 1e-7 of the force's scale)."""
+    from seacable.forces import table
+    from seacable.system import energy, kernel
+    from seacable.system.coordinates import rotate
+
+    assert isinstance(table, ForceTable)
+    built = system_model.build(seacable.load_case(_lone_box([force])))
+    p, y = built.params, built.y0.copy()
+    w = kernel.make_work(p)
+
+    def potential(state):
+        kernel.rhs(0.0, state, p, w, np.zeros_like(state))
+        _, gravity, elastic = energy.energies(state, p, w)
+        return gravity + elastic
+
+    potential(y)
+    load = w.load[0].copy()
+    rng = np.random.default_rng(9)
+    h = 1e-5
+    for _ in range(4):
+        dx, dtheta = rng.normal(size=3), rng.normal(size=3) if turns else np.zeros(3)
+        moved = []
+        for sign in (1.0, -1.0):
+            state = y.copy()
+            state[0:3] += sign * h * dx
+            state[3:7] = rotate(y[3:7], sign * h * dtheta)
+            moved.append(potential(state))
+        work = load[:3] @ dx + load[3:] @ dtheta
+        assert abs(work + (moved[0] - moved[1]) / (2.0 * h)) < 1e-7 * np.abs(load).max()
+    assert np.abs(load).max() > 100.0
+
+
+@pytest.mark.parametrize(
+    "force",
+    [{"model": "drag", "drag_coefficient": 1.1, "area": [0.5, 1.5, 2.5]},
+     {"model": "linear_damping", "matrix": [[v * 10.0 for v in row] for row in STIFFNESS]}],
+)  # fmt: skip
+def test_dissipative_force_models_never_do_positive_work(force):
+    """ForceTable rule 4: for random twists of a turned box (no current), the power of the
+    model's force and moment, F . v + M . omega, is negative."""
+    from seacable.system import kernel
+
+    built = system_model.build(seacable.load_case(_lone_box([force])))
+    p, y = built.params, built.y0.copy()
+    w = kernel.make_work(p)
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        y[p.n_q : p.n_q + 6] = rng.normal(size=6)
+        kernel.rhs(0.0, y, p, w, np.zeros_like(y))
+        assert w.load[0] @ y[p.n_q : p.n_q + 6] < 0.0
+
+
+def test_the_servo_state_rests_at_its_equilibrium():
+    """StatefulForceModel rule 3: the servo's force rates vanish with its body on its target
+    and moving with it, and are K (a dE / dt - b dE') off it (a random K)."""
+    from seacable.forces import servo
+
+    assert isinstance(servo, StatefulForceModel)
+    rng = np.random.default_rng(8)
+    row = np.array(servo.pack(gain=0.7, rate_gain=0.4, step=0.5, target=1), dtype=float)
+    stiffness = rng.normal(size=(3, 3)) * 1e3
+    row[:9] = stiffness.ravel()
+    points, speeds = rng.normal(size=(2, 3)), rng.normal(size=(2, 3))
+    ydot = np.ones(5)
+    servo.rates(row, points[1].copy(), speeds[1].copy(), points, speeds, 2, ydot)
+    assert not ydot[2:].any()
+    pos, vel = points[1] - [0.1, 0.0, 0.2], speeds[1] + [0.0, 0.3, 0.0]
+    servo.rates(row, pos, vel, points, speeds, 2, ydot)
+    expected = stiffness @ (0.7 * (points[1] - pos) / 0.5 - 0.4 * (speeds[1] - vel))
+    np.testing.assert_allclose(ydot[2:], expected, rtol=1e-12)

@@ -1,17 +1,8 @@
 """The force models a body's ``external forces`` list may hold, and how each is stored.
 
-Contract of a force model (every module of this package follows it):
-
-1. Its schema class (``case.system``) validates its inputs; its ``pack(spec, ...)`` turns them
-   into one row of floats (``data``) and, for time functions, channels; nothing of it depends on
-   how many bodies or forces a case has (flat arrays with offsets: compiled types stay the same).
-2. Its compiled ``add(...)`` adds a force and a moment about the body's reference point, both in
-   the earth frame, to the body's 6-vector; it reads only its row, the body's pose and twist,
-   the time and the environment, and never allocates.
-3. It is tested alone against a closed form (tests/test_system_forces.py).
-4. A model with internal states (the servo's force; radiation memory next) declares how many
-   in ``STATES``; they follow the velocities in the state vector (``SystemParams.force_state``:
-   the first, -1 for none), first-order, with their rates from its compiled ``rates(...)``.
+The contract every force model follows is ``forces.contract`` (``ForceTable``,
+``StatefulForceModel``): a row of floats per model, a force and moment about the body's
+reference point in the earth frame, its potential or its dissipation, its states.
 """
 
 from enum import IntEnum
