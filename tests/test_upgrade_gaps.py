@@ -107,20 +107,31 @@ def _star_with(**joints):
 
 
 @pytest.mark.parametrize(
-    ("joints", "message"),
-    [
-        ({"joint_damping": 2.0}, r"cables\[0\]\.joint_stiffness: the joint at the top has a "
-         r"spring or a damper; in a star .* give joint 0 no stiffness and no damping"),
-        ({"bending_stiffness": 50.0}, r"cables\[0\]\.joint_stiffness: the joint at the top"),
-    ],
+    ("joints", "spring", "damper"),
+    [({"joint_damping": 2.0}, 0.0, 2.0), ({"bending_stiffness": 50.0}, 50.0 / 2.5, 0.0)],
 )  # fmt: skip
-def test_a_star_joint_at_the_top_is_refused(joints, message):
-    """A star's cable runs from the shared body and ends held on its top, where a line has no
-    joint: a spring or damper there (one damping for every joint, or EI) has no system form
-    (it was once written with the damper moved to the body's end, a different motion)."""
+def test_a_star_joint_at_the_top_is_the_lines_tip_joint(joints, spring, damper):
+    """A star's cable runs from the shared body and ends held on its top: the single cable's
+    joint 0 (one damping for every joint, or EI over the first link) becomes the line's tip
+    joint, unloaded along the top's reference direction turned back up the line (it was once
+    written with the damper moved to the body's end, a different motion, then refused)."""
     data = {"joint_stiffness": None, "joint_damping": 0.0, **joints}
-    with pytest.raises(seacable.CaseError, match=message):
-        legacy.upgrade(_star_with(**data))
+    single = _star_with(**data)
+    lines = legacy.upgrade(single)["lines"]
+    tops = [line for line in lines if line["to"].endswith("top")]
+    assert len(tops) == 3
+    for line, cable in zip(tops, single.cables, strict=True):
+        assert line["tip_joint_stiffness"] == spring
+        assert line["tip_joint_damping"] == damper
+        azimuth = np.radians(cable.initial.azimuth_deg)
+        reference = np.radians(cable.top_reference_angle_deg)
+        up = [-np.sin(reference) * np.cos(azimuth), -np.sin(reference) * np.sin(azimuth),
+              np.cos(reference)]  # fmt: skip
+        np.testing.assert_allclose(line["tip_reference"], up, atol=1e-15)
+    case = seacable.load_case(legacy.upgrade(single))
+    seacable.simulate(
+        loader.derive_case(case, {"simulation": {"duration": 0.05, "output_interval": 0.05}})
+    )
 
 
 def test_a_spring_at_a_body_along_the_cable_is_refused():

@@ -22,12 +22,13 @@ link masses and one spring or damper per joint become sections (``legacy_section
 along the cable (``point_bodies``) cut it into lines, each body carried between two (the joint
 at such a body must have no spring and no damper: the lines meet there with no joint); a
 static start becomes ``start: static`` (a line held on an anchor or a trajectory starting
-on its catenary). Cables on a shared body (a star) become lines from that
-body back to each top. A lumped-mass cable and Poth's natural string have their line models;
-a lumped-mass cable started on its catenary to a trajectory (exact or servo), or with bodies
-along it, starts from the system's statics (``start: static``: in a tow, its steady motion);
-a star's lumped-mass cables become lines from each top to the shared body. What has no
-system form yet is refused, naming what is missing.
+on its catenary). Cables on a shared body (a star) become lines from that body back to
+each top, the joint at a top the line's tip joint (``tip_joint_stiffness``). A lumped-mass
+cable and Poth's natural string have their line models; a lumped-mass cable started on its
+catenary to a trajectory (exact or servo), or with bodies along it, starts from the system's
+statics (``start: static``: in a tow, its steady motion); a star's lumped-mass cables become
+lines from each top to the shared body. What has no system form yet is refused, naming what
+is missing.
 """
 
 import math
@@ -156,11 +157,16 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
             "initial": "catenary" if static and (held or anchored) else _initial(
                 cable, static, a, (first, last), reverse=shared is not None),
         }  # fmt: skip
+        reference = math.radians(cable.top_reference_angle_deg)
+        down = [math.sin(reference) * math.cos(azimuth), math.sin(reference) * math.sin(azimuth),
+                -math.cos(reference)]  # fmt: skip
         if k == 0 and shared is None:
-            reference = math.radians(cable.top_reference_angle_deg)
-            line["base_reference"] = [math.sin(reference) * math.cos(azimuth),
-                                      math.sin(reference) * math.sin(azimuth),
-                                      -math.cos(reference)]  # fmt: skip
+            line["base_reference"] = down
+        if shared is not None and first == 0 and (plan.springs[0] or plan.dampers[0]):
+            # a star's top joint: the line's last segment, run up to the top, against the top
+            line.update(tip_joint_stiffness=float(plan.springs[0]),
+                        tip_joint_damping=float(plan.dampers[0]),
+                        tip_reference=[-v for v in down])  # fmt: skip
         damping = plan.line_damping(first)
         if damping:
             line["joint_damping"] = damping

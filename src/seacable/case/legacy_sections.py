@@ -69,18 +69,11 @@ class Plan:
         """``base``: the line type's fields but its name, mass per length and EI; ``cuts``: the
         links' indices where the lines start and end (0, the bodies' nodes along the cable,
         the number of links); ``reverse``: the lines run from the cable's end to its top (a
-        star's), where the line ends held with no joint (its joint 0 must have none) and each
-        joint sits at the start of the segment below it."""
+        star's), where the line ends held on the top (its joint 0 is the line's tip joint) and
+        each joint sits at the start of the segment below it."""
         self.cable, self.where, self.reverse = cable, where, reverse
         self.lengths = cable.lengths()
         self.springs, self.dampers = joints(cable, self.lengths)
-        if reverse and (self.springs[0] or self.dampers[0]):
-            raise CaseError(
-                f"{where}.joint_stiffness: the joint at the top has a spring or a damper; in a "
-                "star the cable runs from the shared body and ends held on its top, with no "
-                "joint there: give joint 0 no stiffness and no damping (joint_stiffness and "
-                "joint_damping as one value per joint)"
-            )
         for node in cuts[1:-1]:
             if self.springs[node] or self.dampers[node]:
                 raise CaseError(

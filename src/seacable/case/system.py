@@ -388,6 +388,12 @@ class RigidLine(_Model):
     # direction the first joint's spring is unloaded at, in the frame of ``from``'s body
     # (unit vector); by default the first segment's initial direction
     base_reference: Vector | None = None
+    # a joint at an end held on ``to`` (a star's top joint), between the last segment and the
+    # body ``to`` is a point of: spring [N m/rad] and damper [N m s/rad], unloaded along
+    # ``tip_reference`` (in that body's frame; by default the last segment's initial direction)
+    tip_joint_stiffness: NonNeg = 0.0
+    tip_joint_damping: NonNeg = 0.0
+    tip_reference: Vector | None = None
 
 
 class NaturalStringLine(_Model):

@@ -451,6 +451,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     out: dict[str, list] = {k: [] for k in keys}
     held: list = []
     ref: list = []
+    tip_joints: list = []
     segs: dict[str, list] = {k: [] for k in (
         "length", "mass", "added", "inertia", "wet_weight", "buoyancy", "drag_normal",
         "drag_tangential", "joint_stiffness", "joint_damping")}  # fmt: skip
@@ -484,6 +485,9 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         )
         if line.base_reference is not None and not np.linalg.norm(line.base_reference) > 0:
             raise CaseError(f"{where}.base_reference: a direction needs a non-zero length")
+        joint = _tip_joint(line, where, tip, r)
+        if joint is not None:
+            tip_joints.append(joint)
         mass, added = props["mass"], props["added_mass"]
         if planar and np.any(added > 0):
             raise CaseError(
@@ -516,7 +520,30 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     fields["rs_order"] = np.array(order, dtype=np.int64)
     fields["rs_held"] = np.array(held, dtype=float).reshape(-1, 3)
     fields["rs_ref"] = np.array(ref, dtype=float).reshape(-1, 3)
+    fields["rs_tip_joint"] = np.array(tip_joints, dtype=float).reshape(-1, 6)
     for key, parts in segs.items():
         fields[f"rs_{key}"] = np.concatenate(parts) if parts else np.zeros(1)
     fields.update(directors=directors, rates=directors)
     return fields
+
+
+def _tip_joint(line, where: str, tip: int, index: int) -> list[float] | None:
+    """The row of ``rs_tip_joint`` of rigid line ``index`` (None without a joint at its held
+    end): refused on a line whose end carries a body, which has no joint there."""
+    given = line.tip_joint_stiffness or line.tip_joint_damping or line.tip_reference is not None
+    if not given:
+        return None
+    if tip >= 0:
+        field = "tip_joint_stiffness" if line.tip_joint_stiffness else (
+            "tip_joint_damping" if line.tip_joint_damping else "tip_reference")  # fmt: skip
+        raise CaseError(
+            f"{where}.{field}: a joint at the end needs the end held on a point of a fixed or "
+            f"imposed body, but '{line.to}' is a point body the line carries (it moves with "
+            "the last node, with no joint there): leave the tip joint out, or hold the end"
+        )
+    reference = line.tip_reference
+    if reference is not None and not np.linalg.norm(reference) > 0:
+        raise CaseError(f"{where}.tip_reference: a direction needs a non-zero length")
+    unit = (np.full(3, np.nan) if reference is None
+            else np.asarray(reference, float) / np.linalg.norm(reference))  # fmt: skip
+    return [float(index), *unit, line.tip_joint_stiffness, line.tip_joint_damping]

@@ -20,7 +20,7 @@ from seacable.kernels.lumped_outputs import line_energies
 from seacable.kernels.planar_chain import link_energies
 from seacable.kernels.surface import POINT, submersion
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, natural_string
+from seacable.lines import lumped_mass, natural_string, tip_joint
 from seacable.system import rigid
 
 
@@ -142,4 +142,12 @@ def _rigid(y, p, w):
         kinetic += k
         gravity += g
         elastic += el
+    for j in range(p.rs_tip_joint.shape[0]):  # the joints at held ends
+        li = int(p.rs_tip_joint[j, 0])
+        b = p.point_body[p.rs_to[li]]
+        for c in range(3):
+            ref[c] = (w.rot[b, c, 0] * p.rs_tip_joint[j, 1] + w.rot[b, c, 1] * p.rs_tip_joint[j, 2]
+                      + w.rot[b, c, 2] * p.rs_tip_joint[j, 3])  # fmt: skip
+        elastic += tip_joint.energy(p.rs_kind[li] == 1, p.rs_n[li], y, p.rs_q[li], ref,
+                                    p.rs_tip_joint[j, 4])  # fmt: skip
     return kinetic, gravity, elastic

@@ -133,6 +133,7 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
     p, case = built.params, built.case
     rigid = [line for line in case.lines if isinstance(line, sch.RigidLine)]
     ref = p.rs_ref.copy()
+    tip_joints = p.rs_tip_joint.copy()
     y = y.copy()
     for li in p.rs_order[::-1]:
         line = rigid[li]
@@ -169,12 +170,14 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
         else:
             y[q : q + 3 * n] = e.ravel()
             y[p.rs_v[li] : p.rs_v[li] + 3 * n] = 0.0
+        w = kernel.make_work(p)
+        kernel.rhs(0.0, y, p, w, np.zeros_like(y))
         if np.isnan(ref[li]).any():
-            base = int(p.point_body[p.rs_from[li]])
-            w = kernel.make_work(p)
-            kernel.rhs(0.0, y, p, w, np.zeros_like(y))
-            ref[li] = w.rot[base].T @ e[0]
-    return y, p._replace(rs_ref=ref)
+            ref[li] = w.rot[int(p.point_body[p.rs_from[li]])].T @ e[0]
+        for joint in tip_joints:  # the held end's joint: along the last segment's start
+            if int(joint[0]) == li and np.isnan(joint[1:4]).any():
+                joint[1:4] = w.rot[int(p.point_body[p.rs_to[li]])].T @ e[-1]
+    return y, p._replace(rs_ref=ref, rs_tip_joint=tip_joints)
 
 
 def _shaped(line, p, li, start, end, total, distance) -> np.ndarray:

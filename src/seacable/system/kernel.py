@@ -27,7 +27,7 @@ from seacable.kernels import lumped as lk
 from seacable.kernels import natural, surface
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.kernels.timefn import JIT
-from seacable.lines import lumped_mass, natural_string, tie
+from seacable.lines import lumped_mass, natural_string, tie, tip_joint
 from seacable.system import rigid
 
 DYNAMIC = kinematics.DYNAMIC
@@ -109,6 +109,9 @@ class SystemParams(NamedTuple):
     rs_kind: np.ndarray  # (nr,) int: 0 rigid segments in 3D (directors), 1 planar links (angles)
     rs_held: np.ndarray  # (nr, 3) 1.0 on the axes the tip is held on
     rs_ref: np.ndarray  # (nr, 3) first joint's unloaded direction, base body frame
+    # (m, 6) per held end with a joint (lines.tip_joint): the line, its unloaded direction (3,
+    # the frame of the body ``to`` is a point of), k [N m/rad], c [N m s/rad]
+    rs_tip_joint: np.ndarray
     rs_length: np.ndarray  # [m]
     rs_mass: np.ndarray  # structural [kg]
     rs_added: np.ndarray  # normal added mass [kg]
@@ -234,6 +237,22 @@ def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, ro
 
 
 @njit(**JIT)
+def _tip_joints(y, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_to, joints, point_body, rot,
+                omega, work, ref):  # fmt: skip
+    """The joints at held ends (``rs_tip_joint``): each one's moment on its line's last
+    segment (lines.tip_joint), after the lines' loads and before their sweeps."""
+    for j in range(joints.shape[0]):
+        li = int(joints[j, 0])
+        b = point_body[rs_to[li]]
+        for c in range(3):
+            ref[c] = (rot[b, c, 0] * joints[j, 1] + rot[b, c, 1] * joints[j, 2]
+                      + rot[b, c, 2] * joints[j, 3])  # fmt: skip
+        n, _, ws = rigid._view(rs_n, rs_seg, rs_node, work, li)
+        tip_joint.add_torque(kind[li] == rigid.PLANAR, n, y, rs_q[li], rs_v[li], ref, omega[b],
+                             joints[j, 4], joints[j, 5], ws)  # fmt: skip
+
+
+@njit(**JIT)
 def rhs(t, y, p, w, ydot):
     """Fill the workspace and ``ydot``; returns a status (kernels.status codes). The parameter
     and work tuples are read here only: every call from here takes the arrays it needs, none
@@ -253,6 +272,10 @@ def rhs(t, y, p, w, ydot):
             p.rs_joint_damping, p.current_z, p.current_u, p.current_v, p.point_body,
             p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.rs,
             w.scratch[120:123],
+        )  # fmt: skip
+        _tip_joints(
+            y, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_to, p.rs_tip_joint,
+            p.point_body, w.rot, w.omega, w.rs, w.scratch[120:123],
         )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
         natural_string.carry(
