@@ -12,7 +12,7 @@ import yaml
 
 import seacable
 from golden import record_gaps
-from golden.record import compare_to_golden
+from golden.record import compare_to_golden, system_rows
 from seacable.case import legacy, loader
 
 # started from a static balance: the single-cable core's Newton stops at 1e-9 of its
@@ -134,12 +134,26 @@ def test_a_star_joint_at_the_top_is_the_lines_tip_joint(joints, spring, damper):
     )
 
 
-def test_a_spring_at_a_body_along_the_cable_is_refused():
+def test_a_spring_at_a_body_along_the_cable_joins_its_two_lines():
+    """A cable cut at a body along it, with a spring and damper at that joint: the line below
+    the body ``continues`` the one above, its first section holding the joint's values; with
+    the body massless, dragless and without volume, the two lines move as the cable upgraded
+    without the body, one line (nodes within 1e-9 m over 1 s)."""
     data = yaml.safe_load((record_gaps.CASES / "float_between_jointed_links.yaml").read_text())
-    data["cables"][0]["joint_stiffness"] = 40.0
-    with pytest.raises(seacable.CaseError, match=r"cables\[0\]\.point_bodies: the joint at node "
-                       r"3 has a spring or a damper"):  # fmt: skip
-        legacy.upgrade(loader.load_single_cable(data))
+    cable = data["cables"][0]
+    cable["joint_stiffness"][3], cable["joint_damping"][3] = 40.0, 0.7
+    lines = legacy.upgrade(loader.load_single_cable(data))["lines"]
+    assert lines[1]["continues"] == lines[0]["name"] and "continues" not in lines[0]
+    first = lines[1]["sections"][0]
+    assert (first["joint_stiffness"], first["joint_damping"]) == (40.0, 0.7)
+    cable["point_bodies"][0].update(mass=0.0, volume=0.0, drag_coefficient=0.0)
+    cut = seacable.load_case(legacy.upgrade(loader.load_single_cable(data)))
+    del cable["point_bodies"]
+    whole = seacable.load_case(legacy.upgrade(loader.load_single_cable(data)))
+    assert len(cut.lines) == 2 and len(whole.lines) == 1
+    a, b = (system_rows(seacable.simulate(case).dataset, case) for case in (cut, whole))
+    for c in "xyz":
+        np.testing.assert_allclose(a[f"node_{c}"], b[f"node_{c}"], rtol=0, atol=1e-9)
 
 
 @pytest.mark.parametrize("model", ["lumped_mass", "natural_string"])

@@ -19,8 +19,8 @@ and mappings), which ``seacable upgrade old.yaml`` prints. Ends map as:
 The line keeps the cable's model (``rigid_links`` or ``rigid_segments_3d``), its initial angles
 and its joints (a joint stiffness k as the bending stiffness k l of its links); unequal links,
 link masses and one spring or damper per joint become sections (``legacy_sections``); bodies
-along the cable (``point_bodies``) cut it into lines, each body carried between two (the joint
-at such a body must have no spring and no damper: the lines meet there with no joint); a
+along the cable (``point_bodies``) cut it into lines, each body carried between two (a spring
+or damper at such a body joins the two lines: the second ``continues`` the first); a
 static start becomes ``start: static`` (a line held on an anchor or a trajectory starting
 on its catenary). Cables on a shared body (a star) become lines from that body back to
 each top, the joint at a top the line's tip joint (``tip_joint_stiffness``). A lumped-mass
@@ -148,7 +148,7 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
     pieces = [(cuts[k], cuts[k + 1], names[k], names[k + 1]) for k in range(len(cuts) - 1)]
     if shared is not None:  # from the shared body back to the top
         pieces = [(first, last, b, a) for first, last, a, b in reversed(pieces)]
-    lines = []
+    lines: list[dict[str, Any]] = []
     for k, (first, last, start_at, end_at) in enumerate(pieces):
         line: dict[str, Any] = {
             "name": cable.name if len(pieces) == 1 else f"{cable.name} {k + 1}",
@@ -170,6 +170,9 @@ def _rigid(case: schema.Case, cable: schema.Cable, where: str, shared: str | Non
         damping = plan.line_damping(first)
         if damping:
             line["joint_damping"] = damping
+        node = last if shared is not None else first  # the body it starts on, along the cable
+        if k > 0 and (plan.springs[node] or plan.dampers[node]):
+            line["continues"] = lines[-1]["name"]  # the joint there joins the two lines
         lines.append(line)
     bodies = [top, *([bottom] if bottom is not None else []), *along]
     if isinstance(cable.bottom, schema.TrajectoryBottom) and not held:

@@ -17,7 +17,6 @@ from typing import Any
 import numpy as np
 
 from seacable.case import schema
-from seacable.errors import CaseError
 
 
 def mass_per_length(cable: schema.Cable, lengths: np.ndarray) -> np.ndarray:
@@ -74,14 +73,6 @@ class Plan:
         self.cable, self.where, self.reverse = cable, where, reverse
         self.lengths = cable.lengths()
         self.springs, self.dampers = joints(cable, self.lengths)
-        for node in cuts[1:-1]:
-            if self.springs[node] or self.dampers[node]:
-                raise CaseError(
-                    f"{where}.point_bodies: the joint at node {node} has a spring or a damper; "
-                    "a body along the cable has no system form for it (the lines meet at the "
-                    "body, with no joint between them): give that joint no stiffness and no "
-                    "damping (joint_stiffness and joint_damping as one value per joint)"
-                )
         mu = mass_per_length(cable, self.lengths)
         equal = len(set(self.lengths.tolist())) == 1
         # the type's EI gives the single cable's springs exactly: EI over the mean span, or a

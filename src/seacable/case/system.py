@@ -394,6 +394,9 @@ class RigidLine(_Model):
     tip_joint_stiffness: NonNeg = 0.0
     tip_joint_damping: NonNeg = 0.0
     tip_reference: Vector | None = None
+    # the rigid line this one continues through the point body between them (that line
+    # carries ``from``): the first joint joins that line's last segment, not ``base_reference``
+    continues: Name | None = None
 
 
 class NaturalStringLine(_Model):

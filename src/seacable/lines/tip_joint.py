@@ -1,10 +1,11 @@
-"""The joint at a rigid line's held end: a bending spring and damper between its last segment
-and the body it is held on (a star's top joint: cables from a shared body, each ended on its
-own top). As the line's other joints (kernels.chain3d_loads.joint_torques,
-kernels.planar_chain.link_loads): the moment k phi about the axis that turns the last segment
-towards its unloaded direction ``ref`` (earth frame; the reference turns with the body) plus
-c times the relative angular velocity, on the last segment; its reaction acts on the held
-body, whose motion is imposed. Energy k phi^2 / 2."""
+"""Joints at rigid lines' ends: a bending spring and damper between a line's last segment and
+either the body its end is held on (a star's top joint: cables from a shared body, each ended
+on its own top) or the first segment of the line that continues it through the point body
+between them (a cable cut at a body along it). As the line's own joints
+(kernels.chain3d_loads.joint_torques, kernels.planar_chain.link_loads): the moment k phi about
+the axis that turns the last segment towards the other direction, plus c times their relative
+angular velocity, on the last segment, and its opposite on the next line's first segment; a
+held body's reaction is not needed (its motion is imposed). Energy k phi^2 / 2."""
 
 import math
 
@@ -24,44 +25,86 @@ def planar_angle_gap(y, q, n, ref):
 
 
 @njit(inline="always", **JIT)
-def _bend(y, q, n, ref):
-    """The last segment's director (3D) e, e x ``ref`` and the angle phi [rad] between them."""
-    at = q + 3 * (n - 1)
+def _bend(ax, ay, az, bx, by, bz):
+    """a x b and the angle phi [rad] between the unit vectors a and b."""
+    cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+    phi = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz)
+    return cx, cy, cz, phi
+
+
+@njit(inline="always", **JIT)
+def _moment(ax, ay, az, bx, by, bz, wax, way, waz, wbx, wby, wbz, stiffness, damping, ws, i):
+    """Add the joint's moment on segment a (column i of its line's workspace ``ws``, rows _TQ)
+    and return it: k phi about a x b, c (w_b - w_a)."""
+    cx, cy, cz, phi = _bend(ax, ay, az, bx, by, bz)
+    sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
+    k = stiffness * (phi / sin_phi if sin_phi > 1e-12 else 1.0)
+    tx = k * cx + damping * (wbx - wax)
+    ty = k * cy + damping * (wby - way)
+    tz = k * cz + damping * (wbz - waz)
+    ws[c3._TQ, i] += tx
+    ws[c3._TQ + 1, i] += ty
+    ws[c3._TQ + 2, i] += tz
+    return tx, ty, tz
+
+
+@njit(inline="always", **JIT)
+def _director(y, q, v, i):
+    """Segment i's director and its angular velocity e x de/dt (3D)."""
+    at, rt = q + 3 * i, v + 3 * i
     ax, ay, az = y[at], y[at + 1], y[at + 2]
-    cx, cy, cz = ay * ref[2] - az * ref[1], az * ref[0] - ax * ref[2], ax * ref[1] - ay * ref[0]
-    phi = math.atan2(math.sqrt(cx * cx + cy * cy + cz * cz),
-                     ax * ref[0] + ay * ref[1] + az * ref[2])  # fmt: skip
-    return ax, ay, az, cx, cy, cz, phi
+    ux, uy, uz = y[rt], y[rt + 1], y[rt + 2]
+    return ax, ay, az, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux
 
 
 @njit(**JIT)
 def add_torque(planar, n, y, q, v, ref, omega, stiffness, damping, ws):
-    """Add the joint's moment on the last segment to the line's workspace ``ws`` (its joint
-    and buoyancy moments: chain3d_layout's _TQ rows in 3D, planar_chain's _Q row in the plane).
-    ``ref``: the unloaded direction (3, earth frame); ``omega``: the held body's angular
-    velocity (3, earth frame)."""
+    """Add a held end's joint moment on the last segment to the line's workspace ``ws`` (its
+    joint and buoyancy moments: chain3d_layout's _TQ rows in 3D, planar_chain's _Q row in the
+    plane). ``ref``: the unloaded direction (3, earth frame); ``omega``: the held body's
+    angular velocity (3, earth frame)."""
     if planar:
         gap = planar_angle_gap(y, q, n, ref)
         ws[pc._Q, n - 1] += stiffness * gap + damping * (-omega[1] - y[v + n - 1])
         return
-    ax, ay, az, cx, cy, cz, phi = _bend(y, q, n, ref)
-    at = v + 3 * (n - 1)
-    ux, uy, uz = y[at], y[at + 1], y[at + 2]
-    wax, way, waz = ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux
-    sin_phi = math.sqrt(cx * cx + cy * cy + cz * cz)
-    k = stiffness * (phi / sin_phi if sin_phi > 1e-12 else 1.0)
-    ws[c3._TQ, n - 1] += k * cx + damping * (omega[0] - wax)
-    ws[c3._TQ + 1, n - 1] += k * cy + damping * (omega[1] - way)
-    ws[c3._TQ + 2, n - 1] += k * cz + damping * (omega[2] - waz)
+    ax, ay, az, wax, way, waz = _director(y, q, v, n - 1)
+    _moment(ax, ay, az, ref[0], ref[1], ref[2], wax, way, waz, omega[0], omega[1], omega[2],
+            stiffness, damping, ws, n - 1)  # fmt: skip
 
 
 @njit(**JIT)
-def energy(planar, n, y, q, ref, stiffness):
-    """k phi^2 / 2 [J], phi the last segment's angle from ``ref``."""
+def add_between(planar, n, y, q, v, q_next, v_next, stiffness, damping, ws, ws_next):
+    """Add the joint between a line's last segment (n segments, directors or angles at ``q``,
+    rates at ``v``, workspace ``ws``) and the first segment of the line that continues it
+    (``q_next``, ``v_next``, ``ws_next``): the moment on the one, its opposite on the other."""
+    if planar:
+        torque = stiffness * (y[q_next] - y[q + n - 1]) + damping * (y[v_next] - y[v + n - 1])
+        ws[pc._Q, n - 1] += torque
+        ws_next[pc._Q, 0] -= torque
+        return
+    ax, ay, az, wax, way, waz = _director(y, q, v, n - 1)
+    bx, by, bz, wbx, wby, wbz = _director(y, q_next, v_next, 0)
+    tx, ty, tz = _moment(ax, ay, az, bx, by, bz, wax, way, waz, wbx, wby, wbz, stiffness,
+                         damping, ws, n - 1)  # fmt: skip
+    ws_next[c3._TQ, 0] -= tx
+    ws_next[c3._TQ + 1, 0] -= ty
+    ws_next[c3._TQ + 2, 0] -= tz
+
+
+@njit(**JIT)
+def energy(planar, n, y, q, ref, stiffness, q_next):
+    """k phi^2 / 2 [J], phi the last segment's angle from ``ref`` (a held end: ``q_next`` -1)
+    or from the first segment of the line that continues it (its first director or angle at
+    ``q_next``)."""
     if stiffness == 0.0:
         return 0.0
     if planar:
-        gap = planar_angle_gap(y, q, n, ref)
+        gap = planar_angle_gap(y, q, n, ref) if q_next < 0 else y[q_next] - y[q + n - 1]
     else:
-        gap = _bend(y, q, n, ref)[6]
+        at = q + 3 * (n - 1)
+        if q_next >= 0:
+            bx, by, bz = y[q_next], y[q_next + 1], y[q_next + 2]
+        else:
+            bx, by, bz = ref[0], ref[1], ref[2]
+        gap = _bend(y[at], y[at + 1], y[at + 2], bx, by, bz)[3]
     return 0.5 * stiffness * gap * gap

@@ -452,6 +452,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     held: list = []
     ref: list = []
     tip_joints: list = []
+    joined: list = []
     segs: dict[str, list] = {k: [] for k in (
         "length", "mass", "added", "inertia", "wet_weight", "buoyancy", "drag_normal",
         "drag_tangential", "joint_stiffness", "joint_damping")}  # fmt: skip
@@ -488,6 +489,8 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         joint = _tip_joint(line, where, tip, r)
         if joint is not None:
             tip_joints.append(joint)
+        if line.continues is not None:
+            joined.append((r, line, where))
         mass, added = props["mass"], props["added_mass"]
         if planar and np.any(added > 0):
             raise CaseError(
@@ -520,9 +523,10 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     fields["rs_order"] = np.array(order, dtype=np.int64)
     fields["rs_held"] = np.array(held, dtype=float).reshape(-1, 3)
     fields["rs_ref"] = np.array(ref, dtype=float).reshape(-1, 3)
-    fields["rs_tip_joint"] = np.array(tip_joints, dtype=float).reshape(-1, 6)
     for key, parts in segs.items():
         fields[f"rs_{key}"] = np.concatenate(parts) if parts else np.zeros(1)
+    _joined(case, layout, joined, tips, fields, tip_joints)
+    fields["rs_tip_joint"] = np.array(tip_joints, dtype=float).reshape(-1, 7)
     fields.update(directors=directors, rates=directors)
     return fields
 
@@ -546,4 +550,33 @@ def _tip_joint(line, where: str, tip: int, index: int) -> list[float] | None:
         raise CaseError(f"{where}.tip_reference: a direction needs a non-zero length")
     unit = (np.full(3, np.nan) if reference is None
             else np.asarray(reference, float) / np.linalg.norm(reference))  # fmt: skip
-    return [float(index), *unit, line.tip_joint_stiffness, line.tip_joint_damping]
+    return [float(index), -1.0, *unit, line.tip_joint_stiffness, line.tip_joint_damping]
+
+
+def _joined(case, layout, joined, tips, fields, rows) -> None:
+    """Each line that ``continues`` another through the body between them: a row of ``rows``
+    (``rs_tip_joint``: the other line, this one, its first joint's spring and damper), which
+    then act there instead of against ``base_reference``."""
+    names = [b.name for b in case.bodies]
+    for r, line, where in joined:
+        if line.continues not in layout.rigid:
+            raise CaseError(f"{where}.continues: no rigid line '{line.continues}'; rigid lines "
+                            f"are {layout.rigid}")  # fmt: skip
+        other = layout.rigid.index(line.continues)
+        body = names.index(line.from_.partition(".")[0])
+        if tips.get(body) != other:
+            raise CaseError(
+                f"{where}.continues: line '{line.continues}' does not carry '{line.from_}' at "
+                "its end; a line continues the rigid line that carries its 'from' body (a "
+                "point body between them)"
+            )
+        if fields["rs_kind"][other] != fields["rs_kind"][r] or line.base_reference is not None:
+            what = "base_reference" if line.base_reference is not None else "model"
+            raise CaseError(
+                f"{where}.{what}: a line that continues '{line.continues}' has its first joint "
+                "on that line's last segment: give it the same model and no base_reference"
+            )
+        s0 = int(fields["rs_seg"][r])
+        spring, damper = (float(fields[f"rs_joint_{key}"][s0]) for key in ("stiffness", "damping"))
+        fields["rs_joint_stiffness"][s0] = fields["rs_joint_damping"][s0] = 0.0
+        rows.append([float(other), float(r), 0.0, 0.0, 0.0, spring, damper])

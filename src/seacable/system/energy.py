@@ -142,12 +142,13 @@ def _rigid(y, p, w):
         kinetic += k
         gravity += g
         elastic += el
-    for j in range(p.rs_tip_joint.shape[0]):  # the joints at held ends
-        li = int(p.rs_tip_joint[j, 0])
+    for j in range(p.rs_tip_joint.shape[0]):  # the joints at lines' ends
+        li, nxt = int(p.rs_tip_joint[j, 0]), int(p.rs_tip_joint[j, 1])
         b = p.point_body[p.rs_to[li]]
         for c in range(3):
-            ref[c] = (w.rot[b, c, 0] * p.rs_tip_joint[j, 1] + w.rot[b, c, 1] * p.rs_tip_joint[j, 2]
-                      + w.rot[b, c, 2] * p.rs_tip_joint[j, 3])  # fmt: skip
+            ref[c] = (w.rot[b, c, 0] * p.rs_tip_joint[j, 2] + w.rot[b, c, 1] * p.rs_tip_joint[j, 3]
+                      + w.rot[b, c, 2] * p.rs_tip_joint[j, 4])  # fmt: skip
+        at = p.rs_q[nxt] if nxt >= 0 else -1
         elastic += tip_joint.energy(p.rs_kind[li] == 1, p.rs_n[li], y, p.rs_q[li], ref,
-                                    p.rs_tip_joint[j, 4])  # fmt: skip
+                                    p.rs_tip_joint[j, 5], at)  # fmt: skip
     return kinetic, gravity, elastic

@@ -174,9 +174,9 @@ def _rigid_initial(built: BuiltSystem, y: np.ndarray):
         kernel.rhs(0.0, y, p, w, np.zeros_like(y))
         if np.isnan(ref[li]).any():
             ref[li] = w.rot[int(p.point_body[p.rs_from[li]])].T @ e[0]
-        for joint in tip_joints:  # the held end's joint: along the last segment's start
-            if int(joint[0]) == li and np.isnan(joint[1:4]).any():
-                joint[1:4] = w.rot[int(p.point_body[p.rs_to[li]])].T @ e[-1]
+        for joint in tip_joints:  # a held end's joint: along the last segment's start
+            if int(joint[0]) == li and np.isnan(joint[2:5]).any():
+                joint[2:5] = w.rot[int(p.point_body[p.rs_to[li]])].T @ e[-1]
     return y, p._replace(rs_ref=ref, rs_tip_joint=tip_joints)
 
 

@@ -109,8 +109,9 @@ class SystemParams(NamedTuple):
     rs_kind: np.ndarray  # (nr,) int: 0 rigid segments in 3D (directors), 1 planar links (angles)
     rs_held: np.ndarray  # (nr, 3) 1.0 on the axes the tip is held on
     rs_ref: np.ndarray  # (nr, 3) first joint's unloaded direction, base body frame
-    # (m, 6) per held end with a joint (lines.tip_joint): the line, its unloaded direction (3,
-    # the frame of the body ``to`` is a point of), k [N m/rad], c [N m s/rad]
+    # (m, 7) per joint at a line's end (lines.tip_joint): the line (its last segment), the
+    # line that continues it (its first segment; -1: the body the end is held on), the
+    # unloaded direction on a held end (3, that body's frame), k [N m/rad], c [N m s/rad]
     rs_tip_joint: np.ndarray
     rs_length: np.ndarray  # [m]
     rs_mass: np.ndarray  # structural [kg]
@@ -239,17 +240,24 @@ def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, ro
 @njit(**JIT)
 def _tip_joints(y, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_to, joints, point_body, rot,
                 omega, work, ref):  # fmt: skip
-    """The joints at held ends (``rs_tip_joint``): each one's moment on its line's last
-    segment (lines.tip_joint), after the lines' loads and before their sweeps."""
+    """The joints at lines' ends (``rs_tip_joint``): each one's moment on its line's last
+    segment and, between two lines, the opposite one on the next line's first segment
+    (lines.tip_joint), after the lines' loads and before their sweeps."""
     for j in range(joints.shape[0]):
-        li = int(joints[j, 0])
+        li, nxt = int(joints[j, 0]), int(joints[j, 1])
+        n, _, ws = rigid._view(rs_n, rs_seg, rs_node, work, li)
+        planar = kind[li] == rigid.PLANAR
+        if nxt >= 0:
+            _, _, wn = rigid._view(rs_n, rs_seg, rs_node, work, nxt)
+            tip_joint.add_between(planar, n, y, rs_q[li], rs_v[li], rs_q[nxt], rs_v[nxt],
+                                  joints[j, 5], joints[j, 6], ws, wn)  # fmt: skip
+            continue
         b = point_body[rs_to[li]]
         for c in range(3):
-            ref[c] = (rot[b, c, 0] * joints[j, 1] + rot[b, c, 1] * joints[j, 2]
-                      + rot[b, c, 2] * joints[j, 3])  # fmt: skip
-        n, _, ws = rigid._view(rs_n, rs_seg, rs_node, work, li)
-        tip_joint.add_torque(kind[li] == rigid.PLANAR, n, y, rs_q[li], rs_v[li], ref, omega[b],
-                             joints[j, 4], joints[j, 5], ws)  # fmt: skip
+            ref[c] = (rot[b, c, 0] * joints[j, 2] + rot[b, c, 1] * joints[j, 3]
+                      + rot[b, c, 2] * joints[j, 4])  # fmt: skip
+        tip_joint.add_torque(planar, n, y, rs_q[li], rs_v[li], ref, omega[b], joints[j, 5],
+                             joints[j, 6], ws)  # fmt: skip
 
 
 @njit(**JIT)

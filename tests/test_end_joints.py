@@ -1,9 +1,11 @@
-"""A spring at a rigid line's held end (``tip_joint_stiffness``: a star's top joint). A rope of
-two rigid segments hangs in a V between two fixed points A and B at one height and swings about
-the chord AB; the spring at B is unloaded with the V turned by TURN about the chord. Checked
-against the small-angle period of that one degree of freedom, against the same rope run from B
-(the spring at its first joint), against its energy, and, for the planar model, against the 3D
-one in a motion in the plane."""
+"""Joints at rigid lines' ends. A spring at a line's held end (``tip_joint_stiffness``: a
+star's top joint): a rope of two rigid segments hangs in a V between two fixed points A and B
+at one height and swings about the chord AB; the spring at B is unloaded with the V turned by
+TURN about the chord. Checked against the small-angle period of that one degree of freedom,
+against the same rope run from B (the spring at its first joint), against its energy, and, for
+the planar model, against the 3D one in a motion in the plane. A spring between two lines
+through the body between them (``continues``): against the one line of the same segments and
+joints."""
 
 import math
 
@@ -149,3 +151,78 @@ def test_a_tip_damper_dissipates_c_times_the_relative_rate_squared():
     lost = energy[0] - energy
     assert lost[-1] > 0.5 * SPRING * TURN**2 * 0.1  # it does damp
     np.testing.assert_allclose(lost, dissipated, rtol=0, atol=1e-3 * lost[-1])
+
+
+def _chain(model: str, cut: bool, joint: float = 40.0, damping: float = 0.3) -> dict:
+    """A chain of four rigid segments (1 m, 2 kg each, a spring and damper at every joint)
+    hung from a fixed point, released 0.4 rad from the vertical with a 5 kg end body: one line,
+    or (``cut``) two lines of two segments through a massless point body, the second line
+    ``continues`` the first."""
+    rope = {"name": "rope", "diameter": 0.01, "mass_per_length": 2.0}
+    section = {"type": "rope", "length": 2.0, "segments": 2, "joint_stiffness": joint}
+    angles = {"angles_deg": [23.0, 23.0, 23.0, 23.0]}
+    tip = 4.0 * np.array([math.sin(math.radians(23.0)), 0.0, -math.cos(math.radians(23.0))])
+    end = {"name": "end", "type": "point", "position": [float(v) for v in tip], "mass": 5.0,
+           "external forces": [{"model": "gravity"}]}  # fmt: skip
+    bodies = [{"name": "pin", "type": "fixed", "position": [0.0, 0.0, 0.0]}, end]
+    base = {"model": model, "joint_damping": damping}
+    if cut:
+        middle = [float(v) for v in tip / 2.0]
+        knot = {"name": "knot", "type": "point", "position": middle, "mass": 0.0}
+        if model == "rigid_links":
+            knot["dofs"] = ["surge", "heave"]  # in the plane
+        bodies.append(knot)
+        half = {"angles_deg": [23.0, 23.0]}
+        lines = [base | {"name": "upper", "from": "pin", "to": "knot", "sections": [section],
+                         "initial": half},
+                 base | {"name": "lower", "from": "knot", "to": "end", "sections": [section],
+                         "initial": half, "continues": "upper"}]  # fmt: skip
+    else:
+        lines = [base | {"name": "upper", "from": "pin", "to": "end", "initial": angles,
+                         "sections": [section | {"length": 4.0, "segments": 4}]}]  # fmt: skip
+    lines[0]["base_reference"] = [0.0, 0.0, -1.0]
+    simulation = {"duration": 2.0, "output_interval": 0.02, "time_step": 0.001}
+    return {"name": "chain", "start": "as_given", "environment": {"in_air": True},
+            "bodies": bodies, "line_types": [rope], "lines": lines,
+            "simulation": simulation}  # fmt: skip
+
+
+def _nodes(data: dict) -> np.ndarray:
+    tree = seacable.simulate(seacable.load_case(data)).dataset
+    parts = [tree[f"lines/{line['name']}"] for line in data["lines"]]
+    xyz = [np.concatenate([p[f"node_{c}"].values[:, (1 if k else 0):] for k, p in enumerate(parts)],
+                          axis=1) for c in "xz"]  # fmt: skip
+    return np.stack(xyz), tree["total_energy"].values
+
+
+@pytest.mark.parametrize("model", ["rigid_segments_3d", "rigid_links"])
+def test_a_line_that_continues_another_moves_as_one_line(model):
+    """Two lines joined through a massless body, the joint there a spring and damper between
+    them (``continues``), swing as the one line of the same four segments and joints (nodes
+    within 1e-9 m over 2 s); without the joint's spring they do not."""
+    whole, _ = _nodes(_chain(model, cut=False))
+    joined, _ = _nodes(_chain(model, cut=True))
+    np.testing.assert_allclose(joined, whole, rtol=0, atol=1e-9)
+    loose = _chain(model, cut=True)
+    del loose["lines"][1]["continues"]  # the spring against the vertical instead
+    assert np.abs(_nodes(loose)[0] - whole).max() > 1e-3
+
+
+def test_a_joint_between_lines_keeps_the_energy():
+    """Without dampers the joined chain's energy (the joint's spring counted) is constant
+    (1e-9 of its swing's)."""
+    _, energy = _nodes(_chain("rigid_segments_3d", cut=True, damping=0.0))
+    assert np.ptp(energy) < 1e-9 * 5.0 * 9.81 * 4.0
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [({"continues": "nothing"}, r"lines\[1\] \(lower\)\.continues: no rigid line 'nothing'"),
+     ({"continues": "lower"}, r"lines\[1\] \(lower\)\.continues: line 'lower' does not carry"),
+     ({"base_reference": [0, 0, -1]}, r"\(lower\)\.base_reference: a line that continues")],
+)  # fmt: skip
+def test_a_line_continues_only_the_line_that_carries_its_start(change, message):
+    data = _chain("rigid_segments_3d", cut=True)
+    data["lines"][1] |= change
+    with pytest.raises(CaseError, match=message):
+        seacable.simulate(seacable.load_case(data))
