@@ -17,6 +17,7 @@ from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.lines import lumped_mass, natural_string, rigid_links, rigid_segments
 from seacable.lines.contract import LumpedLineModel, NaturalStringModel, RigidLineModel
+from seacable.numerics.contract import ChunkIntegrator
 from seacable.system import model as system_model
 from seacable.system.contract import RunModel
 
@@ -530,3 +531,57 @@ def test_the_servo_state_rests_at_its_equilibrium():
     servo.rates(row, pos, vel, points, speeds, 2, ydot)
     expected = stiffness @ (0.7 * (points[1] - pos) / 0.5 - 0.4 * (speeds[1] - vel))
     np.testing.assert_allclose(ydot[2:], expected, rtol=1e-12)
+
+
+def _small_run():
+    """The thesis's 12-link chain in air (a planar rigid line), as a built system."""
+    case = seacable.load_case(
+        Path(__file__).parent.parent / "examples" / "thesis_6_1_sim1_air_12_links.yaml"
+    )
+    return system_model.build(case)
+
+
+@pytest.mark.parametrize("name", ["rk4", "dopri5"])
+def test_every_compiled_integrator_honours_its_chunk_contract(name):
+    """ChunkIntegrator rules 1-4 on rk4 and dopri5: a chunk of 3 output intervals from output
+    index 5 writes its rows at exactly (5 + j + 1) * interval, leaves ``y`` at the last row and
+    counts its work (rk4: 4 evaluations per step, 40 steps per interval); with a parameter
+    turned NaN it stops at once, ``y`` untouched, and reports the status without raising."""
+    from seacable.kernels.status import OK
+    from seacable.numerics import integrators
+    from seacable.system import kernel
+
+    built = _small_run()
+    p, y0 = built.params, built.y0.copy()
+    interval, steps = 0.05, 40
+    k, fsal = np.zeros((7, len(y0))), np.zeros(1, dtype=np.int64)
+
+    def chunk(params, y, states, times, work):
+        w = kernel.make_work(params)
+        if name == "rk4":
+            assert isinstance(integrators.rk4_chunk, ChunkIntegrator)
+            return integrators.rk4_chunk(5, y, interval, steps, 3, params, w, states, times, work)
+        atol = np.full(len(y), 1e-9)
+        out = integrators.dopri5_chunk(
+            5, y, interval, 3, 1e-3, 1e-7, atol, np.empty(0), interval, params, w, states, times,
+            work, k, fsal,
+        )  # fmt: skip
+        return out[:2]
+
+    y = y0.copy()
+    states, times = np.full((3, len(y)), np.nan), np.full(3, np.nan)
+    work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
+    completed, status = chunk(p, y, states, times, work)
+    assert (completed, status) == (3, OK)
+    assert np.array_equal(times, np.array([6, 7, 8]) * interval)
+    assert np.array_equal(y, states[-1]) and np.isfinite(states).all()
+    accepted, _, evaluations = work[:3]
+    if name == "rk4":
+        assert accepted == 3 * steps and evaluations == 4 * accepted
+    else:
+        assert accepted > 0 and evaluations >= 6 * accepted
+    broken = p._replace(gravity=np.nan)
+    y = y0.copy()
+    completed, status = chunk(broken, y, states, times, np.zeros_like(work))
+    assert completed == 0 and status != OK
+    assert np.array_equal(y, y0)

@@ -164,7 +164,7 @@ class _Run:
         self.stiff_failure = None
         self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
         self.done = 0
-        # state carried from chunk to chunk (numerics.integrators, contract point 5): dopri5's
+        # state carried from chunk to chunk (numerics.contract, point 5): dopri5's
         # stages with a flag saying whether k[0] is the derivative at (t, y); the implicit
         # schemes' predictor and Newton factors
         self.stages = np.zeros((7, len(self.y)))

@@ -1,29 +1,7 @@
 """Compiled explicit time integrators (rk4, dopri5) of a system of bodies and lines.
 
-Contract shared by every integrator here (a new one must follow it):
-
-0. It calls the system only through ``system.kernel`` (``rhs``, ``project``, ``projects``),
-   and projects the state after every accepted step.
-1. It advances the flat state ``y`` in place over a *chunk* of ``n_outputs`` output intervals of
-   length ``output_interval``, starting at the global output index ``first_output``, and writes
-   the state at the end of each interval in ``states[j]`` and its time,
-   ``(first_output + j + 1) * output_interval``, in ``times[j]``; the whole chunk runs in
-   compiled code.
-2. It returns ``(completed, status, ...)`` where ``completed`` is the number of output rows
-   written and ``status`` a kernel status code (0 = sound); ``work`` is an int64 array of the
-   counters of ``WORK_NAMES``, added to in place: accepted steps, rejected steps,
-   right-hand-side evaluations, failed (non-finite) evaluations, Jacobians, linear solves.
-3. On a non-finite or singular evaluation it stops at once, leaves ``y`` at the last sound
-   state of the completed rows and reports the status; it never raises.
-4. Output times are hit exactly (fixed-step: an integer number of steps per interval; adaptive:
-   the step is clipped at each output time).
-5. Its results and work counters do not depend on how a run is cut into chunks (the run loop
-   sizes chunks from wall time, so they would otherwise depend on machine load): every time is
-   computed from global indices (output index times the interval, plus steps since that output
-   times the step), never accumulated from a chunk's start, and every state carried from step
-   to step (the step size proposal, a first-same-as-last derivative, the last acceleration, a
-   predictor, kept Newton factors) lives in arrays the caller allocates once per run and
-   passes to every chunk. ``tests/test_reproducible.py`` checks it for every integrator.
+Contract shared by every integrator (a new one must follow it): ``numerics.contract``'s
+``ChunkIntegrator``, points 0 to 5.
 """
 
 import math
