@@ -237,9 +237,14 @@ class _Run:
         sim = self.sim
         p, w = self.p, self.w
         ydot = np.empty_like(self.y)
+        state = np.empty_like(self.y)
 
         def fun(t, y):
-            status = integrators.evaluate_rhs(t, y, p, w, ydot)
+            # the solvers may pass a read-only or strided view: a copy into one writable
+            # C-contiguous array keeps the compiled signature (a read-only y would compile the
+            # whole right-hand side again, 27 s)
+            np.copyto(state, y)
+            status = integrators.evaluate_rhs(t, state, p, w, ydot)
             if status != Status.OK or not np.isfinite(ydot).all():
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()
