@@ -239,9 +239,3 @@ def dopri5_chunk(
         states[j, :] = y
         times[j] = t
     return n_outputs, OK, h
-
-
-@njit(**JIT)
-def evaluate_rhs(t, y, p, w, ydot):
-    """The model's right-hand side, callable from Python (for SciPy and SUNDIALS)."""
-    return kernel.rhs(t, y, p, w, ydot)

@@ -390,9 +390,10 @@ def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     )  # fmt: skip
 
 
-@njit(**JIT)
 def initial_acceleration(t, y, p, w, acc):
-    """The system's accelerations at (t, y): the a0 a run starts from. Returns the status."""
+    """The system's accelerations at (t, y): the a0 a run starts from. Returns the status. From
+    Python: a compiled wrapper would hold a second copy of the right-hand side's code
+    (docs/architecture.md, "Compile time")."""
     ydot = np.empty_like(y)
     status = system_kernel.rhs(t, y, p, w, ydot)
     acc[:] = ydot[p.n_q : p.n_q + p.n_v]
