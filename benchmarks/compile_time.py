@@ -1,14 +1,13 @@
 """Compile time of a first run, per example family, from an empty numba cache and from the cache.
 
-A family is one compiled path: the examples that share the model module (a star of cables on a
-shared body, or the one cable's model), the integrator and the kinds of the cable's two ends
-(the trajectory end with its method); a system of bodies and lines (a case with ``lines:``) is
-one family per set of line models, set of body kinds and integrator. Families are derived from
-the case files in ``examples/``, and the first example of each family (in name order) stands
-for it. Each example is shortened to a few output intervals (``--intervals``; the point is
-compilation, not simulation): its YAML is read, ``simulation.duration`` set, relative table
-files made absolute, and the result written to a temporary case file that
-``seacable.load_case`` validates like any other.
+A family is one compiled path: a system's set of line models, set of body kinds and integrator
+(derived from the case files in ``examples/``; the first example of each family, in name order,
+stands for it). Every system has the same compiled types (flat arrays with offsets), so the
+families share most of their compiled code: the right-hand side, the outputs, the statics. Each
+example is shortened to a few output intervals (``--intervals``; the point is compilation, not
+simulation): its YAML is read, ``simulation.duration`` set, relative table files made absolute,
+and the result written to a temporary case file that ``seacable.load_case`` validates like any
+other.
 
 For each example, two fresh Python processes run ``import seacable``, load the case, simulate it
 (the first run) and simulate it again in the same process (the warm run: the same compiled code,
@@ -20,8 +19,12 @@ interpreter's start-up), cold and cached, the warm run, and the compile time est
 first run - cached first run. Budgets (issue 14): a cold first run within 10 s, a cached first
 run within 1 s. The machine's load average is printed with each row (the figures are wall times).
 
+With ``--shared``, a second table: the families run one after the other in fresh processes that
+share one cache, as a user's runs do: the first family compiles the shared code, each later one
+only what it adds (its integrator's chunk, mostly).
+
 Run: python benchmarks/compile_time.py [EXAMPLE ...] [--intervals N] [--list] [--check]
-[--systems] (--systems: the system families alone)
+[--shared]
 (EXAMPLE: a file name in examples/, with or without .yaml, or a path; default: one per family).
 Exit status 0 whatever the figures; with --check, 1 when a budget is exceeded or a run fails.
 """
@@ -45,23 +48,11 @@ CHILD_TIMEOUT = 1800.0  # [s] a run taking longer is reported as failed
 
 
 def family(data: dict) -> str:
-    """The compiled path of a case mapping: model module, integrator and the ends' kinds; for
-    a system (``lines:``), its line models, its body kinds and the integrator."""
+    """The compiled path of a case mapping: its line models, its body kinds, its integrator."""
     integrator = data.get("simulation", {}).get("integrator", "rk4")
-    if "lines" in data:
-        models = sorted({line.get("model", "?") for line in data["lines"]})
-        kinds = sorted({body.get("type", "?") for body in data.get("bodies") or []})
-        return f"system: {'+'.join(models)} lines, bodies {'/'.join(kinds)}, {integrator}"
-    cables = data.get("cables") or [{}]
-    model = cables[0].get("model", "rigid_links")
-    if data.get("bodies"):
-        return f"star of {len(cables)} {model}, {integrator}"
-    top = cables[0].get("top", {}).get("type", "?")
-    bottom_spec = cables[0].get("bottom", {})
-    bottom = bottom_spec.get("type", "?")
-    if bottom == "trajectory":
-        bottom += f" ({bottom_spec.get('method', 'exact')})"
-    return f"{model}, {integrator}, {top} / {bottom}"
+    models = sorted({line.get("model", "?") for line in data.get("lines") or []})
+    kinds = sorted({body.get("type", "?") for body in data.get("bodies") or []})
+    return f"{'+'.join(models)} lines, bodies {'/'.join(kinds)}, {integrator}"
 
 
 def families() -> dict[str, list[Path]]:
@@ -162,7 +153,9 @@ def main() -> None:
     parser.add_argument("examples", nargs="*", help="examples to time (default: one per family)")
     parser.add_argument("--intervals", type=int, default=3, help="output intervals simulated")
     parser.add_argument("--list", action="store_true", help="print the families and stop")
-    parser.add_argument("--systems", action="store_true", help="the system families alone")
+    parser.add_argument(
+        "--shared", action="store_true", help="also: the families in turn, sharing one cache"
+    )
     parser.add_argument("--check", action="store_true", help="exit 1 when a budget is exceeded")
     parser.add_argument("--child", nargs="?", const="", default=None, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -171,8 +164,6 @@ def main() -> None:
         return
 
     groups = families()
-    if args.systems:
-        groups = {name: members for name, members in groups.items() if name.startswith("system")}
     if args.list:
         for name, members in groups.items():
             print(f"{name}: " + ", ".join(path.stem for path in members))
@@ -206,8 +197,22 @@ def main() -> None:
             text, over = figures(*measure(short_case(example, args.intervals, Path(folder))))
             exceeded |= over
             print(f"{name:<{wide}} {example.stem:<{wide_example}} {text} {load:>5.2f}", flush=True)
+        if args.shared:
+            shared(rows, args.intervals, Path(folder), wide, wide_example)
     if args.check and exceeded:
         sys.exit(1)
+
+
+def shared(rows, intervals: int, folder: Path, wide: int, wide_example: int) -> None:
+    """The families' first runs in turn, in fresh processes sharing one new cache."""
+    print("\nthe families in turn, one cache shared (a user's successive first runs):")
+    print(f"{'family':<{wide}} {'example':<{wide_example}} {'first':>7} {'load':>5}")
+    with tempfile.TemporaryDirectory(prefix="seacable-numba-") as cache:
+        for name, example in rows:
+            load = os.getloadavg()[0]
+            out = run_child(short_case(example, intervals, folder), Path(cache))
+            first = out["error"] if "error" in out else f"{out['first']:>7.2f}"
+            print(f"{name:<{wide}} {example.stem:<{wide_example}} {first} {load:>5.2f}", flush=True)
 
 
 if __name__ == "__main__":

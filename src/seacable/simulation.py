@@ -21,6 +21,7 @@ from seacable.results import (
     _Sink,
     provenance,
 )
+from seacable.system import kernel as system_kernel
 from seacable.system import model as system_model
 
 log = logging.getLogger(__name__)
@@ -210,7 +211,7 @@ class _Run:
         if sim.integrator == "rk4":
             integrators.rk4_chunk(0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
         elif sim.integrator in stiff.STIFF:
-            integrators.evaluate_rhs(0.0, y, self.p, self.w, np.empty_like(y))
+            system_kernel.rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT and self.newton is not None:
             if system_implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
@@ -237,9 +238,14 @@ class _Run:
         sim = self.sim
         p, w = self.p, self.w
         ydot = np.empty_like(self.y)
+        state = np.empty_like(self.y)
 
         def fun(t, y):
-            status = integrators.evaluate_rhs(t, y, p, w, ydot)
+            # the solvers may pass a read-only or strided view: a copy into one writable
+            # C-contiguous array keeps the compiled signature (a read-only y would compile the
+            # whole right-hand side again, 27 s)
+            np.copyto(state, y)
+            status = system_kernel.rhs(t, state, p, w, ydot)
             if status != Status.OK or not np.isfinite(ydot).all():
                 raise FloatingPointError(f"status {status} at t = {t:.6g} s")
             return ydot.copy()

@@ -17,10 +17,10 @@ freedom has its row replaced by a_i = 0.
 import numpy as np
 from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
-@njit(**JIT)
+@inner
 def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
     """Fill ``m6`` (6, 6) and ``bias`` (6) of one body (``cog`` body frame, ``inertia`` about
     G body frame, ``added`` 6x6 body frame at the reference point times ``scale_added``)."""
@@ -63,7 +63,7 @@ def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
     bias[5] = wx * hy - wy * hx + mass * (rx * cy - ry * cx)
 
 
-@njit(**JIT)
+@inner
 def _add_turned(added, rot, scale, m6):
     """m6 += scale diag(R, R) A diag(R, R)^T, block by block (nothing when A is zero)."""
     empty = True
@@ -86,7 +86,7 @@ def _add_turned(added, rot, scale, m6):
                     m6[3 * bi + i, 3 * bj + j] += scale * total
 
 
-@njit(**JIT)
+@inner
 def add_point_mass(m3, arm, omega, force, m6, rhs):
     """A mass matrix ``m3`` (3x3, row-major 9) rigidly carried at ``arm`` (earth frame) from the
     reference point and loaded by ``force`` besides its carrier (a line's end node): adds
@@ -166,7 +166,7 @@ def _solve_one(m6, rhs, only, out):
     return m6[only, only] != 0.0
 
 
-@njit(**JIT)
+@inner
 def solve_free(m6, rhs, free, out):
     """Accelerations ``out`` (6) of M a = rhs with a_i = 0 on every held degree of freedom
     (``free[i] == 0``): Gaussian elimination with partial pivoting (one free degree of freedom:

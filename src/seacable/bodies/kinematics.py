@@ -12,7 +12,8 @@ import math
 
 from numba import njit
 
-from seacable.kernels.timefn import JIT, evaluate
+from seacable.kernels.jit import JIT, inner
+from seacable.kernels.timefn import evaluate
 
 FIXED = 0  # held at rest (BodyKind.FIXED)
 IMPOSED = 1  # moved by six time functions (BodyKind.IMPOSED)
@@ -81,7 +82,7 @@ def euler_rates_omega(roll, pitch, yaw, droll, dpitch, dyaw, out):
     out[2] = dyaw - droll * sp
 
 
-@njit(**JIT)
+@inner
 def body_states(t, y, kind, q_at, v_at, rigid, pose0, channel, motion, track, parent, tf, pos,
                 rot, vel, omega, acc, quat, work):  # fmt: skip
     """Pose and twist of every body at time t from the state y: ``pos`` (nb, 3), ``rot``
@@ -199,7 +200,7 @@ def _still(b, rot, omega, quat):
     quat[b, 1] = quat[b, 2] = quat[b, 3] = 0.0
 
 
-@njit(**JIT)
+@inner
 def point_states(body, offset, pos, rot, vel, omega, ppos, pvel, parm):
     """Earth-frame position and velocity of every point (``ppos``, ``pvel`` (np, 3)) and its
     arm from its body's reference point (``parm``): r = R r_body, p = x + r,

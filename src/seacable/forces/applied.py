@@ -1,11 +1,10 @@
 """A force and a moment from time functions (earth frame) at a point of a body: thrust, a
 test load. Six channels from the model's first: force x, y, z [N], moment x, y, z [N m]."""
 
-from numba import njit
-
 from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn
-from seacable.kernels.timefn import JIT, evaluate
+from seacable.kernels.jit import inner
+from seacable.kernels.timefn import evaluate
 
 CHANNELS = ("force_x", "force_y", "force_z", "moment_x", "moment_y", "moment_z")
 
@@ -15,7 +14,7 @@ def pack(offset) -> list[float]:
     return [float(v) for v in offset]
 
 
-@njit(**JIT)
+@inner
 def add(row, first, t, rot, tf, rhs):
     breaks, coefs, count, sine, build_up = tf
     arm = turn(rot, (row[0], row[1], row[2]))

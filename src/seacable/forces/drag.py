@@ -4,12 +4,10 @@ submerged fraction of a shaped body; applied at the reference point."""
 
 import math
 
-from numba import njit
-
 from seacable.bodies.dynamics import add_force
 from seacable.case.schema import per_axis
 from seacable.kernels import chain3d as c3
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import inner
 
 
 def pack(spec, rho: float) -> list[float]:
@@ -18,7 +16,7 @@ def pack(spec, rho: float) -> list[float]:
     return [0.5 * rho * spec.drag_coefficient * a for a in area]
 
 
-@njit(**JIT)
+@inner
 def add(row, fraction, pos, rot, vel, current_z, current_u, current_v, rhs):
     cu, cv = c3._current(current_z, current_u, current_v, pos[2])
     rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]

@@ -7,9 +7,8 @@ Damping: F = -B (v, omega)."""
 import math
 
 import numpy as np
-from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import inner
 
 STIFFNESS_ROW = 36 + 3 + 4  # K row-major, equilibrium position, equilibrium quaternion
 DAMPING_ROW = 36
@@ -22,7 +21,7 @@ def matrix(spec) -> np.ndarray:
     return np.diag(np.array(spec.diagonal, dtype=float))
 
 
-@njit(**JIT)
+@inner
 def rotation_vector(qw, qx, qy, qz):
     """The rotation vector [rad] of a unit quaternion (the shorter way round)."""
     if qw < 0.0:
@@ -34,7 +33,7 @@ def rotation_vector(qw, qx, qy, qz):
     return angle * qx / s, angle * qy / s, angle * qz / s
 
 
-@njit(**JIT)
+@inner
 def _displacement(row, pos, quat):
     """d = (x - x_eq, theta) of the stiffness row; ``quat`` the orientation (w, x, y, z)."""
     ew, ex, ey, ez = row[39], -row[40], -row[41], -row[42]  # conjugate of q_eq
@@ -48,7 +47,7 @@ def _displacement(row, pos, quat):
     return (pos[0] - row[36], pos[1] - row[37], pos[2] - row[38], tx, ty, tz)
 
 
-@njit(**JIT)
+@inner
 def add_stiffness(row, pos, quat, rhs):
     """-K d added to the body's force and moment."""
     d = _displacement(row, pos, quat)
@@ -59,7 +58,7 @@ def add_stiffness(row, pos, quat, rhs):
         rhs[i] -= total
 
 
-@njit(**JIT)
+@inner
 def stiffness_energy(row, pos, quat):
     """1/2 d^T K d [J] (the potential of -K d when K is symmetric)."""
     d = _displacement(row, pos, quat)
@@ -70,7 +69,7 @@ def stiffness_energy(row, pos, quat):
     return total
 
 
-@njit(**JIT)
+@inner
 def add_damping(row, vel, omega, rhs):
     v = (vel[0], vel[1], vel[2], omega[0], omega[1], omega[2])
     for i in range(6):

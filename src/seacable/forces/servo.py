@@ -12,7 +12,7 @@ Its row: K (9, row-major), a, b, dt, the target point's index.
 
 from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT
 
 ROW = 9 + 4
 GAIN, RATE_GAIN, STEP, TARGET = 9, 10, 11, 12

@@ -14,7 +14,7 @@ from seacable.forces.kinds import (
     LINEAR_STIFFNESS,
     SERVO,
 )
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT
 
 
 @njit(inline="always", **JIT)  # inlined: a call would pass and count every array

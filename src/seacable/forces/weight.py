@@ -2,21 +2,19 @@
 rho g V f(z) at its centre of buoyancy, upwards, f the submerged fraction of its shape
 (kernels.surface; 1 for a plain volume)."""
 
-from numba import njit
-
 from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import inner
 
 
-@njit(**JIT)
+@inner
 def add_gravity(mass, cog, rot, gravity, rhs):
     """Weight m g [N] at the centre of gravity ``cog`` (body frame [m])."""
     arm = turn(rot, (cog[0], cog[1], cog[2]))
     add_force(arm, 0.0, 0.0, -mass * gravity, rhs)
 
 
-@njit(**JIT)
+@inner
 def add_buoyancy(volume, cob, fraction, rot, gravity, rho, rhs):
     """rho g V f [N] at the centre of buoyancy ``cob`` (body frame [m])."""
     arm = turn(rot, (cob[0], cob[1], cob[2]))

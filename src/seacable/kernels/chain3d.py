@@ -44,7 +44,7 @@ from seacable.kernels.chain3d_layout import (
     N_WORK_ROWS,
     _current,
 )
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 # re-exported: the chain's other kernels and the lumped-mass kernel read them as ``c3.X``
 __all__ = [
@@ -73,7 +73,7 @@ __all__ = [
 ]
 
 
-@njit(**JIT)
+@inner
 def _basis(ex, ey, ez):
     """Orthonormal t1, t2 normal to e (t1 built from the axis least aligned with e)."""
     ax, ay, az = abs(ex), abs(ey), abs(ez)
@@ -93,7 +93,7 @@ def _basis(ex, ey, ez):
     return t1x, t1y, t1z, t2x, t2y, t2z
 
 
-@njit(**JIT)
+@inner
 def _store_node(w, k, m, b, s):
     for r in range(6):
         w[_M + r, k] = m[r]
@@ -103,7 +103,7 @@ def _store_node(w, k, m, b, s):
         w[_S + r, k] = s[r]
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _sym_mul(m, x0, x1, x2):
     """M x for M stored as (11, 12, 13, 22, 23, 33)."""
     return (
@@ -187,7 +187,7 @@ def segment_back(i, li, mi, w, m, b, s, pinned):
     m[5] += mt - ma * ez * ez - (k1z * h1z + k2z * h2z)
 
 
-@njit(**JIT)
+@inner
 def _solve3(a, r):
     """Solve the 3x3 system a x = r (a row-major, 9 values); returns x and the determinant."""
     c00 = a[4] * a[8] - a[5] * a[7]
@@ -210,7 +210,7 @@ def _solve3(a, r):
     return x, det
 
 
-@njit(**JIT)
+@inner
 def project_directors(y, n, q, v):
     """Unit directors at ``y[q + 3 i]``, their rates at ``y[v + 3 i]`` made normal to them."""
     for i in range(n):
@@ -226,7 +226,7 @@ def project_directors(y, n, q, v):
         y[v + 3 * i + 2] -= dot * ez
 
 
-@njit(**JIT)
+@inner
 def _node_force(w, k, reaction, pinned):
     m = w[_M : _M + 6, k]
     f = np.empty(3)

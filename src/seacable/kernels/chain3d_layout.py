@@ -2,9 +2,8 @@
 kernels (``chain3d`` and the modules named after it) read their rows from here."""
 
 import numpy as np
-from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import inner
 
 # workspace rows, each of length n + 1
 _P, _V, _E, _U, _F, _TQ = 0, 3, 6, 9, 12, 15  # 3 rows each: node pos, node vel, e, u, F, torque
@@ -35,7 +34,7 @@ _SQ = 84  # arm x buoyancy [N m]
 N_WORK_ROWS = 85
 
 
-@njit(**JIT)
+@inner
 def _current(current_z, current_u, current_v, z):
     if current_z.shape[0] == 1:
         return current_u[0], current_v[0]

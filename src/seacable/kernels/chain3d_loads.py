@@ -20,11 +20,11 @@ from seacable.kernels.chain3d_layout import (
     _V,
     _current,
 )
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
-from seacable.kernels.timefn import JIT
 
 
-@njit(**JIT)
+@inner
 def joint_torques(n, y, e0, u0, ref, ref_omega, stiffness, damping, w):
     """Bending moments V = k phi^2 / 2 and dampers on the relative angular velocity; joint i
     joins segment i - 1 (for i = 0: the direction ``ref`` turning at ``ref_omega``, the body the
@@ -63,7 +63,7 @@ def joint_torques(n, y, e0, u0, ref, ref_omega, stiffness, damping, w):
             w[_TQ + 2, i - 1] += tz
 
 
-@njit(**JIT)
+@inner
 def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
                   added_mass, inertia, joint_stiffness, joint_damping, ref, ref_omega,
                   cz_, cu_, cv_, w):  # fmt: skip

@@ -3,8 +3,6 @@ joint springs; the system's ``system.energy``; numba)."""
 
 import math
 
-from numba import njit
-
 from seacable.kernels.chain3d import (
     _E,
     _P,
@@ -13,11 +11,11 @@ from seacable.kernels.chain3d import (
     _U,
     _V,
 )
+from seacable.kernels.jit import inner
 from seacable.kernels.surface import segment_potential
-from seacable.kernels.timefn import JIT
 
 
-@njit(**JIT)
+@inner
 def segment_energies(n, length, mass, wet_weight, buoyancy, joint_stiffness, ref, w):
     """Kinetic (own and added mass, translation and rotation), gravity and buoyancy potential
     and joint-spring energy of one line's segments (its workspace ``w`` filled); joint 0 is

@@ -15,8 +15,8 @@ import math
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
-from seacable.kernels.timefn import JIT
 
 # workspace rows (length n + 1)
 _F = 0  # 3 rows: force on each node (without inertia)
@@ -160,7 +160,7 @@ def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, m
         w[_F + 1, k] -= friction * normal * vy / speed
 
 
-@njit(**JIT)
+@inner
 def _bend_angle(w, i):
     """Angle phi between the tangents of segments i - 1 and i (workspace columns), and
     phi / sin(phi)."""
@@ -174,7 +174,7 @@ def _bend_angle(w, i):
     return phi, ratio, cosine
 
 
-@njit(**JIT)
+@inner
 def bending(n, c0, stiffness, w):
     """Bending moment k phi at each interior node of one line (columns and ``stiffness``
     [N m] at ``c0 + k``), from V = k phi^2 / 2 with phi the angle between the two segments'
@@ -201,7 +201,7 @@ def bending(n, c0, stiffness, w):
             w[_F + c, i] -= fa + fb
 
 
-@njit(**JIT)
+@inner
 def _node_mass_into(m, w, k, a):
     """Node k's mass matrix: structural mass m, the segments' added mass and the point masses
     of the workspace (rows _MA, _PM)."""
@@ -216,7 +216,7 @@ def _node_mass_into(m, w, k, a):
     a[8] += w[_PM + 2, k]
 
 
-@njit(**JIT)
+@inner
 def _node_acceleration(m, w, k):
     """Solve node k's symmetric 3x3 mass matrix (structural mass m, added and point masses
     from the workspace) against its force. Scalars only, and no parameter tuple: per-node

@@ -4,17 +4,16 @@ axial and bending; the system's ``system.energy``; numba)."""
 import math
 
 import numpy as np
-from numba import njit
 
+from seacable.kernels.jit import inner
 from seacable.kernels.lumped import (
     _bend_angle,
     _node_mass_into,
 )
 from seacable.kernels.surface import segment_potential
-from seacable.kernels.timefn import JIT
 
 
-@njit(**JIT)
+@inner
 def line_energies(
     yl, n, s0, c0, node_mass, length, stiffness, wet_weight, buoyancy, seabed_z, seabed_k,
     bend, slack, w,

@@ -29,8 +29,8 @@ from typing import NamedTuple
 
 from numba import njit
 
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK
-from seacable.kernels.timefn import JIT
 
 
 class NaturalParams(NamedTuple):
@@ -45,7 +45,7 @@ class NaturalParams(NamedTuple):
     cartesian: int  # 1: (eps, t_x, t_z); 0: (eps, phi)
 
 
-@njit(**JIT)
+@inner
 def fields(y, p, w):
     """q, q', F = N t and N of every node from the state."""
     n = p.n
@@ -74,7 +74,7 @@ def fields(y, p, w):
         w[6, i] = tension
 
 
-@njit(**JIT)
+@inner
 def rhs(t, y, p, w, ydot):
     n = p.n
     b = 3 if p.cartesian == 1 else 2
@@ -133,7 +133,7 @@ def rhs(t, y, p, w, ydot):
     return status
 
 
-@njit(**JIT)
+@inner
 def project_tangents(y, n, q, v):
     """The cartesian tangents of n + 1 nodes, (eps, t_x, t_z) from ``y[q]`` and their rates
     from ``y[v]``, back to |t| = 1 and t . t' = 0."""
@@ -159,7 +159,7 @@ def trapezoid(w, h, i):
             0.5 * h * (w[2, i - 1] + w[2, i]), 0.5 * h * (w[3, i - 1] + w[3, i]))  # fmt: skip
 
 
-@njit(**JIT)
+@inner
 def outputs(t, y, p, w, node_pos, strain, tension, scalars):
     """Node positions (trapezoidal integral of q), strain and tension per node, end mass and
     energies (trapezoidal quadrature of the string's integrals)."""

@@ -22,11 +22,11 @@ import math
 import numpy as np
 from numba import njit
 
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import (
     segment_potential,
     segment_submersion,
 )
-from seacable.kernels.timefn import JIT
 
 # ---- workspace rows (each of length n + 1) ------------------------------------------------------
 _PX, _PZ, _VX, _VZ, _EX, _EZ, _FX, _FZ, _Q = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -37,7 +37,7 @@ _THC, _THLX, _THLZ, _AX, _AZ, _THDD = 24, 25, 26, 27, 28, 29
 N_WORK_ROWS = 30
 
 
-@njit(**JIT)
+@inner
 def _current(current_z, current_u, z):
     """Current velocity along x at elevation z [m/s].
 
@@ -49,7 +49,7 @@ def _current(current_z, current_u, z):
     return np.interp(z, current_z, current_u)
 
 
-@njit(**JIT)
+@inner
 def link_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
                joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u,
                w):  # fmt: skip
@@ -163,7 +163,7 @@ def link_back(i, li, mi, inertia, om, w, st, pinned):
     st[5], st[6], st[7], st[8] = s11, s12, s21, s22
 
 
-@njit(**JIT)
+@inner
 def _node_force(w, k, lx, lz, pinned):
     """Force lam_k that the part above node k exerts on the part below it [N]."""
     fx = w[_M11, k] * w[_AX, k] + w[_M12, k] * w[_AZ, k] + w[_BX, k]
@@ -174,7 +174,7 @@ def _node_force(w, k, lx, lz, pinned):
     return fx, fz
 
 
-@njit(**JIT)
+@inner
 def link_energies(n, y, q0, v0, length, mass, inertia, wet_weight, buoyancy, joint_stiffness,
                   ref_angle, w):  # fmt: skip
     """Kinetic, gravity and buoyancy potential and joint-spring energy of one line's links

@@ -36,7 +36,7 @@ planar rigid-link and 3D rigid-segment models all use it).
 import numpy as np
 from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 POINT, SPHERE, CYLINDER, TABLE = 0, 1, 2, 3
 HEADER = 4  # kind, a, b, K
@@ -47,7 +47,7 @@ def point_row(width: int = HEADER) -> np.ndarray:
     return np.zeros(max(width, HEADER))
 
 
-@njit(**JIT)
+@inner
 def _table(z, row):
     """Linear interpolation of the fraction table and the integral I(z)."""
     count = int(row[3])

@@ -29,14 +29,10 @@ g = f - f(0).
 """
 
 import math
-from typing import Any
 
 from numba import njit
 
-# compiled once and cached; the numpy error model drops per-division zero checks and the safe
-# fastmath flags allow fused multiply-adds and reciprocals but keep NaN/inf semantics (the
-# divergence checks rely on them)
-JIT: dict[str, Any] = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
+from seacable.kernels.jit import JIT, inner
 
 
 @njit(**JIT)
@@ -58,7 +54,7 @@ def evaluate(breaks, coefs, count, sine, build_up, channel, t):
     return start + r * g, dr * g + r * df, ddr * g + 2.0 * dr * df + r * ddf
 
 
-@njit(**JIT)
+@inner
 def _unramped(breaks, coefs, count, sine, channel, t):
     """The time function itself: piecewise cubic plus sine."""
     k_count = count[channel]

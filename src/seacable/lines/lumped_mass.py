@@ -10,7 +10,7 @@ their loads (``end_mass_force``); its n - 1 interior nodes are states: positions
 from numba import njit
 
 from seacable.kernels import lumped as lk
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT
 
 F_ROW = lk._F  # the workspace rows of the node loads (3) and of the segment tension
 T_ROW = lk._T

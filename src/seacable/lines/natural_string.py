@@ -11,7 +11,7 @@ from numba import njit
 
 from seacable.bodies import kinematics
 from seacable.kernels import natural as nk
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
 @njit(inline="always", **JIT)
@@ -37,7 +37,7 @@ def gather(y, params, q, v, buf):
     return size
 
 
-@njit(**JIT)
+@inner
 def rates(t, y, params, q, v, nat, nat_work, nat_dot, ydot):
     """The line's rates into ``ydot`` (``params``: ``line_params`` with the end body's mass;
     ``nat``, ``nat_work``, ``nat_dot``: the workspace's fields); returns the kernel's status.
@@ -50,7 +50,7 @@ def rates(t, y, params, q, v, nat, nat_work, nat_dot, ydot):
     return status
 
 
-@njit(**JIT)
+@inner
 def carry(y, params, q, v, pivot, tip, point_body, point_offset, pos, rot, vel, omega, ppos,
           pvel, parm, nat, nat_work):  # fmt: skip
     """The pivot's point and the position and velocity of the body at the string's end (the
@@ -72,7 +72,7 @@ def carry(y, params, q, v, pivot, tip, point_body, point_offset, pos, rot, vel, 
     vel[tip, 0], vel[tip, 1], vel[tip, 2] = vx, 0.0, vz
 
 
-@njit(**JIT)
+@inner
 def own(y, p, w, li):
     """The string alone (its end mass aside): ``w.nat_out[:n + 1]`` gets each node's x and z
     from the pivot, strain and tension; returns its kinetic energy, its potential of gravity

@@ -15,6 +15,7 @@ import math
 from numba import njit
 
 from seacable.kernels import planar_chain as pc
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.planar_chain import (
     _AX,
     _AZ,
@@ -40,7 +41,6 @@ from seacable.kernels.planar_chain import (
     _THDD,
     _U,
 )
-from seacable.kernels.timefn import JIT
 
 
 @njit(**JIT)
@@ -79,7 +79,7 @@ def tip_map(n, length, y, v, w, ac, ga, al):
             al[2 + c] += li * nz * thl
 
 
-@njit(**JIT)
+@inner
 def closure(held_x, held_z, ac, ga, al, target, tip, omega, l0, la):
     """The holding force at the tip in (x, z) as L = l0 + la A_0: on a held axis the tip's
     acceleration is the target's, Baumgarte-stabilised (``target``: position, velocity,
@@ -138,13 +138,13 @@ def forward(n, length, w, ax, az, lx, lz, pinned, y, q, v, ydot):
         w[_AX, i + 1], w[_AZ, i + 1] = ax, az
 
 
-@njit(**JIT)
+@inner
 def node_force(w, k, lx, lz, pinned):
     """lam_k in (x, z): the force the part above node k exerts on node k and below it."""
     return pc._node_force(w, k, lx, lz, pinned)
 
 
-@njit(**JIT)
+@inner
 def march(n, w, lam, angles):
     """At rest, from the tip's force ``lam`` (x, z): each link turned along the pull it carries
     (tension positive, joint springs ignored), its angle into ``angles``; lam_i = lam_(i+1) - F_i
@@ -160,7 +160,7 @@ def march(n, w, lam, angles):
         lam[1] -= w[_FZ, i]
 
 
-@njit(**JIT)
+@inner
 def moment_balance(n, length, w, lam, out):
     """At rest: each link's generalised force l n . (lam_(i+1) - F_i / 2) - Q_i into ``out``
     (n), zero when the link is in balance; lam_0 returned in ``lam`` (x, z)."""

@@ -37,7 +37,7 @@ from seacable.kernels.chain3d_layout import (
     _U,
     _W,
 )
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
 @njit(**JIT)
@@ -100,7 +100,7 @@ def tip_map(n, length, w, ac, ga, al):
             al[6 + c] += li * (x1 * t1z + x2 * t2z)
 
 
-@njit(**JIT)
+@inner
 def closure(held, ac, ga, al, target, tip, omega, l0, la, system, rhs):
     """The holding force at the tip as L = l0 + la A_0 (``la`` 3x3 row-major): on each held
     axis k the tip's acceleration equals the target's, stabilised (Baumgarte):
@@ -167,14 +167,14 @@ def forward(n, length, w, a0, held_force, pinned, y, q, v, ydot):
         w[_A, i + 1], w[_A + 1, i + 1], w[_A + 2, i + 1] = ax, ay, az
 
 
-@njit(**JIT)
+@inner
 def node_force(w, k, held_force, pinned):
     """lam_k: the force the part of the line above node k exerts on node k and below it (at
     node 0, the force the base applies to the line; at the tip, the line's pull on the tip)."""
     return c3._node_force(w, k, held_force, pinned)
 
 
-@njit(**JIT)
+@inner
 def march(n, w, lam, e):
     """At rest, from the tip's force ``lam``: each segment turned along the pull it carries,
     e_i = -(lam_(i+1) - F_i / 2) / |...| (tension positive, joint springs ignored; F_i its loads
@@ -193,7 +193,7 @@ def march(n, w, lam, e):
             lam[c] -= w[_F + c, i]
 
 
-@njit(**JIT)
+@inner
 def moment_balance(n, length, w, lam, out):
     """At rest: the force lam_k down the line from the tip's ``lam`` (lam_i = lam_(i+1) - F_i,
     F_i the segment's loads) and each segment's moment about its centre,

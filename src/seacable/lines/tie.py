@@ -7,10 +7,10 @@ import math
 
 from numba import njit
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
-@njit(**JIT)
+@inner
 def tension(elongation, rate, stiffness, damping, table, first, count):
     """Tension [N] at ``elongation`` d - L0 [m] and its rate [m/s] (``stiffness`` k [N/m] > 0:
     linear; else the table's rows first .. first + count - 1)."""

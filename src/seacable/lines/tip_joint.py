@@ -13,7 +13,7 @@ from numba import njit
 
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
 @njit(inline="always", **JIT)
@@ -57,7 +57,7 @@ def _director(y, q, v, i):
     return ax, ay, az, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux
 
 
-@njit(**JIT)
+@inner
 def add_torque(planar, n, y, q, v, ref, omega, stiffness, damping, ws):
     """Add a held end's joint moment on the last segment to the line's workspace ``ws`` (its
     joint and buoyancy moments: chain3d_layout's _TQ rows in 3D, planar_chain's _Q row in the
@@ -72,7 +72,7 @@ def add_torque(planar, n, y, q, v, ref, omega, stiffness, damping, ws):
             stiffness, damping, ws, n - 1)  # fmt: skip
 
 
-@njit(**JIT)
+@inner
 def add_between(planar, n, y, q, v, q_next, v_next, stiffness, damping, ws, ws_next):
     """Add the joint between a line's last segment (n segments, directors or angles at ``q``,
     rates at ``v``, workspace ``ws``) and the first segment of the line that continues it
@@ -91,7 +91,7 @@ def add_between(planar, n, y, q, v, q_next, v_next, stiffness, damping, ws, ws_n
     ws_next[c3._TQ + 2, 0] -= tz
 
 
-@njit(**JIT)
+@inner
 def energy(planar, n, y, q, ref, stiffness, q_next):
     """k phi^2 / 2 [J], phi the last segment's angle from ``ref`` (a held end: ``q_next`` -1)
     or from the first segment of the line that continues it (its first director or angle at

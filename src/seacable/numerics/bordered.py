@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 from scipy import sparse
 
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 
 
 class Bordered(NamedTuple):
@@ -137,7 +137,7 @@ def structure(pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray)
     )  # fmt: skip
 
 
-@njit(**JIT)
+@inner
 def _band_factor(mat, at, n, kl, ku, piv, p0):
     """Banded LU with partial pivoting, in place (rows of width 2 kl + ku + 1 from column
     i - kl); row swaps in piv[p0 + k]. False on a zero or non-finite pivot."""
@@ -170,7 +170,7 @@ def _band_factor(mat, at, n, kl, ku, piv, p0):
     return True
 
 
-@njit(**JIT)
+@inner
 def _band_solve(mat, at, n, kl, ku, piv, p0, x, x0, stride):
     """Solve in place with ``_band_factor``'s factors for the vector x[x0 + i * stride]."""
     w = 2 * kl + ku + 1
@@ -231,7 +231,9 @@ def solve(s, mat, piv, rhs, x, z):
         z[i] = rhs[s.order[i]]
     for g in range(m):
         n = s.start[g + 1] - s.start[g]
-        _band_solve(mat, s.band[g], n, s.kl[g], s.ku[g], piv, s.start[g], z, s.start[g], 1)
+        _band_solve(
+            mat, s.band[g], n, s.kl[g], s.ku[g], piv, s.start[g], z, s.start[g], np.int64(1)
+        )
         t0, nt = s.touch_at[g], s.touch_at[g + 1] - s.touch_at[g]
         for a in range(nt):  # r_b -= C A^-1 r_l
             acc = 0.0
@@ -239,7 +241,7 @@ def solve(s, mat, piv, rhs, x, z):
                 acc += mat[s.c_at[g] + a * n + k] * z[s.start[g] + k]
             z[b0 + s.touch[t0 + a]] -= acc
     if nb > 0:
-        _band_solve(mat, s.band[m], nb, s.kl[m], s.ku[m], piv, b0, z, b0, 1)
+        _band_solve(mat, s.band[m], nb, s.kl[m], s.ku[m], piv, b0, z, b0, np.int64(1))
         for g in range(m):  # x_l = A^-1 r_l - X x_b
             n = s.start[g + 1] - s.start[g]
             t0, nt = s.touch_at[g], s.touch_at[g + 1] - s.touch_at[g]

@@ -9,8 +9,8 @@ import math
 import numpy as np
 from numba import njit
 
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK
-from seacable.kernels.timefn import JIT
 from seacable.system import kernel
 
 WORK_NAMES = (
@@ -23,7 +23,7 @@ WORK_NAMES = (
 )
 
 
-@njit(**JIT)
+@inner
 def _all_finite(y):
     total = 0.0
     for v in y:
@@ -59,7 +59,7 @@ def rk4_chunk(
     k = np.empty((4, ny))
     stage = np.empty(ny)
     acc = np.empty(ny)
-    step = 0
+    step = np.int64(0)  # not a literal: step_time compiles once
     for j in range(n_outputs):
         for _ in range(steps_per_output):
             t = step_time(first_output, output_interval, steps_per_output, step, dt)
@@ -108,7 +108,7 @@ _A = np.array(
 _E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
     """One Dormand-Prince step from (t, y) with k[0] = f(t, y) given; fills k[1..6], ynew."""
     ny = y.shape[0]
@@ -125,7 +125,7 @@ def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
     return status
 
 
-@njit(**JIT)
+@inner
 def _error_norm(k, y, ynew, h, rtol, atol, magnitude):
     """RMS of the embedded error estimate over atol_i + rtol max(|y_i|, |ynew_i|), where atol_i
     is at least rtol times ``magnitude[i]`` when ``magnitude`` is given (not empty)."""
@@ -217,9 +217,3 @@ def dopri5_chunk(
         states[j, :] = y
         times[j] = t
     return n_outputs, OK, h
-
-
-@njit(**JIT)
-def evaluate_rhs(t, y, p, w, ydot):
-    """The model's right-hand side, callable from Python (for SciPy and SUNDIALS)."""
-    return kernel.rhs(t, y, p, w, ydot)

@@ -52,8 +52,8 @@ from numba import njit
 
 from seacable.bodies import kinematics
 from seacable.kernels import lumped
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
-from seacable.kernels.timefn import JIT
 from seacable.numerics import bordered
 from seacable.numerics.integrators import step_time
 from seacable.system import coordinates, model, rigid
@@ -174,7 +174,7 @@ def layout(system: model.BuiltSystem, inc: Increments) -> bordered.Bordered:
     return bordered.structure(pattern, body_v, coordinates.colour(pattern))
 
 
-@njit(**JIT)
+@inner
 def _advance(y0, d, y, inc):
     """The positions of y moved from y0's by the increment d (velocity-sized)."""
     for i in range(d.shape[0]):
@@ -197,7 +197,7 @@ def _advance(y0, d, y, inc):
         y[q + 3] = dw * qz + dx * qy - dy * qx + dz * qw
 
 
-@njit(**JIT)
+@inner
 def _state(y0, acc, a1, h, coef, inc, y, d, nq):
     """y: the state at the end of the step from y0 with end acceleration a1."""
     pa, b, g = coef[0], coef[1], coef[2]
@@ -209,7 +209,7 @@ def _state(y0, acc, a1, h, coef, inc, y, d, nq):
     _advance(y0, d, y, inc)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
     """res = (1 - am) a1 + am a0 - [(1 - af) f(t + h, end state) + af f0], f0 = f(t, y0):
     the forces blended at the alpha point (as Chung and Hulbert write the scheme), so that an
@@ -224,7 +224,7 @@ def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
     return status
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, mat, r0, vec, work):
     """Newton's matrix by differences of the residual, colour by colour, into ``mat``; the
     residuals with the parameters ``pj`` (``frozen``: the laws' branches of the residual r0)."""
@@ -263,7 +263,7 @@ def _merit(res, weight):
     return total
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
     """a1 -= s da with s = 1, 1/2, ... (SEARCH halvings at most) until the residual's merit
     falls (Armijo's test); the residual at the new a1 into vec[6]. Returns (status, merit,
@@ -288,7 +288,7 @@ def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
     return status, trial_merit, fraction < 1.0
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, work):
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     A modified Newton iteration on the matrix of ``_jacobian``, kept from step to step while
@@ -390,9 +390,10 @@ def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     )  # fmt: skip
 
 
-@njit(**JIT)
 def initial_acceleration(t, y, p, w, acc):
-    """The system's accelerations at (t, y): the a0 a run starts from. Returns the status."""
+    """The system's accelerations at (t, y): the a0 a run starts from. Returns the status. From
+    Python: a compiled wrapper would hold a second copy of the right-hand side's code
+    (docs/architecture.md, "Compile time")."""
     ydot = np.empty_like(y)
     status = system_kernel.rhs(t, y, p, w, ydot)
     acc[:] = ydot[p.n_q : p.n_q + p.n_v]
@@ -422,7 +423,7 @@ def chunk(
     vec = np.empty((10, ny))
     y_saved = np.empty(ny)
     acc_saved = np.empty(nv)
-    step = 0
+    step = np.int64(0)  # not a literal: step_time compiles once
     for j in range(n_outputs):
         for _ in range(steps_per_output):
             t = step_time(first_output, output_interval, steps_per_output, step, dt)

@@ -9,22 +9,21 @@ coupling between bodies and lines (tests/test_system.py)."""
 import math
 
 import numpy as np
-from numba import njit
 
 from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
 from seacable.forces import linear
 from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
 from seacable.kernels.chain3d_outputs import segment_energies
+from seacable.kernels.jit import inner
 from seacable.kernels.lumped_outputs import line_energies
 from seacable.kernels.planar_chain import link_energies
 from seacable.kernels.surface import POINT, submersion
-from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass, natural_string, tip_joint
 from seacable.system import rigid
 
 
-@njit(**JIT)
+@inner
 def _lines(y, p, w):
     kinetic = gravity = elastic = 0.0
     for li in range(p.line_n.shape[0]):
@@ -42,7 +41,7 @@ def _lines(y, p, w):
     return kinetic, gravity, elastic
 
 
-@njit(**JIT)
+@inner
 def _tie_energy(elongation, stiffness, table, first, count):
     """Integral of the tie's tension (damping aside) from 0 to ``elongation`` [J]."""
     if elongation <= 0.0:
@@ -60,7 +59,7 @@ def _tie_energy(elongation, stiffness, table, first, count):
     return total
 
 
-@njit(**JIT)
+@inner
 def _bodies(y, p, w):
     kinetic = gravity = elastic = 0.0
     m6 = np.empty((6, 6))
@@ -102,7 +101,7 @@ def _bodies(y, p, w):
     return kinetic, gravity, elastic
 
 
-@njit(**JIT)
+@inner
 def energies(y, p, w):
     """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs."""
     k1, g1, e1 = _lines(y, p, w)
@@ -114,7 +113,7 @@ def energies(y, p, w):
     return k1 + k2 + k3, g1 + g2 + g3, e1 + e2 + e3
 
 
-@njit(**JIT)
+@inner
 def _rigid(y, p, w):
     """The rigid lines' segments (kernels.chain3d_outputs.segment_energies, kernels.planar_chain
     .link_energies)."""

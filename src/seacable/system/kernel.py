@@ -25,8 +25,8 @@ from seacable.forces import table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import natural, surface
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
-from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass, natural_string, tie, tip_joint
 from seacable.system import rigid
 
@@ -208,7 +208,7 @@ def make_work(p: SystemParams) -> SystemWork:
     )  # fmt: skip
 
 
-@njit(**JIT)
+@inner
 def _fractions(kind, shape, pos, fraction):
     for b in range(kind.shape[0]):
         fraction[b] = 1.0
@@ -216,7 +216,7 @@ def _fractions(kind, shape, pos, fraction):
             fraction[b], _, _ = surface.submersion(pos[b, 2], shape[b])
 
 
-@njit(**JIT)
+@inner
 def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, rot, omega,
                  out_mass, out_bias):  # fmt: skip
     for b in range(p_kind.shape[0]):
@@ -237,7 +237,7 @@ def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, ro
         )
 
 
-@njit(**JIT)
+@inner
 def _tip_joints(y, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_to, joints, point_body, rot,
                 omega, work, ref):  # fmt: skip
     """The joints at lines' ends (``rs_tip_joint``): each one's moment on its line's last
@@ -367,7 +367,7 @@ def rhs(t, y, p, w, ydot):
     return status
 
 
-@njit(**JIT)
+@inner
 def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, line_to, length,
                   stiffness, damping, slack_allowed, drag_normal, drag_tangential, wet_weight,
                   buoyancy, added_mass, bend, node_mass, seabed_stiffness, seabed_damping,
@@ -401,7 +401,7 @@ def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, lin
     return ok
 
 
-@njit(**JIT)
+@inner
 def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, load, bias, mass, acc, rhs, ydot):
     """Each dynamic body's accelerations and its rates into ``ydot``. The arrays come as
     arguments, not as fields of the parameter and work tuples: a field read inside the loop
@@ -446,7 +446,7 @@ def projects(p):
     return False
 
 
-@njit(**JIT)
+@inner
 def project(y, p):
     """Every rigid body's quaternion back to unit length, every rigid segment's director too and
     its rate normal to it (after each accepted step)."""

@@ -10,8 +10,8 @@ from numba import njit
 from seacable.bodies.dynamics import add_force
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import OK
-from seacable.kernels.timefn import JIT
 from seacable.lines import lumped_mass, natural_string, rigid_links, rigid_segments
 from seacable.system import energy as system_energy
 from seacable.system import kernel, rigid
@@ -132,7 +132,7 @@ def _rigid_line(p, w, li, ws, n, nodes, tension, ends):
         plane = w.ppos[p.rs_from[li], 1]
         for k in range(n + 1):
             nodes[k, 0], nodes[k, 1], nodes[k, 2] = ws[pc._PX, k], plane, ws[pc._PZ, k]
-        ax, az = rigid_links.node_force(ws, 0, force[0], force[2], pinned)
+        ax, az = rigid_links.node_force(ws, np.int64(0), force[0], force[2], pinned)
         ends[0, 0], ends[0, 1], ends[0, 2] = -ax, 0.0, -az
         for i in range(n):
             bx, bz = rigid_links.node_force(ws, i + 1, force[0], force[2], pinned)
@@ -145,7 +145,7 @@ def _rigid_line(p, w, li, ws, n, nodes, tension, ends):
     for k in range(n + 1):
         for c in range(3):
             nodes[k, c] = ws[c3._P + c, k]
-    above = rigid_segments.node_force(ws, 0, force, pinned)
+    above = rigid_segments.node_force(ws, np.int64(0), force, pinned)
     for c in range(3):
         ends[0, c] = -above[c]
     for i in range(n):
@@ -159,7 +159,7 @@ def _rigid_line(p, w, li, ws, n, nodes, tension, ends):
         ends[1, c] = above[c]
 
 
-@njit(**JIT)
+@inner
 def _bodies(y, p, w, on_body, out):
     for b in range(p.body_kind.shape[0]):
         rot = w.rot[b]

@@ -15,7 +15,7 @@ from seacable.bodies import dynamics, kinematics
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.chain3d_loads import segment_loads
-from seacable.kernels.timefn import JIT
+from seacable.kernels.jit import JIT, inner
 from seacable.lines import rigid_links, rigid_segments
 
 SEGMENTS_3D, PLANAR = 0, 1
@@ -39,7 +39,7 @@ def _view(rs_n, rs_seg, rs_node, work, li):
     return n, s0, work[rows * c0 : rows * (c0 + n + 1)].reshape((rows, n + 1))
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def workspace(p, w, li):
     """``_view``'s workspace of rigid line ``li`` (outputs, energies)."""
     return _view(p.rs_n, p.rs_seg, p.rs_node, w.rs, li)[2]
@@ -53,7 +53,7 @@ def _held(kind, rs_held, li):
     return rs_held[li, 0] != 0.0 or rs_held[li, 1] != 0.0 or rs_held[li, 2] != 0.0
 
 
-@njit(**JIT)
+@inner
 def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_ref,
                     length, wet_weight, buoyancy, drag_normal, drag_tangential, added, inertia,
                     joint_stiffness, joint_damping, current_z, current_u, current_v, point_body,

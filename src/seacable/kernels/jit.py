@@ -1,0 +1,43 @@
+"""How seacable compiles: the options of every compiled function, and compiled functions without
+a Python entry.
+
+``JIT`` is given to every ``numba.njit``: compiled once and cached on disk; the numpy error model
+drops per-division zero checks; the safe fastmath flags allow fused multiply-adds and reciprocals
+but keep NaN/inf semantics (the divergence checks rely on them).
+
+``inner`` compiles a function that only compiled code calls. numba builds, for every compiled
+function, a CPython entry that unboxes its arguments from Python objects. For a function whose
+arguments include the system's parameter and work tuples (``system.kernel.SystemParams``, about
+130 arrays) that entry is most of the compile: 1.0 s of the 1.3 s a function that reads one field
+of each takes (measured with numba 0.68). A system has a few dozen such functions (sweeps,
+energies, outputs, Newton's residual and line search), and an entry is only needed where Python
+calls in. ``inner`` leaves it out (and the C-callable entry, which nothing here uses); calling
+such a function from Python raises ``TypeError`` instead of running code that does not exist.
+"""
+
+from typing import Any
+
+from numba import njit
+from numba.core.registry import CPUDispatcher
+
+JIT: dict[str, Any] = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
+
+
+class InnerDispatcher(CPUDispatcher):
+    """A compiled function without a Python entry (see the module docstring)."""
+
+    def __call__(self, *args, **kwargs):
+        name = self.py_func.__module__ + "." + self.py_func.__qualname__
+        raise TypeError(
+            f"{name} is compiled for compiled callers only (seacable.kernels.jit.inner); "
+            "call it from a compiled function, or compile it with njit(**JIT) to call it "
+            "from Python"
+        )
+
+
+def inner(func):
+    """``njit(**JIT)`` without the Python and C entries: for functions that only compiled code
+    calls."""
+    dispatcher = njit(no_cpython_wrapper=True, no_cfunc_wrapper=True, **JIT)(func)
+    dispatcher.__class__ = InnerDispatcher
+    return dispatcher
