@@ -20,7 +20,7 @@ from typing import Any
 from numba import njit
 from numba.core.registry import CPUDispatcher
 
-JIT: dict[str, Any] = dict(cache=True, error_model="numpy", fastmath={"arcp", "nsz"})
+JIT: dict[str, Any] = dict(cache=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
 
 class InnerDispatcher(CPUDispatcher):
