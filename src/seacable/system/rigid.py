@@ -53,6 +53,16 @@ def _held(kind, rs_held, li):
     return rs_held[li, 0] != 0.0 or rs_held[li, 1] != 0.0 or rs_held[li, 2] != 0.0
 
 
+@njit(inline="always", **JIT)
+def planar_reference(rot, ref):
+    """The angle [rad] of a planar line's first joint's unloaded direction: ``ref`` (3, base
+    body frame) turned by the base's rotation ``rot`` (3x3), from the downward vertical,
+    positive towards +x."""
+    x = rot[0, 0] * ref[0] + rot[0, 1] * ref[1] + rot[0, 2] * ref[2]
+    z = rot[2, 0] * ref[0] + rot[2, 1] * ref[1] + rot[2, 2] * ref[2]
+    return math.atan2(x, -z)
+
+
 @njit(**JIT)
 def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_ref,
                     length, wet_weight, buoyancy, drag_normal, drag_tangential, added, inertia,
@@ -82,8 +92,8 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
             pc.link_loads(
                 n, y, rs_q[li], rs_v[li], length[s0:e], wet_weight[s0:e], buoyancy[s0:e],
                 drag_normal[s0:e], drag_tangential[s0:e], joint_stiffness[s0:e],
-                joint_damping[s0:e], math.atan2(ref[0], -ref[2]), -omega[base, 1], current_z,
-                current_u, ws,
+                joint_damping[s0:e], planar_reference(rot[base], rs_ref[li]), -omega[base, 1],
+                current_z, current_u, ws,
             )  # fmt: skip
             if tip >= 0:
                 pos[tip, 0], pos[tip, 1], pos[tip, 2] = ws[pc._PX, n], ppos[a, 1], ws[pc._PZ, n]
