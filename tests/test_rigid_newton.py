@@ -1,7 +1,8 @@
 """A rigid line's Newton rows in maximal coordinates (numerics.rigid_newton): the correction
-they give equals the dense one (J^-1 r with J by central differences over every acceleration),
-their band does not grow with the number of links, and an implicit run with them follows the
-run with the dense block and a tight dopri5 run."""
+they give equals the dense one (J^-1 r with J by central differences over every acceleration;
+a line from an imposed body to a free or held tip, and the thesis's line from its heaving
+structure), their band does not grow with the number of links, and an implicit run with them
+follows the run with the dense block and a tight dopri5 run."""
 
 import numpy as np
 import pytest
@@ -70,7 +71,7 @@ def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **si
     return seacable.load_case(data)
 
 
-def _corrections(case, scheme, h):
+def _corrections(case, scheme, h, lines=1, bodies=0):
     """The Newton correction at a perturbed state and acceleration: (maximal coordinates, the
     dense J^-1 r with J by central differences)."""
     system = system_model.build(case)
@@ -85,7 +86,7 @@ def _corrections(case, scheme, h):
     assert system_implicit.initial_acceleration(0.3, y, p, w, acc) == 0
     a1 = acc + rng.normal(size=nv)
     inc, lay, rows = system_implicit.newton(case, system)
-    assert len(rows.line) == 1
+    assert (len(rows.line), len(rows.body)) == (lines, bodies)
     vec = np.zeros((10, len(y)))
     ydot = np.empty(len(y))
     kernel.rhs(0.3, y, p, w, ydot)
@@ -145,7 +146,8 @@ def test_the_band_does_not_grow_with_the_links():
 
 
 def _gap(ds, reference, names=("position_x", "position_z")):
-    """The largest difference of the clump's position and the top's line force (relative)."""
+    """The largest difference of the end body's position [m] and of the top's line force
+    (relative to its largest)."""
     worst = 0.0
     for name in names:
         a, b = ds[f"bodies/end/{name}"].values, reference[f"bodies/end/{name}"].values
@@ -164,7 +166,40 @@ def test_an_implicit_run_follows_the_dense_block_and_dopri5(monkeypatch):
     ).dataset
     position, force = _gap(banded, reference)
     assert position < 5e-3 and force < 2e-2  # the scheme's own error at 20 ms
-    monkeypatch.setattr(rigid_newton, "eligible", lambda p: np.zeros(0, dtype=np.int64))
+    monkeypatch.setattr(rigid_newton, "eligible", lambda p: ([], {}))
     dense = seacable.simulate(case).dataset
     position, force = _gap(banded, dense)
     assert position < 1e-7 and force < 1e-7  # the same iteration, to Newton's tolerance
+
+
+def _thesis(integrator="newmark", **simulation):
+    """The thesis's 12 links from its heaving structure (a dynamic base body), in air."""
+    case = seacable.load_case("examples/thesis_6_1_sim1_air_12_links.yaml")
+    sim = case.simulation.model_copy(update={"integrator": integrator, **simulation})
+    return case.model_copy(update={"simulation": sim})
+
+
+@pytest.mark.parametrize(
+    ("scheme", "h"),
+    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
+     (system_implicit.scheme("implicit_euler"), 0.01)],
+)  # fmt: skip
+def test_a_dynamic_base_body_keeps_the_dense_correction(scheme, h):
+    maximal, dense = _corrections(_thesis(), scheme, h, lines=1, bodies=1)
+    assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()
+
+
+def test_the_thesis_case_with_newmark_follows_the_dense_block_and_dopri5(monkeypatch):
+    """Pouzada's 12 links in air from the heaving structure (the line's base is a dynamic body,
+    its tip a 60 kg mass): 3 s at 10 ms."""
+    banded = seacable.simulate(_thesis(time_step=0.01, duration=3.0)).dataset
+    assert banded.attrs["status"] == "complete"
+    reference = seacable.simulate(_thesis("dopri5", duration=3.0, rtol=1e-9)).dataset
+    top = "bodies/top/position_z"
+    heave = float(np.abs(reference[top].values).max())
+    assert np.abs(banded[top].values - reference[top].values).max() < 1e-2 * heave
+    assert _gap(banded, reference)[0] < 0.05  # m, the end of a 240 m line swinging
+    monkeypatch.setattr(rigid_newton, "eligible", lambda p: ([], {}))
+    dense = seacable.simulate(_thesis(time_step=0.01, duration=3.0)).dataset
+    assert np.abs(banded[top].values - dense[top].values).max() < 1e-8 * heave
+    assert _gap(banded, dense)[0] < 1e-6

@@ -38,7 +38,8 @@ length. It is laid out and factorised by ``numerics.bordered``: each line (or tr
 lines) a banded block, the bodies' degrees of freedom the border, so a factorisation costs
 O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement.
 A rigid line's accelerations depend on all its angles: in them its block is dense. A planar
-one based on a fixed or imposed body is written instead in maximal coordinates
+one based on a fixed or imposed body, or on a dynamic body whose rotations are held, is
+written instead in maximal coordinates
 (``numerics.rigid_newton``, docs/rigid_newton.md: banded, exact, O(n) to build and factorise),
 with auxiliary unknowns after the velocity variables; the others keep the dense block. The
 factors are kept from step to step while they serve (modified Newton: rebuilt when an
@@ -153,8 +154,8 @@ def layout(
     moves it, ``inc``; a quaternion's onto its body's three angular velocities), the bodies'
     as the border; the planar rigid lines ``rigid_newton.eligible`` picks (and that couple to
     nothing else) written in maximal coordinates instead, with their auxiliary unknowns after
-    the velocity variables (``_maximal``; ``maximal=False``: none, every rigid line's block
-    dense, as before; benchmarks/implicit_cost.py compares the two)."""
+    the velocity variables (``rigid_newton.layout``; ``maximal=False``: none, every rigid
+    line's block dense, as before; benchmarks/implicit_cost.py compares the two)."""
     p = system.params
     nq, nv = int(p.n_q), int(p.n_v)
     full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
@@ -179,65 +180,7 @@ def layout(
     for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
         v = int(p.body_v[b]) - nq
         body_v[v : v + (6 if p.body_rigid[b] else 3)] = True
-    return _maximal(p, pattern.tocoo(), body_v, maximal)
-
-
-def _maximal(
-    p, pattern, border: np.ndarray, maximal: bool
-) -> tuple[bordered.Bordered, rigid_newton.RigidRows]:
-    """The layout of Newton's system with the eligible rigid lines' blocks in maximal
-    coordinates (``numerics.rigid_newton``): their entries placed by ``rigid_newton.entries``
-    and left out of the differences (colour -1), each block ordered link by link."""
-    nv = pattern.shape[0]
-    row, col = pattern.row, pattern.col
-    written = np.zeros(nv, dtype=bool)
-    lines, auxes, spans, links = [], [], [], 0
-    entries_r, entries_c = [], []
-    size = nv
-    key = list(range(nv))
-    for li in rigid_newton.eligible(p) if maximal else []:
-        n, v = int(p.rs_n[li]), int(p.rs_v[li]) - int(p.n_q)
-        own = np.zeros(nv, dtype=bool)
-        own[v : v + n] = True
-        if np.any(own[row] != own[col]):
-            continue  # coupled to some other unknown: its block stays dense
-        r, c = rigid_newton.entries_pattern(n, v, size, p.rs_held[li, [0, 2]])
-        glob = rigid_newton.local_to_global(n, v, size)
-        size += len(glob) - n
-        key.extend([0] * (len(glob) - n))
-        for local, g in enumerate(glob):
-            key[g] = local
-        written |= own
-        lines.append(li)
-        auxes.append(int(glob[1]))
-        spans.append(len(r))
-        entries_r.append(r)
-        entries_c.append(c)
-        links += n
-    kept = ~written[row]
-    rows_all = np.concatenate([row[kept], *entries_r]).astype(np.int64)
-    cols_all = np.concatenate([col[kept], *entries_c]).astype(np.int64)
-    full = coordinates.sparse.coo_matrix((np.ones(len(rows_all)), (rows_all, cols_all)),
-                                         shape=(size, size)).tocsr()  # fmt: skip
-    rest = coordinates.sparse.csr_matrix(
-        (np.ones(int(kept.sum())), (row[kept], col[kept])), shape=(nv, nv)
-    )
-    colours = np.full(size, -1, dtype=np.int64)
-    colours[:nv] = np.where(written, -1, coordinates.colour(rest))
-    border_all = np.zeros(size, dtype=bool)
-    border_all[:nv] = border
-    lay = bordered.structure(full, border_all, colours, np.array(key, dtype=np.int64))
-    col_of = np.repeat(np.arange(size), np.diff(lay.nz_ptr))
-    place = coordinates.sparse.csr_matrix((lay.nz_dest + 1, (lay.nz_row, col_of)),
-                                          shape=(size, size))  # fmt: skip
-    dest = [np.asarray(place[r, c]).ravel() - 1 for r, c in zip(entries_r, entries_c, strict=True)]
-    rows = rigid_newton.RigidRows(
-        line=np.array(lines, dtype=np.int64), aux=np.array(auxes, dtype=np.int64),
-        dest_at=np.concatenate([[0], np.cumsum(spans)]).astype(np.int64),
-        dest=np.concatenate([np.zeros(0, np.int64), *dest]).astype(np.int64),
-        geo=np.zeros(2 * links), size=size,
-    )  # fmt: skip
-    return lay, rows
+    return rigid_newton.layout(p, pattern.tocoo(), body_v, maximal)
 
 
 @njit(**JIT)
