@@ -203,3 +203,44 @@ def test_the_thesis_case_with_newmark_follows_the_dense_block_and_dopri5(monkeyp
     dense = seacable.simulate(_thesis(time_step=0.01, duration=3.0)).dataset
     assert np.abs(banded[top].values - dense[top].values).max() < 1e-8 * heave
     assert _gap(banded, dense)[0] < 1e-6
+
+
+def _buoy_with_two_lines():
+    """A buoy free in surge and heave (a point body) carrying two planar lines of 6 links to
+    two clumps, in water with a current: a body row with two lines' base forces."""
+    clump = {"mass": 20.0, "volume": 0.003, "external forces": [
+        {"model": "gravity"}, {"model": "buoyancy"},
+        {"model": "drag", "drag_coefficient": 1.0, "area": [0.05, 0.05, 0.05]}]}  # fmt: skip
+    lines, bodies = [], []
+    for k, side in enumerate((1.0, -1.0)):
+        angles = np.radians(side * np.linspace(10.0, 40.0, 6))
+        end = [float(np.sin(angles).sum()), 0.0, -2.0 - float(np.cos(angles).sum())]
+        bodies.append({"name": f"clump {k}", "type": "point", "position": end, **clump})
+        lines.append({
+            "name": f"line {k}", "model": "rigid_links", "from": "buoy", "to": f"clump {k}",
+            "sections": [{"type": "rope", "segments": 6, "length": 6.0}],
+            "initial": {"arc_deg": [side * 10.0, side * 40.0]},
+            "base_reference": [0.0, 0.0, -1.0], "joint_damping": 0.2,
+        })  # fmt: skip
+    buoy = {
+        "name": "buoy", "type": "point", "position": [0.0, 0.0, -2.0], "mass": 200.0,
+        "volume": 0.1, "dofs": ["surge", "heave"],
+        "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
+                            {"model": "drag", "drag_coefficient": 0.8, "area": [0.3, 0.3, 0.3]},
+                            {"model": "linear_stiffness", "diagonal": [50.0, 0, 0, 0, 0, 0],
+                             "equilibrium_position": [0.0, 0.0, -2.0]}],
+    }  # fmt: skip
+    rope = {"name": "rope", "diameter": 0.02, "mass_per_length": 1.5, "bending_stiffness": 2.0,
+            "drag_coefficient_normal": 1.2, "added_mass_coefficient": 0.0}  # fmt: skip
+    return seacable.load_case({
+        "environment": {"water_depth": 50.0, "current": {"velocity": 0.3}},
+        "bodies": [buoy, *bodies], "line_types": [rope], "lines": lines, "start": "as_given",
+        "simulation": {"duration": 1.0, "output_interval": 0.1, "integrator": "newmark",
+                       "time_step": 0.01},
+    })  # fmt: skip
+
+
+def test_a_body_carrying_two_lines_keeps_the_dense_correction():
+    scheme = system_implicit.scheme("generalized_alpha", spectral_radius=0.5)
+    maximal, dense = _corrections(_buoy_with_two_lines(), scheme, 0.05, lines=2, bodies=1)
+    assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()

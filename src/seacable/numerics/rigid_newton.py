@@ -113,7 +113,7 @@ def entries_pattern(
     """The rows and columns (Newton's unknowns) of a line's entries, in ``entries``' order
     (``held``: x and z, 1.0 on a held axis; ``base_v``: the first velocity variable of its
     dynamic base body, -1 for none)."""
-    size = 47 * n + 30
+    size = 47 * n + 34
     rows, cols, vals = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
     zero = np.zeros((DERIVATIVES, n))
     count = entries(n, np.ones(n), np.ones(n), np.ones(n), np.zeros(n), np.zeros(n),
@@ -339,6 +339,8 @@ def _base_entries(n, mass0, der, free, km, kx, kv, rows, cols, vals, k):
         bc = 2 * c  # x, z of the plane: the body's axes 0 and 2
         k = _put(rows, cols, vals, k, 1 + c, body + bc, -km * free[bc])  # kinematics
         k = _put(rows, cols, vals, k, 3 + c, body + bc, 0.5 * mass0 * km * free[bc])
+        k = _put(rows, cols, vals, k, 5 + c, body + bc, -kx)  # node 1's position, velocity
+        k = _put(rows, cols, vals, k, 7 + c, body + bc, -kv)
         for e in range(2):
             k = _put(rows, cols, vals, k, 3 + c, body + 2 * e,
                      -(der[2 * c + e, 0] * kx + der[4 + 2 * c + e, 0] * kv))  # fmt: skip
