@@ -12,12 +12,12 @@ and dlam_n (2) at the tip: the change of each node's acceleration A, of the forc
 above a node exerts on the part below, and of each node's position P and velocity V, all
 scaled by (1 - af). Every row (a link's rotation, its kinematics, its translation, its node's
 position and velocity, the tip's) involves one link and its neighbours, so the block is banded
-(kl = 11, ku = 13 whatever n) and ``numerics.bordered`` factorises it in O(n). A dynamic body
-the lines hang from keeps its unknowns in the border, its rows written in Newton-Euler form too
-(its own mass and force models, and each line's dlam_0). Eliminating the auxiliary unknowns
-gives delta = J^-1 r exactly: the rows are the exact linearisation of the equations the
-articulated sweeps solve, with the loads' derivatives by finite differences of the loads
-themselves (``numerics.rigid_derivatives``).
+(kl = ku = 9 whatever n, ordered by ``BLOCK_ORDER``) and ``numerics.bordered`` factorises it in
+O(n). A dynamic body the lines hang from keeps its unknowns in the border, its rows written in
+Newton-Euler form too (its own mass and force models, and each line's dlam_0). Eliminating the
+auxiliary unknowns gives delta = J^-1 r exactly: the rows are the exact linearisation of the
+equations the articulated sweeps solve, with the loads' derivatives by finite differences of
+the loads themselves (``numerics.rigid_derivatives``).
 
 Written so (``eligible``): planar lines whose base is a fixed or imposed body, or a dynamic body
 whose rotations are held and that nothing but such lines and its force models touch; whose tip
@@ -46,6 +46,9 @@ from seacable.system import coordinates, rigid
 from seacable.system import kernel as system_kernel
 
 PER_LINK = 9  # unknowns (and rows) per link; two more at the tip
+# where each of a link's unknowns (delta, dA (2), dlam (2), dP (2), dV (2)) stands in the block:
+# dlam_i first; the narrowest band of the 9! orders (kl = ku = 9; 11 and 13 in the entries' order)
+BLOCK_ORDER = np.array([2, 3, 4, 0, 1, 5, 6, 7, 8])
 
 
 class RigidRows(NamedTuple):
@@ -92,6 +95,14 @@ def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
             continue
         lines.append(li)
     return lines, on_body
+
+
+def _position(local: int, n: int) -> int:
+    """Where local unknown ``local`` of a line of n links stands in its block (``BLOCK_ORDER``;
+    the tip's two last)."""
+    if local >= PER_LINK * n:
+        return local
+    return PER_LINK * (local // PER_LINK) + int(BLOCK_ORDER[local % PER_LINK])
 
 
 def local_to_global(n: int, v: int, aux: int, base_v: int) -> np.ndarray:
@@ -179,7 +190,7 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
             size += len(glob) - n
             key.extend([0] * (len(glob) - n))
             for local, g in enumerate(glob):
-                key[g] = local
+                key[g] = _position(local, n)
             links += n
         if group[0] < 0:
             bodies.append(-1 - group[0])
