@@ -243,7 +243,7 @@ def _put(rows, cols, vals, k, r, c, value):
     return k + 1
 
 
-@inner
+@njit(**JIT)
 def body_entries(size, free, mass3, der, lines, km, kx, kv, rows, cols, vals):
     """A dynamic body's rows (local: its ``size`` unknowns, then each line's dlam_0 in x and
     z): on a free translation c, its Newton-Euler row sum_e M_ce (km delta_e - r_e) (free e)
@@ -264,7 +264,7 @@ def body_entries(size, free, mass3, der, lines, km, kx, kv, rows, cols, vals):
     return k
 
 
-@inner
+@njit(**JIT)
 def entries(n, length, mass, inertia, omega, thdd, geometry, lam, der, tip_mass, tip_der, held,
             stabilization, base_free, km, kx, kv, rows, cols, vals):  # fmt: skip
     """One line's entries (local row, local column, value; docs/rigid_newton.md): ``omega`` and
