@@ -365,14 +365,20 @@ def _newton(p, y0, iterations, time: float = 0.0):
         ab = np.zeros((2 * half + 1, m))
         for colour in range(9):
             columns = np.arange(colour, m, 9)
-            step = 1e-7 * np.maximum(1.0, np.abs(y[index[columns]]))
+            step = 1e-6 * np.maximum(1.0, np.abs(y[index[columns]]))
             trial = y.copy()
             trial[index[columns]] += step
-            dr = residual(trial) - r
-            for col, h in zip(columns, step, strict=True):
-                node = int(col) // 3  # rows of this node and its two neighbours
-                rows = np.arange(3 * max(0, node - 1), min(m, 3 * (node + 2)))
-                ab[half + rows - col, col] = dr[rows] / h
+            dr = residual(trial)
+            trial[index[columns]] -= 2.0 * step
+            dr -= residual(trial)
+            # each column's rows: its node's and its two neighbours' (9, those inside)
+            rows = 3 * (columns // 3 - 1)[:, None] + np.arange(9)[None, :]
+            cols = np.broadcast_to(columns[:, None], rows.shape)
+            inside = (rows >= 0) & (rows < m)
+            rows, cols = rows[inside], cols[inside]
+            ab[half + rows - cols, cols] = (
+                0.5 * dr[rows] / np.broadcast_to(step[:, None], inside.shape)[inside]
+            )
         delta = solve_banded((half, half), ab, -r)
         # the seabed's contact is not smooth: when no shorter step lowers the residual, the
         # full step is taken anyway, and the best state met is kept
@@ -385,6 +391,8 @@ def _newton(p, y0, iterations, time: float = 0.0):
         y, r = trial, rt
         if np.linalg.norm(r) < best_norm:
             best, best_norm = y, np.linalg.norm(r)
+        if damping * np.abs(delta).max() <= 1e-12 * (1.0 + np.abs(y[index]).max()):
+            break  # the residual is at its rounding floor: no step moves a node any more
     best = best.copy()
     best[p.n_q :] = y0[p.n_q :]
     return best
