@@ -21,8 +21,10 @@ For each size, in this process (one thread, kernels compiled or loaded before ti
   evaluations per step);
 * simulate: one whole ``seacable.simulate`` of ``--steps`` rk4 steps, start-up and output
   included, and that time per accepted step (results' attribute ``solver_accepted_steps``);
-* statics: ``seacable.statics`` of the same case (``start: static``): Newton on every free
-  degree of freedom with a sparse finite-difference Jacobian; its time, or its failure.
+* statics: ``seacable.statics`` of the same case (``start: static``: the lines' shapes, then
+  Newton over every coordinate, which fails here, then over the buoys with the lines settled,
+  ``system.nested``), start-up and output row included; its time, or its failure, and the
+  largest force left on a buoy recomputed from its lines' end loads and its net lift.
 
 Printed: cost per step, per segment per step, and their ratios to the smallest case (linear
 growth: a constant cost per segment). Times are wall times (perf_counter) of single-threaded
@@ -40,7 +42,7 @@ import numpy as np
 
 import seacable
 from seacable.numerics import integrators
-from seacable.system import kernel, model
+from seacable.system import kernel, model, statics
 from seacable.system.statics import StaticsError
 
 BODIES, SEGMENTS = 10, 100
@@ -175,14 +177,25 @@ def run(lines: int, steps: int) -> tuple[float, int, int]:
 
 
 def time_statics(lines: int) -> tuple[float, str]:
+    """(wall time [s] of ``seacable.statics``, its outcome): converged, with the largest force
+    [N] left on a buoy recomputed from its lines' end loads at rest (``statics.line_loads``)
+    and its own buoyancy less its weight, against its net buoyancy; or its failure."""
     case = seacable.load_case(system(lines, start="static"))
     start = time.perf_counter()
     try:
         seacable.statics(case)
-        outcome = "converged"
     except StaticsError as exc:
-        outcome = "FAILED: " + str(exc).split("; ")[-1].split(". Check")[0]
-    return time.perf_counter() - start, outcome
+        return time.perf_counter() - start, "FAILED: " + str(exc).split("; ")[-1].split(". ")[0]
+    elapsed = time.perf_counter() - start
+    built = model.build(case)  # the same balance, for the check
+    loads = statics.line_loads(built, built.y0, at_rest=True)
+    worst, net = 0.0, 0.0
+    for b, body in enumerate(built.case.bodies):
+        if body.type == "point":
+            lift = (built.params.rho * body.volume - body.mass) * built.params.gravity
+            worst = max(worst, float(np.abs(loads[b, :3] + [0.0, 0.0, lift]).max()))
+            net = max(net, lift)
+    return elapsed, f"converged; largest force left on a buoy {worst:.2g} N (net lift {net:.3g} N)"
 
 
 def main() -> None:

@@ -24,10 +24,9 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse.linalg import splu
 
-from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
-from seacable.system.initial import settle_lines
+from seacable.system.initial import pushed, settle_lines
 
 
 class BodyForces:
@@ -154,7 +153,7 @@ def jacobian(forces: BodyForces, y: np.ndarray) -> sparse.csc_matrix:
                 for li, e, _ in ends.get(b, []):
                     mine = (line == li) & ((local < span) if e == 0 else (local >= inside - span))
                     hits.append(nodes[mine])
-                rows = np.concatenate(hits)
+                rows = np.unique(np.concatenate(hits))  # a short line on b at both ends
                 parts.append((rows, np.full(len(rows), column), dr[rows] / h))
     rows, cols, values = (np.concatenate([part[i] for part in parts]) for i in range(3))
     return sparse.csc_matrix((values, (rows, cols)), shape=(n, n))
@@ -178,39 +177,39 @@ def _groups(rows_of, near, keys) -> list[list[int]]:
     return [members for members, _ in groups]
 
 
-def bodies_newton(p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, limit: np.ndarray,
-                  iterations: int, tolerance: float, time: float = 0.0) -> np.ndarray:  # fmt: skip
+def bodies_newton(
+    p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, limit: np.ndarray,
+    iterations: int, tolerance: float, time: float = 0.0,
+) -> np.ndarray | None:  # fmt: skip
     """Newton over the bodies' degrees of freedom, the lines settled at each trial pose
     (``settle_lines``, the linear axial law; module docstring), until the bodies' accelerations
     are below ``tolerance`` [m/s^2, rad/s^2]. Each step is cut to ``limit`` (per body
     coordinate [m, rad]) and halved until the lines settle (from a step of metres their Newton
-    can fail) and the bodies' forces drop. Returns the last state."""
+    can fail) and the bodies' forces drop. Returns the last state, or None when a segment is
+    pushed there (beyond a strain of 1e-8 and 1e-6 of the largest tension): a balance of the
+    linear law that the physical one does not have."""
     p = p._replace(slack_allowed=0)
     forces = BodyForces(p, coords, time)
     bodies = forces.bodies
     nodes = coords.kind == 2
-    segments = np.concatenate([np.arange(p.line_node[li], p.line_node[li] + p.line_n[li])
-                               for li in range(len(p.line_n))])  # fmt: skip
-    allowed = 1e-8 * float(np.max(p.seg_stiffness))  # [N] a strain of 1e-8
 
     def settled(state):
-        out = settle_lines(p, state, slack=0)
+        out = settle_lines(p, state, slack=0, time=time)
         r = forces(out)
-        compression = max(0.0, -float(forces.w.nodes[T_ROW, segments].min()))
-        return out, r, forces.body_accelerations(), compression
+        return out, r, forces.body_accelerations(), pushed(p, forces.w)
 
     def better(trial, now):
-        """Its lines settled (1e-5 g), no more compressed than now (the linear law has
-        spurious balances: a step that lowers a buoy lays chain on the seabed, straight and
-        pushed, and a pushed chain can hold the buoy off), the bodies' forces lower."""
+        """Its lines settled (1e-5 g), not pushed harder than now (``initial.pushed``: a step
+        that lowers a buoy lays chain on the seabed, straight and pushed, and a pushed chain
+        can hold the buoy off), the bodies' forces lower."""
         r_trial, r_now = trial[1], now[1]
         return (np.all(np.isfinite(r_trial)) and np.abs(r_trial[nodes]).max(initial=0.0)
-                < 1e-5 * p.gravity and trial[3] <= max(now[3], allowed)
+                < 1e-5 * p.gravity and trial[3] <= now[3]
                 and np.linalg.norm(r_trial[bodies]) < np.linalg.norm(r_now[bodies]))  # fmt: skip
 
-    y, r, a, pushed = settled(y)
+    y, r, a, compression = settled(y)
     for _ in range(iterations):
-        if not np.all(np.isfinite(r)) or np.abs(a).max() < tolerance:
+        if not np.all(np.isfinite(r)) or np.abs(a).max(initial=0.0) < tolerance:
             break
         try:
             step = splu(jacobian(forces, y)).solve(-r)
@@ -221,9 +220,9 @@ def bodies_newton(p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, li
             step /= largest
         for fraction in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125):
             attempt = settled(apply(y, coords, fraction * step))
-            if better(attempt, (y, r, a, pushed)):
+            if better(attempt, (y, r, a, compression)):
                 break
         else:
             break
-        y, r, a, pushed = attempt
-    return y
+        y, r, a, compression = attempt
+    return None if compression else y

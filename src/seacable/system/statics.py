@@ -68,14 +68,15 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return direct
     bodies = np.flatnonzero(coords.kind <= 1)
-    if bodies.size and not len(p.rs_n):
+    if (bodies.size or len(p.line_n)) and not len(p.rs_n):  # free bodies or lumped lines
         limit = _step_limit(built, coords, shortest=True)[bodies]
         settled = nested.bodies_newton(p, coords, y, limit, iterations, tolerance * scale, time)
-        r = residual(settled)
-        nodes = np.flatnonzero(coords.kind == 2)
-        r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(settled)[nodes]
-        if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-            return settled
+        if settled is not None:
+            r = residual(settled)
+            nodes = np.flatnonzero(coords.kind == 2)
+            r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(settled)[nodes]
+            if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+                return settled
     followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale)
     r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
