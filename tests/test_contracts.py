@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numba import njit
 
 import seacable
 from seacable.bodies.contract import BodyDynamics, BodyKinematics
@@ -18,6 +19,7 @@ from seacable.kernels import planar_chain as pc
 from seacable.lines import lumped_mass, natural_string, rigid_links, rigid_segments
 from seacable.lines.contract import LumpedLineModel, NaturalStringModel, RigidLineModel
 from seacable.numerics.contract import ChunkIntegrator
+from seacable.system import energy
 from seacable.system import model as system_model
 from seacable.system.contract import RunModel
 
@@ -451,6 +453,12 @@ STIFFNESS = [[9e3, 1e3, 0.0, 0.0, 2e2, 0.0], [1e3, 8e3, 0.0, 0.0, 0.0, 0.0],
              [2e2, 0.0, 0.0, 0.0, 5e4, 1e3], [0.0, 0.0, 0.0, 0.0, 1e3, 6e4]]  # fmt: skip
 
 
+@njit
+def _energies(y, p, w):
+    """system.energy.energies, which has no Python entry (kernels.jit.inner)."""
+    return energy.energies(y, p, w)
+
+
 @pytest.mark.parametrize(
     ("force", "turns"),
     [({"model": "gravity"}, True), ({"model": "buoyancy"}, True),
@@ -463,7 +471,7 @@ def test_conservative_force_models_derive_from_their_potential(force, turns):
     of the model's force and moment about the reference point is minus the change of the
     potential ``system.energy`` reports (central differences, 1e-7 of the force's scale)."""
     from seacable.forces import table
-    from seacable.system import energy, kernel
+    from seacable.system import kernel
     from seacable.system.coordinates import rotate
 
     assert isinstance(table, ForceTable)
@@ -473,7 +481,7 @@ def test_conservative_force_models_derive_from_their_potential(force, turns):
 
     def potential(state):
         kernel.rhs(0.0, state, p, w, np.zeros_like(state))
-        _, gravity, elastic = energy.energies(state, p, w)
+        _, gravity, elastic = _energies(state, p, w)
         return gravity + elastic
 
     potential(y)

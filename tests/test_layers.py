@@ -85,6 +85,10 @@ def test_no_import_inside_functions_except_lazy_optional():
     lazy_ok = {"matplotlib", "matplotlib.pyplot", "tqdm", "seacable", "matplotlib.animation"}
     lazy_ok |= {"sksundae.cvode"}  # SUNDIALS, loaded when a case asks for integrator: cvode
     lazy_ok |= {"PIL"}  # Pillow, loaded when an animation is written
+    # SciPy's slow imports, loaded where used (docs/architecture.md, "Compile time"): a run with
+    # rk4, dopri5 or the implicit schemes needs none of them
+    lazy_ok |= {"scipy", "scipy.integrate", "scipy.interpolate", "scipy.optimize"}
+    lazy_ok |= {"scipy.spatial.transform", "scipy.linalg"}
     for path in PACKAGE.rglob("*.py"):
         tree = ast.parse(path.read_text())
         for func in ast.walk(tree):

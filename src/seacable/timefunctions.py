@@ -9,7 +9,6 @@ that follows it.
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from seacable.case import base
 from seacable.kernels.timefn import evaluate as _evaluate
@@ -91,6 +90,8 @@ def _table(spec: base.Table, base_dir) -> Piecewise:
             [values[:-1], slopes, np.zeros_like(slopes), np.zeros_like(slopes)]
         )
     else:
+        from scipy.interpolate import CubicSpline  # here: its import is slow (docs/architecture.md)
+
         spline = CubicSpline(times, values, bc_type="clamped")
         c = spline.c  # (4, K) highest power first
         middle = np.column_stack([c[3], c[2], c[1], c[0]])

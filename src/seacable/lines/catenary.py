@@ -15,7 +15,6 @@ anchor), as in Irvine (1981) and Jonkman (2007):
 import math
 
 import numpy as np
-from scipy.optimize import fsolve
 
 from seacable.errors import SeacableError
 
@@ -51,6 +50,8 @@ def solve(span: float, rise: float, length: float, w: float, ea: float, seabed: 
         for f in (0.001, 0.01, 0.1, 1.0, 5.0)
         for g in (max(rise, 1.0), 0.5 * length, length, 2.0 * length)
     ]
+    from scipy.optimize import fsolve  # here: its import is slow (docs/architecture.md)
+
     for h0, v0 in guesses:
         solution, info, ok, _ = fsolve(
             lambda q: np.subtract(

@@ -57,11 +57,16 @@ def _width(kl: int, ku: int) -> int:
     return 2 * kl + ku + 1
 
 
-def structure(pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray) -> Bordered:
+def structure(
+    pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray, key: np.ndarray | None = None
+) -> Bordered:
     """The layout for a square ``pattern`` (the non-zeros of the matrix; the diagonal is added)
     whose unknowns ``border`` (a boolean mask) form the border; ``colours`` groups columns that
-    share no row (``system.coordinates.colour``). Unknowns outside the border that couple
-    directly are put in one block."""
+    share no row (``system.coordinates.colour``; a negative colour: a column the differences
+    leave out, its entries written otherwise). Unknowns outside the border that couple
+    directly are put in one block, ordered by ``key`` (default: by index; a block whose
+    unknowns are numbered apart, such as a rigid line's accelerations and its auxiliary
+    unknowns, is kept banded by a key that interleaves them)."""
     n = pattern.shape[0]
     coo = (sparse.csr_matrix(pattern) + sparse.identity(n, format="csr")).tocoo()
     rows, cols = coo.row.astype(np.int64), coo.col.astype(np.int64)
@@ -70,7 +75,9 @@ def structure(pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray)
     link = sparse.coo_matrix((np.ones(int(inner.sum())), (rows[inner], cols[inner])), (n, n))
     _, label = sparse.csgraph.connected_components(link, directed=False)
     label = np.where(border, -1, label)
+    rank = np.arange(n) if key is None else np.asarray(key)
     blocks = [np.flatnonzero(label == g) for g in np.unique(label[~border])]
+    blocks = [b[np.argsort(rank[b], kind="stable")] for b in blocks]
     blocks.sort(key=lambda b: int(b[0]))
     order = np.concatenate([*blocks, np.flatnonzero(border)]).astype(np.int64)
     position = np.empty(n, dtype=np.int64)
@@ -127,9 +134,10 @@ def structure(pattern: sparse.spmatrix, border: np.ndarray, colours: np.ndarray)
     nz_ptr = np.zeros(n + 1, dtype=np.int64)
     nz_ptr[1:] = np.cumsum(np.bincount(cols, minlength=n))
     colours = np.asarray(colours, dtype=np.int64)
-    colour_cols = np.argsort(colours, kind="stable").astype(np.int64)
+    counted = np.flatnonzero(colours >= 0)
+    colour_cols = counted[np.argsort(colours[counted], kind="stable")].astype(np.int64)
     colour_ptr = np.zeros(int(colours.max(initial=-1)) + 2, dtype=np.int64)
-    colour_ptr[1:] = np.cumsum(np.bincount(colours, minlength=len(colour_ptr) - 1))
+    colour_ptr[1:] = np.cumsum(np.bincount(colours[counted], minlength=len(colour_ptr) - 1))
     return Bordered(
         order=order, start=start, kl=kl, ku=ku, band=band, touch_at=touch_at, touch=touch,
         b_at=b_at, c_at=c_at, size=at, nz_ptr=nz_ptr, nz_row=rows[by_col],

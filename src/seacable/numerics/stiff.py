@@ -13,7 +13,6 @@ rejected steps) is -1.
 """
 
 import numpy as np
-from scipy import integrate
 
 STIFF = ("bdf", "radau", "lsoda", "cvode")
 
@@ -38,6 +37,8 @@ class StiffStepper:
 
     # ---- SciPy ----
     def _init_scipy(self, y0, rtol, atol, max_step, first_step):
+        from scipy import integrate  # here: its import is slow (docs/architecture.md)
+
         solver = {"bdf": integrate.BDF, "radau": integrate.Radau, "lsoda": integrate.LSODA}
         options = dict(rtol=rtol, atol=atol, max_step=max_step, first_step=first_step)
         # LSODA takes no sparsity pattern: it uses its dense finite differences

@@ -36,8 +36,12 @@ of accelerations that share no equation (``system.coordinates.colour`` of the Ja
 of ``system.model.jacobian_sparsity``): a lumped line costs about nine residuals whatever its
 length. It is laid out and factorised by ``numerics.bordered``: each line (or tree of rigid
 lines) a banded block, the bodies' degrees of freedom the border, so a factorisation costs
-O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement
-(a rigid-segment line's accelerations depend on all its angles: its block is dense). The
+O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement.
+A rigid line's accelerations depend on all its angles: in them its block is dense. A planar
+one based on a fixed or imposed body, or on a dynamic body whose rotations are held, is
+written instead in maximal coordinates
+(``numerics.rigid_newton``, docs/rigid_newton.md: banded, exact, O(n) to build and factorise),
+with auxiliary unknowns after the velocity variables; the others keep the dense block. The
 factors are kept from step to step while they serve (modified Newton: rebuilt when an
 iteration contracts slower than ``SLOW`` or after ``REFRESH`` iterations on one matrix, and
 whenever the step length changes), so most steps cost two or three residuals.
@@ -54,7 +58,7 @@ from seacable.bodies import kinematics
 from seacable.kernels import lumped
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
-from seacable.numerics import bordered
+from seacable.numerics import bordered, rigid_newton
 from seacable.numerics.integrators import step_time
 from seacable.system import coordinates, model, rigid
 from seacable.system import kernel as system_kernel
@@ -142,11 +146,16 @@ def increments(case, system: model.BuiltSystem) -> Increments:
     )  # fmt: skip
 
 
-def layout(system: model.BuiltSystem, inc: Increments) -> bordered.Bordered:
+def layout(
+    system: model.BuiltSystem, inc: Increments, maximal: bool = True
+) -> tuple[bordered.Bordered, rigid_newton.RigidRows]:
     """Newton's matrix over the accelerations: the pattern of d(accelerations)/d(positions,
     velocities) folded onto the velocity variables (a position's column onto the velocity that
     moves it, ``inc``; a quaternion's onto its body's three angular velocities), the bodies'
-    as the border."""
+    as the border; the planar rigid lines ``rigid_newton.eligible`` picks (and that couple to
+    nothing else) written in maximal coordinates instead, with their auxiliary unknowns after
+    the velocity variables (``rigid_newton.layout``; ``maximal=False``: none, every rigid
+    line's block dense, as before; benchmarks/implicit_cost.py compares the two)."""
     p = system.params
     nq, nv = int(p.n_q), int(p.n_v)
     full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
@@ -171,7 +180,7 @@ def layout(system: model.BuiltSystem, inc: Increments) -> bordered.Bordered:
     for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
         v = int(p.body_v[b]) - nq
         body_v[v : v + (6 if p.body_rigid[b] else 3)] = True
-    return bordered.structure(pattern, body_v, coordinates.colour(pattern))
+    return rigid_newton.layout(p, pattern.tocoo(), body_v, maximal)
 
 
 @inner
@@ -225,13 +234,17 @@ def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
 
 
 @njit(inline="always", **JIT)
-def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, mat, r0, vec, work):
-    """Newton's matrix by differences of the residual, colour by colour, into ``mat``; the
-    residuals with the parameters ``pj`` (``frozen``: the laws' branches of the residual r0)."""
+def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work):
+    """Newton's matrix into ``mat``: the rigid lines of ``rows`` in maximal coordinates at the
+    residual r0 just evaluated (``rigid_newton.fill``: ``w`` and ``vec[0]`` hold its
+    evaluation), then the rest by differences of the residual, colour by colour, with the
+    parameters ``pj`` (``frozen``: the laws' branches of the residual r0)."""
     nv = a1.shape[0]
     ya, ydot, d, ap, rp, eps = vec[0], vec[1], vec[2][:nv], vec[3][:nv], vec[4][:nv], vec[5][:nv]
     f0 = vec[9][:nv]
     mat[:] = 0.0
+    if rows.line.shape[0] > 0 and not rigid_newton.fill(t + h, ya, h, coef, pj, w, rows, mat):
+        return NON_FINITE
     reach = coef[1] * h * h  # d(end position) / d(a1)
     for c in range(lay.colour_ptr.shape[0] - 1):
         ap[:] = a1
@@ -289,14 +302,16 @@ def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
 
 
 @njit(inline="always", **JIT)
-def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, work):
+def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, vec, big, work):
     """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
     A modified Newton iteration on the matrix of ``_jacobian``, kept from step to step while
     it serves: rebuilt when it has taken REFRESH iterations, when a correction shrinks by less
     than SLOW, when a line search cut the step, or when the step length changes. Each
     correction that does not meet the tolerance is damped by halving (at most SEARCH times)
     until the residual's ``_merit`` falls: the laws' kinks (a segment going slack, a node
-    touching the seabed) otherwise make Newton cycle between their branches."""
+    touching the seabed) otherwise make Newton cycle between their branches. ``big`` (3,
+    ``rows.size``): Newton's right-hand side, correction and scratch over every unknown, the
+    rigid lines' auxiliary ones included (``rigid_newton.rhs``)."""
     q, fresh, mat, piv = carry
     a1, trend = q[0], q[1]
     nv = a1.shape[0]
@@ -321,7 +336,8 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, wor
     merit = _merit(res, inc.weight)
     for _ in range(max_iter):
         if status == OK and (fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH):
-            status = _jacobian(t, y, acc, a1, h, coef, pj, w, inc, lay, mat, res, vec, work)
+            status = _jacobian(t, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec,
+                               work)  # fmt: skip
             work[4] += 1
             if status == OK and not bordered.factor(lay, mat, piv):
                 status = NON_FINITE
@@ -334,7 +350,12 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, wor
             return status
         uses += 1
         work[5] += 1
-        bordered.solve(lay, mat, piv, res, da, z)
+        if rows.line.shape[0] > 0:
+            rigid_newton.rhs(rows, p, res, big[0])
+            bordered.solve(lay, mat, piv, big[0], big[1], big[2])
+            da[:] = big[1][:nv]
+        else:
+            bordered.solve(lay, mat, piv, res, da, z)
         largest = 0.0
         for i in range(nv):
             largest = max(largest, abs(da[i]) * inc.weight[i])
@@ -364,10 +385,14 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, carry, vec, wor
     return NEWTON_FAILED
 
 
-def newton(case, system: model.BuiltSystem) -> tuple[Increments, bordered.Bordered]:
-    """What a system's implicit steps need besides its parameters."""
+def newton(
+    case, system: model.BuiltSystem, maximal: bool = True
+) -> tuple[Increments, bordered.Bordered, rigid_newton.RigidRows]:
+    """What a system's implicit steps need besides its parameters (``rows.geo`` is carried
+    from step to step with the kept factors: the geometry their right-hand side needs;
+    ``maximal``: see ``layout``)."""
     inc = increments(case, system)
-    return inc, layout(system, inc)
+    return (inc, *layout(system, inc, maximal))
 
 
 def frozen(p):
@@ -386,7 +411,8 @@ def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     step length of that change], the factors and their row swaps."""
     nv = int(system.params.n_v)
     return (
-        np.zeros((2, nv)), np.zeros(3), np.zeros(lay.size), np.zeros(nv, dtype=np.int64)
+        np.zeros((2, nv)), np.zeros(3), np.zeros(lay.size),
+        np.zeros(lay.order.shape[0], dtype=np.int64),
     )  # fmt: skip
 
 
@@ -403,14 +429,15 @@ def initial_acceleration(t, y, p, w, acc):
 @njit(**JIT)
 def chunk(
     first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
-    pj, w, inc, lay, carried, states, times, work,
+    pj, w, inc, lay, rows, carried, states, times, work,
 ):  # fmt: skip
     """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps
     ``output_interval / steps_per_output`` [s], from output index ``first_output``.
 
     ``acc`` holds the scheme's acceleration a0 at the start (the system's acceleration at the
     first call; the algorithmic one after), and is updated; ``pj`` is ``frozen(p)``, the
-    parameters of Newton's matrix; ``carried`` is ``carry``'s tuple,
+    parameters of Newton's matrix; ``rows`` the rigid lines written in maximal coordinates
+    (``newton``); ``carried`` is ``carry``'s tuple,
     updated. ``tol`` [m] bounds the last Newton correction of the positions (b h^2 |da|, each
     unknown in metres through ``Increments.weight``). A step whose iteration fails (regularised
     seabed friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS
@@ -421,6 +448,7 @@ def chunk(
     nv = acc.shape[0]
     dt = output_interval / steps_per_output
     vec = np.empty((10, ny))
+    big = np.empty((3, rows.size))
     y_saved = np.empty(ny)
     acc_saved = np.empty(nv)
     step = np.int64(0)  # not a literal: step_time compiles once
@@ -435,7 +463,7 @@ def chunk(
                 h = dt / parts
                 for k in range(parts):
                     status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
-                                   lay, carried, vec, work)  # fmt: skip
+                                   lay, rows, carried, vec, big, work)  # fmt: skip
                     if status != OK:
                         break
                 if status == OK:

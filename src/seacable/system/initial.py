@@ -5,6 +5,8 @@ on the nodes' accelerations; block-banded finite-difference Jacobian, 9 evaluati
 Jacobian whatever the size). Interior velocities go linearly, along the line, from one end's
 velocity to the other's."""
 
+import logging
+
 import numpy as np
 from scipy.linalg import solve_banded
 
@@ -15,6 +17,8 @@ from seacable.lines import catenary
 from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
+
+log = logging.getLogger(__name__)
 
 
 def end_points(built: BuiltSystem, y: np.ndarray):
@@ -313,38 +317,53 @@ def _holding(p: kernel.SystemParams) -> np.ndarray:
     return np.union1d(bodies, tips[tips >= 0])
 
 
-def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
+def static_lines(p, y0, iterations: int = 60, time: float = 0.0) -> np.ndarray:
     """Every line's interior nodes at rest in balance (in a tow's steady motion:
     ``steady_velocities``), bodies held where they are at ``time`` [s]: Newton on the nodes'
-    accelerations, EA raised in steps of ten from a thousandth of its value (a nearly
-    inextensible line makes Newton's steps erratic), each stage from the last one's result.
-    Forward differences here (``_newton``): with central ones, Newton converges from the
-    catenary start of a lumped servo tow (tests/test_upgrade_gaps.py, lumped_servo_tow) to a
-    balance of the linear law with segments pushed at 1.9 kN, where the forward one stays near
-    the taut towed shape that the statics' Newton then finishes."""
+    accelerations from ``y0`` (a catenary start is near the balance), else with EA raised in
+    steps of ten from a thousandth of its value (a nearly inextensible line makes Newton's steps
+    erratic from a straight start), each stage from the last one's result. When neither settles
+    (every node's acceleration below 1e-6 g), the one nearer the balance, with a warning: a
+    run or a statics starts from it. Forward differences here (``_newton``): with central ones,
+    Newton converges from the catenary start of a lumped servo tow (tests/test_upgrade_gaps.py,
+    lumped_servo_tow) to a balance of the linear law with segments pushed at 1.9 kN, where the
+    forward one stays near the taut towed shape that the statics' Newton then finishes."""
     linear = p._replace(slack_allowed=0)
     direct = _newton(linear, y0, iterations, time)
-    if _settled(linear, direct, time):  # a start near the balance (a catenary) needs no stages
+    if _settled(linear, direct, time):
         return direct
     y = y0.copy()
     target = p.seg_stiffness
     for factor in (1e-3, 1e-2, 1e-1, 1.0):
         stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
         y = _newton(stage, y, iterations, time)
-    return y
+    if _settled(linear, y, time):
+        return y
+    best = min((direct, y), key=lambda state: _unbalance(linear, state, time))
+    log.warning(
+        "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
+        "(Newton from the catenary start and from EA stages both stopped short)",
+        _unbalance(linear, best, time),
+    )
+    return best
 
 
-def _settled(p, y, time: float = 0.0) -> bool:
-    """True when every interior node's acceleration at rest is below 1e-6 g."""
+def _unbalance(p, y, time: float = 0.0) -> float:
+    """The largest interior node's acceleration at rest [m/s^2]."""
     index = _interior(p, p.line_v)
     if not len(index):
-        return True
+        return 0.0
     ydot = np.zeros_like(y)
     at_rest = y.copy()
     at_rest[p.n_q :] = 0.0
     at_rest[p.n_q : p.n_q + p.n_v] = steady_velocities(p, at_rest, time)
     kernel.rhs(time, at_rest, p, kernel.make_work(p), ydot)
-    return bool(np.all(np.abs(ydot[index]) < 1e-6 * p.gravity))
+    return float(np.abs(ydot[index]).max())
+
+
+def _settled(p, y, time: float = 0.0) -> bool:
+    """True when every interior node's acceleration at rest is below 1e-6 g."""
+    return _unbalance(p, y, time) < 1e-6 * p.gravity
 
 
 def settle_lines(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0) -> np.ndarray:

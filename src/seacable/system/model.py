@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 from scipy import sparse
-from scipy.spatial.transform import Rotation
 
 from seacable.case import system as sch
 from seacable.errors import CaseError
@@ -330,6 +329,8 @@ def _point_rows(bodies: np.ndarray, b: int, offset: np.ndarray) -> np.ndarray:
     (position, then roll, pitch, yaw [deg]: R = Rz Ry Rx, scipy's extrinsic "xyz")."""
     if not np.any(offset):
         return bodies[:, b, :3].copy()
+    from scipy.spatial.transform import Rotation  # here: its import is slow (docs/architecture.md)
+
     turn = Rotation.from_euler("xyz", bodies[:, b, 3:6], degrees=True)
     return bodies[:, b, :3] + turn.apply(np.asarray(offset, float))
 

@@ -53,6 +53,16 @@ def _held(kind, rs_held, li):
     return rs_held[li, 0] != 0.0 or rs_held[li, 1] != 0.0 or rs_held[li, 2] != 0.0
 
 
+@njit(inline="always", **JIT)
+def planar_reference(rot, ref):
+    """The angle [rad] of a planar line's first joint's unloaded direction: ``ref`` (3, base
+    body frame) turned by the base's rotation ``rot`` (3x3), from the downward vertical,
+    positive towards +x."""
+    x = rot[0, 0] * ref[0] + rot[0, 1] * ref[1] + rot[0, 2] * ref[2]
+    z = rot[2, 0] * ref[0] + rot[2, 1] * ref[1] + rot[2, 2] * ref[2]
+    return math.atan2(x, -z)
+
+
 @inner
 def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_ref,
                     length, wet_weight, buoyancy, drag_normal, drag_tangential, added, inertia,
@@ -82,8 +92,8 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
             pc.link_loads(
                 n, y, rs_q[li], rs_v[li], length[s0:e], wet_weight[s0:e], buoyancy[s0:e],
                 drag_normal[s0:e], drag_tangential[s0:e], joint_stiffness[s0:e],
-                joint_damping[s0:e], math.atan2(ref[0], -ref[2]), -omega[base, 1], current_z,
-                current_u, ws,
+                joint_damping[s0:e], planar_reference(rot[base], rs_ref[li]), -omega[base, 1],
+                current_z, current_u, ws,
             )  # fmt: skip
             if tip >= 0:
                 pos[tip, 0], pos[tip, 1], pos[tip, 2] = ws[pc._PX, n], ppos[a, 1], ws[pc._PZ, n]
@@ -125,7 +135,7 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
         target[6 + c] = point_acc[c]
 
 
-@njit(**JIT)
+@inner
 def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, length,
              mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
              body_pose, y, pos, rot, vel, omega, acc, ppos, pvel, parm, body_mass, bias, load,
@@ -256,7 +266,7 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
     return ok
 
 
-@njit(**JIT)
+@inner
 def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_held, length,
             point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la, scratch,
             ydot):  # fmt: skip

@@ -19,7 +19,6 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.linalg import expm
 from scipy.sparse.linalg import splu
 
 from seacable.case import system as sch
@@ -62,6 +61,8 @@ class ServoLoop:
         """The same [1/s] for the law as the paper writes it, a correction once per servo step
         (the force held in between): y -> (I + a G + b dt H) expm(J0 dt) y per step, the growth
         rate ln(largest |eigenvalue|) / dt."""
+        from scipy.linalg import expm  # here: its import is slow (docs/architecture.md)
+
         size = self.J0.shape[0]
         jump = np.eye(size) + gain * self.G + rate_gain * step * self.H
         largest = np.max(np.abs(np.linalg.eigvals(jump @ expm(self.J0 * step))))

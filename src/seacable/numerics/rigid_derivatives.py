@@ -1,0 +1,131 @@
+"""Derivatives by finite differences for the rigid lines' Newton rows in maximal coordinates
+(``numerics.rigid_newton``, docs/rigid_newton.md, section 3): each planar link's loads by its top
+node's position and velocity, its angle and rate and its joint neighbours' (from
+``kernels.planar_chain.link_loads``, where they are written once), and a body's force models by
+its position and velocity (``forces.table.add_all``)."""
+
+import numpy as np
+
+from seacable.forces import table
+from seacable.kernels import planar_chain as pc
+from seacable.kernels.jit import inner
+from seacable.system import kernel as system_kernel
+
+FD_STEP = 1.5e-8  # relative change of a position, velocity, angle or rate (difference quotients)
+DERIVATIVES = 22  # rows of one line's loads derivatives (``loads_derivatives``)
+
+
+@inner
+def _call_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u, ws,
+                base, out):  # fmt: skip
+    """The line's loads with node 0 at ``base`` (P, V in x, z) into ``out`` (3, n: F x, F z,
+    Q) and its nodes' positions and velocities into ``ws``."""
+    ws[pc._PX, 0], ws[pc._PZ, 0], ws[pc._VX, 0], ws[pc._VZ, 0] = base[0], base[1], base[2], base[3]
+    pc.link_loads(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                  joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u,
+                  ws)  # fmt: skip
+    for i in range(n):
+        out[0, i], out[1, i], out[2, i] = ws[pc._FX, i], ws[pc._FZ, i], ws[pc._Q, i]
+
+
+@inner
+def loads_derivatives(n, y, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                       joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u,
+                       ws, der):  # fmt: skip
+    """Each link's loads (F, Q) differentiated, into ``der`` (22, n): by its top node's
+    position (rows 0-3: dF_c/dP_e at 2c + e; 8-9: dQ/dP) and velocity (4-7, 10-11), by its
+    angle and rate (12-13, 14-15: F; 16, 17: Q) and, for Q, by its neighbours' (18, 19: the
+    link above; 20, 21: below). Forward differences: node 0 moved (the whole line translates),
+    then every third link's angle or rate turned (the links below it translate: their share,
+    from the first derivatives, is taken off). ``ws`` is the line's workspace after the
+    residual's evaluation (node 0's state read, nothing written)."""
+    base = np.empty(4)
+    for c in range(4):
+        base[c] = ws[(pc._PX, pc._PZ, pc._VX, pc._VZ)[c], 0]
+    work = np.empty_like(ws)
+    y2 = y.copy()
+    f0, f1 = np.empty((3, n)), np.empty((3, n))
+    nodes = np.empty((4, n + 1))
+    der[:, :] = 0.0
+    _call_loads(n, y2, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u, work,
+                base, f0)  # fmt: skip
+    for k in range(n + 1):
+        nodes[0, k], nodes[1, k] = work[pc._PX, k], work[pc._PZ, k]
+        nodes[2, k], nodes[3, k] = work[pc._VX, k], work[pc._VZ, k]
+    moved = base.copy()
+    for c in range(4):  # node 0 (and so every node) moved along x, z, then its velocity
+        eps = FD_STEP * max(1.0, abs(base[c]))
+        moved[:] = base
+        moved[c] += eps
+        _call_loads(n, y2, q0, v0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                    joint_stiffness, joint_damping, ref_angle, ref_rate, current_z, current_u,
+                    work, moved, f1)  # fmt: skip
+        row_f, row_q = (0, 8) if c < 2 else (4, 10)
+        e = c % 2
+        for i in range(n):
+            der[row_f + e, i] = (f1[0, i] - f0[0, i]) / eps
+            der[row_f + 2 + e, i] = (f1[1, i] - f0[1, i]) / eps
+            der[row_q + e, i] = (f1[2, i] - f0[2, i]) / eps
+    eps_of = np.empty(n)
+    own = np.empty(3)
+    for rate in range(2):  # angles, then rates
+        at = v0 if rate else q0
+        for colour in range(3):
+            for j in range(colour, n, 3):
+                eps_of[j] = FD_STEP * max(1.0, abs(y[at + j]))
+                y2[at + j] = y[at + j] + eps_of[j]
+            _call_loads(n, y2, q0, v0, length, wet_weight, buoyancy, drag_normal,
+                        drag_tangential, joint_stiffness, joint_damping, ref_angle, ref_rate,
+                        current_z, current_u, work, base, f1)  # fmt: skip
+            for j in range(colour, n, 3):
+                y2[at + j] = y[at + j]
+            for i in range(n):
+                dpx, dpz = work[pc._PX, i] - nodes[0, i], work[pc._PZ, i] - nodes[1, i]
+                dvx, dvz = work[pc._VX, i] - nodes[2, i], work[pc._VZ, i] - nodes[3, i]
+                for r in range(3):  # the change less the translation of the link's top node
+                    rp = (0, 2, 8)[r]
+                    rv = (4, 6, 10)[r]
+                    own[r] = (f1[r, i] - f0[r, i] - der[rp, i] * dpx - der[rp + 1, i] * dpz
+                              - der[rv, i] * dvx - der[rv + 1, i] * dvz)  # fmt: skip
+                if i % 3 == colour:
+                    der[12 + 2 * rate, i] = own[0] / eps_of[i]
+                    der[13 + 2 * rate, i] = own[1] / eps_of[i]
+                    der[16 + rate, i] = own[2] / eps_of[i]
+                elif i >= 1 and (i - 1) % 3 == colour:
+                    der[18 + rate, i] = own[2] / eps_of[i - 1]
+                elif i + 1 < n and (i + 1) % 3 == colour:
+                    der[20 + rate, i] = own[2] / eps_of[i + 1]
+
+
+@inner
+def point_derivatives(t, y, p, w, body, out):
+    """d force / d position and d force / d velocity (3x3 each, row-major: out[3 c + e] and
+    out[9 + 3 c + e]) of the force models of ``body`` (its submerged fraction followed), by
+    forward differences; its state and the others' as ``w`` holds them."""
+    pos, vel, fraction = w.pos.copy(), w.vel.copy(), w.fraction.copy()
+    load0, load1 = np.zeros_like(w.load), np.zeros_like(w.load)
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
+    for case in range(7):
+        pos[:, :] = w.pos
+        vel[:, :] = w.vel
+        eps = 1.0
+        axis = (case - 1) % 3
+        if case > 0:
+            target = pos if case <= 3 else vel
+            eps = FD_STEP * max(1.0, abs(target[body, axis]))
+            target[body, axis] += eps
+        system_kernel._fractions(p.body_kind, p.body_shape, pos, fraction)
+        load = load0 if case == 0 else load1
+        load[:, :] = 0.0
+        table.add_all(
+            t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
+            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, fraction, w.quat,
+            pos, w.rot, vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
+            tf, load,
+        )  # fmt: skip
+        if case > 0:
+            first = 0 if case <= 3 else 9
+            for c in range(3):
+                out[first + 3 * c + axis] = (load1[body, c] - load0[body, c]) / eps

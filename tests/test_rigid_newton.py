@@ -1,0 +1,246 @@
+"""A rigid line's Newton rows in maximal coordinates (numerics.rigid_newton): the correction
+they give equals the dense one (J^-1 r with J by central differences over every acceleration;
+a line from an imposed body to a free or held tip, and the thesis's line from its heaving
+structure), their band does not grow with the number of links, and an implicit run with them
+follows the run with the dense block and a tight dopri5 run."""
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.numerics import bordered, rigid_newton, system_implicit
+from seacable.system import kernel
+from seacable.system import model as system_model
+
+
+def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **simulation):
+    """A planar line of n links (20 m, with joint springs and dampers, drag, a current) from a
+    crane tip that surges, to a 30 kg clump with drag (``held``: to a fixed point instead),
+    starting on an arc."""
+    angles = np.radians(np.linspace(20.0, 50.0, n))  # the arc's links
+    end = [20.0 / n * float(np.sin(angles).sum()), 0.0, -20.0 / n * float(np.cos(angles).sum())]
+    bodies = [
+        {"name": "top", "type": "imposed", "x": {"kind": "sine", "amplitude": 1.0, "period": 3.0}},
+        {
+            "name": "end",
+            "type": "point",
+            "position": end,
+            "mass": 30.0,
+            "volume": 0.004,
+            "external forces": [
+                {"model": "gravity"},
+                {"model": "buoyancy"},
+                {"model": "drag", "drag_coefficient": 1.0, "area": [0.1, 0.1, 0.1]},
+            ],
+        },
+    ]
+    if held:
+        bodies[1] = {"name": "end", "type": "fixed", "position": end}
+    line_type = {
+        "name": "rope",
+        "diameter": 0.03,
+        "mass_per_length": 2.0,
+        "bending_stiffness": 5.0,
+        "drag_coefficient_normal": 1.2,
+        "drag_coefficient_tangential": 0.05,
+        "added_mass_coefficient": 0.0,
+    }
+    line = {
+        "name": "rope",
+        "model": "rigid_links",
+        "from": "top",
+        "to": "end",
+        "sections": [{"type": "rope", "segments": n, "length": 20.0}],
+        "initial": {"arc_deg": [20.0, 50.0]},
+        "base_reference": [0.0, 0.0, -1.0],
+        "joint_damping": 0.5,
+    }
+    data = {
+        "environment": {"water_depth": 100.0, "current": {"velocity": 0.4}},
+        "bodies": bodies,
+        "line_types": [line_type],
+        "lines": [line],
+        "start": "as_given",
+        "simulation": {
+            "duration": duration,
+            "output_interval": 0.1,
+            "integrator": integrator,
+            **simulation,
+        },
+    }
+    return seacable.load_case(data)
+
+
+def _corrections(case, scheme, h, lines=1, bodies=0):
+    """The Newton correction at a perturbed state and acceleration: (maximal coordinates, the
+    dense J^-1 r with J by central differences)."""
+    system = system_model.build(case)
+    p = system.params
+    w = kernel.make_work(p)
+    nq, nv = int(p.n_q), int(p.n_v)
+    rng = np.random.default_rng(3)
+    y = system.y0.copy()
+    v = int(p.rs_v[0])
+    y[v : v + int(p.rs_n[0])] += 0.5 * rng.normal(size=int(p.rs_n[0]))  # a moving line
+    acc = np.zeros(nv)
+    assert system_implicit.initial_acceleration(0.3, y, p, w, acc) == 0
+    a1 = acc + rng.normal(size=nv)
+    inc, lay, rows = system_implicit.newton(case, system)
+    assert (len(rows.line), len(rows.body)) == (lines, bodies)
+    vec = np.zeros((10, len(y)))
+    ydot = np.empty(len(y))
+    kernel.rhs(0.3, y, p, w, ydot)
+    vec[9][:nv] = ydot[nq : nq + nv]
+
+    def residual(a):
+        out = np.zeros(nv)
+        system_implicit._residual(0.3, y, acc, a, h, scheme, p, w, inc, vec[0], vec[1],
+                                  vec[2][:nv], out, vec[9][:nv])  # fmt: skip
+        return out
+
+    jac = np.empty((nv, nv))
+    for j in range(nv):
+        step = np.zeros(nv)
+        step[j] = 1e-5 * max(1.0, abs(a1[j]))
+        jac[:, j] = (residual(a1 + step) - residual(a1 - step)) / (2.0 * step[j])
+    res = residual(a1)
+    dense = np.linalg.solve(jac, res)
+    mat = np.zeros(lay.size)
+    piv = np.zeros(lay.order.shape[0], dtype=np.int64)
+    counters = np.zeros(8, dtype=np.int64)
+    status = system_implicit._jacobian(0.3, y, acc, a1, h, scheme, p, w, inc, lay, rows, mat,
+                                       res, vec, counters)  # fmt: skip
+    assert status == 0
+    assert bordered.factor(lay, mat, piv)
+    big = np.zeros((3, rows.size))
+    rigid_newton.rhs(rows, p, res, big[0])
+    bordered.solve(lay, mat, piv, big[0], big[1], big[2])
+    return big[1][:nv], dense
+
+
+@pytest.mark.parametrize("held", [False, True])
+@pytest.mark.parametrize(
+    ("scheme", "h"),
+    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
+     (system_implicit.scheme("implicit_euler"), 0.01)],
+)  # fmt: skip
+def test_the_correction_in_maximal_coordinates_is_the_dense_one(scheme, h, held):
+    maximal, dense = _corrections(_line_case(8, held=held), scheme, h)
+    assert np.abs(maximal - dense).max() < 1e-6 * np.abs(dense).max()
+
+
+def test_the_band_does_not_grow_with_the_links():
+    widths = []
+    for n in (10, 40, 160):
+        case = _line_case(n)
+        system = system_model.build(case)
+        inc, lay, rows = system_implicit.newton(case, system)
+        assert list(rows.line) == [0] and len(lay.start) == 3  # one block, no border
+        assert rows.size == int(system.params.n_v) + 8 * n + 2
+        widths.append((int(lay.kl[0]), int(lay.ku[0])))
+        assert lay.size <= 60 * rows.size  # entries: O(unknowns)
+        dense = system_implicit.newton(case, system, maximal=False)[1]
+        assert dense.kl[0] == n - 1  # the block in the angles: full
+    assert widths[0] == widths[1] == widths[2]
+    assert max(widths[0]) < 16
+
+
+def _gap(ds, reference, names=("position_x", "position_z")):
+    """The largest difference of the end body's position [m] and of the top's line force
+    (relative to its largest)."""
+    worst = 0.0
+    for name in names:
+        a, b = ds[f"bodies/end/{name}"].values, reference[f"bodies/end/{name}"].values
+        worst = max(worst, float(np.abs(a - b).max()))
+    force = [ds["bodies/top/line_force_x"].values, reference["bodies/top/line_force_x"].values]
+    scale = float(np.abs(force[1]).max())
+    return worst, float(np.abs(force[0] - force[1]).max()) / scale
+
+
+def test_an_implicit_run_follows_the_dense_block_and_dopri5(monkeypatch):
+    case = _line_case(12, time_step=0.02, duration=2.0)
+    banded = seacable.simulate(case).dataset
+    assert banded.attrs["status"] == "complete"
+    reference = seacable.simulate(
+        _line_case(12, integrator="dopri5", duration=2.0, rtol=1e-9)
+    ).dataset
+    position, force = _gap(banded, reference)
+    assert position < 5e-3 and force < 2e-2  # the scheme's own error at 20 ms
+    monkeypatch.setattr(rigid_newton, "eligible", lambda p: ([], {}))
+    dense = seacable.simulate(case).dataset
+    position, force = _gap(banded, dense)
+    assert position < 1e-7 and force < 1e-7  # the same iteration, to Newton's tolerance
+
+
+def _thesis(integrator="newmark", **simulation):
+    """The thesis's 12 links from its heaving structure (a dynamic base body), in air."""
+    case = seacable.load_case("examples/thesis_6_1_sim1_air_12_links.yaml")
+    sim = case.simulation.model_copy(update={"integrator": integrator, **simulation})
+    return case.model_copy(update={"simulation": sim})
+
+
+@pytest.mark.parametrize(
+    ("scheme", "h"),
+    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
+     (system_implicit.scheme("implicit_euler"), 0.01)],
+)  # fmt: skip
+def test_a_dynamic_base_body_keeps_the_dense_correction(scheme, h):
+    maximal, dense = _corrections(_thesis(), scheme, h, lines=1, bodies=1)
+    assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()
+
+
+def test_the_thesis_case_with_newmark_follows_the_dense_block_and_dopri5(monkeypatch):
+    """Pouzada's 12 links in air from the heaving structure (the line's base is a dynamic body,
+    its tip a 60 kg mass): 3 s at 10 ms."""
+    banded = seacable.simulate(_thesis(time_step=0.01, duration=3.0)).dataset
+    assert banded.attrs["status"] == "complete"
+    reference = seacable.simulate(_thesis("dopri5", duration=3.0, rtol=1e-9)).dataset
+    top = "bodies/top/position_z"
+    heave = float(np.abs(reference[top].values).max())
+    assert np.abs(banded[top].values - reference[top].values).max() < 1e-2 * heave
+    assert _gap(banded, reference)[0] < 0.05  # m, the end of a 240 m line swinging
+    monkeypatch.setattr(rigid_newton, "eligible", lambda p: ([], {}))
+    dense = seacable.simulate(_thesis(time_step=0.01, duration=3.0)).dataset
+    assert np.abs(banded[top].values - dense[top].values).max() < 1e-8 * heave
+    assert _gap(banded, dense)[0] < 1e-6
+
+
+def _buoy_with_two_lines():
+    """A buoy free in surge and heave (a point body) carrying two planar lines of 6 links to
+    two clumps, in water with a current: a body row with two lines' base forces."""
+    clump = {"mass": 20.0, "volume": 0.003, "external forces": [
+        {"model": "gravity"}, {"model": "buoyancy"},
+        {"model": "drag", "drag_coefficient": 1.0, "area": [0.05, 0.05, 0.05]}]}  # fmt: skip
+    lines, bodies = [], []
+    for k, side in enumerate((1.0, -1.0)):
+        angles = np.radians(side * np.linspace(10.0, 40.0, 6))
+        end = [float(np.sin(angles).sum()), 0.0, -2.0 - float(np.cos(angles).sum())]
+        bodies.append({"name": f"clump {k}", "type": "point", "position": end, **clump})
+        lines.append({
+            "name": f"line {k}", "model": "rigid_links", "from": "buoy", "to": f"clump {k}",
+            "sections": [{"type": "rope", "segments": 6, "length": 6.0}],
+            "initial": {"arc_deg": [side * 10.0, side * 40.0]},
+            "base_reference": [0.0, 0.0, -1.0], "joint_damping": 0.2,
+        })  # fmt: skip
+    buoy = {
+        "name": "buoy", "type": "point", "position": [0.0, 0.0, -2.0], "mass": 200.0,
+        "volume": 0.1, "dofs": ["surge", "heave"],
+        "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
+                            {"model": "drag", "drag_coefficient": 0.8, "area": [0.3, 0.3, 0.3]},
+                            {"model": "linear_stiffness", "diagonal": [50.0, 0, 0, 0, 0, 0],
+                             "equilibrium_position": [0.0, 0.0, -2.0]}],
+    }  # fmt: skip
+    rope = {"name": "rope", "diameter": 0.02, "mass_per_length": 1.5, "bending_stiffness": 2.0,
+            "drag_coefficient_normal": 1.2, "added_mass_coefficient": 0.0}  # fmt: skip
+    return seacable.load_case({
+        "environment": {"water_depth": 50.0, "current": {"velocity": 0.3}},
+        "bodies": [buoy, *bodies], "line_types": [rope], "lines": lines, "start": "as_given",
+        "simulation": {"duration": 1.0, "output_interval": 0.1, "integrator": "newmark",
+                       "time_step": 0.01},
+    })  # fmt: skip
+
+
+def test_a_body_carrying_two_lines_keeps_the_dense_correction():
+    scheme = system_implicit.scheme("generalized_alpha", spectral_radius=0.5)
+    maximal, dense = _corrections(_buoy_with_two_lines(), scheme, 0.05, lines=2, bodies=1)
+    assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()
