@@ -317,17 +317,18 @@ def _holding(p: kernel.SystemParams) -> np.ndarray:
     return np.union1d(bodies, tips[tips >= 0])
 
 
-def static_lines(p, y0, iterations: int = 60, time: float = 0.0) -> np.ndarray:
+def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
     """Every line's interior nodes at rest in balance (in a tow's steady motion:
     ``steady_velocities``), bodies held where they are at ``time`` [s]: Newton on the nodes'
     accelerations from ``y0`` (a catenary start is near the balance), else with EA raised in
     steps of ten from a thousandth of its value (a nearly inextensible line makes Newton's steps
-    erratic from a straight start), each stage from the last one's result. When neither settles
-    (every node's acceleration below 1e-6 g), the one nearer the balance, with a warning: a
-    run or a statics starts from it. Forward differences here (``_newton``): with central ones,
-    Newton converges from the catenary start of a lumped servo tow (tests/test_upgrade_gaps.py,
-    lumped_servo_tow) to a balance of the linear law with segments pushed at 1.9 kN, where the
-    forward one stays near the taut towed shape that the statics' Newton then finishes."""
+    erratic from a straight start), each stage from the last one's result, else the first
+    Newton continued. When none settles (every node's acceleration below 1e-6 g), the one
+    nearest the balance, with a warning: a run or a statics starts from it. Forward differences
+    here (``_newton``): with central ones, Newton converges from the catenary start of a lumped
+    servo tow (tests/test_upgrade_gaps.py, lumped_servo_tow) to a balance of the linear law
+    with segments pushed at 1.9 kN, where the forward one stays near the taut towed shape that
+    the statics' Newton then finishes."""
     linear = p._replace(slack_allowed=0)
     direct = _newton(linear, y0, iterations, time)
     if _settled(linear, direct, time):
@@ -339,7 +340,12 @@ def static_lines(p, y0, iterations: int = 60, time: float = 0.0) -> np.ndarray:
         y = _newton(stage, y, iterations, time)
     if _settled(linear, y, time):
         return y
-    best = min((direct, y), key=lambda state: _unbalance(linear, state, time))
+    # Newton from the start again, longer (a catenary start can need some 40 iterations; tried
+    # last because the stages keep the lines taut where a long Newton may not)
+    longer = _newton(linear, direct, 2 * iterations, time)
+    if _settled(linear, longer, time):
+        return longer
+    best = min((direct, y, longer), key=lambda state: _unbalance(linear, state, time))
     log.warning(
         "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
         "(Newton from the catenary start and from EA stages both stopped short)",
