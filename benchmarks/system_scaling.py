@@ -21,8 +21,10 @@ For each size, in this process (one thread, kernels compiled or loaded before ti
   evaluations per step);
 * simulate: one whole ``seacable.simulate`` of ``--steps`` rk4 steps, start-up and output
   included, and that time per accepted step (results' attribute ``solver_accepted_steps``);
-* statics: ``seacable.statics`` of the same case (``start: static``): Newton on every free
-  degree of freedom with a sparse finite-difference Jacobian; its time, or its failure.
+* statics: ``seacable.statics`` of the same case (``start: static``: the lines' shapes, then
+  Newton over every coordinate, which fails here, then over the buoys with the lines settled,
+  ``system.nested``), start-up and output row included; its time, or its failure, and the
+  largest force left on a buoy recomputed from its lines' end loads and its net lift.
 
 Printed: cost per step, per segment per step, and their ratios to the smallest case (linear
 growth: a constant cost per segment). Times are wall times (perf_counter) of single-threaded
@@ -40,7 +42,7 @@ import numpy as np
 
 import seacable
 from seacable.numerics import integrators
-from seacable.system import kernel, model
+from seacable.system import kernel, model, statics
 from seacable.system.statics import StaticsError
 
 BODIES, SEGMENTS = 10, 100
@@ -58,33 +60,41 @@ WIRE = {
 }  # fmt: skip
 
 
-def _buoy(i: int, legs: int) -> dict:
-    angle = 2 * math.pi * i / BODIES
+def _buoy(i: int, legs: int, buoys: int, damping: float) -> dict:
+    angle = 2 * math.pi * i / buoys
+    radius = RING_RADIUS * (math.sin(math.pi / BODIES) / math.sin(math.pi / buoys))  # one chord
     rho, g = 1025.0, 9.81
     volume = round((NET_PER_LEG * legs + NET_RING) / (0.7 * rho * g), 1)  # mass 0.3 rho V
+    forces = [
+        {"model": "gravity"}, {"model": "buoyancy"},
+        {"model": "drag", "drag_coefficient": 0.5, "area": 10.0},
+    ]  # fmt: skip
+    if damping:
+        forces.append({"model": "linear_damping", "diagonal": [damping] * 3 + [0.0] * 3})
     return {
         "name": f"buoy_{i}", "type": "point",
-        "position": [RING_RADIUS * math.cos(angle), RING_RADIUS * math.sin(angle), BUOY_Z],
+        "position": [radius * math.cos(angle), radius * math.sin(angle), BUOY_Z],
         "mass": 0.3 * rho * volume, "volume": volume, "added_mass": 0.5 * rho * volume,
-        "external forces": [
-            {"model": "gravity"}, {"model": "buoyancy"},
-            {"model": "drag", "drag_coefficient": 0.5, "area": 10.0},
-        ],
+        "external forces": forces,
     }  # fmt: skip
 
 
-def system(lines: int, start: str = "as_given", duration: float = 0.01) -> dict:
-    """The case mapping of the ring of buoys with ``lines`` lines in all."""
-    legs, extra = divmod(lines - BODIES, BODIES)
+def system(lines: int, start: str = "as_given", duration: float = 0.01, buoys: int = BODIES,
+           segments: int = SEGMENTS, damping: float = 0.0) -> dict:  # fmt: skip
+    """The case mapping of the ring of ``buoys`` buoys (its ring lines one chord long whatever
+    their number: the ring's radius scales) with ``lines`` lines in all, each of ``segments``
+    segments; ``damping`` [N s/m] a linear damper on every buoy's translations (none at rest:
+    the statics is the same)."""
+    legs, extra = divmod(lines - buoys, buoys)
     if extra or legs < 1:
-        raise SystemExit(f"lines must be {BODIES} ring lines + a multiple of {BODIES}; got {lines}")
+        raise SystemExit(f"lines must be {buoys} ring lines + a multiple of {buoys}; got {lines}")
     bodies, all_lines = [], []
-    for i in range(BODIES):
-        buoy = _buoy(i, legs)
+    for i in range(buoys):
+        buoy = _buoy(i, legs, buoys, damping)
         bodies.append(buoy)
         x, y, _ = buoy["position"]
         for k in range(legs):
-            phi = 2 * math.pi * (i / BODIES + k / legs)
+            phi = 2 * math.pi * (i / buoys + k / legs)
             anchor = f"anchor_{i}_{k}"
             bodies.append({
                 "name": anchor, "type": "fixed",
@@ -92,16 +102,16 @@ def system(lines: int, start: str = "as_given", duration: float = 0.01) -> dict:
             })  # fmt: skip
             all_lines.append({
                 "name": f"leg_{i}_{k}", "model": "lumped_mass", "from": anchor, "to": buoy["name"],
-                "sections": [{"type": "chain", "length": LEG_LENGTH, "segments": SEGMENTS}],
+                "sections": [{"type": "chain", "length": LEG_LENGTH, "segments": segments}],
             })  # fmt: skip
-    for i in range(BODIES):
+    for i in range(buoys):
         all_lines.append({
             "name": f"link_{i}", "model": "lumped_mass",
-            "from": f"buoy_{i}", "to": f"buoy_{(i + 1) % BODIES}",
-            "sections": [{"type": "wire", "length": LINK_LENGTH, "segments": SEGMENTS}],
+            "from": f"buoy_{i}", "to": f"buoy_{(i + 1) % buoys}",
+            "sections": [{"type": "wire", "length": LINK_LENGTH, "segments": segments}],
         })  # fmt: skip
     return {
-        "name": f"ring of {BODIES} buoys, {lines} lines of {SEGMENTS} segments",
+        "name": f"ring of {buoys} buoys, {lines} lines of {segments} segments",
         "start": start,
         "environment": {
             "water_depth": DEPTH,
@@ -167,14 +177,25 @@ def run(lines: int, steps: int) -> tuple[float, int, int]:
 
 
 def time_statics(lines: int) -> tuple[float, str]:
+    """(wall time [s] of ``seacable.statics``, its outcome): converged, with the largest force
+    [N] left on a buoy recomputed from its lines' end loads at rest (``statics.line_loads``)
+    and its own buoyancy less its weight, against its net buoyancy; or its failure."""
     case = seacable.load_case(system(lines, start="static"))
     start = time.perf_counter()
     try:
         seacable.statics(case)
-        outcome = "converged"
     except StaticsError as exc:
-        outcome = "FAILED: " + str(exc).split("; ")[-1].split(". Check")[0]
-    return time.perf_counter() - start, outcome
+        return time.perf_counter() - start, "FAILED: " + str(exc).split("; ")[-1].split(". ")[0]
+    elapsed = time.perf_counter() - start
+    built = model.build(case)  # the same balance, for the check
+    loads = statics.line_loads(built, built.y0, at_rest=True)
+    worst, net = 0.0, 0.0
+    for b, body in enumerate(built.case.bodies):
+        if body.type == "point":
+            lift = (built.params.rho * body.volume - body.mass) * built.params.gravity
+            worst = max(worst, float(np.abs(loads[b, :3] + [0.0, 0.0, lift]).max()))
+            net = max(net, lift)
+    return elapsed, f"converged; largest force left on a buoy {worst:.2g} N (net lift {net:.3g} N)"
 
 
 def main() -> None:

@@ -14,6 +14,7 @@ from seacable.bodies import kinematics
 from seacable.case import system as sch
 from seacable.errors import CaseError
 from seacable.lines import catenary
+from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
 
@@ -277,7 +278,8 @@ def _interior(p, at):
 def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) -> np.ndarray:
     """The velocities (``y[n_q:n_q + n_v]``) of a steady motion at ``time``: when every fixed or
     imposed body moves with one velocity V and none turns (a ship towing at constant speed, and
-    nothing fixed), every dynamic body and every lumped line's interior node moves with V, and rigid
+    nothing fixed; a body that holds no line or tie, such as a servo's target, does not count),
+    every dynamic body and every lumped line's interior node moves with V, and rigid
     lines do not turn (their nodes move with their bases); otherwise everything at rest.
     The statics then balances the loads of that motion (drag on the velocity relative to the
     current): the steady tow, which stays steady while the kinematic bodies keep V."""
@@ -285,7 +287,8 @@ def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) 
     moving = y.copy()
     moving[p.n_q : p.n_q + p.n_v] = 0.0
     kernel.rhs(time, moving, p, w, np.zeros_like(y))
-    kinematic = np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED)
+    kinematic = np.intersect1d(np.flatnonzero(np.asarray(p.body_kind) <= kinematics.IMPOSED),
+                               _holding(p))  # fmt: skip
     v = np.zeros(p.n_v)
     if not kinematic.size:
         return v
@@ -304,6 +307,16 @@ def steady_velocities(p: kernel.SystemParams, y: np.ndarray, time: float = 0.0) 
     return v
 
 
+def _holding(p: kernel.SystemParams) -> np.ndarray:
+    """The bodies that hold a line or tie end (a body that holds nothing, such as a servo's
+    target vehicle, moves as it likes without making a steady motion unsteady)."""
+    points = np.concatenate([np.asarray(a, dtype=np.int64) for a in (
+        p.line_from, p.line_to, p.tie_from, p.tie_to, p.rs_from, p.rs_to, p.nat_from)])  # fmt: skip
+    bodies = np.asarray(p.point_body, dtype=np.int64)[points]
+    tips = np.asarray(p.rs_tip, dtype=np.int64)
+    return np.union1d(bodies, tips[tips >= 0])
+
+
 def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
     """Every line's interior nodes at rest in balance (in a tow's steady motion:
     ``steady_velocities``), bodies held where they are at ``time`` [s]: Newton on the nodes'
@@ -311,7 +324,11 @@ def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
     steps of ten from a thousandth of its value (a nearly inextensible line makes Newton's steps
     erratic from a straight start), each stage from the last one's result, else the first
     Newton continued. When none settles (every node's acceleration below 1e-6 g), the one
-    nearest the balance, with a warning: a run or a statics starts from it."""
+    nearest the balance, with a warning: a run or a statics starts from it. Forward differences
+    here (``_newton``): with central ones, Newton converges from the catenary start of a lumped
+    servo tow (tests/test_upgrade_gaps.py, lumped_servo_tow) to a balance of the linear law
+    with segments pushed at 1.9 kN, where the forward one stays near the taut towed shape that
+    the statics' Newton then finishes."""
     linear = p._replace(slack_allowed=0)
     direct = _newton(linear, y0, iterations, time)
     if _settled(linear, direct, time):
@@ -355,16 +372,39 @@ def _settled(p, y, time: float = 0.0) -> bool:
     return _unbalance(p, y, time) < 1e-6 * p.gravity
 
 
-def settle_lines(p, y0, iterations: int = 30, slack: int = 0) -> np.ndarray:
-    """Every line's interior nodes at rest in balance from a nearby state (no EA stages: the
-    outer loop of the system's statics, whose lines start each time from their last balance,
-    their nodes carried along with their moved ends), with the axial law ``slack``
-    (kernels.lumped.segment_loads: 0 linear)."""
+def settle_lines(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0) -> np.ndarray:
+    """Every line's interior nodes at rest in balance (in a tow's steady motion) at ``time``
+    [s] from a nearby state (no EA stages: the outer loop of the system's statics, whose lines
+    start each time from their last balance, their nodes carried along with their moved ends),
+    with the axial law ``slack`` (kernels.lumped.segment_loads: 0 linear); Newton with central
+    differences."""
     stage = p._replace(slack_allowed=slack)
-    return _newton(stage, y0, iterations)
+    return _newton(stage, y0, iterations, time, central=True)
 
 
-def _newton(p, y0, iterations, time: float = 0.0):
+def pushed(p, w) -> float:
+    """How hard [N] the most compressed segment of the lumped lines is pushed at the last
+    evaluation into the workspace ``w`` under the linear axial law (0 when none is, or by no
+    more than a strain of 1e-8 or 1e-6 of the largest tension). That law, which the static
+    solves use (smooth; chain lying on a frictionless seabed has one shape), has balances the
+    physical law has not: chain laid straight and pushed, on the seabed or in a tow's bight."""
+    if not len(p.line_n):
+        return 0.0
+    segments = np.concatenate([np.arange(p.line_node[li], p.line_node[li] + p.line_n[li])
+                               for li in range(len(p.line_n))])  # fmt: skip
+    tension = w.nodes[T_ROW, segments]
+    allowed = max(1e-8 * float(np.max(p.seg_stiffness)), 1e-6 * float(tension.max()))
+    compression = -float(tension.min())
+    return compression if compression > allowed else 0.0
+
+
+def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
+    """The lines' interior nodes in balance by Newton, its block-tridiagonal Jacobian by forward
+    differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6; two residuals per
+    colour, and a stop once the step is at the positions' rounding: the residual's floor).
+    Forward differences err by EA h / (2 l^2) on a taut segment's transverse stiffness T / l
+    (17 % for a 2e8 N wire at 9 kN in 1.3 m segments) and Newton then creeps; ``static_lines``
+    keeps them (see there), ``settle_lines`` takes central ones."""
     index = _interior(p, p.line_q)
     m = len(index)
     if m == 0:
@@ -390,14 +430,22 @@ def _newton(p, y0, iterations, time: float = 0.0):
         ab = np.zeros((2 * half + 1, m))
         for colour in range(9):
             columns = np.arange(colour, m, 9)
-            step = 1e-7 * np.maximum(1.0, np.abs(y[index[columns]]))
+            step = (1e-6 if central else 1e-7) * np.maximum(1.0, np.abs(y[index[columns]]))
             trial = y.copy()
             trial[index[columns]] += step
-            dr = residual(trial) - r
-            for col, h in zip(columns, step, strict=True):
-                node = int(col) // 3  # rows of this node and its two neighbours
-                rows = np.arange(3 * max(0, node - 1), min(m, 3 * (node + 2)))
-                ab[half + rows - col, col] = dr[rows] / h
+            if central:
+                dr = residual(trial)
+                trial[index[columns]] -= 2.0 * step
+                dr = 0.5 * (dr - residual(trial))
+            else:
+                dr = residual(trial) - r
+            # each column's rows: its node's and its two neighbours' (9, those inside)
+            rows = 3 * (columns // 3 - 1)[:, None] + np.arange(9)[None, :]
+            cols = np.broadcast_to(columns[:, None], rows.shape)
+            inside = (rows >= 0) & (rows < m)
+            rows, cols = rows[inside], cols[inside]
+            steps = np.broadcast_to(step[:, None], inside.shape)[inside]
+            ab[half + rows - cols, cols] = dr[rows] / steps
         delta = solve_banded((half, half), ab, -r)
         # the seabed's contact is not smooth: when no shorter step lowers the residual, the
         # full step is taken anyway, and the best state met is kept
@@ -410,6 +458,8 @@ def _newton(p, y0, iterations, time: float = 0.0):
         y, r = trial, rt
         if np.linalg.norm(r) < best_norm:
             best, best_norm = y, np.linalg.norm(r)
+        if central and damping * np.abs(delta).max() <= 1e-12 * (1.0 + np.abs(y[index]).max()):
+            break  # the residual is at its rounding floor: no step moves a node any more
     best = best.copy()
     best[p.n_q :] = y0[p.n_q :]
     return best

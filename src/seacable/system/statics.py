@@ -16,7 +16,7 @@ from scipy.sparse.linalg import splu
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface
-from seacable.system import kernel, outputs, rigid
+from seacable.system import kernel, nested, outputs, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import (
     Coordinates,
@@ -43,12 +43,13 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     every fixed and imposed body moves at t = 0 with one velocity and without turning, a tow,
     everything moving with it: ``steady_velocities``).
 
-    First Newton over every coordinate at once (sparse Jacobian); when that fails, Newton over
-    the free bodies' degrees of freedom alone (a small dense system), each line settled at its
+    First Newton over every coordinate at once (sparse Jacobian); when that fails (a stiff
+    line's linearised nodes go far astray in a step that moves its ends metres), Newton over
+    the free bodies' degrees of freedom (``system.nested``), each lumped line settled at its
     static shape between its ends for every trial pose (``initial.settle_lines``, the linear
-    axial law: chain lying on a frictionless seabed has one shape) — slower, but it does not
-    lose its way in the kinks of the seabed's contact or of the free surface. Raises
-    StaticsError naming the body or line that stays out of balance."""
+    axial law: chain lying on a frictionless seabed has one shape): it does not lose its way
+    in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy.
+    Raises StaticsError naming the body or line that stays out of balance."""
     p = built.params
     _no_strings(built)
     coords = coordinates(p)
@@ -60,19 +61,23 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if residual.balanced.any():
         y = _hang(p, y, residual.free, time=time)
     scale = float(np.abs(residual(y)).max()) + 1.0
-    direct = _direct(built, coords, residual, y, iterations, tolerance * scale)
+    structure = pattern(p, coords)
+    sparsity = (structure, colour(structure))  # which increments move which residuals
+    direct = _direct(built, coords, sparsity, residual, y, iterations, tolerance * scale)
     r = residual(direct)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return direct
     bodies = np.flatnonzero(coords.kind <= 1)
-    if bodies.size and not len(p.rs_n):
-        nested = _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance * scale)
-        r = residual(nested)
-        nodes = np.flatnonzero(coords.kind == 2)
-        r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(nested)[nodes]
-        if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-            return nested
-    followed = _homotopy(built, coords, residual, y, tolerance * scale)
+    if (bodies.size or len(p.line_n)) and not len(p.rs_n):  # free bodies or lumped lines
+        limit = _step_limit(built, coords, shortest=True)[bodies]
+        settled = nested.bodies_newton(p, coords, y, limit, iterations, tolerance * scale, time)
+        if settled is not None:
+            r = residual(settled)
+            nodes = np.flatnonzero(coords.kind == 2)
+            r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(settled)[nodes]
+            if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+                return settled
+    followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale)
     r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
@@ -173,7 +178,7 @@ def _march(p, w, y, free, tips, loads, time, sweeps: int = 400, tolerance: float
     return y
 
 
-def _homotopy(built, coords, residual, y, tolerance, smallest: float = 1e-3):
+def _homotopy(built, coords, sparsity, residual, y, tolerance, smallest: float = 1e-3):
     """Newton's homotopy: the balance of r(x) - (1 - s) r(x0) followed from s = 0 (where the
     start is one) to s = 1, each s from the last one's balance, the step in s halved when
     Newton fails there: loads that the direct Newton cannot take at once (a platform pushed far
@@ -186,7 +191,7 @@ def _homotopy(built, coords, residual, y, tolerance, smallest: float = 1e-3):
         def staged(state, target=target):  # noqa: B023 (bound by the default)
             return residual(state) - (1.0 - target) * start
 
-        trial = _direct(built, coords, staged, y, 20, tolerance)
+        trial = _direct(built, coords, sparsity, staged, y, 20, tolerance)
         rt = staged(trial)
         if np.all(np.isfinite(rt)) and np.abs(rt).max() < max(tolerance, 1e-9):
             y, s = trial, target
@@ -196,11 +201,9 @@ def _homotopy(built, coords, residual, y, tolerance, smallest: float = 1e-3):
     return y
 
 
-def _direct(built, coords, residual, y, iterations, tolerance):
+def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
     """Newton over every coordinate; the best state met."""
-    p = built.params
-    structure = pattern(p, coords)
-    colours = colour(structure)
+    structure, colours = sparsity
     r = residual(y)
     best, best_norm = y, float(np.linalg.norm(r))
     limit = _step_limit(built, coords)
@@ -226,69 +229,6 @@ def _direct(built, coords, residual, y, iterations, tolerance):
         if np.all(np.isfinite(r)) and np.linalg.norm(r) < best_norm:
             best, best_norm = y, float(np.linalg.norm(r))
     return best
-
-
-def _moved(p, coords: Coordinates, y, bodies, dx):
-    """``y`` with the bodies moved by ``dx`` and each line's interior nodes carried along,
-    each by the displacement of its two ends weighted by its place along the line."""
-    full = np.zeros(len(coords.kind))
-    full[bodies] = dx
-    before = _point_positions(p, y)
-    out = apply(y, coords, full)
-    after = _point_positions(p, out)
-    for li in range(len(p.line_n)):
-        n, s0, q = int(p.line_n[li]), int(p.line_seg[li]), int(p.line_q[li])
-        arc = np.cumsum(p.seg_length[s0 : s0 + n])[:-1] / p.seg_length[s0 : s0 + n].sum()
-        da = after[p.line_from[li]] - before[p.line_from[li]]
-        db = after[p.line_to[li]] - before[p.line_to[li]]
-        shift = da[None, :] + arc[:, None] * (db - da)[None, :]
-        out[q : q + 3 * (n - 1)] += shift.ravel()
-    return out
-
-
-def _point_positions(p, y) -> np.ndarray:
-    w = kernel.make_work(p)
-    kernel.rhs(0.0, y, p, w, np.zeros_like(y))
-    return w.ppos.copy()
-
-
-def _bodies_newton(built, coords, residual, y, bodies, iterations, tolerance):
-    p = built.params
-    limit = _step_limit(built, coords, shortest=True)[bodies]
-
-    def settled(state):
-        out = settle_lines(p, state, slack=0)
-        return out, residual(out)[bodies]
-
-    y, r = settled(y)
-    for _ in range(iterations):
-        if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
-            break
-        jac = np.empty((len(bodies), len(bodies)))
-        for j in range(len(bodies)):
-            h = (
-                1e-6
-                if coords.kind[bodies[j]] == 1
-                else 1e-6 * max(1.0, abs(y[coords.q[bodies[j]]]))
-            )
-            dx = np.zeros(len(bodies))
-            dx[j] = h
-            jac[:, j] = (settled(_moved(p, coords, y, bodies, dx))[1] - r) / h
-        try:
-            step = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
-            step = np.linalg.lstsq(jac, -r, rcond=None)[0]
-        largest = float(np.max(np.abs(step) / limit))
-        if largest > 1.0:
-            step /= largest
-        for fraction in (1.0, 0.5, 0.25, 0.125, 0.0625):
-            trial, rt = settled(_moved(p, coords, y, bodies, fraction * step))
-            if np.all(np.isfinite(rt)) and np.linalg.norm(rt) < np.linalg.norm(r):
-                break
-        else:
-            break
-        y, r = trial, rt
-    return y
 
 
 def _step_limit(built: BuiltSystem, coords: Coordinates, shortest: bool = False) -> np.ndarray:
