@@ -406,7 +406,7 @@ def frozen(p):
 
 
 def carry(system: model.BuiltSystem, lay: bordered.Bordered):
-    """The arrays a run carries from step to step (``numerics.integrators``, contract point
+    """The arrays a run carries from step to step (``numerics.contract.ChunkIntegrator``, point
     5): [a1, the last step's change of acceleration], [factors valid, their step length, the
     step length of that change], the factors and their row swaps."""
     nv = int(system.params.n_v)
