@@ -345,11 +345,13 @@ def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
     longer = _newton(linear, direct, 2 * iterations, time)
     if _settled(linear, longer, time):
         return longer
-    best = min((direct, y, longer), key=lambda state: _unbalance(linear, state, time))
+    tried = [(_unbalance(linear, state, time), k, state)
+             for k, state in enumerate((direct, y, longer))]  # fmt: skip
+    left, _, best = min(tried)
     log.warning(
         "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
         "(Newton from the catenary start and from EA stages both stopped short)",
-        _unbalance(linear, best, time),
+        left,
     )
     return best
 
@@ -360,11 +362,17 @@ def _unbalance(p, y, time: float = 0.0) -> float:
     if not len(index):
         return 0.0
     ydot = np.zeros_like(y)
+    kernel.rhs(time, _at_rest(p, y, time), p, kernel.make_work(p), ydot)
+    return float(np.abs(ydot[index]).max())
+
+
+def _at_rest(p, y, time: float = 0.0) -> np.ndarray:
+    """A copy of ``y`` at rest: no velocities, or in a tow its steady motion
+    (``steady_velocities``), whose drag the lines carry; force models' states zero."""
     at_rest = y.copy()
     at_rest[p.n_q :] = 0.0
     at_rest[p.n_q : p.n_q + p.n_v] = steady_velocities(p, at_rest, time)
-    kernel.rhs(time, at_rest, p, kernel.make_work(p), ydot)
-    return float(np.abs(ydot[index]).max())
+    return at_rest
 
 
 def _settled(p, y, time: float = 0.0) -> bool:
@@ -417,9 +425,7 @@ def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
         kernel.rhs(time, y, p, w, ydot)
         return ydot[velocity].copy()
 
-    y = y0.copy()
-    y[p.n_q :] = 0.0
-    y[p.n_q : p.n_q + p.n_v] = steady_velocities(p, y, time)  # a tow: its steady motion's drag
+    y = _at_rest(p, y0, time)
     r = residual(y)
     best, best_norm = y, np.linalg.norm(r)
     scale = float(np.abs(r).max()) + 1e-6
