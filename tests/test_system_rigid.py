@@ -173,11 +173,10 @@ ANCHOR = {"name": "anchor", "type": "fixed", "position": [0, 0, -20]}
 @pytest.mark.parametrize(
     ("bodies", "lines", "message"),
     [
-        ([ANCHOR, {"name": "hull", "type": "rigid", "position": [5, 0, 0], "mass": 1.0}],
-         [_line("leg", "anchor", "hull", 30.0, 5)], r"lines\[0\] \(leg\)\.to: .*rigid body"),
-        ([ANCHOR, {"name": "b", "type": "point", "position": [5, 0, -5], "mass": 1.0}],
-         [_line("one", "anchor", "b", 30.0, 5), _line("two", "anchor", "b", 30.0, 5)],
-         r"lines\[1\] \(two\)\.to: .*already carried at the end of line 'one'"),
+        ([ANCHOR, {"name": "a", "type": "point", "position": [5, 0, -5], "mass": 1.0},
+          {"name": "hull", "type": "rigid", "position": [9, 0, -5], "mass": 1.0}],
+         [_line("leg", "anchor", "a", 30.0, 5), _line("tether", "a", "hull", 8.0, 5)],
+         r"lines\[1\] \(tether\)\.from: 'a' is on a body carried at the end of line 'leg'"),
         ([ANCHOR, {"name": "a", "type": "point", "position": [5, 0, -5], "mass": 1.0},
           {"name": "b", "type": "point", "position": [9, 0, -5], "mass": 1.0}],
          [_line("one", "a", "b", 5.0, 5), _line("two", "b", "a", 5.0, 5)],

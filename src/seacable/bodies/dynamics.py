@@ -107,17 +107,27 @@ def add_point_mass(m3, arm, omega, force, m6, rhs):
         force[2] - (m3[6] * c[0] + m3[7] * c[1] + m3[8] * c[2]),
     )
     add_force(arm, f[0], f[1], f[2], rhs)
-    # Phi (3x6) = [I, -[arm]]; -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
-    phi = ((0.0, rz, -ry), (-rz, 0.0, rx), (ry, -rx, 0.0))
+    add_coupling(m3, arm, arm, 1.0, m6)
+
+
+@njit(inline="always", **JIT)
+def add_coupling(m3, arm_i, arm_j, sign, block):
+    """``block`` (6x6) += sign Phi_i^T m3 Phi_j, Phi = [I, -[arm]] (3x6) the map from a body's
+    accelerations (a, alpha) to a point's at ``arm`` (besides w x (w x arm)): a force m3 A_j
+    at point i, with A_j a point's acceleration on a body (the same body: add_point_mass's
+    mass; another: a rigid line's coupling of two bodies, system.rigid.ports)."""
+    # -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
+    phi_i = ((0.0, arm_i[2], -arm_i[1]), (-arm_i[2], 0.0, arm_i[0]), (arm_i[1], -arm_i[0], 0.0))
+    phi_j = ((0.0, arm_j[2], -arm_j[1]), (-arm_j[2], 0.0, arm_j[0]), (arm_j[1], -arm_j[0], 0.0))
     for i in range(6):
         for j in range(6):
             total = 0.0
             for k in range(3):
-                pik = (1.0 if i == k else 0.0) if i < 3 else phi[k][i - 3]
+                pik = (1.0 if i == k else 0.0) if i < 3 else phi_i[k][i - 3]
                 for m in range(3):
-                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi[m][j - 3]
+                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi_j[m][j - 3]
                     total += pik * m3[3 * k + m] * pjm
-            m6[i, j] += total
+            block[i, j] += sign * total
 
 
 @njit(inline="always", **JIT)
@@ -175,26 +185,34 @@ def solve_free(m6, rhs, free, out):
     if only >= 0:
         return _solve_one(m6, rhs, only, out)
     a, b = _held_rows(m6, rhs, free)
-    for k in range(6):
+    return gauss(a, b, out)
+
+
+@njit(inline="always", **JIT)
+def gauss(a, b, out):
+    """``out`` of a x = b (n x n, overwritten): Gaussian elimination with partial pivoting.
+    False when singular."""
+    n = b.shape[0]
+    for k in range(n):
         p = k
-        for i in range(k + 1, 6):
+        for i in range(k + 1, n):
             if abs(a[i, k]) > abs(a[p, k]):
                 p = i
         if a[p, k] == 0.0:
             return False
         if p != k:
-            for j in range(6):
+            for j in range(n):
                 a[k, j], a[p, j] = a[p, j], a[k, j]
             b[k], b[p] = b[p], b[k]
-        for i in range(k + 1, 6):
+        for i in range(k + 1, n):
             factor = a[i, k] / a[k, k]
             if factor != 0.0:
-                for j in range(k, 6):
+                for j in range(k, n):
                     a[i, j] -= factor * a[k, j]
                 b[i] -= factor * b[k]
-    for i in range(5, -1, -1):
+    for i in range(n - 1, -1, -1):
         total = b[i]
-        for j in range(i + 1, 6):
+        for j in range(i + 1, n):
             total -= a[i, j] * out[j]
         out[i] = total / a[i, i]
     return True

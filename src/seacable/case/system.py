@@ -373,7 +373,9 @@ class RigidLine(_Model):
     other rigid-segment line ends on (the body moves with the line's end: a towed fish, a float,
     a depressor between two cables; on the axes its ``dofs`` leave out it is held where it
     starts), or is held on ``to``, a point of a fixed or imposed body (an anchor, a vehicle's
-    trajectory)."""
+    trajectory) or of a free body the line does not carry (a rigid body; a point body two
+    rigid lines end on): the line then joins the two bodies' motions (two-ports,
+    docs/rigid_segment_lines.md)."""
 
     name: Name
     model: Literal["rigid_segments_3d", "rigid_links"]

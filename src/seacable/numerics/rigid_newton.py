@@ -83,8 +83,8 @@ def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
     on_body: dict[int, list[int]] = {}
     for li in planar:
         tip, base = int(p.rs_tip[li]), bases[li]
-        if tip >= 0 and (tip in touched or tip in bases):
-            continue
+        if p.rs_port[li] or (tip >= 0 and (tip in touched or tip in bases)):
+            continue  # held on a free body (its rows are not written) or a carried body coupled
         if p.body_kind[base] == kinematics.DYNAMIC:
             if base in touched or np.any(p.body_free[base, 3:] != 0.0):
                 continue

@@ -29,7 +29,8 @@ INT_FIELDS = frozenset({
     "line_n", "line_seg", "line_node", "line_q", "line_v", "line_from", "line_to", "tie_from",
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
-    "rs_kind", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
+    "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
+    "body_group", "body_slot", "group_first", "group_body",
 })  # fmt: skip
 
 
@@ -256,6 +257,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         current_z=current_z, current_u=current_u, current_v=current_v,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
+    fields.update(_groups(case, tips, nb))
     params = typed(SystemParams, fields, INT_FIELDS)
     y0 = np.zeros(n_q + n_v + n_s)
     y0[:bodies_q] = y_q
@@ -263,6 +265,20 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
+
+
+def _groups(case, tips, nb: int) -> dict[str, np.ndarray]:
+    """The groups of free bodies that rigid lines join (system.kernel's ``body_group``,
+    ``body_slot``, ``group_first``, ``group_body``)."""
+    group, slot = -np.ones(nb, dtype=np.int64), -np.ones(nb, dtype=np.int64)
+    first, members = [0], []
+    for g, bodies in enumerate(topology.port_groups(case, tips)):
+        for s, b in enumerate(bodies):
+            group[b], slot[b] = g, s
+        members += bodies
+        first.append(len(members))
+    return dict(body_group=group, body_slot=slot, group_first=np.array(first, dtype=np.int64),
+                group_body=np.array(members, dtype=np.int64))  # fmt: skip
 
 
 def _offset(body, point: str) -> tuple[float, float, float]:
@@ -447,7 +463,9 @@ def _ties(case, layout) -> dict:
 def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     """Flat arrays of the rigid-segment lines (system.kernel's ``rs_`` fields); the order of
     their sweeps, children first (a line carried at another's tip before that one)."""
-    keys = ("rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_kind")
+    keys = ("rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_kind",
+            "rs_port")  # fmt: skip
+    ported = {r for r, _, _ in topology.ports(case, tips)}
     out: dict[str, list] = {k: [] for k in keys}
     held: list = []
     ref: list = []
@@ -472,6 +490,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         out["rs_to"].append(_point(case, layout, line.to, f"{where}.to"))
         tip = next((b for b, rr in tips.items() if rr == r), -1)
         out["rs_tip"].append(tip)
+        out["rs_port"].append(1 if r in ported else 0)
         planar = line.model == "rigid_links"
         out["rs_kind"].append(PLANAR if planar else SEGMENTS_3D)
         if planar:
@@ -486,7 +505,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         )
         if line.base_reference is not None and not np.linalg.norm(line.base_reference) > 0:
             raise CaseError(f"{where}.base_reference: a direction needs a non-zero length")
-        joint = _tip_joint(line, where, tip, r)
+        joint = _tip_joint(line, where, -2 if r in ported else tip, r)
         if joint is not None:
             tip_joints.append(joint)
         if line.continues is not None:
@@ -533,17 +552,21 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
 
 def _tip_joint(line, where: str, tip: int, index: int) -> list[float] | None:
     """The row of ``rs_tip_joint`` of rigid line ``index`` (None without a joint at its held
-    end): refused on a line whose end carries a body, which has no joint there."""
+    end): refused on a line whose end carries a body (``tip`` >= 0), which has no joint there,
+    or is held on a free body (-2)."""
     given = line.tip_joint_stiffness or line.tip_joint_damping or line.tip_reference is not None
     if not given:
         return None
-    if tip >= 0:
+    if tip != -1:
         field = "tip_joint_stiffness" if line.tip_joint_stiffness else (
             "tip_joint_damping" if line.tip_joint_damping else "tip_reference")  # fmt: skip
+        what = ("a point body the line carries (it moves with the last node, with no joint "
+                "there)" if tip >= 0 else "on a free body (the joint's moment on it is not "
+                "modelled)")  # fmt: skip
         raise CaseError(
             f"{where}.{field}: a joint at the end needs the end held on a point of a fixed or "
-            f"imposed body, but '{line.to}' is a point body the line carries (it moves with "
-            "the last node, with no joint there): leave the tip joint out, or hold the end"
+            f"imposed body, but '{line.to}' is {what}: leave the tip joint out, or hold the "
+            "end on a fixed or imposed body"
         )
     reference = line.tip_reference
     if reference is not None and not np.linalg.norm(reference) > 0:

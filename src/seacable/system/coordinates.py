@@ -181,8 +181,8 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
 
 def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> list[list[int]]:
     """The columns of each tree of rigid lines and the bodies they join (coupled densely: a
-    sweep couples every segment of a line); a body carried at a tip gets its tree's columns
-    in ``body_cols`` (its motion is its line's)."""
+    sweep couples every segment of a line; a line held on a free body couples it too); a body
+    carried at a tip gets its tree's columns in ``body_cols`` (its motion is its line's)."""
     parent: dict[tuple[str, int], tuple[str, int]] = {}
 
     def root(x):
@@ -192,15 +192,20 @@ def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> li
             x = parent[x]
         return x
 
+    def ends(li: int) -> tuple[int, ...]:  # its base; the body carried or held at its end
+        held = int(p.point_body[p.rs_to[li]]) if p.rs_port[li] else -1
+        return int(p.point_body[p.rs_from[li]]), int(p.rs_tip[li]), held
+
     for li in range(len(p.rs_n)):
         parent[root(("line", li))] = root(("body", int(p.point_body[p.rs_from[li]])))
-        if p.rs_tip[li] >= 0:
-            parent[root(("body", int(p.rs_tip[li])))] = root(("line", li))
+        for b in ends(li)[1:]:
+            if b >= 0:
+                parent[root(("body", b))] = root(("line", li))
     members: dict[tuple[str, int], list[int]] = {}
     for i in np.flatnonzero(coords.kind >= 3):
         members.setdefault(root(("line", int(coords.line[i]))), []).append(int(i))
     for li in range(len(p.rs_n)):
-        for b in (int(p.point_body[p.rs_from[li]]), int(p.rs_tip[li])):
+        for b in ends(li):
             if b >= 0 and b in body_cols and p.body_kind[b] != kinematics.TIP:
                 group = members.setdefault(root(("body", b)), [])
                 group.extend(c for c in body_cols[b] if c not in group)

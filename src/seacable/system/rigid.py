@@ -116,9 +116,10 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
 
 @njit(inline="always", **JIT)
 def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, pos, rot, vel,
-                omega, acc, ppos, pvel, parm, li, target, point_acc):  # fmt: skip
+                omega, acc, ppos, pvel, parm, li, target, point_acc, zero):  # fmt: skip
     """Position, velocity and acceleration (``target``, 9) a held tip is held to: a carried
-    body where it starts, or the point ``to`` of a fixed or imposed body."""
+    body where it starts, or the point ``to`` of a fixed, imposed or free body (of a free one,
+    the acceleration's part its twist gives, w x (w x r): ``zero`` is 6 zeros)."""
     tip = rs_tip[li]
     if tip >= 0:
         for c in range(3):
@@ -128,7 +129,10 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
     k = rs_to[li]
     kinematics.point_state(k, point_body, point_offset, pos, rot, vel, omega, ppos, pvel, parm)
     b = point_body[k]
-    kinematics.point_acceleration(body_kind[b], acc[b], parm[k], omega[b], point_acc)
+    if body_kind[b] == kinematics.DYNAMIC:  # a free body (a two-port): the known part alone
+        kinematics.point_acceleration(body_kind[b], zero, parm[k], omega[b], point_acc)
+    else:
+        kinematics.point_acceleration(body_kind[b], acc[b], parm[k], omega[b], point_acc)
     for c in range(3):
         target[c] = ppos[k, c]
         target[3 + c] = pvel[k, c]
@@ -136,18 +140,22 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
 
 
 @inner
-def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, length,
-             mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
+def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, rs_port,
+             length, mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
              body_pose, y, pos, rot, vel, omega, acc, ppos, pvel, parm, body_mass, bias, load,
-             work, rs_force, rs_la, scratch):  # fmt: skip
+             work, rs_force, rs_la, rs_lb, rs_cross, scratch):  # fmt: skip
     """Every rigid line's backward sweep, children first: a carried body's mass and loads start
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
-    the line's articulated inertia ``m9`` and load. False when a closure is singular. The
-    arrays of the parameter and work tuples come one by one (``work`` = ``w.rs``, ``body_mass``
-    = ``w.mass``; ``scratch``: 128 floats), as in ``nodes_and_loads``."""
+    the line's articulated inertia ``m9`` and load; a line held on a free body (``rs_port``)
+    leaves its couplings in ``rs_lb`` and ``rs_cross``, then ``ports`` hands them to the
+    bodies. False when a closure is
+    singular. The arrays of the parameter and work tuples come one by one (``work`` =
+    ``w.rs``, ``body_mass`` = ``w.mass``; ``scratch``: 160 floats), as in
+    ``nodes_and_loads``."""
     sweep = scratch[0:60]
     m9, line_load = scratch[60:69], scratch[69:72]
-    target, point_acc = scratch[106:115], scratch[115:118]
+    target, point_acc, zero = scratch[106:115], scratch[115:118], scratch[128:134]
+    zero[:] = 0.0
     ok = True
     for j in range(order.shape[0]):
         li = order[j]
@@ -156,18 +164,20 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
         pinned = _held(kind[li], rs_held, li)
         if pinned:
             _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, pos, rot,
-                        vel, omega, acc, ppos, pvel, parm, li, target, point_acc)  # fmt: skip
+                        vel, omega, acc, ppos, pvel, parm, li, target, point_acc,
+                        zero)  # fmt: skip
+        port = rs_port[li] != 0
         if kind[li] == PLANAR:
             sound = _planar_backward(
                 n, length[s0:e], mass[s0:e], inertia[s0:e], y, rs_v[li], ws, rs_tip[li],
                 body_mass, bias, load, rs_held[li], pinned, target, stabilization_frequency, m9,
-                line_load, rs_force[li], rs_la[li], sweep,
+                line_load, rs_force[li], rs_la[li], port, rs_lb[li], rs_cross[li], sweep,
             )  # fmt: skip
         else:
             sound = _segments_backward(
                 n, length[s0:e], mass[s0:e], ws, rs_tip[li], body_mass, bias, load,
                 rs_held[li], pinned, target, stabilization_frequency, m9, line_load,
-                rs_force[li], rs_la[li], sweep, scratch[72:90],
+                rs_force[li], rs_la[li], port, rs_lb[li], rs_cross[li], sweep, scratch[72:90],
             )  # fmt: skip
         ok = ok and sound
         a = rs_from[li]
@@ -175,15 +185,18 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
         if kinematics.has_mass(body_kind[base]):
             dynamics.add_point_mass(m9, parm[a], omega[base], line_load, body_mass[base],
                                     load[base])  # fmt: skip
+    ports(rs_port, rs_from, rs_to, point_body, body_kind, acc, omega, parm, body_mass, load,
+          rs_force, rs_la, rs_lb, rs_cross, scratch)  # fmt: skip
     return ok
 
 
 @njit(inline="always", **JIT)
 def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pinned, target,
-                       stabilization_frequency, m9, line_load, force, la_out, scratch,
-                       closure_scratch):  # fmt: skip
+                       stabilization_frequency, m9, line_load, force, la_out, port, lb_out,
+                       cross, scratch, closure_scratch):  # fmt: skip
     m, b, s = scratch[0:6], scratch[6:9], scratch[9:18]
     ac, ga, al, la = scratch[18:21], scratch[21:30], scratch[30:39], scratch[39:48]
+    lb = scratch[48:57]
     tipv, system, rhs3 = closure_scratch[0:6], closure_scratch[6:15], closure_scratch[15:18]
     m[:] = 0.0
     b[:] = 0.0
@@ -210,7 +223,7 @@ def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pi
             tipv[c] = ws[c3._P + c, n]
             tipv[3 + c] = ws[c3._V + c, n]
         ok = rigid_segments.closure(held, ac, ga, al, target, tipv, stabilization_frequency,
-                                    force, la, system, rhs3)  # fmt: skip
+                                    force, la, port, lb, system, rhs3)  # fmt: skip
         # lam_0 = (M_0 + S_0 la) A_0 + (b_0 + S_0 l0): s holds S_0
         for r in range(3):
             for c in range(3):
@@ -220,17 +233,23 @@ def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pi
                              + s[3 * r + 2] * force[2])  # fmt: skip
         for c in range(9):
             la_out[c] = la[c]
+        if port:  # the end body's inertia -lb, the base's coupling S_0 lb
+            for r in range(3):
+                for c in range(3):
+                    lb_out[3 * r + c] = -lb[3 * r + c]
+                    cross[3 * r + c] = (s[3 * r] * lb[c] + s[3 * r + 1] * lb[3 + c]
+                                        + s[3 * r + 2] * lb[6 + c])  # fmt: skip
     return ok
 
 
 @njit(inline="always", **JIT)
 def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, load, held,
-                     pinned, target, stabilization_frequency, m9, line_load, force, la_out,
-                     scratch):  # fmt: skip
+                     pinned, target, stabilization_frequency, m9, line_load, force, la_out, port,
+                     lb_out, cross, scratch):  # fmt: skip
     st = scratch[0:9]
     ac, ga, al, l0, la = scratch[9:11], scratch[11:15], scratch[15:19], scratch[19:21], scratch[
         21:25]  # fmt: skip
-    tipv = scratch[37:41]
+    tipv, lb = scratch[37:41], scratch[41:45]
     st[:] = 0.0
     if tip >= 0:
         mt = body_mass[tip]
@@ -251,7 +270,7 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
         tipv[2], tipv[3] = ws[pc._VX, n], ws[pc._VZ, n]
         planar_target = (target[0], target[2], target[3], target[5], target[6], target[8])
         ok = rigid_links.closure(held[0], held[2], ac, ga, al, planar_target, tipv,
-                                 stabilization_frequency, l0, la)  # fmt: skip
+                                 stabilization_frequency, l0, la, port, lb)  # fmt: skip
         # lam_0 = (M_0 + S_0 la) A_0 + (b_0 + S_0 l0) in (x, z): S_0 = (s11 s12; s21 s22)
         s11, s12, s21, s22 = st[5], st[6], st[7], st[8]
         m9[0] += s11 * la[0] + s12 * la[2]
@@ -263,17 +282,54 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
         force[0], force[2] = l0[0], l0[1]
         la_out[0], la_out[2] = la[0], la[1]
         la_out[6], la_out[8] = la[2], la[3]
+        if port:  # as in 3D, in (x, z)
+            lb_out[:] = 0.0
+            cross[:] = 0.0
+            lb_out[0], lb_out[2], lb_out[6], lb_out[8] = -lb[0], -lb[1], -lb[2], -lb[3]
+            cross[0], cross[2] = s11 * lb[0] + s12 * lb[2], s11 * lb[1] + s12 * lb[3]
+            cross[6], cross[8] = s21 * lb[0] + s22 * lb[2], s21 * lb[1] + s22 * lb[3]
     return ok
 
 
 @inner
-def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_held, length,
-            point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la, scratch,
-            ydot):  # fmt: skip
+def ports(rs_port, rs_from, rs_to, point_body, body_kind, acc, omega, parm, body_mass, load,
+          rs_force, rs_la, rs_lb, rs_cross, scratch):  # fmt: skip
+    """After the backward sweeps: each line held at its end on a free body B (``rs_port``)
+    gives B its pull L = l0 + la A_0 + lb a_B (``rs_force`` holds l0, ``rs_lb`` -lb): the
+    inertia -lb at its point and the load l0 + la A_0 with A_0's known part (all of it on a
+    fixed or imposed base; w x (w x r) on a free one). A line from B to B adds its two
+    couplings to B's mass here; between two free bodies they are left to their joint solve
+    (system.kernel._solve_groups). Derivation: docs/rigid_segment_lines.md."""
+    zero, a0, pull = scratch[128:134], scratch[134:137], scratch[137:140]
+    zero[:] = 0.0
+    for li in range(rs_port.shape[0]):
+        if rs_port[li] == 0:
+            continue
+        a, k = rs_from[li], rs_to[li]
+        base, end = point_body[a], point_body[k]
+        free_base = body_kind[base] == kinematics.DYNAMIC
+        kinematics.point_acceleration(body_kind[base], zero if free_base else acc[base], parm[a],
+                                      omega[base], a0)  # fmt: skip
+        la = rs_la[li]
+        for r in range(3):
+            pull[r] = rs_force[li, r] + la[3 * r] * a0[0] + la[3 * r + 1] * a0[1] + la[
+                3 * r + 2] * a0[2]  # fmt: skip
+        dynamics.add_point_mass(rs_lb[li], parm[k], zero[0:3], pull, body_mass[end], load[end])
+        if base == end:
+            dynamics.add_coupling(rs_cross[li], parm[a], parm[k], 1.0, body_mass[end])
+            dynamics.add_coupling(la, parm[k], parm[a], -1.0, body_mass[end])
+
+
+@inner
+def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_to, rs_tip, rs_held,
+            rs_port, length, point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la,
+            rs_lb, scratch, ydot):  # fmt: skip
     """Every rigid line's forward sweep, bases first: node 0's acceleration from its body's,
     the holding force from it, the segments' accelerations; a carried body's acceleration is
     its line's last node's. The arrays come one by one, as in ``nodes_and_loads``."""
     a0, held_force = scratch[100:103], scratch[103:106]
+    end_acc, zero = scratch[140:143], scratch[128:134]
+    zero[:] = 0.0
     for j in range(order.shape[0] - 1, -1, -1):
         li = order[j]
         n, s0, ws = _view(rs_n, rs_seg, rs_node, work, li)
@@ -282,10 +338,18 @@ def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_
         kinematics.point_acceleration(body_kind[base], acc[base], parm[a], omega[base], a0)
         pinned = _held(kind[li], rs_held, li)
         la = rs_la[li]
+        if rs_port[li] != 0:  # held on a free body: its solved acceleration, w x (w x r) aside
+            k = rs_to[li]
+            end = point_body[k]
+            kinematics.point_acceleration(body_kind[end], acc[end], parm[k], zero[0:3], end_acc)
         for r in range(3):
             held_force[r] = rs_force[li, r]
             if pinned:
                 held_force[r] += la[3 * r] * a0[0] + la[3 * r + 1] * a0[1] + la[3 * r + 2] * a0[2]
+            if rs_port[li] != 0:  # rs_lb holds -lb
+                lb = rs_lb[li]
+                held_force[r] -= (lb[3 * r] * end_acc[0] + lb[3 * r + 1] * end_acc[1]
+                                  + lb[3 * r + 2] * end_acc[2])  # fmt: skip
             rs_force[li, r] = held_force[r]
         tip = rs_tip[li]
         if kind[li] == PLANAR:

@@ -2,8 +2,9 @@
 or imposed body, with no restoring force of its own (a ``linear_stiffness``, or buoyancy of a
 shape the free surface cuts, which holds heave alone), has no static equilibrium: the statics
 refuses it, naming the bodies. Rigid lines form trees: a line carries the point body at its end,
-which may start further lines (``rigid_tips``, their sweep order by ``depth``); a planar line's
-bodies must stay in its plane (``planar_ends``)."""
+which may start further lines (``rigid_tips``, their sweep order by ``depth``); a line held at
+its end on another free body couples the two (``ports``); a planar line's bodies must stay in
+its plane (``planar_ends``)."""
 
 from seacable.case import system as sch
 from seacable.errors import CaseError
@@ -56,50 +57,83 @@ def rigid_lines(case) -> list[tuple[int, "sch.RigidLine"]]:
 
 def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
     """{body index: rigid-line number} of the point bodies carried at a rigid-segment line's
-    tip. Refuses a tip that no sweep can carry: a rigid body, a body two such lines end on, a
-    ring of lines each carried by the next."""
+    tip: a point body that ends one rigid line only, and whose carrying would close no ring.
+    Another rigid line's end on a free body is held there (``ports``). Refuses what no sweep
+    can take: a held end on a free body from a carried one, a ring of lines each carried by
+    the next."""
     names = [b.name for b in case.bodies]
+    lines = rigid_lines(case)
+    ends = [line.to.partition(".")[0] for _, line in lines]
     tips: dict[int, int] = {}
     base: dict[int, int] = {}  # rigid-line number -> base body
-    for r, (k, line) in enumerate(rigid_lines(case)):
-        where = f"lines[{k}] ({line.name}).to"
-        body_name = line.to.partition(".")[0]
+    for r, (_, line) in enumerate(lines):
         start = line.from_.partition(".")[0]
-        if body_name not in names or start not in names:
+        if ends[r] not in names or start not in names:
             continue  # named in the error of the point's resolution
-        b = names.index(body_name)
+        b = names.index(ends[r])
         base[r] = names.index(start)
-        body = case.bodies[b]
-        if isinstance(body, sch.FixedBody | sch.ImposedBody):
-            continue  # held on a kinematic point
-        if isinstance(body, sch.RigidBody):
-            raise CaseError(
-                f"{where}: '{line.to}' is on the rigid body '{body_name}'; a rigid-segment "
-                "line's last node carries a point body or is held on a fixed or imposed body "
-                "(a rigid body there, closing a loop, is not supported yet): swap 'from' and "
-                "'to' so that the line starts at the rigid body"
-            )
-        if b in tips:
-            other = rigid_lines(case)[tips[b]][1].name
-            raise CaseError(
-                f"{where}: the point body '{body_name}' is already carried at the end of line "
-                f"'{other}'; one rigid-segment line may end on a point body (closing a loop of "
-                "inextensible lines is not supported yet): swap 'from' and 'to' of one of them"
-            )
-        tips[b] = r
+        if isinstance(case.bodies[b], sch.PointBody) and ends.count(ends[r]) == 1:
+            tips[b] = r
     for b, r in tips.items():  # walk down from each tip to its root: a ring never ends
         seen, at = {b}, base[r]
         while at in tips:
             if at in seen:
-                ring = sorted(rigid_lines(case)[tips[x]][1].name for x in seen)
+                ring = sorted(lines[tips[x]][1].name for x in seen)
                 raise CaseError(
                     f"lines {ring}: a ring of rigid-segment lines, each carried at the end of "
-                    "the next, with nothing fixed, imposed or free to start from; swap 'from' "
-                    "and 'to' of one of them"
+                    "the next (closing a ring of inextensible lines is not supported yet); "
+                    "make one of them a lumped_mass line, or hold one end on a fixed body"
                 )
             seen.add(at)
             at = base[tips[at]]
+    for r, _a, _b in ports(case, tips):
+        k, line = lines[r]
+        if base[r] in tips:
+            raise CaseError(
+                f"lines[{k}] ({line.name}).from: '{line.from_}' is on a body carried at the "
+                f"end of line '{lines[tips[base[r]]][1].name}', and this line ends on the free "
+                f"body '{ends[r]}'; a rigid line between two moving bodies needs both free "
+                "(not carried): start it on a fixed, imposed, point or rigid body that no "
+                "rigid line ends on, or swap 'from' and 'to'"
+            )
     return tips
+
+
+def ports(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[int, int, int]]:
+    """(rigid-line number, base body, end body) of every rigid line held at its end on a free
+    (point or rigid) body that it does not carry: a two-port between the two bodies, whose
+    accelerations are then solved together (docs/rigid_segment_lines.md, "Lines between two
+    moving bodies")."""
+    names = [b.name for b in case.bodies]
+    out = []
+    for r, (_, line) in enumerate(rigid_lines(case)):
+        a, b = line.from_.partition(".")[0], line.to.partition(".")[0]
+        if a not in names or b not in names or tips.get(names.index(b)) == r:
+            continue
+        body = case.bodies[names.index(b)]
+        if isinstance(body, sch.PointBody | sch.RigidBody):
+            out.append((r, names.index(a), names.index(b)))
+    return out
+
+
+def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[list[int]]:
+    """The groups of free bodies whose accelerations rigid lines held at their ends (``ports``)
+    couple, each in ascending order: a line from a free body to another joins them."""
+    free = [isinstance(b, sch.PointBody | sch.RigidBody) for b in case.bodies]
+    parent: dict[int, int] = {}
+
+    def root(b: int) -> int:
+        while parent.setdefault(b, b) != b:
+            b = parent[b]
+        return b
+
+    for _, a, b in ports(case, tips):
+        if free[a] and a not in tips and a != b:
+            parent[root(a)] = root(b)
+    out: dict[int, list[int]] = {}
+    for b in sorted(parent):
+        out.setdefault(root(b), []).append(b)
+    return [group for group in out.values() if len(group) > 1]
 
 
 def planar_ends(case, line, where: str, tip: int) -> None:
