@@ -8,6 +8,7 @@ import pytest
 import seacable
 from golden.record import system_rows
 from helpers import system_data, upgraded
+from seacable import analysis
 from seacable.errors import CaseError
 
 
@@ -133,8 +134,56 @@ def _system(tangent="angle", **changes):
     return seacable.load_case(data)
 
 
-def test_a_system_string_starts_as_given_in_air():
-    with pytest.raises(CaseError, match=r"lines\[0\] \(cable\)\.model: .* set start: as_given"):
-        seacable.simulate(_system(start="static"))
+def test_a_system_string_hangs_in_air_only():
     with pytest.raises(CaseError, match=r"string pendulum in air"):
         seacable.simulate(_system(environment={"water_density": 1025.0}))
+
+
+@pytest.mark.parametrize("tangent", ["angle", "cartesian"])
+def test_a_string_hangs_with_the_weight_below_each_node_over_ea(tangent):
+    """``start: static``: the string hangs straight down, each node's strain the weight below
+    it (10 kg at the end, 1 kg/m over 10 m) over EA = 1e5 N, to 1e-12; a run from there stays
+    at rest (the released string swings 10 m)."""
+    ds = seacable.simulate(_system(tangent, start="static")).dataset
+    strain = ds["lines/cable/strain"].values
+    s = np.linspace(0.0, 10.0, strain.shape[1])
+    exact = 9.81 * (1.0 * (10.0 - s) + 10.0) / 1e5
+    np.testing.assert_allclose(strain[0], exact, rtol=0, atol=1e-12)
+    assert np.abs(strain - strain[:1]).max() < 1e-10
+    assert np.abs(ds["lines/cable/node_x"].values).max() < 1e-9
+
+
+def _bessel_periods(count, g=9.81, length=10.0, mu=1.0, end_mass=10.0):
+    """The small swings of an inextensible uniform chain of ``length`` [m] and ``mu`` [kg/m]
+    with ``end_mass`` [kg] at its free end: with xi = l - s + m/mu (tension mu g xi), the
+    displacement U solves g (xi U')' + w^2 U = 0, so U = A J0(x) + B Y0(x), x = 2 w sqrt(xi / g);
+    U = 0 at the pivot, and at the end mass -w^2 m U = mu g xi U'. Periods 2 pi / w [s]."""
+    from scipy import optimize, special
+
+    a = end_mass / mu
+
+    def det(w):
+        xa, xp = 2 * w * np.sqrt(a / g), 2 * w * np.sqrt((length + a) / g)
+        return (special.j0(xp) * (special.y1(xa) - 0.5 * xa * special.y0(xa))
+                - special.y0(xp) * (special.j1(xa) - 0.5 * xa * special.j0(xa)))  # fmt: skip
+
+    grid = np.linspace(0.05, 20.0, 4000)
+    values = det(grid)
+    sign = np.flatnonzero(values[:-1] * values[1:] < 0)[:count]
+    return np.array([2 * np.pi / optimize.brentq(det, grid[i], grid[i + 1]) for i in sign])
+
+
+@pytest.mark.parametrize("tangent", ["angle", "cartesian"])
+def test_string_modes_converge_to_the_hanging_chains_bessel_modes(tangent):
+    """``seacable modes`` on the string (EA 1e9 N: nearly inextensible): its three slowest
+    periods approach the hanging chain's (Bessel functions, with the end mass) at second order
+    in the element length: within 1.1e-3 at 40 elements, each error at least 3.5 times
+    smaller than at 20."""
+    exact = _bessel_periods(3)
+    errors = []
+    for k in (20, 40):
+        data = system_data(_pendulum(tangent=tangent, k=k, ea=1e9))
+        periods = analysis.system_modes(seacable.load_case(data), count=3)["period"].values
+        errors.append(np.abs(periods / exact - 1.0))
+    assert np.all(errors[1] < 1.1e-3)
+    assert np.all(errors[0] > 3.5 * errors[1])

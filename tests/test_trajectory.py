@@ -300,3 +300,26 @@ def test_the_servo_loop_analysis_predicts_the_runs(monkeypatch):
     monkeypatch.undo()
     inside = _rows_of(_servo_at(0.9 * largest, 0.001, duration=6.0))
     assert inside["tracking_error"].max() < 1e-6
+
+
+def test_the_linearisation_carries_the_servos_force_as_a_state():
+    """``system.statics.jacobian`` in the statics' coordinates, with the servo's force among
+    its states, has the eigenvalues of the servo loop's own linearisation over the raw state
+    (``system.servo.loop``, which has more: the directors' lengths), to 1e-6, and the same
+    growth rate; without the force's state the loop would have no servo dynamics."""
+    from seacable.forces import servo as servo_force
+    from seacable.system import model, statics
+
+    system = model.build(_load("jacquot_marichal_trajectory_servo"))
+    a, coords = statics.jacobian(system, system.y0)
+    assert a.shape[0] == 2 * len(coords.kind) + 3  # the force's three components
+    ours = np.linalg.eigvals(a)
+    loop = system_servo.loop(system, system.y0)
+    f, _, spec = system_servo.servos(system)[0]
+    p = system.params
+    step = float(p.force_data[p.force_at[f] + servo_force.STEP])
+    full = np.linalg.eigvals(loop.J0 + (spec.gain / step) * loop.G + spec.rate_gain * loop.H)
+    distance = [np.min(np.abs(full - z)) / max(1.0, abs(z)) for z in ours]
+    assert max(distance) < 1e-6
+    growth = loop.growth_rate(spec.gain, spec.rate_gain, step)
+    assert ours.real.max() == pytest.approx(growth, rel=1e-6, abs=1e-9)

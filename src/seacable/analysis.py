@@ -80,6 +80,9 @@ def _inertia_diagonal(built, coords) -> np.ndarray:
             line = int(coords.line[i])
             node = int(p.line_node[line]) + (int(coords.q[i]) - int(p.line_q[line])) // 3 + 1
             out[i] = p.node_mass[node]
+        elif kind >= 5:  # a natural string's node: its share of the string's mass
+            line = int(coords.line[i])
+            out[i] = p.nat_mu[line] * p.nat_length[line] / p.nat_n[line]
         elif kind >= 3:  # a rigid line's segment: its moment of inertia about its centre
             line = int(coords.line[i])
             width = 3 if kind == 3 else 1
@@ -105,6 +108,11 @@ def _coordinate_names(built, coords) -> list[str]:
             name = built.layout.lines[int(line)]
             node = (int(q) - int(built.params.line_q[line])) // 3 + 1
             names.append(f"{name}:node {node}:{'xyz'[int(axis)]}")
+        elif kind >= 5:
+            width = 3 if kind == 7 else 2
+            node = (int(q) - int(built.params.nat_q[line])) // width
+            what = "strain" if kind == 5 else "angle"
+            names.append(f"{built.layout.natural[int(line)]}:node {node}:{what}")
         elif kind >= 3:
             name = built.layout.rigid[int(line)]
             width = 3 if kind == 3 else 1

@@ -16,16 +16,21 @@ from scipy import sparse
 from seacable.bodies import kinematics
 from seacable.system import kernel, rigid
 
+# a natural string node's strain; its tangent's angle (angle form: added to it; cartesian
+# form: the components (t_x, t_z) turned towards n = (-t_z, t_x))
+STRAIN, ANGLE, TURN = 5, 6, 7
+
 
 @dataclass(frozen=True)
 class Coordinates:
     """Where each increment goes: ``kind`` 0 translation, 1 rotation, 2 node, 3 director, 4
-    planar link's angle;
+    planar link's angle, 5 a natural string node's strain, 6 its tangent's angle, 7 a turn of
+    its tangent's components (t_x, t_z) towards n = (-t_z, t_x) (the cartesian form);
     ``body`` its body (-1 for a node or director); ``axis`` 0..2 (a director's: 0 along t1, 1
     along t2); ``q`` its position in y (translation, node), the body's first quaternion entry
-    or the director's first entry; ``v`` the state index of its velocity (a director's first
-    rate); ``line`` (-1 for a body; a lumped line's index for a node, a rigid line's for a
-    director)."""
+    or the director's first entry (a string's tangent: its first component); ``v`` the state
+    index of its velocity (a director's first rate); ``line`` (-1 for a body; a lumped line's
+    index for a node, a rigid line's for a director, a natural string's for its variables)."""
 
     kind: np.ndarray
     body: np.ndarray
@@ -60,8 +65,22 @@ def coordinates(p: kernel.SystemParams) -> Coordinates:
                 continue
             for axis in range(2):
                 rows.append((3, -1, axis, q + 3 * i, v + 3 * i, li))
+    rows += _string_rows(p)
     table = np.array(rows, dtype=np.int64).reshape(-1, 6)
     return Coordinates(*(table[:, c].copy() for c in range(6)))
+
+
+def _string_rows(p: kernel.SystemParams) -> list[tuple[int, int, int, int, int, int]]:
+    """A natural string's coordinates: strain and tangent angle at every node."""
+    rows = []
+    for li in range(len(p.nat_n)):
+        q, v = int(p.nat_q[li]), int(p.nat_v[li])
+        width = 3 if p.nat_cartesian[li] else 2
+        for i in range(int(p.nat_n[li]) + 1):
+            rows.append((STRAIN, -1, 0, q + width * i, v + width * i, li))
+            rows.append((TURN if width == 3 else ANGLE, -1, 0, q + width * i + 1,
+                         v + width * i + 1, li))  # fmt: skip
+    return rows
 
 
 def rotate(quaternion: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -112,8 +131,14 @@ def tangents(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarra
 def apply(y: np.ndarray, coords: Coordinates, dx: np.ndarray) -> np.ndarray:
     """The state moved by the increments ``dx``."""
     out = y.copy()
-    plain = (coords.kind == 0) | (coords.kind == 2) | (coords.kind == 4)
+    plain = np.isin(coords.kind, (0, 2, 4, STRAIN, ANGLE))
     np.add.at(out, coords.q[plain], dx[plain])
+    turned = np.flatnonzero((coords.kind == TURN) & (dx != 0.0))
+    if turned.size:  # (t_x, t_z) turned by the angle: t cos + n sin, n = (-t_z, t_x)
+        tx, tz = y[coords.q[turned]], y[coords.q[turned] + 1]
+        c, s = np.cos(dx[turned]), np.sin(dx[turned])
+        out[coords.q[turned]] = tx * c - tz * s
+        out[coords.q[turned] + 1] = tz * c + tx * s
     turned = np.flatnonzero((coords.kind == 3) & (dx != 0.0))  # the directors that turn
     if turned.size:
         index = coords.q[turned][:, None] + np.arange(3)[None, :]
@@ -143,7 +168,7 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
         local = int(coords.q[i] - p.line_q[li]) // 3
         node_index.setdefault((li, local), []).append(i)
     links: list[tuple[list[int], list[int]]] = []
-    for cols in _rigid_groups(p, coords, body_cols):
+    for cols in _rigid_groups(p, coords, body_cols) + _string_groups(coords):
         links.append((cols, cols))
     moving = set(body_cols)
     # bodies that share a line or tie are coupled; every body to itself
@@ -179,6 +204,13 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
     return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
 
 
+def _string_groups(coords: Coordinates) -> list[list[int]]:
+    """The columns of each natural string (coupled densely: every node moves its end body)."""
+    string = coords.kind >= STRAIN
+    return [[int(i) for i in np.flatnonzero(string & (coords.line == li))]
+            for li in np.unique(coords.line[string])]  # fmt: skip
+
+
 def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> list[list[int]]:
     """The columns of each tree of rigid lines and the bodies they join (coupled densely: a
     sweep couples every segment of a line; a line held on a free body couples it too); a body
@@ -202,7 +234,7 @@ def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> li
             if b >= 0:
                 parent[root(("body", b))] = root(("line", li))
     members: dict[tuple[str, int], list[int]] = {}
-    for i in np.flatnonzero(coords.kind >= 3):
+    for i in np.flatnonzero((coords.kind == 3) | (coords.kind == 4)):
         members.setdefault(root(("line", int(coords.line[i]))), []).append(int(i))
     for li in range(len(p.rs_n)):
         for b in ends(li):
@@ -281,18 +313,29 @@ def free_trees(p: kernel.SystemParams) -> np.ndarray:
 
 def accelerations(y: np.ndarray, coords: Coordinates, ydot: np.ndarray) -> np.ndarray:
     """The acceleration of each coordinate in the rates ``ydot`` (a director's on its turn's
-    direction)."""
+    direction, a string's cartesian tangent's on n)."""
     out = ydot[coords.v].copy()
     turned = np.flatnonzero(coords.kind == 3)
     if turned.size:
         index = coords.v[turned][:, None] + np.arange(3)[None, :]
         out[turned] = np.einsum("ij,ij->i", ydot[index], tangents(y, coords, turned))
+    turned = np.flatnonzero(coords.kind == TURN)
+    if turned.size:
+        n = tangent_normals(y, coords, turned)
+        out[turned] = ydot[coords.v[turned]] * n[:, 0] + ydot[coords.v[turned] + 1] * n[:, 1]
     return out
 
 
+def tangent_normals(y: np.ndarray, coords: Coordinates, which: np.ndarray) -> np.ndarray:
+    """n = (-t_z, t_x) (m, 2) of the cartesian string tangents ``which``: the direction their
+    increment turns them along."""
+    return np.stack([-y[coords.q[which] + 1], y[coords.q[which]]], axis=1)
+
+
 def is_angle(kind: np.ndarray) -> np.ndarray:
-    """True for a coordinate that is an angle [rad] (a body's turn, a director's)."""
-    return (kind == 1) | (kind == 3) | (kind == 4)
+    """True for a coordinate that is an angle [rad] (a body's turn, a director's, a string's
+    tangent)."""
+    return (kind == 1) | (kind == 3) | (kind == 4) | (kind == ANGLE) | (kind == TURN)
 
 
 def fd_jacobian(residual, y, coords, structure, colours, r0,

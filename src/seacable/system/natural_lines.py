@@ -19,11 +19,6 @@ def tips(case: sch.SystemCase) -> set[int]:
     out = set()
     for k, line in _strings(case):
         where = f"lines[{k}] ({line.name})"
-        if case.start == "static":
-            raise CaseError(
-                f"{where}.model: a natural_string starts as the case gives it (its statics are "
-                "not computed): set start: as_given"
-            )
         if not case.environment.in_air:
             raise CaseError(
                 f"{where}.model: natural_string is Poth's string pendulum in air (gravity "
@@ -102,3 +97,24 @@ def table(case: sch.SystemCase, layout, point, q_at: int, v_at: int):
         initial += block.ravel().tolist()
     arrays = {key: np.array(values, dtype=float) for key, values in out.items()}
     return arrays, initial
+
+
+def hanging(p, y: np.ndarray) -> np.ndarray:
+    """``y`` with every string hanging straight down from its pivot at rest, each node's strain
+    the weight below it (the string's and its end mass's) over EA: the statics of Poth's
+    pendulum (gravity alone; system.statics starts its Newton there). The discrete equations
+    (kernels.natural) balance this exactly: their tension's second difference is zero between
+    the ends, and the boundary rows give the slope mu g and the end value m g."""
+    out = y.copy()
+    for li in range(len(p.nat_n)):
+        n, q, v = int(p.nat_n[li]), int(p.nat_q[li]), int(p.nat_v[li])
+        width = 3 if p.nat_cartesian[li] else 2
+        s = np.linspace(0.0, float(p.nat_length[li]), n + 1)
+        below = p.nat_mu[li] * (p.nat_length[li] - s) + p.body_mass[int(p.nat_tip[li])]
+        block = np.zeros((n + 1, width))
+        block[:, 0] = p.gravity * below / p.nat_ea[li]
+        if width == 3:
+            block[:, 2] = -1.0  # t = (0, -1): down
+        out[q : q + width * (n + 1)] = block.ravel()
+        out[v : v + width * (n + 1)] = 0.0
+    return out

@@ -16,9 +16,11 @@ from scipy.sparse.linalg import splu
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface
-from seacable.system import kernel, nested, outputs, rigid
+from seacable.system import kernel, natural_lines, nested, outputs, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import (
+    STRAIN,
+    TURN,
     Coordinates,
     Residual,
     apply,
@@ -28,6 +30,7 @@ from seacable.system.coordinates import (
     is_angle,
     pattern,
     rotate,
+    tangent_normals,
     tangents,
 )
 from seacable.system.initial import settle_lines, steady_velocities
@@ -51,12 +54,12 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy.
     Raises StaticsError naming the body or line that stays out of balance."""
     p = built.params
-    _no_strings(built)
     coords = coordinates(p)
     y = y0.copy()
     y[p.n_q : p.n_q + p.n_v] = steady_velocities(p, y, time)
     if not len(coords.kind):
         return y
+    y = natural_lines.hanging(p, y)
     residual = Residual(p, coords, time)
     if residual.balanced.any():
         y = _hang(p, y, residual.free, time=time)
@@ -68,7 +71,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return direct
     bodies = np.flatnonzero(coords.kind <= 1)
-    if (bodies.size or len(p.line_n)) and not len(p.rs_n):  # free bodies or lumped lines
+    if (bodies.size or len(p.line_n)) and not len(p.rs_n) and not len(p.nat_n):
         limit = _step_limit(built, coords, shortest=True)[bodies]
         settled = nested.bodies_newton(p, coords, y, limit, iterations, tolerance * scale, time)
         if settled is not None:
@@ -82,14 +85,6 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
     raise StaticsError(_blame(built, coords, r))
-
-
-def _no_strings(built: BuiltSystem) -> None:
-    if len(built.params.nat_n):
-        raise StaticsError(
-            f"statics: the natural_string line '{built.layout.natural[0]}' has no statics or "
-            "linearisation here; start it as given"
-        )
 
 
 def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, time: float = 0.0,
@@ -267,6 +262,8 @@ def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
         what = ("x", "y", "z")[int(coords.axis[worst])]
         dof = "rotation about" if coords.kind[worst] == 1 else "force along"
         where = f"body '{name}' ({dof} {what}: acceleration {r[worst]:.3g} at rest)"
+    elif coords.kind[worst] >= STRAIN:
+        where = f"line '{built.layout.natural[int(coords.line[worst])]}'"
     elif coords.kind[worst] >= 3:
         where = f"line '{built.layout.rigid[int(coords.line[worst])]}'"
     else:
@@ -289,20 +286,25 @@ def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
 def jacobian(
     built: BuiltSystem, y: np.ndarray, time: float = 0.0
 ) -> tuple[np.ndarray, Coordinates]:
-    """A = d(rates)/d(increments, velocities) of the free degrees of freedom about ``y``
-    (dense, central differences): the linearised system dz/dt = A z with z = (dx, dv)."""
+    """A = d(rates)/d(increments, velocities, force models' states) of the free degrees of
+    freedom about ``y`` (dense, central differences): the linearised system dz/dt = A z with
+    z = (dx, dv, ds), ds the force models' first-order states (a servo's force; n_s of them,
+    last)."""
     p = built.params
-    _no_strings(built)
     coords = coordinates(p)
-    n = len(coords.kind)
+    n, ns, s0 = len(coords.kind), int(p.n_s), int(p.n_q + p.n_v)
     residual = Residual(p, coords, time, balance=False)  # accelerations: dynamics
-    a = np.zeros((2 * n, 2 * n))
-    a[:n, n:] = np.eye(n)
+
+    def rates(state: np.ndarray) -> np.ndarray:
+        return np.concatenate([residual(state), residual.ydot[s0 : s0 + ns]])
+
+    a = np.zeros((2 * n + ns, 2 * n + ns))
+    a[:n, n : 2 * n] = np.eye(n)
     for j in range(n):
         h = 1e-6 * (1.0 if is_angle(coords.kind[j : j + 1])[0] else max(1.0, abs(y[coords.q[j]])))
         dx = np.zeros(n)
         dx[j] = h
-        a[n:, j] = (residual(apply(y, coords, dx)) - residual(apply(y, coords, -dx))) / (2 * h)
+        a[n:, j] = (rates(apply(y, coords, dx)) - rates(apply(y, coords, -dx))) / (2 * h)
         hv = 1e-6 * max(1.0, abs(y[coords.v[j]]))
         up, down = y.copy(), y.copy()
         if coords.kind[j] == 3:  # the director's rate along its turn's direction
@@ -310,10 +312,21 @@ def jacobian(
             step = hv * tangents(y, coords, np.array([j]))[0]
             up[at] += step
             down[at] -= step
+        elif coords.kind[j] == TURN:  # a string's tangent's rate along n
+            at = coords.v[j] + np.arange(2)
+            step = hv * tangent_normals(y, coords, np.array([j]))[0]
+            up[at] += step
+            down[at] -= step
         else:
             up[coords.v[j]] += hv
             down[coords.v[j]] -= hv
-        a[n:, n + j] = (residual(up) - residual(down)) / (2 * hv)
+        a[n:, n + j] = (rates(up) - rates(down)) / (2 * hv)
+    for k in range(ns):
+        hs = 1e-6 * max(1.0, abs(y[s0 + k]))
+        up, down = y.copy(), y.copy()
+        up[s0 + k] += hs
+        down[s0 + k] -= hs
+        a[n:, 2 * n + k] = (rates(up) - rates(down)) / (2 * hs)
     return a, coords
 
 
