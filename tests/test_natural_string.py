@@ -139,6 +139,17 @@ def test_a_system_string_hangs_in_air_only():
         seacable.simulate(_system(environment={"water_density": 1025.0}))
 
 
+def test_a_string_end_mass_holding_another_line_is_refused():
+    """Its end mass takes gravity alone: a tie there was once ignored (490 kN, no effect)."""
+    data = system_data(_pendulum())
+    end = data["lines"][0]["to"]
+    data["bodies"].append({"name": "anchor", "type": "fixed", "position": [10.0, 0.0, -5.0]})
+    data["lines"].append({"name": "spring", "model": "tie", "from": "anchor", "to": end,
+                          "unstretched_length": 0.1, "stiffness": 1e5})  # fmt: skip
+    with pytest.raises(CaseError, match=r"lines\[0\] \(cable\)\.to: .* also holds \['spring'\]"):
+        seacable.simulate(seacable.load_case(data))
+
+
 @pytest.mark.parametrize("tangent", ["angle", "cartesian"])
 def test_a_string_hangs_with_the_weight_below_each_node_over_ea(tangent):
     """``start: static``: the string hangs straight down, each node's strain the weight below

@@ -42,6 +42,14 @@ def tips(case: sch.SystemCase) -> set[int]:
         b = names.index(end)
         if b in out:
             raise CaseError(f"{where}.to: '{end}' is already carried by another natural_string")
+        others = [other.name for other in case.lines if other is not line and end in
+                  (other.from_.partition(".")[0], other.to.partition(".")[0])]  # fmt: skip
+        if others:
+            raise CaseError(
+                f"{where}.to: the end mass '{end}' also holds {others}, whose forces a "
+                "natural_string's end mass does not take (gravity only); hang the other lines "
+                "elsewhere, or use model: lumped_mass"
+            )
         out.add(b)
     return out
 
