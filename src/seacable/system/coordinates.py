@@ -168,8 +168,9 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
         local = int(coords.q[i] - p.line_q[li]) // 3
         node_index.setdefault((li, local), []).append(i)
     links: list[tuple[list[int], list[int]]] = []
-    for cols in _rigid_groups(p, coords, body_cols) + _string_groups(coords):
+    for cols in _rigid_groups(p, coords, body_cols):
         links.append((cols, cols))
+    links += _string_links(coords)
     moving = set(body_cols)
     # bodies that share a line or tie are coupled; every body to itself
     groups: list[list[int]] = [[b] for b in moving]
@@ -204,11 +205,18 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
     return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
 
 
-def _string_groups(coords: Coordinates) -> list[list[int]]:
-    """The columns of each natural string (coupled densely: every node moves its end body)."""
+def _string_links(coords: Coordinates) -> list[tuple[list[int], list[int]]]:
+    """A natural string's node (its strain and tangent) with its neighbours': the discrete
+    equations (kernels.natural) couple nothing farther, the end mass folded into the last
+    node's."""
+    links = []
     string = coords.kind >= STRAIN
-    return [[int(i) for i in np.flatnonzero(string & (coords.line == li))]
-            for li in np.unique(coords.line[string])]  # fmt: skip
+    for li in np.unique(coords.line[string]):
+        cols = np.flatnonzero(string & (coords.line == li)).reshape(-1, 2)
+        for i in range(len(cols)):
+            near = cols[max(0, i - 1) : i + 2].ravel()
+            links.append(([int(c) for c in cols[i]], [int(c) for c in near]))
+    return links
 
 
 def _rigid_groups(p, coords: Coordinates, body_cols: dict[int, list[int]]) -> list[list[int]]:
