@@ -107,27 +107,57 @@ def add_point_mass(m3, arm, omega, force, m6, rhs):
         force[2] - (m3[6] * c[0] + m3[7] * c[1] + m3[8] * c[2]),
     )
     add_force(arm, f[0], f[1], f[2], rhs)
-    add_coupling(m3, arm, arm, 1.0, m6)
-
-
-@njit(inline="always", **JIT)
-def add_coupling(m3, arm_i, arm_j, sign, block):
-    """``block`` (6x6) += sign Phi_i^T m3 Phi_j, Phi = [I, -[arm]] (3x6) the map from a body's
-    accelerations (a, alpha) to a point's at ``arm`` (besides w x (w x arm)): a force m3 A_j
-    at point i, with A_j a point's acceleration on a body (the same body: add_point_mass's
-    mass; another: a rigid line's coupling of two bodies, system.rigid.ports)."""
-    # -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
-    phi_i = ((0.0, arm_i[2], -arm_i[1]), (-arm_i[2], 0.0, arm_i[0]), (arm_i[1], -arm_i[0], 0.0))
-    phi_j = ((0.0, arm_j[2], -arm_j[1]), (-arm_j[2], 0.0, arm_j[0]), (arm_j[1], -arm_j[0], 0.0))
+    # Phi (3x6) = [I, -[arm]]; -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
+    phi = ((0.0, rz, -ry), (-rz, 0.0, rx), (ry, -rx, 0.0))
     for i in range(6):
         for j in range(6):
             total = 0.0
             for k in range(3):
-                pik = (1.0 if i == k else 0.0) if i < 3 else phi_i[k][i - 3]
+                pik = (1.0 if i == k else 0.0) if i < 3 else phi[k][i - 3]
                 for m in range(3):
-                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi_j[m][j - 3]
+                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi[m][j - 3]
                     total += pik * m3[3 * k + m] * pjm
-            block[i, j] += sign * total
+            m6[i, j] += total
+
+
+@njit(inline="always", **JIT)
+def _phi(arm, k, j):
+    """Phi[k, j] of Phi = [I, -[arm]] (3x6): a point's acceleration at ``arm`` from its body's
+    (a, alpha), w x (w x arm) aside."""
+    if j < 3:
+        return 1.0 if k == j else 0.0
+    c = j - 3
+    if k == c:
+        return 0.0
+    if k == 0:
+        return arm[2] if c == 1 else -arm[1]
+    if k == 1:
+        return -arm[2] if c == 0 else arm[0]
+    return arm[1] if c == 0 else -arm[0]
+
+
+@njit(inline="always", **JIT)
+def add_phi_t(m3, arm, sign, block):
+    """``block`` (6x3) += sign Phi^T m3: a force m3 x at the point ``arm`` on its body's six
+    equations (system.kernel._solve_groups)."""
+    for i in range(6):
+        for c in range(3):
+            total = 0.0
+            for k in range(3):
+                total += _phi(arm, k, i) * m3[3 * k + c]
+            block[i, c] += sign * total
+
+
+@njit(inline="always", **JIT)
+def add_m_phi(m3, arm, sign, block):
+    """``block`` (3x6) += sign m3 Phi: m3 times the acceleration of the point ``arm`` in its
+    body's accelerations (system.kernel._solve_groups)."""
+    for r in range(3):
+        for j in range(6):
+            total = 0.0
+            for k in range(3):
+                total += m3[3 * r + k] * _phi(arm, k, j)
+            block[r, j] += sign * total
 
 
 @njit(inline="always", **JIT)
@@ -216,3 +246,22 @@ def gauss(a, b, out):
             total -= a[i, j] * out[j]
         out[i] = total / a[i, i]
     return True
+
+
+@njit(inline="always", **JIT)
+def body_rates(y, q, v, rigid_body, acc, ydot):
+    """A free body's rates into ``ydot``: its position's (its velocity), its velocity's (its
+    acceleration ``acc``, 6) and, of a rigid body, its quaternion's and angular velocity's."""
+    for c in range(3):
+        ydot[q + c] = y[v + c]
+        ydot[v + c] = acc[c]
+    if rigid_body == 1:
+        wx, wy, wz = y[v + 3], y[v + 4], y[v + 5]
+        qw, qx, qy, qz = y[q + 3], y[q + 4], y[q + 5], y[q + 6]
+        # dq/dt = 1/2 (0, w) q
+        ydot[q + 3] = 0.5 * (-wx * qx - wy * qy - wz * qz)
+        ydot[q + 4] = 0.5 * (wx * qw + wy * qz - wz * qy)
+        ydot[q + 5] = 0.5 * (wy * qw + wz * qx - wx * qz)
+        ydot[q + 6] = 0.5 * (wz * qw + wx * qy - wy * qx)
+        for c in range(3):
+            ydot[v + 3 + c] = acc[3 + c]

@@ -80,13 +80,11 @@ def tip_map(n, length, y, v, w, ac, ga, al):
 
 
 @inner
-def closure(held_x, held_z, ac, ga, al, target, tip, omega, l0, la, port, lb):
+def closure(held_x, held_z, ac, ga, al, target, tip, omega, l0, la):
     """The holding force at the tip in (x, z) as L = l0 + la A_0: on a held axis the tip's
     acceleration is the target's, Baumgarte-stabilised (``target``: position, velocity,
     acceleration in x and z; ``tip``: node n's position and velocity); on a free axis L = 0.
-    With ``port`` (held on a free body: ``target``'s acceleration is its known part) also
-    ``lb`` (2x2): L = l0 + la A_0 + lb a, a the rest of the target's acceleration. False when
-    singular (the line pulled straight between held ends)."""
+    False when singular (the line pulled straight between held ends)."""
     s = (al[0], al[1], al[2], al[3])
     if held_x == 0.0:
         s = (1.0, 0.0, s[2], s[3])
@@ -96,15 +94,13 @@ def closure(held_x, held_z, ac, ga, al, target, tip, omega, l0, la, port, lb):
     scale = max(abs(s[0]), abs(s[1]), abs(s[2]), abs(s[3]))
     if not abs(det) > 1e-12 * scale * scale:
         return False
-    for col in range(5 if port else 3):
+    for col in range(3):
         r = [0.0, 0.0]
         for k in range(2):
             held = held_x if k == 0 else held_z
             if held == 0.0:
                 continue
-            if col >= 3:
-                r[k] = 1.0 if k == col - 3 else 0.0
-            elif col == 0:
+            if col == 0:
                 r[k] = (
                     target[4 + k] - 2.0 * omega * (tip[2 + k] - target[2 + k])
                     - omega * omega * (tip[k] - target[k]) - ac[k]
@@ -115,10 +111,8 @@ def closure(held_x, held_z, ac, ga, al, target, tip, omega, l0, la, port, lb):
         x1 = (-s[2] * r[0] + s[0] * r[1]) / det
         if col == 0:
             l0[0], l0[1] = x0, x1
-        elif col < 3:
-            la[col - 1], la[2 + col - 1] = x0, x1
         else:
-            lb[col - 3], lb[2 + col - 3] = x0, x1
+            la[col - 1], la[2 + col - 1] = x0, x1
     return True
 
 

@@ -101,15 +101,13 @@ def tip_map(n, length, w, ac, ga, al):
 
 
 @inner
-def closure(held, ac, ga, al, target, tip, omega, l0, la, port, lb, system, rhs):
+def closure(held, ac, ga, al, target, tip, omega, l0, la, system, rhs):
     """The holding force at the tip as L = l0 + la A_0 (``la`` 3x3 row-major): on each held
     axis k the tip's acceleration equals the target's, stabilised (Baumgarte):
     a_k - 2 omega (v_n - v)_k - omega^2 (p_n - p)_k, with ``target`` (9: position, velocity,
     acceleration) and ``tip`` (6: node n's position and velocity); on a free axis L_k = 0.
-    With ``port`` (the tip held on a free body, whose acceleration is unknown: ``target``'s
-    acceleration is then its known part) also ``lb`` (3x3): L = l0 + la A_0 + lb a, with a the
-    rest of the target's acceleration. ``system`` (9) and ``rhs`` (3) are scratch. False when
-    the closure is singular (a line pulled straight between held ends)."""
+    ``system`` (9) and ``rhs`` (3) are scratch. False when the closure is singular (a line
+    pulled straight between held ends)."""
     for k in range(3):
         if held[k] != 0.0:
             for c in range(3):
@@ -120,12 +118,10 @@ def closure(held, ac, ga, al, target, tip, omega, l0, la, port, lb, system, rhs)
     scale = 0.0  # of the system's entries: a heavy line's are small
     for v in system:
         scale = max(scale, abs(v))
-    for col in range(7 if port else 4):
+    for col in range(4):
         for k in range(3):
             if held[k] == 0.0:
                 rhs[k] = 0.0
-            elif col >= 4:
-                rhs[k] = 1.0 if k == col - 4 else 0.0
             elif col == 0:
                 rhs[k] = (
                     target[6 + k] - 2.0 * omega * (tip[3 + k] - target[3 + k])
@@ -139,10 +135,8 @@ def closure(held, ac, ga, al, target, tip, omega, l0, la, port, lb, system, rhs)
         for k in range(3):
             if col == 0:
                 l0[k] = x[k]
-            elif col < 4:
-                la[3 * k + col - 1] = x[k]
             else:
-                lb[3 * k + col - 4] = x[k]
+                la[3 * k + col - 1] = x[k]
     return True
 
 

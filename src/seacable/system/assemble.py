@@ -30,7 +30,7 @@ INT_FIELDS = frozenset({
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
-    "body_group", "body_slot", "group_first", "group_body",
+    "body_group", "body_slot", "group_first", "group_body", "group_line", "group_line_first",
 })  # fmt: skip
 
 
@@ -268,17 +268,25 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
 
 
 def _groups(case, tips, nb: int) -> dict[str, np.ndarray]:
-    """The groups of free bodies that rigid lines join (system.kernel's ``body_group``,
-    ``body_slot``, ``group_first``, ``group_body``)."""
+    """The groups of free bodies that rigid lines held on them join, and those lines (system
+    kernel's ``body_group``, ``body_slot``, ``group_first``, ``group_body``, ``group_line``,
+    ``group_line_first``)."""
     group, slot = -np.ones(nb, dtype=np.int64), -np.ones(nb, dtype=np.int64)
-    first, members = [0], []
-    for g, bodies in enumerate(topology.port_groups(case, tips)):
+    first, members, line_first, lines = [0], [], [0], []
+    for g, (bodies, held) in enumerate(topology.port_groups(case, tips)):
         for s, b in enumerate(bodies):
             group[b], slot[b] = g, s
         members += bodies
+        lines += held
         first.append(len(members))
-    return dict(body_group=group, body_slot=slot, group_first=np.array(first, dtype=np.int64),
-                group_body=np.array(members, dtype=np.int64))  # fmt: skip
+        line_first.append(len(lines))
+
+    def ints(values: list[int]) -> np.ndarray:
+        return np.array(values, dtype=np.int64)
+
+    return dict(body_group=group, body_slot=slot, group_first=ints(first),
+                group_body=ints(members), group_line=ints(lines),
+                group_line_first=ints(line_first))  # fmt: skip
 
 
 def _offset(body, point: str) -> tuple[float, float, float]:

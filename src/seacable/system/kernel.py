@@ -60,13 +60,15 @@ class SystemParams(NamedTuple):
     body_volume: np.ndarray  # (nb,) wholly submerged [m^3]
     body_cob: np.ndarray  # (nb, 3) centre of buoyancy, body frame [m]
     body_shape: np.ndarray  # (nb, L) shape rows (kernels.surface)
-    # free bodies that rigid lines join (system.topology.ports) are solved together, group by
-    # group: a body's group (-1: alone) and its place in it; each group's first body in
-    # group_body, whose bodies follow each other
+    # free bodies that rigid lines held on them join (system.topology.port_groups) are solved
+    # together with those lines' holding forces, group by group: a body's group (-1: alone)
+    # and its place in it; each group's first body in group_body and first line in group_line
     body_group: np.ndarray  # (nb,) int
     body_slot: np.ndarray  # (nb,) int
     group_first: np.ndarray  # (groups + 1,) int
     group_body: np.ndarray  # (bodies in groups,) int
+    group_line_first: np.ndarray  # (groups + 1,) int
+    group_line: np.ndarray  # (lines held on free bodies,) int: rigid-line numbers
     point_body: np.ndarray  # (np,) int
     point_offset: np.ndarray  # (np, 3) body frame [m]
     force_kind: np.ndarray  # (nf,) int: forces.kinds
@@ -185,13 +187,14 @@ class SystemWork(NamedTuple):
     rs_force: np.ndarray  # (nr, 3) holding force L at a held tip (its constant part l0 between
     # the backward and the forward sweeps)
     rs_la: np.ndarray  # (nr, 9) dL/dA_0, row-major
-    rs_lb: np.ndarray  # (nr, 9) -dL/da of the free body a line's tip is held on (its inertia)
-    rs_cross: np.ndarray  # (nr, 9) S_0 dL/da: that body's acceleration in the base's load
-    group: np.ndarray  # (6 g, 6 g) one group's equations (g: the largest group's bodies)
-    group_rhs: np.ndarray  # (6 g,)
-    group_acc: np.ndarray  # (6 g,)
+    # (nr, 30) a line held on a free body: its closure's right-hand side r (3), the tip's
+    # maps G = dA_n/dA_0 and A_L = dA_n/dL, and S_0 = dlam_0/dL (3x3 each, row-major)
+    rs_kkt: np.ndarray
+    group: np.ndarray  # (m, m) one group's equations (m: 6 per body and 3 per line, largest)
+    group_rhs: np.ndarray  # (m,)
+    group_acc: np.ndarray  # (m,)
     own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
-    scratch: np.ndarray  # (160,) the rigid lines' small vectors of one evaluation
+    scratch: np.ndarray  # (168,) the rigid lines' and the groups' small vectors of one evaluation
     imposed: np.ndarray  # (18,) an imposed body's channels (kinematics.imposed_channels)
     nat: np.ndarray  # (6 (max n + 1),) a natural string's state in the kernel's layout
     nat_dot: np.ndarray  # its rates
@@ -205,7 +208,9 @@ def make_work(p: SystemParams) -> SystemWork:
     rs_nodes = int((p.rs_n + 1).sum()) if nr else 1
     nmax = int(p.line_n.max()) if nl else 1
     nat = int(p.nat_n.max()) + 1 if len(p.nat_n) else 2
-    g = 6 * max(1, int(np.diff(p.group_first).max()) if len(p.group_first) > 1 else 1)
+    g = 6
+    if len(p.group_first) > 1:
+        g = int((6 * np.diff(p.group_first) + 3 * np.diff(p.group_line_first)).max())
     return SystemWork(
         pos=np.zeros((nb, 3)), rot=np.zeros((nb, 3, 3)), vel=np.zeros((nb, 3)),
         omega=np.zeros((nb, 3)), acc=np.zeros((nb, 6)), fraction=np.ones(nb),
@@ -216,9 +221,9 @@ def make_work(p: SystemParams) -> SystemWork:
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
         rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
-        rs_lb=np.zeros((max(nr, 1), 9)), rs_cross=np.zeros((max(nr, 1), 9)),
+        rs_kkt=np.zeros((max(nr, 1), 30)),
         group=np.zeros((g, g)), group_rhs=np.zeros(g), group_acc=np.zeros(g),
-        own_load=np.zeros((nb, 3)), scratch=np.zeros(160), imposed=np.zeros(18),
+        own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
         nat_out=np.zeros((nat, 4)),
     )  # fmt: skip
@@ -356,24 +361,24 @@ def rhs(t, y, p, w, ydot):
         p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.rs_mass, p.rs_inertia,
         p.stabilization_frequency, p.point_body, p.point_offset, p.body_kind, p.body_pose, y,
         w.pos, w.rot, w.vel, w.omega, w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias, w.load,
-        w.rs, w.rs_force, w.rs_la, w.rs_lb, w.rs_cross, w.scratch,
+        w.rs, w.rs_force, w.rs_la, w.rs_kkt, w.scratch,
     ):  # fmt: skip
         status = SINGULAR_CLOSURE
     if not _solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid,
                          p.body_group, w.load, w.bias, w.mass, w.acc, w.rhs6, ydot):  # fmt: skip
         status = NON_FINITE
-    if p.group_body.shape[0] > 0 and not _solve_groups(
-        y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_group, p.body_slot,
-        p.group_first, p.group_body, p.rs_port, p.rs_from, p.rs_to, p.point_body, w.parm,
-        w.rs_la, w.rs_cross, w.load, w.bias, w.mass, w.acc, w.group, w.group_rhs, w.group_acc,
-        ydot,
+    if p.group_body.shape[0] > 0 and not rigid.solve_groups(
+        y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_slot,
+        p.group_first, p.group_body, p.group_line_first, p.group_line, p.rs_from, p.rs_to,
+        p.rs_held, p.point_body, w.acc, w.omega, w.parm, w.rs_kkt, w.rs_force, w.load, w.bias,
+        w.mass, w.group, w.group_rhs, w.group_acc, w.scratch, ydot,
     ):  # fmt: skip
-        status = NON_FINITE
+        status = SINGULAR_CLOSURE
     if p.rs_n.shape[0] > 0:
         rigid.forward(
             p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
-            p.rs_to, p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.point_body, p.body_kind, y,
-            w.omega, w.acc, w.parm, w.rs, w.rs_force, w.rs_la, w.rs_lb, w.scratch, ydot,
+            p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.point_body, p.body_kind, y, w.omega,
+            w.acc, w.parm, w.rs, w.rs_force, w.rs_la, w.scratch, ydot,
         )  # fmt: skip
     for li in range(p.nat_n.shape[0]):
         params = natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
@@ -441,74 +446,8 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
         for i in range(6):
             rhs[i] = load[b, i] - bias[b, i]
         ok = dynamics.solve_free(mass[b], rhs, free[b], acc[b]) and ok
-        _rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
+        dynamics.body_rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
     return ok
-
-
-@inner
-def _solve_groups(y, kind, free, body_q, body_v, rigid_body, body_group, body_slot, group_first,
-                  group_body, rs_port, rs_from, rs_to, point_body, parm, rs_la, rs_cross, load,
-                  bias, mass, acc, big, big_rhs, big_acc, ydot):  # fmt: skip
-    """The accelerations of each group of free bodies that rigid lines join (``rs_port``: a
-    line held at its end on another free body), solved together: each body's 6x6 equations
-    on the diagonal, each line's couplings off it (system.rigid.ports), a held degree of
-    freedom's row a_i = 0; the rates into ``ydot``. False when a group's system is
-    singular."""
-    ok = True
-    for g in range(group_first.shape[0] - 1):
-        first, count = group_first[g], group_first[g + 1] - group_first[g]
-        size = 6 * count
-        a, rhs, out = big[:size, :size], big_rhs[:size], big_acc[:size]
-        a[:, :] = 0.0
-        for s in range(count):
-            b = group_body[first + s]
-            for i in range(6):
-                rhs[6 * s + i] = load[b, i] - bias[b, i]
-                for j in range(6):
-                    a[6 * s + i, 6 * s + j] = mass[b, i, j]
-        for li in range(rs_port.shape[0]):
-            base, end = point_body[rs_from[li]], point_body[rs_to[li]]
-            if rs_port[li] == 0 or base == end or body_group[end] != g:
-                continue
-            if kind[base] != DYNAMIC:
-                continue
-            sb, se = 6 * body_slot[base], 6 * body_slot[end]
-            dynamics.add_coupling(rs_cross[li], parm[rs_from[li]], parm[rs_to[li]], 1.0,
-                                  a[sb : sb + 6, se : se + 6])  # fmt: skip
-            dynamics.add_coupling(rs_la[li], parm[rs_to[li]], parm[rs_from[li]], -1.0,
-                                  a[se : se + 6, sb : sb + 6])  # fmt: skip
-        for s in range(count):
-            b = group_body[first + s]
-            for i in range(6):
-                if free[b, i] == 0.0:
-                    a[6 * s + i, :] = 0.0
-                    a[6 * s + i, 6 * s + i] = 1.0
-                    rhs[6 * s + i] = 0.0
-        ok = dynamics.gauss(a, rhs, out) and ok
-        for s in range(count):
-            b = group_body[first + s]
-            acc[b, :] = out[6 * s : 6 * s + 6]
-            _rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
-    return ok
-
-
-@njit(inline="always", **JIT)
-def _rates(y, q, v, rigid_body, acc, ydot):
-    """A free body's rates into ``ydot``: its position's (its velocity), its velocity's (its
-    acceleration ``acc``, 6) and, of a rigid body, its quaternion's and angular velocity's."""
-    for c in range(3):
-        ydot[q + c] = y[v + c]
-        ydot[v + c] = acc[c]
-    if rigid_body == 1:
-        wx, wy, wz = y[v + 3], y[v + 4], y[v + 5]
-        qw, qx, qy, qz = y[q + 3], y[q + 4], y[q + 5], y[q + 6]
-        # dq/dt = 1/2 (0, w) q
-        ydot[q + 3] = 0.5 * (-wx * qx - wy * qy - wz * qz)
-        ydot[q + 4] = 0.5 * (wx * qw + wy * qz - wz * qy)
-        ydot[q + 5] = 0.5 * (wy * qw + wz * qx - wx * qz)
-        ydot[q + 6] = 0.5 * (wz * qw + wx * qy - wy * qx)
-        for c in range(3):
-            ydot[v + 3 + c] = acc[3 + c]
 
 
 @njit(inline="always", **JIT)

@@ -143,14 +143,14 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
 def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, rs_port,
              length, mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
              body_pose, y, pos, rot, vel, omega, acc, ppos, pvel, parm, body_mass, bias, load,
-             work, rs_force, rs_la, rs_lb, rs_cross, scratch):  # fmt: skip
+             work, rs_force, rs_la, rs_kkt, scratch):  # fmt: skip
     """Every rigid line's backward sweep, children first: a carried body's mass and loads start
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
-    the line's articulated inertia ``m9`` and load; a line held on a free body (``rs_port``)
-    leaves its couplings in ``rs_lb`` and ``rs_cross``, then ``ports`` hands them to the
-    bodies. False when a closure is
-    singular. The arrays of the parameter and work tuples come one by one (``work`` =
-    ``w.rs``, ``body_mass`` = ``w.mass``; ``scratch``: 160 floats), as in
+    the line's articulated inertia ``m9`` and load. A line held on a free body (``rs_port``)
+    keeps its tip's force L unknown: its base receives M_0 and -b_0 alone, and ``rs_kkt`` its
+    row for the bodies' joint solve (``kkt_row``; system.kernel._solve_groups). False when a
+    closure is singular. The arrays of the parameter and work tuples come one by one (``work``
+    = ``w.rs``, ``body_mass`` = ``w.mass``; ``scratch``: 160 floats), as in
     ``nodes_and_loads``."""
     sweep = scratch[0:60]
     m9, line_load = scratch[60:69], scratch[69:72]
@@ -171,13 +171,13 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
             sound = _planar_backward(
                 n, length[s0:e], mass[s0:e], inertia[s0:e], y, rs_v[li], ws, rs_tip[li],
                 body_mass, bias, load, rs_held[li], pinned, target, stabilization_frequency, m9,
-                line_load, rs_force[li], rs_la[li], port, rs_lb[li], rs_cross[li], sweep,
+                line_load, rs_force[li], rs_la[li], port, rs_kkt[li], sweep,
             )  # fmt: skip
         else:
             sound = _segments_backward(
                 n, length[s0:e], mass[s0:e], ws, rs_tip[li], body_mass, bias, load,
                 rs_held[li], pinned, target, stabilization_frequency, m9, line_load,
-                rs_force[li], rs_la[li], port, rs_lb[li], rs_cross[li], sweep, scratch[72:90],
+                rs_force[li], rs_la[li], port, rs_kkt[li], sweep, scratch[72:90],
             )  # fmt: skip
         ok = ok and sound
         a = rs_from[li]
@@ -185,18 +185,27 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
         if kinematics.has_mass(body_kind[base]):
             dynamics.add_point_mass(m9, parm[a], omega[base], line_load, body_mass[base],
                                     load[base])  # fmt: skip
-    ports(rs_port, rs_from, rs_to, point_body, body_kind, acc, omega, parm, body_mass, load,
-          rs_force, rs_la, rs_lb, rs_cross, scratch)  # fmt: skip
     return ok
 
 
 @njit(inline="always", **JIT)
+def _held_rhs(held, target, tip, omega, ac, out):
+    """On each held axis k, the tip's acceleration the closure asks for less the sweep's
+    constant part: a*_k - 2 omega (v_n - v*)_k - omega^2 (p_n - p*)_k - ac_k (``target``: 9,
+    ``tip``: node n's position and velocity, 6); 0 on a free axis."""
+    for k in range(3):
+        out[k] = 0.0
+        if held[k] != 0.0:
+            out[k] = (target[6 + k] - 2.0 * omega * (tip[3 + k] - target[3 + k])
+                      - omega * omega * (tip[k] - target[k]) - ac[k])  # fmt: skip
+
+
+@njit(inline="always", **JIT)
 def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pinned, target,
-                       stabilization_frequency, m9, line_load, force, la_out, port, lb_out,
-                       cross, scratch, closure_scratch):  # fmt: skip
+                       stabilization_frequency, m9, line_load, force, la_out, port, kkt, scratch,
+                       closure_scratch):  # fmt: skip
     m, b, s = scratch[0:6], scratch[6:9], scratch[9:18]
     ac, ga, al, la = scratch[18:21], scratch[21:30], scratch[30:39], scratch[39:48]
-    lb = scratch[48:57]
     tipv, system, rhs3 = closure_scratch[0:6], closure_scratch[6:15], closure_scratch[15:18]
     m[:] = 0.0
     b[:] = 0.0
@@ -222,8 +231,14 @@ def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pi
         for c in range(3):
             tipv[c] = ws[c3._P + c, n]
             tipv[3 + c] = ws[c3._V + c, n]
+        if port:  # L stays an unknown of the bodies' solve
+            _held_rhs(held, target, tipv, stabilization_frequency, ac, kkt[0:3])
+            kkt[3:12] = ga
+            kkt[12:21] = al
+            kkt[21:30] = s
+            return True
         ok = rigid_segments.closure(held, ac, ga, al, target, tipv, stabilization_frequency,
-                                    force, la, port, lb, system, rhs3)  # fmt: skip
+                                    force, la, system, rhs3)  # fmt: skip
         # lam_0 = (M_0 + S_0 la) A_0 + (b_0 + S_0 l0): s holds S_0
         for r in range(3):
             for c in range(3):
@@ -233,23 +248,17 @@ def _segments_backward(n, length, mass, ws, tip, body_mass, bias, load, held, pi
                              + s[3 * r + 2] * force[2])  # fmt: skip
         for c in range(9):
             la_out[c] = la[c]
-        if port:  # the end body's inertia -lb, the base's coupling S_0 lb
-            for r in range(3):
-                for c in range(3):
-                    lb_out[3 * r + c] = -lb[3 * r + c]
-                    cross[3 * r + c] = (s[3 * r] * lb[c] + s[3 * r + 1] * lb[3 + c]
-                                        + s[3 * r + 2] * lb[6 + c])  # fmt: skip
     return ok
 
 
 @njit(inline="always", **JIT)
 def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, load, held,
                      pinned, target, stabilization_frequency, m9, line_load, force, la_out, port,
-                     lb_out, cross, scratch):  # fmt: skip
+                     kkt, scratch):  # fmt: skip
     st = scratch[0:9]
     ac, ga, al, l0, la = scratch[9:11], scratch[11:15], scratch[15:19], scratch[19:21], scratch[
         21:25]  # fmt: skip
-    tipv, lb = scratch[37:41], scratch[41:45]
+    tipv = scratch[37:41]
     st[:] = 0.0
     if tip >= 0:
         mt = body_mass[tip]
@@ -268,9 +277,24 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
         rigid_links.tip_map(n, length, y, v, ws, ac, ga, al)
         tipv[0], tipv[1] = ws[pc._PX, n], ws[pc._PZ, n]
         tipv[2], tipv[3] = ws[pc._VX, n], ws[pc._VZ, n]
+        if port:  # as in 3D, the (x, z) maps in the plane's rows and columns of 3x3 ones
+            tip6 = scratch[41:47]
+            tip6[0], tip6[1], tip6[2] = tipv[0], target[1], tipv[1]
+            tip6[3], tip6[4], tip6[5] = tipv[2], 0.0, tipv[3]
+            flat = scratch[47:50]
+            flat[0], flat[1], flat[2] = ac[0], 0.0, ac[1]
+            _held_rhs(held, target, tip6, stabilization_frequency, flat, kkt[0:3])
+            kkt[3:30] = 0.0
+            for r in range(2):
+                for c in range(2):
+                    at = 3 * (2 * r) + 2 * c
+                    kkt[3 + at] = ga[2 * r + c]
+                    kkt[12 + at] = al[2 * r + c]
+            kkt[21 + 0], kkt[21 + 2], kkt[21 + 6], kkt[21 + 8] = st[5], st[6], st[7], st[8]
+            return True
         planar_target = (target[0], target[2], target[3], target[5], target[6], target[8])
         ok = rigid_links.closure(held[0], held[2], ac, ga, al, planar_target, tipv,
-                                 stabilization_frequency, l0, la, port, lb)  # fmt: skip
+                                 stabilization_frequency, l0, la)  # fmt: skip
         # lam_0 = (M_0 + S_0 la) A_0 + (b_0 + S_0 l0) in (x, z): S_0 = (s11 s12; s21 s22)
         s11, s12, s21, s22 = st[5], st[6], st[7], st[8]
         m9[0] += s11 * la[0] + s12 * la[2]
@@ -282,54 +306,99 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
         force[0], force[2] = l0[0], l0[1]
         la_out[0], la_out[2] = la[0], la[1]
         la_out[6], la_out[8] = la[2], la[3]
-        if port:  # as in 3D, in (x, z)
-            lb_out[:] = 0.0
-            cross[:] = 0.0
-            lb_out[0], lb_out[2], lb_out[6], lb_out[8] = -lb[0], -lb[1], -lb[2], -lb[3]
-            cross[0], cross[2] = s11 * lb[0] + s12 * lb[2], s11 * lb[1] + s12 * lb[3]
-            cross[6], cross[8] = s21 * lb[0] + s22 * lb[2], s21 * lb[1] + s22 * lb[3]
     return ok
 
 
 @inner
-def ports(rs_port, rs_from, rs_to, point_body, body_kind, acc, omega, parm, body_mass, load,
-          rs_force, rs_la, rs_lb, rs_cross, scratch):  # fmt: skip
-    """After the backward sweeps: each line held at its end on a free body B (``rs_port``)
-    gives B its pull L = l0 + la A_0 + lb a_B (``rs_force`` holds l0, ``rs_lb`` -lb): the
-    inertia -lb at its point and the load l0 + la A_0 with A_0's known part (all of it on a
-    fixed or imposed base; w x (w x r) on a free one). A line from B to B adds its two
-    couplings to B's mass here; between two free bodies they are left to their joint solve
-    (system.kernel._solve_groups). Derivation: docs/rigid_segment_lines.md."""
-    zero, a0, pull = scratch[128:134], scratch[134:137], scratch[137:140]
+def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_slot, group_first, group_body,
+                  group_line_first, group_line, rs_from, rs_to, rs_held, point_body, acc, omega,
+                  parm, rs_kkt, rs_force, load, bias, mass, big, big_rhs, big_acc, scratch,
+                  ydot):  # fmt: skip
+    """The accelerations of each group of free bodies that rigid lines held on them join, with
+    those lines' holding forces L (the KKT form, docs/rigid_segment_lines.md section 5): each
+    body's 6x6 equations with L's action on it (+Phi_a^T S_0 L at its base point, -Phi_P^T L
+    at the held point), each line's closure A_L L + G A_0 - a_P = r on its held axes (L_k = 0
+    on a free one), a held degree of freedom's row a_i = 0; Gaussian elimination with partial
+    pivoting. The rates into ``ydot``, L into ``rs_force``. False when a group's system is
+    singular."""
+    ok = True
+    unit, zero, a0 = scratch[143:152], scratch[152:158], scratch[158:161]
+    unit[:] = 0.0
+    unit[0] = unit[4] = unit[8] = 1.0
     zero[:] = 0.0
-    for li in range(rs_port.shape[0]):
-        if rs_port[li] == 0:
-            continue
-        a, k = rs_from[li], rs_to[li]
-        base, end = point_body[a], point_body[k]
-        free_base = body_kind[base] == kinematics.DYNAMIC
-        kinematics.point_acceleration(body_kind[base], zero if free_base else acc[base], parm[a],
-                                      omega[base], a0)  # fmt: skip
-        la = rs_la[li]
-        for r in range(3):
-            pull[r] = rs_force[li, r] + la[3 * r] * a0[0] + la[3 * r + 1] * a0[1] + la[
-                3 * r + 2] * a0[2]  # fmt: skip
-        dynamics.add_point_mass(rs_lb[li], parm[k], zero[0:3], pull, body_mass[end], load[end])
-        if base == end:
-            dynamics.add_coupling(rs_cross[li], parm[a], parm[k], 1.0, body_mass[end])
-            dynamics.add_coupling(la, parm[k], parm[a], -1.0, body_mass[end])
+    for g in range(group_first.shape[0] - 1):
+        first, bodies = group_first[g], group_first[g + 1] - group_first[g]
+        lines = group_line_first[g + 1] - group_line_first[g]
+        size = 6 * bodies + 3 * lines
+        a, rhs, out = big[:size, :size], big_rhs[:size], big_acc[:size]
+        a[:, :] = 0.0
+        for s in range(bodies):
+            b = group_body[first + s]
+            for i in range(6):
+                rhs[6 * s + i] = load[b, i] - bias[b, i]
+                for j in range(6):
+                    a[6 * s + i, 6 * s + j] = mass[b, i, j]
+        for j in range(lines):
+            li = group_line[group_line_first[g] + j]
+            _line_rows(li, 6 * bodies + 3 * j, kind, body_slot, rs_from, rs_to, rs_held,
+                       point_body, acc, omega, parm, rs_kkt[li], a, rhs, unit, zero,
+                       a0)  # fmt: skip
+        for s in range(bodies):
+            b = group_body[first + s]
+            for i in range(6):
+                if free[b, i] == 0.0:
+                    a[6 * s + i, :] = 0.0
+                    a[6 * s + i, 6 * s + i] = 1.0
+                    rhs[6 * s + i] = 0.0
+        ok = dynamics.gauss(a, rhs, out) and ok
+        for s in range(bodies):
+            b = group_body[first + s]
+            acc[b, :] = out[6 * s : 6 * s + 6]
+            dynamics.body_rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
+        for j in range(lines):
+            li = group_line[group_line_first[g] + j]
+            for r in range(3):
+                rs_force[li, r] = out[6 * bodies + 3 * j + r]
+    return ok
+
+
+@njit(inline="always", **JIT)
+def _line_rows(li, col, kind, body_slot, rs_from, rs_to, rs_held, point_body, acc, omega, parm,
+               kkt, a, rhs, unit, zero, a0):  # fmt: skip
+    """Line li's part of its group's system (``solve_groups``): its holding force's columns
+    from ``col`` in its bodies' rows, its closure's rows."""
+    base, end = point_body[rs_from[li]], point_body[rs_to[li]]
+    arm_a, arm_p = parm[rs_from[li]], parm[rs_to[li]]
+    free_base = kind[base] == kinematics.DYNAMIC
+    # the base point's acceleration's known part: all of it on a fixed or imposed base
+    kinematics.point_acceleration(kind[base], zero if free_base else acc[base], arm_a,
+                                  omega[base], a0)  # fmt: skip
+    sp = 6 * body_slot[end]
+    dynamics.add_phi_t(unit, arm_p, -1.0, a[sp : sp + 6, col : col + 3])
+    dynamics.add_m_phi(unit, arm_p, -1.0, a[col : col + 3, sp : sp + 6])
+    if free_base:
+        sa = 6 * body_slot[base]
+        dynamics.add_phi_t(kkt[21:30], arm_a, 1.0, a[sa : sa + 6, col : col + 3])
+        dynamics.add_m_phi(kkt[3:12], arm_a, 1.0, a[col : col + 3, sa : sa + 6])
+    for r in range(3):
+        for c in range(3):
+            a[col + r, col + c] += kkt[12 + 3 * r + c]
+        rhs[col + r] = kkt[r] - (kkt[3 + 3 * r] * a0[0] + kkt[4 + 3 * r] * a0[1]
+                                 + kkt[5 + 3 * r] * a0[2])  # fmt: skip
+        if rs_held[li, r] == 0.0:  # a free axis: L_r = 0
+            a[col + r, :] = 0.0
+            a[col + r, col + r] = 1.0
+            rhs[col + r] = 0.0
 
 
 @inner
-def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_to, rs_tip, rs_held,
-            rs_port, length, point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la,
-            rs_lb, scratch, ydot):  # fmt: skip
+def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_held, rs_port,
+            length, point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la, scratch,
+            ydot):  # fmt: skip
     """Every rigid line's forward sweep, bases first: node 0's acceleration from its body's,
     the holding force from it, the segments' accelerations; a carried body's acceleration is
     its line's last node's. The arrays come one by one, as in ``nodes_and_loads``."""
     a0, held_force = scratch[100:103], scratch[103:106]
-    end_acc, zero = scratch[140:143], scratch[128:134]
-    zero[:] = 0.0
     for j in range(order.shape[0] - 1, -1, -1):
         li = order[j]
         n, s0, ws = _view(rs_n, rs_seg, rs_node, work, li)
@@ -338,18 +407,10 @@ def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_to, rs_t
         kinematics.point_acceleration(body_kind[base], acc[base], parm[a], omega[base], a0)
         pinned = _held(kind[li], rs_held, li)
         la = rs_la[li]
-        if rs_port[li] != 0:  # held on a free body: its solved acceleration, w x (w x r) aside
-            k = rs_to[li]
-            end = point_body[k]
-            kinematics.point_acceleration(body_kind[end], acc[end], parm[k], zero[0:3], end_acc)
-        for r in range(3):
+        for r in range(3):  # held on a free body: L solved with the bodies (rs_force)
             held_force[r] = rs_force[li, r]
-            if pinned:
+            if pinned and rs_port[li] == 0:
                 held_force[r] += la[3 * r] * a0[0] + la[3 * r + 1] * a0[1] + la[3 * r + 2] * a0[2]
-            if rs_port[li] != 0:  # rs_lb holds -lb
-                lb = rs_lb[li]
-                held_force[r] -= (lb[3 * r] * end_acc[0] + lb[3 * r + 1] * end_acc[1]
-                                  + lb[3 * r + 2] * end_acc[2])  # fmt: skip
             rs_force[li, r] = held_force[r]
         tip = rs_tip[li]
         if kind[li] == PLANAR:

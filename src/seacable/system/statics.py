@@ -268,18 +268,11 @@ def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
         where = f"line '{built.layout.rigid[int(coords.line[worst])]}'"
     else:
         where = f"line '{built.layout.lines[int(coords.line[worst])]}'"
-    ported = [built.layout.rigid[li] for li in np.flatnonzero(built.params.rs_port)]
-    straight = (
-        f"; a rigid line held at its end on a free body ({', '.join(ported)}) has no unique "
-        "tension where the balance pulls it straight (a body hanging on it alone): carry "
-        "such a body at the line's end instead (a point body that no other rigid line ends on)"
-        if ported else ""
-    )  # fmt: skip
     return (
         f"statics: no equilibrium found; {where} stays out of balance. Check that something "
         "holds every free degree of freedom (a line, a tie, a stiffness or buoyancy against "
         "gravity), that the lines can reach their bodies, or start the run as given "
-        f"(start: as_given){straight}"
+        "(start: as_given)"
     )
 
 

@@ -116,9 +116,10 @@ def ports(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[int, int, in
     return out
 
 
-def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[list[int]]:
+def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[int], list[int]]]:
     """The groups of free bodies whose accelerations rigid lines held at their ends (``ports``)
-    couple, each in ascending order: a line from a free body to another joins them."""
+    couple, with those lines: (bodies in ascending order, rigid-line numbers). A line joins its
+    end body to a free base; its holding force is an unknown of its group's solve."""
     free = [isinstance(b, sch.PointBody | sch.RigidBody) for b in case.bodies]
     parent: dict[int, int] = {}
 
@@ -127,13 +128,17 @@ def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[list[int]]:
             b = parent[b]
         return b
 
-    for _, a, b in ports(case, tips):
-        if free[a] and a not in tips and a != b:
+    found = ports(case, tips)
+    for _, a, b in found:
+        root(b)
+        if free[a] and a not in tips:
             parent[root(a)] = root(b)
-    out: dict[int, list[int]] = {}
+    out: dict[int, tuple[list[int], list[int]]] = {}
     for b in sorted(parent):
-        out.setdefault(root(b), []).append(b)
-    return [group for group in out.values() if len(group) > 1]
+        out.setdefault(root(b), ([], []))[0].append(b)
+    for r, _, b in found:
+        out[root(b)][1].append(r)
+    return list(out.values())
 
 
 def planar_ends(case, line, where: str, tip: int) -> None:
