@@ -71,6 +71,12 @@ def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **si
     return seacable.load_case(data)
 
 
+SCHEMES = [
+    (system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
+    (system_implicit.scheme("implicit_euler"), 0.01),
+]  # the schemes and steps [s] the corrections are compared at
+
+
 def _corrections(case, scheme, h, lines=1, bodies=0):
     """The Newton correction at a perturbed state and acceleration: (maximal coordinates, the
     dense J^-1 r with J by central differences)."""
@@ -124,30 +130,29 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
 
 
 @pytest.mark.parametrize("held", [False, True])
-@pytest.mark.parametrize(
-    ("scheme", "h"),
-    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
-     (system_implicit.scheme("implicit_euler"), 0.01)],
-)  # fmt: skip
+@pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_the_correction_in_maximal_coordinates_is_the_dense_one(scheme, h, held):
     maximal, dense = _corrections(_line_case(8, held=held), scheme, h)
     assert np.abs(maximal - dense).max() < 1e-6 * np.abs(dense).max()
 
 
-def test_the_band_does_not_grow_with_the_links():
+@pytest.mark.parametrize(("planar", "aux", "rates"), [(True, (8, 2), 1), (False, (12, 3), 3)])
+def test_the_band_does_not_grow_with_the_links(planar, aux, rates):
+    """Planar links (kl = ku = 9) and 3D segments (kl = 16, ku = 17): per link ``aux``
+    auxiliary unknowns, then more at the tip; ``rates`` velocity variables per link."""
     widths = []
     for n in (10, 40, 160):
-        case = _line_case(n)
+        case = _line_case(n) if planar else _line_3d_case(n)
         system = system_model.build(case)
         inc, lay, rows = system_implicit.newton(case, system)
         assert list(rows.line) == [0] and len(lay.start) == 3  # one block, no border
-        assert rows.size == int(system.params.n_v) + 8 * n + 2
+        assert rows.size == int(system.params.n_v) + aux[0] * n + aux[1]
         widths.append((int(lay.kl[0]), int(lay.ku[0])))
         assert lay.size <= 60 * rows.size  # entries: O(unknowns)
         dense = system_implicit.newton(case, system, maximal=False)[1]
-        assert dense.kl[0] == n - 1  # the block in the angles: full
+        assert dense.kl[0] == rates * n - 1  # the block in the rates: full
     assert widths[0] == widths[1] == widths[2]
-    assert max(widths[0]) < 16
+    assert widths[0] == ((9, 9) if planar else (16, 17))
 
 
 def _gap(ds, reference, names=("position_x", "position_z")):
@@ -184,11 +189,7 @@ def _thesis(integrator="newmark", **simulation):
     return case.model_copy(update={"simulation": sim})
 
 
-@pytest.mark.parametrize(
-    ("scheme", "h"),
-    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
-     (system_implicit.scheme("implicit_euler"), 0.01)],
-)  # fmt: skip
+@pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_a_dynamic_base_body_keeps_the_dense_correction(scheme, h):
     maximal, dense = _corrections(_thesis(), scheme, h, lines=1, bodies=1)
     assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()
@@ -255,16 +256,18 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     """A 3D line of n segments (20 m, joint springs and dampers, added mass, drag, a current
     across) from a crane tip that surges and sways, to a 30 kg clump with drag (``tip``
     "held": to a fixed point instead; "base": from a 300 kg buoy free in surge, sway and heave
-    instead of the crane tip), starting on an arc in a plane 30 degrees from x."""
+    instead of the crane tip; "surface": the crane tip 1.5 m above the water, its first
+    segment through the surface), starting on an arc in a plane 30 degrees from x."""
     angles = np.radians(np.linspace(20.0, 50.0, n))
     reach = 20.0 / n * float(np.sin(angles).sum())
     azimuth = np.radians(30.0)
-    top = [0.0, 0.0, -2.0 if tip == "base" else 0.0]
+    top = [0.0, 0.0, {"base": -2.0, "surface": 1.5}.get(tip, 0.0)]
     end = [top[0] + reach * float(np.cos(azimuth)), top[1] + reach * float(np.sin(azimuth)),
            top[2] - 20.0 / n * float(np.cos(angles).sum())]  # fmt: skip
     crane = {"name": "top", "type": "imposed",
              "x": {"kind": "sine", "amplitude": 1.0, "period": 3.0},
-             "y": {"kind": "sine", "amplitude": 0.5, "period": 4.0}}  # fmt: skip
+             "y": {"kind": "sine", "amplitude": 0.5, "period": 4.0},
+             "z": {"kind": "constant", "value": top[2]}}  # fmt: skip
     if tip == "base":
         crane = {"name": "top", "type": "point", "position": top, "mass": 300.0,
                  "volume": 0.2, "dofs": ["surge", "sway", "heave"],
@@ -295,33 +298,14 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     })  # fmt: skip
 
 
-@pytest.mark.parametrize("tip", ["clump", "held", "base"])
-@pytest.mark.parametrize(
-    ("scheme", "h"),
-    [(system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
-     (system_implicit.scheme("implicit_euler"), 0.01)],
-)  # fmt: skip
+@pytest.mark.parametrize("tip", ["clump", "held", "base", "surface"])
+@pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_a_3d_line_in_maximal_coordinates_keeps_the_dense_correction(scheme, h, tip):
     """The director form's rows (numerics.rigid_newton_3d), at a state where Newton's
     directors are off unit length: the correction is J^-1 r."""
     case = _line_3d_case(6, tip=tip)
     maximal, dense = _corrections(case, scheme, h, bodies=1 if tip == "base" else 0)
     assert np.abs(maximal - dense).max() < 1e-6 * np.abs(dense).max()
-
-
-def test_the_3d_band_does_not_grow_with_the_segments():
-    widths = []
-    for n in (10, 40, 160):
-        case = _line_3d_case(n)
-        system = system_model.build(case)
-        inc, lay, rows = system_implicit.newton(case, system)
-        assert list(rows.line) == [0] and len(lay.start) == 3  # one block, no border
-        assert rows.size == int(system.params.n_v) + 12 * n + 3
-        widths.append((int(lay.kl[0]), int(lay.ku[0])))
-        assert lay.size <= 60 * rows.size  # entries: O(unknowns)
-        dense = system_implicit.newton(case, system, maximal=False)[1]
-        assert dense.kl[0] == 3 * n - 1  # the block in the directors' rates: full
-    assert widths[0] == widths[1] == widths[2] == (16, 17)
 
 
 @pytest.mark.parametrize("tip", ["clump", "base"])

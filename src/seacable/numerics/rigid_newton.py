@@ -1,29 +1,33 @@
-"""Newton's rows of planar rigid-link lines in maximal coordinates, and of the bodies they hang
-from: a banded block per line, so that an implicit step costs O(n) in the lines' links
-(derivation: docs/rigid_newton.md).
+"""Newton's rows of rigid lines in maximal coordinates, and of the bodies they hang from: a
+banded block per line, so that an implicit step costs O(n) in the lines' links (derivation:
+docs/rigid_newton.md). The layout, the bodies' rows and the planar links' rows are here, the 3D
+segments' rows in ``numerics.rigid_newton_3d``.
 
 In the links' angles a rigid line's Newton block is dense (every angular acceleration depends on
 every angle). Its Newton correction delta (J delta = r, J = d(residual)/d(a1)) is instead found
-from the linearised Newton-Euler equations of the links, whose unknowns are, per link i,
+from the linearised Newton-Euler equations of the links, whose unknowns are, per planar link i,
 
     delta_i, dA_(i+1) (2), dlam_i (2), dP_(i+1) (2), dV_(i+1) (2)    (9, in this order)
 
-and dlam_n (2) at the tip: the change of each node's acceleration A, of the force lam the part
-above a node exerts on the part below, and of each node's position P and velocity V, all
-scaled by (1 - af). Every row (a link's rotation, its kinematics, its translation, its node's
-position and velocity, the tip's) involves one link and its neighbours, so the block is banded
-(kl = ku = 9 whatever n, ordered by ``BLOCK_ORDER``) and ``numerics.bordered`` factorises it in
-O(n). A dynamic body the lines hang from keeps its unknowns in the border, its rows written in
-Newton-Euler form too (its own mass and force models, and each line's dlam_0). Eliminating the
-auxiliary unknowns gives delta = J^-1 r exactly: the rows are the exact linearisation of the
-equations the articulated sweeps solve, with the loads' derivatives by finite differences of
-the loads themselves (``numerics.rigid_derivatives``).
+and dlam_n (2) at the tip (per 3D segment the same in 3D, delta_i its 3 director
+accelerations: 15, and 3 at the tip): the change of each node's acceleration A, of the force
+lam the part above a node exerts on the part below, and of each node's position P and velocity
+V, all scaled by (1 - af). Every row (a link's rotation, its kinematics, its translation, its
+node's position and velocity, the tip's) involves one link and its neighbours, so the block is
+banded (planar kl = ku = 9, 3D kl = 16, ku = 17, whatever n; ordered by ``Shape.order``) and
+``numerics.bordered`` factorises it in O(n). A dynamic body the lines hang from keeps its
+unknowns in the border, its rows written in Newton-Euler form too (its own mass and force
+models, and each line's dlam_0). Eliminating the auxiliary unknowns gives delta = J^-1 r
+exactly: the rows are the exact linearisation of the equations the articulated sweeps solve,
+with the loads' derivatives by finite differences of the loads themselves
+(``numerics.rigid_derivatives``).
 
-Written so (``eligible``): planar lines whose base is a fixed or imposed body, or a dynamic body
-whose rotations are held and that nothing but such lines and its force models touch; whose tip
-is free, held (the Baumgarte closure's rows) or carries a point body nothing else touches.
-Others (3D segments, trees of lines, bodies with lumped lines or ties) keep the dense block of
-the differences over the accelerations.
+Written so (``eligible``): planar and 3D lines whose base is a fixed or imposed body, or a
+dynamic body whose rotations are held and that nothing but such lines (of one model) and its
+force models touch; whose tip is free, held (the Baumgarte closure's rows) or carries a point
+body nothing else touches; without an end joint (``lines.tip_joint``). Others (trees of lines,
+bodies with lumped lines or ties, end joints) keep the dense block of the differences over the
+accelerations.
 """
 
 import math
@@ -69,8 +73,8 @@ SHAPES = {
 
 
 class RigidRows(NamedTuple):
-    """The planar rigid lines (and their dynamic bodies) whose Newton rows are written in
-    maximal coordinates (flat, with offsets; ``line`` may be empty)."""
+    """The rigid lines (and their dynamic bodies) whose Newton rows are written in maximal
+    coordinates (flat, with offsets; ``line`` may be empty)."""
 
     line: np.ndarray  # (k,) int: the rigid lines (indices into the rs_* arrays)
     aux: np.ndarray  # (k,) int: each line's first auxiliary unknown (8 n + 2 of them planar,
@@ -152,7 +156,7 @@ def entries_pattern(
         rows, cols, vals = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
         zero = np.zeros((DERIVATIVES, n))
         count = entries(n, np.ones(n), np.ones(n), np.ones(n), np.zeros(n), np.zeros(n),
-                        np.zeros((4, n)), np.zeros((2, n + 1)), zero, np.zeros(4), np.zeros(18),
+                        np.zeros((4, n)), np.zeros((2, n + 1)), zero, np.zeros(9), np.zeros(18),
                         np.asarray(held, dtype=np.float64)[[0, 2]], 1.0,
                         np.ones(3 if base_v >= 0 else 0), 1.0, 1.0, 1.0, rows, cols,
                         vals)  # fmt: skip
@@ -272,12 +276,6 @@ def _unknowns(p, member: int) -> tuple[int, int]:
     return int(p.body_v[b]) - nq, 6 if p.body_rigid[b] else 3
 
 
-@njit(inline="always", **JIT)
-def _put(rows, cols, vals, k, r, c, value):
-    rows[k], cols[k], vals[k] = r, c, value
-    return k + 1
-
-
 @njit(**JIT)
 def body_entries(size, free, mass3, der, lines, dims, km, kx, kv, rows, cols, vals):
     """A dynamic body's rows (local: its ``size`` unknowns, then each line's dlam_0 in x and
@@ -289,14 +287,14 @@ def body_entries(size, free, mass3, der, lines, dims, km, kx, kv, rows, cols, va
     k = 0
     for c in range(size):
         if c >= 3 or free[c] == 0.0:
-            k = _put(rows, cols, vals, k, c, c, km)
+            k = r3.put(rows, cols, vals, k, c, c, km)
             continue
         for e in range(3):
             value = mass3[3 * c + e] * km * free[e] - der[3 * c + e] * kx - der[9 + 3 * c + e] * kv
-            k = _put(rows, cols, vals, k, c, e, value)
+            k = r3.put(rows, cols, vals, k, c, e, value)
         if dims == 3 or c != 1:  # every axis, or the plane's x and z
             for j in range(lines):
-                k = _put(rows, cols, vals, k, c, size + dims * j + (c if dims == 3 else c // 2),
+                k = r3.put(rows, cols, vals, k, c, size + dims * j + (c if dims == 3 else c // 2),
                          1.0)  # fmt: skip
     return k
 
@@ -307,7 +305,7 @@ def entries(n, length, mass, inertia, omega, thdd, geometry, lam, der, tip_mass,
     """One line's entries (local row, local column, value; docs/rigid_newton.md): ``omega`` and
     ``thdd`` the links' rates and angular accelerations, ``geometry`` (4, n) their e and n
     (x, z), ``lam`` (2, n + 1) the node forces, ``der`` the loads' derivatives
-    (``rigid_derivatives.loads_derivatives``), ``tip_mass`` (2x2) and ``tip_der``
+    (``rigid_derivatives.loads_derivatives``), ``tip_mass`` (3x3) and ``tip_der``
     (``point_derivatives``) of the tip body; ``held`` (x, z): 1.0 on an axis the tip is held on
     (Baumgarte, at ``stabilization`` rad/s); ``base_free`` (3, or empty for a base on a fixed
     or imposed body): the free translations of the dynamic body the line hangs from (its
@@ -327,52 +325,53 @@ def entries(n, length, mass, inertia, omega, thdd, geometry, lam, der, tip_mass,
         # rotation about the centre: J f + l/2 n.(lam_i + lam_(i+1)) - Q = 0
         diag = (inertia[i] * km - 0.5 * li * (ex * sx + ez * sz) * kx - der[16, i] * kx
                 - der[17, i] * kv)  # fmt: skip
-        k = _put(rows, cols, vals, k, d, d, diag)
+        k = r3.put(rows, cols, vals, k, d, d, diag)
         if i > 0:
-            k = _put(rows, cols, vals, k, d, up, -(der[18, i] * kx + der[19, i] * kv))
+            k = r3.put(rows, cols, vals, k, d, up, -(der[18, i] * kx + der[19, i] * kv))
         if i + 1 < n:
-            k = _put(rows, cols, vals, k, d, d + b, -(der[20, i] * kx + der[21, i] * kv))
+            k = r3.put(rows, cols, vals, k, d, d + b, -(der[20, i] * kx + der[21, i] * kv))
         for c in range(2):
             nc = nx if c == 0 else nz
-            k = _put(rows, cols, vals, k, d, d + 3 + c, 0.5 * li * nc)
-            k = _put(rows, cols, vals, k, d, lam_next + c, 0.5 * li * nc)
+            k = r3.put(rows, cols, vals, k, d, d + 3 + c, 0.5 * li * nc)
+            k = r3.put(rows, cols, vals, k, d, lam_next + c, 0.5 * li * nc)
             if i > 0:
-                k = _put(rows, cols, vals, k, d, up + 5 + c, -der[8 + c, i])
-                k = _put(rows, cols, vals, k, d, up + 7 + c, -der[10 + c, i])
+                k = r3.put(rows, cols, vals, k, d, up + 5 + c, -der[8 + c, i])
+                k = r3.put(rows, cols, vals, k, d, up + 7 + c, -der[10 + c, i])
         for c in range(2):
             ec = ex if c == 0 else ez
             nc = nx if c == 0 else nz
             # kinematics: A_(i+1) - A_i - l (f n - omega^2 e) = 0
             r = d + 1 + c
-            k = _put(rows, cols, vals, k, r, d + 1 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 1 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 1 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * nc * km
+                k = r3.put(rows, cols, vals, k, r, up + 1 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * nc * km
                      + li * (f * ec * kx + 2.0 * om * ec * kv + om * om * nc * kx))  # fmt: skip
             # translation: m (A_i + A_(i+1)) / 2 - lam_i + lam_(i+1) - F = 0
             r = d + 3 + c
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 1 + c, 0.5 * mass[i])
-            k = _put(rows, cols, vals, k, r, d + 1 + c, 0.5 * mass[i])
-            k = _put(rows, cols, vals, k, r, d + 3 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, lam_next + c, 1.0)
+                k = r3.put(rows, cols, vals, k, r, up + 1 + c, 0.5 * mass[i])
+            k = r3.put(rows, cols, vals, k, r, d + 1 + c, 0.5 * mass[i])
+            k = r3.put(rows, cols, vals, k, r, d + 3 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, lam_next + c, 1.0)
             if i > 0:
                 for e in range(2):
-                    k = _put(rows, cols, vals, k, r, up + 5 + e, -der[2 * c + e, i])
-                    k = _put(rows, cols, vals, k, r, up + 7 + e, -der[4 + 2 * c + e, i])
-            k = _put(rows, cols, vals, k, r, d, -(der[12 + c, i] * kx + der[14 + c, i] * kv))
+                    k = r3.put(rows, cols, vals, k, r, up + 5 + e, -der[2 * c + e, i])
+                    k = r3.put(rows, cols, vals, k, r, up + 7 + e, -der[4 + 2 * c + e, i])
+            k = r3.put(rows, cols, vals, k, r, d, -(der[12 + c, i] * kx + der[14 + c, i] * kv))
             # the node's position and velocity: P_(i+1) = P_i + l e, V_(i+1) = V_i + l omega n
             r = d + 5 + c
-            k = _put(rows, cols, vals, k, r, d + 5 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 5 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 5 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * nc * kx)
+                k = r3.put(rows, cols, vals, k, r, up + 5 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * nc * kx)
             r = d + 7 + c
-            k = _put(rows, cols, vals, k, r, d + 7 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 7 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 7 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * (nc * kv - om * ec * kx))
-    k = _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k)
+                k = r3.put(rows, cols, vals, k, r, up + 7 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * (nc * kv - om * ec * kx))
+    k = r3.tip_entries(n, PER_LINK, 2, (1, 5, 7), tip_mass, tip_der, held, stabilization, rows,
+                       cols, vals, k)  # fmt: skip
     if base_free.shape[0] > 0:
         k = _base_entries(n, mass[0], der, base_free, km, kx, kv, rows, cols, vals, k)
     return k
@@ -385,38 +384,16 @@ def _base_entries(n, mass0, der, free, km, kx, kv, rows, cols, vals, k):
     body = PER_LINK * n + 2
     for c in range(2):
         bc = 2 * c  # x, z of the plane: the body's axes 0 and 2
-        k = _put(rows, cols, vals, k, 1 + c, body + bc, -km * free[bc])  # kinematics
-        k = _put(rows, cols, vals, k, 3 + c, body + bc, 0.5 * mass0 * km * free[bc])
-        k = _put(rows, cols, vals, k, 5 + c, body + bc, -kx)  # node 1's position, velocity
-        k = _put(rows, cols, vals, k, 7 + c, body + bc, -kv)
+        k = r3.put(rows, cols, vals, k, 1 + c, body + bc, -km * free[bc])  # kinematics
+        k = r3.put(rows, cols, vals, k, 3 + c, body + bc, 0.5 * mass0 * km * free[bc])
+        k = r3.put(rows, cols, vals, k, 5 + c, body + bc, -kx)  # node 1's position, velocity
+        k = r3.put(rows, cols, vals, k, 7 + c, body + bc, -kv)
         for e in range(2):
-            k = _put(rows, cols, vals, k, 3 + c, body + 2 * e,
+            k = r3.put(rows, cols, vals, k, 3 + c, body + 2 * e,
                      -(der[2 * c + e, 0] * kx + der[4 + 2 * c + e, 0] * kv))  # fmt: skip
     for e in range(2):  # rotation
-        k = _put(rows, cols, vals, k, 0, body + 2 * e,
+        k = r3.put(rows, cols, vals, k, 0, body + 2 * e,
                  -(der[8 + e, 0] * kx + der[10 + e, 0] * kv))  # fmt: skip
-    return k
-
-
-@njit(inline="always", **JIT)
-def _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k):
-    """The tip's rows (``entries``): on a held axis A_n = target - 2 w (V_n - v*) -
-    w^2 (P_n - p*) (lam_n's component there is the holding force's), on a free one
-    lam_n = M_t A_n + bias - load(P_n, V_n) (``tip_der``: ``point_derivatives``' 18)."""
-    b = PER_LINK
-    last = b * (n - 1)
-    for c in range(2):
-        r = b * n + c
-        if held[c] != 0.0:
-            k = _put(rows, cols, vals, k, r, last + 1 + c, 1.0)
-            k = _put(rows, cols, vals, k, r, last + 7 + c, 2.0 * stabilization)
-            k = _put(rows, cols, vals, k, r, last + 5 + c, stabilization * stabilization)
-            continue
-        k = _put(rows, cols, vals, k, r, r, 1.0)
-        for e in range(2):
-            k = _put(rows, cols, vals, k, r, last + 1 + e, -tip_mass[2 * c + e])
-            k = _put(rows, cols, vals, k, r, last + 5 + e, tip_der[6 * c + 2 * e])
-            k = _put(rows, cols, vals, k, r, last + 7 + e, tip_der[9 + 6 * c + 2 * e])
     return k
 
 
@@ -489,13 +466,7 @@ def _planar_line(t, y, p, w, li, base, km, kx, kv, geo, r_loc, c_loc, vals):
     for node in range(n + 1):
         lam[0, node], lam[1, node] = pc._node_force(ws, node, w.rs_force[li, 0],
                                                     w.rs_force[li, 2], pinned)  # fmt: skip
-    tip_mass = np.zeros(4)
-    point = np.zeros(18)
-    tip = p.rs_tip[li]
-    if tip >= 0:
-        mt = w.mass[tip]
-        tip_mass[0], tip_mass[1], tip_mass[2], tip_mass[3] = mt[0, 0], mt[0, 2], mt[2, 0], mt[2, 2]
-        point_derivatives(t, y, p, w, tip, point)
+    tip_mass, point = r3.tip_body(t, y, p, w, p.rs_tip[li])
     base_free = p.body_free[base, :3] if base >= 0 else np.zeros(0)
     return entries(
         n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_inertia[s0:e], omega, thdd, geometry, lam,

@@ -47,7 +47,9 @@ STATE_ROWS = 31
 
 
 @njit(inline="always", **JIT)
-def _put(rows, cols, vals, k, r, c, value):
+def put(rows, cols, vals, k, r, c, value):
+    """Entry k of a line's (row, column, value) triplets (here and ``numerics.rigid_newton``):
+    returns k + 1."""
     rows[k], cols[k], vals[k] = r, c, value
     return k + 1
 
@@ -70,9 +72,9 @@ def _upper(rows, cols, vals, k, r, i, col, base, axis, value, factor):
     translation ``axis`` (its columns from ``base`` >= 0) with ``value * factor``; none for a
     fixed or imposed base."""
     if i > 0:
-        return _put(rows, cols, vals, k, r, col, value)
+        return put(rows, cols, vals, k, r, col, value)
     if base >= 0:
-        return _put(rows, cols, vals, k, r, base + axis, value * factor)
+        return put(rows, cols, vals, k, r, base + axis, value * factor)
     return k
 
 
@@ -100,10 +102,10 @@ def _loads(n, i, der, weight, joints, kx, kv, base, coef, r, rows, cols, vals, k
             su += weight[o] * der[at + 9, i]
         coef[j] += kx * se + kv * su
         if i > 0:
-            k = _put(rows, cols, vals, k, r, up + 9 + j, sp)
-            k = _put(rows, cols, vals, k, r, up + 12 + j, sv)
+            k = put(rows, cols, vals, k, r, up + 9 + j, sp)
+            k = put(rows, cols, vals, k, r, up + 12 + j, sv)
         elif base >= 0:
-            k = _put(rows, cols, vals, k, r, base + j, kx * sp + kv * sv)
+            k = put(rows, cols, vals, k, r, base + j, kx * sp + kv * sv)
         if not joints:
             continue
         above, below = 0.0, 0.0
@@ -116,9 +118,9 @@ def _loads(n, i, der, weight, joints, kx, kv, base, coef, r, rows, cols, vals, k
                 kx * der[BELOW_3D + 6 * o + j, i] + kv * der[BELOW_3D + 6 * o + 3 + j, i]
             )
         if i > 0:
-            k = _put(rows, cols, vals, k, r, up + j, above)
+            k = put(rows, cols, vals, k, r, up + j, above)
         if i + 1 < n:
-            k = _put(rows, cols, vals, k, r, d + PER_SEGMENT + j, below)
+            k = put(rows, cols, vals, k, r, d + PER_SEGMENT + j, below)
     return k
 
 
@@ -172,7 +174,8 @@ def entries(n, state, der, tip_mass, tip_der, held, stabilization, base_free, km
                        cols, vals, k)  # fmt: skip
         k = _translations(n, i, der, vec, scalars, base, base_free, km, kx, kv, coef, weight,
                           rows, cols, vals, k)  # fmt: skip
-    return _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k)
+    return tip_entries(n, PER_SEGMENT, 3, (3, 9, 12), tip_mass, tip_der, held, stabilization,
+                       rows, cols, vals, k)  # fmt: skip
 
 
 @njit(inline="always", **JIT)
@@ -216,14 +219,14 @@ def _rotations(n, i, der, vec, scalars, base, base_free, km, kx, kv, coef, weigh
         weight[7] = tf / scale
         k = _loads(n, i, der, weight, True, kx, kv, base, coef, d + side, rows, cols, vals, k)
         for q in range(3):
-            k = _put(rows, cols, vals, k, d + side, d + q, coef[q])
+            k = put(rows, cols, vals, k, d + side, d + q, coef[q])
             k = _upper(rows, cols, vals, k, d + side, i, d - 12 + q, base, q,
                        0.5 * li * mt * t[q], km * _free(base_free, q))  # fmt: skip
-            k = _put(rows, cols, vals, k, d + side, lam_next + q, li * t[q])
+            k = put(rows, cols, vals, k, d + side, lam_next + q, li * t[q])
     u2 = _dot(u, u)
     for q in range(3):
         value = kx * f[q] + km * e[q] + 2.0 * nu * kv * u[q] + 2.0 * u2 * kx * e[q]
-        k = _put(rows, cols, vals, k, d + 2, d + q, value)
+        k = put(rows, cols, vals, k, d + 2, d + q, value)
     return k
 
 
@@ -241,15 +244,15 @@ def _translations(n, i, der, vec, scalars, base, base_free, km, kx, kv, coef, we
     for q in range(3):
         # kinematics: A_(i+1) - A_i - l f = 0
         r = d + 3 + q
-        k = _put(rows, cols, vals, k, r, d + 3 + q, 1.0)
+        k = put(rows, cols, vals, k, r, d + 3 + q, 1.0)
         k = _upper(rows, cols, vals, k, r, i, up + 3 + q, base, q, -1.0,
                    km * _free(base_free, q))  # fmt: skip
-        k = _put(rows, cols, vals, k, r, d + q, -li * km)
+        k = put(rows, cols, vals, k, r, d + q, -li * km)
         # translation: lam_i - lam_(i+1) - mt A_i + sa e (e.A_i) - l/2 mt f - l/2 sa |u|^2 e
         # + F = 0
         r = d + 6 + q
-        k = _put(rows, cols, vals, k, r, d + 6 + q, 1.0)
-        k = _put(rows, cols, vals, k, r, lam_next + q, -1.0)
+        k = put(rows, cols, vals, k, r, d + 6 + q, 1.0)
+        k = put(rows, cols, vals, k, r, lam_next + q, -1.0)
         for p in range(3):
             value = sa * e[q] * e[p] - (mt if p == q else 0.0)
             k = _upper(rows, cols, vals, k, r, i, up + 3 + p, base, p, value,
@@ -261,34 +264,39 @@ def _translations(n, i, der, vec, scalars, base, base_free, km, kx, kv, coef, we
         weight[6] = -a[q] + e[q] * ea - 0.5 * li * (f[q] + u2 * e[q])
         k = _loads(n, i, der, weight, False, kx, kv, base, coef, r, rows, cols, vals, k)
         for p in range(3):
-            k = _put(rows, cols, vals, k, r, d + p, coef[p])
+            k = put(rows, cols, vals, k, r, d + p, coef[p])
         # the lower node's position and velocity: P_(i+1) = P_i + l e, V_(i+1) = V_i + l u
         for kind in range(2):
             at, rate = (9, kx) if kind == 0 else (12, kv)
             r = d + at + q
-            k = _put(rows, cols, vals, k, r, d + at + q, 1.0)
+            k = put(rows, cols, vals, k, r, d + at + q, 1.0)
             k = _upper(rows, cols, vals, k, r, i, up + at + q, base, q, -1.0, rate)
-            k = _put(rows, cols, vals, k, r, d + q, -li * rate)
+            k = put(rows, cols, vals, k, r, d + q, -li * rate)
     return k
 
 
 @njit(inline="always", **JIT)
-def _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k):
-    """The tip's rows (``entries``): on a held axis A_n = target - 2 w (V_n - v*) -
-    w^2 (P_n - p*), on a free one lam_n = M_t A_n + bias - load(P_n, V_n)."""
-    last = PER_SEGMENT * (n - 1)
-    for c in range(3):
-        r = PER_SEGMENT * n + c
+def tip_entries(n, per, dims, at, tip_mass, tip_der, held, stabilization, rows, cols, vals, k):
+    """The tip's rows, planar (``dims`` 2: x, z) or 3D (3), after n links of ``per`` unknowns,
+    node n's A, P, V from ``at`` (3) in the last link's: on a held axis A_n = target -
+    2 w (V_n - v*) - w^2 (P_n - p*) (lam_n's component there is the holding force's), on a free
+    one lam_n = M_t A_n + bias - load(P_n, V_n) (``tip_mass`` 3x3, ``tip_der``:
+    ``point_derivatives``' 18)."""
+    last = per * (n - 1)
+    for c in range(dims):
+        r = per * n + c
         if held[c] != 0.0:
-            k = _put(rows, cols, vals, k, r, last + 3 + c, 1.0)
-            k = _put(rows, cols, vals, k, r, last + 12 + c, 2.0 * stabilization)
-            k = _put(rows, cols, vals, k, r, last + 9 + c, stabilization * stabilization)
+            k = put(rows, cols, vals, k, r, last + at[0] + c, 1.0)
+            k = put(rows, cols, vals, k, r, last + at[2] + c, 2.0 * stabilization)
+            k = put(rows, cols, vals, k, r, last + at[1] + c, stabilization * stabilization)
             continue
-        k = _put(rows, cols, vals, k, r, r, 1.0)
-        for e in range(3):
-            k = _put(rows, cols, vals, k, r, last + 3 + e, -tip_mass[3 * c + e])
-            k = _put(rows, cols, vals, k, r, last + 9 + e, tip_der[3 * c + e])
-            k = _put(rows, cols, vals, k, r, last + 12 + e, tip_der[9 + 3 * c + e])
+        k = put(rows, cols, vals, k, r, r, 1.0)
+        axis = c if dims == 3 else 2 * c
+        for e in range(dims):
+            other = 3 * axis + (e if dims == 3 else 2 * e)
+            k = put(rows, cols, vals, k, r, last + at[0] + e, -tip_mass[other])
+            k = put(rows, cols, vals, k, r, last + at[1] + e, tip_der[other])
+            k = put(rows, cols, vals, k, r, last + at[2] + e, tip_der[9 + other])
     return k
 
 
@@ -341,16 +349,24 @@ def fill_line(t, y, p, w, li, dynamic, km, kx, kv, geo, r_loc, c_loc, vals):
             g[q], g[3 + q] = c * state[_T1 + q, i], c * state[_T2 + q, i] / nu
             g[6 + q], g[9 + q], g[12 + q] = state[_E + q, i], state[_T1 + q, i], state[_T2 + q, i]
         g[15], g[16], g[17] = 0.5 * state[_LEN, i] * mt, mt, state[_SA, i]
+    tip_mass, point = tip_body(t, y, p, w, p.rs_tip[li])
+    base_free = p.body_free[base, :3] if dynamic else np.zeros(0)
+    return entries(n, state, der, tip_mass, point, held, p.stabilization_frequency, base_free, km,
+                   kx, kv, r_loc, c_loc, vals)  # fmt: skip
+
+
+@inner
+def tip_body(t, y, p, w, tip):
+    """The translational mass (3x3, row-major) and the force models' derivatives
+    (``point_derivatives``' 18) of the body a line carries at its tip (``tip`` >= 0; zeros
+    without one)."""
     tip_mass, point = np.zeros(9), np.zeros(18)
-    tip = p.rs_tip[li]
     if tip >= 0:
         for c in range(3):
             for e in range(3):
                 tip_mass[3 * c + e] = w.mass[tip, c, e]
         point_derivatives(t, y, p, w, tip, point)
-    base_free = p.body_free[base, :3] if dynamic else np.zeros(0)
-    return entries(n, state, der, tip_mass, point, held, p.stabilization_frequency, base_free, km,
-                   kx, kv, r_loc, c_loc, vals)  # fmt: skip
+    return tip_mass, point
 
 
 @njit(inline="always", **JIT)
