@@ -15,8 +15,8 @@ from seacable.system import model as system_model
 
 def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **simulation):
     """A planar line of n links (20 m, with joint springs and dampers, drag, a current) from a
-    crane tip that surges, to a 30 kg clump with drag (``held``: to a fixed point instead),
-    starting on an arc."""
+    crane tip that surges, to a 30 kg clump with drag (``held``: to a fixed point instead;
+    "joint": with a spring and damper there), starting on an arc."""
     angles = np.radians(np.linspace(20.0, 50.0, n))  # the arc's links
     end = [20.0 / n * float(np.sin(angles).sum()), 0.0, -20.0 / n * float(np.cos(angles).sum())]
     bodies = [
@@ -55,6 +55,9 @@ def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **si
         "base_reference": [0.0, 0.0, -1.0],
         "joint_damping": 0.5,
     }
+    if held == "joint":
+        line.update({"tip_joint_stiffness": 40.0, "tip_joint_damping": 0.3,
+                     "tip_reference": [0.6, 0.0, -0.8]})  # fmt: skip
     data = {
         "environment": {"water_depth": 100.0, "current": {"velocity": 0.4}},
         "bodies": bodies,
@@ -129,7 +132,7 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
     return big[1][:nv], dense
 
 
-@pytest.mark.parametrize("held", [False, True])
+@pytest.mark.parametrize("held", [False, True, "joint"])
 @pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_the_correction_in_maximal_coordinates_is_the_dense_one(scheme, h, held):
     maximal, dense = _corrections(_line_case(8, held=held), scheme, h)
@@ -257,7 +260,8 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     across) from a crane tip that surges and sways, to a 30 kg clump with drag (``tip``
     "held": to a fixed point instead; "base": from a 300 kg buoy free in surge, sway and heave
     instead of the crane tip; "surface": the crane tip 1.5 m above the water, its first
-    segment through the surface), starting on an arc in a plane 30 degrees from x."""
+    segment through the surface; "joint": held, with a spring and damper there), starting on an
+    arc in a plane 30 degrees from x."""
     angles = np.radians(np.linspace(20.0, 50.0, n))
     reach = 20.0 / n * float(np.sin(angles).sum())
     azimuth = np.radians(30.0)
@@ -280,7 +284,7 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
              "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
                                  {"model": "drag", "drag_coefficient": 1.0,
                                   "area": [0.1, 0.1, 0.1]}]}  # fmt: skip
-    if tip == "held":
+    if tip in ("held", "joint"):
         clump = {"name": "end", "type": "fixed", "position": end}
     line_type = {"name": "rope", "diameter": 0.03, "mass_per_length": 2.0,
                  "bending_stiffness": 5.0, "drag_coefficient_normal": 1.2,
@@ -289,6 +293,9 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
             "sections": [{"type": "rope", "segments": n, "length": 20.0}],
             "initial": {"arc_deg": [20.0, 50.0], "azimuth_deg": 30.0},
             "base_reference": [0.0, 0.0, -1.0], "joint_damping": 0.5}  # fmt: skip
+    if tip == "joint":
+        line.update({"tip_joint_stiffness": 40.0, "tip_joint_damping": 0.3,
+                     "tip_reference": [0.6, 0.0, -0.8]})  # fmt: skip
     return seacable.load_case({
         "environment": {"water_depth": 100.0, "current": {"velocity": 0.4, "direction_deg": 100.0}},
         "bodies": [crane, clump], "line_types": [line_type], "lines": [line],
@@ -298,7 +305,7 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     })  # fmt: skip
 
 
-@pytest.mark.parametrize("tip", ["clump", "held", "base", "surface"])
+@pytest.mark.parametrize("tip", ["clump", "held", "base", "surface", "joint"])
 @pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_a_3d_line_in_maximal_coordinates_keeps_the_dense_correction(scheme, h, tip):
     """The director form's rows (numerics.rigid_newton_3d), at a state where Newton's

@@ -25,9 +25,9 @@ with the loads' derivatives by finite differences of the loads themselves
 Written so (``eligible``): planar and 3D lines whose base is a fixed or imposed body, or a
 dynamic body whose rotations are held and that nothing but such lines (of one model) and its
 force models touch; whose tip is free, held (the Baumgarte closure's rows) or carries a point
-body nothing else touches; without an end joint (``lines.tip_joint``). Others (trees of lines,
-bodies with lumped lines or ties, end joints) keep the dense block of the differences over the
-accelerations.
+body nothing else touches (a held end's joint, ``lines.tip_joint``, among its loads). Others
+(trees of lines, bodies with lumped lines or ties) keep the dense block of the differences over
+the accelerations.
 """
 
 import math
@@ -44,6 +44,7 @@ from seacable.numerics import bordered
 from seacable.numerics import rigid_newton_3d as r3
 from seacable.numerics.rigid_derivatives import (
     DERIVATIVES,
+    end_joint,
     loads_derivatives,
     point_derivatives,
 )
@@ -102,12 +103,11 @@ def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
     touched |= set(point_body[np.asarray(p.nat_from, dtype=np.int64)].tolist())
     bases = [int(point_body[a]) for a in p.rs_from]
     kinds = np.asarray(p.rs_kind)
-    jointed = set(np.asarray(p.rs_tip_joint, dtype=np.int64)[:, :2].ravel().tolist())
     lines: list[int] = []
     on_body: dict[int, list[int]] = {}
     for li in range(len(p.rs_n)):
         tip, base = int(p.rs_tip[li]), bases[li]
-        if p.rs_port[li] or li in jointed or (tip >= 0 and (tip in touched or tip in bases)):
+        if p.rs_port[li] or (tip >= 0 and (tip in touched or tip in bases)):
             continue  # held on a free body (its rows are not written) or a carried body coupled
         if p.body_kind[base] == kinematics.DYNAMIC:
             if base in touched or np.any(p.body_free[base, 3:] != 0.0):
@@ -497,7 +497,7 @@ def _add(rows, k, mat, vals, count):
 @inner
 def _line_derivatives(p, w, y, li, ws):
     """``rigid_derivatives.loads_derivatives`` of line ``li`` (its joint 0 against its base's
-    reference direction)."""
+    reference direction, and its held end's joint)."""
     n, s0 = p.rs_n[li], p.rs_seg[li]
     e = s0 + n
     base = p.point_body[p.rs_from[li]]
@@ -507,7 +507,7 @@ def _line_derivatives(p, w, y, li, ws):
         p.rs_buoyancy[s0:e], p.rs_drag_normal[s0:e], p.rs_drag_tangential[s0:e],
         p.rs_joint_stiffness[s0:e], p.rs_joint_damping[s0:e],
         rigid.planar_reference(w.rot[base], p.rs_ref[li]), -w.omega[base, 1], p.current_z,
-        p.current_u, ws, der,
+        p.current_u, end_joint(p, w, li), ws, der,
     )  # fmt: skip
     return der
 
