@@ -26,8 +26,8 @@ Written so (``eligible``): planar and 3D lines whose base is a fixed or imposed 
 dynamic body whose rotations are held and that nothing but such lines (of one model) and its
 force models touch; whose tip is free, held (the Baumgarte closure's rows) or carries a point
 body nothing else touches (a held end's joint, ``lines.tip_joint``, among its loads). Others
-(trees of lines, bodies with lumped lines or ties) keep the dense block of the differences over
-the accelerations.
+(trees of lines, lines held on a free body, bodies with lumped lines or ties) keep the dense
+block of the differences over the accelerations.
 """
 
 import math

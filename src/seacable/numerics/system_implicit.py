@@ -42,7 +42,7 @@ dense. A planar or 3D one based on a fixed or imposed body, or on a dynamic body
 are held, with a free, held or body-carrying tip, is written instead in maximal coordinates
 (``numerics.rigid_newton`` and ``numerics.rigid_newton_3d``, docs/rigid_newton.md: banded,
 exact, O(n) to build and factorise), with auxiliary unknowns after the velocity variables; the
-others (trees of lines, turning bases) keep the dense block. The
+others (trees of lines, lines held on a free body, turning bases) keep the dense block. The
 factors are kept from step to step while they serve (modified Newton: rebuilt when an
 iteration contracts slower than ``SLOW`` or after ``REFRESH`` iterations on one matrix, and
 whenever the step length changes), so most steps cost two or three residuals.
