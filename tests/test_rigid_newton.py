@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import seacable
+from seacable.bodies import kinematics
 from seacable.numerics import bordered, rigid_newton, system_implicit
 from seacable.system import kernel, rigid
 from seacable.system import model as system_model
@@ -99,6 +100,10 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
     acc = np.zeros(nv)
     assert system_implicit.initial_acceleration(0.3, y, p, w, acc) == 0
     a1 = acc + rng.normal(size=nv)
+    for body in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):  # held axes keep a0's
+        bv, size = int(p.body_v[body]) - nq, 6 if p.body_rigid[body] else 3
+        held = np.flatnonzero(p.body_free[body, :size] == 0.0)
+        a1[bv + held] = acc[bv + held]  # (their rows k_m delta = r give delta = 0 in a run)
     inc, lay, rows = system_implicit.newton(case, system)
     assert (len(rows.line), len(rows.body)) == (lines, bodies)
     vec = np.zeros((10, len(y)))
@@ -259,20 +264,21 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     """A 3D line of n segments (20 m, joint springs and dampers, added mass, drag, a current
     across) from a crane tip that surges and sways, to a 30 kg clump with drag (``tip``
     "held": to a fixed point instead; "base": from a 300 kg buoy free in surge, sway and heave
-    instead of the crane tip; "surface": the crane tip 1.5 m above the water, its first
+    instead of the crane tip; "rigid": from a point 1 m off a rigid body's reference, the body
+    free in surge, sway and heave only; "surface": the crane tip 1.5 m above the water, its first
     segment through the surface; "joint": held, with a spring and damper there), starting on an
     arc in a plane 30 degrees from x."""
     angles = np.radians(np.linspace(20.0, 50.0, n))
     reach = 20.0 / n * float(np.sin(angles).sum())
     azimuth = np.radians(30.0)
-    top = [0.0, 0.0, {"base": -2.0, "surface": 1.5}.get(tip, 0.0)]
+    top = [0.0, 0.0, {"base": -2.0, "rigid": -2.0, "surface": 1.5}.get(tip, 0.0)]
     end = [top[0] + reach * float(np.cos(azimuth)), top[1] + reach * float(np.sin(azimuth)),
            top[2] - 20.0 / n * float(np.cos(angles).sum())]  # fmt: skip
     crane = {"name": "top", "type": "imposed",
              "x": {"kind": "sine", "amplitude": 1.0, "period": 3.0},
              "y": {"kind": "sine", "amplitude": 0.5, "period": 4.0},
              "z": {"kind": "constant", "value": top[2]}}  # fmt: skip
-    if tip == "base":
+    if tip in ("base", "rigid"):
         crane = {"name": "top", "type": "point", "position": top, "mass": 300.0,
                  "volume": 0.2, "dofs": ["surge", "sway", "heave"],
                  "external forces": [
@@ -280,6 +286,11 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
                      {"model": "drag", "drag_coefficient": 0.8, "area": [0.3, 0.3, 0.3]},
                      {"model": "linear_stiffness", "diagonal": [80.0, 60.0, 0, 0, 0, 0],
                       "equilibrium_position": top}]}  # fmt: skip
+    line_from = "top"
+    if tip == "rigid":  # the same buoy, rigid, the line from a point 1 m off its reference
+        crane.update({"type": "rigid", "position": [-1.0, 0.0, -2.0], "inertia": [50.0] * 3,
+                      "points": {"fairlead": [1.0, 0.0, 0.0]}})  # fmt: skip
+        line_from = "top.fairlead"
     clump = {"name": "end", "type": "point", "position": end, "mass": 30.0, "volume": 0.004,
              "external forces": [{"model": "gravity"}, {"model": "buoyancy"},
                                  {"model": "drag", "drag_coefficient": 1.0,
@@ -289,7 +300,7 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     line_type = {"name": "rope", "diameter": 0.03, "mass_per_length": 2.0,
                  "bending_stiffness": 5.0, "drag_coefficient_normal": 1.2,
                  "drag_coefficient_tangential": 0.05, "added_mass_coefficient": 1.0}  # fmt: skip
-    line = {"name": "rope", "model": "rigid_segments_3d", "from": "top", "to": "end",
+    line = {"name": "rope", "model": "rigid_segments_3d", "from": line_from, "to": "end",
             "sections": [{"type": "rope", "segments": n, "length": 20.0}],
             "initial": {"arc_deg": [20.0, 50.0], "azimuth_deg": 30.0},
             "base_reference": [0.0, 0.0, -1.0], "joint_damping": 0.5}  # fmt: skip
@@ -305,13 +316,13 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     })  # fmt: skip
 
 
-@pytest.mark.parametrize("tip", ["clump", "held", "base", "surface", "joint"])
+@pytest.mark.parametrize("tip", ["clump", "held", "base", "rigid", "surface", "joint"])
 @pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_a_3d_line_in_maximal_coordinates_keeps_the_dense_correction(scheme, h, tip):
     """The director form's rows (numerics.rigid_newton_3d), at a state where Newton's
     directors are off unit length: the correction is J^-1 r."""
     case = _line_3d_case(6, tip=tip)
-    maximal, dense = _corrections(case, scheme, h, bodies=1 if tip == "base" else 0)
+    maximal, dense = _corrections(case, scheme, h, bodies=1 if tip in ("base", "rigid") else 0)
     assert np.abs(maximal - dense).max() < 1e-6 * np.abs(dense).max()
 
 
