@@ -266,8 +266,8 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     "held": to a fixed point instead; "base": from a 300 kg buoy free in surge, sway and heave
     instead of the crane tip; "rigid": from a point 1 m off a rigid body's reference, the body
     free in surge, sway and heave only; "surface": the crane tip 1.5 m above the water, its first
-    segment through the surface; "joint": held, with a spring and damper there), starting on an
-    arc in a plane 30 degrees from x."""
+    segment through the surface; "joint": held, with a spring and damper there; "heave held":
+    the clump free in surge and sway only), starting on an arc in a plane 30 degrees from x."""
     angles = np.radians(np.linspace(20.0, 50.0, n))
     reach = 20.0 / n * float(np.sin(angles).sum())
     azimuth = np.radians(30.0)
@@ -297,6 +297,8 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
                                   "area": [0.1, 0.1, 0.1]}]}  # fmt: skip
     if tip in ("held", "joint"):
         clump = {"name": "end", "type": "fixed", "position": end}
+    if tip == "heave held":
+        clump["dofs"] = ["surge", "sway"]
     line_type = {"name": "rope", "diameter": 0.03, "mass_per_length": 2.0,
                  "bending_stiffness": 5.0, "drag_coefficient_normal": 1.2,
                  "drag_coefficient_tangential": 0.05, "added_mass_coefficient": 1.0}  # fmt: skip
@@ -316,7 +318,9 @@ def _line_3d_case(n, integrator="generalized_alpha", duration=1.0, tip="clump", 
     })  # fmt: skip
 
 
-@pytest.mark.parametrize("tip", ["clump", "held", "base", "rigid", "surface", "joint"])
+@pytest.mark.parametrize(
+    "tip", ["clump", "held", "base", "rigid", "surface", "joint", "heave held"]
+)
 @pytest.mark.parametrize(("scheme", "h"), SCHEMES)
 def test_a_3d_line_in_maximal_coordinates_keeps_the_dense_correction(scheme, h, tip):
     """The director form's rows (numerics.rigid_newton_3d), at a state where Newton's
