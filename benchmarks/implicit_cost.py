@@ -5,8 +5,10 @@ residuals of O(n) each and an O(n^3) factorisation) and in maximal coordinates
 
 The line is benchmarks/rigid_implicit.py's umbilical (120 m, EI 2000 N m^2, submerged, a 200 kg
 clump at its free end, the crane tip surging 2 m with a 6 s period), planar links
-(``rigid_links``), with n = 30, 60, 120, 240, 480. For each n and each form the script times, in
-compiled code and as thread CPU time (the fastest of ``--repeat`` rounds):
+(``rigid_links``, by default) or 3D segments (``--model rigid_segments_3d``: the tip also sways
+across a current, ``numerics.rigid_newton_3d``), with n = 30, 60, 120, 240, 480. For each n
+and each form the script times, in compiled code and as thread CPU time (the fastest of
+``--repeat`` rounds):
 - a Newton matrix: built (``system_implicit._jacobian``) and factorised (``bordered.factor``) at
   the state 0.5 s into the run;
 - a step: ``--steps`` generalized-alpha steps of 20 ms from that state (``system_implicit.chunk``,
@@ -17,7 +19,8 @@ residuals, solves and line searches: O(n) in both forms), and how far the two fo
 are apart after the steps (the same Newton iteration, to the Newton tolerance). A finer line is
 stiffer (its zigzag modes grow like n^2), so at the same step Newton rebuilds its matrix more
 often: the matrices per step grow with n in both forms, the cost of each is what changes.
-Run: ``python benchmarks/implicit_cost.py [--sizes 30 60 ...] [--steps K] [--repeat R]``
+Run: ``python benchmarks/implicit_cost.py [--model rigid_links|rigid_segments_3d]
+[--sizes 30 60 ...] [--steps K] [--repeat R]``
 """
 
 import argparse
@@ -30,7 +33,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from rigid_implicit import case  # noqa: E402
+from rigid_implicit import MODELS, case  # noqa: E402
 from seacable.numerics import bordered, integrators, system_implicit  # noqa: E402
 from seacable.system import kernel  # noqa: E402
 from seacable.system import model as system_model  # noqa: E402
@@ -42,9 +45,9 @@ TOLERANCE = 1e-6  # [m] Newton's tolerance (the schema's default newton_toleranc
 COEF = system_implicit.scheme(SCHEME, spectral_radius=0.9)
 
 
-def _setup(n):
+def _setup(model, n):
     """The case, its system and its state at START (reached by the implicit steps)."""
-    c = case("rigid_links", n, "rk4", STEP, duration=START)
+    c = case(model, n, "rk4", STEP, duration=START)
     system = system_model.build(c)
     p = system.params
     y = system.y0.copy()
@@ -124,14 +127,13 @@ def measure(c, system, y0, maximal, steps, repeat):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--model", choices=MODELS, default=MODELS[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[30, 60, 120, 240, 480])
     parser.add_argument("--steps", type=int, default=10)
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args(argv)
     logging.getLogger("seacable").setLevel(logging.ERROR)
-    print(
-        f"planar rigid links, {SCHEME} at {STEP * 1e3:.0f} ms from t = {START} s; thread CPU time"
-    )
+    print(f"{args.model}, {SCHEME} at {STEP * 1e3:.0f} ms from t = {START} s; thread CPU time")
     print(
         f"{'n':>5} {'form':>7} | {'matrix [ms]':>11} {'ratio':>6} | {'step [ms]':>9} "
         f"{'ratio':>6} | {'rhs/step':>8} {'matrices/step':>13} {'rest [ms]':>9} | "
@@ -140,7 +142,7 @@ def main(argv=None):
     first: dict[bool, tuple[float, float]] = {}
     for n in args.sizes:
         states = {}
-        c, system, y0 = _setup(n)
+        c, system, y0 = _setup(args.model, n)
         for maximal in (False, True):
             t_matrix, t_step, rhs, matrices, y = measure(c, system, y0, maximal, args.steps,
                                                          args.repeat)  # fmt: skip

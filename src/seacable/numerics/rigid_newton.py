@@ -1,29 +1,33 @@
-"""Newton's rows of planar rigid-link lines in maximal coordinates, and of the bodies they hang
-from: a banded block per line, so that an implicit step costs O(n) in the lines' links
-(derivation: docs/rigid_newton.md).
+"""Newton's rows of rigid lines in maximal coordinates, and of the bodies they hang from: a
+banded block per line, so that an implicit step costs O(n) in the lines' links (derivation:
+docs/rigid_newton.md). The layout, the bodies' rows and the planar links' rows are here, the 3D
+segments' rows in ``numerics.rigid_newton_3d``.
 
 In the links' angles a rigid line's Newton block is dense (every angular acceleration depends on
 every angle). Its Newton correction delta (J delta = r, J = d(residual)/d(a1)) is instead found
-from the linearised Newton-Euler equations of the links, whose unknowns are, per link i,
+from the linearised Newton-Euler equations of the links, whose unknowns are, per planar link i,
 
     delta_i, dA_(i+1) (2), dlam_i (2), dP_(i+1) (2), dV_(i+1) (2)    (9, in this order)
 
-and dlam_n (2) at the tip: the change of each node's acceleration A, of the force lam the part
-above a node exerts on the part below, and of each node's position P and velocity V, all
-scaled by (1 - af). Every row (a link's rotation, its kinematics, its translation, its node's
-position and velocity, the tip's) involves one link and its neighbours, so the block is banded
-(kl = ku = 9 whatever n, ordered by ``BLOCK_ORDER``) and ``numerics.bordered`` factorises it in
-O(n). A dynamic body the lines hang from keeps its unknowns in the border, its rows written in
-Newton-Euler form too (its own mass and force models, and each line's dlam_0). Eliminating the
-auxiliary unknowns gives delta = J^-1 r exactly: the rows are the exact linearisation of the
-equations the articulated sweeps solve, with the loads' derivatives by finite differences of
-the loads themselves (``numerics.rigid_derivatives``).
+and dlam_n (2) at the tip (per 3D segment the same in 3D, delta_i its 3 director
+accelerations: 15, and 3 at the tip): the change of each node's acceleration A, of the force
+lam the part above a node exerts on the part below, and of each node's position P and velocity
+V, all scaled by (1 - af). Every row (a link's rotation, its kinematics, its translation, its
+node's position and velocity, the tip's) involves one link and its neighbours, so the block is
+banded (planar kl = ku = 9, 3D kl = 16, ku = 17, whatever n; ordered by ``Shape.order``) and
+``numerics.bordered`` factorises it in O(n). A dynamic body the lines hang from keeps its
+unknowns in the border, its rows written in Newton-Euler form too (its own mass and force
+models, and each line's dlam_0). Eliminating the auxiliary unknowns gives delta = J^-1 r
+exactly: the rows are the exact linearisation of the equations the articulated sweeps solve,
+with the loads' derivatives by finite differences of the loads themselves
+(``numerics.rigid_derivatives``).
 
-Written so (``eligible``): planar lines whose base is a fixed or imposed body, or a dynamic body
-whose rotations are held and that nothing but such lines and its force models touch; whose tip
-is free, held (the Baumgarte closure's rows) or carries a point body nothing else touches.
-Others (3D segments, trees of lines, bodies with lumped lines or ties) keep the dense block of
-the differences over the accelerations.
+Written so (``eligible``): planar and 3D lines whose base is a fixed or imposed body, or a
+dynamic body whose rotations are held and that nothing but such lines (of one model) and its
+force models touch; whose tip is free, held (the Baumgarte closure's rows) or carries a point
+body nothing else touches (a held end's joint, ``lines.tip_joint``, among its loads). Others
+(trees of lines, lines held on a free body, bodies with lumped lines or ties) keep the dense
+block of the differences over the accelerations.
 """
 
 import math
@@ -37,8 +41,10 @@ from seacable.bodies import kinematics
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.jit import JIT, inner
 from seacable.numerics import bordered
+from seacable.numerics import rigid_newton_3d as r3
 from seacable.numerics.rigid_derivatives import (
     DERIVATIVES,
+    end_joint,
     loads_derivatives,
     point_derivatives,
 )
@@ -51,19 +57,37 @@ PER_LINK = 9  # unknowns (and rows) per link; two more at the tip
 BLOCK_ORDER = np.array([2, 3, 4, 0, 1, 5, 6, 7, 8])
 
 
+class Shape(NamedTuple):
+    """A line model's rows: unknowns per link, velocity variables per link (the first of its
+    unknowns), unknowns at the tip, and the order of a link's unknowns in the block."""
+
+    per: int
+    variables: int
+    tip: int
+    order: np.ndarray
+
+
+SHAPES = {
+    rigid.PLANAR: Shape(PER_LINK, 1, 2, BLOCK_ORDER),
+    rigid.SEGMENTS_3D: Shape(r3.PER_SEGMENT, 3, r3.TIP, r3.BLOCK_ORDER),
+}
+
+
 class RigidRows(NamedTuple):
-    """The planar rigid lines (and their dynamic bodies) whose Newton rows are written in
-    maximal coordinates (flat, with offsets; ``line`` may be empty)."""
+    """The rigid lines (and their dynamic bodies) whose Newton rows are written in maximal
+    coordinates (flat, with offsets; ``line`` may be empty)."""
 
     line: np.ndarray  # (k,) int: the rigid lines (indices into the rs_* arrays)
-    aux: np.ndarray  # (k,) int: each line's first auxiliary unknown (8 n + 2 of them)
+    aux: np.ndarray  # (k,) int: each line's first auxiliary unknown (8 n + 2 of them planar,
+    # 12 n + 3 in 3D)
     base: np.ndarray  # (k,) int: its dynamic base body (-1: fixed or imposed)
     body: np.ndarray  # (kb,) int: the dynamic bodies written
     body_line: np.ndarray  # (k,) int: the lines (of ``line``) hanging from each, body by body
     body_line_at: np.ndarray  # (kb + 1,) int: each body's first in ``body_line``
     dest_at: np.ndarray  # (k + kb + 1,) int: each line's, then each body's first in ``dest``
     dest: np.ndarray  # every entry's place in Newton's flat matrix (``entries``' order)
-    geo: np.ndarray  # (2 total links,) l n of each link when the matrix was built, and
+    geo: np.ndarray  # l n of each planar link (2), r3.GEO of each 3D segment when the
+    geo_at: np.ndarray  # (k + 1,) int: each line's first in ``geo``; matrix was built, and
     body_mass: np.ndarray  # (kb, 9) each body's translational mass: the right-hand side's
     # transformation must be the matrix's
     size: int  # unknowns of Newton's system: the velocity variables, then the auxiliary ones
@@ -78,17 +102,19 @@ def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
     touched |= set(np.asarray(p.nat_tip).tolist())
     touched |= set(point_body[np.asarray(p.nat_from, dtype=np.int64)].tolist())
     bases = [int(point_body[a]) for a in p.rs_from]
-    planar = [li for li in range(len(p.rs_n)) if p.rs_kind[li] == rigid.PLANAR]
+    kinds = np.asarray(p.rs_kind)
     lines: list[int] = []
     on_body: dict[int, list[int]] = {}
-    for li in planar:
+    for li in range(len(p.rs_n)):
         tip, base = int(p.rs_tip[li]), bases[li]
         if p.rs_port[li] or (tip >= 0 and (tip in touched or tip in bases)):
             continue  # held on a free body (its rows are not written) or a carried body coupled
         if p.body_kind[base] == kinematics.DYNAMIC:
             if base in touched or np.any(p.body_free[base, 3:] != 0.0):
                 continue
-            if any(bases[other] == base and other not in planar for other in range(len(bases))):
+            if any(
+                bases[other] == base and kinds[other] != kinds[li] for other in range(len(bases))
+            ):
                 continue
             on_body.setdefault(base, []).append(li)
         elif p.body_kind[base] not in (kinematics.FIXED, kinematics.IMPOSED):
@@ -97,57 +123,64 @@ def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
     return lines, on_body
 
 
-def _position(local: int, n: int) -> int:
-    """Where local unknown ``local`` of a line of n links stands in its block (``BLOCK_ORDER``;
-    the tip's two last)."""
-    if local >= PER_LINK * n:
+def _position(local: int, n: int, shape: Shape) -> int:
+    """Where local unknown ``local`` of a line of n links stands in its block (``shape.order``;
+    the tip's last)."""
+    if local >= shape.per * n:
         return local
-    return PER_LINK * (local // PER_LINK) + int(BLOCK_ORDER[local % PER_LINK])
+    return shape.per * (local // shape.per) + int(shape.order[local % shape.per])
 
 
-def local_to_global(n: int, v: int, aux: int, base_v: int) -> np.ndarray:
-    """Each local unknown's index in Newton's system: delta_i is velocity variable v + i, the
-    auxiliary unknowns follow from ``aux``, then (``base_v`` >= 0) the base body's three
-    translations."""
-    local = np.arange(PER_LINK * n + 5)
-    link, k = local // PER_LINK, local % PER_LINK
-    out = np.where(k == 0, v + link, aux + (PER_LINK - 1) * link + k - 1)
-    tip = local >= PER_LINK * n
-    out[tip] = aux + (PER_LINK - 1) * n + (local[tip] - PER_LINK * n)
-    out[PER_LINK * n + 2 :] = base_v + np.arange(3)
+def local_to_global(n: int, v: int, aux: int, base_v: int, shape: Shape) -> np.ndarray:
+    """Each local unknown's index in Newton's system: link i's first ``shape.variables`` are
+    its velocity variables (from v), the auxiliary unknowns follow from ``aux``, then
+    (``base_v`` >= 0) the base body's three translations."""
+    per, nv = shape.per, shape.variables
+    local = np.arange(per * n + shape.tip + 3)
+    link, k = local // per, local % per
+    out = np.where(k < nv, v + nv * link + k, aux + (per - nv) * link + k - nv)
+    tip = local >= per * n
+    out[tip] = aux + (per - nv) * n + (local[tip] - per * n)
+    out[per * n + shape.tip :] = base_v + np.arange(3)
     return out.astype(np.int64)
 
 
 def entries_pattern(
-    n: int, v: int, aux: int, held: np.ndarray, base_v: int
+    kind: int, n: int, v: int, aux: int, held: np.ndarray, base_v: int
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The rows and columns (Newton's unknowns) of a line's entries, in ``entries``' order
-    (``held``: x and z, 1.0 on a held axis; ``base_v``: the first velocity variable of its
-    dynamic base body, -1 for none)."""
-    size = 47 * n + 34
-    rows, cols, vals = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
-    zero = np.zeros((DERIVATIVES, n))
-    count = entries(n, np.ones(n), np.ones(n), np.ones(n), np.zeros(n), np.zeros(n),
-                    np.zeros((4, n)), np.zeros((2, n + 1)), zero, np.zeros(4), np.zeros(18),
-                    np.asarray(held, dtype=np.float64), 1.0, np.ones(3 if base_v >= 0 else 0),
-                    1.0, 1.0, 1.0, rows, cols, vals)  # fmt: skip
-    glob = local_to_global(n, v, aux, base_v)
-    return glob[rows[:count]], glob[cols[:count]]
+    """The rows and columns (Newton's unknowns) of a line's entries, in ``entries``' (or
+    ``rigid_newton_3d.entries``') order (``held``: x, y, z, 1.0 on a held axis; ``base_v``: the
+    first velocity variable of its dynamic base body, -1 for none)."""
+    if kind == rigid.PLANAR:
+        size = 47 * n + 34
+        rows, cols, vals = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
+        zero = np.zeros((DERIVATIVES, n))
+        count = entries(n, np.ones(n), np.ones(n), np.ones(n), np.zeros(n), np.zeros(n),
+                        np.zeros((4, n)), np.zeros((2, n + 1)), zero, np.zeros(9), np.zeros(18),
+                        np.asarray(held, dtype=np.float64)[[0, 2]], 1.0,
+                        np.ones(3 if base_v >= 0 else 0), 1.0, 1.0, 1.0, rows, cols,
+                        vals)  # fmt: skip
+        rows, cols = rows[:count], cols[:count]
+    else:
+        rows, cols = r3.entries_pattern(n, held, base_v >= 0)
+    glob = local_to_global(n, v, aux, base_v, SHAPES[kind])
+    return glob[rows], glob[cols]
 
 
 def body_pattern(
-    size: int, v: int, auxes: list[int], free: np.ndarray
+    size: int, v: int, auxes: list[int], free: np.ndarray, shape: Shape
 ) -> tuple[np.ndarray, np.ndarray]:
     """The rows and columns of a body's entries (``body_entries``' order): ``size`` velocity
-    variables from ``v``, the lines hanging from it with auxiliary unknowns from ``auxes``,
-    ``free`` its translations' flags."""
-    rows, cols, vals = np.empty(64, np.int64), np.empty(64, np.int64), np.empty(64)
+    variables from ``v``, the lines (of ``shape``) hanging from it with auxiliary unknowns from
+    ``auxes``, ``free`` its translations' flags."""
+    dims = shape.tip
+    rows, cols, vals = np.empty(96, np.int64), np.empty(96, np.int64), np.empty(96)
     count = body_entries(size, np.asarray(free, dtype=np.float64), np.zeros(9), np.zeros(18),
-                         len(auxes), 1.0, 1.0, 1.0, rows, cols, vals)  # fmt: skip
-    glob = np.arange(size + 2 * len(auxes))
+                         len(auxes), dims, 1.0, 1.0, 1.0, rows, cols, vals)  # fmt: skip
+    glob = np.arange(size + dims * len(auxes))
     glob[:size] += v
-    for j, aux in enumerate(auxes):  # the line's dlam_0 (link 0's unknowns 3 and 4)
-        glob[size + 2 * j : size + 2 * j + 2] = aux + 2 + np.arange(2)
+    for j, aux in enumerate(auxes):  # link 0's dlam_0: its auxiliary unknowns after dA_1
+        glob[size + dims * j : size + dims * (j + 1)] = aux + dims + np.arange(dims)
     return glob[rows[:count]], glob[cols[:count]]
 
 
@@ -168,7 +201,8 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
     bases: list[int] = []
     bodies: list[int] = []
     body_lines: list[list[int]] = []
-    size, links = nv, 0
+    size = nv
+    geo_at = [0]
     key = list(range(nv))
     for group in groups:
         own = np.zeros(nv, dtype=bool)
@@ -181,23 +215,25 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
         base_v = int(p.body_v[-1 - group[0]]) - nq if group[0] < 0 else -1
         first = len(kept_lines)
         for li in group[1:] if group[0] < 0 else group:
-            n, v = int(p.rs_n[li]), int(p.rs_v[li]) - nq
-            glob = local_to_global(n, v, size, base_v)[: PER_LINK * n + 2]
-            parts.append(entries_pattern(n, v, size, p.rs_held[li, [0, 2]], base_v))
+            n, v, kind = int(p.rs_n[li]), int(p.rs_v[li]) - nq, int(p.rs_kind[li])
+            shape = SHAPES[kind]
+            glob = local_to_global(n, v, size, base_v, shape)[: shape.per * n + shape.tip]
+            parts.append(entries_pattern(kind, n, v, size, p.rs_held[li], base_v))
             kept_lines.append(li)
             auxes.append(size)
             bases.append(-1 - group[0] if group[0] < 0 else -1)
-            size += len(glob) - n
-            key.extend([0] * (len(glob) - n))
+            size += len(glob) - shape.variables * n
+            key.extend([0] * (len(glob) - shape.variables * n))
             for local, g in enumerate(glob):
-                key[g] = _position(local, n)
-            links += n
+                key[g] = _position(local, n, shape)
+            geo_at.append(geo_at[-1] + (2 if kind == rigid.PLANAR else r3.GEO) * n)
         if group[0] < 0:
             bodies.append(-1 - group[0])
             body_lines.append(list(range(first, len(kept_lines))))
     for b, members in zip(bodies, body_lines, strict=True):
         v, count = _unknowns(p, -1 - b)
-        parts.append(body_pattern(count, v, [auxes[m] for m in members], p.body_free[b, :3]))
+        shape = SHAPES[int(p.rs_kind[kept_lines[members[0]]])]
+        parts.append(body_pattern(count, v, [auxes[m] for m in members], p.body_free[b, :3], shape))
     kept = ~written[row]
     rows_all = np.concatenate([row[kept], *[r for r, _ in parts]]).astype(np.int64)
     cols_all = np.concatenate([col[kept], *[c for _, c in parts]]).astype(np.int64)
@@ -222,7 +258,8 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
             np.int64),
         dest_at=np.concatenate([[0], np.cumsum([len(r) for r, _ in parts])]).astype(np.int64),
         dest=np.concatenate([np.zeros(0, np.int64), *dest]).astype(np.int64),
-        geo=np.zeros(2 * links), body_mass=np.zeros((len(bodies), 9)), size=size,
+        geo=np.zeros(geo_at[-1]), geo_at=ints(geo_at), body_mass=np.zeros((len(bodies), 9)),
+        size=size,
     )  # fmt: skip
     return lay, rows
 
@@ -232,35 +269,33 @@ def _unknowns(p, member: int) -> tuple[int, int]:
     (``member`` >= 0) or of the body -1 - member."""
     nq = int(p.n_q)
     if member >= 0:
-        return int(p.rs_v[member]) - nq, int(p.rs_n[member])
+        return int(p.rs_v[member]) - nq, SHAPES[int(p.rs_kind[member])].variables * int(
+            p.rs_n[member]
+        )
     b = -1 - member
     return int(p.body_v[b]) - nq, 6 if p.body_rigid[b] else 3
 
 
-@njit(inline="always", **JIT)
-def _put(rows, cols, vals, k, r, c, value):
-    rows[k], cols[k], vals[k] = r, c, value
-    return k + 1
-
-
 @njit(**JIT)
-def body_entries(size, free, mass3, der, lines, km, kx, kv, rows, cols, vals):
+def body_entries(size, free, mass3, der, lines, dims, km, kx, kv, rows, cols, vals):
     """A dynamic body's rows (local: its ``size`` unknowns, then each line's dlam_0 in x and
-    z): on a free translation c, its Newton-Euler row sum_e M_ce (km delta_e - r_e) (free e)
-    - dF_c + dlam_0,c = 0 with dF from its force models (``der``: ``point_derivatives``) and
-    the body's own mass ``mass3`` (3x3); on a held axis or a rotation, km delta_c = r_c.
+    z, ``dims`` 2, or in x, y, z, ``dims`` 3): on a free translation c, its Newton-Euler row
+    sum_e M_ce (km delta_e - r_e) (free e) - dF_c + dlam_0,c = 0 with dF from its force models
+    (``der``: ``point_derivatives``) and the body's own mass ``mass3`` (3x3); on a held axis or
+    a rotation, km delta_c = r_c.
     Returns the count."""
     k = 0
     for c in range(size):
         if c >= 3 or free[c] == 0.0:
-            k = _put(rows, cols, vals, k, c, c, km)
+            k = r3.put(rows, cols, vals, k, c, c, km)
             continue
         for e in range(3):
             value = mass3[3 * c + e] * km * free[e] - der[3 * c + e] * kx - der[9 + 3 * c + e] * kv
-            k = _put(rows, cols, vals, k, c, e, value)
-        if c != 1:  # the plane's x and z
+            k = r3.put(rows, cols, vals, k, c, e, value)
+        if dims == 3 or c != 1:  # every axis, or the plane's x and z
             for j in range(lines):
-                k = _put(rows, cols, vals, k, c, size + 2 * j + c // 2, 1.0)
+                k = r3.put(rows, cols, vals, k, c, size + dims * j + (c if dims == 3 else c // 2),
+                         1.0)  # fmt: skip
     return k
 
 
@@ -270,7 +305,7 @@ def entries(n, length, mass, inertia, omega, thdd, geometry, lam, der, tip_mass,
     """One line's entries (local row, local column, value; docs/rigid_newton.md): ``omega`` and
     ``thdd`` the links' rates and angular accelerations, ``geometry`` (4, n) their e and n
     (x, z), ``lam`` (2, n + 1) the node forces, ``der`` the loads' derivatives
-    (``rigid_derivatives.loads_derivatives``), ``tip_mass`` (2x2) and ``tip_der``
+    (``rigid_derivatives.loads_derivatives``), ``tip_mass`` (3x3) and ``tip_der``
     (``point_derivatives``) of the tip body; ``held`` (x, z): 1.0 on an axis the tip is held on
     (Baumgarte, at ``stabilization`` rad/s); ``base_free`` (3, or empty for a base on a fixed
     or imposed body): the free translations of the dynamic body the line hangs from (its
@@ -290,52 +325,53 @@ def entries(n, length, mass, inertia, omega, thdd, geometry, lam, der, tip_mass,
         # rotation about the centre: J f + l/2 n.(lam_i + lam_(i+1)) - Q = 0
         diag = (inertia[i] * km - 0.5 * li * (ex * sx + ez * sz) * kx - der[16, i] * kx
                 - der[17, i] * kv)  # fmt: skip
-        k = _put(rows, cols, vals, k, d, d, diag)
+        k = r3.put(rows, cols, vals, k, d, d, diag)
         if i > 0:
-            k = _put(rows, cols, vals, k, d, up, -(der[18, i] * kx + der[19, i] * kv))
+            k = r3.put(rows, cols, vals, k, d, up, -(der[18, i] * kx + der[19, i] * kv))
         if i + 1 < n:
-            k = _put(rows, cols, vals, k, d, d + b, -(der[20, i] * kx + der[21, i] * kv))
+            k = r3.put(rows, cols, vals, k, d, d + b, -(der[20, i] * kx + der[21, i] * kv))
         for c in range(2):
             nc = nx if c == 0 else nz
-            k = _put(rows, cols, vals, k, d, d + 3 + c, 0.5 * li * nc)
-            k = _put(rows, cols, vals, k, d, lam_next + c, 0.5 * li * nc)
+            k = r3.put(rows, cols, vals, k, d, d + 3 + c, 0.5 * li * nc)
+            k = r3.put(rows, cols, vals, k, d, lam_next + c, 0.5 * li * nc)
             if i > 0:
-                k = _put(rows, cols, vals, k, d, up + 5 + c, -der[8 + c, i])
-                k = _put(rows, cols, vals, k, d, up + 7 + c, -der[10 + c, i])
+                k = r3.put(rows, cols, vals, k, d, up + 5 + c, -der[8 + c, i])
+                k = r3.put(rows, cols, vals, k, d, up + 7 + c, -der[10 + c, i])
         for c in range(2):
             ec = ex if c == 0 else ez
             nc = nx if c == 0 else nz
             # kinematics: A_(i+1) - A_i - l (f n - omega^2 e) = 0
             r = d + 1 + c
-            k = _put(rows, cols, vals, k, r, d + 1 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 1 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 1 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * nc * km
+                k = r3.put(rows, cols, vals, k, r, up + 1 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * nc * km
                      + li * (f * ec * kx + 2.0 * om * ec * kv + om * om * nc * kx))  # fmt: skip
             # translation: m (A_i + A_(i+1)) / 2 - lam_i + lam_(i+1) - F = 0
             r = d + 3 + c
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 1 + c, 0.5 * mass[i])
-            k = _put(rows, cols, vals, k, r, d + 1 + c, 0.5 * mass[i])
-            k = _put(rows, cols, vals, k, r, d + 3 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, lam_next + c, 1.0)
+                k = r3.put(rows, cols, vals, k, r, up + 1 + c, 0.5 * mass[i])
+            k = r3.put(rows, cols, vals, k, r, d + 1 + c, 0.5 * mass[i])
+            k = r3.put(rows, cols, vals, k, r, d + 3 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, lam_next + c, 1.0)
             if i > 0:
                 for e in range(2):
-                    k = _put(rows, cols, vals, k, r, up + 5 + e, -der[2 * c + e, i])
-                    k = _put(rows, cols, vals, k, r, up + 7 + e, -der[4 + 2 * c + e, i])
-            k = _put(rows, cols, vals, k, r, d, -(der[12 + c, i] * kx + der[14 + c, i] * kv))
+                    k = r3.put(rows, cols, vals, k, r, up + 5 + e, -der[2 * c + e, i])
+                    k = r3.put(rows, cols, vals, k, r, up + 7 + e, -der[4 + 2 * c + e, i])
+            k = r3.put(rows, cols, vals, k, r, d, -(der[12 + c, i] * kx + der[14 + c, i] * kv))
             # the node's position and velocity: P_(i+1) = P_i + l e, V_(i+1) = V_i + l omega n
             r = d + 5 + c
-            k = _put(rows, cols, vals, k, r, d + 5 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 5 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 5 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * nc * kx)
+                k = r3.put(rows, cols, vals, k, r, up + 5 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * nc * kx)
             r = d + 7 + c
-            k = _put(rows, cols, vals, k, r, d + 7 + c, 1.0)
+            k = r3.put(rows, cols, vals, k, r, d + 7 + c, 1.0)
             if i > 0:
-                k = _put(rows, cols, vals, k, r, up + 7 + c, -1.0)
-            k = _put(rows, cols, vals, k, r, d, -li * (nc * kv - om * ec * kx))
-    k = _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k)
+                k = r3.put(rows, cols, vals, k, r, up + 7 + c, -1.0)
+            k = r3.put(rows, cols, vals, k, r, d, -li * (nc * kv - om * ec * kx))
+    k = r3.tip_entries(n, PER_LINK, 2, (1, 5, 7), tip_mass, tip_der, held, stabilization, rows,
+                       cols, vals, k)  # fmt: skip
     if base_free.shape[0] > 0:
         k = _base_entries(n, mass[0], der, base_free, km, kx, kv, rows, cols, vals, k)
     return k
@@ -348,38 +384,16 @@ def _base_entries(n, mass0, der, free, km, kx, kv, rows, cols, vals, k):
     body = PER_LINK * n + 2
     for c in range(2):
         bc = 2 * c  # x, z of the plane: the body's axes 0 and 2
-        k = _put(rows, cols, vals, k, 1 + c, body + bc, -km * free[bc])  # kinematics
-        k = _put(rows, cols, vals, k, 3 + c, body + bc, 0.5 * mass0 * km * free[bc])
-        k = _put(rows, cols, vals, k, 5 + c, body + bc, -kx)  # node 1's position, velocity
-        k = _put(rows, cols, vals, k, 7 + c, body + bc, -kv)
+        k = r3.put(rows, cols, vals, k, 1 + c, body + bc, -km * free[bc])  # kinematics
+        k = r3.put(rows, cols, vals, k, 3 + c, body + bc, 0.5 * mass0 * km * free[bc])
+        k = r3.put(rows, cols, vals, k, 5 + c, body + bc, -kx)  # node 1's position, velocity
+        k = r3.put(rows, cols, vals, k, 7 + c, body + bc, -kv)
         for e in range(2):
-            k = _put(rows, cols, vals, k, 3 + c, body + 2 * e,
+            k = r3.put(rows, cols, vals, k, 3 + c, body + 2 * e,
                      -(der[2 * c + e, 0] * kx + der[4 + 2 * c + e, 0] * kv))  # fmt: skip
     for e in range(2):  # rotation
-        k = _put(rows, cols, vals, k, 0, body + 2 * e,
+        k = r3.put(rows, cols, vals, k, 0, body + 2 * e,
                  -(der[8 + e, 0] * kx + der[10 + e, 0] * kv))  # fmt: skip
-    return k
-
-
-@njit(inline="always", **JIT)
-def _tip_entries(n, tip_mass, tip_der, held, stabilization, rows, cols, vals, k):
-    """The tip's rows (``entries``): on a held axis A_n = target - 2 w (V_n - v*) -
-    w^2 (P_n - p*) (lam_n's component there is the holding force's), on a free one
-    lam_n = M_t A_n + bias - load(P_n, V_n) (``tip_der``: ``point_derivatives``' 18)."""
-    b = PER_LINK
-    last = b * (n - 1)
-    for c in range(2):
-        r = b * n + c
-        if held[c] != 0.0:
-            k = _put(rows, cols, vals, k, r, last + 1 + c, 1.0)
-            k = _put(rows, cols, vals, k, r, last + 7 + c, 2.0 * stabilization)
-            k = _put(rows, cols, vals, k, r, last + 5 + c, stabilization * stabilization)
-            continue
-        k = _put(rows, cols, vals, k, r, r, 1.0)
-        for e in range(2):
-            k = _put(rows, cols, vals, k, r, last + 1 + e, -tip_mass[2 * c + e])
-            k = _put(rows, cols, vals, k, r, last + 5 + e, tip_der[6 * c + 2 * e])
-            k = _put(rows, cols, vals, k, r, last + 7 + e, tip_der[9 + 6 * c + 2 * e])
     return k
 
 
@@ -392,46 +406,18 @@ def fill(t, y, h, coef, p, w, rows, mat):
     km = 1.0 - coef[3]
     kx = (1.0 - coef[4]) * coef[1] * h * h
     kv = (1.0 - coef[4]) * coef[2] * h
-    geo_at = 0
     point = np.zeros(18)
     ok = True
     for k in range(rows.line.shape[0]):
         li = rows.line[k]
-        n, s0 = p.rs_n[li], p.rs_seg[li]
-        e = s0 + n
-        ws = rigid.workspace(p, w, li)
-        der = _line_derivatives(p, w, y, li, ws)
-        geometry = np.empty((4, n))
-        omega, thdd = np.empty(n), np.empty(n)
-        for i in range(n):
-            geometry[0, i], geometry[1, i] = ws[pc._EX, i], ws[pc._EZ, i]
-            geometry[2, i], geometry[3, i] = -ws[pc._EZ, i], ws[pc._EX, i]
-            omega[i], thdd[i] = y[p.rs_v[li] + i], ws[pc._THDD, i]
-            rows.geo[geo_at + 2 * i] = p.rs_length[s0 + i] * geometry[2, i]
-            rows.geo[geo_at + 2 * i + 1] = p.rs_length[s0 + i] * geometry[3, i]
-        geo_at += 2 * n
-        held = np.array([p.rs_held[li, 0], p.rs_held[li, 2]])
-        pinned = held[0] != 0.0 or held[1] != 0.0
-        lam = np.empty((2, n + 1))
-        for node in range(n + 1):
-            lam[0, node], lam[1, node] = pc._node_force(ws, node, w.rs_force[li, 0],
-                                                        w.rs_force[li, 2], pinned)  # fmt: skip
-        tip_mass = np.zeros(4)
-        point[:] = 0.0
-        tip = p.rs_tip[li]
-        if tip >= 0:
-            mt = w.mass[tip]
-            tip_mass[0], tip_mass[1], tip_mass[2], tip_mass[3] = mt[0, 0], mt[0, 2], mt[2, 0], mt[
-                2, 2]  # fmt: skip
-            point_derivatives(t, y, p, w, tip, point)
-        base = rows.base[k]
-        base_free = p.body_free[base, :3] if base >= 0 else np.zeros(0)
+        geo = rows.geo[rows.geo_at[k] : rows.geo_at[k + 1]]
         r_loc, c_loc, vals = _scratch(rows, k)
-        count = entries(
-            n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_inertia[s0:e], omega, thdd, geometry,
-            lam, der, tip_mass, point, held, p.stabilization_frequency, base_free, km, kx, kv,
-            r_loc, c_loc, vals,
-        )  # fmt: skip
+        if p.rs_kind[li] == rigid.PLANAR:
+            count = _planar_line(t, y, p, w, li, rows.base[k], km, kx, kv, geo, r_loc, c_loc,
+                                 vals)  # fmt: skip
+        else:
+            count = r3.fill_line(t, y, p, w, li, rows.base[k] >= 0, km, kx, kv, geo, r_loc,
+                                 c_loc, vals)  # fmt: skip
         ok = _add(rows, k, mat, vals, count) and ok
     if rows.body.shape[0] == 0:
         return ok
@@ -447,13 +433,46 @@ def fill(t, y, h, coef, p, w, rows, mat):
                 rows.body_mass[j, 3 * c + e] = masses[b, c, e]
         point_derivatives(t, y, p, w, b, point)
         size = 6 if p.body_rigid[b] else 3
-        lines = rows.body_line_at[j + 1] - rows.body_line_at[j]
+        first = rows.body_line_at[j]
+        lines = rows.body_line_at[j + 1] - first
+        dims = 2 if p.rs_kind[rows.line[rows.body_line[first]]] == rigid.PLANAR else 3
         k = rows.line.shape[0] + j
         r_loc, c_loc, vals = _scratch(rows, k)
-        count = body_entries(size, p.body_free[b, :3], rows.body_mass[j], point, lines, km, kx,
-                             kv, r_loc, c_loc, vals)  # fmt: skip
+        count = body_entries(size, p.body_free[b, :3], rows.body_mass[j], point, lines, dims, km,
+                             kx, kv, r_loc, c_loc, vals)  # fmt: skip
         ok = _add(rows, k, mat, vals, count) and ok
     return ok
+
+
+@inner
+def _planar_line(t, y, p, w, li, base, km, kx, kv, geo, r_loc, c_loc, vals):
+    """A planar line's entries (``entries``) at the evaluation ``w`` holds, and the l n of its
+    links into ``geo``. Returns the count."""
+    n, s0 = p.rs_n[li], p.rs_seg[li]
+    e = s0 + n
+    ws = rigid.workspace(p, w, li)
+    der = _line_derivatives(p, w, y, li, ws)
+    geometry = np.empty((4, n))
+    omega, thdd = np.empty(n), np.empty(n)
+    for i in range(n):
+        geometry[0, i], geometry[1, i] = ws[pc._EX, i], ws[pc._EZ, i]
+        geometry[2, i], geometry[3, i] = -ws[pc._EZ, i], ws[pc._EX, i]
+        omega[i], thdd[i] = y[p.rs_v[li] + i], ws[pc._THDD, i]
+        geo[2 * i] = p.rs_length[s0 + i] * geometry[2, i]
+        geo[2 * i + 1] = p.rs_length[s0 + i] * geometry[3, i]
+    held = np.array([p.rs_held[li, 0], p.rs_held[li, 2]])
+    pinned = held[0] != 0.0 or held[1] != 0.0
+    lam = np.empty((2, n + 1))
+    for node in range(n + 1):
+        lam[0, node], lam[1, node] = pc._node_force(ws, node, w.rs_force[li, 0],
+                                                    w.rs_force[li, 2], pinned)  # fmt: skip
+    tip_mass, point = r3.tip_body(t, y, p, w, p.rs_tip[li])
+    base_free = p.body_free[base, :3] if base >= 0 else np.zeros(0)
+    return entries(
+        n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_inertia[s0:e], omega, thdd, geometry, lam,
+        der, tip_mass, point, held, p.stabilization_frequency, base_free, km, kx, kv, r_loc,
+        c_loc, vals,
+    )  # fmt: skip
 
 
 @njit(inline="always", **JIT)
@@ -478,7 +497,7 @@ def _add(rows, k, mat, vals, count):
 @inner
 def _line_derivatives(p, w, y, li, ws):
     """``rigid_derivatives.loads_derivatives`` of line ``li`` (its joint 0 against its base's
-    reference direction)."""
+    reference direction, and its held end's joint)."""
     n, s0 = p.rs_n[li], p.rs_seg[li]
     e = s0 + n
     base = p.point_body[p.rs_from[li]]
@@ -488,7 +507,7 @@ def _line_derivatives(p, w, y, li, ws):
         p.rs_buoyancy[s0:e], p.rs_drag_normal[s0:e], p.rs_drag_tangential[s0:e],
         p.rs_joint_stiffness[s0:e], p.rs_joint_damping[s0:e],
         rigid.planar_reference(w.rot[base], p.rs_ref[li]), -w.omega[base, 1], p.current_z,
-        p.current_u, ws, der,
+        p.current_u, end_joint(p, w, li), ws, der,
     )  # fmt: skip
     return der
 
@@ -498,22 +517,24 @@ def rhs(rows, p, res, big):
     """Newton's right-hand side over every unknown (``big``, ``rows.size``) from the residual
     ``res`` of the accelerations: a written line's rotation rows get J r, its kinematics rows
     -l n r (with the l n the matrix was built with), link 0's kinematics and translation rows
-    -r_b and m r_b / 2 from a dynamic base's residual r_b; a written body's free rows M r; every
-    other auxiliary row 0."""
+    -r_b and m r_b / 2 from a dynamic base's residual r_b (a 3D line's rows:
+    ``rigid_newton_3d.rhs_line``); a written body's free rows M r; every other auxiliary row 0."""
     nv = res.shape[0]
     big[:nv] = res
     big[nv:] = 0.0
-    geo_at = 0
     for k in range(rows.line.shape[0]):
         li = rows.line[k]
+        geo = rows.geo[rows.geo_at[k] : rows.geo_at[k + 1]]
+        if p.rs_kind[li] != rigid.PLANAR:
+            r3.rhs_line(p, li, rows.aux[k], geo, res, big, rows.base[k])
+            continue
         n, s0, v = p.rs_n[li], p.rs_seg[li], p.rs_v[li] - p.n_q
         aux = rows.aux[k]
         for i in range(n):
             r = res[v + i]
             big[v + i] = p.rs_inertia[s0 + i] * r
-            big[aux + (PER_LINK - 1) * i] = -rows.geo[geo_at + 2 * i] * r
-            big[aux + (PER_LINK - 1) * i + 1] = -rows.geo[geo_at + 2 * i + 1] * r
-        geo_at += 2 * n
+            big[aux + (PER_LINK - 1) * i] = -geo[2 * i] * r
+            big[aux + (PER_LINK - 1) * i + 1] = -geo[2 * i + 1] * r
         base = rows.base[k]
         if base >= 0:
             bv = p.body_v[base] - p.n_q

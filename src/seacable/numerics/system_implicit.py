@@ -37,11 +37,12 @@ of ``system.model.jacobian_sparsity``): a lumped line costs about nine residuals
 length. It is laid out and factorised by ``numerics.bordered``: each line (or tree of rigid
 lines) a banded block, the bodies' degrees of freedom the border, so a factorisation costs
 O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement.
-A rigid line's accelerations depend on all its angles: in them its block is dense. A planar
-one based on a fixed or imposed body, or on a dynamic body whose rotations are held, is
-written instead in maximal coordinates
-(``numerics.rigid_newton``, docs/rigid_newton.md: banded, exact, O(n) to build and factorise),
-with auxiliary unknowns after the velocity variables; the others keep the dense block. The
+A rigid line's accelerations depend on all its angles (or directors): in them its block is
+dense. A planar or 3D one based on a fixed or imposed body, or on a dynamic body whose rotations
+are held, with a free, held or body-carrying tip, is written instead in maximal coordinates
+(``numerics.rigid_newton`` and ``numerics.rigid_newton_3d``, docs/rigid_newton.md: banded,
+exact, O(n) to build and factorise), with auxiliary unknowns after the velocity variables; the
+others (trees of lines, lines held on a free body, turning bases) keep the dense block. The
 factors are kept from step to step while they serve (modified Newton: rebuilt when an
 iteration contracts slower than ``SLOW`` or after ``REFRESH`` iterations on one matrix, and
 whenever the step length changes), so most steps cost two or three residuals.
@@ -152,7 +153,7 @@ def layout(
     """Newton's matrix over the accelerations: the pattern of d(accelerations)/d(positions,
     velocities) folded onto the velocity variables (a position's column onto the velocity that
     moves it, ``inc``; a quaternion's onto its body's three angular velocities), the bodies'
-    as the border; the planar rigid lines ``rigid_newton.eligible`` picks (and that couple to
+    as the border; the rigid lines ``rigid_newton.eligible`` picks (and that couple to
     nothing else) written in maximal coordinates instead, with their auxiliary unknowns after
     the velocity variables (``rigid_newton.layout``; ``maximal=False``: none, every rigid
     line's block dense, as before; benchmarks/implicit_cost.py compares the two)."""
