@@ -257,7 +257,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         current_z=current_z, current_u=current_u, current_v=current_v,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
-    fields.update(_groups(case, tips, nb))
+    fields.update(topology.group_arrays(case, tips, nb))
     params = typed(SystemParams, fields, INT_FIELDS)
     y0 = np.zeros(n_q + n_v + n_s)
     y0[:bodies_q] = y_q
@@ -265,28 +265,6 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
-
-
-def _groups(case, tips, nb: int) -> dict[str, np.ndarray]:
-    """The groups of free bodies that rigid lines held on them join, and those lines (system
-    kernel's ``body_group``, ``body_slot``, ``group_first``, ``group_body``, ``group_line``,
-    ``group_line_first``)."""
-    group, slot = -np.ones(nb, dtype=np.int64), -np.ones(nb, dtype=np.int64)
-    first, members, line_first, lines = [0], [], [0], []
-    for g, (bodies, held) in enumerate(topology.port_groups(case, tips)):
-        for s, b in enumerate(bodies):
-            group[b], slot[b] = g, s
-        members += bodies
-        lines += held
-        first.append(len(members))
-        line_first.append(len(lines))
-
-    def ints(values: list[int]) -> np.ndarray:
-        return np.array(values, dtype=np.int64)
-
-    return dict(body_group=group, body_slot=slot, group_first=ints(first),
-                group_body=ints(members), group_line=ints(lines),
-                group_line_first=ints(line_first))  # fmt: skip
 
 
 def _offset(body, point: str) -> tuple[float, float, float]:

@@ -6,6 +6,8 @@ which may start further lines (``rigid_tips``, their sweep order by ``depth``); 
 its end on another free body couples the two (``ports``); a planar line's bodies must stay in
 its plane (``planar_ends``)."""
 
+import numpy as np
+
 from seacable.case import system as sch
 from seacable.errors import CaseError
 
@@ -139,6 +141,28 @@ def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[i
     for r, _, b in found:
         out[root(b)][1].append(r)
     return list(out.values())
+
+
+def group_arrays(case: sch.SystemCase, tips: dict[int, int], nb: int) -> dict[str, np.ndarray]:
+    """The groups of free bodies that rigid lines held on them join, and those lines (system
+    kernel's ``body_group``, ``body_slot``, ``group_first``, ``group_body``, ``group_line``,
+    ``group_line_first``)."""
+    group, slot = -np.ones(nb, dtype=np.int64), -np.ones(nb, dtype=np.int64)
+    first, members, line_first, lines = [0], [], [0], []
+    for g, (bodies, held) in enumerate(port_groups(case, tips)):
+        for s, b in enumerate(bodies):
+            group[b], slot[b] = g, s
+        members += bodies
+        lines += held
+        first.append(len(members))
+        line_first.append(len(lines))
+
+    def ints(values: list[int]) -> np.ndarray:
+        return np.array(values, dtype=np.int64)
+
+    return dict(body_group=group, body_slot=slot, group_first=ints(first),
+                group_body=ints(members), group_line=ints(lines),
+                group_line_first=ints(line_first))  # fmt: skip
 
 
 def planar_ends(case, line, where: str, tip: int) -> None:
