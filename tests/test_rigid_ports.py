@@ -120,14 +120,14 @@ def test_a_line_between_two_free_bodies_couples_them_reciprocally():
     p = system.params
     w = kernel.make_work(p)
     kernel.rhs(0.0, system.y0, p, w, np.zeros(len(system.y0)))
-    row = w.rs_kkt[int(np.flatnonzero(p.rs_port)[0])]
+    row = w.rs_la[int(np.flatnonzero(p.rs_port)[0])]
     g, compliance, s0 = (row[k : k + 9].reshape(3, 3) for k in (3, 12, 21))
     assert np.abs(g - np.eye(3)).max() > 0.1
     np.testing.assert_allclose(g, s0.T, rtol=0, atol=1e-12)
     np.testing.assert_allclose(
         compliance, compliance.T, rtol=0, atol=1e-12 * np.abs(compliance).max()
     )
-    assert list(p.group_body) == [1, 2]  # the point body and the hull, solved together
+    assert list(p.group_member) == [1, 2, 0]  # the point body and the hull, then the line
 
 
 def test_a_tip_joint_on_a_free_body_is_refused():

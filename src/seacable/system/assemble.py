@@ -30,7 +30,7 @@ INT_FIELDS = frozenset({
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
-    "body_group", "body_slot", "group_first", "group_body", "group_line", "group_line_first",
+    "body_group", "group_first", "group_member",
 })  # fmt: skip
 
 

@@ -61,14 +61,12 @@ class SystemParams(NamedTuple):
     body_cob: np.ndarray  # (nb, 3) centre of buoyancy, body frame [m]
     body_shape: np.ndarray  # (nb, L) shape rows (kernels.surface)
     # free bodies that rigid lines held on them join (system.topology.port_groups) are solved
-    # together with those lines' holding forces, group by group: a body's group (-1: alone)
-    # and its place in it; each group's first body in group_body and first line in group_line
-    body_group: np.ndarray  # (nb,) int
-    body_slot: np.ndarray  # (nb,) int
-    group_first: np.ndarray  # (groups + 1,) int
-    group_body: np.ndarray  # (bodies in groups,) int
-    group_line_first: np.ndarray  # (groups + 1,) int
-    group_line: np.ndarray  # (lines held on free bodies,) int: rigid-line numbers
+    # together with those lines' holding forces, group by group (few arrays: each one in these
+    # tuples costs every call of ``rhs`` a reference taken and dropped)
+    body_group: np.ndarray  # (nb, 2) int: a body's group (-1: alone), its place in it
+    group_first: np.ndarray  # (groups + 1, 2) int: a group's first body, first line in
+    # group_member
+    group_member: np.ndarray  # int: the groups' bodies, then their lines (rigid-line numbers)
     point_body: np.ndarray  # (np,) int
     point_offset: np.ndarray  # (np, 3) body frame [m]
     force_kind: np.ndarray  # (nf,) int: forces.kinds
@@ -186,13 +184,12 @@ class SystemWork(NamedTuple):
     rs: np.ndarray  # (chain3d_layout.N_WORK_ROWS * rigid-line nodes) flat: system.rigid._view
     rs_force: np.ndarray  # (nr, 3) holding force L at a held tip (its constant part l0 between
     # the backward and the forward sweeps)
-    rs_la: np.ndarray  # (nr, 9) dL/dA_0, row-major
-    # (nr, 30) a line held on a free body: its closure's right-hand side r (3), the tip's
-    # maps G = dA_n/dA_0 and A_L = dA_n/dL, and S_0 = dlam_0/dL (3x3 each, row-major)
-    rs_kkt: np.ndarray
-    group: np.ndarray  # (m, m) one group's equations (m: 6 per body and 3 per line, largest)
-    group_rhs: np.ndarray  # (m,)
-    group_acc: np.ndarray  # (m,)
+    # (nr, 30) dL/dA_0 (9, row-major); of a line held on a free body instead its closure's
+    # right-hand side r (3), the tip's maps G = dA_n/dA_0 and A_L = dA_n/dL, and
+    # S_0 = dlam_0/dL (3x3 each, row-major)
+    rs_la: np.ndarray
+    group: np.ndarray  # (m + 2, m) one group's equations, then its right-hand side and
+    # solution (m: 6 per body and 3 per line, the largest group's)
     own_load: np.ndarray  # (nb, 3) every body's force before its rigid lines' (statics)
     scratch: np.ndarray  # (168,) the rigid lines' and the groups' small vectors of one evaluation
     imposed: np.ndarray  # (18,) an imposed body's channels (kinematics.imposed_channels)
@@ -210,7 +207,7 @@ def make_work(p: SystemParams) -> SystemWork:
     nat = int(p.nat_n.max()) + 1 if len(p.nat_n) else 2
     g = 6
     if len(p.group_first) > 1:
-        g = int((6 * np.diff(p.group_first) + 3 * np.diff(p.group_line_first)).max())
+        g = int((np.diff(p.group_first, axis=0) @ np.array([6, 3])).max())
     return SystemWork(
         pos=np.zeros((nb, 3)), rot=np.zeros((nb, 3, 3)), vel=np.zeros((nb, 3)),
         omega=np.zeros((nb, 3)), acc=np.zeros((nb, 6)), fraction=np.ones(nb),
@@ -220,9 +217,8 @@ def make_work(p: SystemParams) -> SystemWork:
         line=np.zeros(6 * (nmax + 1)), end_mass=np.zeros((nl, 2, 9)),
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
-        rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 9)),
-        rs_kkt=np.zeros((max(nr, 1), 30)),
-        group=np.zeros((g, g)), group_rhs=np.zeros(g), group_acc=np.zeros(g),
+        rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 30)),
+        group=np.zeros((g + 2, g)),
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
         nat_out=np.zeros((nat, 4)),
@@ -361,17 +357,16 @@ def rhs(t, y, p, w, ydot):
         p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.rs_mass, p.rs_inertia,
         p.stabilization_frequency, p.point_body, p.point_offset, p.body_kind, p.body_pose, y,
         w.pos, w.rot, w.vel, w.omega, w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias, w.load,
-        w.rs, w.rs_force, w.rs_la, w.rs_kkt, w.scratch,
+        w.rs, w.rs_force, w.rs_la, w.scratch,
     ):  # fmt: skip
         status = SINGULAR_CLOSURE
     if not _solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid,
                          p.body_group, w.load, w.bias, w.mass, w.acc, w.rhs6, ydot):  # fmt: skip
         status = NON_FINITE
-    if p.group_body.shape[0] > 0 and not rigid.solve_groups(
-        y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_slot,
-        p.group_first, p.group_body, p.group_line_first, p.group_line, p.rs_from, p.rs_to,
-        p.rs_held, p.point_body, w.acc, w.omega, w.parm, w.rs_kkt, w.rs_force, w.load, w.bias,
-        w.mass, w.group, w.group_rhs, w.group_acc, w.scratch, ydot,
+    if p.group_member.shape[0] > 0 and not rigid.solve_groups(
+        y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_group,
+        p.group_first, p.group_member, p.rs_from, p.rs_to, p.rs_held, p.point_body, w.acc,
+        w.omega, w.parm, w.rs_la, w.rs_force, w.load, w.bias, w.mass, w.group, w.scratch, ydot,
     ):  # fmt: skip
         status = SINGULAR_CLOSURE
     if p.rs_n.shape[0] > 0:
@@ -441,7 +436,7 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
     slower, measured)."""
     ok = True
     for b in range(kind.shape[0]):
-        if kind[b] != DYNAMIC or group[b] >= 0:
+        if kind[b] != DYNAMIC or group[b, 0] >= 0:
             continue
         for i in range(6):
             rhs[i] = load[b, i] - bias[b, i]

@@ -143,11 +143,11 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
 def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, rs_port,
              length, mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
              body_pose, y, pos, rot, vel, omega, acc, ppos, pvel, parm, body_mass, bias, load,
-             work, rs_force, rs_la, rs_kkt, scratch):  # fmt: skip
+             work, rs_force, rs_la, scratch):  # fmt: skip
     """Every rigid line's backward sweep, children first: a carried body's mass and loads start
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
     the line's articulated inertia ``m9`` and load. A line held on a free body (``rs_port``)
-    keeps its tip's force L unknown: its base receives M_0 and -b_0 alone, and ``rs_kkt`` its
+    keeps its tip's force L unknown: its base receives M_0 and -b_0 alone, and ``rs_la`` its
     row for the bodies' joint solve (``kkt_row``; system.kernel._solve_groups). False when a
     closure is singular. The arrays of the parameter and work tuples come one by one (``work``
     = ``w.rs``, ``body_mass`` = ``w.mass``; ``scratch``: 160 floats), as in
@@ -171,13 +171,13 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
             sound = _planar_backward(
                 n, length[s0:e], mass[s0:e], inertia[s0:e], y, rs_v[li], ws, rs_tip[li],
                 body_mass, bias, load, rs_held[li], pinned, target, stabilization_frequency, m9,
-                line_load, rs_force[li], rs_la[li], port, rs_kkt[li], sweep,
+                line_load, rs_force[li], rs_la[li], port, rs_la[li], sweep,
             )  # fmt: skip
         else:
             sound = _segments_backward(
                 n, length[s0:e], mass[s0:e], ws, rs_tip[li], body_mass, bias, load,
                 rs_held[li], pinned, target, stabilization_frequency, m9, line_load,
-                rs_force[li], rs_la[li], port, rs_kkt[li], sweep, scratch[72:90],
+                rs_force[li], rs_la[li], port, rs_la[li], sweep, scratch[72:90],
             )  # fmt: skip
         ok = ok and sound
         a = rs_from[li]
@@ -310,41 +310,43 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
 
 
 @inner
-def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_slot, group_first, group_body,
-                  group_line_first, group_line, rs_from, rs_to, rs_held, point_body, acc, omega,
-                  parm, rs_kkt, rs_force, load, bias, mass, big, big_rhs, big_acc, scratch,
-                  ydot):  # fmt: skip
+def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_group, group_first,
+                 group_member, rs_from, rs_to, rs_held, point_body, acc, omega, parm, rs_la,
+                 rs_force, load, bias, mass, big, scratch, ydot):  # fmt: skip
     """The accelerations of each group of free bodies that rigid lines held on them join, with
     those lines' holding forces L (the KKT form, docs/rigid_segment_lines.md section 5): each
     body's 6x6 equations with L's action on it (+Phi_a^T S_0 L at its base point, -Phi_P^T L
     at the held point), each line's closure A_L L + G A_0 - a_P = r on its held axes (L_k = 0
-    on a free one), a held degree of freedom's row a_i = 0; Gaussian elimination with partial
-    pivoting. The rates into ``ydot``, L into ``rs_force``. False when a group's system is
-    singular."""
+    on a free one; the maps in ``rs_la``, ``backward``), a held degree of freedom's row
+    a_i = 0; Gaussian elimination with partial pivoting (``big``'s last two rows: right-hand
+    side and solution). The rates into ``ydot``, L into ``rs_force``. False when a group's
+    system is singular."""
     ok = True
     unit, zero, a0 = scratch[143:152], scratch[152:158], scratch[158:161]
     unit[:] = 0.0
     unit[0] = unit[4] = unit[8] = 1.0
     zero[:] = 0.0
+    m = big.shape[1]
+    lines_at = group_first[group_first.shape[0] - 1, 0]  # the lines after every body
     for g in range(group_first.shape[0] - 1):
-        first, bodies = group_first[g], group_first[g + 1] - group_first[g]
-        lines = group_line_first[g + 1] - group_line_first[g]
+        first, bodies = group_first[g, 0], group_first[g + 1, 0] - group_first[g, 0]
+        line0, lines = group_first[g, 1], group_first[g + 1, 1] - group_first[g, 1]
         size = 6 * bodies + 3 * lines
-        a, rhs, out = big[:size, :size], big_rhs[:size], big_acc[:size]
+        a, rhs, out = big[:size, :size], big[m, :size], big[m + 1, :size]
         a[:, :] = 0.0
         for s in range(bodies):
-            b = group_body[first + s]
+            b = group_member[first + s]
             for i in range(6):
                 rhs[6 * s + i] = load[b, i] - bias[b, i]
                 for j in range(6):
                     a[6 * s + i, 6 * s + j] = mass[b, i, j]
         for j in range(lines):
-            li = group_line[group_line_first[g] + j]
-            _line_rows(li, 6 * bodies + 3 * j, kind, body_slot, rs_from, rs_to, rs_held,
-                       point_body, acc, omega, parm, rs_kkt[li], a, rhs, unit, zero,
+            li = group_member[lines_at + line0 + j]
+            _line_rows(li, 6 * bodies + 3 * j, kind, body_group, rs_from, rs_to, rs_held,
+                       point_body, acc, omega, parm, rs_la[li], a, rhs, unit, zero,
                        a0)  # fmt: skip
         for s in range(bodies):
-            b = group_body[first + s]
+            b = group_member[first + s]
             for i in range(6):
                 if free[b, i] == 0.0:
                     a[6 * s + i, :] = 0.0
@@ -352,18 +354,18 @@ def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_slot, group_fir
                     rhs[6 * s + i] = 0.0
         ok = dynamics.gauss(a, rhs, out) and ok
         for s in range(bodies):
-            b = group_body[first + s]
+            b = group_member[first + s]
             acc[b, :] = out[6 * s : 6 * s + 6]
             dynamics.body_rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
         for j in range(lines):
-            li = group_line[group_line_first[g] + j]
+            li = group_member[lines_at + line0 + j]
             for r in range(3):
                 rs_force[li, r] = out[6 * bodies + 3 * j + r]
     return ok
 
 
 @njit(inline="always", **JIT)
-def _line_rows(li, col, kind, body_slot, rs_from, rs_to, rs_held, point_body, acc, omega, parm,
+def _line_rows(li, col, kind, body_group, rs_from, rs_to, rs_held, point_body, acc, omega, parm,
                kkt, a, rhs, unit, zero, a0):  # fmt: skip
     """Line li's part of its group's system (``solve_groups``): its holding force's columns
     from ``col`` in its bodies' rows, its closure's rows."""
@@ -373,11 +375,11 @@ def _line_rows(li, col, kind, body_slot, rs_from, rs_to, rs_held, point_body, ac
     # the base point's acceleration's known part: all of it on a fixed or imposed base
     kinematics.point_acceleration(kind[base], zero if free_base else acc[base], arm_a,
                                   omega[base], a0)  # fmt: skip
-    sp = 6 * body_slot[end]
+    sp = 6 * body_group[end, 1]
     dynamics.add_phi_t(unit, arm_p, -1.0, a[sp : sp + 6, col : col + 3])
     dynamics.add_m_phi(unit, arm_p, -1.0, a[col : col + 3, sp : sp + 6])
     if free_base:
-        sa = 6 * body_slot[base]
+        sa = 6 * body_group[base, 1]
         dynamics.add_phi_t(kkt[21:30], arm_a, 1.0, a[sa : sa + 6, col : col + 3])
         dynamics.add_m_phi(kkt[3:12], arm_a, 1.0, a[col : col + 3, sa : sa + 6])
     for r in range(3):

@@ -145,24 +145,17 @@ def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[i
 
 def group_arrays(case: sch.SystemCase, tips: dict[int, int], nb: int) -> dict[str, np.ndarray]:
     """The groups of free bodies that rigid lines held on them join, and those lines (system
-    kernel's ``body_group``, ``body_slot``, ``group_first``, ``group_body``, ``group_line``,
-    ``group_line_first``)."""
-    group, slot = -np.ones(nb, dtype=np.int64), -np.ones(nb, dtype=np.int64)
-    first, members, line_first, lines = [0], [], [0], []
+    kernel's ``body_group``, ``group_first``, ``group_member``)."""
+    group = -np.ones((nb, 2), dtype=np.int64)
+    first, bodies_in, lines_in = [[0, 0]], [], []
     for g, (bodies, held) in enumerate(port_groups(case, tips)):
         for s, b in enumerate(bodies):
-            group[b], slot[b] = g, s
-        members += bodies
-        lines += held
-        first.append(len(members))
-        line_first.append(len(lines))
-
-    def ints(values: list[int]) -> np.ndarray:
-        return np.array(values, dtype=np.int64)
-
-    return dict(body_group=group, body_slot=slot, group_first=ints(first),
-                group_body=ints(members), group_line=ints(lines),
-                group_line_first=ints(line_first))  # fmt: skip
+            group[b] = g, s
+        bodies_in += bodies
+        lines_in += held
+        first.append([len(bodies_in), len(lines_in)])
+    return dict(body_group=group, group_first=np.array(first, dtype=np.int64),
+                group_member=np.array(bodies_in + lines_in, dtype=np.int64))  # fmt: skip
 
 
 def planar_ends(case, line, where: str, tip: int) -> None:
