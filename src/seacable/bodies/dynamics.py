@@ -139,7 +139,7 @@ def _phi(arm, k, j):
 @njit(inline="always", **JIT)
 def add_phi_t(m3, arm, sign, block):
     """``block`` (6x3) += sign Phi^T m3: a force m3 x at the point ``arm`` on its body's six
-    equations (system.kernel._solve_groups)."""
+    equations (system.rigid.solve_groups)."""
     for i in range(6):
         for c in range(3):
             total = 0.0
@@ -151,7 +151,7 @@ def add_phi_t(m3, arm, sign, block):
 @njit(inline="always", **JIT)
 def add_m_phi(m3, arm, sign, block):
     """``block`` (3x6) += sign m3 Phi: m3 times the acceleration of the point ``arm`` in its
-    body's accelerations (system.kernel._solve_groups)."""
+    body's accelerations (system.rigid.solve_groups)."""
     for r in range(3):
         for j in range(6):
             total = 0.0

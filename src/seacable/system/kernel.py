@@ -430,7 +430,7 @@ def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, lin
 @inner
 def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, mass, acc, rhs,
                   ydot):  # fmt: skip
-    """Each dynamic body's accelerations (but a group's: ``_solve_groups``) and its rates into
+    """Each dynamic body's accelerations (but a group's: ``rigid.solve_groups``) and its rates into
     ``ydot``. The arrays come as arguments, not as fields of the parameter and work tuples: a
     field read inside the loop would take and drop a reference at each pass (four times
     slower, measured)."""

@@ -129,10 +129,9 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
     k = rs_to[li]
     kinematics.point_state(k, point_body, point_offset, pos, rot, vel, omega, ppos, pvel, parm)
     b = point_body[k]
-    if body_kind[b] == kinematics.DYNAMIC:  # a free body (a two-port): the known part alone
-        kinematics.point_acceleration(body_kind[b], zero, parm[k], omega[b], point_acc)
-    else:
-        kinematics.point_acceleration(body_kind[b], acc[b], parm[k], omega[b], point_acc)
+    free = body_kind[b] == kinematics.DYNAMIC  # a free body (a two-port): the known part alone
+    kinematics.point_acceleration(body_kind[b], zero if free else acc[b], parm[k], omega[b],
+                                  point_acc)  # fmt: skip
     for c in range(3):
         target[c] = ppos[k, c]
         target[3 + c] = pvel[k, c]
@@ -148,10 +147,9 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
     the line's articulated inertia ``m9`` and load. A line held on a free body (``rs_port``)
     keeps its tip's force L unknown: its base receives M_0 and -b_0 alone, and ``rs_la`` its
-    row for the bodies' joint solve (``kkt_row``; system.kernel._solve_groups). False when a
-    closure is singular. The arrays of the parameter and work tuples come one by one (``work``
-    = ``w.rs``, ``body_mass`` = ``w.mass``; ``scratch``: 160 floats), as in
-    ``nodes_and_loads``."""
+    maps for the bodies' joint solve (``solve_groups``). False when a closure is singular. The
+    arrays of the parameter and work tuples come one by one (``work`` = ``w.rs``,
+    ``body_mass`` = ``w.mass``; ``scratch``: 168 floats), as in ``nodes_and_loads``."""
     sweep = scratch[0:60]
     m9, line_load = scratch[60:69], scratch[69:72]
     target, point_acc, zero = scratch[106:115], scratch[115:118], scratch[128:134]
