@@ -27,10 +27,10 @@ typecheck: $(STAMP)
 	$(VENV)/bin/mypy src
 
 test: lint typecheck
-	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -m "not slow"
+	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -n auto --dist loadfile -m "not slow"
 
 test-all: lint typecheck
-	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
+	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -n auto --dist loadfile
 
 bench: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/thesis_timings.py
