@@ -107,16 +107,12 @@ def add_point_mass(m3, arm, omega, force, m6, rhs):
         force[2] - (m3[6] * c[0] + m3[7] * c[1] + m3[8] * c[2]),
     )
     add_force(arm, f[0], f[1], f[2], rhs)
-    # Phi (3x6) = [I, -[arm]]; -[arm] rows: (0, rz, -ry), (-rz, 0, rx), (ry, -rx, 0)
-    phi = ((0.0, rz, -ry), (-rz, 0.0, rx), (ry, -rx, 0.0))
     for i in range(6):
         for j in range(6):
             total = 0.0
             for k in range(3):
-                pik = (1.0 if i == k else 0.0) if i < 3 else phi[k][i - 3]
                 for m in range(3):
-                    pjm = (1.0 if j == m else 0.0) if j < 3 else phi[m][j - 3]
-                    total += pik * m3[3 * k + m] * pjm
+                    total += _phi(arm, k, i) * m3[3 * k + m] * _phi(arm, m, j)
             m6[i, j] += total
 
 
