@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
+from scipy.optimize import brentq
 from scipy.spatial.transform import Rotation
 
 import seacable
@@ -342,12 +343,37 @@ def test_statics_of_a_buoy_on_a_tether_is_the_closed_form():
     assert results.dataset["lines/tether/tension"].values[0] == pytest.approx(lift, rel=1e-9)
 
 
-def test_statics_names_the_body_nothing_holds():
-    """A constant push along x on a buoy free in surge only, which nothing resists along x."""
+def test_statics_finds_the_balance_a_tie_only_gives_once_stretched():
+    """A constant push of 100 N along x on a buoy free in surge only, its 12 m tie exactly
+    vertical and unstretched: at the start nothing resists along x (the tie's stiffness there
+    is zero, and Newton finds no balance), but the tie stretched sideways holds it where
+    k (L - L0) x / L = 100 N, L = sqrt(L0^2 + x^2) (about 1.13 m off; closed form to 1e-9 m).
+    The dynamic relaxation finds it (system.relax)."""
     push = {"model": "applied", "force_x": 100.0}
     case = _buoy_on_tie(dofs=["surge"], position=[0.0, 0.0, -38.0])
     case["bodies"][0]["external forces"].append(push)
-    with pytest.raises(seacable.SeacableError, match=r"body 'buoy' \(force along x"):
+    results = seacable.statics(load_case(case))
+    x = results.dataset["bodies/buoy/position_x"].values[0]
+
+    def held(x):
+        length = np.hypot(12.0, x)
+        return 2e4 * (length - 12.0) * x / length - 100.0
+
+    assert x == pytest.approx(brentq(held, 0.1, 5.0, xtol=1e-14), abs=1e-9)
+    assert 1.0 < x < 1.3
+
+
+def test_statics_names_the_body_nothing_holds():
+    """A constant push along x on a buoy free in surge and heave, held by a stiffness in heave
+    only: nothing resists along x, and the statics names the body and the axis (after the
+    dynamic relaxation found it running away)."""
+    push = {"model": "applied", "force_x": 100.0}
+    spring = {"model": "linear_stiffness", "diagonal": [0.0, 0.0, 1e4, 0.0, 0.0, 0.0]}
+    case = _buoy_on_tie()  # a second buoy, on the tie, besides it
+    buoy = {**case["bodies"][0], "name": "free", "dofs": ["surge", "heave"]}
+    buoy["external forces"] = [*buoy["external forces"], push, spring]
+    case["bodies"].append(buoy)
+    with pytest.raises(seacable.SeacableError, match=r"body 'free' \(force along x"):
         seacable.statics(load_case(case))
 
 

@@ -91,14 +91,12 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
     )
 
 
-def _check_case(case: SystemCase, model) -> None:
+def _check_case(case: SystemCase) -> None:
     if not isinstance(case, SystemCase):
         raise CaseError(
             "the case is in the single-cable form (cables:), which does not run any more; write "
             "it as a system of bodies and lines: seacable upgrade case.yaml -o system.yaml"
         )
-    if case.simulation.integrator in IMPLICIT:
-        model.check_implicit(case)
 
 
 def absolute_tolerance(case: SystemCase, model, system) -> tuple[np.ndarray, np.ndarray]:
@@ -343,7 +341,7 @@ def simulate(
         Ctrl-C; ``results`` hold everything computed before.
     """
     model = system_model
-    _check_case(case, model)
+    _check_case(case)
     system = model.build(case, loader.case_base_dir(case))
     sim = case.simulation
     settings = _solver_settings(sim)

@@ -25,8 +25,14 @@ The theta-method with theta = 1/2 (the trapezoidal rule) and Newmark's average a
 factorised) and linear solves (Newton iterations).
 
 The unknowns of a step are the accelerations a1 of every velocity variable of the system
-(``y = [Q, V]``: bodies, lumped nodes, rigid segments' director rates, links' angle rates,
-natural strings' rates). The step's increment of the positions, d = h v0 + h^2 (pa a0 + b a1),
+(``y = [Q, V, S]``: bodies, lumped nodes, rigid segments' director rates, links' angle rates,
+natural strings' rates), then the rates of the force models' first-order states S (a servo's
+force), advanced by the same g: s1 = s0 + h ((1 - g) ds0 + g ds1), (1 - am) ds1 + am ds0 =
+(1 - af) F(t0 + h, x1, v1, s1) + af F(t0, x0, v0, s0), the conditions for second order the
+same (g = 1/2 - am + af). In the line search and the convergence test a state's residual
+and correction count through the change they make, g h ds, against its scale (metres per
+state scale, ``Increments.weight``). The step's increment of the positions,
+d = h v0 + h^2 (pa a0 + b a1),
 moves each position variable additively, except a rigid body's orientation, which turns by the
 rotation vector d (earth frame): q1 = exp(d / 2) q0 (``Increments``). After the step the
 state is projected (unit quaternions and directors), as after every explicit step.
@@ -93,13 +99,15 @@ def scheme(name: str, theta=0.5, gamma=0.5, beta=0.25, spectral_radius=0.8) -> n
 
 
 class Increments(NamedTuple):
-    """How the velocity variables move the positions, and their scales."""
+    """How the velocity variables move the positions, and the scales of every unknown (the
+    accelerations of the n_v velocity variables, then the rates of the n_s force-model
+    states)."""
 
     q_of_v: np.ndarray  # (n_v,) int: the position a velocity moves additively (-1: a rotation)
     quat_q: np.ndarray  # (k,) int: first quaternion entry of each rigid body in y
     quat_v: np.ndarray  # (k,) int: first angular-velocity entry, relative to V's start
-    scale: np.ndarray  # (n_v,) typical size of each position (difference quotients)
-    weight: np.ndarray  # (n_v,) metres per unit of each position (convergence test)
+    scale: np.ndarray  # (n_v + n_s,) typical size of each position or state (differences)
+    weight: np.ndarray  # (n_v + n_s,) metres per unit of each position, or per state's scale
 
 
 def increments(case, system: model.BuiltSystem) -> Increments:
@@ -139,11 +147,13 @@ def increments(case, system: model.BuiltSystem) -> Increments:
         size = (3 if p.nat_cartesian[li] else 2) * (int(p.nat_n[li]) + 1)
         v = int(p.nat_v[li]) - nq
         weight[v : v + size] = p.nat_length[li] / p.nat_n[li]
-    positions = model.state_scale(case, system)[:nq]
-    scale = np.where(q_of_v >= 0, positions[np.maximum(q_of_v, 0)], 1.0)
+    sizes = model.state_scale(case, system)
+    scale = np.where(q_of_v >= 0, sizes[:nq][np.maximum(q_of_v, 0)], 1.0)
+    states = sizes[nq + nv :]  # a force model's state: its start's size, at least 1 (N)
     return Increments(
         q_of_v=q_of_v, quat_q=np.array(quat_q, dtype=np.int64),
-        quat_v=np.array(quat_v, dtype=np.int64), scale=scale, weight=weight,
+        quat_v=np.array(quat_v, dtype=np.int64), scale=np.concatenate([scale, states]),
+        weight=np.concatenate([weight, 1.0 / states]),
     )  # fmt: skip
 
 
@@ -156,9 +166,10 @@ def layout(
     as the border; the rigid lines ``rigid_newton.eligible`` picks (and that couple to
     nothing else) written in maximal coordinates instead, with their auxiliary unknowns after
     the velocity variables (``rigid_newton.layout``; ``maximal=False``: none, every rigid
-    line's block dense, as before; benchmarks/implicit_cost.py compares the two)."""
+    line's block dense, as before; benchmarks/implicit_cost.py compares the two). The
+    force models' states follow the velocity variables, each solved for its rate."""
     p = system.params
-    nq, nv = int(p.n_q), int(p.n_v)
+    nq, nv = int(p.n_q), int(p.n_v) + int(p.n_s)
     full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
     rows, cols = [full.row[full.col >= nq]], [full.col[full.col >= nq] - nq]
     moved_by = np.full(nq, -1, dtype=np.int64)  # the velocity that moves each position
@@ -187,7 +198,7 @@ def layout(
 @inner
 def _advance(y0, d, y, inc):
     """The positions of y moved from y0's by the increment d (velocity-sized)."""
-    for i in range(d.shape[0]):
+    for i in range(inc.q_of_v.shape[0]):
         q = inc.q_of_v[i]
         if q >= 0:
             y[q] = y0[q] + d[i]
@@ -209,12 +220,15 @@ def _advance(y0, d, y, inc):
 
 @inner
 def _state(y0, acc, a1, h, coef, inc, y, d, nq):
-    """y: the state at the end of the step from y0 with end acceleration a1."""
+    """y: the state at the end of the step from y0 with end accelerations a1 (then the force
+    models' states from their end rates, s1 = s0 + h ((1 - g) ds0 + g ds1))."""
     pa, b, g = coef[0], coef[1], coef[2]
-    nv = a1.shape[0]
-    y[nq + nv :] = y0[nq + nv :]
+    nv = inc.q_of_v.shape[0]
     for i in range(nv):
         d[i] = h * y0[nq + i] + h * h * (pa * acc[i] + b * a1[i])
+    n = a1.shape[0]
+    y[nq + n :] = y0[nq + n :]
+    for i in range(n):
         y[nq + i] = y0[nq + i] + h * ((1.0 - g) * acc[i] + g * a1[i])
     _advance(y0, d, y, inc)
 
@@ -223,8 +237,8 @@ def _state(y0, acc, a1, h, coef, inc, y, d, nq):
 def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
     """res = (1 - am) a1 + am a0 - [(1 - af) f(t + h, end state) + af f0], f0 = f(t, y0):
     the forces blended at the alpha point (as Chung and Hulbert write the scheme), so that an
-    imposed body's motion enters at the step's two ends exactly, as the free states do;
-    returns the status."""
+    imposed body's motion enters at the step's two ends exactly, as the free states do (a
+    force model's state alike, its rate in place of an acceleration); returns the status."""
     am, af = coef[3], coef[4]
     _state(y0, acc, a1, h, coef, inc, ya, d, p.n_q)
     status = system_kernel.rhs(t + h, ya, p, w, ydot)
@@ -247,13 +261,17 @@ def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work
     if rows.line.shape[0] > 0 and not rigid_newton.fill(t + h, ya, h, coef, pj, w, rows, mat):
         return NON_FINITE
     reach = coef[1] * h * h  # d(end position) / d(a1)
+    nq, n_pos = pj.n_q, inc.q_of_v.shape[0]
     for c in range(lay.colour_ptr.shape[0] - 1):
         ap[:] = a1
         for k in range(lay.colour_ptr[c], lay.colour_ptr[c + 1]):
             j = lay.colour_cols[k]
-            q = inc.q_of_v[j]
-            size = max(abs(y0[q]), inc.scale[j]) if q >= 0 else inc.scale[j]
-            eps[j] = FD_STEP * size / reach
+            if j >= n_pos:  # a force model's state: d(end state) / d(rate) = g h
+                eps[j] = FD_STEP * max(abs(y0[nq + j]), inc.scale[j]) / (coef[2] * h)
+            else:
+                q = inc.q_of_v[j]
+                size = max(abs(y0[q]), inc.scale[j]) if q >= 0 else inc.scale[j]
+                eps[j] = FD_STEP * size / reach
             ap[j] += eps[j]
         status = _residual(t, y0, acc, ap, h, coef, pj, w, inc, ya, ydot, d, rp, f0)
         work[2] += 1
@@ -268,11 +286,14 @@ def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work
 
 
 @njit(inline="always", **JIT)
-def _merit(res, weight):
-    """The residual's size for the line search: sum of (residual x metres per unit)^2."""
+def _merit(res, inc, rate):
+    """The residual's size for the line search: sum of (residual x metres per unit)^2, a force
+    model's state's residual times ``rate`` (g / (b h): its change per unit of residual
+    against a position's)."""
     total = 0.0
+    n_pos = inc.q_of_v.shape[0]
     for i in range(res.shape[0]):
-        r = res[i] * weight[i]
+        r = res[i] * inc.weight[i] * (rate if i >= n_pos else 1.0)
         total += r * r
     return total
 
@@ -293,7 +314,7 @@ def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
             trial[i] = a1[i] - fraction * da[i]
         status = _residual(t, y, acc, trial, h, coef, p, w, inc, ya, ydot, d, res_trial, f0)
         work[2] += 1
-        trial_merit = _merit(res_trial, inc.weight) if status == OK else math.inf
+        trial_merit = _merit(res_trial, inc, coef[2] / (coef[1] * h)) if status == OK else math.inf
         if trial_merit <= (1.0 - 1e-4 * fraction) * merit or cut == SEARCH:
             break
         fraction *= 0.5
@@ -334,7 +355,8 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
     previous = math.inf
     status = _residual(t, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
     work[2] += 1
-    merit = _merit(res, inc.weight)
+    rate = coef[2] / (b * h)  # a state's change per unit of rate against a position's
+    merit = _merit(res, inc, rate)
     for _ in range(max_iter):
         if status == OK and (fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH):
             status = _jacobian(t, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec,
@@ -359,7 +381,8 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
             bordered.solve(lay, mat, piv, res, da, z)
         largest = 0.0
         for i in range(nv):
-            largest = max(largest, abs(da[i]) * inc.weight[i])
+            scaled = abs(da[i]) * inc.weight[i]
+            largest = max(largest, scaled * rate if i >= inc.q_of_v.shape[0] else scaled)
         if not math.isfinite(largest):
             work[3] += 1
             fresh[0] = 0.0
@@ -410,7 +433,7 @@ def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     """The arrays a run carries from step to step (``numerics.contract.ChunkIntegrator``, point
     5): [a1, the last step's change of acceleration], [factors valid, their step length, the
     step length of that change], the factors and their row swaps."""
-    nv = int(system.params.n_v)
+    nv = int(system.params.n_v) + int(system.params.n_s)
     return (
         np.zeros((2, nv)), np.zeros(3), np.zeros(lay.size),
         np.zeros(lay.order.shape[0], dtype=np.int64),
@@ -423,7 +446,7 @@ def initial_acceleration(t, y, p, w, acc):
     (docs/architecture.md, "Compile time")."""
     ydot = np.empty_like(y)
     status = system_kernel.rhs(t, y, p, w, ydot)
-    acc[:] = ydot[p.n_q : p.n_q + p.n_v]
+    acc[:] = ydot[p.n_q : p.n_q + acc.shape[0]]
     return status
 
 

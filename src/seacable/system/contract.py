@@ -24,10 +24,9 @@ class RunModel(Protocol):
        integrators' default tolerance), ``shortest_segment(system)`` [m] (the implicit
        schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
     6. ``variables(system)``: what it records, per group; ``jacobian_sparsity(system)``: the
-       Jacobian's pattern (SciPy's stiff integrators); ``check_implicit(case)``: what the
-       fixed-step implicit schemes (``numerics.system_implicit``) cannot run, refused.
-    Optional: ``positions``, ``refresh_interval``/``refresh`` (parameters replaced during a run:
-    the servo).
+       Jacobian's pattern (SciPy's stiff integrators and the implicit schemes).
+    Optional: ``positions`` (the implicit schemes' unknowns), ``refresh_interval``/``refresh``
+    (parameters replaced during a run: the servo).
     """
 
     RATE_WHAT: tuple
@@ -44,4 +43,3 @@ class RunModel(Protocol):
     def shortest_segment(self, system) -> float: ...
     def variables(self, system) -> dict: ...
     def jacobian_sparsity(self, system) -> Any: ...
-    def check_implicit(self, case) -> None: ...

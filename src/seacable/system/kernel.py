@@ -461,10 +461,10 @@ def projects(p):
     return False
 
 
-@inner
+@njit(**JIT)
 def project(y, p):
     """Every rigid body's quaternion back to unit length, every rigid segment's director too and
-    its rate normal to it (after each accepted step)."""
+    its rate normal to it (after each accepted step; from Python too: system.relax)."""
     for li in range(p.rs_n.shape[0]):
         if p.rs_kind[li] == rigid.SEGMENTS_3D:
             c3.project_directors(y, p.rs_n[li], p.rs_q[li], p.rs_v[li])

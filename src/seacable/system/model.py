@@ -8,11 +8,11 @@ import numpy as np
 from scipy import sparse
 
 from seacable.case import system as sch
-from seacable.errors import CaseError
 from seacable.system import coordinates, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
+from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
 from seacable.system.initial import initial_state
 
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
@@ -56,19 +56,6 @@ def damping_advice(system: BuiltSystem) -> str:
     if len(p.rs_n):
         advice.append(JOINT_ADVICE)
     return " or ".join(advice) if advice else "add damping to the ties (lines[k].damping)"
-
-
-def check_implicit(case: sch.SystemCase) -> None:
-    """The implicit schemes advance second-order states only: a servo's force is not one."""
-    for body in case.bodies:
-        for k, force in enumerate(getattr(body, "external_forces", [])):
-            if isinstance(force, sch.ServoForce):
-                raise CaseError(
-                    f"simulation.integrator: '{case.simulation.integrator}' cannot advance the "
-                    f"servo's force (bodies.{body.name}.external forces[{k}], a first-order "
-                    "state); use rk4 or dopri5 with the servo, or hold the body on its "
-                    "trajectory (an imposed body)"
-                )
 
 
 def refresh_interval(case: sch.SystemCase) -> float | None:
@@ -378,8 +365,9 @@ def state_scale(case, system: BuiltSystem) -> np.ndarray:
 
 
 def positions(system: BuiltSystem) -> int:
-    """The accelerations the implicit schemes solve for: one per velocity variable."""
-    return int(system.params.n_v)
+    """The unknowns the implicit schemes solve for: the acceleration of every velocity variable,
+    then the rate of every force model's state (a servo's force)."""
+    return int(system.params.n_v) + int(system.params.n_s)
 
 
 def rates(system: BuiltSystem, y) -> np.ndarray:
@@ -387,41 +375,6 @@ def rates(system: BuiltSystem, y) -> np.ndarray:
     p = system.params
     v = y[p.n_q : p.n_q + p.n_v]
     return np.abs(v) if len(v) else np.zeros(1)
-
-
-def fastest_frequency(system: BuiltSystem) -> tuple[float, str]:
-    """Estimate of the fastest motion [rad/s] and what sets it: the fastest axial mode of any
-    lumped segment between two nodes, 2 sqrt(EA / (m l)), and the zigzag mode of any rigid
-    segment, turning about its centre against its two joint springs and the tension,
-    omega^2 = (2 (k_i + k_i+1) + T l_i) / J_i, T bounded by the rigid lines' apparent weight and
-    the weight of the bodies they carry. Bodies' own springs are not counted yet."""
-    p = system.params
-    best, what = 0.0, ""
-    for li, line in enumerate(system.layout.lines):
-        n, s0, c0 = int(p.line_n[li]), int(p.line_seg[li]), int(p.line_node[li])
-        mass = np.minimum(p.node_mass[c0 : c0 + n], p.node_mass[c0 + 1 : c0 + n + 1])
-        mass = mass + 0.5 * p.seg_added_mass[s0 : s0 + n]
-        omega = 2.0 * np.sqrt(p.seg_stiffness[s0 : s0 + n] / (mass * p.seg_length[s0 : s0 + n]))
-        i = int(np.argmax(omega))
-        if omega[i] > best:
-            best = float(omega[i])
-            what = f"axial waves on segment {i} of line '{line}' ({p.seg_length[s0 + i]:.3g} m)"
-    segments = int(p.rs_n.sum()) if len(p.rs_n) else 0
-    carried = p.rs_tip[p.rs_tip >= 0] if len(p.rs_n) else np.zeros(0, dtype=np.int64)
-    tension = float(np.abs(p.rs_wet_weight[:segments]).sum())
-    tension += float(p.gravity * p.body_mass[carried].sum())  # the bodies hanging on them
-    for li in range(len(p.rs_n)):
-        n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
-        k = p.rs_joint_stiffness[s0 : s0 + n]
-        length = p.rs_length[s0 : s0 + n]
-        omega = np.sqrt((2.0 * (k + np.append(k[1:], 0.0)) + tension * length)
-                        / p.rs_inertia[s0 : s0 + n])  # fmt: skip
-        i = int(np.argmax(omega))
-        if omega[i] > best:
-            best = float(omega[i])
-            what = (f"zigzag of segment {i} of line '{system.layout.rigid[li]}' "
-                    f"({length[i]:.3g} m, joint springs and tension)")  # fmt: skip
-    return (best, what) if best > 0.0 else (1.0, "no line")
 
 
 def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:

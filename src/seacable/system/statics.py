@@ -16,7 +16,7 @@ from scipy.sparse.linalg import splu
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface
-from seacable.system import kernel, natural_lines, nested, outputs, rigid
+from seacable.system import kernel, natural_lines, nested, outputs, relax, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import (
     STRAIN,
@@ -33,6 +33,7 @@ from seacable.system.coordinates import (
     tangent_normals,
     tangents,
 )
+from seacable.system.frequency import fastest_frequency
 from seacable.system.initial import settle_lines, steady_velocities
 
 
@@ -51,8 +52,10 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     the free bodies' degrees of freedom (``system.nested``), each lumped line settled at its
     static shape between its ends for every trial pose (``initial.settle_lines``, the linear
     axial law: chain lying on a frictionless seabed has one shape): it does not lose its way
-    in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy.
-    Raises StaticsError naming the body or line that stays out of balance."""
+    in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy; last,
+    dynamic relaxation (``system.relax``: the system let move, its kinetic energy taken away,
+    until it rests near a balance Newton then finds). Raises StaticsError naming the body or
+    line that stays out of balance."""
     p = built.params
     coords = coordinates(p)
     y = y0.copy()
@@ -84,6 +87,19 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
+    relaxed = relax.relax(built, y, residual, 1e-3 * scale, fastest_frequency(built)[0], time)
+    if relaxed.rested:
+        polished = _direct(built, coords, sparsity, residual, relaxed.state, iterations,
+                           tolerance * scale)  # fmt: skip
+        rp = residual(polished)
+        if np.all(np.isfinite(rp)) and np.abs(rp).max() < 1e-6 * scale:
+            return polished
+    elif relaxed.state is not None:  # it ran away: blame what went farthest, as it was at y
+        moved = np.zeros(len(coords.kind))
+        body = coords.kind == 0
+        moved[body] = np.abs(relaxed.state[coords.q[body]] - y[coords.q[body]])
+        if moved.max() > 0.0:
+            raise StaticsError(_blame(built, coords, residual(y), int(np.argmax(moved))))
     raise StaticsError(_blame(built, coords, r))
 
 
@@ -255,8 +271,11 @@ def _step_limit(built: BuiltSystem, coords: Coordinates, shortest: bool = False)
     return limit
 
 
-def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray) -> str:
-    worst = int(np.nanargmax(np.where(np.isfinite(r), np.abs(r), np.inf)))
+def _blame(built: BuiltSystem, coords: Coordinates, r: np.ndarray, worst: int = -1) -> str:
+    """The message that names the body or line out of balance: coordinate ``worst``, by
+    default the one whose residual ``r`` is largest."""
+    if worst < 0:
+        worst = int(np.nanargmax(np.where(np.isfinite(r), np.abs(r), np.inf)))
     if coords.body[worst] >= 0:
         name = built.case.bodies[int(coords.body[worst])].name
         what = ("x", "y", "z")[int(coords.axis[worst])]
