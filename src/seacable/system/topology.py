@@ -59,10 +59,11 @@ def rigid_lines(case) -> list[tuple[int, "sch.RigidLine"]]:
 
 def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
     """{body index: rigid-line number} of the point bodies carried at a rigid-segment line's
-    tip: a point body that ends one rigid line only, and whose carrying would close no ring.
-    Another rigid line's end on a free body is held there (``ports``). Refuses what no sweep
-    can take: a held end on a free body from a carried one, a ring of lines each carried by
-    the next."""
+    tip: a point body that ends one rigid line only, unless carrying it would close a ring of
+    lines each carried by the next, or would start a line held on a free body (``ports``) from
+    a carried body. Such a body is left free instead, and the line that ends on it held there
+    (the same motion: its holding force then an unknown of its group's solve). Refuses a
+    massless body that would have to be left free (its group's solve needs a mass)."""
     names = [b.name for b in case.bodies]
     lines = rigid_lines(case)
     ends = [line.to.partition(".")[0] for _, line in lines]
@@ -76,29 +77,35 @@ def rigid_tips(case: sch.SystemCase) -> dict[int, int]:
         base[r] = names.index(start)
         if isinstance(case.bodies[b], sch.PointBody) and ends.count(ends[r]) == 1:
             tips[b] = r
-    for b, r in tips.items():  # walk down from each tip to its root: a ring never ends
-        seen, at = {b}, base[r]
-        while at in tips:
-            if at in seen:
-                ring = sorted(lines[tips[x]][1].name for x in seen)
-                raise CaseError(
-                    f"lines {ring}: a ring of rigid-segment lines, each carried at the end of "
-                    "the next (closing a ring of inextensible lines is not supported yet); "
-                    "make one of them a lumped_mass line, or hold one end on a fixed body"
-                )
-            seen.add(at)
-            at = base[tips[at]]
-    for r, _a, _b in ports(case, tips):
-        k, line = lines[r]
-        if base[r] in tips:
+
+    def free(b: int, why: str) -> None:
+        body = case.bodies[b]
+        assert isinstance(body, sch.PointBody)  # tips are point bodies
+        if body.mass <= 0.0 and not np.any(np.asarray(body.added_mass) > 0.0):
+            k, line = lines[tips[b]]
             raise CaseError(
-                f"lines[{k}] ({line.name}).from: '{line.from_}' is on a body carried at the "
-                f"end of line '{lines[tips[base[r]]][1].name}', and this line ends on the free "
-                f"body '{ends[r]}'; a rigid line between two moving bodies needs both free "
-                "(not carried): start it on a fixed, imposed, point or rigid body that no "
-                "rigid line ends on, or swap 'from' and 'to'"
+                f"lines[{k}] ({line.name}).to: body '{body.name}' is massless, and {why}, so "
+                "it must be solved as a free body, which needs a mass; give it a mass, or "
+                "make one of these lines a lumped_mass line"
             )
-    return tips
+        del tips[b]
+
+    for b in sorted(tips):  # walk down from each tip to its root: a ring never ends
+        if b not in tips:
+            continue
+        seen, at = [b], base[tips[b]]
+        while at in tips and at not in seen:
+            seen.append(at)
+            at = base[tips[at]]
+        if at in seen:  # a ring: leave its last body free
+            ring = sorted(lines[tips[x]][1].name for x in seen[seen.index(at) :])
+            free(max(seen[seen.index(at) :]), f"lines {ring} would close a ring")
+    while True:  # a line held on a free body from a carried one: leave that one free
+        carried = [(r, a) for r, a, _ in ports(case, tips) if a in tips]
+        if not carried:
+            return tips
+        r, a = carried[0]
+        free(a, f"line '{lines[r][1].name}' starts on it and ends on another free body")
 
 
 def ports(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[int, int, int]]:
