@@ -10,11 +10,15 @@ without rigid lines, the two buoys moored with a hawser (lumped lines, a tie) an
 on three catenary lines (a rigid body), so that a change for one line model can be seen not to
 slow the others.
 
-Each case's state is its initial state; a compiled loop evaluates ``system.kernel.rhs``
-``--count`` times (the integrators' path), the dense model a Python loop of ``--count`` / 20
-evaluations. The cases are timed in turn, ``--repeat`` rounds, and each keeps its fastest round
-(thread CPU time, so that time spent waiting for a core on a shared machine does not count). On
-a loaded machine even CPU times vary by some tens of percent (caches, shared cores).
+Each case's state is its initial state; a compiled loop of this file evaluates
+``system.kernel.rhs`` ``--count`` times, and (", in rk4") the integrator's own compiled chunk
+takes ``--count`` / 4 steps of 0.1 ms (four evaluations a step, and the stages' arithmetic:
+what a run pays per evaluation; the two differ by how LLVM lays out each caller: after the
+two-ports' arrays were packed, this loop got slower and the runs faster); the dense model a
+Python loop of ``--count`` / 20 evaluations. The cases are timed in turn, ``--repeat`` rounds,
+and each keeps its fastest round (thread CPU time, so that time spent waiting for a core on a
+shared machine does not count). On a loaded machine even CPU times vary by some tens of
+percent (caches, shared cores).
 
 What makes a system's evaluation cost more than it might is mostly reference counting: numba
 takes and drops a reference to every array a compiled function receives (docs/
@@ -40,6 +44,7 @@ sys.path.insert(0, str(HERE))
 import seacable  # noqa: E402
 import thesis_timings  # noqa: E402
 from dense_reference import DenseThesisModel, dense_state, thesis_chain  # noqa: E402
+from seacable.numerics import integrators  # noqa: E402
 from seacable.system import kernel  # noqa: E402
 from seacable.system import model as system_model  # noqa: E402
 
@@ -54,6 +59,15 @@ def _direct(t, y, p, w, ydot, count):
     for _ in range(count):
         status |= kernel.rhs(t, y, p, w, ydot)
     return status
+
+
+def _rk4(t, y, p, w, ydot, count):
+    """count / 4 rk4 steps of 0.1 ms through the integrator's own compiled chunk (four
+    evaluations a step, and the stages' arithmetic): what a run pays per evaluation."""
+    steps = max(1, count // 4)
+    states, work = np.empty((1, y.shape[0])), np.zeros(len(integrators.WORK_NAMES), np.int64)
+    integrators.rk4_chunk(0, y, 1e-4 * steps, steps, 1, p, w, states, np.empty(1), work)
+    return 0
 
 
 REFERENCE = "thesis n=120, dense NumPy model"
@@ -79,6 +93,7 @@ def cases():
     for name, case in systems.items():
         built = system_model.build(case)
         out[name] = (_direct, built.y0, built.params, system_model.workspace(built), 1)
+        out[f"{name}, in rk4"] = (_rk4, built.y0, built.params, system_model.workspace(built), 1)
         if case is thesis:
             chain = thesis_chain(built)
             y = dense_state(chain, built.y0)
