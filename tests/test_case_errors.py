@@ -1,13 +1,16 @@
 """Bad case files give errors that name the path, the value and what is allowed."""
 
 import copy
+import re
 from pathlib import Path
 
+import numpy as np
 import pytest
+import yaml
 
 import seacable
 from seacable import CaseError
-from seacable.case.loader import case_base_dir, derive_case
+from seacable.case.loader import case_base_dir, case_text, derive_case
 from seacable.system import model
 
 CHAIN = {
@@ -213,3 +216,122 @@ def test_the_single_cable_form_is_refused_with_the_command_that_rewrites_it(tmp_
         seacable.load_case(path)
     with pytest.raises(CaseError, match=r"^cables: .* seacable upgrade FILE -o system\.yaml$"):
         seacable.load_case({"cables": []})
+
+
+# ---- numbers that are not numbers, and files that are not cases ----------------------------------
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -float("inf")])
+@pytest.mark.parametrize(
+    ("where", "put"),
+    [
+        ("lines[0].sections[0].length", lambda d, v: d["lines"][0]["sections"][0].update(length=v)),
+        ("simulation.duration", lambda d, v: d["simulation"].update(duration=v)),
+        ("bodies[1].mass", lambda d, v: d["bodies"][1].update(mass=v)),
+        ("bodies[1].position[2]", lambda d, v: d["bodies"][1].update(position=[0.0, 0.0, v])),
+        ("line_types[0].diameter", lambda d, v: d["line_types"][0].update(diameter=v)),
+    ],
+)  # fmt: skip
+def test_nan_and_infinities_are_refused_naming_the_field(where, put, bad):
+    """Before, an infinite length, diameter or mass was accepted and the run "diverged at
+    t = 0" without naming it, and an infinite duration ended in a traceback."""
+    with pytest.raises(CaseError, match=re.escape(where) + r".*finite number \(got -?(nan|inf)\)"):
+        _load(lambda d: put(d, bad))
+
+
+@pytest.mark.parametrize(
+    ("where", "put"),
+    [
+        ("simulation.output_interval", lambda d: d["simulation"].update(output_interval=True)),
+        ("lines[0].sections[0].segments",
+         lambda d: d["lines"][0]["sections"][0].update(segments=True)),
+        ("bodies[0].position", lambda d: d["bodies"][0].update(position=[0.0, False, 0.0])),
+        ("lines[0].name", lambda d: d["lines"][0].update(name=False)),
+    ],
+)  # fmt: skip
+def test_booleans_are_not_numbers(where, put):
+    """YAML reads true, yes and on as booleans, and pydantic would take them for 1: a
+    ``links: true`` ran."""
+    with pytest.raises(CaseError, match=re.escape(where) + r": true/false .* not a number"):
+        _load(put)
+
+
+def test_a_boolean_field_takes_a_boolean():
+    assert _load(lambda d: d["environment"].update(in_air=True)).environment.in_air is True
+
+
+def _text(case: dict) -> str:
+    return yaml.safe_dump(case, sort_keys=False)
+
+
+def test_a_key_given_twice_is_refused_with_both_lines(tmp_path):
+    path = tmp_path / "case.yaml"
+    path.write_text(_text(CHAIN) + "name: again\n")
+    with pytest.raises(CaseError, match=r"key 'name' is given twice in one mapping \(lines 1 and"):
+        seacable.load_case(path)
+
+
+def test_anchors_aliases_and_merge_keys_still_read(tmp_path):
+    """Anchors, aliases and merge keys (a merged key given again overrides, not a duplicate)."""
+    text = _text(CHAIN).replace("  mass: 1.0\n", "  mass: &one 1.0\n")
+    text = text.replace("  mass_per_length: 1.0\n", "  mass_per_length: *one\n")
+    text = text.replace("  sections:\n  - type: chain\n    segments: 5\n    length: 10.0\n",
+                        "  sections:\n  - <<: {type: chain, segments: 3, length: 10.0}\n"
+                        "    segments: 5\n")  # fmt: skip
+    assert "*one" in text and "<<:" in text
+    path = tmp_path / "case.yaml"
+    path.write_text(text)
+    case = seacable.load_case(path)
+    assert case.lines[0].sections[0].segments == 5
+    assert case.line_types[0].mass_per_length == 1.0
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("# caf\xe9\n".encode("latin-1"), r"not UTF-8 text \(byte 0xe9 at position 5\)"),
+        ("name: x\n".encode("utf-16"), r"not UTF-8 text \(byte 0xff at position 0\)"),
+        (b"\x89HDF\r\n\x1a\n" + bytes(100), r"is a results file \(NetCDF/HDF5\), not a case"),
+        (b"a: " + b"[" * 5000 + b"]" * 5000, r"nested too deeply"),
+        (b"a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n"
+         + b"".join(b"%c: &%c [%s]\n" % (98 + i, 98 + i, b", ".join([b"*%c" % (97 + i)] * 10))
+                    for i in range(7)),
+         r"more than 1,000,000 values once its aliases"),
+        (b"name: x\n" + b"#" * 10_000_001, r"larger than 10,000,000 bytes"),
+    ],
+    ids=["latin-1", "utf-16", "results file", "deep nesting", "billion laughs", "huge"],
+)  # fmt: skip
+def test_files_that_are_not_cases_get_one_line(tmp_path, content, message):
+    """Each was a traceback (UnicodeDecodeError, RecursionError) or a hang before."""
+    path = tmp_path / "case.yaml"
+    path.write_bytes(content)
+    with pytest.raises(CaseError, match=message) as caught:
+        seacable.load_case(path)
+    assert "\n" not in str(caught.value)
+
+
+def test_a_directory_or_an_endless_file_as_case(tmp_path):
+    with pytest.raises(CaseError, match=r"is a directory; give the path of a \.yaml file"):
+        seacable.load_case(tmp_path)
+    with pytest.raises(CaseError, match=r"larger than 10,000,000 bytes"):
+        seacable.load_case("/dev/zero")
+
+
+def test_a_utf8_file_with_a_byte_order_mark_reads(tmp_path):
+    path = tmp_path / "case.yaml"
+    path.write_bytes(b"\xef\xbb\xbf" + _text(CHAIN).encode())
+    assert seacable.load_case(path).name == "test chain"
+
+
+def test_a_long_offending_value_is_quoted_shortened():
+    with pytest.raises(CaseError, match=r"\.\.\. \(\d+ characters\)\)$"):
+        _load(lambda d: d["lines"][0]["sections"][0].update(segments=list(range(1000))))
+
+
+def test_a_case_of_numpy_numbers_and_a_changed_case_store_their_own_text():
+    """A dict holding NumPy numbers could not be stored (a YAML RepresenterError); a case
+    changed with ``model_copy(update=...)`` stored the text it was read from, not the case that
+    ran."""
+    case = _load(lambda d: d["simulation"].update(duration=np.float64(2.0)))
+    assert "duration: 2.0" in case_text(case)
+    changed = case.model_copy(update={"name": "changed"})
+    assert "name: changed" in case_text(changed)
+    assert seacable.load_case(case_text(changed)).name == "changed"

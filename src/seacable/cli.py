@@ -71,8 +71,8 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
         _fail(str(exc), 2)
     except seacable.SimulationDiverged as exc:
         _fail(f"{exc}\npartial results (status 'diverged'): {output}", 3)
-    except seacable.SimulationInterrupted as exc:
-        _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 130)
+    except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
+        _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
     click.echo(f"{results.status}: {results.message}; results in {output}")
 
 

@@ -21,8 +21,10 @@ class SimulationDiverged(SeacableError, RuntimeError):
 
 
 class SimulationInterrupted(SeacableError, KeyboardInterrupt):
-    """The run was interrupted (Ctrl-C); ``results`` holds what was computed."""
+    """The run was interrupted (Ctrl-C, SIGINT, or SIGTERM: ``signal``); ``results`` holds
+    what was computed."""
 
-    def __init__(self, message: str, results=None):
+    def __init__(self, message: str, results=None, signal: int = 2):
         super().__init__(message)
         self.results = results
+        self.signal = signal

@@ -2,6 +2,7 @@
 
 import logging
 import math
+import signal
 import threading
 import time as _time
 from typing import Any
@@ -353,19 +354,30 @@ def simulate(
     variables = model.variables(system)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
     run = _Run(case, model, system, sink)
-    _compile(run)
-    bar = _progress_bar(progress, run.n_outputs, sim.output_interval)
+    stop = _Stop()
+    previous = stop.install()
+    bar = None
     try:
+        _compile(run)
+        bar = _progress_bar(progress, run.n_outputs, sim.output_interval)
         run.emit(np.array([0.0]), system.y0[None, :].copy())
-        status = _loop(run, bar, chunk_outputs)
+        stop.armed = True  # from here a signal is acted on between chunks
+        status = _loop(run, bar, chunk_outputs, stop)
     except KeyboardInterrupt:
+        signum = stop.signum or signal.SIGINT
+        who = (
+            "by the user (Ctrl-C)"
+            if signum == signal.SIGINT
+            else f"by {signal.Signals(signum).name}"
+        )
         results = sink.finish(
             STATUS_INTERRUPTED,
-            f"interrupted by the user at t = {run.t:.6g} s; results up to that time are kept",
+            f"interrupted {who} at t = {run.t:.6g} s; results up to that time are kept",
             _work(run),
         )
-        raise SimulationInterrupted(results.message, results) from None
+        raise SimulationInterrupted(results.message, results, int(signum)) from None
     finally:
+        stop.restore(previous)
         if bar is not None:
             bar.close()
     if status != Status.OK:
@@ -375,9 +387,35 @@ def simulate(
     return sink.finish(STATUS_COMPLETE, "the run reached its duration", _work(run))
 
 
-def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:
+class _Stop:
+    """SIGINT (Ctrl-C) and SIGTERM during a run: before its loop they interrupt at once
+    (nothing computed yet); in it they are noted and acted on after the chunk under way (about
+    _CHUNK_SECONDS of wall time), so that the rows written are whole."""
+
+    def __init__(self):
+        self.signum = 0
+        self.armed = False
+
+    def __call__(self, signum, frame):
+        self.signum = signum
+        if not self.armed:
+            raise KeyboardInterrupt
+
+    def install(self) -> dict:
+        """Handle both signals (only the main thread may); returns the handlers replaced."""
+        if threading.current_thread() is not threading.main_thread():
+            return {}
+        return {sig: signal.signal(sig, self) for sig in (signal.SIGINT, signal.SIGTERM)}
+
+    def restore(self, previous: dict) -> None:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None = None) -> int:
     """Advance the run in compiled chunks of ``chunk_outputs`` output intervals (None: sized
-    to about _CHUNK_SECONDS of wall time), stopping at each model refresh."""
+    to about _CHUNK_SECONDS of wall time), stopping at each model refresh, and after the
+    chunk in which ``stop`` noted a signal (KeyboardInterrupt)."""
     if chunk_outputs is not None and chunk_outputs < 1:
         raise ValueError(f"chunk_outputs must be a positive integer or None, not {chunk_outputs}")
     chunk = chunk_outputs or 1
@@ -393,6 +431,8 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None) -> int:
             bar.update(run.done - before)
         if status != Status.OK:
             return status
+        if stop is not None and stop.signum:
+            raise KeyboardInterrupt
         if refresh and run.done % refresh == 0 and run.done < run.n_outputs:
             run.refresh()
         if chunk_outputs is None:

@@ -9,6 +9,7 @@ angles in the case file in degrees (keys end in ``_deg``), radians everywhere in
 
 import csv
 import math
+import typing
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -21,7 +22,9 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+from pydantic_core import PydanticCustomError
 
+BOOLEAN_ERROR = "boolean_not_number"  # the error type of a true/false where a number is due
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
 Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x, y, z], m
@@ -43,7 +46,41 @@ def per_axis(value) -> tuple[float, float, float]:
 
 
 class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    """Every part of a case: unknown keys refused, frozen; NaN and infinities refused in every
+    number; true/false (yes/no, on/off in YAML) refused where a number or a name is expected
+    (pydantic would read true as 1)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _booleans_are_not_numbers(cls, data):
+        if not isinstance(data, dict):
+            return data
+        for name, field in cls.model_fields.items():
+            for key in {name, field.alias} - {None}:
+                if key in data and _holds_bool(data[key]) and not _admits_bool(field.annotation):
+                    raise PydanticCustomError(
+                        BOOLEAN_ERROR,
+                        "true/false (or yes/no, on/off) is not a number or a name here; write "
+                        "a number, or quote the word",
+                        {"key": key, "value": data[key]},
+                    )
+        return data
+
+
+def _holds_bool(value) -> bool:
+    """A boolean, or a list of values that holds one (mappings are checked by their model)."""
+    if isinstance(value, bool):
+        return True
+    return isinstance(value, list | tuple) and any(_holds_bool(v) for v in value)
+
+
+def _admits_bool(annotation) -> bool:
+    """Whether a field's type takes a boolean somewhere (bool, Any, or a union holding one)."""
+    if annotation is bool or annotation is Any:
+        return True
+    return any(_admits_bool(arg) for arg in typing.get_args(annotation) if arg is not None)
 
 
 # ---- time functions ------------------------------------------------------------------------------

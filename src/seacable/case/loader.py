@@ -9,6 +9,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
+from seacable.case.base import BOOLEAN_ERROR
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -29,8 +30,85 @@ _CaseYAML.add_implicit_resolver(
 )
 
 
+def _no_duplicates(loader: Any, node: Any) -> dict:
+    """A mapping whose keys are each given once: YAML lets the last of two equal keys win
+    silently, which hides a typo or a pasted block."""
+    seen: dict = {}
+    for key_node, _ in node.value:
+        if key_node.tag == "tag:yaml.org,2002:merge":
+            continue  # "<<": its keys may be given again, to override them
+        key = loader.construct_object(key_node, deep=True)
+        if isinstance(key, typing.Hashable) and key in seen:
+            raise CaseError(
+                f"case file: key '{key}' is given twice in one mapping (lines "
+                f"{seen[key] + 1} and {key_node.start_mark.line + 1}); keep one of them"
+            )
+        seen[key] = key_node.start_mark.line
+    return yaml.SafeLoader.construct_mapping(loader, node)
+
+
+_CaseYAML.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _no_duplicates)
+
+LARGEST_CASE = 10_000_000  # bytes: a case file (tables and meshes go in their own files)
+MOST_VALUES = 1_000_000  # values in a case once its YAML aliases are expanded
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
 def _parse(text: str):
-    return yaml.load(text, Loader=_CaseYAML)  # a SafeLoader: never constructs objects
+    """The YAML text's data (a SafeLoader: never constructs objects), or one CaseError line:
+    not YAML, a key given twice, nested too deep, or expanding (through aliases) to more
+    values than any case holds."""
+    try:
+        data = yaml.load(text, Loader=_CaseYAML)
+    except yaml.YAMLError as exc:
+        raise CaseError(f"case file is not valid YAML: {_shortened(str(exc), 300)}") from None
+    except RecursionError:
+        raise CaseError("case file: its lists or mappings are nested too deeply") from None
+    _count(data, [0])
+    return data
+
+
+def _count(value, seen: list[int]) -> None:
+    """Refuse data whose values, counted as a reader walks them (a YAML alias as often as it
+    is used), exceed MOST_VALUES: the "billion laughs" of nested aliases."""
+    seen[0] += 1
+    if seen[0] > MOST_VALUES:
+        raise CaseError(
+            f"case file: more than {MOST_VALUES:,} values once its aliases (*name) are expanded; "
+            "no case holds that many: check the anchors (&name) and aliases"
+        )
+    if isinstance(value, dict):
+        for item in value.values():
+            _count(item, seen)
+    elif isinstance(value, list):
+        for item in value:
+            _count(item, seen)
+
+
+def _text(path: Path) -> str:
+    """A case file's text, or one CaseError line: a directory, too large, a results file, not
+    UTF-8 text."""
+    if path.is_dir():
+        raise CaseError(f"case file '{path}' is a directory; give the path of a .yaml file")
+    with path.open("rb") as f:
+        raw = f.read(LARGEST_CASE + 1)  # never more: a device or a pipe may not end
+    if raw.startswith(HDF5_SIGNATURE):
+        raise CaseError(
+            f"case file '{path}' is a results file (NetCDF/HDF5), not a case; give the .yaml "
+            "case file (a results file's case is in its 'case' attribute)"
+        )
+    if len(raw) > LARGEST_CASE:
+        raise CaseError(
+            f"case file '{path}' is larger than {LARGEST_CASE:,} bytes, more than any case "
+            "holds (put tables and meshes in their own files)"
+        )
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise CaseError(
+            f"case file '{path}' is not UTF-8 text (byte {raw[exc.start]:#04x} at position "
+            f"{exc.start}); save it as UTF-8"
+        ) from None
 
 
 def load_case(source: str | Path | dict) -> SystemCase:
@@ -86,14 +164,11 @@ def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
         if path is not None and path.suffix.lower() in (".yaml", ".yml") and not path.exists():
             raise CaseError(f"case file '{path}' does not exist")
         if path is not None and path.exists():
-            text = path.read_text()
+            text = _text(path)
             base_dir = path.resolve().parent
         else:
             text = str(source)
-        try:
-            data = _parse(text)
-        except yaml.YAMLError as exc:
-            raise CaseError(f"case file is not valid YAML: {exc}") from None
+        data = _parse(text)
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
     return data, text, base_dir
@@ -104,7 +179,8 @@ def _validated(root, data: dict, text: str | None, base_dir: Path | None) -> Cas
         case = root.model_validate(data)
     except ValidationError as exc:
         raise CaseError(format_errors(exc, root)) from None
-    case._source_text = text if text is not None else yaml.safe_dump(data, sort_keys=False)
+    case._source_dump = case.model_dump(mode="json")
+    case._source_text = text if text is not None else _dumped(case)
     case._base_dir = None if base_dir is None else str(base_dir)
     return case
 
@@ -143,11 +219,18 @@ def _merged(data: dict, changes: dict) -> dict:
 
 
 def case_text(case: Case | SystemCase) -> str:
-    """The YAML text a case was loaded from (or a dump of it when built in Python)."""
-    text = case._source_text
-    if text is None:
-        text = yaml.safe_dump(case.model_dump(mode="json"), sort_keys=False)
-    return text
+    """The YAML text a case was loaded from, or a dump of the case when it was built in Python
+    or changed since (``model_copy(update=...)``): the text of the case that runs."""
+    if case._source_text is None or case._source_dump != case.model_dump(mode="json"):
+        return _dumped(case)
+    return case._source_text
+
+
+def _dumped(case: Case | SystemCase) -> str:
+    """A case as YAML, in its file's keys (a dict given in Python may hold NumPy numbers, which
+    YAML cannot write: the validated case holds plain ones)."""
+    data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
 
 
 def case_base_dir(case: Case | SystemCase):
@@ -189,7 +272,10 @@ def format_errors(exc: ValidationError, root: Any = Case) -> str:
             lines.append(f"- {where}: required key is missing")
             continue
         value = error.get("input")
-        shown = repr(value) if not isinstance(value, dict) else "{...}"
+        if error["type"] == BOOLEAN_ERROR:  # raised by the model holding the key
+            where = f"{path}.{error['ctx']['key']}" if path else str(error["ctx"]["key"])
+            value = error["ctx"]["value"]
+        shown = _shortened(repr(value)) if not isinstance(value, dict) else "{...}"
         if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
             ctx = error.get("ctx", {})
             key = ctx.get("discriminator", "'type'").strip("'")
@@ -205,6 +291,11 @@ def format_errors(exc: ValidationError, root: Any = Case) -> str:
             continue
         lines.append(f"- {where}: {message} (got {shown})")
     return "\n".join(lines)
+
+
+def _shortened(text: str, size: int = 80) -> str:
+    """An offending value as an error quotes it: never the whole input."""
+    return text if len(text) <= size else f"{text[: size - 25]} ... ({len(text)} characters)"
 
 
 def _walk(loc, root: Any = Case) -> tuple[str, type[BaseModel] | None]:

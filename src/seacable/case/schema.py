@@ -438,6 +438,7 @@ class Case(_Model):
     bodies: list[SharedBody] = []
     simulation: Simulation
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
+    _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
 
     @model_validator(mode="after")
