@@ -10,7 +10,13 @@ Public API::
 from seacable.analysis import statics
 from seacable.case.loader import load_case
 from seacable.case.system import SystemCase
-from seacable.errors import CaseError, SeacableError, SimulationDiverged, SimulationInterrupted
+from seacable.errors import (
+    CaseError,
+    OutputError,
+    SeacableError,
+    SimulationDiverged,
+    SimulationInterrupted,
+)
 from seacable.results import Results
 from seacable.simulation import simulate
 
@@ -18,6 +24,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "CaseError",
+    "OutputError",
     "Results",
     "SeacableError",
     "SimulationDiverged",

@@ -67,7 +67,7 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
     try:
         case = seacable.load_case(case_file)
         results = seacable.simulate(case, output=output, progress=progress)
-    except seacable.CaseError as exc:
+    except (seacable.CaseError, seacable.OutputError) as exc:
         _fail(str(exc), 2)
     except seacable.SimulationDiverged as exc:
         _fail(f"{exc}\npartial results (status 'diverged'): {output}", 3)

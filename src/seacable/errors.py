@@ -9,6 +9,11 @@ class CaseError(SeacableError, ValueError):
     """A case file or case object is invalid; the message names the field, value and fix."""
 
 
+class OutputError(SeacableError, OSError):
+    """The results cannot be written where asked (another run writes that file); the message
+    names the file and what to do."""
+
+
 class SimulationDiverged(SeacableError, RuntimeError):
     """The integration produced a non-finite or singular state.
 

@@ -7,11 +7,15 @@ runs or if the process died) with its ``status_message``.
 """
 
 import datetime as _dt
+import os
 from pathlib import Path
 
 import h5netcdf
+import h5py
 import numpy as np
 import xarray as xr
+
+from seacable.errors import OutputError
 
 STATUS_COMPLETE = "complete"
 STATUS_DIVERGED = "diverged"
@@ -68,23 +72,43 @@ class Results:
 
     @classmethod
     def open(cls, path, lazy: bool = False) -> "Results":
-        """Read results written by seacable (complete or not). ``lazy`` keeps the file open and
-        reads a variable, or the part of it asked for, only when it is used (long runs)."""
+        """Read results written by seacable (complete or not: the rows a run never wrote, NaN
+        in the file, are left out). ``lazy`` keeps the file open and reads a variable, or the
+        part of it asked for, only when it is used (long runs)."""
         with h5netcdf.File(path, "r") as f:
             grouped = bool(f.groups)
+            written = int(np.count_nonzero(np.isfinite(f["time"][...]))) if "time" in f else 0
         opener = xr.open_datatree if grouped else xr.open_dataset
         if lazy:
-            return cls(opener(path, engine="h5netcdf"), Path(path))
+            return cls(_rows(opener(path, engine="h5netcdf"), written), Path(path))
         with opener(path, engine="h5netcdf") as ds:
-            return cls(ds.load(), Path(path))
+            return cls(_rows(ds, written).load(), Path(path))
+
+
+def _rows(ds, count: int):
+    """The first ``count`` time rows of a Dataset or DataTree (every group's time alike)."""
+    return ds.isel(time=slice(0, count)) if "time" in ds.dims else ds
 
 
 class _Sink:
-    """Where output rows go: in memory, or also appended to a NetCDF file as they come."""
+    """Where output rows go: in memory, or to a NetCDF file as they come (then not kept in
+    memory: ``finish`` reads them back).
 
-    def __init__(self, path, sizes: dict, coords: dict, variables: dict, attrs: dict):
+    The file is crash-safe: every variable is stored contiguously, its whole size for the
+    ``rows`` the run will write allocated at creation and filled with NaN (``_FillValue``), and
+    the file's structure flushed then. After that a run writes raw values only, never HDF5's
+    structure (no dimension grows, no chunk is allocated), and flushes after each chunk of
+    rows: a process killed at any moment, even with SIGKILL, leaves a file that opens, with
+    every row up to the last flush and NaN after. (Appending rows to unlimited dimensions, as
+    before, rewrote the file's structure at each chunk: killed mid-write, the file no longer
+    opened.) The file is in proportion to its rows: no chunk padding (a line of 100,000
+    segments with one row was 4.1 GB of chunks of 1024 rows)."""
+
+    def __init__(self, path, sizes: dict, coords: dict, variables: dict, attrs: dict,
+                 rows: int = 1):  # fmt: skip
         """``sizes`` maps each dimension but time to its length; ``coords`` maps name ->
-        (dim, values, units, long_name); ``variables`` maps name -> (dims, units, long_name)."""
+        (dim, values, units, long_name); ``variables`` maps name -> (dims, units, long_name);
+        ``rows``: the time rows the run will write at most (a file's size)."""
         self.path = None if path is None else Path(path)
         self.sizes = sizes
         self.coords = coords
@@ -92,22 +116,27 @@ class _Sink:
         self.attrs = dict(attrs)
         self.chunks: dict[str, list[np.ndarray]] = {name: [] for name in ("time", *variables)}
         self.rows = 0
+        self.capacity = rows
         self._file = None
         if self.path is not None:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self._file = self._create()
+            _not_being_written(self.path)
+            # made under another name and renamed once its structure is on disk: the file at
+            # ``path`` is never one that does not open
+            creating = self.path.with_name(f".{self.path.name}.creating")
+            self._file = self._create(creating)
+            os.replace(creating, self.path)
 
-    def _create(self):
-        f = h5netcdf.File(self.path, "w")
-        f.dimensions = {"time": None}
-        # every group of time rows has its own unlimited time dimension (the root's time
-        # coordinate applies to it): a reader sizes an unlimited dimension by visiting every
-        # variable that uses it, once per variable it opens; one dimension shared by the
-        # hundreds of variables of a system made opening a four-cable result take 15 s
+    def _create(self, target: Path):
+        f = h5netcdf.File(target, "w")
+        f.dimensions = {"time": self.capacity}
+        # every group of time rows has its own time dimension (the root's time coordinate
+        # applies to it): one dimension shared by the hundreds of variables of a system made
+        # opening a four-cable result take 15 s while it was unlimited
         self.timed = sorted({_split(path)[0] for path, (dims, _, _) in self.variables.items()
                              if "time" in dims} - {""})  # fmt: skip
         for group in self.timed:
-            _group(f, group).dimensions["time"] = None
+            _group(f, group).dimensions["time"] = self.capacity
         for path, size in self.sizes.items():  # a system's are per group: "lines/chain/node"
             group, dim = _split(path)
             _group(f, group).dimensions[dim] = size
@@ -115,17 +144,15 @@ class _Sink:
             group, name = _split(path)
             v = _group(f, group).create_variable(name, (dim,), float, data=values)
             v.attrs.update(units=units, long_name=long_name)
-        t = f.create_variable("time", ("time",), float, chunks=(1024,))
+        t = f.create_variable("time", ("time",), float, **_ALLOCATED)
         t.attrs.update(units="s", long_name="time", standard_name="time")
         for path, (dims, units, long_name) in self.variables.items():
             group, name = _split(path)
-            shape = tuple(1024 if d == "time" else self._size(group, d) for d in dims)
-            v = _group(f, group).create_variable(
-                name, dims, float, chunks=tuple(min(s, 1024) for s in shape)
-            )
+            v = _group(f, group).create_variable(name, dims, float, **_ALLOCATED)
             v.attrs.update(units=units, long_name=long_name)
         f.attrs.update(self.attrs)
-        f.flush()
+        f.flush()  # h5netcdf's: writes its _NCProperties (an attribute: not again until close)
+        f._h5file.flush()  # HDF5's: the structure on disk (h5netcdf's flush does not do it)
         return f
 
     def _size(self, group: str, dim: str) -> int:
@@ -138,25 +165,26 @@ class _Sink:
         if count == 0:
             return
         rows = {name: values for name, values in rows.items() if name in self.chunks}
-        for name, values in rows.items():
-            self.chunks[name].append(np.array(values, copy=True))
-        if self._file is not None:
-            start = self.rows
-            self._file.resize_dimension("time", start + count)
-            for group in self.timed:
-                _group(self._file, group).resize_dimension("time", start + count)
+        if self.rows + count > self.capacity:
+            raise ValueError(f"{self.rows + count} rows, more than the {self.capacity} allotted")
+        if self._file is None:
             for name, values in rows.items():
-                self._file[name][start : start + count, ...] = values
-            self._file.flush()
+                self.chunks[name].append(np.array(values, copy=True))
+        else:
+            start = self.rows
+            for name in ("time", *(name for name in rows if name != "time")):
+                self._file[name][start : start + count, ...] = rows[name]
+            self._file._h5file.flush()  # the rows on disk (raw values only)
         self.rows += count
 
     def finish(self, status: str, message: str, extra: dict) -> Results:
         self.attrs.update(status=status, status_message=message, **extra)
-        if self._file is not None:
-            self._file.attrs.update(status=status, status_message=message, **extra)
-            self._file.close()
-            self._file = None
-        return Results(self._dataset(), self.path)
+        if self._file is None:
+            return Results(self._dataset(), self.path)
+        self._file.attrs.update(status=status, status_message=message, **extra)
+        self._file.close()
+        self._file = None
+        return Results.open(self.path)
 
     def _dataset(self) -> xr.Dataset | xr.DataTree:
         """The rows as a Dataset, or as a DataTree when the variables live in groups."""
@@ -182,6 +210,33 @@ class _Sink:
         }
         tree["/"] = tree["/"].assign_attrs(self.attrs)
         return xr.DataTree.from_dict(tree)
+
+
+def _not_being_written(path: Path) -> None:
+    """Refuse an output file that another run is writing (HDF5 locks a file it writes: a
+    second writer would replace it under the first, whose rows would be lost)."""
+    if not path.exists():
+        return
+    try:
+        with h5py.File(path, "r"):
+            pass
+    except OSError as exc:
+        if "lock" in str(exc).lower():
+            raise OutputError(
+                f"output file '{path}' is being written by another run; wait for it to end or "
+                "choose another output file"
+            ) from None
+
+
+def _allocated() -> dict:
+    """h5py's settings of a crash-safe variable (``_Sink``): contiguous, its storage allocated
+    and filled with NaN when it is created."""
+    plist = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
+    plist.set_alloc_time(h5py.h5d.ALLOC_TIME_EARLY)
+    return {"fillvalue": np.nan, "fill_time": "alloc", "dcpl": plist}
+
+
+_ALLOCATED = _allocated()
 
 
 def _split(path: str) -> tuple[str, str]:

@@ -92,6 +92,11 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
     )
 
 
+def output_count(sim: schema.Simulation) -> int:
+    """The output intervals of a run (its rows but the first, at t = 0)."""
+    return max(1, int(round(sim.duration / sim.output_interval)))
+
+
 def _check_case(case: SystemCase) -> None:
     if not isinstance(case, SystemCase):
         raise CaseError(
@@ -162,7 +167,7 @@ class _Run:
         self.acc = np.zeros(positions)  # implicit schemes: the acceleration a0
         self.stepper = None  # SciPy / SUNDIALS integrators
         self.stiff_failure = None
-        self.n_outputs = max(1, int(round(self.sim.duration / self.sim.output_interval)))
+        self.n_outputs = output_count(self.sim)
         self.done = 0
         # state carried from chunk to chunk (numerics.contract, point 5): dopri5's
         # stages with a flag saying whether k[0] is the derivative at (t, y); the implicit
@@ -352,7 +357,8 @@ def simulate(
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
     variables = model.variables(system)
-    sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs)
+    sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs,
+                 rows=1 + output_count(sim))  # fmt: skip
     run = _Run(case, model, system, sink)
     stop = _Stop()
     previous = stop.install()
