@@ -335,3 +335,23 @@ def test_a_case_of_numpy_numbers_and_a_changed_case_store_their_own_text():
     changed = case.model_copy(update={"name": "changed"})
     assert "name: changed" in case_text(changed)
     assert seacable.load_case(case_text(changed)).name == "changed"
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"duration": 1e12}, r"simulation: .*1e\+13 output rows, more than any run can write"),
+        ({"time_step": 1e-12, "output_interval": 1e-4, "duration": 1.0},
+         r"simulation: .*1e\+12 steps, more than a run can take in a day"),
+    ],
+)  # fmt: skip
+def test_time_that_cannot_finish_is_refused_up_front(change, message):
+    """Before, a duration of 1e12 s ended in a traceback and a step of 1e-12 s ran on."""
+    with pytest.raises(CaseError, match=message):
+        _load(lambda d: d["simulation"].update(change))
+
+
+def test_more_segments_than_a_run_can_hold_are_refused():
+    sections = [{"type": "chain", "segments": 100_000, "length": 10.0}] * 21
+    with pytest.raises(CaseError, match=r"lines: 2,100,000 segments in all, more than a run"):
+        _load(lambda d: d["lines"][0].update(sections=sections))

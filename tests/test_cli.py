@@ -234,3 +234,49 @@ def test_upgrade_writes_a_single_cable_case_as_a_system(tmp_path):
     assert [line.from_ for line in case.lines[:2]] == ["buoy", "cable 1 joint 13"]
     assert [line.to for line in case.lines[:2]] == ["cable 1 joint 13", "cable 1 top"]
     assert case.lines[0].initial.angles_deg[:6] == [-180.0] * 5 + [10.59 - 180.0]
+
+
+def test_every_failure_is_one_line_and_its_exit_code(tmp_path, monkeypatch):
+    """The command line's one error boundary: input errors exit 2, a bug exits 1 with one
+    line saying so (``--debug`` shows the traceback), never a traceback for a user's mistake."""
+    runner = CliRunner()
+    case = _case_file(tmp_path)
+    result = runner.invoke(main, ["run", str(case), "-o", str(case)])  # over the case itself
+    assert result.exit_code == 2
+    assert "looks like a case or table file, which the results would replace" in result.output
+    unreadable = tmp_path / "latin1.yaml"
+    unreadable.write_bytes("name: caf\xe9\n".encode("latin-1"))
+    for command in ("run", "validate", "statics", "modes"):
+        result = runner.invoke(main, [command, str(unreadable)])
+        assert result.exit_code == 2, (command, result.output)
+        assert result.output.count("\n") == 1 and "not UTF-8 text" in result.output
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("something impossible")
+
+    monkeypatch.setattr("seacable.simulate", broken)
+    result = runner.invoke(main, ["run", str(case)])
+    assert result.exit_code == 1
+    assert "internal error, a bug in seacable (RuntimeError: something impossible)" in (
+        result.output
+    )
+    assert "--debug" in result.output and "Traceback" not in result.output
+    result = runner.invoke(main, ["--debug", "run", str(case)])
+    assert isinstance(result.exception, RuntimeError)
+
+
+def test_validate_checks_what_a_run_checks_before_its_first_step(tmp_path):
+    """A line too short to reach its ends is only found when the system is built: validate
+    builds it, as the run does (before, such a case passed validate and failed in run)."""
+    import copy
+
+    from test_case_errors import CHAIN
+
+    data = copy.deepcopy(CHAIN)
+    data["bodies"][1] = {"name": "end", "type": "fixed", "position": [0.0, 0.0, -10.0]}
+    data["lines"][0]["sections"][0]["length"] = 5.0
+    path = tmp_path / "short.yaml"
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 2
+    assert "farther than its length" in result.output

@@ -19,6 +19,7 @@ from seacable.errors import (
 )
 from seacable.results import Results
 from seacable.simulation import simulate
+from seacable.system.statics import StaticsError
 
 __version__ = "0.1.0"
 
@@ -29,6 +30,7 @@ __all__ = [
     "SeacableError",
     "SimulationDiverged",
     "SimulationInterrupted",
+    "StaticsError",
     "SystemCase",
     "__version__",
     "load_case",

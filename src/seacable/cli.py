@@ -10,9 +10,15 @@ import click
 import xarray as xr
 
 import seacable
-from seacable import analysis, viz
+from seacable import analysis, simulation, viz
 from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
+
+# exit codes (README, "Command line"): 0 done; 1 a bug in seacable; 2 the input (case file,
+# output path, no equilibrium, a file that cannot be read or written); 3 the run diverged;
+# 128 + the signal when interrupted (130 Ctrl-C, 143 SIGTERM)
+EXIT_BUG, EXIT_INPUT, EXIT_DIVERGED = 1, 2, 3
+REPORT = "https://github.com/seacable/seacable/issues"
 
 
 def _fail(message: str, code: int = 1) -> NoReturn:
@@ -20,10 +26,43 @@ def _fail(message: str, code: int = 1) -> NoReturn:
     sys.exit(code)
 
 
-@click.group()
+class _Boundary(click.Group):
+    """The command line's one error boundary: every failure a user can meet is one line on
+    stderr and an exit code; anything else is a bug, said so in one line (``--debug``: the
+    traceback)."""
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except (click.exceptions.Exit, click.ClickException, SystemExit):
+            raise
+        except seacable.SimulationInterrupted as exc:
+            _fail(str(exc), 128 + exc.signal)
+        except KeyboardInterrupt:
+            _fail("interrupted", 130)
+        except seacable.SimulationDiverged as exc:
+            _fail(str(exc), EXIT_DIVERGED)
+        except seacable.SeacableError as exc:
+            _fail(str(exc), EXIT_INPUT)
+        except OSError as exc:  # a file that cannot be read or written
+            where = f" '{exc.filename}'" if exc.filename else ""
+            _fail(f"cannot use the file{where}: {exc.strerror or exc}", EXIT_INPUT)
+        except Exception as exc:
+            if ctx.params.get("debug"):
+                raise
+            _fail(
+                f"internal error, a bug in seacable ({type(exc).__name__}: "
+                f"{str(exc)[:200]}); please report it at {REPORT} with the case file, and "
+                "run again with --debug for the traceback",
+                EXIT_BUG,
+            )
+
+
+@click.group(cls=_Boundary)
 @click.version_option(seacable.__version__, prog_name="seacable")
 @click.option("-v", "--verbose", is_flag=True, help="Show seacable's debug messages.")
-def main(verbose: bool) -> None:
+@click.option("--debug", is_flag=True, help="Show the traceback of an internal error.")
+def main(verbose: bool, debug: bool) -> None:
     """Simulate marine cables and the bodies they connect."""
     _configure_logging(verbose)
 
@@ -67,10 +106,8 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
     try:
         case = seacable.load_case(case_file)
         results = seacable.simulate(case, output=output, progress=progress)
-    except (seacable.CaseError, seacable.OutputError) as exc:
-        _fail(str(exc), 2)
     except seacable.SimulationDiverged as exc:
-        _fail(f"{exc}\npartial results (status 'diverged'): {output}", 3)
+        _fail(f"{exc}\npartial results (status 'diverged'): {output}", EXIT_DIVERGED)
     except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
     click.echo(f"{results.status}: {results.message}; results in {output}")
@@ -82,10 +119,7 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
 def upgrade(case_file: str, output: str | None) -> None:
     """Write CASE_FILE (the single-cable form, cables: with top and bottom) in the system form
     of bodies and lines (to stdout, or OUTPUT next to it: table files keep their names)."""
-    try:
-        text = legacy.upgrade_text(loader.load_single_cable(case_file))
-    except seacable.CaseError as exc:
-        _fail(str(exc), 2)
+    text = legacy.upgrade_text(loader.load_single_cable(case_file))
     if output is None:
         click.echo(text, nl=False)
         return
@@ -96,14 +130,16 @@ def upgrade(case_file: str, output: str | None) -> None:
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
 def validate(case_file: str) -> None:
-    """Check CASE_FILE without running it."""
-    try:
-        case = seacable.load_case(case_file)
-    except seacable.CaseError as exc:
-        _fail(str(exc), 2)
+    """Check CASE_FILE as a run does before its first step (the system built, its tables read,
+    its geometry checked, the statics it starts from solved, the step checked), without
+    running it."""
+    case = seacable.load_case(case_file)
     if isinstance(case, SystemCase):
+        _, warning = simulation.prepare(case)  # all a run checks before its first step
         kinds = ", ".join(f"{b.name} ({b.type})" for b in case.bodies)
         models = ", ".join(f"{line.name} ({line.model})" for line in case.lines)
+        if warning:
+            click.echo(f"warning: {warning}", err=True)
         click.echo(
             f"ok: case '{case.name}': bodies {kinds}; lines {models}; "
             f"{case.simulation.duration:g} s with {case.simulation.integrator}"
@@ -128,10 +164,7 @@ def statics(case_file: str, output: str | None) -> None:
     """Static equilibrium of the system of CASE_FILE: every body's pose and every line's end
     tensions, printed and written."""
     output = output or str(Path(case_file).with_suffix(".statics.nc"))
-    try:
-        results = seacable.statics(seacable.load_case(case_file), output=output)
-    except seacable.SeacableError as exc:
-        _fail(str(exc), 2)
+    results = seacable.statics(seacable.load_case(case_file), output=output)
     tree = results.dataset
     for name, node in tree["bodies"].children.items():
         ds = node.to_dataset().isel(time=0)
@@ -162,10 +195,7 @@ def statics(case_file: str, output: str | None) -> None:
 def modes(case_file: str, count: int) -> None:
     """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
     ratio and the coordinate each mode moves most."""
-    try:
-        found = analysis.system_modes(seacable.load_case(case_file), count=count)
-    except seacable.SeacableError as exc:
-        _fail(str(exc), 2)
+    found = analysis.system_modes(seacable.load_case(case_file), count=count)
     click.echo("mode  period [s]  damping ratio  moves most")
     for k in range(found.sizes["mode"]):
         click.echo(
@@ -180,7 +210,7 @@ def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
         _fail(
             f"{results_file}: results of the single-cable core (retired after commit 4911bc8); "
             "run the case as a system (seacable upgrade case.yaml -o system.yaml) and draw those",
-            2,
+            EXIT_INPUT,
         )
     return results.dataset
 
@@ -230,7 +260,7 @@ def animate(
             progress=progress,
         )
     except ValueError as exc:
-        _fail(str(exc), 2)
+        _fail(str(exc), EXIT_INPUT)
     finally:
         results.dataset.close()
     click.echo(f"animation written: {output}")

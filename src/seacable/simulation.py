@@ -92,6 +92,16 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
     )
 
 
+def prepare(case: SystemCase) -> tuple[Any, str | None]:
+    """Everything a run does before its first step, and ``seacable validate`` with it: the
+    case's form, the system built (tables read, geometry checked, the statics it starts from
+    solved), the step checked against the fastest motion. Returns the built system and the
+    step's warning (None when the step is safe). Raises CaseError (or StaticsError)."""
+    _check_case(case)
+    system = system_model.build(case, loader.case_base_dir(case))
+    return system, _step_warning(case.simulation, system)
+
+
 def output_count(sim: schema.Simulation) -> int:
     """The output intervals of a run (its rows but the first, at t = 0)."""
     return max(1, int(round(sim.duration / sim.output_interval)))
@@ -347,11 +357,9 @@ def simulate(
         Ctrl-C; ``results`` hold everything computed before.
     """
     model = system_model
-    _check_case(case)
-    system = model.build(case, loader.case_base_dir(case))
+    system, warning = prepare(case)
     sim = case.simulation
     settings = _solver_settings(sim)
-    warning = _step_warning(sim, system)
     if warning:
         log.warning(warning)
         settings["warning"] = warning

@@ -318,6 +318,8 @@ Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="
 
 # ---- simulation ----------------------------------------------------------------------------------
 FIXED_STEP_INTEGRATORS = ("rk4", "implicit_euler", "theta", "newmark", "generalized_alpha")
+MOST_ROWS = 1e8  # output rows of one run: a hundred million rows of a single number is 800 MB
+MOST_STEPS = 1e10  # fixed steps of one run: at a microsecond a step, about three hours
 
 
 class Simulation(_Model):
@@ -410,6 +412,18 @@ class Simulation(_Model):
                 f"({self.duration} s)"
             )
         count = self.duration / self.output_interval
+        if count > MOST_ROWS:
+            raise ValueError(
+                f"duration / output_interval = {count:.3g} output rows, more than any run can "
+                f"write ({MOST_ROWS:.0e}); lengthen output_interval or shorten duration"
+            )
+        step = self.time_step if self.integrator in FIXED_STEP_INTEGRATORS else None
+        if step is not None and self.duration / step > MOST_STEPS:
+            raise ValueError(
+                f"duration / time_step = {self.duration / step:.3g} steps, more than a run can "
+                f"take in a day on any machine ({MOST_STEPS:.0e}); lengthen time_step (or use "
+                "an implicit integrator) or shorten duration"
+            )
         if abs(count - round(count)) > 1e-6 * count:
             below = math.floor(count) * self.output_interval
             raise ValueError(

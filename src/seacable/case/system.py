@@ -298,6 +298,9 @@ class LineType(_Model):
         return self
 
 
+MOST_SEGMENTS = 2_000_000  # segments of all lines of a case
+
+
 class Section(_Model):
     """A stretch of a line: ``length`` [m] of line type ``type`` in ``segments`` equal
     segments. Sections of different lengths, types and joints make a line of unequal segments.
@@ -484,4 +487,11 @@ class SystemCase(_Model):
             twice = sorted({n for n in names if names.count(n) > 1})
             if twice:
                 raise ValueError(f"{what}: names must be unique; {twice} appear more than once")
+        segments = sum(section.segments for line in self.lines
+                       for section in getattr(line, "sections", None) or [])  # fmt: skip
+        if segments > MOST_SEGMENTS:
+            raise ValueError(
+                f"lines: {segments:,} segments in all, more than a run can hold in memory and "
+                f"finish ({MOST_SEGMENTS:,}); use fewer, longer segments"
+            )
         return self
