@@ -355,3 +355,21 @@ def test_more_segments_than_a_run_can_hold_are_refused():
     sections = [{"type": "chain", "segments": 100_000, "length": 10.0}] * 21
     with pytest.raises(CaseError, match=r"lines: 2,100,000 segments in all, more than a run"):
         _load(lambda d: d["lines"][0].update(sections=sections))
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [(None, r"table file '/dev/zero' is larger than 50,000,000 bytes"),
+     (b"0,1\n1,nan\n", r"NaN or infinite values"),
+     ("0,caf\xe9\n".encode("latin-1"), r"not UTF-8 text \(byte 0xe9 at position 5\)")],
+    ids=["endless", "nan", "latin-1"],
+)  # fmt: skip
+def test_bad_table_files_name_the_field(tmp_path, content, message):
+    """A table file that never ends (/dev/zero) was read until memory ran out."""
+    name = "/dev/zero"
+    if content is not None:
+        name = str(tmp_path / "table.csv")
+        Path(name).write_bytes(content)
+    case = _load(lambda d: _top(d, type="imposed", x={"kind": "table", "file": name}))
+    with pytest.raises(CaseError, match=r"bodies\[0\] \(top\)\.x: .*" + message):
+        seacable.simulate(case)

@@ -112,3 +112,42 @@ def test_a_file_is_in_proportion_to_its_rows(tmp_path):
     results = seacable.simulate(seacable.load_case(case), output=path)
     assert results.dataset.sizes["time"] == 2
     assert path.stat().st_size < 50 * 2 * (n + 1)
+
+
+def test_a_results_file_repeats_its_run(tmp_path):
+    """A file keeps how to repeat its run: the case, every setting resolved, the text of the
+    files the case read, the software's versions and the platform; ``seacable repeat`` runs it
+    again from the file alone (the table file deleted) and gives the same numbers, bit for
+    bit."""
+    import copy
+
+    import xarray as xr
+    import yaml
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+    from test_case_errors import CHAIN
+
+    data = copy.deepcopy(CHAIN)
+    push = {"model": "applied", "force_x": {"kind": "table", "file": "tables/push.csv"}}
+    data["bodies"][1]["external forces"].append(push)
+    (tmp_path / "tables").mkdir()
+    (tmp_path / "tables/push.csv").write_text("time,force\n0,0\n0.5,3\n1,0\n")
+    case = tmp_path / "case.yaml"
+    case.write_text(yaml.safe_dump(data, sort_keys=False))
+    first = tmp_path / "first.nc"
+    seacable.simulate(seacable.load_case(case), output=first)
+    (tmp_path / "tables/push.csv").unlink()
+    again = tmp_path / "again.nc"
+    result = CliRunner().invoke(main, ["repeat", str(first), "-o", str(again), "--no-progress"])
+    assert result.exit_code == 0, result.output
+    with xr.open_datatree(first) as a, xr.open_datatree(again) as b:
+        assert yaml.safe_load(a.attrs["input_files"]) == {
+            "tables/push.csv": "time,force\n0,0\n0.5,3\n1,0\n"
+        }
+        assert "numba" in a.attrs["software"] and a.attrs["platform"]
+        assert yaml.safe_load(a.attrs["case_resolved"])["simulation"]["integrator"] == "rk4"
+        assert np.ptp(a["bodies/end/position_x"].values) > 0.0  # the table's push moved it
+        for node in a.subtree:
+            for name, values in node.data_vars.items():
+                np.testing.assert_array_equal(b[node.path][name].values, values.values)

@@ -147,6 +147,7 @@ def statics(case: SystemCase, output=None) -> Results:
     case = derived
     system = system_model.build(case, loader.case_base_dir(case))
     attrs = provenance(loader.case_text(case), {"analysis": "statics"})
+    attrs.update(loader.record(case))
     sink = _Sink(
         output, system_model.sizes(system), system_model.coords(system),
         system_model.variables(system), attrs,

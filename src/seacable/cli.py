@@ -3,11 +3,14 @@
 import logging
 import math
 import sys
+import tempfile
 from pathlib import Path
 from typing import NoReturn
 
 import click
+import h5netcdf
 import xarray as xr
+import yaml
 
 import seacable
 from seacable import analysis, simulation, viz
@@ -110,6 +113,31 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
         _fail(f"{exc}\npartial results (status 'diverged'): {output}", EXIT_DIVERGED)
     except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
+    click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+@main.command()
+@click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="NetCDF file to write.")  # fmt: skip
+@click.option("--progress/--no-progress", default=True, help="Progress bar on long runs.")
+def repeat(results_file: str, output: str, progress: bool) -> None:
+    """Run again the case RESULTS_FILE was written by: its case text and the files it read,
+    kept in the file's attributes, written to a temporary folder and run from there."""
+    with h5netcdf.File(results_file, "r") as f:
+        if "case" not in f.attrs:
+            _fail(f"{results_file}: not a seacable results file (no 'case' attribute)", EXIT_INPUT)
+        text, files = str(f.attrs["case"]), yaml.safe_load(str(f.attrs.get("input_files", "{}")))
+    with tempfile.TemporaryDirectory() as folder:
+        for name, content in (files or {}).items():
+            if Path(name).is_absolute() or ".." in Path(name).parts:
+                _fail(f"{results_file}: input file '{name}' is outside the case's folder; "
+                      "run the case itself", EXIT_INPUT)  # fmt: skip
+            (Path(folder) / name).parent.mkdir(parents=True, exist_ok=True)
+            (Path(folder) / name).write_text(content)
+        (Path(folder) / "case.yaml").write_text(text)
+        results = seacable.simulate(seacable.load_case(Path(folder) / "case.yaml"),
+                                    output=output, progress=progress)  # fmt: skip
     click.echo(f"{results.status}: {results.message}; results in {output}")
 
 

@@ -8,11 +8,14 @@ runs or if the process died) with its ``status_message``.
 
 import datetime as _dt
 import os
+import platform
 from pathlib import Path
 
 import h5netcdf
 import h5py
+import numba
 import numpy as np
+import scipy
 import xarray as xr
 
 from seacable.errors import OutputError
@@ -36,7 +39,25 @@ def provenance(case_text: str, solver: dict) -> dict:
         "conventions": "SI units; x horizontal, z up, z = 0 at the still-water surface",
     }
     attrs.update({f"solver_{k}": v for k, v in solver.items()})
+    attrs.update(software=_software(), platform=platform.platform(), repeat=REPEAT)
     return attrs
+
+
+REPEAT = (
+    "seacable repeat THIS_FILE -o OUTPUT: runs the case again from this file's attributes "
+    "(case, input_files), with the software named in 'software'"
+)
+
+
+def _software() -> str:
+    """The versions a run's numbers depend on."""
+    from seacable import __version__
+
+    return (
+        f"seacable {__version__}, Python {platform.python_version()}, NumPy {np.__version__}, "
+        f"SciPy {scipy.__version__}, numba {numba.__version__}, h5py {h5py.__version__}, "
+        f"xarray {xr.__version__}"
+    )
 
 
 class Results:

@@ -364,6 +364,7 @@ def simulate(
         log.warning(warning)
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
+    attrs.update(loader.record(case))
     variables = model.variables(system)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs,
                  rows=1 + output_count(sim))  # fmt: skip

@@ -8,6 +8,7 @@ angles in the case file in degrees (keys end in ``_deg``), radians everywhere in
 """
 
 import csv
+import io
 import math
 import typing
 from pathlib import Path
@@ -155,6 +156,9 @@ class Turn(_Model):
     side: Literal["left", "right"] = "left"
 
 
+LARGEST_TABLE = 50_000_000  # bytes of a table file
+
+
 class Table(_Model):
     """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
     clamped cubic spline; held constant outside the table. ``file`` is relative to the case."""
@@ -163,23 +167,46 @@ class Table(_Model):
     file: str
     interpolation: Literal["linear", "cubic"] = "linear"
 
-    def load(self, base_dir=None):
+    def path(self, base_dir=None) -> Path:
         path = Path(self.file)
         if base_dir is not None and not path.is_absolute():
             path = Path(base_dir) / path
+        return path
+
+    def text(self, base_dir=None) -> str:
+        """The file's text, or a ValueError line: missing, a directory, more than
+        LARGEST_TABLE bytes (a device such as /dev/zero is read no further), not UTF-8."""
+        path = self.path(base_dir)
         if not path.exists():
             raise ValueError(f"table file '{path}' does not exist")
+        if path.is_dir():
+            raise ValueError(f"table file '{path}' is a directory")
+        with path.open("rb") as f:
+            raw = f.read(LARGEST_TABLE + 1)
+        if len(raw) > LARGEST_TABLE:
+            raise ValueError(f"table file '{path}' is larger than {LARGEST_TABLE:,} bytes")
+        try:
+            return raw.decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            raise ValueError(
+                f"table file '{path}' is not UTF-8 text (byte {raw[exc.start]:#04x} at position "
+                f"{exc.start}); save it as UTF-8 CSV"
+            ) from None
+
+    def load(self, base_dir=None):
+        path = self.path(base_dir)
         rows = []
-        with open(path, newline="") as fh:
-            for row in csv.reader(fh):
-                if not row or row[0].strip().startswith("#"):
-                    continue
-                try:
-                    rows.append((float(row[0]), float(row[1])))
-                except (ValueError, IndexError):
-                    if rows:  # a header is allowed only on the first line
-                        raise ValueError(f"table file '{path}': bad row {row!r}") from None
+        for row in csv.reader(io.StringIO(self.text(base_dir))):
+            if not row or row[0].strip().startswith("#"):
+                continue
+            try:
+                rows.append((float(row[0]), float(row[1])))
+            except (ValueError, IndexError):
+                if rows:  # a header is allowed only on the first line
+                    raise ValueError(f"table file '{path}': bad row {row!r}") from None
         data = np.array(rows, dtype=float)
+        if not np.all(np.isfinite(data)):
+            raise ValueError(f"table file '{path}': NaN or infinite values")
         if data.shape[0] < 2 or not np.all(np.diff(data[:, 0]) > 0):
             raise ValueError(
                 f"table file '{path}' needs at least 2 rows with strictly increasing times"

@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from seacable.case.base import BOOLEAN_ERROR
+from seacable.case.base import BOOLEAN_ERROR, Table
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -231,6 +231,30 @@ def _dumped(case: Case | SystemCase) -> str:
     YAML cannot write: the validated case holds plain ones)."""
     data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
     return yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+
+
+def record(case: Case | SystemCase) -> dict:
+    """What a results file keeps of its case, besides its text, to repeat the run: every
+    setting with its default resolved (``case_resolved``), and the text of every file the case
+    reads (``input_files``: a YAML mapping of each file's name, as the case gives it, to its
+    text)."""
+    files = {table.file: table.text(case._base_dir) for table in _tables(case)}
+    out = {"case_resolved": yaml.safe_dump(case.model_dump(mode="json", by_alias=True),
+                                           sort_keys=False, allow_unicode=True)}  # fmt: skip
+    if files:
+        out["input_files"] = yaml.safe_dump(files, sort_keys=True, allow_unicode=True)
+    return out
+
+
+def _tables(value) -> list:
+    """Every table (a time function read from a file) in a case, in order."""
+    if isinstance(value, Table):
+        return [value]
+    if isinstance(value, BaseModel):
+        return [t for name in type(value).model_fields for t in _tables(getattr(value, name))]
+    if isinstance(value, list | tuple):
+        return [t for item in value for t in _tables(item)]
+    return []
 
 
 def case_base_dir(case: Case | SystemCase):
