@@ -229,8 +229,7 @@ def case_text(case: Case | SystemCase) -> str:
 def _dumped(case: Case | SystemCase) -> str:
     """A case as YAML, in its file's keys (a dict given in Python may hold NumPy numbers, which
     YAML cannot write: the validated case holds plain ones)."""
-    data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
-    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+    return _yaml(case.model_dump(mode="json", by_alias=True, exclude_unset=True))
 
 
 def record(case: Case | SystemCase) -> dict:
@@ -239,11 +238,18 @@ def record(case: Case | SystemCase) -> dict:
     reads (``input_files``: a YAML mapping of each file's name, as the case gives it, to its
     text)."""
     files = {table.file: table.text(case._base_dir) for table in _tables(case)}
-    out = {"case_resolved": yaml.safe_dump(case.model_dump(mode="json", by_alias=True),
-                                           sort_keys=False, allow_unicode=True)}  # fmt: skip
+    out = {"case_resolved": _yaml(case.model_dump(mode="json", by_alias=True))}
     if files:
-        out["input_files"] = yaml.safe_dump(files, sort_keys=True, allow_unicode=True)
+        out["input_files"] = _yaml(files)
     return out
+
+
+_DUMPER = getattr(yaml, "CSafeDumper", yaml.SafeDumper)  # libyaml's: ten times faster
+
+
+def _yaml(data) -> str:
+    """Plain data as YAML text (safe: no Python objects), keys in their order."""
+    return yaml.dump(data, Dumper=_DUMPER, sort_keys=False, allow_unicode=True)
 
 
 def _tables(value) -> list:
