@@ -1,0 +1,169 @@
+"""Writes the corpus of bad case files (``tests/test_bad_cases.py`` runs it): each file a case
+that must be refused, and ``expected.yaml``: for each file, its group (``kind``) and what the
+one-line message must match (``expect``, a regex: the field or file, and the value). Most are
+mutations of an example (every kind of number made NaN, infinite, a boolean, text, a list, negative;
+keys missing, unknown or given twice; names that resolve to nothing); the rest are hostile or
+broken YAML and files that are not cases. Run from the repository's root:
+``python tests/bad_cases/make_corpus.py`` (it replaces the files it writes)."""
+
+import copy
+import re
+from pathlib import Path
+
+import yaml
+
+HERE = Path(__file__).resolve().parent
+BASE = yaml.safe_load(
+    (HERE.parent.parent / "examples/two_buoys_moored_with_hawser.yaml").read_text()
+)
+
+# (path in the case, as the message writes it; keys to reach it; positive only)
+NUMBERS = [
+    ("environment.water_density", ["environment", "water_density"], True),
+    ("environment.water_depth", ["environment", "water_depth"], True),
+    ("environment.seabed.stiffness", ["environment", "seabed", "stiffness"], False),
+    ("environment.current.velocity", ["environment", "current", "velocity"], False),
+    ("bodies[6].mass", ["bodies", 6, "mass"], False),
+    ("bodies[6].position", ["bodies", 6, "position", 2], False),
+    ("bodies[6].shape.radius", ["bodies", 6, "shape", "radius"], True),
+    ("bodies[6].added_mass", ["bodies", 6, "added_mass", 0], False),
+    ("bodies[6].external forces[2].drag.drag_coefficient",
+     ["bodies", 6, "external forces", 2, "drag_coefficient"], False),
+    ("line_types[0].diameter", ["line_types", 0, "diameter"], True),
+    ("line_types[0].mass_per_length", ["line_types", 0, "mass_per_length"], True),
+    ("line_types[0].axial_stiffness", ["line_types", 0, "axial_stiffness"], True),
+    ("line_types[0].axial_damping_ratio", ["line_types", 0, "axial_damping_ratio"], False),
+    ("line_types[0].drag_coefficient_normal", ["line_types", 0, "drag_coefficient_normal"], False),
+    ("lines[0].sections[0].length", ["lines", 0, "sections", 0, "length"], True),
+    ("lines[0].sections[0].segments", ["lines", 0, "sections", 0, "segments"], True),
+    ("lines[6].unstretched_length", ["lines", 6, "unstretched_length"], True),
+    ("lines[6].damping", ["lines", 6, "damping"], False),
+    ("simulation.duration", ["simulation", "duration"], True),
+    ("simulation.output_interval", ["simulation", "output_interval"], True),
+]  # fmt: skip
+VALUES = [  # (file name part, value, what the message quotes)
+    ("nan", float("nan"), r"nan"), ("inf", float("inf"), r"inf"),
+    ("minus_inf", -float("inf"), r"-inf"), ("true", True, r"True"), ("text", "abc", r"'abc'"),
+    ("list", [1.0, 2.0], r"\[1\.0, 2\.0\]"),
+]  # fmt: skip
+
+
+def _set(data, keys, value):
+    """Put ``value`` at ``keys`` in ``data``."""
+    for key in keys[:-1]:
+        data = data[key]
+    data[keys[-1]] = value
+
+
+def _remove(data, keys):
+    for key in keys[:-1]:
+        data = data[key]
+    del data[keys[-1]]
+
+
+def cases():
+    """(name, kind, expect, text or bytes) of every bad case."""
+    out = []
+
+    def mutated(name, kind, expect, change):
+        data = copy.deepcopy(BASE)
+        change(data)
+        out.append((name, kind, expect, yaml.safe_dump(data, sort_keys=False)))
+
+    for where, keys, positive in NUMBERS:
+        stem = re.sub(r"\W+", "_", where).strip("_")
+        for label, value, quoted in VALUES:
+            mutated(f"{stem}.{label}", "numbers", re.escape(where) + r".*\(got .*" + quoted,
+                    lambda d, k=keys, v=value: _set(d, k, v))  # fmt: skip
+        if positive:
+            mutated(f"{stem}.negative", "numbers", re.escape(where) + r".*\(got -1(\.0)?\)",
+                    lambda d, k=keys: _set(d, k, -1.0))  # fmt: skip
+    for where, keys in [
+        ("(top level)", ["simulation"]), ("(top level)", ["lines"]),
+        ("bodies[0]", ["bodies", 0, "name"]),
+        ("bodies[6]", ["bodies", 6, "mass"]), ("lines[0]", ["lines", 0, "from"]),
+        ("lines[0].sections[0]", ["lines", 0, "sections", 0, "length"]),
+        ("line_types[0]", ["line_types", 0, "diameter"]),
+        ("simulation", ["simulation", "duration"]),
+    ]:  # fmt: skip
+        missing = ".".join(str(k) for k in keys[-1:])
+        path = missing if where == "(top level)" else f"{where}.{missing}"
+        mutated(
+            f"missing.{'_'.join(str(k) for k in keys)}",
+            "missing keys",
+            re.escape(path) + r": required key is missing",
+            lambda d, k=keys: _remove(d, k),
+        )
+    for where, keys, key in [
+        ("(top level)", [], "solver"), ("bodies[6]", ["bodies", 6], "colour"),
+        ("lines[0].sections[0]", ["lines", 0, "sections", 0], "lenght"),
+        ("environment", ["environment"], "wave_height"), ("simulation", ["simulation"], "dt"),
+    ]:  # fmt: skip
+        mutated(
+            f"unknown.{key}",
+            "unknown keys",
+            re.escape(f"{where}: unknown key '{key}'") + r"\. Valid keys",
+            lambda d, k=keys, name=key: _set(d, [*k, name], 1.0),
+        )
+    for name, expect, keys, value in [
+        ("from_nowhere", r"lines\[0\].*'nowhere'", ["lines", 0, "from"], "nowhere"),
+        ("to_unknown", r"lines\[1\].*'buoy_z'", ["lines", 1, "to"], "buoy_z"),
+        ("section_type", r"\(a_north\)\.sections\[0\]\.type: no line type 'chain9'",
+         ["lines", 0, "sections", 0, "type"], "chain9"),
+        ("line_model", r"lines\[0\]\.model: value 'spring' is not allowed", ["lines", 0, "model"],
+         "spring"),
+        ("body_type", r"bodies\[6\]\.type: value 'floating' is not allowed", ["bodies", 6, "type"],
+         "floating"),
+        ("integrator", r"simulation\.integrator: .*'euler'", ["simulation", "integrator"],
+         "euler"),
+        ("same_body_names", r"bodies: names must be unique; \['buoy_a'\]", ["bodies", 7, "name"],
+         "buoy_a"),
+        ("same_line_names", r"lines: names must be unique; \['a_north'\]", ["lines", 1, "name"],
+         "a_north"),
+        ("long_duration", r"simulation: .*output rows, more than any run can write",
+         ["simulation", "duration"], 1e12),
+    ]:  # fmt: skip
+        mutated(f"names.{name}", "names and choices", expect,
+                lambda d, k=keys, v=value: _set(d, k, v))  # fmt: skip
+    text = yaml.safe_dump(BASE, sort_keys=False)
+    bomb = "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n" + "".join(
+        f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join([f'*{chr(97 + i)}'] * 10)}]\n"
+        for i in range(7)
+    )  # fmt: skip
+    for name, expect, content in [
+        ("duplicate_key", r"key 'name' is given twice in one mapping", text + "name: again\n"),
+        ("unclosed_flow_list", r"not valid YAML",
+         text.replace("- name: buoy_a", "- name: [buoy_a", 1)),
+        ("tab_indent", r"not valid YAML", text.replace("\n  water_depth", "\n\twater_depth", 1)),
+        ("alias_bomb", r"more than 1,000,000 values once its aliases", bomb),
+        ("deep_nesting", r"nested too deeply", "a: " + "[" * 5000 + "]" * 5000 + "\n"),
+        ("top_level_list", r"a case must be a mapping", "- 1\n- 2\n"),
+        ("empty", r"a case must be a mapping", "# nothing\n"),
+        ("python_tag", r"not valid YAML", "!!python/object/apply:os.system ['true']\n"),
+        ("cables_form", r"single-cable form", "cables: []\n"),
+    ]:  # fmt: skip
+        out.append((f"yaml.{name}", "hostile or broken YAML", expect, content))
+    for name, expect, content in [
+        ("latin1", r"not UTF-8 text \(byte 0xe9", ("# caf\xe9\n" + text).encode("latin-1")),
+        ("utf16", r"not UTF-8 text \(byte 0xff", text.encode("utf-16")),
+        ("results_file", r"is a results file \(NetCDF/HDF5\)", b"\x89HDF\r\n\x1a\n" + bytes(64)),
+        ("binary_garbage", r"not UTF-8 text", bytes(range(128, 256)) * 4),
+    ]:  # fmt: skip
+        out.append((f"files.{name}", "not a case", expect, content))
+    return out
+
+
+def main() -> None:
+    for old in HERE.glob("*.yaml"):
+        old.unlink()
+    expected = {}
+    for name, kind, expect, content in cases():
+        body = content.encode() if isinstance(content, str) else content
+        (HERE / f"{name}.yaml").write_bytes(body)
+        expected[f"{name}.yaml"] = {"kind": kind, "expect": expect}
+    (HERE / "expected.yaml").write_text(yaml.safe_dump(expected, sort_keys=True, width=200))
+    print(f"{len(expected)} bad cases written to {HERE}")
+
+
+if __name__ == "__main__":
+    main()
