@@ -193,7 +193,8 @@ class _Sink:
                 self.chunks[name].append(np.array(values, copy=True))
         else:
             start = self.rows
-            for name in ("time", *(name for name in rows if name != "time")):
+            # time last: a row whose time is written is whole (readers count rows by it)
+            for name in (*(name for name in rows if name != "time"), "time"):
                 self._file[name][start : start + count, ...] = rows[name]
             self._file._h5file.flush()  # the rows on disk (raw values only)
         self.rows += count

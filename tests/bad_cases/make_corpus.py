@@ -122,6 +122,9 @@ def cases():
          "a_north"),
         ("long_duration", r"simulation: .*output rows, more than any run can write",
          ["simulation", "duration"], 1e12),
+        ("anchor_below_seabed",
+         r"bodies\[0\] \(anchor_a_north\)\.position: z = -60 m is below the seabed \(z = -50 m",
+         ["bodies", 0, "position", 2], -60.0),
     ]:  # fmt: skip
         mutated(f"names.{name}", "names and choices", expect,
                 lambda d, k=keys, v=value: _set(d, k, v))  # fmt: skip

@@ -38,7 +38,9 @@ def _no_duplicates(loader: Any, node: Any) -> dict:
         if key_node.tag == "tag:yaml.org,2002:merge":
             continue  # "<<": its keys may be given again, to override them
         key = loader.construct_object(key_node, deep=True)
-        if isinstance(key, typing.Hashable) and key in seen:
+        if not isinstance(key, typing.Hashable):
+            continue  # a list or mapping as a key: PyYAML's own error says so below
+        if key in seen:
             raise CaseError(
                 f"case file: key '{key}' is given twice in one mapping (lines "
                 f"{seen[key] + 1} and {key_node.start_mark.line + 1}); keep one of them"
@@ -318,6 +320,9 @@ def format_errors(exc: ValidationError, root: Any = Case) -> str:
                 )
             else:
                 lines.append(f"- {where}.{key}: required key is missing; allowed: {allowed}")
+            continue
+        if isinstance(value, dict):  # a check of a whole mapping: its message names the keys
+            lines.append(f"- {message}" if where == "(top level)" else f"- {where}: {message}")
             continue
         lines.append(f"- {where}: {message} (got {shown})")
     return "\n".join(lines)

@@ -487,6 +487,18 @@ class SystemCase(_Model):
             twice = sorted({n for n in names if names.count(n) > 1})
             if twice:
                 raise ValueError(f"{what}: names must be unique; {twice} appear more than once")
+        depth = self.environment.water_depth
+        for k, body in enumerate(self.bodies):
+            if (
+                depth is not None
+                and isinstance(body, FixedBody)
+                and body.position[2] < -depth - 1e-6
+            ):
+                raise ValueError(
+                    f"bodies[{k}] ({body.name}).position: z = {body.position[2]:g} m is below the "
+                    f"seabed (z = {-depth:g} m, environment.water_depth {depth:g} m); put it on "
+                    "or above the seabed, or deepen the water"
+                )
         segments = sum(section.segments for line in self.lines
                        for section in getattr(line, "sections", None) or [])  # fmt: skip
         if segments > MOST_SEGMENTS:
