@@ -373,3 +373,26 @@ def test_bad_table_files_name_the_field(tmp_path, content, message):
     case = _load(lambda d: _top(d, type="imposed", x={"kind": "table", "file": name}))
     with pytest.raises(CaseError, match=r"bodies\[0\] \(top\)\.x: .*" + message):
         seacable.simulate(case)
+
+
+def test_the_tension_a_stretched_lines_ends_imply_is_reported(caplog):
+    """A lumped line of 100 m between two anchors 110 m apart: 10 % strain, about EA / 10 of
+    tension, said before the run (beyond 30 % it is refused: the corpus's stretched line)."""
+    data = {
+        "name": "stretched", "start": "as_given", "environment": {"water_depth": 50.0},
+        "bodies": [{"name": "a", "type": "fixed", "position": [0.0, 0.0, -50.0]},
+                   {"name": "b", "type": "fixed", "position": [110.0, 0.0, -50.0]}],
+        "line_types": [{"name": "rope", "diameter": 0.05, "mass_per_length": 5.0,
+                        "axial_stiffness": 1e7}],
+        "lines": [{"name": "rope", "model": "lumped_mass", "from": "a", "to": "b",
+                   "sections": [{"type": "rope", "length": 100.0, "segments": 10}]}],
+        "simulation": {"duration": 0.1, "output_interval": 0.1},
+    }  # fmt: skip
+    from seacable.simulation import prepare
+
+    with caplog.at_level("WARNING"):
+        prepare(seacable.load_case(data))
+    assert (
+        "lines (rope): its ends are 110 m apart and its unstretched length is 100 m, a "
+        "strain of 10 % and a tension of about 1e+06 N (EA 1e+07 N)" in caplog.text
+    )

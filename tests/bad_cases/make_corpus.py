@@ -128,6 +128,11 @@ def cases():
     ]:  # fmt: skip
         mutated(f"names.{name}", "names and choices", expect,
                 lambda d, k=keys, v=value: _set(d, k, v))  # fmt: skip
+    mutated("geometry.stretched_line", "impossible geometry",
+            r"lines \(a_west\): its ends are 235\.\d+ m apart and its unstretched length is "
+            r"150 m, a strain of 56\.9 %.*more stretch than a line takes",
+            lambda d: (d.update(start="as_given"), _set(d, ["bodies", 6, "position"],
+                                                        [100.0, 0.0, 0.0])))  # fmt: skip
     text = yaml.safe_dump(BASE, sort_keys=False)
     bomb = "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n" + "".join(
         f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join([f'*{chr(97 + i)}'] * 10)}]\n"

@@ -77,6 +77,7 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
         arc = np.concatenate([[0.0], np.cumsum(p.seg_length[s0 : s0 + n])])
         arc /= arc[-1]
         where = f"lines ({line.name})"
+        _stretch(p, li, start, end, where, case.start == "as_given")
         nodes = None
         if isinstance(line.initial, sch.LineAngles):
             nodes = _lumped_angles(line, p.seg_length[s0 : s0 + n], start, end, where)
@@ -130,6 +131,35 @@ def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
         )
     nodes[-1] = end
     return nodes
+
+
+MOST_STRAIN = 0.3  # a strain no rope, wire or chain takes: refused
+LARGE_STRAIN = 0.05  # a strain beyond a taut line's usual pretension: reported
+
+
+def _stretch(p, li, start, end, where: str, as_given: bool) -> None:
+    """The tension a lumped line's ends imply when they are farther apart than its length:
+    refused beyond MOST_STRAIN, reported beyond LARGE_STRAIN. Only ends that stay where they
+    are (fixed or imposed bodies, or any with ``start: as_given``): a static start moves free
+    bodies from their first guess."""
+    ends = np.asarray(p.point_body)[[p.line_from[li], p.line_to[li]]]
+    held = all(p.body_kind[b] in (kinematics.FIXED, kinematics.IMPOSED) for b in ends)
+    if not (held or as_given):
+        return
+    s0, n = p.line_seg[li], p.line_n[li]
+    length = float(p.seg_length[s0 : s0 + n].sum())
+    strain = float(np.linalg.norm(end - start)) / length - 1.0
+    if strain <= LARGE_STRAIN:
+        return
+    stiffness = float(p.seg_stiffness[s0 : s0 + n].min())
+    implied = (
+        f"{where}: its ends are {length * (1 + strain):.6g} m apart and its unstretched length "
+        f"is {length:.6g} m, a strain of {100 * strain:.3g} % and a tension of about "
+        f"{stiffness * strain:.4g} N (EA {stiffness:.4g} N)"
+    )
+    if strain > MOST_STRAIN:
+        raise CaseError(f"{implied}: more stretch than a line takes; lengthen it or move its ends")
+    log.warning(f"{implied}; check the length and the ends' positions")
 
 
 def _rigid_initial(built: BuiltSystem, y: np.ndarray):
