@@ -280,3 +280,25 @@ def test_validate_checks_what_a_run_checks_before_its_first_step(tmp_path):
     result = CliRunner().invoke(main, ["validate", str(path)])
     assert result.exit_code == 2
     assert "farther than its length" in result.output
+
+
+def test_values_that_look_like_the_wrong_unit_are_warned(tmp_path):
+    """A 20 m line diameter (meant as 20 mm) and a phase of 90 in radians (meant in degrees):
+    validate says so, naming the fields, and still accepts the case (an odd value may be
+    right)."""
+    import copy
+
+    from test_case_errors import CHAIN
+
+    data = copy.deepcopy(CHAIN)
+    data["line_types"][0]["diameter"] = 20.0
+    push = {"kind": "sine", "amplitude": 1.0, "period": 5.0, "phase": 90.0}
+    data["bodies"][1]["external forces"].append({"model": "applied", "force_x": push})
+    path = tmp_path / "units.yaml"
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "line_types[0] (chain).diameter: 20 m is wider than any line" in result.output
+    assert "bodies[1].external forces[1].force_x.phase: 90 rad is more than a turn" in (
+        result.output
+    )

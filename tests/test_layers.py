@@ -17,6 +17,7 @@ LAYER = {
     "lines": 5, "forces": 5,
     "bodies": 4,
     "packing": 3,
+    "case.units": 3,
     "case.system": 2, "case.schema": 2, "timefunctions": 2, "case.legacy": 9,
     "case.legacy_sections": 8,
     "case.base": 1,

@@ -11,6 +11,7 @@ import numpy as np
 
 from seacable.case import loader, schema
 from seacable.case.system import SystemCase
+from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels.status import Status
 from seacable.numerics import integrators, stiff, system_implicit
@@ -95,11 +96,13 @@ def _scheme(sim: schema.Simulation) -> np.ndarray:
 def prepare(case: SystemCase) -> tuple[Any, str | None]:
     """Everything a run does before its first step, and ``seacable validate`` with it: the
     case's form, the system built (tables read, geometry checked, the statics it starts from
-    solved), the step checked against the fastest motion. Returns the built system and the
-    step's warning (None when the step is safe). Raises CaseError (or StaticsError)."""
+    solved), the step checked against the fastest motion, values that look like the wrong
+    unit (``case.units``). Returns the built system and the warnings, joined (None when there
+    are none). Raises CaseError (or StaticsError)."""
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
-    return system, _step_warning(case.simulation, system)
+    warnings = [*unit_warnings(case), _step_warning(case.simulation, system)]
+    return system, "; ".join(w for w in warnings if w) or None
 
 
 def output_count(sim: schema.Simulation) -> int:
