@@ -15,6 +15,7 @@ $(STAMP): pyproject.toml $(VENV)/bin/python
 	touch $(STAMP)
 
 demo: $(STAMP)
+	mkdir -p results
 	$(VENV)/bin/seacable run examples/thesis_6_1_sim6_submerged_60_links_forced.yaml -o results/demo.nc
 	$(VENV)/bin/seacable plot results/demo.nc -o results/demo.png --every 1.0
 	@echo "demo: results/demo.nc and results/demo.png written"

@@ -183,3 +183,11 @@ def test_memory_stays_flat_while_rows_go_to_the_file(tmp_path, monkeypatch):
     assert size * 8 > 9e6  # the rows are many
     early = next(memory for done, memory in held if done >= 2000)
     assert held[-1][1] - early < 1e6, held[-1][1] - early
+
+
+def test_an_output_in_a_missing_folder_is_refused(tmp_path):
+    """A mistyped folder is named, not created silently."""
+    from test_case_errors import CHAIN
+
+    with pytest.raises(seacable.OutputError, match=r"output folder '.*typo' does not exist"):
+        seacable.simulate(seacable.load_case(CHAIN), output=tmp_path / "typo" / "run.nc")

@@ -140,7 +140,6 @@ class _Sink:
         self.capacity = rows
         self._file = None
         if self.path is not None:
-            self.path.parent.mkdir(parents=True, exist_ok=True)
             _not_being_written(self.path)
             # made under another name and renamed once its structure is on disk: the file at
             # ``path`` is never one that does not open
@@ -236,15 +235,20 @@ class _Sink:
 
 def _not_being_written(path: Path) -> None:
     """Refuse an output path that cannot take results: a directory, a case or table file (a
-    results file given the case's name would replace the case), a folder that cannot be
-    written, a file another run is writing (HDF5 locks a file it writes: a second writer would
-    replace it under the first, whose rows would be lost)."""
+    results file given the case's name would replace the case), a folder that does not exist
+    (a mistyped path is not created silently) or cannot be written, a file another run is
+    writing (HDF5 locks a file it writes: a second writer would replace it under the first,
+    whose rows would be lost)."""
     if path.is_dir():
         raise OutputError(f"output '{path}' is a directory; give a file name ending in .nc")
     if path.suffix.lower() in (".yaml", ".yml", ".csv", ".txt"):
         raise OutputError(
             f"output '{path}' looks like a case or table file, which the results would replace; "
             "give a file name ending in .nc"
+        )
+    if not path.parent.is_dir():
+        raise OutputError(
+            f"output folder '{path.parent}' does not exist; create it (mkdir -p) or choose another"
         )
     if not os.access(path.parent, os.W_OK):
         raise OutputError(f"output folder '{path.parent}' cannot be written; choose another")
