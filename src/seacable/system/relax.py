@@ -60,12 +60,11 @@ def relax(built: BuiltSystem, y: np.ndarray, residual, target: float, fastest: f
     """A state near a stable balance, from ``y`` at rest (``rested``), or the last state met
     when the system does not rest within ``steps`` steps. ``residual``: the statics' residual
     of a state (system.coordinates.Residual), small enough once its largest entry is below
-    ``target``;
-    ``fastest``: the system's fastest natural frequency [rad/s] (steps at most 2.5 / fastest,
-    within the scheme's stability). It stops as well when the kinetic energy grows for
-    ``RUNAWAY`` steps without a reset (a body pushed that nothing holds runs away: the last
-    state shows which). A tow (bodies moving at t = ``time``) is not relaxed: its balance is
-    in motion."""
+    ``target``; ``fastest``: the system's fastest natural frequency [rad/s] (steps at most
+    2.5 / fastest, within the scheme's stability). It stops as well when the kinetic energy
+    grows for ``RUNAWAY`` steps without a reset (a body pushed that nothing holds runs away:
+    the last state shows which). A tow (bodies moving at t = ``time``) is not relaxed: its
+    balance is in motion."""
     p = built.params
     n = p.n_q + p.n_v
     if not np.isfinite(fastest) or fastest <= 0.0 or np.any(y[p.n_q : n] != 0.0):
