@@ -32,6 +32,20 @@ Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x
 PerAxis = NonNeg | tuple[NonNeg, NonNeg, NonNeg]  # one value, or one per global axis x, y, z
 
 
+def instances(value, kind: type, where: str = ""):
+    """(path, part) of every part of a case (a model, or lists of them) that is a ``kind``,
+    in order, the path as the case file writes it (``bodies[1].external forces[0].force_x``)."""
+    if isinstance(value, kind):
+        yield where, value
+    elif isinstance(value, BaseModel):
+        for name, field in type(value).model_fields.items():
+            key = field.alias or name
+            yield from instances(getattr(value, name), kind, f"{where}.{key}" if where else key)
+    elif isinstance(value, list | tuple):
+        for k, item in enumerate(value):
+            yield from instances(item, kind, f"{where}[{k}]")
+
+
 def xyz(point) -> tuple[float, float, float]:
     """(x, y, z) of a point given as [x, z] or [x, y, z]."""
     if len(point) == 2:

@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from seacable.case.base import BOOLEAN_ERROR, Table
+from seacable.case.base import BOOLEAN_ERROR, Table, instances
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -239,7 +239,7 @@ def record(case: Case | SystemCase) -> dict:
     setting with its default resolved (``case_resolved``), and the text of every file the case
     reads (``input_files``: a YAML mapping of each file's name, as the case gives it, to its
     text)."""
-    files = {table.file: table.text(case._base_dir) for table in _tables(case)}
+    files = {table.file: table.text(case._base_dir) for _, table in instances(case, Table)}
     out = {"case_resolved": _yaml(case.model_dump(mode="json", by_alias=True))}
     if files:
         out["input_files"] = _yaml(files)
@@ -252,17 +252,6 @@ _DUMPER = getattr(yaml, "CSafeDumper", yaml.SafeDumper)  # libyaml's: ten times 
 def _yaml(data) -> str:
     """Plain data as YAML text (safe: no Python objects), keys in their order."""
     return yaml.dump(data, Dumper=_DUMPER, sort_keys=False, allow_unicode=True)
-
-
-def _tables(value) -> list:
-    """Every table (a time function read from a file) in a case, in order."""
-    if isinstance(value, Table):
-        return [value]
-    if isinstance(value, BaseModel):
-        return [t for name in type(value).model_fields for t in _tables(getattr(value, name))]
-    if isinstance(value, list | tuple):
-        return [t for item in value for t in _tables(item)]
-    return []
 
 
 def case_base_dir(case: Case | SystemCase):

@@ -4,9 +4,7 @@ was meant in degrees). Warned, not refused: a value can be odd and right."""
 
 import math
 
-from pydantic import BaseModel
-
-from seacable.case.base import Sine
+from seacable.case.base import Sine, instances
 from seacable.case.system import LineType, SystemCase
 
 
@@ -15,7 +13,7 @@ def unit_warnings(case: SystemCase) -> list[str]:
     out = []
     for k, kind in enumerate(case.line_types):
         out += _line_type(f"line_types[{k}] ({kind.name})", kind)
-    for where, sine in _sines(case, ""):
+    for where, sine in instances(case, Sine):
         if abs(sine.phase) > 2.0 * math.pi:
             out.append(
                 f"{where}.phase: {sine.phase:g} rad is more than a turn; phases are in radians "
@@ -37,16 +35,3 @@ def _line_type(where: str, kind: LineType) -> list[str]:
             "the unit is kg per metre"
         )
     return out
-
-
-def _sines(value, where: str):
-    """(path, model) of every sine time function in a case."""
-    if isinstance(value, Sine):
-        yield where, value
-    elif isinstance(value, BaseModel):
-        for name, field in type(value).model_fields.items():
-            key = field.alias or name  # as the case file writes it ("external forces")
-            yield from _sines(getattr(value, name), f"{where}.{key}" if where else key)
-    elif isinstance(value, list | tuple):
-        for k, item in enumerate(value):
-            yield from _sines(item, f"{where}[{k}]")
