@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 import seacable
+from seacable.numerics import stability
 from seacable.system import model as system_model
 
 LENGTH, DURATION, IMPLICIT_STEPS = 120.0, 2.0, (0.005, 0.02)
@@ -110,17 +111,17 @@ def run(model, n, integrator, step):
     return time.perf_counter() - start, ds
 
 
-def zigzag_frequency(model, n):
-    """The fastest natural frequency of the line [rad/s]: the system's own estimate, the
-    zigzag mode of a link against its joint springs and the tension
-    (``seacable.system.model.fastest_frequency``)."""
-    return system_model.fastest_frequency(system_model.build(case(model, n, "rk4", OUTPUT)))[0]
+def rk4_limit(model, n):
+    """rk4's longest stable step [s] about the line's start (``numerics.stability.rk4_limit``:
+    the eigenvalues of the linearised system, the zigzag of a link against its joint springs
+    and the tension)."""
+    return stability.rk4_limit(system_model.build(case(model, n, "rk4", OUTPUT))).step
 
 
 def rk4_stable(model, n):
-    """RK4 at the largest stable step among 2.8 / omega (rounded down to a divisor of the output
-    interval), halved until the run completes."""
-    step = OUTPUT / math.ceil(OUTPUT * zigzag_frequency(model, n) / 2.8)
+    """RK4 at the largest step within its stability limit that divides the output interval,
+    halved until the run completes."""
+    step = OUTPUT / math.ceil(OUTPUT / rk4_limit(model, n) - 1e-9)
     while True:
         result = run(model, n, "rk4", step)
         if result is not None and np.isfinite(result[1]["bodies/top/line_force_x"].values).all():

@@ -86,12 +86,12 @@ def _mooring(**simulation):
     return case.model_copy(update={"simulation": sim})
 
 
-def test_the_rk4_warning_names_the_axial_waves_an_implicit_step_steps_over():
-    """The mooring example's 0.02 s implicit step (tests/test_system_implicit.py) is six times
-    beyond rk4's limit: omega dt = 2.8 at the axial waves."""
+def test_the_rk4_limit_names_the_axial_waves_an_implicit_step_steps_over():
+    """The mooring example's 0.02 s implicit step (tests/test_system_implicit.py) is five times
+    beyond rk4's limit, set by the chain's axial waves (a node moves most)."""
     system = seacable.system.model.build(seacable.load_case(MOORING))
-    omega, what = seacable.simulation.fastest_frequency(system)
-    assert omega * 0.02 > 6 * 2.8 and "axial" in what
+    limit = seacable.numerics.stability.rk4_limit(system)
+    assert 0.02 > 5 * limit.step and "node" in limit.what and "'chain'" in limit.what
 
 
 def test_unstable_newmark_parameters_are_refused():

@@ -14,7 +14,7 @@ from seacable.case.system import SystemCase
 from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels.status import Status
-from seacable.numerics import integrators, stiff, system_implicit
+from seacable.numerics import integrators, stability, stiff, system_implicit
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -29,6 +29,9 @@ from seacable.system import model as system_model
 log = logging.getLogger(__name__)
 
 DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
+# rk4 steps above this fraction of the stability limit about the start are warned: tensions
+# that rise in a run (a snatch, a faster tow) raise the fastest frequency
+NEAR_LIMIT = 0.6
 ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each state's scale
 # the solver_atol attribute of a run with the default absolute tolerance (absolute_tolerance)
 DEFAULT_ATOL = (
@@ -51,11 +54,6 @@ def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
     )
     steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
     return sim.output_interval / steps, steps
-
-
-def fastest_frequency(system) -> tuple[float, str]:
-    """Estimate of the fastest natural frequency of a built system [rad/s], and what sets it."""
-    return system_model.fastest_frequency(system)
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
@@ -101,8 +99,13 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     are none). Raises CaseError (or StaticsError)."""
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
-    warnings = [*unit_warnings(case), _step_warning(case.simulation, system)]
+    warnings = [*unit_warnings(case), _step_check(case.simulation, system)]
     return system, "; ".join(w for w in warnings if w) or None
+
+
+def _divisor(sim: schema.Simulation, step: float) -> float:
+    """The longest step no longer than ``step`` [s] that divides the output interval."""
+    return sim.output_interval / math.ceil(sim.output_interval / step - 1e-9)
 
 
 def output_count(sim: schema.Simulation) -> int:
@@ -504,7 +507,10 @@ def _work(run: _Run) -> dict:
     return {**counters, **_tolerance_attrs(run)}
 
 
-def _step_warning(sim: schema.Simulation, system) -> str | None:
+def _step_check(sim: schema.Simulation, system) -> str | None:
+    """A warning about the integrator and its step for ``system``, or None. rk4 beyond its
+    stability limit about the start is refused (CaseError) unless the case allows it; within
+    NEAR_LIMIT of it, warned."""
     size = len(system.y0)
     dense = sim.integrator in ("cvode", "lsoda")  # bdf and radau colour the sparse pattern
     if dense and size > 200:
@@ -517,16 +523,26 @@ def _step_warning(sim: schema.Simulation, system) -> str | None:
     if sim.integrator != "rk4":
         return None
     dt, _ = rk4_step(sim)
-    omega, what = fastest_frequency(system)
-    # RK4 is stable up to omega dt = 2.8 on the imaginary axis; transients (a release from a
-    # kinked shape, a snatch) raise tensions above the static ones the estimate uses: keep margin
-    if omega * dt > 1.5:
+    limit = stability.rk4_limit(system)  # about the start: the linearised system's eigenvalues
+    if dt <= NEAR_LIMIT * limit.step:
+        return None
+    step = _divisor(sim, NEAR_LIMIT * limit.step)  # a step to suggest
+    motion = (
+        f"the fastest motion about the start ({limit.frequency:.4g} rad/s, moving {limit.what} "
+        f"most) makes rk4 unstable above time_step {limit.step:.3g} s"
+    )
+    if dt <= limit.step:  # tensions that rise in the run (a snatch, a faster tow) raise it
         return (
-            f"simulation.time_step {dt:.4g} s is likely too long for rk4: the fastest motion "
-            f"({what}) has a frequency near {omega:.4g} rad/s, and rk4 needs time_step below "
-            f"about {1.5 / omega:.3g} s. Use a smaller time_step or integrator: dopri5"
+            f"simulation.time_step {dt:.4g} s is close to rk4's stability limit: {motion}. A "
+            f"shorter time_step (about {step:.4g} s) or integrator: dopri5 is safer"
         )
-    return None
+    if sim.allow_unstable_step:
+        return f"simulation.time_step {dt:.4g} s is beyond rk4's stability limit: {motion}"
+    raise CaseError(
+        f"simulation.time_step: {dt:.4g} s is beyond rk4's stability limit: {motion}. Use "
+        f"time_step {step:.4g} s or less, or integrator: dopri5 (it adapts its step), or set "
+        "simulation.allow_unstable_step: true to run anyway"
+    )
 
 
 def _divergence_message(run: _Run, status: int, settings: dict) -> str:

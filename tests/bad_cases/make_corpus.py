@@ -133,6 +133,20 @@ def cases():
             r"150 m, a strain of 56\.9 %.*more stretch than a line takes",
             lambda d: (d.update(start="as_given"), _set(d, ["bodies", 6, "position"],
                                                         [100.0, 0.0, 0.0])))  # fmt: skip
+    beyond = r"s is beyond rk4's stability limit: .* rad/s, moving node \d+ of line '\w+'.*Use "
+    for name, step, change in [
+        ("rk4_default_step", "0.01", {}),
+        ("rk4_step", "0.00625", {"time_step": 0.00625}),
+        ("stiff_chain", "0.002", {"time_step": 0.002}),
+    ]:  # fmt: skip
+
+        def unstable(d, change=change, name=name):
+            d["simulation"].update(integrator="rk4", **change)
+            if name == "stiff_chain":  # stable at EA 2.5e8 N (0.64 of the limit), not at 2.5e10
+                d["line_types"][0]["axial_stiffness"] = 2.5e10
+
+        mutated(f"unstable.{name}", "unstable steps",
+                re.escape(f"simulation.time_step: {step} ") + beyond, unstable)  # fmt: skip
     text = yaml.safe_dump(BASE, sort_keys=False)
     bomb = "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n" + "".join(
         f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join([f'*{chr(97 + i)}'] * 10)}]\n"

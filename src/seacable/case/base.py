@@ -409,6 +409,10 @@ class Simulation(_Model):
     # started still). A towing ship's speed or distance is not ramped: its initial towed shape
     # is already the steady state at that speed. One to two periods of the motion is usual.
     build_up: NonNeg = 0.0
+    # rk4 at a time_step beyond its stability limit about the start state (the eigenvalues of
+    # the linearised system, numerics.stability) is refused, naming the limit; true runs it
+    # anyway, with a warning (to show an instability, or when the start is not representative)
+    allow_unstable_step: bool = False
 
     @field_validator("time_step")
     @classmethod

@@ -83,11 +83,13 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
             r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(settled)[nodes]
             if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
                 return settled
-    followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale)
+    followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale, 1e-6 * scale)
     r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
-    relaxed = relax.relax(built, y, residual, 1e-3 * scale, fastest_frequency(built)[0], time)
+    relaxed = relax.relax(
+        built, y, residual, 1e-3 * scale, fastest_frequency(built, y, time)[0], time
+    )
     if relaxed.rested:
         polished = _direct(built, coords, sparsity, residual, relaxed.state, iterations,
                            tolerance * scale)  # fmt: skip
@@ -189,11 +191,13 @@ def _march(p, w, y, free, tips, loads, time, sweeps: int = 400, tolerance: float
     return y
 
 
-def _homotopy(built, coords, sparsity, residual, y, tolerance, smallest: float = 1e-3):
+def _homotopy(built, coords, sparsity, residual, y, tolerance, enough, smallest: float = 1e-3):
     """Newton's homotopy: the balance of r(x) - (1 - s) r(x0) followed from s = 0 (where the
     start is one) to s = 1, each s from the last one's balance, the step in s halved when
     Newton fails there: loads that the direct Newton cannot take at once (a platform pushed far
-    off by a steady force) are taken in stages."""
+    off by a steady force) are taken in stages. Newton goes on in each stage to ``tolerance``
+    or as far as rounding lets it; a stage is taken when its residual is below ``enough`` (a
+    tolerance below the rounding floor of large forces must not refuse a converged stage)."""
     start = residual(y)
     s, step = 0.0, 0.1
     while s < 1.0 and step >= smallest:
@@ -204,7 +208,7 @@ def _homotopy(built, coords, sparsity, residual, y, tolerance, smallest: float =
 
         trial = _direct(built, coords, sparsity, staged, y, 20, tolerance)
         rt = staged(trial)
-        if np.all(np.isfinite(rt)) and np.abs(rt).max() < max(tolerance, 1e-9):
+        if np.all(np.isfinite(rt)) and np.abs(rt).max() < max(tolerance, enough):
             y, s = trial, target
             step = min(2.0 * step, 0.25)
         else:

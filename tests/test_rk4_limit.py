@@ -1,0 +1,114 @@
+"""rk4's stability limit: the fastest motions of a system (``system.frequency``) against a
+closed form, the scheme's limit (``numerics.stability``) against its stability function, and
+the check that refuses a step beyond it against runs on either side of the limit."""
+
+import math
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.case.loader import load_case
+from seacable.numerics import stability
+from seacable.system import frequency, model
+
+MOORING = "examples/catenary_mooring_line_surge.yaml"
+N, L0, EA, MU = 10, 10.0, 1e6, 2.0  # the taut rope: segments, length [m], EA [N], [kg/m]
+
+
+def _taut_rope(**simulation):
+    return {
+        "name": "taut rope",
+        "start": "as_given",
+        "environment": {"in_air": True},
+        "bodies": [
+            {"name": "a", "type": "fixed", "position": [0.0, 0.0, 0.0]},
+            {"name": "b", "type": "fixed", "position": [1.01 * L0, 0.0, 0.0]},
+        ],
+        "line_types": [
+            {"name": "rope", "diameter": 0.02, "mass_per_length": MU, "axial_stiffness": EA}
+        ],  # fmt: skip
+        "lines": [
+            {
+                "name": "rope",
+                "model": "lumped_mass",
+                "from": "a",
+                "to": "b",
+                "sections": [{"type": "rope", "length": L0, "segments": N}],
+            }
+        ],  # fmt: skip
+        "simulation": {"duration": 1.0, "output_interval": 0.01, **simulation},
+    }
+
+
+def test_the_scheme_limit_is_that_of_its_stability_function():
+    """An undamped oscillation is stable to omega h = 2 sqrt 2, a damped decay to h lambda =
+    2.785 (the real root of |R| = 1), a growth that the physics makes is never refused, and
+    the limit for several modes is the shortest."""
+    assert stability.rk4_stable_step([10j]) == pytest.approx(2 * math.sqrt(2) / 10, rel=1e-3)
+    assert stability.rk4_stable_step([-10.0]) == pytest.approx(0.2785293, rel=1e-3)
+    assert stability.rk4_stable_step([5.0, 0.0]) == math.inf
+    assert stability.rk4_stable_step([-1.0, 100j, 3.0]) == pytest.approx(0.0282843, rel=1e-3)
+    z = 2.7853 * -1.0
+    assert abs(stability.rk4_factor(np.array([z]))[0]) == pytest.approx(1.0, abs=1e-3)
+
+
+def test_the_fastest_motion_of_a_taut_rope_is_its_highest_axial_mode():
+    """N - 1 masses mu l between N springs EA / l held at both ends: omega_max =
+    2 sqrt(EA / (mu l^2)) sin((N - 1) pi / (2 N)), the dense Jacobian's and ARPACK's alike."""
+    built = model.build(load_case(_taut_rope()))
+    segment = L0 / N
+    closed = 2.0 * math.sqrt(EA / (MU * segment**2)) * math.sin((N - 1) * math.pi / (2 * N))
+    dense = frequency.fastest_modes(built)
+    assert abs(dense.values[0].imag) == pytest.approx(closed, rel=1e-5)
+    assert abs(dense.values[0].real) < 1e-6 * closed  # no damping
+    assert dense.what.startswith("node ") and dense.what.endswith("of line 'rope'")
+    frequency.DENSE_UP_TO, kept = 0, frequency.DENSE_UP_TO
+    try:
+        arnoldi = frequency.fastest_modes(built)
+    finally:
+        frequency.DENSE_UP_TO = kept
+    assert abs(arnoldi.values[0]) == pytest.approx(abs(dense.values[0]), rel=1e-6)
+    limit = stability.rk4_limit(built)
+    assert limit.step == pytest.approx(2 * math.sqrt(2) / closed, rel=1e-3)
+
+
+def _mooring(**simulation):
+    case = seacable.load_case(MOORING)
+    return case.model_copy(
+        update={"simulation": case.simulation.model_copy(update={"duration": 20.0, **simulation})}
+    )
+
+
+def test_a_step_beyond_the_limit_is_refused_with_the_limit_and_a_step_to_use():
+    """The mooring example's chain (axial waves near 686 rad/s) at rk4's 0.01 s: refused before
+    the run, naming the limit, the node that moves, a step that divides the output interval,
+    the adaptive integrator and the way to go ahead."""
+    case = _mooring(integrator="rk4", time_step=0.01)
+    with pytest.raises(seacable.CaseError) as info:
+        seacable.simulation.prepare(case)
+    message = str(info.value)
+    assert message.startswith("simulation.time_step: 0.01 s is beyond rk4's stability limit")
+    assert "685.7 rad/s" in message and "node " in message and "line 'chain'" in message
+    assert "unstable above time_step 0.00392 s" in message
+    assert "Use time_step 0.002326 s or less" in message  # 0.1 s / 43, 0.6 of the limit
+    assert "integrator: dopri5" in message and "allow_unstable_step: true" in message
+
+
+def test_the_limit_is_sharp_and_a_run_allowed_beyond_it_is_warned(caplog):
+    """The refusal guards against what rk4 does beyond the limit: the mooring example at 98 %
+    of the limit gives dopri5's largest tension (to 1e-4); at 106 %, allowed, the run
+    finishes 'complete' with a largest tension more than twice too large."""
+    ds = seacable.simulate(_mooring()).dataset
+    reference = float(ds["lines/chain/tension"].max())
+    limit = stability.rk4_limit(model.build(_mooring())).step
+    below, above = 0.1 / 26, 0.1 / 24  # steps that divide the output interval, 0.1 s
+    assert below / limit == pytest.approx(0.982, abs=1e-3)
+    assert above / limit == pytest.approx(1.064, abs=1e-3)
+    near = seacable.simulate(_mooring(integrator="rk4", time_step=below)).dataset
+    assert float(near["lines/chain/tension"].max()) == pytest.approx(reference, rel=1e-4)
+    assert "close to rk4's stability limit" in caplog.text
+    far = seacable.simulate(_mooring(integrator="rk4", time_step=above, allow_unstable_step=True))
+    assert far.status == "complete"
+    assert float(far.dataset["lines/chain/tension"].max()) > 2.0 * reference
+    assert "is beyond rk4's stability limit" in caplog.text
