@@ -143,12 +143,14 @@ def test_stiff_integrators_run_rigid_link_lines_with_their_jacobian(integrator):
 
 
 def test_default_generalized_alpha_takes_long_steps_on_stiff_lines():
-    """The guided rising body on stiff lumped lines (EA 1e8 N), partly on the seabed, its float
+    """The guided rising body on stiff lumped lines (EA 1e8 N), partly on the seabed (its
+    contact given: without it the lines would start through the seabed), its float
     between them: at 5 ms steps (25 times rk4's stable step) the default generalized-alpha
     keeps the energy from growing and rises as rk4 does."""
     case = seacable.load_case("examples/rising_body_single_cable_guided.yaml")
     system = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
     system["line_types"][0]["axial_stiffness"] = 1e8
+    system["environment"]["seabed"] = {"stiffness": 1e5}  # the lumped lines' contact
     for line in system["lines"]:  # lumped, each at its static shape between its bodies
         line.update(model="lumped_mass")
         del line["initial"]

@@ -281,6 +281,8 @@ def test_mooring_stiffness_refuses_a_rigid_segment_line_on_the_body():
     base = _platform_case(segments=35)
     lines = _dump(base.lines)
     lines[0].update({"model": "rigid_segments_3d", "from": lines[0]["to"], "to": lines[0]["from"]})
-    built = model.build(derive_case(base, {"lines": lines, "start": "as_given"}))
+    deeper = base.environment.model_copy(update={"water_depth": 300.0})  # it hangs to -208 m
+    built = model.build(derive_case(base, {"lines": lines, "start": "as_given",
+                                           "environment": deeper}))  # fmt: skip
     with pytest.raises(statics.StaticsError, match="rigid-segment line 'line_1'"):
         statics.mooring_stiffness(built, built.y0, "platform")

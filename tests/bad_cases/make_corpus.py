@@ -133,6 +133,23 @@ def cases():
             r"150 m, a strain of 56\.9 %.*more stretch than a line takes",
             lambda d: (d.update(start="as_given"), _set(d, ["bodies", 6, "position"],
                                                         [100.0, 0.0, 0.0])))  # fmt: skip
+
+    def point_volume(d):
+        d["bodies"][6].pop("shape")
+        d["bodies"][6]["volume"] = 78.5
+
+    for name, expect, change in [
+        ("body_below_seabed", r"bodies\[6\] \(buoy_a\): starts at z = -60 m, below the seabed",
+         lambda d: (d.update(start="as_given"), _set(d, ["bodies", 6, "position", 2], -60.0))),
+        ("point_volume_above_water",
+         r"bodies\[6\] \(buoy_a\): its centre of buoyancy starts at z = 24\.9\d* m, above the "
+         r"water", point_volume),
+        ("overstretched_in_balance",
+         r"lines \(a_north\): its most stretched segment \(14\) starts at a strain of 46\.2 %.*"
+         r"more stretch than a line takes",
+         lambda d: _set(d, ["line_types", 0, "axial_stiffness"], 5e4)),
+    ]:  # fmt: skip
+        mutated(f"geometry.{name}", "impossible geometry", expect, change)
     beyond = r"s is beyond rk4's stability limit: .* rad/s, moving node \d+ of line '\w+'.*Use "
     for name, step, change in [
         ("rk4_default_step", "0.01", {}),

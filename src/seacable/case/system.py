@@ -299,6 +299,9 @@ class LineType(_Model):
 
 
 MOST_SEGMENTS = 2_000_000  # segments of all lines of a case
+# how far below z = -water_depth a body or node may start [m]: depths written to the centimetre
+# (the thesis's 150.19 m under an end at -150.19026 m) are not refused
+SEABED_TOLERANCE = 1e-3
 
 
 class Section(_Model):
@@ -492,7 +495,7 @@ class SystemCase(_Model):
             if (
                 depth is not None
                 and isinstance(body, FixedBody)
-                and body.position[2] < -depth - 1e-6
+                and body.position[2] < -depth - SEABED_TOLERANCE
             ):
                 raise ValueError(
                     f"bodies[{k}] ({body.name}).position: z = {body.position[2]:g} m is below the "

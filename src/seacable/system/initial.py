@@ -17,6 +17,7 @@ from seacable.lines import catenary
 from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
+from seacable.system.geometry import MOST_STRAIN
 
 log = logging.getLogger(__name__)
 
@@ -133,15 +134,12 @@ def _lumped_angles(line, lengths, start, end, where) -> np.ndarray:
     return nodes
 
 
-MOST_STRAIN = 0.3  # a strain no rope, wire or chain takes: refused
-LARGE_STRAIN = 0.05  # a strain beyond a taut line's usual pretension: reported
-
-
 def _stretch(p, li, start, end, where: str, as_given: bool) -> None:
-    """The tension a lumped line's ends imply when they are farther apart than its length:
-    refused beyond MOST_STRAIN, reported beyond LARGE_STRAIN. Only ends that stay where they
-    are (fixed or imposed bodies, or any with ``start: as_given``): a static start moves free
-    bodies from their first guess."""
+    """A lumped line whose ends are farther apart than its length allows (``system.geometry``'s
+    MOST_STRAIN), refused before its shape is sought. Only ends that stay where they are
+    (fixed or imposed bodies, or any with ``start: as_given``): a static start moves free
+    bodies from their first guess. A smaller stretch is reported by ``system.geometry`` from
+    the start state."""
     ends = np.asarray(p.point_body)[[p.line_from[li], p.line_to[li]]]
     held = all(p.body_kind[b] in (kinematics.FIXED, kinematics.IMPOSED) for b in ends)
     if not (held or as_given):
@@ -149,17 +147,14 @@ def _stretch(p, li, start, end, where: str, as_given: bool) -> None:
     s0, n = p.line_seg[li], p.line_n[li]
     length = float(p.seg_length[s0 : s0 + n].sum())
     strain = float(np.linalg.norm(end - start)) / length - 1.0
-    if strain <= LARGE_STRAIN:
-        return
-    stiffness = float(p.seg_stiffness[s0 : s0 + n].min())
-    implied = (
-        f"{where}: its ends are {length * (1 + strain):.6g} m apart and its unstretched length "
-        f"is {length:.6g} m, a strain of {100 * strain:.3g} % and a tension of about "
-        f"{stiffness * strain:.4g} N (EA {stiffness:.4g} N)"
-    )
     if strain > MOST_STRAIN:
-        raise CaseError(f"{implied}: more stretch than a line takes; lengthen it or move its ends")
-    log.warning(f"{implied}; check the length and the ends' positions")
+        stiffness = float(p.seg_stiffness[s0 : s0 + n].min())
+        raise CaseError(
+            f"{where}: its ends are {length * (1 + strain):.6g} m apart and its unstretched "
+            f"length is {length:.6g} m, a strain of {100 * strain:.3g} % and a tension of about "
+            f"{stiffness * strain:.4g} N (EA {stiffness:.4g} N): more stretch than a line "
+            "takes; lengthen it or move its ends"
+        )
 
 
 def _rigid_initial(built: BuiltSystem, y: np.ndarray):

@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 
 from seacable.case import system as sch
-from seacable.system import coordinates, kernel, outputs, servo, statics, topology
+from seacable.system import coordinates, geometry, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
@@ -45,6 +45,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         y0[p.n_q : p.n_q + p.n_v] = steady if steady.any() else given
     built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
     servo.check(built, y0)
+    geometry.check_start(built, y0)
     return built
 
 
@@ -229,17 +230,9 @@ BODY_NAMES = (
 def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     p = system.params
     m = len(times)
-    nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
-    bodies = np.empty((m, nb, outputs.BODY_COLUMNS))
-    nodes = np.empty((m, len(p.node_mass), 3))
-    tension = np.empty((m, len(p.seg_length)))
-    ends = np.empty((m, nl, 2, 3))
-    ties = np.empty((m, nt, 8))
-    energy = np.empty((m, 3))
-    rigid = outputs.rigid_rows(p, m)
-    status = outputs.outputs_chunk(
-        times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid
-    )
+    filled = outputs.allocate(p, m)
+    status = outputs.fill(times, states, p, w, filled)
+    bodies, nodes, tension, ends, ties, energy, rigid = filled
     out: dict = {"time": times}
     for k, name in enumerate(list(ENERGY_VARIABLES)[:3]):
         out[name] = energy[:, k]

@@ -3,6 +3,7 @@ moment its lines and ties apply to it; every lumped line's nodes, tensions and e
 every tie's tension and length."""
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -90,6 +91,44 @@ def _string_rows(y, p, w, out):
             out[at + i, 3] = w.nat_out[i, 2]
             out[at + i, 4] = w.nat_out[i, 3]
         at += n + 1
+
+
+class Rows(NamedTuple):
+    """Output rows of ``m`` times, as ``outputs_chunk`` fills them: bodies (m, nb,
+    BODY_COLUMNS), lumped nodes (m, total nodes, 3), tensions (m, total segments), line ends
+    (m, nl, 2, 3), ties (m, nt, 8), energies (m, 3), the rigid lines' and strings'
+    (``rigid_rows``)."""
+
+    bodies: np.ndarray
+    nodes: np.ndarray
+    tension: np.ndarray
+    ends: np.ndarray
+    ties: np.ndarray
+    energy: np.ndarray
+    rigid: tuple
+
+
+def allocate(p, m: int) -> Rows:
+    """Room for ``m`` output rows of a system of parameters ``p``."""
+    nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
+    return Rows(
+        np.empty((m, nb, BODY_COLUMNS)), np.empty((m, len(p.node_mass), 3)),
+        np.empty((m, len(p.seg_length))), np.empty((m, nl, 2, 3)), np.empty((m, nt, 8)),
+        np.empty((m, 3)), rigid_rows(p, m),
+    )  # fmt: skip
+
+
+def fill(times, states, p, w, rows: Rows) -> int:
+    """``rows`` filled at ``times`` and ``states``; the worst kernel status met."""
+    return outputs_chunk(times, states, p, w, *rows)
+
+
+def at(p, y: np.ndarray, time: float = 0.0, w=None) -> Rows:
+    """The output row (m = 1) of one state ``y`` at ``time`` (``w``: the workspace to fill,
+    default a new one)."""
+    rows = allocate(p, 1)
+    fill(np.full(1, time), y[None, :], p, kernel.make_work(p) if w is None else w, rows)
+    return rows
 
 
 def rigid_rows(p, m: int) -> tuple:

@@ -40,19 +40,12 @@ class _Kinetic:
     """The kinetic energy [J] of a state (``system.energy`` through the compiled outputs)."""
 
     def __init__(self, p: kernel.SystemParams, time: float):
-        nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
         self.p, self.w, self.times = p, kernel.make_work(p), np.full(1, time)
-        self.rows = (
-            np.empty((1, nb, outputs.BODY_COLUMNS)), np.empty((1, len(p.node_mass), 3)),
-            np.empty((1, len(p.seg_length))), np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)),
-        )  # fmt: skip
-        self.energy = np.empty((1, 3))
-        self.rigid = outputs.rigid_rows(p, 1)
+        self.rows = outputs.allocate(p, 1)
 
     def __call__(self, y: np.ndarray) -> float:
-        outputs.outputs_chunk(self.times, y[None, :], self.p, self.w, *self.rows, self.energy,
-                              self.rigid)  # fmt: skip
-        return float(self.energy[0, 0])
+        outputs.fill(self.times, y[None, :], self.p, self.w, self.rows)
+        return float(self.rows.energy[0, 0])
 
 
 def relax(built: BuiltSystem, y: np.ndarray, residual, target: float, fastest: float,

@@ -359,15 +359,9 @@ def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False,
     rigid-segment line's end forces as in the results). A held body's acceleration at a pose
     out of balance comes from its own force models, and must not enter its lines' loads."""
     p = built.params
-    nb, nl, nt = len(p.body_kind), len(p.line_n), len(p.tie_from)
-    bodies = np.empty((1, nb, outputs.BODY_COLUMNS))
     w = kernel.make_work(p)
-    rigid = outputs.rigid_rows(p, 1)
-    outputs.outputs_chunk(
-        np.full(1, time), y[None, :], p, w, bodies,
-        np.empty((1, len(p.node_mass), 3)), np.empty((1, len(p.seg_length))),
-        np.empty((1, nl, 2, 3)), np.empty((1, nt, 8)), np.empty((1, 3)), rigid,
-    )  # fmt: skip
+    row = outputs.at(p, y, time, w)
+    bodies, rigid = row.bodies, row.rigid
     if not at_rest:
         return bodies[0, :, 12:18].copy()
     # every end force on a point (N, earth frame): lumped lines' from and to ends, ties'
@@ -376,7 +370,7 @@ def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False,
     forces = np.concatenate([w.end_load[:, 0], w.end_load[:, 1], w.tie_force, -w.tie_force,
                              rigid[2][0, :, 0], rigid[2][0, :, 1]])  # fmt: skip
     points = np.asarray(points, dtype=np.int64)
-    loads = np.zeros((nb, 6))
+    loads = np.zeros((len(p.body_kind), 6))
     on = np.asarray(p.point_body)[points]
     np.add.at(loads[:, :3], on, forces)
     np.add.at(loads[:, 3:], on, np.cross(w.parm[points], forces))

@@ -1,0 +1,138 @@
+"""Checks of the state a run starts from (after its statics): what the models cannot honestly
+run is refused, naming the body or line, where it is and the fix; what is possible but
+unusual is reported.
+
+- Below the seabed (z = -water_depth): bodies and the nodes of rigid lines and natural
+  strings have no seabed contact, nor have lumped lines without ``environment.seabed``, so one
+  that starts below the seabed (a rigid line whose hanging balance passes through it, a body
+  placed under it) would move through the ground unopposed: refused. Lumped lines with the
+  contact rest on it, and are not checked.
+- Above the water: a body without a shape counts its volume wholly submerged wherever it is
+  (``kernels.surface``: the point volume), so one whose centre of buoyancy starts clear of the
+  water with a volume or an added mass would float in the air: refused, with the shapes that
+  the surface cuts. (A hull whose waterplane is a linear stiffness keeps its centre of
+  buoyancy below the surface: allowed.)
+- Stretch: an extensible segment (lumped lines, natural strings) strained more than
+  LARGE_STRAIN at the start is reported with its tension, more than MOST_STRAIN (more than
+  any rope, wire or chain takes before it breaks, and far outside a linear EA) refused.
+"""
+
+import logging
+
+import numpy as np
+
+from seacable.bodies import kinematics
+from seacable.case.system import SEABED_TOLERANCE
+from seacable.errors import CaseError
+from seacable.kernels import surface
+from seacable.system import kernel, outputs
+from seacable.system.assemble import BuiltSystem
+
+log = logging.getLogger("seacable")
+
+MOST_STRAIN = 0.3  # a strain no rope, wire or chain takes: refused
+LARGE_STRAIN = 0.05  # a strain beyond a taut line's usual pretension: reported
+NO_SEABED = -1e29  # p.seabed_z below this: no seabed contact
+
+
+def check_start(built: BuiltSystem, y: np.ndarray) -> None:
+    """Refuse (CaseError) or report the start state ``y`` of ``built``, as the module says."""
+    p = built.params
+    w = kernel.make_work(p)
+    row = outputs.at(p, y, 0.0, w)
+    _seabed(built, row)
+    _above_water(built, w)
+    _stretched(built, row)
+
+
+def _seabed(built: BuiltSystem, row: outputs.Rows) -> None:
+    p, depth = built.params, built.case.environment.water_depth
+    if depth is None:
+        return
+    seabed = -float(depth)
+    below = f"below the seabed (z = {seabed:g} m, environment.water_depth {depth:g} m)"
+    for b, body in enumerate(built.case.bodies):
+        z = float(row.bodies[0, b, 2])
+        if p.body_kind[b] != kinematics.FIXED and z < seabed - SEABED_TOLERANCE:
+            raise CaseError(
+                f"bodies[{b}] ({body.name}): starts at z = {z:.6g} m, {below}, and a body has "
+                "no seabed contact; start it above the seabed or deepen the water"
+            )
+    advice = "shorten it, raise its ends or deepen the water"
+    contact = "give environment.seabed (the contact), " + advice
+    kinds = [(built.layout.rigid, p.rs_n, row.rigid[0][0], "a rigid line has")]
+    kinds.append((built.layout.natural, p.nat_n, row.rigid[4][0], "a natural string has"))
+    if p.seabed_z < NO_SEABED:  # lumped lines without environment.seabed: no contact either
+        kinds.append((built.layout.lines, p.line_n, row.nodes[0],
+                       "without environment.seabed, a lumped line has"))  # fmt: skip
+    for names, counts, nodes, what in kinds:
+        at = 0
+        for li, line in enumerate(names):
+            n = int(counts[li])
+            fix = contact if what.startswith("without") else advice
+            _first_below(nodes[at : at + n + 1, 2], seabed, f"lines ({line})", below,
+                         f"{what} no seabed contact; {fix}")  # fmt: skip
+            at += n + 1
+
+
+def _first_below(z: np.ndarray, seabed: float, where: str, below: str, why: str) -> None:
+    deep = np.flatnonzero(z < seabed - SEABED_TOLERANCE)
+    if deep.size:
+        k = int(deep[0])
+        raise CaseError(
+            f"{where}: node {k} starts at z = {z[k]:.6g} m, {below} ({deep.size} of its "
+            f"{z.size} nodes); {why}"
+        )
+
+
+def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
+    """Bodies without a shape whose centre of buoyancy starts above z = 0 (``w``: the
+    workspace filled at the start state)."""
+    p = built.params
+    if p.rho <= 0.0:  # in air: no water to be above
+        return
+    for b, body in enumerate(built.case.bodies):
+        if p.body_kind[b] != kinematics.DYNAMIC or p.body_shape[b, 0] != surface.POINT:
+            continue
+        z = float(w.pos[b, 2] + w.rot[b, 2] @ p.body_cob[b])  # the centre of buoyancy's
+        volume, added = float(p.body_volume[b]), bool(np.any(p.body_added[b] != 0.0))
+        if z > 1e-6 and (volume > 0.0 or added):
+            counted = f"its volume ({volume:.4g} m^3)" if volume > 0.0 else "its added mass"
+            raise CaseError(
+                f"bodies[{b}] ({body.name}): its centre of buoyancy starts at z = {z:.6g} m, "
+                f"above the water, where a body without a shape still counts {counted} "
+                "wholly submerged; give it a shape (sphere, vertical_cylinder or table) that "
+                "the surface cuts, or start it below z = 0"
+            )
+
+
+def _stretched(built: BuiltSystem, row: outputs.Rows) -> None:
+    p = built.params
+    lines = []  # (name, strains, tensions, EA per segment)
+    for li, line in enumerate(built.layout.lines):
+        s0, n = int(p.line_seg[li]), int(p.line_n[li])
+        stiffness = p.seg_stiffness[s0 : s0 + n]
+        tension = row.tension[0, s0 : s0 + n]
+        lines.append((line, tension / stiffness, tension, stiffness))
+    strings, at = row.rigid[4][0], 0
+    for li, line in enumerate(built.layout.natural):
+        n = int(p.nat_n[li])
+        strain, tension = strings[at : at + n + 1, 3], strings[at : at + n + 1, 4]
+        lines.append((line, strain, tension, np.full(n + 1, float(p.nat_ea[li]))))
+        at += n + 1
+    for name, strain, tension, stiffness in lines:
+        if not strain.size or not np.isfinite(strain).all():
+            continue
+        k = int(np.argmax(strain))
+        if strain[k] <= LARGE_STRAIN:
+            continue
+        implied = (
+            f"lines ({name}): its most stretched segment ({k}) starts at a strain of "
+            f"{100 * strain[k]:.3g} %, a tension of {tension[k]:.4g} N (EA {stiffness[k]:.4g} N)"
+        )
+        if strain[k] > MOST_STRAIN:
+            raise CaseError(
+                f"{implied}: more stretch than a line takes; lengthen it, move its ends or "
+                "lighten what it carries"
+            )
+        log.warning(f"{implied}; check its length, EA and what it carries")

@@ -1,0 +1,91 @@
+"""The start state a run cannot honestly take is refused before the first step, by `seacable
+validate` too (``system.geometry``): bodies and contact-free nodes below the seabed, a body
+without a shape floating above the water, segments stretched beyond what a line takes; a
+large stretch is reported with its tension."""
+
+import copy
+import logging
+
+import pytest
+import yaml
+
+import seacable
+from seacable.case.loader import load_case
+from seacable.simulation import prepare
+
+UMBILICAL = yaml.safe_load(open("examples/thesis_6_1_sim2_submerged_12_links.yaml"))
+BUOYS = yaml.safe_load(open("examples/two_buoys_moored_with_hawser.yaml"))
+
+
+def _sagging_umbilical(depth):
+    """The thesis's 240 m umbilical (rigid links) hung in balance between its top at z = 0 and a
+    fixed end at (100, 0, -50) m: its sag reaches z = -128 m."""
+    data = copy.deepcopy(UMBILICAL)
+    data["environment"]["water_depth"] = depth
+    data["bodies"][1] = {"name": "end", "type": "fixed", "position": [100.0, 0.0, -50.0]}
+    data["start"] = "static"
+    data["lines"][0].pop("initial")
+    return load_case(data)
+
+
+def test_a_rigid_line_whose_balance_passes_below_the_seabed_is_refused():
+    prepare(_sagging_umbilical(130.0))  # its lowest node, 128.1 m deep, clears the seabed
+    with pytest.raises(seacable.CaseError) as info:
+        prepare(_sagging_umbilical(80.0))
+    assert str(info.value).startswith(
+        "lines (umbilical): node 4 starts at z = -80.8323 m, below the seabed (z = -80 m, "
+        "environment.water_depth 80 m) (7 of its 13 nodes); a rigid line has no seabed contact"
+    )
+
+
+def _buoys(change, start=None):
+    data = copy.deepcopy(BUOYS)
+    change(data)
+    if start:
+        data["start"] = start
+    return load_case(data)
+
+
+def test_a_body_that_starts_below_the_seabed_is_refused():
+    case = _buoys(lambda d: d["bodies"][6].update(position=[0.0, 0.0, -60.0]), "as_given")
+    expected = r"^bodies\[6\] \(buoy_a\): starts at z = -60 m, below the seabed \(z = -50 m, "
+    with pytest.raises(seacable.CaseError, match=expected + r"environment.water_depth 50 m\)"):
+        prepare(case)
+
+
+def test_a_body_without_a_shape_that_balances_above_the_water_is_refused():
+    """Buoy A as a point volume of 78.5 m^3 (no shape): its buoyancy never lessens, so its
+    balance lies where its chains hold it, 25 m above the water."""
+
+    def point_volume(d):
+        d["bodies"][6].pop("shape")
+        d["bodies"][6]["volume"] = 78.5
+
+    with pytest.raises(seacable.CaseError) as info:
+        prepare(_buoys(point_volume))
+    message = str(info.value)
+    assert message.startswith("bodies[6] (buoy_a): its centre of buoyancy starts at z = 24.9")
+    assert "wholly submerged; give it a shape (sphere, vertical_cylinder or table)" in message
+
+
+def test_a_hull_whose_waterplane_is_a_stiffness_may_have_its_reference_above_the_water():
+    """The platform example: its reference point at the waterline rises 0.56 m in balance,
+    its centre of buoyancy 15 m below stays submerged: accepted."""
+    prepare(load_case("examples/platform_three_catenary_lines.yaml"))
+
+
+def test_a_large_stretch_is_reported_with_its_tension_and_a_larger_one_refused(caplog):
+    """The buoys' chains made softer: at EA 1 MN the largest static strain, 5.45 %, is reported
+    with its tension (EA times the strain); at 50 kN it would be 46 %: refused."""
+
+    def soft(ea):
+        return lambda d: d["line_types"][0].update(axial_stiffness=ea)
+
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        prepare(_buoys(soft(1e6)))
+    assert (
+        "lines (a_west): its most stretched segment (14) starts at a strain of 5.45 %, a "
+        "tension of 5.454e+04 N (EA 1e+06 N)" in caplog.text
+    )
+    with pytest.raises(seacable.CaseError, match=r"more stretch than a line takes"):
+        prepare(_buoys(soft(5e4)))
