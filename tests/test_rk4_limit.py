@@ -112,3 +112,15 @@ def test_the_limit_is_sharp_and_a_run_allowed_beyond_it_is_warned(caplog):
     assert far.status == "complete"
     assert float(far.dataset["lines/chain/tension"].max()) > 2.0 * reference
     assert "is beyond rk4's stability limit" in caplog.text
+
+
+def test_a_step_taken_as_the_divisor_of_the_output_interval_is_reported():
+    """The schema takes a fixed step within 1 % above a divisor of the output interval as that
+    divisor: the run says so."""
+    data = load_case(MOORING).model_dump(mode="json", by_alias=True, exclude_unset=True)
+    data["simulation"].update(integrator="rk4", time_step=0.002002)
+    _, warnings = seacable.simulation.prepare(load_case(data))
+    assert (
+        "simulation.time_step 0.002002 s is taken as 0.002 s, the step that divides "
+        "output_interval (0.1 s, 50 per output)" in warnings
+    )

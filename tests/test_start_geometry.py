@@ -89,3 +89,35 @@ def test_a_large_stretch_is_reported_with_its_tension_and_a_larger_one_refused(c
     )
     with pytest.raises(seacable.CaseError, match=r"more stretch than a line takes"):
         prepare(_buoys(soft(5e4)))
+
+
+def test_a_velocity_that_is_not_used_is_reported(caplog):
+    """The towed body of the towing example rides at the tip of its rigid cable: a velocity
+    given to it cannot be used, and the run says so."""
+    data = yaml.safe_load(open("examples/jacquot_marichal_towing_speed_change_and_turn.yaml"))
+    data["bodies"][1]["velocity"] = [0.0, 1.0, 0.0]
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        prepare(load_case(data))
+    assert "bodies[1] (end).velocity [0.0, 1.0, 0.0] m/s is not used: the body rides at the " \
+        "tip of a rigid line" in caplog.text  # fmt: skip
+
+
+def test_a_velocity_a_tow_start_replaces_is_reported(caplog):
+    """A free buoy given a velocity, started static in a tow (its anchor towed at 1 m/s): it
+    starts in the tow's steady motion, and the run says it replaced the velocity given."""
+    data = {
+        "name": "towed buoy", "environment": {"water_depth": 100.0},
+        "bodies": [
+            {"name": "ship", "type": "imposed", "x": {"kind": "ramp", "start_time": 0.0,
+             "end_time": 100.0, "start_value": 0.0, "end_value": 100.0}},
+            {"name": "buoy", "type": "point", "position": [-20.0, 0.0, -10.0], "mass": 100.0,
+             "velocity": [0.0, 0.5, 0.0], "external forces": [{"model": "gravity"}]},
+        ],
+        "lines": [{"name": "tie", "model": "tie", "from": "ship", "to": "buoy",
+                   "unstretched_length": 20.0, "stiffness": 1e5}],
+        "simulation": {"duration": 0.1, "output_interval": 0.1},
+    }  # fmt: skip
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        prepare(load_case(data))
+    assert "bodies[1] (buoy).velocity [0.0, 0.5, 0.0] m/s is replaced by the tow's steady " \
+        "motion, [1.0, 0.0, 0.0] m/s" in caplog.text  # fmt: skip

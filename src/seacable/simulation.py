@@ -99,8 +99,23 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     are none). Raises CaseError (or StaticsError)."""
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
-    warnings = [*unit_warnings(case), _step_check(case.simulation, system)]
+    sim = case.simulation
+    warnings = [*unit_warnings(case), _rounded_step(sim), _step_check(sim, system)]
     return system, "; ".join(w for w in warnings if w) or None
+
+
+def _rounded_step(sim: schema.Simulation) -> str | None:
+    """What the run does with a fixed time_step that divides the output interval only within
+    1 % (the schema's rule): it takes the divisor, and says so."""
+    if sim.integrator not in FIXED_STEP or sim.time_step is None:
+        return None
+    used, steps = rk4_step(sim)
+    if abs(used - sim.time_step) <= 1e-12 * sim.time_step:
+        return None
+    return (
+        f"simulation.time_step {sim.time_step:g} s is taken as {used:.6g} s, the step that "
+        f"divides output_interval ({sim.output_interval:g} s, {steps} per output)"
+    )
 
 
 def _divisor(sim: schema.Simulation, step: float) -> float:

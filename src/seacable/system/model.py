@@ -2,11 +2,13 @@
 output variables per group (``bodies/<name>``, ``lines/<name>``), its output rows, the scales and
 frequencies the integrators' defaults and warnings use."""
 
+import logging
 import math
 
 import numpy as np
 from scipy import sparse
 
+from seacable.bodies import kinematics
 from seacable.case import system as sch
 from seacable.system import coordinates, geometry, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
@@ -15,6 +17,7 @@ from seacable.system.assemble import build as _assemble
 from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
 from seacable.system.initial import initial_state
 
+log = logging.getLogger("seacable")
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
 DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
 JOINT_ADVICE = "add joint damping (lines[k].joint_damping [N m s/rad])"
@@ -42,11 +45,44 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         given = y0[p.n_q : p.n_q + p.n_v].copy()
         y0 = statics.equilibrium(built, y0)
         steady = statics.steady_velocities(p, y0)  # a tow keeps its steady motion
+        if steady.any():
+            _replaced_velocities(built, given, steady)
         y0[p.n_q : p.n_q + p.n_v] = steady if steady.any() else given
     built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
     servo.check(built, y0)
+    _carried_velocities(built)
     geometry.check_start(built, y0)
     return built
+
+
+def _replaced_velocities(built: BuiltSystem, given: np.ndarray, steady: np.ndarray) -> None:
+    """Report the free bodies whose given velocity a tow's static start replaces by the steady
+    motion (nothing is changed silently)."""
+    p = built.params
+    for b, body in enumerate(built.case.bodies):
+        if p.body_kind[b] != kinematics.DYNAMIC:
+            continue
+        v = int(p.body_v[b]) - p.n_q
+        if np.any(given[v : v + 3] != 0.0) and np.any(given[v : v + 3] != steady[v : v + 3]):
+            log.warning(
+                f"bodies[{b}] ({body.name}).velocity {np.round(given[v : v + 3], 6).tolist()} "
+                f"m/s is replaced by the tow's steady motion, "
+                f"{np.round(steady[v : v + 3], 6).tolist()} m/s (start: static starts a tow in "
+                "its steady state; use start: as_given to keep the velocity)"
+            )
+
+
+def _carried_velocities(built: BuiltSystem) -> None:
+    """Report the bodies carried at a rigid line's tip whose case gives a velocity: they move
+    with the tip, and the velocity is not used."""
+    for b, body in enumerate(built.case.bodies):
+        given = getattr(body, "velocity", (0.0, 0.0, 0.0))
+        if built.params.body_kind[b] == kinematics.TIP and any(v != 0.0 for v in given):
+            log.warning(
+                f"bodies[{b}] ({body.name}).velocity {list(given)} m/s is not used: the body "
+                "rides at the tip of a rigid line and moves with it (give the line's motion, "
+                "or leave the velocity out)"
+            )
 
 
 def damping_advice(system: BuiltSystem) -> str:
