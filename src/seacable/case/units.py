@@ -5,7 +5,7 @@ was meant in degrees). Warned, not refused: a value can be odd and right."""
 import math
 
 from seacable.case.base import Sine, instances
-from seacable.case.system import LineType, SystemCase
+from seacable.case.system import LineType, PointBody, RigidBody, SystemCase
 
 LIGHTEST_BODY = 10.0  # [kg/m^3] a body's mass over its volume below this: tonnes given as kg?
 SOFTEST_LINE = 1e7  # [Pa] EA over the line's area pi d^2 / 4 below this: EA given in kN?
@@ -18,7 +18,9 @@ def unit_warnings(case: SystemCase) -> list[str]:
     for k, kind in enumerate(case.line_types):
         out += _line_type(f"line_types[{k}] ({kind.name})", kind)
     for k, body in enumerate(case.bodies):
-        volume = body.displaced_volume() if hasattr(body, "displaced_volume") else 0.0
+        if not isinstance(body, (PointBody, RigidBody)):
+            continue
+        volume = body.displaced_volume()
         if volume > 0.0 and body.mass / volume < LIGHTEST_BODY:
             out.append(
                 f"bodies[{k}] ({body.name}).mass: {body.mass:g} kg for {volume:.4g} m^3 is "
