@@ -244,6 +244,10 @@ def test_every_failure_is_one_line_and_its_exit_code(tmp_path, monkeypatch):
     case = _case_file(tmp_path)
     result = runner.invoke(main, ["run", str(case), "-o", str(case)])  # over the case itself
     assert result.exit_code == 2
+    assert "is a file this run reads" in result.output and "would replace" in result.output
+    other = tmp_path / "other.yaml"  # a case-like name the run does not read: refused too
+    result = runner.invoke(main, ["run", str(case), "-o", str(other)])
+    assert result.exit_code == 2
     assert "looks like a case or table file, which the results would replace" in result.output
     unreadable = tmp_path / "latin1.yaml"
     unreadable.write_bytes("name: caf\xe9\n".encode("latin-1"))

@@ -1,5 +1,7 @@
 """Results: NetCDF written as the run goes, units on every variable, status kept on failure."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -191,3 +193,88 @@ def test_an_output_in_a_missing_folder_is_refused(tmp_path):
 
     with pytest.raises(seacable.OutputError, match=r"output folder '.*typo' does not exist"):
         seacable.simulate(seacable.load_case(CHAIN), output=tmp_path / "typo" / "run.nc")
+
+
+def _chain_with_table(tmp_path, name: str):
+    """The chain case pushed by a table file ``name`` (relative to the case, or absolute)."""
+    import copy
+
+    import yaml
+
+    from test_case_errors import CHAIN
+
+    data = copy.deepcopy(CHAIN)
+    push = {"model": "applied", "force_x": {"kind": "table", "file": name}}
+    data["bodies"][1]["external forces"].append(push)
+    table = Path(name) if Path(name).is_absolute() else tmp_path / name
+    table.write_text("time,force\n0,0\n0.5,3\n1,0\n")
+    case = tmp_path / "case.yaml"
+    case.write_text(yaml.safe_dump(data, sort_keys=False))
+    return case, table
+
+
+def test_a_run_refuses_to_write_over_a_file_it_reads_or_one_that_is_not_results(tmp_path):
+    """The case's own file, its table file (whatever its suffix), and an existing file that is
+    not a results file are refused as outputs, naming them; nothing is written over."""
+    case, table = _chain_with_table(tmp_path, "push.dat")
+    loaded = seacable.load_case(case)
+    with pytest.raises(
+        seacable.OutputError, match=r"output '.*push\.dat' is a file this run reads"
+    ):
+        seacable.simulate(loaded, output=table)
+    notes = tmp_path / "notes.pdf"
+    notes.write_bytes(b"%PDF-1.4 not results")
+    with pytest.raises(seacable.OutputError, match=r"'.*notes\.pdf' exists and is not a results"):
+        seacable.simulate(loaded, output=notes)
+    assert table.read_text().startswith("time,force") and notes.read_bytes().startswith(b"%PDF")
+
+
+def test_a_run_whose_table_lies_outside_its_folder_is_repeated(tmp_path):
+    """A table given by an absolute path is kept in the results file too; ``seacable repeat``
+    puts it beside the case it runs again and gives the same numbers, bit for bit."""
+    import xarray as xr
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    folder = tmp_path / "case"
+    folder.mkdir()
+    case, table = _chain_with_table(folder, str(elsewhere / "push.csv"))
+    first = tmp_path / "first.nc"
+    seacable.simulate(seacable.load_case(case), output=first)
+    table.unlink()
+    again = tmp_path / "again.nc"
+    result = CliRunner().invoke(main, ["repeat", str(first), "-o", str(again), "--no-progress"])
+    assert result.exit_code == 0, result.output
+    with xr.open_datatree(first) as a, xr.open_datatree(again) as b:
+        assert np.ptp(a["bodies/end/position_x"].values) > 0.0
+        np.testing.assert_array_equal(
+            b["bodies/end/position_x"].values, a["bodies/end/position_x"].values
+        )
+
+
+def test_a_file_the_disk_cannot_hold_is_refused_with_its_size(tmp_path, monkeypatch):
+    """The file is allocated whole when it is created: with too little room on its disk the run
+    is refused before it starts, naming the size it needs and the room there is, an estimate
+    within 5 % of the size the run writes."""
+    import collections
+
+    from seacable import results as results_module
+    from test_case_errors import CHAIN
+
+    data = {**CHAIN, "simulation": {"duration": 20.0, "output_interval": 0.01,
+                                    "integrator": "rk4", "time_step": 0.01}}  # fmt: skip
+    case = seacable.load_case(data)
+    written = tmp_path / "fits.nc"
+    seacable.simulate(case, output=written)
+    usage = collections.namedtuple("usage", "total used free")
+    monkeypatch.setattr(results_module.shutil, "disk_usage", lambda _: usage(1e9, 1e9, 1000))
+    with pytest.raises(seacable.OutputError) as info:
+        seacable.simulate(case, output=tmp_path / "full.nc")
+    message = str(info.value)
+    assert "needs about" in message and "its disk has 1e-06 GB free" in message
+    needed = float(message.split("needs about ")[1].split(" GB")[0]) * 1e9
+    assert abs(needed - written.stat().st_size) < 0.05 * written.stat().st_size
+    assert not (tmp_path / "full.nc").exists()

@@ -123,18 +123,26 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
 @click.option("--progress/--no-progress", default=True, help="Progress bar on long runs.")
 def repeat(results_file: str, output: str, progress: bool) -> None:
     """Run again the case RESULTS_FILE was written by: its case text and the files it read,
-    kept in the file's attributes, written to a temporary folder and run from there."""
+    kept in the file's attributes, written to a temporary folder and run from there (a file
+    the case named outside its folder, by an absolute path or '..', is put in that folder and
+    the case text pointed at it)."""
     with h5netcdf.File(results_file, "r") as f:
         if "case" not in f.attrs:
             _fail(f"{results_file}: not a seacable results file (no 'case' attribute)", EXIT_INPUT)
         text, files = str(f.attrs["case"]), yaml.safe_load(str(f.attrs.get("input_files", "{}")))
     with tempfile.TemporaryDirectory() as folder:
-        for name, content in (files or {}).items():
+        for k, (name, content) in enumerate((files or {}).items()):
+            kept = name
             if Path(name).is_absolute() or ".." in Path(name).parts:
-                _fail(f"{results_file}: input file '{name}' is outside the case's folder; "
-                      "run the case itself", EXIT_INPUT)  # fmt: skip
-            (Path(folder) / name).parent.mkdir(parents=True, exist_ok=True)
-            (Path(folder) / name).write_text(content)
+                # a file outside the case's folder: kept inside the temporary one, and the case
+                # text pointed at it (the name is the exact text the case gives)
+                kept = f"outside_{k}_{Path(name).name}"
+                if text.count(name) != 1:
+                    _fail(f"{results_file}: input file '{name}' cannot be put back in the "
+                          "case's text; run the case itself", EXIT_INPUT)  # fmt: skip
+                text = text.replace(name, kept)
+            (Path(folder) / kept).parent.mkdir(parents=True, exist_ok=True)
+            (Path(folder) / kept).write_text(content)
         (Path(folder) / "case.yaml").write_text(text)
         results = seacable.simulate(seacable.load_case(Path(folder) / "case.yaml"),
                                     output=output, progress=progress)  # fmt: skip

@@ -7,8 +7,10 @@ runs or if the process died) with its ``status_message``.
 """
 
 import datetime as _dt
+import math
 import os
 import platform
+import shutil
 from pathlib import Path
 
 import h5netcdf
@@ -126,10 +128,11 @@ class _Sink:
     segments with one row was 4.1 GB of chunks of 1024 rows)."""
 
     def __init__(self, path, sizes: dict, coords: dict, variables: dict, attrs: dict,
-                 rows: int = 1):  # fmt: skip
+                 rows: int = 1, inputs=()):  # fmt: skip
         """``sizes`` maps each dimension but time to its length; ``coords`` maps name ->
         (dim, values, units, long_name); ``variables`` maps name -> (dims, units, long_name);
-        ``rows``: the time rows the run will write at most (a file's size)."""
+        ``rows``: the time rows the run will write at most (a file's size); ``inputs``: the
+        files the run reads, which it must not replace."""
         self.path = None if path is None else Path(path)
         self.sizes = sizes
         self.coords = coords
@@ -140,7 +143,8 @@ class _Sink:
         self.capacity = rows
         self._file = None
         if self.path is not None:
-            _not_being_written(self.path)
+            _not_being_written(self.path, inputs)
+            self._room()
             # made under another name and renamed once its structure is on disk: the file at
             # ``path`` is never one that does not open
             creating = self.path.with_name(f".{self.path.name}.creating")
@@ -174,6 +178,28 @@ class _Sink:
         f.flush()  # h5netcdf's: writes its _NCProperties (an attribute: not again until close)
         f._h5file.flush()  # HDF5's: the structure on disk (h5netcdf's flush does not do it)
         return f
+
+    def bytes_needed(self) -> int:
+        """The file's size once its rows are allocated [bytes]: 8 per value of every time row
+        (the rest, coordinates and attributes, is small beside it)."""
+        per_row = 1
+        for path, (dims, _, _) in self.variables.items():
+            group, _ = _split(path)
+            per_row += math.prod(self._size(group, d) for d in dims if d != "time")
+        return 8 * per_row * self.capacity
+
+    def _room(self) -> None:
+        """Refuse a file the disk cannot hold (it is allocated whole when it is created), with
+        the estimate and the room there is."""
+        needed = self.bytes_needed()
+        assert self.path is not None
+        free = shutil.disk_usage(self.path.parent).free
+        if needed > free:
+            raise OutputError(
+                f"output '{self.path}' needs about {needed / 1e9:.3g} GB ({self.capacity:,} "
+                f"rows), and its disk has {free / 1e9:.3g} GB free; lengthen "
+                "simulation.output_interval, shorten duration, or write elsewhere"
+            )
 
     def _size(self, group: str, dim: str) -> int:
         return self.sizes[f"{group}/{dim}" if group else dim]
@@ -233,14 +259,21 @@ class _Sink:
         return xr.DataTree.from_dict(tree)
 
 
-def _not_being_written(path: Path) -> None:
-    """Refuse an output path that cannot take results: a directory, a case or table file (a
-    results file given the case's name would replace the case), a folder that does not exist
-    (a mistyped path is not created silently) or cannot be written, a file another run is
-    writing (HDF5 locks a file it writes: a second writer would replace it under the first,
-    whose rows would be lost)."""
+def _not_being_written(path: Path, inputs=()) -> None:
+    """Refuse an output path that cannot take results: a directory, a file the run reads
+    (``inputs``: its case and table files) or one named like a case or table file (a results
+    file given the case's name would replace the case), an existing file that is not a
+    results file, a folder that does not exist (a mistyped path is not created silently) or
+    cannot be written, a file another run is writing (HDF5 locks a file it writes: a second
+    writer would replace it under the first, whose rows would be lost)."""
     if path.is_dir():
         raise OutputError(f"output '{path}' is a directory; give a file name ending in .nc")
+    for read in inputs:
+        if path.resolve() == Path(read).resolve():
+            raise OutputError(
+                f"output '{path}' is a file this run reads ({read}), which the results would "
+                "replace; give another file name ending in .nc"
+            )
     if path.suffix.lower() in (".yaml", ".yml", ".csv", ".txt"):
         raise OutputError(
             f"output '{path}' looks like a case or table file, which the results would replace; "
@@ -263,6 +296,10 @@ def _not_being_written(path: Path) -> None:
                 f"output file '{path}' is being written by another run; wait for it to end or "
                 "choose another output file"
             ) from None
+        raise OutputError(
+            f"output file '{path}' exists and is not a results file (NetCDF/HDF5), which the "
+            "results would replace; remove it or choose another output file"
+        ) from None
 
 
 def _allocated() -> dict:

@@ -388,7 +388,7 @@ def simulate(
     attrs.update(loader.record(case))
     variables = model.variables(system)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs,
-                 rows=1 + output_count(sim))  # fmt: skip
+                 rows=1 + output_count(sim), inputs=loader.files_read(case))  # fmt: skip
     run = _Run(case, model, system, sink)
     stop = _Stop()
     previous = stop.install()

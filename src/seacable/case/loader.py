@@ -124,15 +124,15 @@ def load_case(source: str | Path | dict) -> SystemCase:
         With one line per problem: the path in the file (``lines[0].sections``), the value, what
         is allowed and, for unknown keys, the valid keys.
     """
-    data, text, base_dir = _read(source)
+    data, text, file = _read(source)
     if "cables" in data:
-        name = str(source) if base_dir is not None else "FILE"
+        name = str(source) if file is not None else "FILE"
         raise CaseError(
             "cables: the single-cable form (cables: with top and bottom) is not read any more; "
             f"write the case as a system of bodies and lines: seacable upgrade {name} "
             "-o system.yaml"
         )
-    case = _validated(SystemCase, data, text, base_dir)
+    case = _validated(SystemCase, data, text, file)
     assert isinstance(case, SystemCase)
     return case
 
@@ -147,17 +147,18 @@ def load_single_cable(source: str | Path | dict) -> Case:
     CaseError
         As :func:`load_case`; for a system of bodies and lines, that it is one already.
     """
-    data, text, base_dir = _read(source)
+    data, text, file = _read(source)
     if "lines" in data:
         raise CaseError("the case is already a system of bodies and lines (lines:)")
-    case = _validated(Case, data, text, base_dir)
+    case = _validated(Case, data, text, file)
     assert isinstance(case, Case)
     return case
 
 
 def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
-    """The mapping of a case source, its YAML text (None for a dict) and its folder."""
-    base_dir = None
+    """The mapping of a case source, its YAML text (None for a dict) and its file (None for a
+    dict or a YAML string)."""
+    file = None
     text = None
     if isinstance(source, dict):
         data = source
@@ -167,23 +168,24 @@ def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
             raise CaseError(f"case file '{path}' does not exist")
         if path is not None and path.exists():
             text = _text(path)
-            base_dir = path.resolve().parent
+            file = path.resolve()
         else:
             text = str(source)
         data = _parse(text)
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
-    return data, text, base_dir
+    return data, text, file
 
 
-def _validated(root, data: dict, text: str | None, base_dir: Path | None) -> Case | SystemCase:
+def _validated(root, data: dict, text: str | None, file: Path | None) -> Case | SystemCase:
     try:
         case = root.model_validate(data)
     except ValidationError as exc:
         raise CaseError(format_errors(exc, root)) from None
     case._source_dump = case.model_dump(mode="json")
     case._source_text = text if text is not None else _dumped(case)
-    case._base_dir = None if base_dir is None else str(base_dir)
+    case._base_dir = None if file is None else str(file.parent)
+    case._source_file = None if file is None else str(file)
     return case
 
 
@@ -204,7 +206,7 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
     data = _parse(case_text(case))
     merged = _merged(data, changes)
     derived = load_case(merged) if isinstance(case, SystemCase) else load_single_cable(merged)
-    derived._base_dir = case._base_dir
+    derived._base_dir, derived._source_file = case._base_dir, case._source_file
     return derived
 
 
@@ -252,6 +254,14 @@ _DUMPER = getattr(yaml, "CSafeDumper", yaml.SafeDumper)  # libyaml's: ten times 
 def _yaml(data) -> str:
     """Plain data as YAML text (safe: no Python objects), keys in their order."""
     return yaml.dump(data, Dumper=_DUMPER, sort_keys=False, allow_unicode=True)
+
+
+def files_read(case: Case | SystemCase) -> list[Path]:
+    """Every file a run of ``case`` reads, resolved: its case file and its table files (a
+    results file must replace none of them)."""
+    files = [Path(case._source_file)] if case._source_file else []
+    files += [table.path(case._base_dir).resolve() for _, table in instances(case, Table)]
+    return files
 
 
 def case_base_dir(case: Case | SystemCase):

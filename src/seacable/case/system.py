@@ -478,6 +478,7 @@ class SystemCase(_Model):
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
+    _source_file: str | None = PrivateAttr(default=None)  # the case file it was read from
 
     @model_validator(mode="after")
     def _unique_names(self):
