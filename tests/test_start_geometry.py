@@ -121,3 +121,37 @@ def test_a_velocity_a_tow_start_replaces_is_reported(caplog):
         prepare(load_case(data))
     assert "bodies[1] (buoy).velocity [0.0, 0.5, 0.0] m/s is replaced by the tow's steady " \
         "motion, [1.0, 0.0, 0.0] m/s" in caplog.text  # fmt: skip
+
+
+def test_a_run_that_goes_where_a_start_would_be_refused_says_when(caplog, tmp_path):
+    """The thesis umbilical in water 130 m deep: it starts above the seabed (its end at -120
+    m) and swings down through it, where nothing holds it; the run finishes, and says from
+    when, in the log and in the file (``run_warnings``)."""
+    data = copy.deepcopy(UMBILICAL)
+    data["environment"]["water_depth"] = 130.0
+    data["simulation"].update(duration=6.0)
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        results = seacable.simulate(load_case(data), output=tmp_path / "through.nc")
+    assert results.status == "complete"
+    said = results.dataset.attrs["run_warnings"]
+    assert said.startswith("body 'end' below the seabed from t = ")
+    assert "line 'umbilical' below the seabed from t = " in said
+    assert "where no seabed contact holds it" in caplog.text
+    end = results.dataset["bodies/end/position_z"].values
+    first = float(said.split("from t = ")[1].split(" s")[0])
+    assert end[results.dataset["time"].values < first].min() >= -130.001 > end.min()
+
+
+def test_a_body_without_a_shape_that_rises_above_the_water_is_said(caplog):
+    """Buoy A as a point volume started 5 m deep, as given: its buoyancy, never lessened,
+    lifts it out of the water; the run says from when."""
+
+    def point_volume(d):
+        d["bodies"][6].pop("shape")
+        d["bodies"][6].update(volume=78.5, position=[0.0, 0.0, -5.0])
+        d["simulation"].update(duration=20.0)
+
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        results = seacable.simulate(_buoys(point_volume, "as_given"))
+    assert "body 'buoy_a' above the water from t = " in results.dataset.attrs["run_warnings"]
+    assert "its volume still counts as wholly submerged: give it a shape" in caplog.text

@@ -1,7 +1,6 @@
 """Run a case: assemble the system, integrate in compiled chunks, stream results."""
 
 import logging
-import math
 import signal
 import threading
 import time as _time
@@ -15,6 +14,7 @@ from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels.status import Status
 from seacable.numerics import integrators, stability, stiff, system_implicit
+from seacable.numerics.stability import rk4_step
 from seacable.results import (
     STATUS_COMPLETE,
     STATUS_DIVERGED,
@@ -28,10 +28,6 @@ from seacable.system import model as system_model
 
 log = logging.getLogger(__name__)
 
-DEFAULT_MAX_STEP = 0.01  # [s] default rk4 step bound
-# rk4 steps above this fraction of the stability limit about the start are warned: tensions
-# that rise in a run (a snatch, a faster tow) raise the fastest frequency
-NEAR_LIMIT = 0.6
 ATOL_FLOOR = 1e-3  # default atol: at least rtol times this fraction of each state's scale
 # the solver_atol attribute of a run with the default absolute tolerance (absolute_tolerance)
 DEFAULT_ATOL = (
@@ -44,16 +40,6 @@ _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C,
 # fixed-step implicit schemes of ``numerics.system_implicit``
 IMPLICIT = ("implicit_euler", "theta", "newmark", "generalized_alpha")
 FIXED_STEP = ("rk4", *IMPLICIT)
-
-
-def rk4_step(sim: schema.Simulation) -> tuple[float, int]:
-    """The fixed step actually used (rk4 and the implicit schemes) [s] and the number of steps
-    per output interval."""
-    wanted = (
-        sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
-    )
-    steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
-    return sim.output_interval / steps, steps
 
 
 def _solver_settings(sim: schema.Simulation) -> dict:
@@ -100,27 +86,9 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
     sim = case.simulation
-    warnings = [*unit_warnings(case), _rounded_step(sim), _step_check(sim, system)]
+    warnings = [*unit_warnings(case), stability.rounded_step(sim), _dense_warning(sim, system),
+                stability.rk4_check(sim, system)]  # fmt: skip
     return system, "; ".join(w for w in warnings if w) or None
-
-
-def _rounded_step(sim: schema.Simulation) -> str | None:
-    """What the run does with a fixed time_step that divides the output interval only within
-    1 % (the schema's rule): it takes the divisor, and says so."""
-    if sim.integrator not in FIXED_STEP or sim.time_step is None:
-        return None
-    used, steps = rk4_step(sim)
-    if abs(used - sim.time_step) <= 1e-12 * sim.time_step:
-        return None
-    return (
-        f"simulation.time_step {sim.time_step:g} s is taken as {used:.6g} s, the step that "
-        f"divides output_interval ({sim.output_interval:g} s, {steps} per output)"
-    )
-
-
-def _divisor(sim: schema.Simulation, step: float) -> float:
-    """The longest step no longer than ``step`` [s] that divides the output interval."""
-    return sim.output_interval / math.ceil(sim.output_interval / step - 1e-9)
 
 
 def output_count(sim: schema.Simulation) -> int:
@@ -211,6 +179,7 @@ class _Run:
             self.newton = system_implicit.newton(case, system)
             self.carry = system_implicit.carry(system, self.newton[1])
         self.atol, self.magnitude = absolute_tolerance(case, model, system)
+        self.watch = model.watch(system)  # what the rows must not show (system.geometry)
         # adaptive integrators: state values at output times whose error weight atol set
         # (above rtol |y|, and above rtol times the largest |y| so far when that is tracked),
         # out of all
@@ -228,6 +197,7 @@ class _Run:
             self.samples += states.size
         rows, status = self.model.rows(times, states, self.system, self.w)
         self.sink.write(rows)
+        self.watch.see(rows)
         return status
 
     def refresh_every(self) -> int:
@@ -515,17 +485,23 @@ def _progress_bar(progress: bool, total: int, interval: float):
 
 
 def _work(run: _Run) -> dict:
-    """The work counters and the governing tolerance, for the results' attributes."""
+    """The work counters, the governing tolerance and what the rows showed that a start would
+    have been refused for (``run_warnings``, also logged), for the results' attributes."""
     counters = {
         f"solver_{name}": int(v) for name, v in zip(integrators.WORK_NAMES, run.work, strict=True)
     }
-    return {**counters, **_tolerance_attrs(run)}
+    seen = run.watch.warnings()
+    for line in seen:
+        log.warning(line)
+    return {
+        **counters,
+        **_tolerance_attrs(run),
+        **({"run_warnings": "; ".join(seen)} if seen else {}),
+    }
 
 
-def _step_check(sim: schema.Simulation, system) -> str | None:
-    """A warning about the integrator and its step for ``system``, or None. rk4 beyond its
-    stability limit about the start is refused (CaseError) unless the case allows it; within
-    NEAR_LIMIT of it, warned."""
+def _dense_warning(sim: schema.Simulation, system) -> str | None:
+    """A warning when the integrator builds a dense Jacobian of a large system."""
     size = len(system.y0)
     dense = sim.integrator in ("cvode", "lsoda")  # bdf and radau colour the sparse pattern
     if dense and size > 200:
@@ -535,29 +511,7 @@ def _step_check(sim: schema.Simulation, system) -> str | None:
             "it is slow beyond a few dozen links. Use dopri5 or rk4 (or, for the planar "
             "rigid_links model, newmark or generalized_alpha, which solve in O(n))"
         )
-    if sim.integrator != "rk4":
-        return None
-    dt, _ = rk4_step(sim)
-    limit = stability.rk4_limit(system)  # about the start: the linearised system's eigenvalues
-    if dt <= NEAR_LIMIT * limit.step:
-        return None
-    step = _divisor(sim, NEAR_LIMIT * limit.step)  # a step to suggest
-    motion = (
-        f"the fastest motion about the start ({limit.frequency:.4g} rad/s, moving {limit.what} "
-        f"most) makes rk4 unstable above time_step {limit.step:.3g} s"
-    )
-    if dt <= limit.step:  # tensions that rise in the run (a snatch, a faster tow) raise it
-        return (
-            f"simulation.time_step {dt:.4g} s is close to rk4's stability limit: {motion}. A "
-            f"shorter time_step (about {step:.4g} s) or integrator: dopri5 is safer"
-        )
-    if sim.allow_unstable_step:
-        return f"simulation.time_step {dt:.4g} s is beyond rk4's stability limit: {motion}"
-    raise CaseError(
-        f"simulation.time_step: {dt:.4g} s is beyond rk4's stability limit: {motion}. Use "
-        f"time_step {step:.4g} s or less, or integrator: dopri5 (it adapts its step), or set "
-        "simulation.allow_unstable_step: true to run anyway"
-    )
+    return None
 
 
 def _divergence_message(run: _Run, status: int, settings: dict) -> str:

@@ -1,5 +1,6 @@
-"""The longest stable step of the classical Runge-Kutta scheme (rk4) for a system: from the
-eigenvalues of its fastest motions (``system.frequency``) and the scheme's stability function.
+"""The fixed step a run takes, and the longest stable step of the classical Runge-Kutta scheme
+(rk4) for a system: from the eigenvalues of its fastest motions (``system.frequency``) and the
+scheme's stability function. A run beyond it is refused (``rk4_check``).
 
 A step h maps a mode e^(lambda t) to R(h lambda) times itself, R(z) = 1 + z + z^2/2 + z^3/6
 + z^4/24; the exact solution multiplies it by e^(h lambda). The step is stable for a mode
@@ -9,14 +10,73 @@ undamped oscillation (lambda = i omega) the limit is h omega = 2 sqrt 2 = 2.83; 
 one on the real axis, 2.79; in between, up to about 3.
 """
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 
+from seacable.case.base import FIXED_STEP_INTEGRATORS, Simulation
+from seacable.errors import CaseError
 from seacable.system.assemble import BuiltSystem
 from seacable.system.frequency import fastest_modes
 
 GRID = 4096  # trial steps per eigenvalue, up to 4 / |lambda|: the limit to 1e-3 of itself
+DEFAULT_MAX_STEP = 0.01  # [s] default fixed step bound
+# rk4 steps above this fraction of the stability limit about the start are warned: tensions
+# that rise in a run (a snatch, a faster tow) raise the fastest frequency
+NEAR_LIMIT = 0.6
+
+
+def rk4_step(sim: Simulation) -> tuple[float, int]:
+    """The fixed step actually used (rk4 and the implicit schemes) [s] and the number of steps
+    per output interval."""
+    wanted = (
+        sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
+    )
+    steps = max(1, math.ceil(sim.output_interval / wanted - 1e-9))
+    return sim.output_interval / steps, steps
+
+
+def rounded_step(sim: Simulation) -> str | None:
+    """What the run does with a fixed time_step that divides the output interval only within
+    1 % (the schema's rule): it takes the divisor, and says so."""
+    if sim.integrator not in FIXED_STEP_INTEGRATORS or sim.time_step is None:
+        return None
+    used, steps = rk4_step(sim)
+    if abs(used - sim.time_step) <= 1e-12 * sim.time_step:
+        return None
+    return (
+        f"simulation.time_step {sim.time_step:g} s is taken as {used:.6g} s, the step that "
+        f"divides output_interval ({sim.output_interval:g} s, {steps} per output)"
+    )
+
+
+def rk4_check(sim: Simulation, system: BuiltSystem) -> str | None:
+    """rk4 beyond its stability limit about the start: refused (CaseError) unless the case
+    allows it (then a warning); within NEAR_LIMIT of it, a warning; else None."""
+    if sim.integrator != "rk4":
+        return None
+    dt, _ = rk4_step(sim)
+    limit = rk4_limit(system)  # about the start: the linearised system's eigenvalues
+    if dt <= NEAR_LIMIT * limit.step:
+        return None
+    step = sim.output_interval / math.ceil(sim.output_interval / (NEAR_LIMIT * limit.step) - 1e-9)
+    motion = (
+        f"the fastest motion about the start ({limit.frequency:.4g} rad/s, moving {limit.what} "
+        f"most) makes rk4 unstable above time_step {limit.step:.3g} s"
+    )
+    if dt <= limit.step:  # tensions that rise in the run (a snatch, a faster tow) raise it
+        return (
+            f"simulation.time_step {dt:.4g} s is close to rk4's stability limit: {motion}. A "
+            f"shorter time_step (about {step:.4g} s) or integrator: dopri5 is safer"
+        )
+    if sim.allow_unstable_step:
+        return f"simulation.time_step {dt:.4g} s is beyond rk4's stability limit: {motion}"
+    raise CaseError(
+        f"simulation.time_step: {dt:.4g} s is beyond rk4's stability limit: {motion}. Use "
+        f"time_step {step:.4g} s or less (it divides output_interval), or integrator: dopri5 "
+        "(it adapts its step), or set simulation.allow_unstable_step: true to run anyway"
+    )
 
 
 def rk4_factor(z: np.ndarray) -> np.ndarray:

@@ -92,11 +92,11 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
     if p.rho <= 0.0:  # in air: no water to be above
         return
     for b, body in enumerate(built.case.bodies):
-        if p.body_kind[b] != kinematics.DYNAMIC or p.body_shape[b, 0] != surface.POINT:
+        if not _point_volume(p, b):
             continue
         z = float(w.pos[b, 2] + w.rot[b, 2] @ p.body_cob[b])  # the centre of buoyancy's
-        volume, added = float(p.body_volume[b]), bool(np.any(p.body_added[b] != 0.0))
-        if z > 1e-6 and (volume > 0.0 or added):
+        volume = float(p.body_volume[b])
+        if z > 1e-6:
             counted = f"its volume ({volume:.4g} m^3)" if volume > 0.0 else "its added mass"
             raise CaseError(
                 f"bodies[{b}] ({body.name}): its centre of buoyancy starts at z = {z:.6g} m, "
@@ -104,6 +104,16 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
                 "wholly submerged; give it a shape (sphere, vertical_cylinder or table) that "
                 "the surface cuts, or start it below z = 0"
             )
+
+
+def _point_volume(p, b: int) -> bool:
+    """Body ``b`` is dynamic, without a shape, and has a volume or an added mass: both counted
+    wholly submerged wherever it is."""
+    return bool(
+        p.rho > 0.0 and p.body_kind[b] == kinematics.DYNAMIC
+        and p.body_shape[b, 0] == surface.POINT
+        and (p.body_volume[b] > 0.0 or np.any(p.body_added[b] != 0.0))
+    )  # fmt: skip
 
 
 def _stretched(built: BuiltSystem, row: outputs.Rows) -> None:
@@ -136,3 +146,60 @@ def _stretched(built: BuiltSystem, row: outputs.Rows) -> None:
                 "lighten what it carries"
             )
         log.warning(f"{implied}; check its length, EA and what it carries")
+
+
+class Watch:
+    """What the start checks refuse, met during a run: a body or a contact-free node that
+    goes below the seabed, a body without a shape whose centre of buoyancy rises above the
+    water (its volume still counted submerged). Fed every chunk of output rows (``see``); says
+    when each first happened (``warnings``). The run goes on: the rows up to then are sound."""
+
+    def __init__(self, built: BuiltSystem):
+        p, case = built.params, built.case
+        depth = case.environment.water_depth
+        self.seabed = None if depth is None else -float(depth) - SEABED_TOLERANCE
+        self.first: dict[str, float] = {}
+        self.below: list[tuple[str, str]] = []  # (variable, what)
+        self.afloat: list[tuple[str, np.ndarray, str]] = []  # (group, cob, what)
+        for b, body in enumerate(case.bodies):
+            group = f"bodies/{body.name}"
+            if p.body_kind[b] != kinematics.FIXED:
+                self.below.append((f"{group}/position_z", f"body '{body.name}'"))
+            if _point_volume(p, b):
+                self.afloat.append((group, np.asarray(p.body_cob[b]), f"body '{body.name}'"))
+        free = list(built.layout.rigid) + list(built.layout.natural)
+        if p.seabed_z < NO_SEABED:
+            free += list(built.layout.lines)
+        self.below += [(f"lines/{line}/node_z", f"line '{line}'") for line in free]
+
+    def see(self, rows: dict) -> None:
+        times = rows["time"]
+        if self.seabed is not None:
+            for name, what in self.below:
+                if name in rows and what not in self.first:
+                    z = np.asarray(rows[name]).reshape(len(times), -1).min(axis=1)
+                    self._first(what + " below the seabed", times, z < self.seabed)
+        for group, cob, what in self.afloat:
+            if what + " above the water" in self.first:
+                continue
+            roll, pitch = (np.radians(rows[f"{group}/{a}"]) for a in ("roll", "pitch"))
+            # the third row of R = Rz(yaw) Ry(pitch) Rx(roll) (docs/conventions.md) times cob
+            up = (-np.sin(pitch), np.cos(pitch) * np.sin(roll), np.cos(pitch) * np.cos(roll))
+            z = rows[f"{group}/position_z"] + sum(r * c for r, c in zip(up, cob, strict=True))
+            self._first(what + " above the water", times, z > SEABED_TOLERANCE)
+
+    def _first(self, what: str, times: np.ndarray, met: np.ndarray) -> None:
+        if met.any():
+            self.first[what] = float(times[int(np.argmax(met))])
+
+    def warnings(self) -> list[str]:
+        """One line per thing met, with its first time."""
+        out = []
+        for what, t in self.first.items():
+            why = (
+                "no seabed contact holds it"
+                if what.endswith("seabed")
+                else "its volume still counts as wholly submerged: give it a shape"
+            )
+            out.append(f"{what} from t = {t:.6g} s, where {why}; rows after that are not sound")
+        return out

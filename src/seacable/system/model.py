@@ -85,6 +85,11 @@ def _carried_velocities(built: BuiltSystem) -> None:
             )
 
 
+def watch(system: BuiltSystem) -> geometry.Watch:
+    """What a run watches its rows for (``system.geometry.Watch``)."""
+    return geometry.Watch(system)
+
+
 def damping_advice(system: BuiltSystem) -> str:
     """What a divergence message suggests: axial damping for lumped lines and strings, joint
     damping for rigid lines, whichever the system has."""
