@@ -23,7 +23,18 @@ def test_the_corpus_is_what_its_script_writes():
 
 @pytest.mark.parametrize("name", sorted(EXPECTED))
 def test_a_bad_case_is_refused_with_one_line_naming_it(name):
-    result = CliRunner().invoke(main, ["validate", str(CORPUS / name)])
+    """``seacable validate`` refuses the case; one with an ``output`` is a good case whose
+    output path ``seacable run`` refuses, writing nothing."""
+    output = EXPECTED[name].get("output")
+    if output is None:
+        result = CliRunner().invoke(main, ["validate", str(CORPUS / name)])
+    else:
+        target = CORPUS / output
+        before = target.read_bytes() if target.is_file() else None
+        result = CliRunner().invoke(
+            main, ["run", str(CORPUS / name), "-o", str(target), "--no-progress"]
+        )
+        assert (target.read_bytes() if target.is_file() else None) == before
     assert result.exit_code == 2, result.output
     message = result.output.strip()
     assert re.search(EXPECTED[name]["expect"], message, re.DOTALL), message

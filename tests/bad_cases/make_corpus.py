@@ -41,6 +41,8 @@ NUMBERS = [
     ("simulation.duration", ["simulation", "duration"], True),
     ("simulation.output_interval", ["simulation", "output_interval"], True),
 ]  # fmt: skip
+PUSH = ["bodies", 7, "external forces", 3, "force_x"]  # buoy B's applied force
+ZERO_ALLOWED = {"lines[6].unstretched_length"}  # a tie of zero length: a spring between points
 VALUES = [  # (file name part, value, what the message quotes)
     ("nan", float("nan"), r"nan"), ("inf", float("inf"), r"inf"),
     ("minus_inf", -float("inf"), r"-inf"), ("true", True, r"True"), ("text", "abc", r"'abc'"),
@@ -61,23 +63,36 @@ def _remove(data, keys):
     del data[keys[-1]]
 
 
+def _mutated(name, kind, expect, change):
+    """A corpus entry: the base case changed by ``change``."""
+    data = copy.deepcopy(BASE)
+    change(data)
+    return (name, kind, expect, yaml.safe_dump(data, sort_keys=False), None)
+
+
 def cases():
-    """(name, kind, expect, text or bytes) of every bad case."""
-    out = []
+    """(name, kind, expect, text or bytes, output) of every bad case: ``output`` None for a
+    case ``seacable validate`` refuses, else the output path (relative to the corpus) that
+    ``seacable run`` refuses."""
+    out: list = []
 
     def mutated(name, kind, expect, change):
-        data = copy.deepcopy(BASE)
-        change(data)
-        out.append((name, kind, expect, yaml.safe_dump(data, sort_keys=False)))
+        out.append(_mutated(name, kind, expect, change))
 
     for where, keys, positive in NUMBERS:
         stem = re.sub(r"\W+", "_", where).strip("_")
         for label, value, quoted in VALUES:
             mutated(f"{stem}.{label}", "numbers", re.escape(where) + r".*\(got .*" + quoted,
                     lambda d, k=keys, v=value: _set(d, k, v))  # fmt: skip
+        mutated(f"{stem}.huge", "numbers", re.escape(where) + r": a number beyond 1e\+15 .*"
+                r"\(got .*1e\+300", lambda d, k=keys: _set(d, k, 1e300))  # fmt: skip
         if positive:
             mutated(f"{stem}.negative", "numbers", re.escape(where) + r".*\(got -1(\.0)?\)",
                     lambda d, k=keys: _set(d, k, -1.0))  # fmt: skip
+        if positive and where not in ZERO_ALLOWED:
+            mutated(f"{stem}.zero", "numbers",
+                    re.escape(where) + r".*greater than (0|or equal to 1).*\(got 0",
+                    lambda d, k=keys: _set(d, k, 0))  # fmt: skip
     for where, keys in [
         ("(top level)", ["simulation"]), ("(top level)", ["lines"]),
         ("bodies[0]", ["bodies", 0, "name"]),
@@ -164,6 +179,33 @@ def cases():
 
         mutated(f"unstable.{name}", "unstable steps",
                 re.escape(f"simulation.time_step: {step} ") + beyond, unstable)  # fmt: skip
+    return out + _files()
+
+
+def _files() -> list:
+    """Bad table files, hostile or broken YAML, files that are not cases, bad output paths."""
+    out: list = []
+
+    def mutated(name, kind, expect, change):
+        out.append(_mutated(name, kind, expect, change))
+
+    push = PUSH
+    for name, expect in [
+        ("missing", r"table file '.*tables/missing\.csv' does not exist"),
+        ("nan", r"table file '.*tables/nan\.csv': NaN or infinite values"),
+        ("huge", r"table file '.*tables/huge\.csv': a value beyond 1e\+15"),
+        ("backwards", r"table file '.*tables/backwards\.csv' needs at least 2 rows with strictly "
+                      r"increasing times"),
+        ("latin1", r"table file '.*tables/latin1\.csv' is not UTF-8 text \(byte 0xe9"),
+        ("bad_row", r"table file '.*tables/bad_row\.csv': bad row \['1', 'ten'\]"),
+        ("folder", r"table file '.*tables/folder\.csv' is a directory"),
+    ]:  # fmt: skip
+        mutated(
+            f"tables.{name}",
+            "bad tables",
+            re.escape("bodies[7]") + r".*" + expect,
+            lambda d, f=name: _set(d, push, {"kind": "table", "file": f"tables/{f}.csv"}),
+        )
     text = yaml.safe_dump(BASE, sort_keys=False)
     bomb = "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n" + "".join(
         f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join([f'*{chr(97 + i)}'] * 10)}]\n"
@@ -181,25 +223,55 @@ def cases():
         ("python_tag", r"not valid YAML", "!!python/object/apply:os.system ['true']\n"),
         ("cables_form", r"single-cable form", "cables: []\n"),
     ]:  # fmt: skip
-        out.append((f"yaml.{name}", "hostile or broken YAML", expect, content))
+        out.append((f"yaml.{name}", "hostile or broken YAML", expect, content, None))
     for name, expect, content in [
         ("latin1", r"not UTF-8 text \(byte 0xe9", ("# caf\xe9\n" + text).encode("latin-1")),
         ("utf16", r"not UTF-8 text \(byte 0xff", text.encode("utf-16")),
         ("results_file", r"is a results file \(NetCDF/HDF5\)", b"\x89HDF\r\n\x1a\n" + bytes(64)),
         ("binary_garbage", r"not UTF-8 text", bytes(range(128, 256)) * 4),
     ]:  # fmt: skip
-        out.append((f"files.{name}", "not a case", expect, content))
+        out.append((f"files.{name}", "not a case", expect, content, None))
+    for name, output, expect in [
+        ("the_case_itself", "outputs.the_case_itself.yaml", r"is a file this run reads"),
+        ("a_folder", "tables", r"'.*tables' is a directory"),
+        ("missing_folder", "no_such_folder/run.nc", r"output folder '.*no_such_folder' does not "
+                                                    r"exist"),
+        ("a_table_it_reads", "tables/push.dat", r"output '.*push\.dat' is a file this run reads"),
+        ("not_results", "tables/notes.pdf", r"'.*notes\.pdf' exists and is not a results file"),
+    ]:  # fmt: skip
+        data = copy.deepcopy(BASE)
+        _set(data, push, {"kind": "table", "file": "tables/push.dat"})
+        out.append((f"outputs.{name}", "bad output paths", expect,
+                    yaml.safe_dump(data, sort_keys=False), output))  # fmt: skip
     return out
+
+
+TABLES = {  # the corpus's table files (tables/): bad ones, and two good ones the outputs use
+    "nan.csv": b"time,force\n0,0\n1,nan\n",
+    "huge.csv": b"time,force\n0,0\n1,1e300\n",
+    "backwards.csv": b"time,force\n0,0\n2,1\n1,2\n",
+    "latin1.csv": "# caf\xe9\n0,0\n1,1\n".encode("latin-1"),
+    "bad_row.csv": b"time,force\n0,0\n1,ten\n",
+    "push.dat": b"time,force\n0,0\n1,1000\n",
+    "notes.pdf": b"%PDF-1.4 not results\n",
+}
 
 
 def main() -> None:
     for old in HERE.glob("*.yaml"):
         old.unlink()
+    tables = HERE / "tables"
+    (tables / "folder.csv").mkdir(parents=True, exist_ok=True)
+    (tables / "folder.csv" / ".keep").write_text("a table name that is a folder\n")
+    for name, content in TABLES.items():
+        (tables / name).write_bytes(content)
     expected = {}
-    for name, kind, expect, content in cases():
+    for name, kind, expect, content, output in cases():
         body = content.encode() if isinstance(content, str) else content
         (HERE / f"{name}.yaml").write_bytes(body)
         expected[f"{name}.yaml"] = {"kind": kind, "expect": expect}
+        if output is not None:
+            expected[f"{name}.yaml"]["output"] = output
     (HERE / "expected.yaml").write_text(yaml.safe_dump(expected, sort_keys=True, width=200))
     print(f"{len(expected)} bad cases written to {HERE}")
 

@@ -26,6 +26,10 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 BOOLEAN_ERROR = "boolean_not_number"  # the error type of a true/false where a number is due
+MAGNITUDE_ERROR = "number_too_large"  # the error type of a number beyond LARGEST_NUMBER
+# no quantity of a marine system is this large in SI units (the heaviest ship, 6e8 kg; its yaw
+# inertia, 1e13 kg m^2): a larger number is a slip (a unit, an exponent), and would overflow
+LARGEST_NUMBER = 1e15
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
 Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x, y, z], m
@@ -62,8 +66,8 @@ def per_axis(value) -> tuple[float, float, float]:
 
 class _Model(BaseModel):
     """Every part of a case: unknown keys refused, frozen; NaN and infinities refused in every
-    number; true/false (yes/no, on/off in YAML) refused where a number or a name is expected
-    (pydantic would read true as 1)."""
+    number, and numbers beyond LARGEST_NUMBER; true/false (yes/no, on/off in YAML) refused
+    where a number or a name is expected (pydantic would read true as 1)."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
@@ -81,7 +85,25 @@ class _Model(BaseModel):
                         "a number, or quote the word",
                         {"key": key, "value": data[key]},
                     )
+                if key in data and _largest(data[key]) > LARGEST_NUMBER:
+                    raise PydanticCustomError(
+                        MAGNITUDE_ERROR,
+                        f"a number beyond {LARGEST_NUMBER:.0e} is larger than any quantity of a "
+                        "marine system in SI units; check its unit and exponent",
+                        {"key": key, "value": data[key]},
+                    )
         return data
+
+
+def _largest(value) -> float:
+    """The largest magnitude of the numbers in ``value`` (lists included; 0 for none)."""
+    if isinstance(value, bool):
+        return 0.0
+    if isinstance(value, int | float):
+        return abs(float(value)) if math.isfinite(value) else 0.0  # NaN, inf: pydantic's
+    if isinstance(value, list | tuple):
+        return max((_largest(v) for v in value), default=0.0)
+    return 0.0
 
 
 def _holds_bool(value) -> bool:
@@ -221,6 +243,11 @@ class Table(_Model):
         data = np.array(rows, dtype=float)
         if not np.all(np.isfinite(data)):
             raise ValueError(f"table file '{path}': NaN or infinite values")
+        if data.size and np.abs(data).max() > LARGEST_NUMBER:
+            raise ValueError(
+                f"table file '{path}': a value beyond {LARGEST_NUMBER:.0e} "
+                f"({np.abs(data).max():.3g}); check its unit and exponent"
+            )
         if data.shape[0] < 2 or not np.all(np.diff(data[:, 0]) > 0):
             raise ValueError(
                 f"table file '{path}' needs at least 2 rows with strictly increasing times"

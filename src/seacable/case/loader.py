@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from seacable.case.base import BOOLEAN_ERROR, Table, instances
+from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, Table, instances
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -303,7 +303,7 @@ def format_errors(exc: ValidationError, root: Any = Case) -> str:
             lines.append(f"- {where}: required key is missing")
             continue
         value = error.get("input")
-        if error["type"] == BOOLEAN_ERROR:  # raised by the model holding the key
+        if error["type"] in (BOOLEAN_ERROR, MAGNITUDE_ERROR):  # by the model holding the key
             where = f"{path}.{error['ctx']['key']}" if path else str(error["ctx"]["key"])
             value = error["ctx"]["value"]
         shown = _shortened(repr(value)) if not isinstance(value, dict) else "{...}"
