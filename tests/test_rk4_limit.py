@@ -73,6 +73,20 @@ def test_the_fastest_motion_of_a_taut_rope_is_its_highest_axial_mode():
     assert limit.step == pytest.approx(2 * math.sqrt(2) / closed, rel=1e-3)
 
 
+def test_a_slack_rope_shows_the_axial_waves_it_has_once_taut():
+    """The rope started straight between ends 0.9 of its length apart: every segment slack,
+    without axial stiffness in the physical law; the linearisation takes them as taut, and
+    finds the taut rope's highest axial mode (before, a slack start gave no fast motion, and
+    the check accepted any step)."""
+    data = _taut_rope()
+    data["bodies"][1]["position"] = [0.9 * L0, 0.0, 0.0]
+    data["lines"][0]["initial"] = "straight"
+    segment = L0 / N
+    closed = 2.0 * math.sqrt(EA / (MU * segment**2)) * math.sin((N - 1) * math.pi / (2 * N))
+    limit = stability.rk4_limit(model.build(load_case(data)))
+    assert limit.frequency == pytest.approx(closed, rel=1e-6)
+
+
 def _mooring(**simulation):
     case = seacable.load_case(MOORING)
     return case.model_copy(

@@ -7,7 +7,10 @@ direction, J v = (f(y + d v) - f(y - d v)) / (2 d), with d a millionth of the sh
 segment (a perturbation that stays in the linear range of the stiffest segment). The
 eigenvalues of J of largest magnitude are those of the dense J for a small system (two
 evaluations per state) and ARPACK's (implicitly restarted Arnoldi, from a fixed start: the
-same answer on every run) for a large one, from products with J alone. They are the whole
+same answer on every run) for a large one, from products with J alone. Lumped segments are
+linearised with their axial law as if taut (``kernels.lumped.LINEAR``): a slack segment, whose
+physical law gives no stiffness, has its axial waves as soon as it tightens (a line started
+slack and straight would otherwise show no fast motion at all). They are the whole
 system's own, whatever sets them: a lumped segment's axial waves, a rigid segment's zigzag
 against its joints and the tension, a stiff tie on a light body, a seabed contact, a drag
 that damps a fast motion; at the state given, so that a run's start (a tow at speed, a body
@@ -19,6 +22,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, LinearOperator, eigs
 
+from seacable.kernels import lumped
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import coordinates
@@ -38,7 +42,7 @@ class Modes(NamedTuple):
 
 def fastest_modes(system: BuiltSystem, y: np.ndarray | None = None, time: float = 0.0) -> Modes:
     """The fastest motions of ``system`` about ``y`` (default: its initial state) at ``time``."""
-    p = system.params
+    p = system.params._replace(slack_allowed=lumped.LINEAR)  # slack segments as if taut
     y = system.y0 if y is None else y
     n = len(y)
     if n == 0:
