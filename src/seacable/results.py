@@ -62,10 +62,14 @@ def _software() -> str:
     )
 
 
+EAGER_BYTES = 256_000_000  # results files up to this size are read back whole after a run
+
+
 class Results:
     """The outcome of :func:`seacable.simulate`: the dataset, its status and message. A system
     of bodies and lines gives a DataTree (``xarray.open_datatree``) with a group per body
-    (``bodies/<name>``) and per line (``lines/<name>``); ``results["lines/chain/tension"]``."""
+    (``bodies/<name>``) and per line (``lines/<name>``); ``results["lines/chain/tension"]``.
+    A run's file larger than EAGER_BYTES is read lazily (the file stays open; ``close``)."""
 
     def __init__(self, dataset: xr.Dataset | xr.DataTree, path: Path | None = None):
         self.dataset = dataset
@@ -89,6 +93,10 @@ class Results:
     def __repr__(self) -> str:
         where = f", path={str(self.path)!r}" if self.path else ""
         return f"Results(status={self.status!r}, times={self.dataset.sizes.get('time', 0)}{where})"
+
+    def close(self) -> None:
+        """Close the file a lazily read dataset keeps open (nothing for one read whole)."""
+        self.dataset.close()
 
     def to_netcdf(self, path) -> None:
         self.dataset.to_netcdf(path, engine="h5netcdf")
@@ -231,7 +239,9 @@ class _Sink:
         self._file.attrs.update(status=status, status_message=message, **extra)
         self._file.close()
         self._file = None
-        return Results.open(self.path)
+        # read back whole when small; beyond EAGER_BYTES left on disk and read as used, so
+        # that a long run's memory stays bounded to its end
+        return Results.open(self.path, lazy=self.path.stat().st_size > EAGER_BYTES)
 
     def _dataset(self) -> xr.Dataset | xr.DataTree:
         """The rows as a Dataset, or as a DataTree when the variables live in groups."""
