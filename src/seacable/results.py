@@ -239,6 +239,7 @@ class _Sink:
         self._file.attrs.update(status=status, status_message=message, **extra)
         self._file.close()
         self._file = None
+        assert self.path is not None  # a file is open only with a path
         # read back whole when small; beyond EAGER_BYTES left on disk and read as used, so
         # that a long run's memory stays bounded to its end
         return Results.open(self.path, lazy=self.path.stat().st_size > EAGER_BYTES)
