@@ -56,7 +56,7 @@ def _setup(model, n):
     system_implicit.initial_acceleration(0.0, y, p, w, acc)
     inc, lay, rows = system_implicit.newton(c, system)
     _, status = system_implicit.chunk(
-        0, y, acc, START, round(START / STEP), 1, COEF, TOLERANCE, 20, p,
+        0, y, acc, START, round(START / STEP), round(START / STEP), COEF, TOLERANCE, 20, p,
         system_implicit.frozen(p), w, inc, lay, rows, system_implicit.carry(system, lay),
         np.empty((1, len(y))), np.empty(1), _counters(),
     )  # fmt: skip
@@ -112,7 +112,8 @@ def measure(c, system, y0, maximal, steps, repeat):
         carried = system_implicit.carry(system, lay)
         counters = _counters()
         done, status = system_implicit.chunk(
-            round(START / (STEP * steps)), y, a, STEP * steps, steps, 1, coef, TOLERANCE, 20, p,
+            round(START / (STEP * steps)) * steps, y, a, STEP * steps, steps, steps, coef,
+            TOLERANCE, 20, p,
             pj, w, inc, lay, rows, carried, np.empty((1, ny)), np.empty(1), counters,
         )  # fmt: skip
         if status != 0:

@@ -155,7 +155,7 @@ def time_steps(built, steps: int, repeat: int) -> tuple[float, float]:
     for _ in range(repeat):
         y, work = built.y0.copy(), np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         start = time.perf_counter()
-        integrators.rk4_chunk(0, y, steps * TIME_STEP, steps, 1, p, w, states, times, work)
+        integrators.rk4_chunk(0, y, steps * TIME_STEP, steps, steps, p, w, states, times, work)
         elapsed.append((time.perf_counter() - start) / steps)
         if not np.all(np.isfinite(y)):
             raise SystemExit("the rk4 steps diverged: lower TIME_STEP")

@@ -228,7 +228,7 @@ def test_vertical_angular_momentum_is_conserved(environment):
     states = np.empty((40, y.size))
     times = np.empty(40)
     work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
-    integrators.rk4_chunk(0, y, 100 * 5e-4, 100, 40, p, w, states, times, work)
+    integrators.rk4_chunk(0, y, 100 * 5e-4, 100, 40 * 100, p, w, states, times, work)
     end_mass = p.body_mass[list(built.layout.bodies).index("end")]
 
     def lz(state):

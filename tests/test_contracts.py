@@ -568,7 +568,8 @@ def test_every_compiled_integrator_honours_its_chunk_contract(name):
         w = kernel.make_work(params)
         if name == "rk4":
             assert isinstance(integrators.rk4_chunk, ChunkIntegrator)
-            return integrators.rk4_chunk(5, y, interval, steps, 3, params, w, states, times, work)
+            return integrators.rk4_chunk(5 * steps, y, interval, steps, 3 * steps, params, w,
+                                         states, times, work)  # fmt: skip
         atol = np.full(len(y), 1e-9)
         out = integrators.dopri5_chunk(
             5, y, interval, 3, 1e-3, 1e-7, atol, np.empty(0), interval, params, w, states, times,

@@ -116,3 +116,33 @@ def test_a_second_run_does_not_write_over_a_file_being_written(tmp_path):
     finally:
         holder.kill()
         holder.communicate()
+
+
+def test_a_signal_is_answered_within_a_second_however_long_the_output_interval(tmp_path):
+    """One output interval of an hour (360,000 rk4 steps, tens of seconds): the run cuts it
+    short, since a fixed-step chunk may end inside an interval; SIGTERM is answered in about
+    a second, the first row kept, status 'interrupted'. Before, a chunk was at least one
+    output interval, and the signal waited for its end."""
+    data = yaml.safe_load(EXAMPLE.read_text())
+    data["simulation"].update(duration=3600.0, output_interval=3600.0)
+    case, out = tmp_path / "one_row.yaml", tmp_path / "one_row.nc"
+    case.write_text(yaml.safe_dump(data, sort_keys=False))
+    command = [sys.executable, "-c", "from seacable.cli import main; main()", "run", str(case),
+               "-o", str(out), "--progress"]  # fmt: skip
+    process = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
+    assert process.stderr is not None
+    seen = ""
+    while "simulating" not in seen:
+        line = process.stderr.read(80)
+        assert line, f"the run ended before the signal: {seen[-500:]}"
+        seen += line
+    time.sleep(2.0)
+    sent = time.perf_counter()
+    process.send_signal(signal.SIGTERM)
+    rest = process.communicate(timeout=120)[1]
+    answered = time.perf_counter() - sent
+    assert process.returncode == 143, rest[-500:]
+    assert answered < 3.0, answered
+    with xr.open_datatree(out, engine="h5netcdf") as tree:
+        assert tree.attrs["status"] == "interrupted"
+        assert np.isfinite(tree["time"].values).tolist() == [True, False]

@@ -168,6 +168,7 @@ class _Run:
         self.stiff_failure = None
         self.n_outputs = output_count(self.sim)
         self.done = 0
+        self.into = 0  # fixed steps taken into the output interval under way
         # state carried from chunk to chunk (numerics.contract, point 5): dopri5's
         # stages with a flag saying whether k[0] is the derivative at (t, y); the implicit
         # schemes' predictor and Newton factors
@@ -274,32 +275,43 @@ class _Run:
         self.stiff_failure = failure
         return done, (Status.OK if failure is None else Status.NON_FINITE)
 
-    def _newmark(self, y, steps, count, states, times, work, carry):
+    def _newmark(self, y, steps, count, states, times, work, carry, first_step=0):
         sim = self.sim
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return system_implicit.chunk(
-            self.done, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
+            first_step, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
             sim.max_newton_iterations, self.p, system_implicit.frozen(self.p), self.w,
             *self.newton, carry, states, times, work,
         )  # fmt: skip
 
+    def units(self) -> int:
+        """What ``advance`` counts, per output interval: fixed steps for rk4 and the implicit
+        schemes (a chunk may end inside an output interval, so a signal is answered within
+        about a second however long the interval), output intervals for the others."""
+        return rk4_step(self.sim)[1] if self.sim.integrator in FIXED_STEP else 1
+
     def advance(self, count: int) -> int:
-        """Integrate ``count`` output intervals; returns the kernel status."""
+        """Integrate ``count`` units (``units``: fixed steps, or output intervals); returns the
+        kernel status."""
         ny = self.y.shape[0]
-        states = np.empty((count, ny))
-        times = np.empty(count)
         sim = self.sim
+        per = self.units()
+        outputs = (self.into + count) // per  # the outputs this chunk reaches
+        states = np.empty((outputs, ny))
+        times = np.empty(outputs)
         if sim.integrator in FIXED_STEP:
-            _, steps = rk4_step(sim)
+            first = self.done * per + self.into  # the global step
             if sim.integrator == "rk4":
                 completed, status = integrators.rk4_chunk(
-                    self.done, self.y, sim.output_interval, steps, count, self.p, self.w, states,
+                    first, self.y, sim.output_interval, per, count, self.p, self.w, states,
                     times, self.work,
                 )  # fmt: skip
             else:
                 completed, status = self._newmark(
-                    self.y, steps, count, states, times, self.work, self.carry
+                    self.y, per, count, states, times, self.work, self.carry, first
                 )
+            if status == Status.OK:
+                self.into = (self.into + count) % per
         elif sim.integrator in stiff.STIFF:
             completed, status = self._advance_stiff(count, states, times)
         else:
@@ -424,12 +436,15 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
     chunk in which ``stop`` noted a signal (KeyboardInterrupt)."""
     if chunk_outputs is not None and chunk_outputs < 1:
         raise ValueError(f"chunk_outputs must be a positive integer or None, not {chunk_outputs}")
-    chunk = chunk_outputs or 1
-    refresh = run.refresh_every()
-    while run.done < run.n_outputs:
-        count = min(chunk, run.n_outputs - run.done)
+    per = run.units()  # a chunk counts fixed steps, or output intervals (_Run.units)
+    chunk = (chunk_outputs or 1) * per if chunk_outputs else 1
+    refresh = run.refresh_every() * per
+    total = run.n_outputs * per
+    while run.done * per + run.into < total:
+        at = run.done * per + run.into
+        count = min(chunk, total - at)
         if refresh:
-            count = min(count, refresh - run.done % refresh)
+            count = min(count, refresh - at % refresh)
         start = _time.perf_counter()
         before = run.done
         status = run.advance(count)
@@ -439,7 +454,8 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
             return status
         if stop is not None and stop.signum:
             raise KeyboardInterrupt
-        if refresh and run.done % refresh == 0 and run.done < run.n_outputs:
+        at = run.done * per + run.into
+        if refresh and at % refresh == 0 and at < total:
             run.refresh()
         if chunk_outputs is None:
             rate = count / max(_time.perf_counter() - start, 1e-6)

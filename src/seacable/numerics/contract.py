@@ -11,8 +11,9 @@ class ChunkIntegrator(Protocol):
     """A compiled integrator's chunk: ``numerics.integrators.rk4_chunk`` and ``dopri5_chunk``,
     ``numerics.system_implicit.chunk`` (the implicit family); SciPy's and SUNDIALS' stiff
     methods follow the same rules from Python (``numerics.stiff.StiffStepper.advance``). Its
-    arguments start with ``first_output``, ``y`` and ``output_interval`` [s] and end with
-    ``states``, ``times`` and ``work`` (and the arrays it carries from chunk to chunk).
+    arguments start with ``first_output`` (the fixed-step ones: ``first_step``), ``y`` and
+    ``output_interval`` [s] and end with ``states``, ``times`` and ``work`` (and the arrays it
+    carries from chunk to chunk).
 
     0. It calls the system only through ``system.kernel`` (``rhs``, ``project``, ``projects``),
        and projects the state after every accepted step.
@@ -20,7 +21,10 @@ class ChunkIntegrator(Protocol):
        intervals of length ``output_interval``, starting at the global output index
        ``first_output``, and writes the state at the end of each interval in ``states[j]`` and
        its time, ``(first_output + j + 1) * output_interval``, in ``times[j]``; the whole chunk
-       runs in compiled code.
+       runs in compiled code. A fixed-step chunk counts steps instead: ``n_steps`` from the
+       global step ``first_step``, either of which may fall inside an output interval (a row at
+       each output reached), so that the run loop can cut a long interval short (a signal is
+       answered within about a second whatever the output interval).
     2. It returns ``(completed, status, ...)`` where ``completed`` is the number of output rows
        written and ``status`` a kernel status code (0 = sound); ``work`` is an int64 array of
        the counters of ``numerics.integrators.WORK_NAMES``, added to in place: accepted steps,

@@ -45,11 +45,11 @@ def step_time(first_output, output_interval, steps_per_output, step, dt):
 
 
 @njit(**JIT)
-def rk4_chunk(
-    first_output, y, output_interval, steps_per_output, n_outputs, p, w, states, times, work
-):
+def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, states, times, work):
     """Classical 4th-order Runge-Kutta with a fixed step ``output_interval / steps_per_output``
-    [s], from output index ``first_output`` (time ``first_output * output_interval``).
+    [s]: ``n_steps`` steps from global step ``first_step`` (which may lie inside an output
+    interval: a chunk need not end at an output, so that a long interval can be cut short by a
+    signal), a row in ``states`` at each output reached. Returns (outputs reached, status).
 
     The stages run in a loop with a single call of the right-hand side: four inlined copies of
     it made the compiled step twice as slow (instruction-cache pressure).
@@ -59,37 +59,40 @@ def rk4_chunk(
     k = np.empty((4, ny))
     stage = np.empty(ny)
     acc = np.empty(ny)
-    step = np.int64(0)  # not a literal: step_time compiles once
-    for j in range(n_outputs):
-        for _ in range(steps_per_output):
-            t = step_time(first_output, output_interval, steps_per_output, step, dt)
-            status = OK
-            for s in range(4):
-                if s == 0:
-                    stage[:] = y
-                else:
-                    h = _RK4_NODES[s] * dt
-                    for i in range(ny):
-                        stage[i] = y[i] + h * k[s - 1, i]
-                status |= kernel.rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
-            work[2] += 4
-            for i in range(ny):
-                acc[i] = y[i] + dt * (
-                    _RK4_WEIGHTS[0] * k[0, i]
-                    + _RK4_WEIGHTS[1] * k[1, i]
-                    + _RK4_WEIGHTS[2] * k[2, i]
-                    + _RK4_WEIGHTS[3] * k[3, i]
-                )
-            if status != OK or not _all_finite(acc):
-                work[3] += 1
-                return j, (status if status != OK else NON_FINITE)
-            kernel.project(acc, p)
-            y[:] = acc
-            work[0] += 1
-            step += 1
-        states[j, :] = y
-        times[j] = (first_output + j + 1) * output_interval
-    return n_outputs, OK
+    first_output = first_step // steps_per_output
+    step = first_step - first_output * steps_per_output  # into its output interval
+    j = 0
+    for _ in range(n_steps):
+        t = step_time(first_output, output_interval, steps_per_output, step, dt)
+        status = OK
+        for s in range(4):
+            if s == 0:
+                stage[:] = y
+            else:
+                h = _RK4_NODES[s] * dt
+                for i in range(ny):
+                    stage[i] = y[i] + h * k[s - 1, i]
+            status |= kernel.rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
+        work[2] += 4
+        for i in range(ny):
+            acc[i] = y[i] + dt * (
+                _RK4_WEIGHTS[0] * k[0, i]
+                + _RK4_WEIGHTS[1] * k[1, i]
+                + _RK4_WEIGHTS[2] * k[2, i]
+                + _RK4_WEIGHTS[3] * k[3, i]
+            )
+        if status != OK or not _all_finite(acc):
+            work[3] += 1
+            return j, (status if status != OK else NON_FINITE)
+        kernel.project(acc, p)
+        y[:] = acc
+        work[0] += 1
+        step += 1
+        if step % steps_per_output == 0:
+            states[j, :] = y
+            times[j] = (first_output + step // steps_per_output) * output_interval
+            j += 1
+    return j, OK
 
 
 # Dormand-Prince 5(4) coefficients

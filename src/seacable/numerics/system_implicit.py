@@ -452,11 +452,12 @@ def initial_acceleration(t, y, p, w, acc):
 
 @njit(**JIT)
 def chunk(
-    first_output, y, acc, output_interval, steps_per_output, n_outputs, coef, tol, max_iter, p,
+    first_step, y, acc, output_interval, steps_per_output, n_steps, coef, tol, max_iter, p,
     pj, w, inc, lay, rows, carried, states, times, work,
 ):  # fmt: skip
-    """Advance ``n_outputs`` output intervals of ``steps_per_output`` implicit steps
-    ``output_interval / steps_per_output`` [s], from output index ``first_output``.
+    """Advance ``n_steps`` implicit steps ``output_interval / steps_per_output`` [s] from global
+    step ``first_step`` (which may lie inside an output interval), a row in ``states`` at each
+    output reached.
 
     ``acc`` holds the scheme's acceleration a0 at the start (the system's acceleration at the
     first call; the algorithmic one after), and is updated; ``pj`` is ``frozen(p)``, the
@@ -465,9 +466,10 @@ def chunk(
     updated. ``tol`` [m] bounds the last Newton correction of the positions (b h^2 |da|, each
     unknown in metres through ``Increments.weight``). A step whose iteration fails (regularised
     seabed friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS
-    equal parts, each retry counted as a rejected step. Returns (completed, status); ``work``
-    gets [accepted, rejected, rhs evaluations, failed evaluations, Jacobian evaluations, linear
-    solves] (a Jacobian's residuals count as rhs evaluations; accepted counts substeps)."""
+    equal parts, each retry counted as a rejected step. Returns (outputs reached, status);
+    ``work`` gets [accepted, rejected, rhs evaluations, failed evaluations, Jacobian
+    evaluations, linear solves] (a Jacobian's residuals count as rhs evaluations; accepted
+    counts substeps)."""
     ny = y.shape[0]
     nv = acc.shape[0]
     dt = output_interval / steps_per_output
@@ -475,30 +477,33 @@ def chunk(
     big = np.empty((3, rows.size))
     y_saved = np.empty(ny)
     acc_saved = np.empty(nv)
-    step = np.int64(0)  # not a literal: step_time compiles once
-    for j in range(n_outputs):
-        for _ in range(steps_per_output):
-            t = step_time(first_output, output_interval, steps_per_output, step, dt)
-            y_saved[:] = y
-            acc_saved[:] = acc
-            parts = 1
-            while True:
-                status = OK
-                h = dt / parts
-                for k in range(parts):
-                    status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
-                                   lay, rows, carried, vec, big, work)  # fmt: skip
-                    if status != OK:
-                        break
-                if status == OK:
+    first_output = first_step // steps_per_output
+    step = first_step - first_output * steps_per_output  # into its output interval
+    j = 0
+    for _ in range(n_steps):
+        t = step_time(first_output, output_interval, steps_per_output, step, dt)
+        y_saved[:] = y
+        acc_saved[:] = acc
+        parts = 1
+        while True:
+            status = OK
+            h = dt / parts
+            for k in range(parts):
+                status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
+                               lay, rows, carried, vec, big, work)  # fmt: skip
+                if status != OK:
                     break
-                work[1] += 1
-                y[:] = y_saved
-                acc[:] = acc_saved
-                if parts >= MAX_SUBSTEPS:
-                    return j, status
-                parts *= 2
-            step += 1
-        states[j, :] = y
-        times[j] = (first_output + j + 1) * output_interval
-    return n_outputs, OK
+            if status == OK:
+                break
+            work[1] += 1
+            y[:] = y_saved
+            acc[:] = acc_saved
+            if parts >= MAX_SUBSTEPS:
+                return j, status
+            parts *= 2
+        step += 1
+        if step % steps_per_output == 0:
+            states[j, :] = y
+            times[j] = (first_output + step // steps_per_output) * output_interval
+            j += 1
+    return j, OK

@@ -176,7 +176,7 @@ class Watch:
         times = rows["time"]
         if self.seabed is not None:
             for name, what in self.below:
-                if name in rows and what not in self.first:
+                if name in rows and what + " below the seabed" not in self.first:
                     z = np.asarray(rows[name]).reshape(len(times), -1).min(axis=1)
                     self._first(what + " below the seabed", times, z < self.seabed)
         for group, cob, what in self.afloat:
