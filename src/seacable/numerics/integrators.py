@@ -44,6 +44,17 @@ def step_time(first_output, output_interval, steps_per_output, step, dt):
     return (first_output + done) * output_interval + (step - done * steps_per_output) * dt
 
 
+@inner
+def record(step, steps_per_output, first_output, output_interval, y, states, times, j):
+    """After fixed step ``step`` (counted from output ``first_output``): at an output, the row
+    ``j`` of ``states`` and ``times`` written; the next row's index."""
+    if step % steps_per_output != 0:
+        return j
+    states[j, :] = y
+    times[j] = (first_output + step // steps_per_output) * output_interval
+    return j + 1
+
+
 @njit(**JIT)
 def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, states, times, work):
     """Classical 4th-order Runge-Kutta with a fixed step ``output_interval / steps_per_output``
@@ -88,10 +99,7 @@ def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, s
         y[:] = acc
         work[0] += 1
         step += 1
-        if step % steps_per_output == 0:
-            states[j, :] = y
-            times[j] = (first_output + step // steps_per_output) * output_interval
-            j += 1
+        j = record(step, steps_per_output, first_output, output_interval, y, states, times, j)
     return j, OK
 
 

@@ -66,7 +66,7 @@ from seacable.kernels import lumped
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
 from seacable.numerics import bordered, rigid_newton
-from seacable.numerics.integrators import step_time
+from seacable.numerics.integrators import record, step_time
 from seacable.system import coordinates, model, rigid
 from seacable.system import kernel as system_kernel
 
@@ -502,8 +502,5 @@ def chunk(
                 return j, status
             parts *= 2
         step += 1
-        if step % steps_per_output == 0:
-            states[j, :] = y
-            times[j] = (first_output + step // steps_per_output) * output_interval
-            j += 1
+        j = record(step, steps_per_output, first_output, output_interval, y, states, times, j)
     return j, OK
