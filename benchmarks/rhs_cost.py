@@ -66,7 +66,7 @@ def _rk4(t, y, p, w, ydot, count):
     evaluations a step, and the stages' arithmetic): what a run pays per evaluation."""
     steps = max(1, count // 4)
     states, work = np.empty((1, y.shape[0])), np.zeros(len(integrators.WORK_NAMES), np.int64)
-    integrators.rk4_chunk(0, y, 1e-4 * steps, steps, 1, p, w, states, np.empty(1), work)
+    integrators.rk4_chunk(0, y, 1e-4 * steps, steps, steps, p, w, states, np.empty(1), work)
     return 0
 
 

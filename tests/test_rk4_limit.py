@@ -3,6 +3,7 @@ closed form, the scheme's limit (``numerics.stability``) against its stability f
 the check that refuses a step beyond it against runs on either side of the limit."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -103,7 +104,7 @@ def test_a_step_beyond_the_limit_is_refused_with_the_limit_and_a_step_to_use():
         seacable.simulation.prepare(case)
     message = str(info.value)
     assert message.startswith("simulation.time_step: 0.01 s is beyond rk4's stability limit")
-    assert "685.7 rad/s" in message and "node " in message and "line 'chain'" in message
+    assert re.search(r"\(685\.\d rad/s, moving node \d+ of line .chain. most\)", message)
     assert "unstable above time_step 0.00392 s" in message
     assert "Use time_step 0.002326 s or less" in message  # 0.1 s / 43, 0.6 of the limit
     assert "integrator: dopri5" in message and "allow_unstable_step: true" in message

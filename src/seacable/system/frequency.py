@@ -27,8 +27,9 @@ from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import coordinates
 
-DENSE_UP_TO = 600  # states: below, the dense Jacobian (two evaluations per state) is cheaper
+DENSE_UP_TO = 100  # states: up to this, the dense Jacobian (two evaluations per state) is cheaper
 COUNT = 8  # eigenvalues kept: every one within a few percent of the largest magnitude
+TOLERANCE = 1e-4  # ARPACK's relative accuracy of the eigenvalues (the limit to 1e-4)
 
 
 class Modes(NamedTuple):
@@ -83,7 +84,7 @@ def _arnoldi(operator: LinearOperator, n: int) -> tuple[np.ndarray, np.ndarray]:
     settled when it stops short."""
     start = 1.0 + 0.5 * np.sin(np.arange(n))  # every component, no symmetry: reproducible
     try:
-        return eigs(operator, k=COUNT, which="LM", v0=start, tol=1e-3, maxiter=50 * n // COUNT)
+        return eigs(operator, k=COUNT, which="LM", v0=start, tol=TOLERANCE, maxiter=50 * n // COUNT)
     except ArpackNoConvergence as e:
         return e.eigenvalues, e.eigenvectors
     except ArpackError:
