@@ -573,7 +573,7 @@ def test_every_compiled_integrator_honours_its_chunk_contract(name):
         atol = np.full(len(y), 1e-9)
         out = integrators.dopri5_chunk(
             5, y, interval, 3, 1e-3, 1e-7, atol, np.empty(0), interval, params, w, states, times,
-            work, k, fsal,
+            work, k, fsal, np.zeros(2), 2**62,
         )  # fmt: skip
         return out[:2]
 

@@ -174,6 +174,11 @@ class _Run:
         # schemes' predictor and Newton factors
         self.stages = np.zeros((7, len(self.y)))
         self.fsal = np.zeros(1, dtype=np.int64)
+        # dopri5's time inside an output interval where a chunk stopped (and a flag), and the
+        # steps a chunk may try (sized by _loop to about _CHUNK_SECONDS: a long interval is cut
+        # short, so that a signal is answered)
+        self.clock = np.zeros(2)
+        self.budget = 10
         self.carry = None
         self.newton = None  # a system's implicit steps: how increments move, the matrix layout
         if self.sim.integrator in IMPLICIT:
@@ -227,7 +232,7 @@ class _Run:
             integrators.dopri5_chunk(
                 0, y, 1.0, 0, 1.0, 1.0, self.atol, self.magnitude.copy(), 1.0, self.p, self.w,
                 empty, np.empty(0), work,
-                self.stages.copy(), self.fsal.copy(),
+                self.stages.copy(), self.fsal.copy(), np.zeros(2), 1,
             )  # fmt: skip
         self.model.rows(np.empty(0), empty, self.system, self.w)
 
@@ -319,7 +324,7 @@ class _Run:
             completed, status, self.h = integrators.dopri5_chunk(
                 self.done, self.y, sim.output_interval, count, self.h, sim.rtol, self.atol,
                 self.magnitude, max_step, self.p, self.w, states, times, self.work, self.stages,
-                self.fsal,
+                self.fsal, self.clock, self.budget,
             )  # fmt: skip
         if completed:
             self.t = times[completed - 1]
@@ -408,15 +413,18 @@ def simulate(
 class _Stop:
     """SIGINT (Ctrl-C) and SIGTERM during a run: before its loop they interrupt at once
     (nothing computed yet); in it they are noted and acted on after the chunk under way (about
-    _CHUNK_SECONDS of wall time), so that the rows written are whole."""
+    _CHUNK_SECONDS of wall time), so that the rows written are whole; during a stiff
+    integrator's chunk (SciPy's and SUNDIALS' steps call the Python right-hand side, where the
+    handler runs) at once: that chunk's rows are not written yet, and are dropped."""
 
     def __init__(self):
         self.signum = 0
         self.armed = False
+        self.immediate = False  # a stiff integrator's chunk: its rows are not written yet
 
     def __call__(self, signum, frame):
         self.signum = signum
-        if not self.armed:
+        if not self.armed or self.immediate:
             raise KeyboardInterrupt
 
     def install(self) -> dict:
@@ -446,8 +454,12 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
         if refresh:
             count = min(count, refresh - at % refresh)
         start = _time.perf_counter()
-        before = run.done
+        before, tried = run.done, int(run.work[0] + run.work[1])
+        if stop is not None:  # SciPy's and SUNDIALS' steps call Python: a signal acts at once
+            stop.immediate = run.sim.integrator in stiff.STIFF
         status = run.advance(count)
+        if stop is not None:
+            stop.immediate = False
         if bar is not None:
             bar.update(run.done - before)
         if status != Status.OK:
@@ -458,8 +470,12 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
         if refresh and at % refresh == 0 and at < total:
             run.refresh()
         if chunk_outputs is None:
-            rate = count / max(_time.perf_counter() - start, 1e-6)
-            chunk = int(min(max(1, rate * _CHUNK_SECONDS), 4 * chunk + 1))
+            took = max(_time.perf_counter() - start, 1e-6)
+            chunk = int(min(max(1, count / took * _CHUNK_SECONDS), 4 * chunk + 1))
+            steps = int(run.work[0] + run.work[1]) - tried
+            run.budget = int(min(max(10, steps / took * _CHUNK_SECONDS), 4 * run.budget + 1))
+        else:
+            run.budget = 2**62  # a chunk of the outputs asked, however many steps
     return Status.OK
 
 

@@ -24,7 +24,9 @@ class ChunkIntegrator(Protocol):
        runs in compiled code. A fixed-step chunk counts steps instead: ``n_steps`` from the
        global step ``first_step``, either of which may fall inside an output interval (a row at
        each output reached), so that the run loop can cut a long interval short (a signal is
-       answered within about a second whatever the output interval).
+       answered within about a second whatever the output interval); dopri5's takes a budget
+       of steps, ``max_steps``, and stops inside an interval past it, its time in ``clock``
+       for the next chunk to resume from.
     2. It returns ``(completed, status, ...)`` where ``completed`` is the number of output rows
        written and ``status`` a kernel status code (0 = sound); ``work`` is an int64 array of
        the counters of ``numerics.integrators.WORK_NAMES``, added to in place: accepted steps,

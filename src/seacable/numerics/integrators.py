@@ -153,10 +153,30 @@ def _error_norm(k, y, ynew, h, rtol, atol, magnitude):
     return math.sqrt(err / ny)
 
 
+@inner
+def _accept(t, y, ynew, p, w, k, magnitude, work):
+    """An accepted step to ``ynew`` (projected) at ``t``: ``y`` and the largest magnitudes
+    updated, ``k[0]`` the derivative there (the last stage's, or evaluated again after a
+    projection); the evaluation's status."""
+    kernel.project(ynew, p)
+    y[:] = ynew
+    for i in range(magnitude.shape[0]):
+        magnitude[i] = max(magnitude[i], abs(y[i]))
+    if kernel.projects(p):
+        work[2] += 1
+        if kernel.rhs(t, y, p, w, k[0]) != OK:
+            work[3] += 1
+            return NON_FINITE
+    else:
+        k[0, :] = k[6, :]
+    work[0] += 1
+    return OK
+
+
 @njit(**JIT)
 def dopri5_chunk(
     first_output, y, output_interval, n_outputs, h, rtol, atol, magnitude, max_step, p, w,
-    states, times, work, k, fsal,
+    states, times, work, k, fsal, clock, max_steps,
 ):  # fmt: skip
     """Adaptive Dormand-Prince 5(4) with error control, from output index ``first_output``
     (time ``first_output * output_interval`` [s]); returns (completed, status, next_h).
@@ -167,11 +187,19 @@ def dopri5_chunk(
     state's error measured against its own amplitude). ``k`` (7 x len(y)) are the stages, carried
     from chunk to chunk with ``fsal[0]`` = 1 while ``k[0]`` is the derivative at (t, y) (first
     same as last): a chunk then starts exactly as the step after an output inside a chunk
-    would, so neither the results nor the work counters depend on where chunks begin."""
+    would, so neither the results nor the work counters depend on where chunks begin.
+
+    ``max_steps`` bounds the steps tried in the chunk: past it the chunk stops inside an output
+    interval, its time kept in ``clock`` (``clock[1]`` = 1: the next chunk, from the same
+    ``first_output``, resumes at ``clock[0]`` as the step would have gone on), so that a long
+    interval can be cut short by a signal; it returns then with fewer outputs than asked and
+    a sound status."""
     ny = y.shape[0]
     ytmp = np.empty(ny)
     ynew = np.empty(ny)
-    t = first_output * output_interval
+    t = clock[0] if clock[1] == 1.0 else first_output * output_interval
+    clock[1] = 0.0
+    tried = 0
     if n_outputs > 0 and fsal[0] == 0:
         status = kernel.rhs(t, y, p, w, k[0])
         work[2] += 1
@@ -183,6 +211,10 @@ def dopri5_chunk(
     for j in range(n_outputs):
         t_target = (first_output + j + 1) * output_interval
         while t < t_target:
+            if tried >= max_steps:
+                clock[0], clock[1] = t, 1.0
+                return j, OK, h
+            tried += 1
             h = min(h, max_step)
             h_try = h
             last = False
@@ -200,19 +232,9 @@ def dopri5_chunk(
                 continue
             if err <= 1.0:
                 t = t_target if last else t + h_try
-                kernel.project(ynew, p)
-                y[:] = ynew
-                for i in range(magnitude.shape[0]):
-                    magnitude[i] = max(magnitude[i], abs(y[i]))
-                if kernel.projects(p):
-                    work[2] += 1
-                    if kernel.rhs(t, y, p, w, k[0]) != OK:
-                        work[3] += 1
-                        fsal[0] = 0
-                        return j, NON_FINITE, h
-                else:
-                    k[0, :] = k[6, :]
-                work[0] += 1
+                if _accept(t, y, ynew, p, w, k, magnitude, work) != OK:
+                    fsal[0] = 0
+                    return j, NON_FINITE, h
                 if last:
                     # a step clipped at an output time keeps the unclipped proposal unless the
                     # (unclamped) error estimate says it is too long
