@@ -92,7 +92,22 @@ def _buoys(integrator, **simulation):
     return data
 
 
+def _servo(integrator, **simulation):
+    """The towed umbilical whose end a servo holds on its target, K refreshed every 0.5 s (the
+    run stops its chunks there; a dopri5 chunk cut inside an interval must not refresh)."""
+    case = seacable.load_case("examples/jacquot_marichal_trajectory_servo.yaml")
+    data = case.model_dump(mode="json", by_alias=True, exclude_unset=True)
+    for body in data["bodies"]:
+        for force in body.get("external forces", []):
+            if force["model"] == "servo":
+                force["recompute_interval"] = 0.5
+    data["simulation"] = {"duration": 2.0, "output_interval": 0.1, "integrator": integrator,
+                          **simulation}  # fmt: skip
+    return data
+
+
 CASES = {
+    "dopri5 servo": (_servo, "dopri5", {}),
     "rk4 rigid": (_rigid_chain, "rk4", {"time_step": 0.002}),
     "dopri5 rigid": (_rigid_chain, "dopri5", {"rtol": 1e-7}),
     "dopri5 lumped": (_lumped_line, "dopri5", {}),

@@ -466,9 +466,9 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
             return status
         if stop is not None and stop.signum:
             raise KeyboardInterrupt
-        at = run.done * per + run.into
-        if refresh and at % refresh == 0 and at < total:
-            run.refresh()
+        reached = run.done * per + run.into
+        if refresh and reached > at and reached % refresh == 0 and reached < total:
+            run.refresh()  # once, as the chunk reaches the boundary (a cut dopri5 chunk may not)
         if chunk_outputs is None:
             took = max(_time.perf_counter() - start, 1e-6)
             chunk = int(min(max(1, count / took * _CHUNK_SECONDS), 4 * chunk + 1))
