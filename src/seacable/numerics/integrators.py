@@ -72,7 +72,7 @@ def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, s
     acc = np.empty(ny)
     first_output = first_step // steps_per_output
     step = first_step - first_output * steps_per_output  # into its output interval
-    j = 0
+    j = np.int64(0)  # not a literal: record compiles once
     for _ in range(n_steps):
         t = step_time(first_output, output_interval, steps_per_output, step, dt)
         status = OK

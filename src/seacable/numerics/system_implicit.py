@@ -479,7 +479,7 @@ def chunk(
     acc_saved = np.empty(nv)
     first_output = first_step // steps_per_output
     step = first_step - first_output * steps_per_output  # into its output interval
-    j = 0
+    j = np.int64(0)  # not a literal: record compiles once
     for _ in range(n_steps):
         t = step_time(first_output, output_interval, steps_per_output, step, dt)
         y_saved[:] = y
