@@ -80,7 +80,7 @@ def fastest_modes(system: BuiltSystem, y: np.ndarray | None = None, time: float 
 
 
 def _arnoldi(operator: LinearOperator, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """ARPACK's eigenvalues of largest magnitude (to 1e-3), from a fixed start; those it
+    """ARPACK's eigenvalues of largest magnitude (to TOLERANCE), from a fixed start; those it
     settled when it stops short."""
     start = 1.0 + 0.5 * np.sin(np.arange(n))  # every component, no symmetry: reproducible
     try:
