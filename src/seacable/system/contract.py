@@ -26,6 +26,9 @@ class RunModel(Protocol):
        schemes' Newton tolerance), ``DAMPING_ADVICE``: what a divergence message suggests.
     6. ``variables(system)``: what it records, per group; ``jacobian_sparsity(system)``: the
        Jacobian's pattern (SciPy's stiff integrators and the implicit schemes).
+    7. ``watch(system)``: an object whose ``see(rows)`` takes every chunk of output rows and
+       whose ``warnings()`` lists what they showed that a start would have been refused for
+       (``system.geometry.Watch``).
     Optional: ``positions`` (the implicit schemes' unknowns), ``refresh_interval``/``refresh``
     (parameters replaced during a run: the servo).
     """
@@ -44,3 +47,4 @@ class RunModel(Protocol):
     def shortest_segment(self, system) -> float: ...
     def variables(self, system) -> dict: ...
     def jacobian_sparsity(self, system) -> Any: ...
+    def watch(self, system) -> Any: ...
