@@ -42,7 +42,7 @@ def test_every_force_model_in_the_schema_has_a_kind_and_a_branch():
     """Each ``model:`` of ``external forces`` has a ForceKind, and forces.table evaluates each
     kind (a kind nobody evaluates would be accepted and silently do nothing)."""
     names = _schema_force_models()
-    assert sorted(names) == sorted(kind.name.lower() for kind in kinds.ForceKind)
+    assert sorted(kinds.kind_of(name) for name in names) == sorted(kinds.ForceKind)
     source = inspect.getsource(table.add_all)
     branches = {node.id for node in ast.walk(ast.parse(source)) if isinstance(node, ast.Name)}
     for kind in kinds.ForceKind:

@@ -94,7 +94,7 @@ def cases():
                     re.escape(where) + r".*greater than (0|or equal to 1).*\(got 0",
                     lambda d, k=keys: _set(d, k, 0))  # fmt: skip
     for where, keys in [
-        ("(top level)", ["simulation"]), ("(top level)", ["lines"]),
+        ("(top level)", ["simulation"]),
         ("bodies[0]", ["bodies", 0, "name"]),
         ("bodies[6]", ["bodies", 6, "mass"]), ("lines[0]", ["lines", 0, "from"]),
         ("lines[0].sections[0]", ["lines", 0, "sections", 0, "length"]),

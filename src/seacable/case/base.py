@@ -384,6 +384,30 @@ class VolumeTable(_Model):
 Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="kind")]
 
 
+class HullMesh(_Model):
+    """A body's hull as a triangle mesh file (``file`` relative to the case): STL (ASCII or
+    binary), Wavefront OBJ or WAMIT GDF (``format``, by default from the suffix). The mesh's
+    coordinates [m] times ``scale`` are placed in the body frame at ``position`` (the mesh's
+    origin) turned by ``orientation_deg`` (roll, pitch, yaw); ``axes: z_down`` reads a mesh
+    written in a body frame with z down and y to starboard (the ship-simulator document's and
+    NED's), turning it half a turn about x: (x, y, z) -> (x, -y, -z). Its winding is made
+    consistent and outward; a mesh not closed below the waterline at the body's start is
+    refused."""
+
+    file: str
+    format: Literal["stl", "obj", "gdf"] | None = None
+    scale: Pos = 1.0
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # [m], body frame
+    orientation_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    axes: Literal["z_up", "z_down"] = "z_up"
+
+    def path(self, base_dir=None) -> Path:
+        path = Path(self.file)
+        if base_dir is not None and not path.is_absolute():
+            path = Path(base_dir) / path
+        return path
+
+
 # ---- simulation ----------------------------------------------------------------------------------
 FIXED_STEP_INTEGRATORS = ("rk4", "implicit_euler", "theta", "newmark", "generalized_alpha")
 MOST_ROWS = 1e8  # output rows of one run: a hundred million rows of a single number is 800 MB

@@ -9,7 +9,8 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, Table, instances
+from seacable import meshes
+from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, HullMesh, Table, instances
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -242,6 +243,7 @@ def record(case: Case | SystemCase) -> dict:
     reads (``input_files``: a YAML mapping of each file's name, as the case gives it, to its
     text)."""
     files = {table.file: table.text(case._base_dir) for _, table in instances(case, Table)}
+    files |= {mesh.file: _mesh_text(mesh, case._base_dir) for _, mesh in instances(case, HullMesh)}
     out = {"case_resolved": _yaml(case.model_dump(mode="json", by_alias=True))}
     if files:
         out["input_files"] = _yaml(files)
@@ -256,11 +258,21 @@ def _yaml(data) -> str:
     return yaml.dump(data, Dumper=_DUMPER, sort_keys=False, allow_unicode=True)
 
 
+def _mesh_text(mesh: HullMesh, base_dir) -> str:
+    """A mesh file's text: an STL file (binary or not) as ASCII STL of the same triangles, to
+    17 digits; another format as it is."""
+    path = mesh.path(base_dir)
+    if (mesh.format or path.suffix.lstrip(".")).lower() == "stl":
+        return meshes.stl_text(meshes.read(path, "stl"))
+    return path.read_text(encoding="utf-8")
+
+
 def files_read(case: Case | SystemCase) -> list[Path]:
-    """Every file a run of ``case`` reads, resolved: its case file and its table files (a
-    results file must replace none of them)."""
+    """Every file a run of ``case`` reads, resolved: its case file, its table files and its
+    mesh files (a results file must replace none of them)."""
     files = [Path(case._source_file)] if case._source_file else []
-    files += [table.path(case._base_dir).resolve() for _, table in instances(case, Table)]
+    for kind in (Table, HullMesh):
+        files += [part.path(case._base_dir).resolve() for _, part in instances(case, kind)]
     return files
 
 

@@ -16,6 +16,7 @@ from pydantic import Field, PrivateAttr, field_validator, model_validator
 from seacable.case.base import (
     Constant,
     Environment,
+    HullMesh,
     NonNeg,
     PerAxis,
     Pos,
@@ -39,6 +40,7 @@ Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
 ORIGIN = "origin"  # the point every body has: its reference point
+MESH_MODELS = ("non-linear hydrostatic",)  # force models that need a body's mesh
 
 
 # ---- force models (``external forces`` of a body) ------------------------------------------------
@@ -132,8 +134,24 @@ class ServoForce(_Model):
     recompute_interval: Pos | None = None  # [s]
 
 
+class NonLinearHydrostatic(_Model):
+    """The ship-simulator document's non-linear hydrostatics: the still-water pressure
+    rho g (-z) integrated exactly on the body's ``mesh`` clipped at the free surface z = 0 at
+    every evaluation: buoyancy and its moment at any draft, heel and trim (a rigid body with a
+    ``mesh``; instead of ``buoyancy``)."""
+
+    model: Literal["non-linear hydrostatic"]
+
+
 ForceModel = Annotated[
-    Gravity | Buoyancy | Drag | AppliedForce | LinearStiffness | LinearDamping | ServoForce,
+    Gravity
+    | Buoyancy
+    | Drag
+    | AppliedForce
+    | LinearStiffness
+    | LinearDamping
+    | ServoForce
+    | NonLinearHydrostatic,
     Field(discriminator="model"),
 ]
 
@@ -259,6 +277,7 @@ class RigidBody(_Dynamic):
     # body frame, at the reference point [kg, kg m, kg m^2]: 6x6, or its diagonal
     centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    mesh: HullMesh | None = None  # the hull, for the mesh force models
 
     @field_validator("dofs")
     @classmethod
@@ -266,6 +285,22 @@ class RigidBody(_Dynamic):
         if len(set(dofs)) != len(dofs):
             raise ValueError(f"dofs lists a degree of freedom twice: {dofs}")
         return dofs
+
+    @model_validator(mode="after")
+    def _mesh_models(self):
+        needs = [f.model for f in self.external_forces if f.model in MESH_MODELS]
+        if needs and self.mesh is None:
+            raise ValueError(
+                f"force model '{needs[0]}' needs the body's hull: give 'mesh' "
+                "(file: hull.stl, and its placement)"
+            )
+        both = {"buoyancy", "non-linear hydrostatic"} <= {f.model for f in self.external_forces}
+        if both:
+            raise ValueError(
+                "'buoyancy' and 'non-linear hydrostatic' both give the body its buoyancy; "
+                "keep one of them"
+            )
+        return self
 
 
 Body = Annotated[FixedBody | ImposedBody | PointBody | RigidBody, Field(discriminator="type")]
@@ -469,7 +504,7 @@ class SystemCase(_Model):
     environment: Environment = Environment()
     bodies: list[Body] = Field(min_length=1)
     line_types: list[LineType] = []
-    lines: list[Line] = Field(min_length=1)
+    lines: list[Line] = []  # none: bodies alone (a vessel in free decay)
     # how the run starts: "static", every free body and line at rest in balance (steady current
     # included; system.statics), or "as_given", bodies where the case puts them, each lumped
     # line at its static shape between them (a free decay from an offset)

@@ -9,7 +9,8 @@ from enum import IntEnum
 
 
 class ForceKind(IntEnum):
-    """The compiled code branches on these values."""
+    """The compiled code branches on these values; a kind's name is its ``model:`` in capitals
+    with spaces and hyphens as underscores (``kind_of``)."""
 
     GRAVITY = 0
     BUOYANCY = 1
@@ -18,6 +19,7 @@ class ForceKind(IntEnum):
     LINEAR_STIFFNESS = 4
     LINEAR_DAMPING = 5
     SERVO = 6
+    NON_LINEAR_HYDROSTATIC = 7
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -27,4 +29,10 @@ APPLIED = int(ForceKind.APPLIED)
 LINEAR_STIFFNESS = int(ForceKind.LINEAR_STIFFNESS)
 LINEAR_DAMPING = int(ForceKind.LINEAR_DAMPING)
 SERVO = int(ForceKind.SERVO)
+NON_LINEAR_HYDROSTATIC = int(ForceKind.NON_LINEAR_HYDROSTATIC)
 STATES = {SERVO: 3}  # states of the models that have some
+
+
+def kind_of(model: str) -> int:
+    """The kind of a schema ``model:`` name ("non-linear hydrostatic": NON_LINEAR_HYDROSTATIC)."""
+    return int(ForceKind[model.upper().replace("-", "_").replace(" ", "_")])

@@ -4,7 +4,7 @@ acts on body ``body[f]``, reads its floats from ``data[at[f]:]`` and its channel
 
 from numba import njit
 
-from seacable.forces import applied, drag, linear, servo, weight
+from seacable.forces import applied, drag, hydrostatic, linear, servo, weight
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
@@ -12,6 +12,7 @@ from seacable.forces.kinds import (
     GRAVITY,
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
+    NON_LINEAR_HYDROSTATIC,
     SERVO,
 )
 from seacable.kernels.jit import JIT
@@ -43,6 +44,8 @@ def add_all(
             linear.add_damping(row, vel[b], omega[b], rhs[b])
         elif k == SERVO:
             servo.add(row, y, state[f], rhs[b])
+        elif k == NON_LINEAR_HYDROSTATIC:
+            hydrostatic.add(row, pos[b], rot[b], rho, gravity, rhs[b])
 
 
 @njit(inline="always", **JIT)

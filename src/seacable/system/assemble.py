@@ -14,11 +14,11 @@ from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import applied, drag, linear, servo
-from seacable.forces.kinds import STATES, ForceKind
+from seacable.forces import applied, drag, hydrostatic, linear, servo
+from seacable.forces.kinds import STATES, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, typed
-from seacable.system import natural_lines, topology
+from seacable.system import hulls, natural_lines, topology
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
@@ -212,7 +212,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 y_v += velocity
                 q_at, v_at = q_at + 3, v_at + 3
         for k, spec in enumerate(body.external_forces):
-            f["kind"].append(int(ForceKind[spec.model.upper()]))
+            f["kind"].append(kind_of(spec.model))
             f["body"].append(b)
             f["at"].append(len(data))
             f["first"].append(len(channels))
@@ -292,6 +292,8 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         return [*linear.matrix(spec).ravel(), *position, *quaternion]
     if isinstance(spec, sch.LinearDamping):
         return list(linear.matrix(spec).ravel())
+    if isinstance(spec, sch.NonLinearHydrostatic):
+        return hydrostatic.pack(hulls.body_mesh(body, base_dir, where.split(".")[0]).row())
     if isinstance(spec, sch.ServoForce):
         target = _point(case, layout, spec.target, f"{where}.target")
         sim = case.simulation

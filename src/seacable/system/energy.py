@@ -12,8 +12,8 @@ import numpy as np
 
 from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
-from seacable.forces import linear
-from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS
+from seacable.forces import hydrostatic, linear
+from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS, NON_LINEAR_HYDROSTATIC
 from seacable.kernels.chain3d_outputs import segment_energies
 from seacable.kernels.jit import inner
 from seacable.kernels.lumped_outputs import line_energies
@@ -88,6 +88,9 @@ def _bodies(y, p, w):
             else:
                 _, _, integral = submersion(w.pos[b, 2], p.body_shape[b])
                 gravity -= weight * integral
+        elif kind == NON_LINEAR_HYDROSTATIC:
+            row = p.force_data[p.force_at[f] :]
+            gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity)
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
             elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])

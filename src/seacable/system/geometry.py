@@ -24,6 +24,7 @@ import numpy as np
 from seacable.bodies import kinematics
 from seacable.case.system import SEABED_TOLERANCE
 from seacable.errors import CaseError
+from seacable.forces.kinds import NON_LINEAR_HYDROSTATIC
 from seacable.kernels import surface
 from seacable.system import kernel, outputs
 from seacable.system.assemble import BuiltSystem
@@ -107,12 +108,14 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
 
 
 def _point_volume(p, b: int) -> bool:
-    """Body ``b`` is dynamic, without a shape, and has a volume or an added mass: both counted
-    wholly submerged wherever it is."""
+    """Body ``b`` is dynamic, without a shape or a hull mesh, and has a volume or an added
+    mass: both counted wholly submerged wherever it is (a hull's added mass is the floating
+    vessel's)."""
     return bool(
         p.rho > 0.0 and p.body_kind[b] == kinematics.DYNAMIC
         and p.body_shape[b, 0] == surface.POINT
         and (p.body_volume[b] > 0.0 or np.any(p.body_added[b] != 0.0))
+        and not np.any((p.force_body == b) & (p.force_kind == NON_LINEAR_HYDROSTATIC))
     )  # fmt: skip
 
 
