@@ -272,7 +272,7 @@ def test_free_decay_periods_and_energy(tmp_path, dof):
              "pitch": {"orientation_deg": [0, 0.2, 0]}}[dof]  # fmt: skip
     case = _barge_case(tmp_path / "box.stl", draft, kg, added, dofs=[dof], **start)
     case = case.model_copy(update={"simulation": case.simulation.model_copy(
-        update={"duration": 40.0, "output_interval": 0.02, "tolerance": 1e-10})})  # fmt: skip
+        update={"duration": 40.0, "output_interval": 0.02, "rtol": 1e-10})})  # fmt: skip
     results = seacable.simulate(case)
     body = results["bodies/barge"]
     t = results["time"].values

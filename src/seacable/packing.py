@@ -61,3 +61,17 @@ def shape_row(shape, width: int) -> np.ndarray:
         row[surface.HEADER : surface.HEADER + count] = table[:, 0]
         row[surface.HEADER + count : surface.HEADER + 2 * count] = table[:, 1] / table[0, 1]
     return row
+
+
+def transported(matrix: np.ndarray, point) -> np.ndarray:
+    """A 6x6 matrix (added mass, damping) expressed at ``point`` (body frame, from the
+    reference point; None: at the reference point) moved to the reference point: H^T A H, with
+    H = [[I, -[r]], [0, I]] the map from the reference point's (v, w) to the point's velocity
+    v + w x r and the same w (a stiffness needs more: the moments of the forces' own
+    displacements)."""
+    if point is None or not any(point):
+        return np.array(matrix, dtype=float)
+    rx, ry, rz = point
+    h = np.eye(6)
+    h[:3, 3:] = -np.array([[0.0, -rz, ry], [rz, 0.0, -rx], [-ry, rx, 0.0]])
+    return h.T @ np.asarray(matrix, dtype=float) @ h

@@ -9,9 +9,19 @@ about G in the earth frame (R I_body R^T):
     [ m I      -m [r]          ] [a    ]   [F  ]   [m w x (w x r)                    ]
     [ m [r]    I_G - m [r][r]  ] [alpha] = [M_O] - [w x (I_G w) + m r x (w x (w x r))]
 
-plus the added-mass matrix (body frame at the reference point, turned into the earth frame;
-its Coriolis terms are left out, as the ship-simulator document prescribes). A held degree of
-freedom has its row replaced by a_i = 0.
+plus the added-mass matrix A (body frame at the reference point) turned into the earth frame,
+A_e = diag(R, R) A diag(R, R)^T, and its velocity terms, in one of two forms (``coriolis``):
+
+- ``RIGID_BODY`` (the ship-simulator document's): the body-frame equation
+  (M + A) nu' = C_RB(nu) nu + F with the Coriolis matrix of the rigid-body mass only: the added
+  mass acts on the body-frame rate of the body-frame velocity nu = (u, w), nu' = (R^T a - w x u,
+  R^T alpha), i.e. A_e (a, alpha) - A_e (w x v, 0) in the earth frame. A ship turning steadily
+  (nu constant) feels no added inertia; the document reports this closer to trials.
+- ``EXACT`` (Kirchhoff's equations): the fluid's impulse (P, H) = A_e (v, w) also turns with
+  the body, adding (w x P, w x H + v x P): the kinetic energy 1/2 (v, w)^T (M + A_e) (v, w) of a
+  body moving freely is conserved, and a slender body feels Munk's moment.
+
+A held degree of freedom has its row replaced by a_i = 0.
 """
 
 import numpy as np
@@ -19,11 +29,14 @@ from numba import njit
 
 from seacable.kernels.jit import JIT, inner
 
+RIGID_BODY, EXACT = 0, 1  # the added mass's velocity terms (module docstring)
+
 
 @inner
-def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
+def rigid_mass(mass, cog, inertia, added, rot, vel, omega, scale_added, coriolis, m6, bias):
     """Fill ``m6`` (6, 6) and ``bias`` (6) of one body (``cog`` body frame, ``inertia`` about
-    G body frame, ``added`` 6x6 body frame at the reference point times ``scale_added``)."""
+    G body frame, ``added`` 6x6 body frame at the reference point times ``scale_added``, its
+    velocity terms in the form ``coriolis``)."""
     rx = rot[0, 0] * cog[0] + rot[0, 1] * cog[1] + rot[0, 2] * cog[2]
     ry = rot[1, 0] * cog[0] + rot[1, 1] * cog[1] + rot[1, 2] * cog[2]
     rz = rot[2, 0] * cog[0] + rot[2, 1] * cog[1] + rot[2, 2] * cog[2]
@@ -61,6 +74,49 @@ def rigid_mass(mass, cog, inertia, added, rot, omega, scale_added, m6, bias):
     bias[3] = wy * hz - wz * hy + mass * (ry * cz - rz * cy)
     bias[4] = wz * hx - wx * hz + mass * (rz * cx - rx * cz)
     bias[5] = wx * hy - wy * hx + mass * (rx * cy - ry * cx)
+    if scale_added != 0.0 and (wx != 0.0 or wy != 0.0 or wz != 0.0):
+        _added_bias(added, rot, vel, omega, scale_added, coriolis, bias)
+
+
+@njit(inline="always", **JIT)
+def _dot(added, i, v):
+    """Row i of ``added`` times the 6-vector v."""
+    return (added[i, 0] * v[0] + added[i, 1] * v[1] + added[i, 2] * v[2] + added[i, 3] * v[3]
+            + added[i, 4] * v[4] + added[i, 5] * v[5])  # fmt: skip
+
+
+@inner
+def _added_bias(added, rot, vel, omega, scale, coriolis, bias):
+    """The added mass's velocity terms (module docstring), computed in the body frame and
+    turned into the earth frame: -A (w x u, 0), and for EXACT (w x p, w x h + u x p) with
+    (p, h) = A (u, w)."""
+    u = (rot[0, 0] * vel[0] + rot[1, 0] * vel[1] + rot[2, 0] * vel[2],
+         rot[0, 1] * vel[0] + rot[1, 1] * vel[1] + rot[2, 1] * vel[2],
+         rot[0, 2] * vel[0] + rot[1, 2] * vel[1] + rot[2, 2] * vel[2])  # fmt: skip
+    w = (rot[0, 0] * omega[0] + rot[1, 0] * omega[1] + rot[2, 0] * omega[2],
+         rot[0, 1] * omega[0] + rot[1, 1] * omega[1] + rot[2, 1] * omega[2],
+         rot[0, 2] * omega[0] + rot[1, 2] * omega[1] + rot[2, 2] * omega[2])  # fmt: skip
+    wu = (w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0], 0.0,
+          0.0, 0.0)  # fmt: skip
+    out = (-_dot(added, 0, wu), -_dot(added, 1, wu), -_dot(added, 2, wu), -_dot(added, 3, wu),
+           -_dot(added, 4, wu), -_dot(added, 5, wu))  # fmt: skip
+    if coriolis == EXACT:
+        nu = (u[0], u[1], u[2], w[0], w[1], w[2])
+        p = (_dot(added, 0, nu), _dot(added, 1, nu), _dot(added, 2, nu))
+        h = (_dot(added, 3, nu), _dot(added, 4, nu), _dot(added, 5, nu))
+        out = (
+            out[0] + w[1] * p[2] - w[2] * p[1],
+            out[1] + w[2] * p[0] - w[0] * p[2],
+            out[2] + w[0] * p[1] - w[1] * p[0],
+            out[3] + w[1] * h[2] - w[2] * h[1] + u[1] * p[2] - u[2] * p[1],
+            out[4] + w[2] * h[0] - w[0] * h[2] + u[2] * p[0] - u[0] * p[2],
+            out[5] + w[0] * h[1] - w[1] * h[0] + u[0] * p[1] - u[1] * p[0],
+        )
+    for block in range(2):
+        k = 3 * block
+        for i in range(3):
+            bias[k + i] += scale * (rot[i, 0] * out[k] + rot[i, 1] * out[k + 1]
+                                    + rot[i, 2] * out[k + 2])  # fmt: skip
 
 
 @inner

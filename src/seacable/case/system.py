@@ -68,11 +68,13 @@ class Drag(_Model):
 
 
 class AppliedForce(_Model):
-    """A force and a moment given as time functions, in the earth frame, at a point of the
-    body (its reference point by default): a thrust, a test load."""
+    """A force and a moment given as time functions at a point of the body (its reference
+    point by default), in the earth frame or, with ``frame: body``, in the body frame (turning
+    with the body: a thruster's thrust): a test load, a thrust."""
 
     model: Literal["applied"]
     point: str = ORIGIN
+    frame: Literal["earth", "body"] = "earth"
     force_x: TimeFunction = Constant(value=0.0)  # [N]
     force_y: TimeFunction = Constant(value=0.0)  # [N]
     force_z: TimeFunction = Constant(value=0.0)  # [N], positive up
@@ -106,12 +108,35 @@ class LinearStiffness(_MatrixOrDiagonal):
 
 
 class LinearDamping(_MatrixOrDiagonal):
-    """F = -B (v, omega): the reference point's velocity [m/s] and the angular velocity
-    [rad/s], earth frame; B [N s/m, N s, N m s/m, N m s/rad] 6x6 or ``diagonal``."""
+    """F = -B nu, B [N s/m, N s, N m s/m, N m s/rad] 6x6 or ``diagonal``. ``frame: earth``: nu
+    the reference point's velocity [m/s] and the angular velocity [rad/s] in the earth frame.
+    ``frame: body`` (a vessel's viscous damping): nu the velocity relative to the current and
+    the angular velocity in the body frame, B in the body frame at ``point`` (body frame, by
+    default the reference point; moved to it), the force turned into the earth frame."""
 
     model: Literal["linear_damping"]
     matrix: Matrix6 | None = None
     diagonal: tuple[NonNeg, NonNeg, NonNeg, NonNeg, NonNeg, NonNeg] | None = None
+    frame: Literal["earth", "body"] = "earth"
+    point: Vector | None = None  # [m], body frame (frame: body)
+
+    @model_validator(mode="after")
+    def _point_in_body_frame(self):
+        if self.point is not None and self.frame == "earth":
+            raise ValueError("'point' is for frame: body (the matrix is then at that point)")
+        return self
+
+
+class QuadraticDamping(_MatrixOrDiagonal):
+    """A vessel's quadratic viscous damping: F = -B (|nu| nu), |nu_j| nu_j component by
+    component, nu the body-frame velocity relative to the current and angular velocity (as
+    ``linear_damping`` with ``frame: body``); B [N s^2/m^2, N s^2/rad, N m s^2/m^2,
+    N m s^2/rad^2] at ``point`` (body frame, default the reference point)."""
+
+    model: Literal["quadratic_damping"]
+    matrix: Matrix6 | None = None
+    diagonal: tuple[NonNeg, NonNeg, NonNeg, NonNeg, NonNeg, NonNeg] | None = None
+    point: Vector | None = None  # [m], body frame
 
 
 class ServoForce(_Model):
@@ -151,7 +176,8 @@ ForceModel = Annotated[
     | LinearStiffness
     | LinearDamping
     | ServoForce
-    | NonLinearHydrostatic,
+    | NonLinearHydrostatic
+    | QuadraticDamping,
     Field(discriminator="model"),
 ]
 
@@ -274,7 +300,13 @@ class RigidBody(_Dynamic):
     inertia: Vector | tuple[Vector, Vector, Vector] = (0.0, 0.0, 0.0)  # about the CoG,
     # body frame [kg m^2]: the diagonal, or the 3x3 matrix
     added_mass: Matrix6 | tuple[float, float, float, float, float, float] = (0.0,) * 6
-    # body frame, at the reference point [kg, kg m, kg m^2]: 6x6, or its diagonal
+    # body frame [kg, kg m, kg m^2]: 6x6, or its diagonal; at ``added_mass_point`` (body frame,
+    # default the reference point), moved to the reference point (packing.transported)
+    added_mass_point: Vector | None = None
+    # the added mass's velocity terms (bodies.dynamics): "rigid_body", the ship-simulator
+    # document's body-frame equation with the Coriolis matrix of the rigid-body mass only, or
+    # "exact", Kirchhoff's (the fluid's impulse turns with the body too)
+    coriolis: Literal["rigid_body", "exact"] = "rigid_body"
     centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     mesh: HullMesh | None = None  # the hull, for the mesh force models

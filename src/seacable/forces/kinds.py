@@ -20,6 +20,7 @@ class ForceKind(IntEnum):
     LINEAR_DAMPING = 5
     SERVO = 6
     NON_LINEAR_HYDROSTATIC = 7
+    QUADRATIC_DAMPING = 8
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -30,6 +31,7 @@ LINEAR_STIFFNESS = int(ForceKind.LINEAR_STIFFNESS)
 LINEAR_DAMPING = int(ForceKind.LINEAR_DAMPING)
 SERVO = int(ForceKind.SERVO)
 NON_LINEAR_HYDROSTATIC = int(ForceKind.NON_LINEAR_HYDROSTATIC)
+QUADRATIC_DAMPING = int(ForceKind.QUADRATIC_DAMPING)
 STATES = {SERVO: 3}  # states of the models that have some
 
 

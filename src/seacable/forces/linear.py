@@ -1,17 +1,25 @@
-"""Linear stiffness and damping matrices (earth frame, at the reference point).
+"""Linear stiffness, and linear and quadratic damping matrices (at the reference point).
 
-Stiffness: F = -K d, d = (x - x_eq, theta), theta the rotation vector of R R_eq^T (the small
-rotation from the equilibrium orientation; exactly roll, pitch, yaw for small angles).
-Damping: F = -B (v, omega)."""
+Stiffness (earth frame): F = -K d, d = (x - x_eq, theta), theta the rotation vector of
+R R_eq^T (the small rotation from the equilibrium orientation; exactly roll, pitch, yaw for
+small angles).
+Damping: in the earth frame F = -B (v, omega); in the body frame (a vessel's viscous damping)
+on the body-frame velocity relative to the current at the reference point,
+nu_r = (R^T (v - c), R^T omega): F_body = -B nu_r (linear) or -B (|nu_r| nu_r), component by
+component (quadratic), turned into the earth frame."""
 
 import math
 
 import numpy as np
+from numba import njit
 
-from seacable.kernels.jit import inner
+from seacable.kernels import chain3d as c3
+from seacable.kernels.jit import JIT, inner
 
 STIFFNESS_ROW = 36 + 3 + 4  # K row-major, equilibrium position, equilibrium quaternion
-DAMPING_ROW = 36
+DAMPING_ROW = 36 + 1  # B row-major, then the form (EARTH, BODY, QUADRATIC)
+EARTH, BODY, QUADRATIC = 0, 1, 2
+FORMS = {"earth": EARTH, "body": BODY, "quadratic": QUADRATIC}
 
 
 def matrix(spec) -> np.ndarray:
@@ -70,10 +78,37 @@ def stiffness_energy(row, pos, quat):
 
 
 @inner
-def add_damping(row, vel, omega, rhs):
-    v = (vel[0], vel[1], vel[2], omega[0], omega[1], omega[2])
-    for i in range(6):
-        total = 0.0
-        for j in range(6):
-            total += row[6 * i + j] * v[j]
-        rhs[i] -= total
+def add_damping(row, pos, rot, vel, omega, current_z, current_u, current_v, rhs):
+    form = int(row[36])
+    if form == EARTH:
+        v = (vel[0], vel[1], vel[2], omega[0], omega[1], omega[2])
+        for i in range(6):
+            total = 0.0
+            for j in range(6):
+                total += row[6 * i + j] * v[j]
+            rhs[i] -= total
+        return
+    cu, cv = c3._current(current_z, current_u, current_v, pos[2])
+    rx, ry, rz = vel[0] - cu, vel[1] - cv, vel[2]
+    nu = (
+        rot[0, 0] * rx + rot[1, 0] * ry + rot[2, 0] * rz,
+        rot[0, 1] * rx + rot[1, 1] * ry + rot[2, 1] * rz,
+        rot[0, 2] * rx + rot[1, 2] * ry + rot[2, 2] * rz,
+        rot[0, 0] * omega[0] + rot[1, 0] * omega[1] + rot[2, 0] * omega[2],
+        rot[0, 1] * omega[0] + rot[1, 1] * omega[1] + rot[2, 1] * omega[2],
+        rot[0, 2] * omega[0] + rot[1, 2] * omega[1] + rot[2, 2] * omega[2],
+    )
+    if form == QUADRATIC:
+        nu = (abs(nu[0]) * nu[0], abs(nu[1]) * nu[1], abs(nu[2]) * nu[2], abs(nu[3]) * nu[3],
+              abs(nu[4]) * nu[4], abs(nu[5]) * nu[5])  # fmt: skip
+    body = (_row_times(row, 0, nu), _row_times(row, 1, nu), _row_times(row, 2, nu),
+            _row_times(row, 3, nu), _row_times(row, 4, nu), _row_times(row, 5, nu))  # fmt: skip
+    for i in range(3):
+        rhs[i] -= rot[i, 0] * body[0] + rot[i, 1] * body[1] + rot[i, 2] * body[2]
+        rhs[3 + i] -= rot[i, 0] * body[3] + rot[i, 1] * body[4] + rot[i, 2] * body[5]
+
+
+@njit(inline="always", **JIT)
+def _row_times(row, i, v):
+    return (row[6 * i] * v[0] + row[6 * i + 1] * v[1] + row[6 * i + 2] * v[2]
+            + row[6 * i + 3] * v[3] + row[6 * i + 4] * v[4] + row[6 * i + 5] * v[5])  # fmt: skip

@@ -13,6 +13,7 @@ from seacable.forces.kinds import (
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
     NON_LINEAR_HYDROSTATIC,
+    QUADRATIC_DAMPING,
     SERVO,
 )
 from seacable.kernels.jit import JIT
@@ -40,8 +41,9 @@ def add_all(
             applied.add(row, first[f], t, rot[b], tf, rhs[b])
         elif k == LINEAR_STIFFNESS:
             linear.add_stiffness(row, pos[b], quat[b], rhs[b])
-        elif k == LINEAR_DAMPING:
-            linear.add_damping(row, vel[b], omega[b], rhs[b])
+        elif k == LINEAR_DAMPING or k == QUADRATIC_DAMPING:
+            linear.add_damping(row, pos[b], rot[b], vel[b], omega[b], current_z, current_u,
+                               current_v, rhs[b])  # fmt: skip
         elif k == SERVO:
             servo.add(row, y, state[f], rhs[b])
         elif k == NON_LINEAR_HYDROSTATIC:

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from seacable import timefunctions as tfn
-from seacable.bodies import kinematics
+from seacable.bodies import dynamics, kinematics
 from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
@@ -17,14 +17,16 @@ from seacable.errors import CaseError
 from seacable.forces import applied, drag, hydrostatic, linear, servo
 from seacable.forces.kinds import STATES, kind_of
 from seacable.kernels import surface
-from seacable.packing import channel, current_arrays, shape_row, typed
+from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import hulls, natural_lines, topology
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
 SEGMENTS_3D, PLANAR = 0, 1  # rigid-line models (SystemParams.rs_kind)
+CORIOLIS = {"rigid_body": dynamics.RIGID_BODY, "exact": dynamics.EXACT}
 INT_FIELDS = frozenset({
-    "body_kind", "body_rigid", "body_q", "body_v", "body_channel", "body_motion", "body_parent",
+    "body_kind", "body_rigid", "body_coriolis", "body_q", "body_v", "body_channel",
+    "body_motion", "body_parent",
     "point_body", "force_kind", "force_body", "force_at", "force_first", "force_state",
     "line_n", "line_seg", "line_node", "line_q", "line_v", "line_from", "line_to", "tie_from",
     "tie_to", "tie_first", "tie_count",
@@ -149,7 +151,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         "body_pose": np.zeros((nb, 7)),
         "body_mass": np.zeros(nb), "body_cog": np.zeros((nb, 3)),
         "body_inertia": np.zeros((nb, 3, 3)), "body_added": np.zeros((nb, 6, 6)),
-        "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
+        "body_coriolis": np.zeros(nb), "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
         "body_cob": np.zeros((nb, 3)), "body_shape": np.zeros((nb, width)),
     }  # fmt: skip
     tips = topology.rigid_tips(case)
@@ -199,7 +201,9 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             inertia = np.array(body.inertia, dtype=float)
             arrays["body_inertia"][b] = np.diag(inertia) if inertia.ndim == 1 else inertia
             added = np.array(body.added_mass, dtype=float)
-            arrays["body_added"][b] = np.diag(added) if added.ndim == 1 else added
+            added = np.diag(added) if added.ndim == 1 else added
+            arrays["body_added"][b] = transported(added, body.added_mass_point)
+            arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]
             q_at, v_at = q_at + 7, v_at + 6
         else:
             arrays["body_added"][b, :3, :3] = np.diag(
@@ -281,7 +285,7 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
                else body.name, where)  # fmt: skip
         for name in applied.CHANNELS:
             channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
-        return applied.pack(_offset(body, spec.point))
+        return applied.pack(_offset(body, spec.point), spec.frame == "body")
     if isinstance(spec, sch.LinearStiffness):
         position: Any = spec.equilibrium_position or body.position
         angles: Any = spec.equilibrium_orientation_deg or getattr(
@@ -290,8 +294,10 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         roll, pitch, yaw = (math.radians(a) for a in angles)
         quaternion = kinematics.euler_quaternion(roll, pitch, yaw)
         return [*linear.matrix(spec).ravel(), *position, *quaternion]
-    if isinstance(spec, sch.LinearDamping):
-        return list(linear.matrix(spec).ravel())
+    if isinstance(spec, sch.LinearDamping | sch.QuadraticDamping):
+        matrix = transported(linear.matrix(spec), spec.point)
+        form = linear.FORMS[getattr(spec, "frame", "quadratic")]
+        return [*matrix.ravel(), float(form)]
     if isinstance(spec, sch.NonLinearHydrostatic):
         return hydrostatic.pack(hulls.body_mesh(body, base_dir, where.split(".")[0]).row())
     if isinstance(spec, sch.ServoForce):

@@ -69,7 +69,8 @@ def _bodies(y, p, w):
             continue
         scale = w.fraction[b] if p.body_shape[b, 0] != POINT else 1.0
         dynamics.rigid_mass(p.body_mass[b], p.body_cog[b], p.body_inertia[b], p.body_added[b],
-                            w.rot[b], w.omega[b], scale, m6, bias)  # fmt: skip
+                            w.rot[b], w.vel[b], w.omega[b], scale, p.body_coriolis[b], m6,
+                            bias)  # fmt: skip
         nu = (w.vel[b, 0], w.vel[b, 1], w.vel[b, 2], w.omega[b, 0], w.omega[b, 1], w.omega[b, 2])
         for i in range(6):
             for j in range(6):

@@ -56,6 +56,7 @@ class SystemParams(NamedTuple):
     body_cog: np.ndarray  # (nb, 3) centre of gravity, body frame [m]
     body_inertia: np.ndarray  # (nb, 3, 3) about the CoG, body frame [kg m^2]
     body_added: np.ndarray  # (nb, 6, 6) added mass, body frame at the reference point
+    body_coriolis: np.ndarray  # (nb,) int: its velocity terms (bodies.dynamics RIGID_BODY, EXACT)
     body_free: np.ndarray  # (nb, 6) 1.0 on a free degree of freedom
     body_volume: np.ndarray  # (nb,) wholly submerged [m^3]
     body_cob: np.ndarray  # (nb, 3) centre of buoyancy, body frame [m]
@@ -234,8 +235,8 @@ def _fractions(kind, shape, pos, fraction):
 
 
 @inner
-def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, rot, omega,
-                 out_mass, out_bias):  # fmt: skip
+def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, coriolis, shape, fraction, rot,
+                 vel, omega, out_mass, out_bias):  # fmt: skip
     for b in range(p_kind.shape[0]):
         if not kinematics.has_mass(p_kind[b]):
             continue
@@ -247,8 +248,10 @@ def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, shape, fraction, ro
             inertia[b],
             added[b],
             rot[b],
+            vel[b],
             omega[b],
             scale,
+            coriolis[b],
             out_mass[b],
             out_bias[b],
         )
@@ -317,7 +320,7 @@ def rhs(t, y, p, w, ydot):
     w.load[:, :] = 0.0
     _body_masses(
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
-        p.body_shape, w.fraction, w.rot, w.omega, w.mass, w.bias,
+        p.body_coriolis, p.body_shape, w.fraction, w.rot, w.vel, w.omega, w.mass, w.bias,
     )  # fmt: skip
     if p.tie_from.shape[0] > 0:  # ties (a call with arrays costs even with none to do)
         tie.forces(
