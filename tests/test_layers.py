@@ -19,6 +19,7 @@ LAYER = {
     "packing": 3,
     "case.units": 3,
     "case.system": 2, "case.schema": 2, "timefunctions": 2, "meshes": 2, "seastate": 2,
+    "hydrodb": 2, "bem": 3,
     "case.legacy": 9,
     "case.legacy_sections": 8,
     "case.base": 1,
@@ -87,6 +88,7 @@ def test_no_import_inside_functions_except_lazy_optional():
     lazy_ok = {"matplotlib", "matplotlib.pyplot", "tqdm", "seacable", "matplotlib.animation"}
     lazy_ok |= {"sksundae.cvode"}  # SUNDIALS, loaded when a case asks for integrator: cvode
     lazy_ok |= {"PIL"}  # Pillow, loaded when an animation is written
+    lazy_ok |= {"capytaine"}  # the [bem] extra, loaded when a database is computed
     # SciPy's slow imports, loaded where used (docs/architecture.md, "Compile time"): a run with
     # rk4, dopri5 or the implicit schemes needs none of them
     lazy_ok |= {"scipy", "scipy.integrate", "scipy.interpolate", "scipy.optimize"}

@@ -6,10 +6,11 @@ from typing import Any
 
 import numpy as np
 
+from seacable import seastate
 from seacable import timefunctions as tfn
 from seacable.case import schema
 from seacable.errors import CaseError
-from seacable.kernels import surface
+from seacable.kernels import surface, waves
 
 
 def current_arrays(env: schema.Environment):
@@ -19,6 +20,16 @@ def current_arrays(env: schema.Environment):
     z, speed = env.current.arrays()
     heading = math.radians(env.current.direction_deg)
     return z, speed * math.cos(heading), speed * math.sin(heading)
+
+
+def wave_fields(env: schema.Environment) -> dict:
+    """The incident waves' SystemParams fields: every wave's components (seastate) in one
+    table, the depth they feel and the stretching."""
+    depth = env.water_depth or waves.DEEP
+    tables = [seastate.components(wave, depth, env.gravity) for wave in env.waves]
+    rows = np.concatenate(tables) if tables else np.zeros((0, 6))
+    stretch = waves.WHEELER if env.wave_stretching == "wheeler" else waves.VERTICAL
+    return {"wave": rows, "wave_depth": float(depth), "wave_stretch": stretch}
 
 
 def channel(spec, base_dir, where: str) -> tfn.Piecewise:

@@ -324,6 +324,55 @@ class Seabed(_Model):
     slip_speed: Pos = 0.01  # [m/s]
 
 
+class RegularWave(_Model):
+    """An Airy wave: eta = H/2 cos(k (x cos b + y sin b) - 2 pi t / T + phase), k from the
+    dispersion relation at the water depth (seastate.wave_number)."""
+
+    kind: Literal["airy"]
+    height: Pos  # crest to trough [m]
+    period: Pos  # [s]
+    direction_deg: float = 0.0  # the direction it travels towards, from +x towards +y
+    phase_deg: float = 0.0
+
+
+class WaveSpectrum(_Model):
+    """An irregular sea (seastate): a JONSWAP or Pierson-Moskowitz spectrum of significant
+    height Hs and peak period Tp, spread over directions as cos^2s((b - direction) / 2),
+    discretised into ``frequencies`` x ``directions`` components with random frequencies
+    inside equal bands between frequency_range times the peak frequency and random phases,
+    from ``seed``."""
+
+    kind: Literal["jonswap", "pierson_moskowitz"]
+    significant_height: Pos  # Hs [m]
+    peak_period: Pos  # Tp [s]
+    gamma: Annotated[float, Field(ge=1.0, le=20.0)] | None = None  # JONSWAP's (3.3 by default)
+    direction_deg: float = 0.0  # the mean direction the waves travel towards
+    spreading_exponent: NonNeg = 0.0  # s of cos^2s
+    directions: Annotated[int, Field(ge=1, le=101)] = 1
+    frequencies: Annotated[int, Field(ge=1, le=5000)] = 200
+    frequency_range: tuple[Pos, Pos] = (0.5, 3.0)  # [low, high] times 2 pi / Tp
+    seed: Annotated[int, Field(ge=0)] = 0
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.kind == "pierson_moskowitz" and self.gamma is not None:
+            raise ValueError("'gamma' is JONSWAP's peak enhancement; remove it, or use "
+                             "kind: jonswap")  # fmt: skip
+        if self.directions % 2 == 0:
+            raise ValueError(f"directions ({self.directions}) must be odd, so that one is "
+                             "the mean direction")  # fmt: skip
+        if self.directions > 1 and self.spreading_exponent == 0.0:
+            raise ValueError("several directions need a spreading_exponent (s of cos^2s, "
+                             "e.g. 2 for wind sea, 10 or more for swell)")  # fmt: skip
+        low, high = self.frequency_range
+        if not low < high:
+            raise ValueError(f"frequency_range [{low:g}, {high:g}] must increase")
+        return self
+
+
+Wave = Annotated[RegularWave | WaveSpectrum, Field(discriminator="kind")]
+
+
 class Environment(_Model):
     gravity: Pos = 9.81  # [m/s^2]
     water_density: Pos = 1025.0  # [kg/m^3]
@@ -331,6 +380,16 @@ class Environment(_Model):
     current: Current | None = None
     in_air: bool = False  # true: no buoyancy, no drag, no added mass
     seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
+    waves: list[Wave] = []  # superposed (kernels.waves)
+    # the wave kinematics above the mean surface, under a crest: "wheeler" (the water column
+    # stretched to the surface) or "vertical" (held at their value at z = 0)
+    wave_stretching: Literal["wheeler", "vertical"] = "wheeler"
+
+    @model_validator(mode="after")
+    def _waves_in_water(self):
+        if self.waves and self.in_air:
+            raise ValueError("waves need water: remove 'waves' or set in_air: false")
+        return self
 
 
 # ---- shapes: bodies and the free surface ---------------------------------------------------------

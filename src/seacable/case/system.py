@@ -40,7 +40,8 @@ Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
 ORIGIN = "origin"  # the point every body has: its reference point
-MESH_MODELS = ("non-linear hydrostatic",)  # force models that need a body's mesh
+# force models that need a body's mesh
+MESH_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov")
 
 
 # ---- force models (``external forces`` of a body) ------------------------------------------------
@@ -168,6 +169,14 @@ class NonLinearHydrostatic(_Model):
     model: Literal["non-linear hydrostatic"]
 
 
+class NonLinearFroudeKrylov(_Model):
+    """The ship-simulator document's Froude-Krylov force: the incident waves' dynamic
+    pressure (environment.waves) integrated on the body's ``mesh`` under the wave elevation
+    at every evaluation (with ``non-linear hydrostatic``, the whole undisturbed pressure)."""
+
+    model: Literal["non-linear Froude-Krylov"]
+
+
 ForceModel = Annotated[
     Gravity
     | Buoyancy
@@ -177,7 +186,8 @@ ForceModel = Annotated[
     | LinearDamping
     | ServoForce
     | NonLinearHydrostatic
-    | QuadraticDamping,
+    | QuadraticDamping
+    | NonLinearFroudeKrylov,
     Field(discriminator="model"),
 ]
 

@@ -21,6 +21,7 @@ class ForceKind(IntEnum):
     SERVO = 6
     NON_LINEAR_HYDROSTATIC = 7
     QUADRATIC_DAMPING = 8
+    NON_LINEAR_FROUDE_KRYLOV = 9
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -32,6 +33,8 @@ LINEAR_DAMPING = int(ForceKind.LINEAR_DAMPING)
 SERVO = int(ForceKind.SERVO)
 NON_LINEAR_HYDROSTATIC = int(ForceKind.NON_LINEAR_HYDROSTATIC)
 QUADRATIC_DAMPING = int(ForceKind.QUADRATIC_DAMPING)
+NON_LINEAR_FROUDE_KRYLOV = int(ForceKind.NON_LINEAR_FROUDE_KRYLOV)
+MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 STATES = {SERVO: 3}  # states of the models that have some
 
 

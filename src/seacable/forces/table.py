@@ -4,7 +4,7 @@ acts on body ``body[f]``, reads its floats from ``data[at[f]:]`` and its channel
 
 from numba import njit
 
-from seacable.forces import applied, drag, hydrostatic, linear, servo, weight
+from seacable.forces import applied, drag, froude_krylov, hydrostatic, linear, servo, weight
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
@@ -12,6 +12,7 @@ from seacable.forces.kinds import (
     GRAVITY,
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
+    NON_LINEAR_FROUDE_KRYLOV,
     NON_LINEAR_HYDROSTATIC,
     QUADRATIC_DAMPING,
     SERVO,
@@ -22,10 +23,12 @@ from seacable.kernels.jit import JIT
 @njit(inline="always", **JIT)  # inlined: a call would pass and count every array
 def add_all(
     t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos, rot,
-    vel, omega, gravity, rho, current_z, current_u, current_v, tf, rhs,
+    vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth, wave_stretch,
+    hull, tf, rhs,
 ):  # fmt: skip
     """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6); a model
-    with states reads them from ``y`` at ``state[f]``."""
+    with states reads them from ``y`` at ``state[f]``; the mesh models share the workspace
+    ``hull`` (kernels.hull.place)."""
     for f in range(kind.shape[0]):
         b = body[f]
         row = data[at[f] :]
@@ -47,7 +50,10 @@ def add_all(
         elif k == SERVO:
             servo.add(row, y, state[f], rhs[b])
         elif k == NON_LINEAR_HYDROSTATIC:
-            hydrostatic.add(row, pos[b], rot[b], rho, gravity, rhs[b])
+            hydrostatic.add(row, pos[b], rot[b], rho, gravity, wave, t, hull, rhs[b])
+        elif k == NON_LINEAR_FROUDE_KRYLOV:
+            froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
+                              wave_stretch, hull, rhs[b])  # fmt: skip
 
 
 @njit(inline="always", **JIT)

@@ -25,6 +25,7 @@ edge midpoints, A/3 sum f(m): so
 import numpy as np
 from numba import njit
 
+from seacable.kernels import waves
 from seacable.kernels.jit import JIT, inner
 
 HEADER = 2  # nv, nt
@@ -40,16 +41,30 @@ def mesh_row(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     return np.concatenate([head, vertices.ravel(), triangles.ravel().astype(float)])
 
 
+@inner
+def place(row, pos, rot, wave, t, work):
+    """Each vertex's arm R v from the reference point (earth frame) into ``work[i, 0:3]`` and
+    its depth below the free surface, eta(x, y) - z (kernels.waves; 0 for still water), into
+    ``work[i, 3]``."""
+    for i in range(int(row[0])):
+        k = HEADER + 3 * i
+        x, y, z = row[k], row[k + 1], row[k + 2]
+        for c in range(3):
+            work[i, c] = rot[c, 0] * x + rot[c, 1] * y + rot[c, 2] * z
+        eta = 0.0
+        if wave.shape[0] > 0:
+            eta = waves.elevation(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1])
+        work[i, 3] = eta - pos[2] - work[i, 2]
+
+
 @njit(inline="always", **JIT)
-def _vertex(row, i, rot):
-    """R v of vertex i (its arm from the reference point, earth frame)."""
-    k = HEADER + 3 * i
-    x, y, z = row[k], row[k + 1], row[k + 2]
-    return (
-        rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z,
-        rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z,
-        rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z,
-    )
+def _wet(row, t0, t, work):
+    """Triangle t's wetted part: (count, parts) of ``clip``."""
+    i, j, k = int(row[t0 + 3 * t]), int(row[t0 + 3 * t + 1]), int(row[t0 + 3 * t + 2])
+    a = (work[i, 0], work[i, 1], work[i, 2])
+    b = (work[j, 0], work[j, 1], work[j, 2])
+    c = (work[k, 0], work[k, 1], work[k, 2])
+    return clip(a, b, c, work[i, 3], work[j, 3], work[k, 3])
 
 
 @njit(inline="always", **JIT)
@@ -114,22 +129,54 @@ def _add_pressure(a, b, c, depth0, rho_g, rhs):
 
 
 @inner
-def add_hydrostatic(row, level, pos, rot, rho, gravity, rhs):
-    """The still-water pressure rho g (level - z) integrated on the wetted mesh, added to the
-    body's force and moment about its reference point (earth frame)."""
-    nt = int(row[1])
+def add_hydrostatic(row, level, pos, rho, gravity, work, rhs):
+    """The hydrostatic pressure rho g (level - z) integrated on the mesh's part under the free
+    surface (``place`` first), added to the body's force and moment about its reference point
+    (earth frame)."""
     t0 = HEADER + 3 * int(row[0])
     depth0 = level - pos[2]  # the level's height above the reference point
     rho_g = rho * gravity
-    for t in range(nt):
-        a = _vertex(row, int(row[t0 + 3 * t]), rot)
-        b = _vertex(row, int(row[t0 + 3 * t + 1]), rot)
-        c = _vertex(row, int(row[t0 + 3 * t + 2]), rot)
-        count, parts = clip(a, b, c, depth0 - a[2], depth0 - b[2], depth0 - c[2])
+    for t in range(int(row[1])):
+        count, parts = _wet(row, t0, t, work)
         if count >= 1:
             _add_pressure(parts[0], parts[1], parts[2], depth0, rho_g, rhs)
         if count == 2:
             _add_pressure(parts[3], parts[4], parts[5], depth0, rho_g, rhs)
+
+
+@njit(inline="always", **JIT)
+def _add_wave_pressure(a, b, c, pos, wave, t, depth, stretch, rho_g, rhs):
+    """-int p n dA and its moment over triangle a b c (arms), p the incident wave's dynamic
+    pressure at its three edge midpoints."""
+    s = _area_vector(a, b, c)
+    for m in (_mid(a, b), _mid(b, c), _mid(c, a)):
+        p = waves.pressure(wave, t, pos[0] + m[0], pos[1] + m[1], pos[2] + m[2], depth, stretch,
+                           rho_g) / 3.0  # fmt: skip
+        rhs[0] -= p * s[0]
+        rhs[1] -= p * s[1]
+        rhs[2] -= p * s[2]
+        rhs[3] -= p * (m[1] * s[2] - m[2] * s[1])
+        rhs[4] -= p * (m[2] * s[0] - m[0] * s[2])
+        rhs[5] -= p * (m[0] * s[1] - m[1] * s[0])
+
+
+@inner
+def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs):
+    """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
+    the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
+    and moment."""
+    if wave.shape[0] == 0:
+        return
+    t0 = HEADER + 3 * int(row[0])
+    rho_g = rho * gravity
+    for k in range(int(row[1])):
+        count, parts = _wet(row, t0, k, work)
+        if count >= 1:
+            _add_wave_pressure(parts[0], parts[1], parts[2], pos, wave, t, depth, stretch, rho_g,
+                               rhs)  # fmt: skip
+        if count == 2:
+            _add_wave_pressure(parts[3], parts[4], parts[5], pos, wave, t, depth, stretch, rho_g,
+                               rhs)  # fmt: skip
 
 
 @njit(inline="always", **JIT)
@@ -150,14 +197,13 @@ def surface_integrals(row, level, pos, rot, out):
     """``out`` (10, 3): int f n dA over the mesh's part below z = ``level``, f the
     ``INTEGRANDS`` of the arms from ``pos`` (earth axes)."""
     out[:, :] = 0.0
-    nt = int(row[1])
+    work = np.zeros((int(row[0]), 4))
+    place(row, pos, rot, np.zeros((0, 6)), 0.0, work)
+    for i in range(work.shape[0]):
+        work[i, 3] += level
     t0 = HEADER + 3 * int(row[0])
-    depth0 = level - pos[2]
-    for t in range(nt):
-        a = _vertex(row, int(row[t0 + 3 * t]), rot)
-        b = _vertex(row, int(row[t0 + 3 * t + 1]), rot)
-        c = _vertex(row, int(row[t0 + 3 * t + 2]), rot)
-        count, parts = clip(a, b, c, depth0 - a[2], depth0 - b[2], depth0 - c[2])
+    for t in range(int(row[1])):
+        count, parts = _wet(row, t0, t, work)
         if count >= 1:
             _add_moments(parts[0], parts[1], parts[2], out)
         if count == 2:
@@ -175,21 +221,17 @@ def _add_potential(a, b, c, depth0):
 
 
 @inner
-def hydrostatic_potential(row, level, pos, rot, rho, gravity):
-    """The potential of ``add_hydrostatic``'s force [J]: -rho g int (z - level) dV over the
-    volume below the level (the divergence theorem on the wetted surface; zero on the
-    waterplane)."""
-    nt = int(row[1])
+def hydrostatic_potential(row, level, pos, work):
+    """The potential of ``add_hydrostatic``'s force in still water [J] over rho g: -int
+    (z - level) dV over the volume below the level (the divergence theorem on the wetted
+    surface; zero on the waterplane). ``place`` first, without waves."""
     t0 = HEADER + 3 * int(row[0])
     depth0 = level - pos[2]
     total = 0.0
-    for t in range(nt):
-        a = _vertex(row, int(row[t0 + 3 * t]), rot)
-        b = _vertex(row, int(row[t0 + 3 * t + 1]), rot)
-        c = _vertex(row, int(row[t0 + 3 * t + 2]), rot)
-        count, parts = clip(a, b, c, depth0 - a[2], depth0 - b[2], depth0 - c[2])
+    for t in range(int(row[1])):
+        count, parts = _wet(row, t0, t, work)
         if count >= 1:
             total += _add_potential(parts[0], parts[1], parts[2], depth0)
         if count == 2:
             total += _add_potential(parts[3], parts[4], parts[5], depth0)
-    return -rho * gravity * total
+    return -total

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from seacable import packing
 from seacable import timefunctions as tfn
 from seacable.bodies import dynamics, kinematics
 from seacable.case import system as sch
@@ -258,7 +259,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         seabed_z=-env.water_depth if (seabed and env.water_depth) else -1e30,
         seabed_friction=seabed.friction_coefficient if seabed else 0.0,
         seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
-        current_z=current_z, current_u=current_u, current_v=current_v,
+        current_z=current_z, current_u=current_u, current_v=current_v, **packing.wave_fields(env),
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
@@ -298,7 +299,7 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         matrix = transported(linear.matrix(spec), spec.point)
         form = linear.FORMS[getattr(spec, "frame", "quadratic")]
         return [*matrix.ravel(), float(form)]
-    if isinstance(spec, sch.NonLinearHydrostatic):
+    if isinstance(spec, sch.NonLinearHydrostatic | sch.NonLinearFroudeKrylov):
         return hydrostatic.pack(hulls.body_mesh(body, base_dir, where.split(".")[0]).row())
     if isinstance(spec, sch.ServoForce):
         target = _point(case, layout, spec.target, f"{where}.target")

@@ -91,7 +91,8 @@ def _bodies(y, p, w):
                 gravity -= weight * integral
         elif kind == NON_LINEAR_HYDROSTATIC:
             row = p.force_data[p.force_at[f] :]
-            gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity)
+            gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity,
+                                             p.wave[:0], w.hull)  # fmt: skip
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
             elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])

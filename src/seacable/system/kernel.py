@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import dynamics, kinematics
-from seacable.forces import table
+from seacable.forces import kinds, table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import natural, surface
@@ -152,6 +152,9 @@ class SystemParams(NamedTuple):
     current_z: np.ndarray
     current_u: np.ndarray
     current_v: np.ndarray
+    wave: np.ndarray  # (n, 6) incident wave components (kernels.waves; none: (0, 6))
+    wave_depth: float  # the depth the waves feel [m] (kernels.waves.DEEP: deep water)
+    wave_stretch: int  # kernels.waves WHEELER or VERTICAL
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
     tf_count: np.ndarray
@@ -198,6 +201,7 @@ class SystemWork(NamedTuple):
     nat_dot: np.ndarray  # its rates
     nat_work: np.ndarray  # (9, max n + 1) kernels.natural's workspace
     nat_out: np.ndarray  # (max n + 1, 4) a string's nodes: x, z from the pivot, strain, tension
+    hull: np.ndarray  # (largest mesh's vertices, 4) kernels.hull.place's workspace
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -222,8 +226,16 @@ def make_work(p: SystemParams) -> SystemWork:
         group=np.zeros((g + 2, g)),
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
-        nat_out=np.zeros((nat, 4)),
+        nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
     )  # fmt: skip
+
+
+def _vertices(p: SystemParams) -> int:
+    """The most vertices a mesh force model's row holds (kernels.hull: the row's second
+    float after its level)."""
+    counts = [int(p.force_data[at + 1]) for kind, at in zip(p.force_kind, p.force_at, strict=True)
+              if kind in kinds.MESH]  # fmt: skip
+    return max(counts, default=1)
 
 
 @inner
@@ -348,7 +360,7 @@ def rhs(t, y, p, w, ydot):
         t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
         p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
         w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-        tf, w.load,
+        p.wave, p.wave_depth, p.wave_stretch, w.hull, tf, w.load,
     )  # fmt: skip
     if p.n_s > 0:
         table.state_rates(p.force_kind, p.force_body, p.force_at, p.force_state, p.force_data,

@@ -1,0 +1,20 @@
+"""Non-linear Froude-Krylov force (the ship-simulator document's excitation by the incident
+wave): the incident waves' dynamic pressure (kernels.waves, with the environment's stretching)
+integrated on the body's hull mesh under the wave elevation at each evaluation (kernels.hull),
+three points per wetted triangle (its edge midpoints: second order in the panel size). With
+``non-linear hydrostatic`` it gives the whole undisturbed pressure, which vanishes at the wave
+surface.
+
+The row: ``forces.hydrostatic.pack``'s (its level unused: every mesh row has one layout).
+"""
+
+from seacable.kernels import hull
+from seacable.kernels.jit import inner
+
+
+@inner
+def add(row, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
+    if wave.shape[0] == 0:
+        return
+    hull.place(row[1:], pos, rot, wave, t, work)
+    hull.add_froude_krylov(row[1:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)

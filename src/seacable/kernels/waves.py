@@ -1,0 +1,119 @@
+"""Incident waves: linear (Airy) components superposed (numba).
+
+Component i has amplitude a_i [m], angular frequency w_i [rad/s], wave number k_i [rad/m]
+(w^2 = g k tanh(k h), h the water depth), the direction it travels towards (cos b_i, sin b_i;
+b from +x towards +y) and a phase p_i. With theta_i = k_i (x cos b_i + y sin b_i) - w_i t + p_i
+(a time dependence e^{-i w t}: eta = Re sum a_i e^{i theta_i}):
+
+    elevation           eta = sum a_i cos(theta_i)
+    dynamic pressure    p   = rho g sum a_i C_i(z) cos(theta_i)
+    velocity            u_h = sum a_i w_i D_i(z) cos(theta_i) (cos b_i, sin b_i),
+                        w   = sum a_i w_i E_i(z) sin(theta_i)
+    acceleration        the time derivatives of u_h and w at a fixed point
+
+with C = cosh(k(z + h)) / cosh(k h), D = cosh(k(z + h)) / sinh(k h), E = sinh(k(z + h)) /
+sinh(k h), each written with e^{kz} and e^{-k(z + 2h)} so that deep water (h = DEEP) is exact
+and nothing overflows. Above z = 0, under a crest, the kinematics are stretched (``STRETCH``):
+Wheeler's (z evaluated at h (z - eta) / (h + eta), so that the dynamic pressure is rho g eta at
+the surface and the total pressure there vanishes) or vertical (z evaluated at min(z, 0)).
+Above the surface every quantity keeps its value at the surface: the callers integrate over the
+wetted part only, whose edges may lie a rounding above it.
+
+``row`` (n, 6) holds per component a, w, k, cos b, sin b, p.
+"""
+
+import math
+
+from numba import njit
+
+from seacable.kernels.jit import JIT
+
+DEEP = 1e30  # the depth of deep water [m]
+WHEELER, VERTICAL = 0, 1
+A, W, K, COS, SIN, PHASE = range(6)
+
+
+@njit(inline="always", **JIT)
+def elevation(row, t, x, y):
+    """eta [m] at (x, y)."""
+    total = 0.0
+    for i in range(row.shape[0]):
+        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
+        total += row[i, A] * math.cos(theta)
+    return total
+
+
+@njit(inline="always", **JIT)
+def stretched(z, eta, depth, stretch):
+    """The elevation at which the kinematics are evaluated for a point at z."""
+    if stretch == VERTICAL:
+        return min(z, 0.0)
+    if depth >= DEEP:
+        return min(z - eta, 0.0)
+    return min(depth * (z - eta) / (depth + eta), 0.0)
+
+
+@njit(inline="always", **JIT)
+def _factors(k, z, depth):
+    """C, D, E of the module docstring at z <= 0."""
+    up = math.exp(k * z)
+    if depth >= DEEP or k * depth > 40.0:
+        return up, up, up
+    down = math.exp(-k * (z + 2.0 * depth))
+    deep = math.exp(-2.0 * k * depth)
+    return (up + down) / (1.0 + deep), (up + down) / (1.0 - deep), (up - down) / (1.0 - deep)
+
+
+@njit(inline="always", **JIT)
+def pressure(row, t, x, y, z, depth, stretch, rho_g):
+    """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
+    callers integrate over the wetted part: points on its edges may lie a rounding above)."""
+    eta = elevation(row, t, x, y)
+    zs = stretched(z, eta, depth, stretch)
+    total = 0.0
+    for i in range(row.shape[0]):
+        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
+        c, _, _ = _factors(row[i, K], zs, depth)
+        total += row[i, A] * c * math.cos(theta)
+    return rho_g * total
+
+
+@njit(inline="always", **JIT)
+def kinematics(row, t, x, y, z, depth, stretch):
+    """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
+    free surface, their values there (the callers weigh by the submerged part)."""
+    eta = elevation(row, t, x, y)
+    zs = stretched(z, eta, depth, stretch)
+    ux = uy = uz = ax = ay = az = 0.0
+    for i in range(row.shape[0]):
+        w = row[i, W]
+        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - w * t + row[i, PHASE]
+        _, d, e = _factors(row[i, K], zs, depth)
+        cos_t, sin_t = math.cos(theta), math.sin(theta)
+        horizontal = row[i, A] * w * d
+        ux += horizontal * cos_t * row[i, COS]
+        uy += horizontal * cos_t * row[i, SIN]
+        uz += row[i, A] * w * e * sin_t
+        ax += horizontal * w * sin_t * row[i, COS]
+        ay += horizontal * w * sin_t * row[i, SIN]
+        az -= row[i, A] * w * w * e * cos_t
+    return (ux, uy, uz), (ax, ay, az)
+
+
+@njit(**JIT)
+def elevation_at(row, t, x, y):
+    """eta [m] (from Python: tests, outputs)."""
+    return elevation(row, t, x, y)
+
+
+@njit(**JIT)
+def pressure_at(row, t, x, y, z, depth, stretch, rho_g):
+    """The dynamic pressure [Pa] (from Python)."""
+    return pressure(row, t, x, y, z, depth, stretch, rho_g)
+
+
+@njit(**JIT)
+def field(row, t, x, y, z, depth, stretch):
+    """(u_x, u_y, u_z, a_x, a_y, a_z) of the water at a point (from Python)."""
+    u, a = kinematics(row, t, x, y, z, depth, stretch)
+    return u[0], u[1], u[2], a[0], a[1], a[2]

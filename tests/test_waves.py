@@ -1,0 +1,141 @@
+"""Incident waves (kernels.waves, seastate) against linear wave theory: the dispersion
+relation, the field equations and boundary conditions of Airy waves at finite and infinite
+depth, the stretching under a crest, and the spectra's significant height, peak and
+spreading."""
+
+import math
+
+import numpy as np
+import pytest
+
+from seacable import seastate
+from seacable.case.base import Environment
+from seacable.kernels import waves
+
+G, RHO = 9.81, 1025.0
+
+
+def _rows(depth, *components):
+    """Rows of (amplitude, period, direction [rad], phase) components."""
+    out = []
+    for amplitude, period, direction, phase in components:
+        omega = 2 * math.pi / period
+        k = seastate.wave_number(np.array([omega]), depth, G)[0]
+        out.append([amplitude, omega, k, math.cos(direction), math.sin(direction), phase])
+    return np.array(out)
+
+
+def test_dispersion_relation():
+    omega = np.linspace(0.05, 4.0, 50)
+    for depth in (2.0, 30.0, 400.0):
+        k = seastate.wave_number(omega, depth, G)
+        assert G * k * np.tanh(k * depth) == pytest.approx(omega**2, rel=1e-13)
+    assert seastate.wave_number(omega, waves.DEEP, G) == pytest.approx(omega**2 / G)
+
+
+@pytest.mark.parametrize("depth", [25.0, waves.DEEP])
+def test_airy_waves_satisfy_linear_theory(depth):
+    """Two crossing components (below the surface, unstretched): the velocity field is
+    divergence-free, the acceleration is the velocity's time derivative, the surface rises at
+    the vertical velocity there, the bottom is impermeable (stretched or not), and the
+    pressure is -rho dphi/dt (checked as its gradient: grad p = -rho du/dt)."""
+    rows = _rows(depth, (1.2, 9.0, 0.3, 0.4), (0.5, 6.0, -1.0, 2.0))
+    h = 1e-4
+    rng = np.random.default_rng(0)
+    crests = 0
+    for _ in range(20):
+        x, y, t = rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(0, 30)
+        z = -rng.uniform(2.0, 20.0)
+
+        def vel(xx, yy, zz, tt):
+            return np.array(waves.field(rows, tt, xx, yy, zz, depth, waves.VERTICAL)[0:3])
+
+        _, _, _, ax, ay, az = waves.field(rows, t, x, y, z, depth, waves.VERTICAL)
+        divergence = ((vel(x + h, y, z, t) - vel(x - h, y, z, t))[0]
+                      + (vel(x, y + h, z, t) - vel(x, y - h, z, t))[1]
+                      + (vel(x, y, z + h, t) - vel(x, y, z - h, t))[2]) / (2 * h)  # fmt: skip
+        speed = np.abs(vel(x, y, z, t)).max()
+        assert abs(divergence) < 1e-6 * speed
+        dudt = (vel(x, y, z, t + h) - vel(x, y, z, t - h)) / (2 * h)
+        assert (ax, ay, az) == pytest.approx(dudt, rel=1e-6, abs=1e-8)
+        grad = np.array([
+            waves.pressure_at(rows, t, x + h, y, z, depth, waves.VERTICAL, RHO * G)
+            - waves.pressure_at(rows, t, x - h, y, z, depth, waves.VERTICAL, RHO * G),
+            waves.pressure_at(rows, t, x, y + h, z, depth, waves.VERTICAL, RHO * G)
+            - waves.pressure_at(rows, t, x, y - h, z, depth, waves.VERTICAL, RHO * G),
+            waves.pressure_at(rows, t, x, y, z + h, depth, waves.VERTICAL, RHO * G)
+            - waves.pressure_at(rows, t, x, y, z - h, depth, waves.VERTICAL, RHO * G),
+        ]) / (2 * h)  # fmt: skip
+        # the dynamic pressure's gradient: -rho du/dt (linearised Euler, gravity in p_static)
+        assert grad == pytest.approx(-RHO * np.array([ax, ay, az]), rel=1e-5, abs=1e-4)
+        # the kinematic condition at the mean surface, linearised: deta/dt = w(z = 0) (where
+        # the mean surface is under water: under a crest)
+        if waves.elevation_at(rows, t, x, y) > 0.0:
+            deta = waves.elevation_at(rows, t + h, x, y) - waves.elevation_at(rows, t - h, x, y)
+            w_top = waves.field(rows, t, x, y, 0.0, depth, waves.VERTICAL)[2]
+            assert deta / (2 * h) == pytest.approx(w_top, rel=1e-6, abs=1e-9)
+            crests += 1
+        if depth < waves.DEEP:
+            bottom = waves.field(rows, t, x, y, -depth, depth, waves.WHEELER)
+            assert abs(bottom[2]) < 1e-12 and abs(bottom[5]) < 1e-12
+    assert crests >= 5
+
+
+def test_stretching_keeps_the_total_pressure_zero_at_the_surface():
+    """Wheeler's stretching gives a dynamic pressure of rho g eta at the free surface (the
+    hydrostatic -rho g eta cancels it), under a crest as under a trough; above the surface,
+    the surface's value (callers integrate over the wetted part)."""
+    rows = _rows(30.0, (2.0, 8.0, 0.0, 0.0), (0.7, 5.0, 0.8, 1.0))
+    for x in np.linspace(0, 100, 21):
+        eta = waves.elevation_at(rows, 3.0, x, 2.0)
+        p = waves.pressure_at(rows, 3.0, x, 2.0, eta, 30.0, waves.WHEELER, RHO * G)
+        assert p == pytest.approx(RHO * G * eta, rel=1e-12, abs=1e-9)
+        above = waves.pressure_at(rows, 3.0, x, 2.0, eta + 0.01, 30.0, waves.WHEELER, RHO * G)
+        assert above == p  # continuous: the surface's value
+
+
+def _sea(**spec):
+    return Environment.model_validate({"waves": [spec]}).waves[0]
+
+
+@pytest.mark.parametrize("kind", ["jonswap", "pierson_moskowitz"])
+def test_a_spectrum_gives_its_significant_height_and_peak(kind):
+    """The components of a sea: 4 sqrt(m0) within 1 % of Hs (the tail beyond 3 w_p is cut);
+    the spectrum's whole integral Hs^2 / 16; its peak at 2 pi / Tp."""
+    hs, tp = 4.0, 10.0
+    spec = _sea(kind=kind, significant_height=hs, peak_period=tp, frequencies=400, seed=3)
+    rows = seastate.components(spec, waves.DEEP, G)
+    m0 = np.sum(rows[:, 0] ** 2) / 2
+    assert 4 * math.sqrt(m0) == pytest.approx(hs, rel=1e-2)
+    wp = 2 * math.pi / tp
+    grid = np.linspace(0.05 * wp, 40 * wp, 400_001)
+    density = seastate.spectrum(spec, grid)
+    assert np.trapezoid(density, grid) == pytest.approx(hs**2 / 16, rel=1e-4)
+    assert grid[np.argmax(density)] == pytest.approx(wp, rel=1e-3)
+    # the same seed, the same sea; another seed, other phases
+    again = seastate.components(spec, waves.DEEP, G)
+    assert np.array_equal(rows, again)
+    other = seastate.components(spec.model_copy(update={"seed": 4}), waves.DEEP, G)
+    assert not np.array_equal(rows[:, 5], other[:, 5])
+
+
+def test_directional_spreading():
+    spec = _sea(kind="jonswap", significant_height=3.0, peak_period=8.0, direction_deg=30.0,
+                spreading_exponent=4.0, directions=9, frequencies=50)  # fmt: skip
+    rows = seastate.components(spec, waves.DEEP, G)
+    assert len(rows) == 50 * 9
+    # energy is kept across directions and centred on the mean direction
+    m0 = np.sum(rows[:, 0] ** 2) / 2
+    long = seastate.components(spec.model_copy(update={"directions": 1}), waves.DEEP, G)
+    assert m0 == pytest.approx(np.sum(long[:, 0] ** 2) / 2, rel=1e-12)
+    mean = math.atan2(np.sum(rows[:, 0] ** 2 * rows[:, 4]), np.sum(rows[:, 0] ** 2 * rows[:, 3]))
+    assert math.degrees(mean) == pytest.approx(30.0, abs=1e-9)
+
+
+def test_bad_seas_are_refused():
+    with pytest.raises(ValueError, match="directions"):
+        _sea(kind="jonswap", significant_height=3.0, peak_period=8.0, directions=4)
+    with pytest.raises(ValueError, match="gamma"):
+        _sea(kind="pierson_moskowitz", significant_height=3.0, peak_period=8.0, gamma=2.0)
+    with pytest.raises(ValueError, match="frequency_range"):
+        _sea(kind="jonswap", significant_height=3.0, peak_period=8.0, frequency_range=[2, 1])
