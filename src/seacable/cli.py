@@ -9,11 +9,12 @@ from typing import NoReturn
 
 import click
 import h5netcdf
+import numpy as np
 import xarray as xr
 import yaml
 
 import seacable
-from seacable import analysis, simulation, viz
+from seacable import analysis, bem, meshes, simulation, viz
 from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
 
@@ -238,6 +239,44 @@ def modes(case_file: str, count: int) -> None:
             f"{k + 1:4d}  {found['period'].values[k]:10.4g}  "
             f"{found['damping_ratio'].values[k]:13.3g}  {found['dominant'].values[k]}"
         )
+
+
+@main.command()
+@click.argument("mesh_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="NetCDF database to write (default: MESH_FILE with .nc).")  # fmt: skip
+@click.option("--omega", nargs=3, type=float, default=(0.1, 3.0, 30), show_default=True,
+              help="Angular frequencies [rad/s]: first, last, count.")  # fmt: skip
+@click.option("--directions", type=str, default="0,45,90,135,180,225,270,315",
+              show_default=True, help="Wave directions [deg], comma-separated.")  # fmt: skip
+@click.option("--rotation-center", nargs=3, type=float, default=(0.0, 0.0, 0.0),
+              show_default=True, help="The reference point [m] of the six motions.")  # fmt: skip
+@click.option("--depth", type=float, default=math.inf, help="Water depth [m] (default deep).")
+@click.option("--rho", type=float, default=1025.0, show_default=True, help="[kg/m^3]")
+def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation_center,
+            depth: float, rho: float) -> None:  # fmt: skip
+    """Compute the hydrodynamic database of the hull MESH_FILE (placed as floating, z up,
+    the waterline at z = 0) with Capytaine: pip install 'seacable[bem]'."""
+    first, last, count = omega
+    if not (0.0 < first < last and count >= 2):
+        _fail(f"--omega {first:g} {last:g} {count:g}: give 0 < first < last and a count of at "
+              "least 2, e.g. --omega 0.1 3.0 30", EXIT_INPUT)  # fmt: skip
+    try:
+        angles = [float(a) for a in directions.split(",")]
+    except ValueError:
+        _fail(f"--directions '{directions}': give degrees separated by commas, e.g. 0,90,180",
+              EXIT_INPUT)  # fmt: skip
+    output = output or str(Path(mesh_file).with_suffix(".nc"))
+    try:
+        db = bem.compute_file(mesh_file, output, np.linspace(first, last, int(count)),
+                              directions_deg=angles, rotation_center=rotation_center,
+                              depth=depth, rho=rho)  # fmt: skip
+    except ImportError as exc:
+        _fail(str(exc), EXIT_INPUT)
+    except meshes.MeshError as exc:
+        _fail(str(exc), EXIT_INPUT)
+    click.echo(f"database of {len(db.omega)} frequencies and {len(db.directions)} directions "
+               f"written: {output}")  # fmt: skip
 
 
 def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:

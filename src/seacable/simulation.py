@@ -160,6 +160,7 @@ class _Run:
         self.y = system.y0.copy()
         self.t = 0.0
         self.w = model.workspace(system)
+        model.start_memory(system, self.w, self.t, self.y)
         self.work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         self.h = self.sim.initial_step
         positions = getattr(model, "positions", lambda system: len(system.y0) // 2)(system)
@@ -266,6 +267,7 @@ class _Run:
             rtol=sim.rtol, atol=self.atol,
             max_step=sim.max_step if sim.max_step is not None else sim.output_interval,
             first_step=sim.initial_step, sparsity=self.model.jacobian_sparsity(self.system),
+            after=lambda t, y: self.model.after_step(self.system, w, t, y),
         )  # fmt: skip
 
     def _advance_stiff(self, count, states, times):

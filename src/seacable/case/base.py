@@ -443,6 +443,22 @@ class VolumeTable(_Model):
 Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="kind")]
 
 
+class HydroDatabase(_Model):
+    """A hull's hydrodynamic database (``file`` relative to the case): Capytaine's NetCDF, as
+    ``seacable hydrodb`` writes it. Its frame is the body frame moved by ``position`` (its
+    origin in the body frame [m]); its matrices and forces are moved from its reference point
+    (Capytaine's rotation centre) to the body's reference point (seacable.hydrodb)."""
+
+    file: str
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # [m], body frame
+
+    def path(self, base_dir=None) -> Path:
+        path = Path(self.file)
+        if base_dir is not None and not path.is_absolute():
+            path = Path(base_dir) / path
+        return path
+
+
 class HullMesh(_Model):
     """A body's hull as a triangle mesh file (``file`` relative to the case): STL (ASCII or
     binary), Wavefront OBJ or WAMIT GDF (``format``, by default from the suffix). The mesh's

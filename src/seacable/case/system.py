@@ -17,6 +17,7 @@ from seacable.case.base import (
     Constant,
     Environment,
     HullMesh,
+    HydroDatabase,
     NonNeg,
     PerAxis,
     Pos,
@@ -42,6 +43,7 @@ Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
 ORIGIN = "origin"  # the point every body has: its reference point
 # force models that need a body's mesh
 MESH_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov")
+DATABASE_MODELS = ("radiation damping", "diffraction")  # those that need its database
 
 
 # ---- force models (``external forces`` of a body) ------------------------------------------------
@@ -177,6 +179,31 @@ class NonLinearFroudeKrylov(_Model):
     model: Literal["non-linear Froude-Krylov"]
 
 
+class RadiationDamping(_Model):
+    """The ship-simulator document's radiation damping: the memory force
+    -int_0^Tc K(tau) nu(t - tau) d tau on the body-frame velocity history, K(t) = (2/pi)
+    int B(w) cos(w t) dw from the body's ``hydrodynamics`` database, over ``memory`` seconds
+    (25 s, the document's) sampled every ``memory_step``. The database's infinite-frequency
+    added mass (its own, or from Ogilvie's relation) is the body's added mass unless the body
+    gives one. A kernel still above 1 % of its peak at the cut-off is reported. The body is
+    taken at rest before the run starts."""
+
+    model: Literal["radiation damping"]
+    memory: Pos = 25.0  # Tc [s]
+    memory_step: Pos = 0.05  # [s]
+
+
+class Diffraction(_Model):
+    """The ship-simulator document's diffraction force: the body's ``hydrodynamics``
+    database's wave excitation for each incident wave component, interpolated in frequency and
+    in the wave's direction relative to the body's heading, at the body's place.
+    ``froude_krylov: true`` adds the database's linear Froude-Krylov force (the whole linear
+    excitation; leave it out with ``non-linear Froude-Krylov``)."""
+
+    model: Literal["diffraction"]
+    froude_krylov: bool = False
+
+
 ForceModel = Annotated[
     Gravity
     | Buoyancy
@@ -187,7 +214,9 @@ ForceModel = Annotated[
     | ServoForce
     | NonLinearHydrostatic
     | QuadraticDamping
-    | NonLinearFroudeKrylov,
+    | NonLinearFroudeKrylov
+    | RadiationDamping
+    | Diffraction,
     Field(discriminator="model"),
 ]
 
@@ -320,6 +349,7 @@ class RigidBody(_Dynamic):
     centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     mesh: HullMesh | None = None  # the hull, for the mesh force models
+    hydrodynamics: HydroDatabase | None = None  # for radiation damping and diffraction
 
     @field_validator("dofs")
     @classmethod
@@ -335,6 +365,12 @@ class RigidBody(_Dynamic):
             raise ValueError(
                 f"force model '{needs[0]}' needs the body's hull: give 'mesh' "
                 "(file: hull.stl, and its placement)"
+            )
+        needs = [f.model for f in self.external_forces if f.model in DATABASE_MODELS]
+        if needs and self.hydrodynamics is None:
+            raise ValueError(
+                f"force model '{needs[0]}' needs the body's hydrodynamic database: give "
+                "'hydrodynamics' (file: hull.nc, from seacable hydrodb)"
             )
         both = {"buoyancy", "non-linear hydrostatic"} <= {f.model for f in self.external_forces}
         if both:

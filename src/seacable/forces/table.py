@@ -4,10 +4,21 @@ acts on body ``body[f]``, reads its floats from ``data[at[f]:]`` and its channel
 
 from numba import njit
 
-from seacable.forces import applied, drag, froude_krylov, hydrostatic, linear, servo, weight
+from seacable.forces import (
+    applied,
+    diffraction,
+    drag,
+    froude_krylov,
+    hydrostatic,
+    linear,
+    radiation,
+    servo,
+    weight,
+)
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
+    DIFFRACTION,
     DRAG,
     GRAVITY,
     LINEAR_DAMPING,
@@ -15,8 +26,10 @@ from seacable.forces.kinds import (
     NON_LINEAR_FROUDE_KRYLOV,
     NON_LINEAR_HYDROSTATIC,
     QUADRATIC_DAMPING,
+    RADIATION_DAMPING,
     SERVO,
 )
+from seacable.kernels import memory
 from seacable.kernels.jit import JIT
 
 
@@ -24,11 +37,13 @@ from seacable.kernels.jit import JIT
 def add_all(
     t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos, rot,
     vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth, wave_stretch,
-    hull, tf, rhs,
+    hull, history, tf, rhs,
 ):  # fmt: skip
     """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6); a model
     with states reads them from ``y`` at ``state[f]``; the mesh models share the workspace
-    ``hull`` (kernels.hull.place)."""
+    ``hull`` (kernels.hull.place), the radiation models read their velocity ``history``
+    (kernels.memory; its first floats are a model's scratch). At most 30 arguments: CPython
+    passes more as *args, which numba cannot inline."""
     for f in range(kind.shape[0]):
         b = body[f]
         row = data[at[f] :]
@@ -51,6 +66,10 @@ def add_all(
             servo.add(row, y, state[f], rhs[b])
         elif k == NON_LINEAR_HYDROSTATIC:
             hydrostatic.add(row, pos[b], rot[b], rho, gravity, wave, t, hull, rhs[b])
+        elif k == RADIATION_DAMPING:
+            radiation.add(row, t, rot[b], vel[b], omega[b], history, rhs[b])
+        elif k == DIFFRACTION:
+            diffraction.add(row, t, wave, pos[b], rot[b], history[0 : memory.SCRATCH], rhs[b])
         elif k == NON_LINEAR_FROUDE_KRYLOV:
             froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip

@@ -96,6 +96,7 @@ def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, s
             work[3] += 1
             return j, (status if status != OK else NON_FINITE)
         kernel.project(acc, p)
+        kernel.after_step(t + dt, acc, p, w)
         y[:] = acc
         work[0] += 1
         step += 1
@@ -159,6 +160,7 @@ def _accept(t, y, ynew, p, w, k, magnitude, work):
     updated, ``k[0]`` the derivative there (the last stage's, or evaluated again after a
     projection); the evaluation's status."""
     kernel.project(ynew, p)
+    kernel.after_step(t, ynew, p, w)
     y[:] = ynew
     for i in range(magnitude.shape[0]):
         magnitude[i] = max(magnitude[i], abs(y[i]))

@@ -153,7 +153,7 @@ def point_derivatives(t, y, p, w, body, out):
             t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
             p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, fraction, w.quat,
             pos, w.rot, vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-            p.wave, p.wave_depth, p.wave_stretch, w.hull, tf, load,
+            p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, load,
         )  # fmt: skip
         if case > 0:
             first = 0 if case <= 3 else 9

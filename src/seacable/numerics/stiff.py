@@ -20,11 +20,14 @@ STIFF = ("bdf", "radau", "lsoda", "cvode")
 class StiffStepper:
     """Advance a model with one of STIFF, hitting output times exactly (dense output)."""
 
-    def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, sparsity=None):
+    def __init__(self, name, fun, t0, y0, *, rtol, atol, max_step, first_step, sparsity=None,
+                 after=None):  # fmt: skip
         """``atol``: one absolute tolerance, or one per state (in the order of ``y0``).
         ``sparsity``: the Jacobian's pattern as a sparse matrix, used by SciPy's BDF and Radau
-        (None: a dense Jacobian)."""
+        (None: a dense Jacobian). ``after(t, y)``: called after each accepted step of SciPy's
+        solvers (SUNDIALS' steps are internal: ``has_steps`` is False for it)."""
         self.sparsity = sparsity
+        self.after = after
         self.name = name
         self.fun = fun  # f(t, y) -> ydot (raises FloatingPointError when non-finite)
         self.t = t0
@@ -58,6 +61,8 @@ class StiffStepper:
                 continue
             message = solver.step()
             self.steps += 1
+            if self.after is not None and solver.status != "failed":
+                self.after(solver.t, np.array(solver.y))
             if solver.status == "failed":
                 return done, message or "step failed"
             self._dense = solver.dense_output()

@@ -391,6 +391,7 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
             a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
             system_kernel.project(ya, p)
+            system_kernel.after_step(t + h, ya, p, w)
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]

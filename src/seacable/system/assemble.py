@@ -204,6 +204,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             added = np.array(body.added_mass, dtype=float)
             added = np.diag(added) if added.ndim == 1 else added
             arrays["body_added"][b] = transported(added, body.added_mass_point)
+            if body.hydrodynamics is not None and not np.any(added):  # the database's A_inf
+                arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where)
             arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]
             q_at, v_at = q_at + 7, v_at + 6
         else:
@@ -225,6 +227,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             f["state"].append(sum(STATES.get(k, 0) for k in f["kind"][:-1]) if states else -1)
             data += _force_row(case, layout, spec, body, rho, base_dir, channels,
                                f"{where}.external forces[{k}]")  # fmt: skip
+    hulls.memory_offsets(f["kind"], f["at"], data)
     bodies_q, bodies_v = q_at, v_at
     lines = _lines(case, layout, rho, q_at, v_at)
     q_at += lines.pop("interior_q")
@@ -301,6 +304,8 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         return [*matrix.ravel(), float(form)]
     if isinstance(spec, sch.NonLinearHydrostatic | sch.NonLinearFroudeKrylov):
         return hydrostatic.pack(hulls.body_mesh(body, base_dir, where.split(".")[0]).row())
+    if isinstance(spec, sch.RadiationDamping | sch.Diffraction):
+        return hulls.database_row(case, body, spec, base_dir, where)
     if isinstance(spec, sch.ServoForce):
         target = _point(case, layout, spec.target, f"{where}.target")
         sim = case.simulation
@@ -539,7 +544,7 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
     fields["rs_ref"] = np.array(ref, dtype=float).reshape(-1, 3)
     for key, parts in segs.items():
         fields[f"rs_{key}"] = np.concatenate(parts) if parts else np.zeros(1)
-    _joined(case, layout, joined, tips, fields, tip_joints)
+    topology.joined(case, layout, joined, tips, fields, tip_joints)
     fields["rs_tip_joint"] = np.array(tip_joints, dtype=float).reshape(-1, 7)
     fields.update(directors=directors, rates=directors)
     return fields
@@ -569,32 +574,3 @@ def _tip_joint(line, where: str, tip: int, index: int) -> list[float] | None:
     unit = (np.full(3, np.nan) if reference is None
             else np.asarray(reference, float) / np.linalg.norm(reference))  # fmt: skip
     return [float(index), -1.0, *unit, line.tip_joint_stiffness, line.tip_joint_damping]
-
-
-def _joined(case, layout, joined, tips, fields, rows) -> None:
-    """Each line that ``continues`` another through the body between them: a row of ``rows``
-    (``rs_tip_joint``: the other line, this one, its first joint's spring and damper), which
-    then act there instead of against ``base_reference``."""
-    names = [b.name for b in case.bodies]
-    for r, line, where in joined:
-        if line.continues not in layout.rigid:
-            raise CaseError(f"{where}.continues: no rigid line '{line.continues}'; rigid lines "
-                            f"are {layout.rigid}")  # fmt: skip
-        other = layout.rigid.index(line.continues)
-        body = names.index(line.from_.partition(".")[0])
-        if tips.get(body) != other:
-            raise CaseError(
-                f"{where}.continues: line '{line.continues}' does not carry '{line.from_}' at "
-                "its end; a line continues the rigid line that carries its 'from' body (a "
-                "point body between them)"
-            )
-        if fields["rs_kind"][other] != fields["rs_kind"][r] or line.base_reference is not None:
-            what = "base_reference" if line.base_reference is not None else "model"
-            raise CaseError(
-                f"{where}.{what}: a line that continues '{line.continues}' has its first joint "
-                "on that line's last segment: give it the same model and no base_reference"
-            )
-        s0 = int(fields["rs_seg"][r])
-        spring, damper = (float(fields[f"rs_joint_{key}"][s0]) for key in ("stiffness", "damping"))
-        fields["rs_joint_stiffness"][s0] = fields["rs_joint_damping"][s0] = 0.0
-        rows.append([float(other), float(r), 0.0, 0.0, 0.0, spring, damper])

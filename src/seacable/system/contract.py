@@ -29,6 +29,10 @@ class RunModel(Protocol):
     7. ``watch(system)``: an object whose ``see(rows)`` takes every chunk of output rows and
        whose ``warnings()`` lists what they showed that a start would have been refused for
        (``system.geometry.Watch``).
+    8. ``start_memory(system, w, t, y)`` at a run's start and ``after_step(system, w, t, y)``
+       after each accepted step of an integrator driven from Python (the compiled ones call
+       ``system.kernel.after_step`` themselves): what a model keeps of its past (radiation
+       memory) is written there only, never by a right-hand side.
     Optional: ``positions`` (the implicit schemes' unknowns), ``refresh_interval``/``refresh``
     (parameters replaced during a run: the servo).
     """
@@ -48,3 +52,5 @@ class RunModel(Protocol):
     def variables(self, system) -> dict: ...
     def jacobian_sparsity(self, system) -> Any: ...
     def watch(self, system) -> Any: ...
+    def start_memory(self, system, w, t, y) -> None: ...
+    def after_step(self, system, w, t, y) -> None: ...

@@ -24,12 +24,13 @@ import numpy as np
 from seacable.bodies import kinematics
 from seacable.case.system import SEABED_TOLERANCE
 from seacable.errors import CaseError
-from seacable.forces.kinds import NON_LINEAR_HYDROSTATIC
+from seacable.forces.kinds import DIFFRACTION, MESH, RADIATION_DAMPING
 from seacable.kernels import surface
 from seacable.system import kernel, outputs
 from seacable.system.assemble import BuiltSystem
 
 log = logging.getLogger("seacable")
+HULL_MODELS = (*MESH, RADIATION_DAMPING, DIFFRACTION)  # a floating hull's models
 
 MOST_STRAIN = 0.3  # a strain no rope, wire or chain takes: refused
 LARGE_STRAIN = 0.05  # a strain beyond a taut line's usual pretension: reported
@@ -108,14 +109,14 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
 
 
 def _point_volume(p, b: int) -> bool:
-    """Body ``b`` is dynamic, without a shape or a hull mesh, and has a volume or an added
-    mass: both counted wholly submerged wherever it is (a hull's added mass is the floating
-    vessel's)."""
+    """Body ``b`` is dynamic, without a shape, a hull mesh or a hydrodynamic database, and has a
+    volume or an added mass: both counted wholly submerged wherever it is (a hull's added mass
+    is the floating vessel's)."""
     return bool(
         p.rho > 0.0 and p.body_kind[b] == kinematics.DYNAMIC
         and p.body_shape[b, 0] == surface.POINT
         and (p.body_volume[b] > 0.0 or np.any(p.body_added[b] != 0.0))
-        and not np.any((p.force_body == b) & (p.force_kind == NON_LINEAR_HYDROSTATIC))
+        and not np.any((p.force_body == b) & np.isin(p.force_kind, HULL_MODELS))
     )  # fmt: skip
 
 

@@ -1,13 +1,24 @@
-"""A body's hull mesh read, placed in its body frame and checked (``seacable.meshes``): the
-row the mesh force models carry (kernels.hull)."""
+"""A body's hull: its mesh read, placed in its body frame and checked (``seacable.meshes``),
+the row the mesh force models carry (kernels.hull); its hydrodynamic database moved to its
+reference point (``seacable.hydrodb``), the rows of radiation memory (kernels.memory) and its
+infinite-frequency added mass."""
 
+import logging
 import math
+from dataclasses import replace
 
 import numpy as np
 
+from seacable import hydrodb, packing
 from seacable.bodies import kinematics
 from seacable.errors import CaseError
+from seacable.forces import diffraction
+from seacable.forces.kinds import RADIATION_DAMPING
+from seacable.kernels import memory
 from seacable.meshes import Mesh, MeshError, checked, read
+
+log = logging.getLogger("seacable")
+TAIL = 0.01  # a retardation function above this part of its peak at the cut-off is reported
 
 Z_DOWN = np.diag([1.0, -1.0, -1.0])  # a z-down body frame (x, y to starboard, z down) to ours
 
@@ -37,3 +48,74 @@ def body_mesh(body, base_dir, where: str) -> Mesh:
                        where=f"{where}.mesh ({spec.file})")  # fmt: skip
     except MeshError as exc:
         raise CaseError(str(exc)) from None
+
+
+def body_database(body, base_dir, where: str) -> hydrodb.HydroDB:
+    """The body's hydrodynamic database moved to its reference point, or a CaseError naming
+    ``where``."""
+    spec = body.hydrodynamics
+    try:
+        db = hydrodb.read(spec.path(base_dir))
+    except hydrodb.HydroDBError as exc:
+        raise CaseError(f"{where}.hydrodynamics.file: {exc}") from None
+    db = replace(db, reference_point=db.reference_point + np.asarray(spec.position, float))
+    return db.moved((0.0, 0.0, 0.0))
+
+
+def radiation_row(db: hydrodb.HydroDB, spec, memory_at: int, where: str) -> list[float]:
+    """kernels.memory's row: K sampled every ``spec.memory_step`` over ``spec.memory`` seconds,
+    the history block at ``memory_at``; a kernel above 1 % of its peak at the cut-off is
+    reported."""
+    count = int(round(spec.memory / spec.memory_step)) + 1
+    times = np.arange(count) * spec.memory_step
+    k = db.retardation(times)
+    peak = np.abs(k).max()
+    tail = np.abs(k[-1]).max()
+    if peak > 0.0 and tail > TAIL * peak:
+        log.warning(
+            "%s: the retardation function is still %.1f %% of its peak at the cut-off "
+            "(memory %.4g s); lengthen 'memory' or check the database's frequencies",
+            where, 100 * tail / peak, spec.memory,
+        )  # fmt: skip
+    return [float(count), float(spec.memory_step), float(memory_at), *k.reshape(-1)]
+
+
+def infinite_added_mass(db: hydrodb.HydroDB, memory: float, step: float) -> np.ndarray:
+    """A_inf: the database's, or Ogilvie's estimate with K over ``memory`` seconds."""
+    if db.infinite is not None:
+        return db.infinite
+    times = np.arange(int(round(memory / step)) + 1) * step
+    return db.ogilvie(times)[0]
+
+
+def database_row(case, body, spec, base_dir, where: str) -> list[float]:
+    """The row of a database force model (``radiation damping``: kernels.memory's, its
+    history block's offset set by ``memory_offsets``; ``diffraction``: forces.diffraction's
+    for the case's wave components)."""
+    db = body_database(body, base_dir, where.split(".")[0])
+    if spec.model == "radiation damping":
+        if case.simulation.integrator == "cvode":
+            raise CaseError(
+                f"{where}: radiation memory is recorded after each accepted step, and SUNDIALS "
+                "keeps its steps to itself; use integrator bdf, radau, dopri5, rk4 or an "
+                "implicit scheme"
+            )
+        return radiation_row(db, spec, 0, where)
+    wave = packing.wave_fields(case.environment)["wave"]
+    return diffraction.pack(db, wave, spec.froude_krylov)
+
+
+def database_added_mass(body, base_dir, where: str) -> np.ndarray:
+    """A_inf of the body's database, for a body with radiation damping and no added mass."""
+    radiation = [f for f in body.external_forces if f.model == "radiation damping"]
+    memory, step = (radiation[0].memory, radiation[0].memory_step) if radiation else (25.0, 0.05)
+    return infinite_added_mass(body_database(body, base_dir, where), memory, step)
+
+
+def memory_offsets(kinds_: list[int], at: list[int], data: list[float]) -> None:
+    """Each radiation row's history block laid out after the one before (kernels.memory)."""
+    offset = memory.SCRATCH
+    for kind, first in zip(kinds_, at, strict=True):
+        if kind == RADIATION_DAMPING:
+            data[first + 2] = float(offset)
+            offset += memory.block_size(int(data[first]))

@@ -24,7 +24,7 @@ from seacable.bodies import dynamics, kinematics
 from seacable.forces import kinds, table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
-from seacable.kernels import natural, surface
+from seacable.kernels import memory, natural, surface
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.lines import lumped_mass, natural_string, tie, tip_joint
@@ -202,6 +202,8 @@ class SystemWork(NamedTuple):
     nat_work: np.ndarray  # (9, max n + 1) kernels.natural's workspace
     nat_out: np.ndarray  # (max n + 1, 4) a string's nodes: x, z from the pivot, strain, tension
     hull: np.ndarray  # (largest mesh's vertices, 4) kernels.hull.place's workspace
+    memory: np.ndarray  # a force model's scratch, then the radiation models' velocity
+    # histories (kernels.memory)
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -227,7 +229,17 @@ def make_work(p: SystemParams) -> SystemWork:
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
         nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
+        memory=np.zeros(max(memory.SCRATCH, _memory(p))),
     )  # fmt: skip
+
+
+def _memory(p: SystemParams) -> int:
+    """The floats of every radiation model's history block (kernels.memory: each row's offset
+    and its count)."""
+    ends = [int(p.force_data[at + 2]) + memory.block_size(int(p.force_data[at]))
+            for kind, at in zip(p.force_kind, p.force_at, strict=True)
+            if kind == kinds.RADIATION_DAMPING]  # fmt: skip
+    return max(ends, default=memory.SCRATCH)
 
 
 def _vertices(p: SystemParams) -> int:
@@ -360,7 +372,7 @@ def rhs(t, y, p, w, ydot):
         t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
         p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
         w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-        p.wave, p.wave_depth, p.wave_stretch, w.hull, tf, w.load,
+        p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.load,
     )  # fmt: skip
     if p.n_s > 0:
         table.state_rates(p.force_kind, p.force_body, p.force_at, p.force_state, p.force_data,
@@ -458,6 +470,37 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
         ok = dynamics.solve_free(mass[b], rhs, free[b], acc[b]) and ok
         dynamics.body_rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
     return ok
+
+
+@njit(**JIT)
+def after_step(t, y, p, w):
+    """An accepted step ending at (t, y): the radiation models record their body's velocity
+    (kernels.memory). Every integrator calls it where it projects the state."""
+    for f in range(p.force_kind.shape[0]):
+        if p.force_kind[f] == kinds.RADIATION_DAMPING:
+            _body_nu(y, p, p.force_body[f], w.memory)
+            memory.record(p.force_data[p.force_at[f] :], w.memory, t, w.memory[0:6])
+
+
+@njit(**JIT)
+def start_memory(t, y, p, w):
+    """The radiation models' histories at the run's start (at rest before it)."""
+    for f in range(p.force_kind.shape[0]):
+        if p.force_kind[f] == kinds.RADIATION_DAMPING:
+            _body_nu(y, p, p.force_body[f], w.memory)
+            memory.start(p.force_data[p.force_at[f] :], w.memory, t, w.memory[0:6])
+
+
+@inner
+def _body_nu(y, p, b, scratch):
+    """A dynamic rigid body's body-frame velocity (R^T v, R^T w) from the state, into
+    ``scratch[0:6]`` (its rotation in ``scratch[12:21]``)."""
+    q, v = p.body_q[b], p.body_v[b]
+    rot = scratch[12:21].reshape((3, 3))
+    kinematics.rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot)
+    for c in range(3):
+        scratch[c] = rot[0, c] * y[v] + rot[1, c] * y[v + 1] + rot[2, c] * y[v + 2]
+        scratch[3 + c] = rot[0, c] * y[v + 3] + rot[1, c] * y[v + 4] + rot[2, c] * y[v + 5]
 
 
 @njit(inline="always", **JIT)

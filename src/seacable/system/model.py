@@ -116,6 +116,16 @@ def workspace(system: BuiltSystem) -> kernel.SystemWork:
     return kernel.make_work(system.params)
 
 
+def start_memory(system: BuiltSystem, w: kernel.SystemWork, t: float, y: np.ndarray) -> None:
+    """The radiation models' velocity histories at a run's start (kernel.start_memory)."""
+    kernel.start_memory(t, y, system.params, w)
+
+
+def after_step(system: BuiltSystem, w: kernel.SystemWork, t: float, y: np.ndarray) -> None:
+    """An accepted step of an integrator driven from Python (kernel.after_step)."""
+    kernel.after_step(t, y, system.params, w)
+
+
 def _body_variables(body) -> dict:
     out = {}
     for c in AXES:

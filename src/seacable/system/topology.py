@@ -204,3 +204,32 @@ def depth(case, tips: dict[int, int], r: int) -> int:
         depth += 1
         at = names.index(lines[tips[at]][1].from_.partition(".")[0])
     return depth
+
+
+def joined(case, layout, joined, tips, fields, rows) -> None:
+    """Each line that ``continues`` another through the body between them: a row of ``rows``
+    (``rs_tip_joint``: the other line, this one, its first joint's spring and damper), which
+    then act there instead of against ``base_reference``."""
+    names = [b.name for b in case.bodies]
+    for r, line, where in joined:
+        if line.continues not in layout.rigid:
+            raise CaseError(f"{where}.continues: no rigid line '{line.continues}'; rigid lines "
+                            f"are {layout.rigid}")  # fmt: skip
+        other = layout.rigid.index(line.continues)
+        body = names.index(line.from_.partition(".")[0])
+        if tips.get(body) != other:
+            raise CaseError(
+                f"{where}.continues: line '{line.continues}' does not carry '{line.from_}' at "
+                "its end; a line continues the rigid line that carries its 'from' body (a "
+                "point body between them)"
+            )
+        if fields["rs_kind"][other] != fields["rs_kind"][r] or line.base_reference is not None:
+            what = "base_reference" if line.base_reference is not None else "model"
+            raise CaseError(
+                f"{where}.{what}: a line that continues '{line.continues}' has its first joint "
+                "on that line's last segment: give it the same model and no base_reference"
+            )
+        s0 = int(fields["rs_seg"][r])
+        spring, damper = (float(fields[f"rs_joint_{key}"][s0]) for key in ("stiffness", "damping"))
+        fields["rs_joint_stiffness"][s0] = fields["rs_joint_damping"][s0] = 0.0
+        rows.append([float(other), float(r), 0.0, 0.0, 0.0, spring, damper])

@@ -1,0 +1,71 @@
+"""A hydrodynamic database computed from a hull mesh with Capytaine (the optional extra:
+``pip install seacable[bem]``; ``seacable hydrodb hull.stl``).
+
+The mesh (seacable.meshes: any format it reads, placed as given) is cut at z = 0, the six
+rigid-body motions about ``rotation_center`` are solved in radiation and the waves of
+``directions`` in diffraction at each frequency, and the result is written as NetCDF in
+Capytaine's layout with seacable's conventions (seacable.hydrodb.write). A lid on the hull's
+inner free surface removes the irregular frequencies up to the largest one asked for. Capytaine's
+first solve builds its Green-function table (about half a minute).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from seacable import hydrodb, meshes
+
+
+def compute(mesh: meshes.Mesh, omega, directions_deg=(0.0,), rotation_center=(0.0, 0.0, 0.0),
+            rho: float = 1025.0, gravity: float = 9.81, depth: float = math.inf,
+            name: str = "hull") -> hydrodb.HydroDB:  # fmt: skip
+    try:
+        import capytaine as cpt
+    except ImportError:
+        raise ImportError(
+            "computing a hydrodynamic database needs Capytaine: pip install 'seacable[bem]'"
+        ) from None
+    mesh = meshes.checked(mesh)
+    omega = np.asarray(omega, dtype=float)
+    cmesh = cpt.Mesh(vertices=mesh.vertices, faces=mesh.triangles, name=name)
+    cmesh = cmesh.immersed_part()
+    # a lid on the inner free surface removes the irregular frequencies below omega's largest
+    with np.errstate(invalid="ignore"):  # a hull too short for any irregular frequency: 0
+        depth_of_lid = cmesh.lowest_lid_position(float(omega.max()), g=gravity)
+    lid = cmesh.generate_lid(z=depth_of_lid)
+    body = cpt.FloatingBody(mesh=cmesh, lid_mesh=lid, name=name,
+                            dofs=cpt.rigid_body_dofs(rotation_center=rotation_center),
+                            center_of_mass=rotation_center)  # fmt: skip
+    test = xr.Dataset(coords={
+        "omega": omega,
+        "wave_direction": np.radians(np.asarray(directions_deg, dtype=float)),
+        "radiating_dof": list(body.dofs), "water_depth": [depth], "rho": [rho], "g": [gravity],
+    })  # fmt: skip
+    ds = cpt.BEMSolver().fill_dataset(test, body)
+    order = {"radiating_dof": list(hydrodb.DOFS), "influenced_dof": list(hydrodb.DOFS)}
+    ds = ds.sel(order)
+
+    def matrix(var):
+        return ds[var].transpose("omega", "influenced_dof", "radiating_dof").values
+
+    def force(var):
+        return np.asarray(ds[var].transpose("omega", "wave_direction", "influenced_dof").values)
+
+    return hydrodb.HydroDB(
+        omega=np.asarray(ds.coords["omega"].values, float), added_mass=matrix("added_mass"),
+        damping=matrix("radiation_damping"),
+        directions=np.asarray(ds.coords["wave_direction"].values, float),
+        diffraction=force("diffraction_force"), froude_krylov=force("Froude_Krylov_force"),
+        reference_point=np.asarray(rotation_center, float), rho=rho, gravity=gravity,
+        depth=depth, source=f"capytaine {cpt.__version__}: {name}",
+    )  # fmt: skip
+
+
+def compute_file(mesh_file: str | Path, output: str | Path, omega, **options) -> hydrodb.HydroDB:
+    db = compute(meshes.read(mesh_file), omega, name=Path(mesh_file).stem, **options)
+    hydrodb.write(db, output)
+    return db
