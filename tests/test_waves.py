@@ -21,7 +21,7 @@ def _rows(depth, *components):
     for amplitude, period, direction, phase in components:
         omega = 2 * math.pi / period
         k = seastate.wave_number(np.array([omega]), depth, G)[0]
-        out.append([amplitude, omega, k, math.cos(direction), math.sin(direction), phase])
+        out.append([amplitude, omega, k, math.cos(direction), math.sin(direction), phase, 0.0])
     return np.array(out)
 
 
@@ -139,3 +139,29 @@ def test_bad_seas_are_refused():
         _sea(kind="pierson_moskowitz", significant_height=3.0, peak_period=8.0, gamma=2.0)
     with pytest.raises(ValueError, match="frequency_range"):
         _sea(kind="jonswap", significant_height=3.0, peak_period=8.0, frequency_range=[2, 1])
+
+
+def test_the_sea_rises_over_the_build_up():
+    """With a build-up of T: still water at t = 0, every quantity times the quintic ramp
+    r(t/T) = s^3 (10 - 15 s + 6 s^2) before T and the full sea after it; the acceleration is
+    still the velocity's time derivative (the ramp's rate included)."""
+    rows = _rows(40.0, (1.5, 8.0, 0.3, 0.4), (0.7, 5.0, -1.0, 2.0))
+    ramped = rows.copy()
+    ramped[:, waves.BUILD_UP] = 20.0
+    x, y, z = 3.0, -2.0, -4.0
+    assert waves.elevation_at(ramped, 0.0, x, y) == 0.0
+    assert waves.field(ramped, 0.0, x, y, z, 40.0, waves.WHEELER) == (0.0,) * 6
+    for t in (5.0, 13.0, 20.0, 31.0):
+        s = min(t / 20.0, 1.0)
+        r = s**3 * (10 - 15 * s + 6 * s * s)
+        assert waves.elevation_at(ramped, t, x, y) == pytest.approx(
+            r * waves.elevation_at(rows, t, x, y), rel=1e-13, abs=1e-15)  # fmt: skip
+        # held at z (vertical stretching): Wheeler's stretches with the raised elevation
+        assert waves.pressure_at(ramped, t, x, y, z, 40.0, waves.VERTICAL, RHO * G) == (
+            pytest.approx(r * waves.pressure_at(rows, t, x, y, z, 40.0, waves.VERTICAL,
+                                                RHO * G), rel=1e-12))  # fmt: skip
+        h = 1e-4
+        ahead = np.array(waves.field(ramped, t + h, x, y, z, 40.0, waves.VERTICAL)[:3])
+        behind = np.array(waves.field(ramped, t - h, x, y, z, 40.0, waves.VERTICAL)[:3])
+        acceleration = np.array(waves.field(ramped, t, x, y, z, 40.0, waves.VERTICAL)[3:])
+        assert acceleration == pytest.approx((ahead - behind) / (2 * h), rel=1e-6, abs=1e-9)

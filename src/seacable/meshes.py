@@ -324,6 +324,30 @@ def box(length: float, beam: float, height: float, n: int = 1) -> Mesh:
     return _indexed(v, np.arange(len(v)).reshape(-1, 3))
 
 
+def barge(length: float, beam: float, height: float, panel: float) -> Mesh:
+    """A box barge centred on the origin (length along x, beam along y [m]), each face cut
+    into nearly square panels of side at most ``panel`` [m], two triangles each."""
+    half = np.array([length, beam, height]) / 2.0
+    counts = [max(1, math.ceil(2.0 * h / panel)) for h in half]
+    faces = []
+    for axis in range(3):
+        u, w = (axis + 1) % 3, (axis + 2) % 3
+        gu, gw = (np.linspace(-half[c], half[c], counts[c] + 1) for c in (u, w))
+        for sign in (-1.0, 1.0):
+            for i in range(counts[u]):
+                for j in range(counts[w]):
+                    quad = []
+                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = np.zeros(3)
+                        p[axis], p[u], p[w] = sign * half[axis], gu[i + di], gw[j + dj]
+                        quad.append(p)
+                    if sign < 0:
+                        quad = quad[::-1]
+                    faces += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+    v = np.array(faces).reshape(-1, 3)
+    return _indexed(v, np.arange(len(v)).reshape(-1, 3))
+
+
 def sphere(radius: float, n: int = 16) -> Mesh:
     """A sphere centred on the origin: n bands of latitude, 2n meridians (vertices on it)."""
     theta = np.linspace(0.0, math.pi, n + 1)

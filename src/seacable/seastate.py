@@ -71,9 +71,14 @@ def spreading(angles, exponent: float) -> np.ndarray:
     return weights / weights.sum()
 
 
-def components(spec, depth: float, gravity: float) -> np.ndarray:
-    """The rows (n, 6: a, w, k, cos b, sin b, phase) of a schema wave (``case.base``'s
-    RegularWave or WaveSpectrum)."""
+def components(spec, depth: float, gravity: float, build_up: float = 0.0) -> np.ndarray:
+    """The rows (n, 7: a, w, k, cos b, sin b, phase, build-up [s]; kernels.waves) of a schema
+    wave (``case.base``'s RegularWave or WaveSpectrum)."""
+    rows = _components(spec, depth, gravity)
+    return np.column_stack([rows, np.full(len(rows), float(build_up))])
+
+
+def _components(spec, depth: float, gravity: float) -> np.ndarray:
     direction = math.radians(spec.direction_deg)
     if spec.kind == "airy":
         omega = np.array([2.0 * math.pi / spec.period])

@@ -166,9 +166,13 @@ class NonLinearHydrostatic(_Model):
     """The ship-simulator document's non-linear hydrostatics: the still-water pressure
     rho g (-z) integrated exactly on the body's ``mesh`` clipped at the free surface z = 0 at
     every evaluation: buoyancy and its moment at any draft, heel and trim (a rigid body with a
-    ``mesh``; instead of ``buoyancy``)."""
+    ``mesh``; instead of ``buoyancy``). In waves the mesh is clipped at their elevation
+    (``free_surface: waves``, the document's, with ``non-linear Froude-Krylov``) or at z = 0
+    (``still``: with a database's linear excitation, ``diffraction`` with ``froude_krylov``,
+    which holds the incident wave's pressure already)."""
 
     model: Literal["non-linear hydrostatic"]
+    free_surface: Literal["waves", "still"] = "waves"
 
 
 class NonLinearFroudeKrylov(_Model):
@@ -326,6 +330,39 @@ class PointBody(_Dynamic):
         return points
 
 
+Row6 = tuple[float, float, float, float, float, float]
+DOCUMENT_ADDED_MASS = "added mass matrix at the center of buoyancy projected in the body frame"
+
+
+class DocumentMatrix(_Model):
+    """A 6x6 matrix as the ship-simulator document writes it: ``frame`` (the body's own name)
+    and ``row 1`` ... ``row 6``, in its body frame (x forward, y to starboard, z down) [kg,
+    kg m, kg m^2]."""
+
+    frame: Name
+    row_1: Row6 = Field(alias="row 1")
+    row_2: Row6 = Field(alias="row 2")
+    row_3: Row6 = Field(alias="row 3")
+    row_4: Row6 = Field(alias="row 4")
+    row_5: Row6 = Field(alias="row 5")
+    row_6: Row6 = Field(alias="row 6")
+
+    def rows(self) -> np.ndarray:
+        return np.array([self.row_1, self.row_2, self.row_3, self.row_4, self.row_5,
+                         self.row_6], dtype=float)  # fmt: skip
+
+
+class DocumentDynamics(_Model):
+    """The ship-simulator document's ``dynamics`` block of a body, read as written: the
+    infinite-frequency added mass at the centre of buoyancy, in the document's body frame
+    (z down, y to starboard), turned into seacable's once (docs/conventions.md, "Vessels") and
+    moved to the reference point."""
+
+    added_mass: DocumentMatrix = Field(
+        alias="added mass matrix at the center of buoyancy projected in the body frame"
+    )
+
+
 class RigidBody(_Dynamic):
     """Six degrees of freedom (or those of ``dofs``: a heaving buoy is ``[heave]``, a ship in
     the horizontal plane ``[surge, sway, yaw]``; the others are held at their initial values).
@@ -350,6 +387,31 @@ class RigidBody(_Dynamic):
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     mesh: HullMesh | None = None  # the hull, for the mesh force models
     hydrodynamics: HydroDatabase | None = None  # for radiation damping and diffraction
+    # the ship-simulator document's block (its added mass at the centre of buoyancy, z down)
+    dynamics: DocumentDynamics | None = None
+
+    @model_validator(mode="after")
+    def _document_dynamics(self):
+        if self.dynamics is None:
+            return self
+        frame = self.dynamics.added_mass.frame
+        if frame != self.name:
+            raise ValueError(
+                f"dynamics.{DOCUMENT_ADDED_MASS}.frame: '{frame}' is not this body; the matrix "
+                f"is projected in the body's own frame: write frame: {self.name}"
+            )
+        given = [k for k in ("added_mass", "added_mass_point") if k in self.model_fields_set]
+        if given:
+            raise ValueError(
+                f"'{given[0]}' and the document's 'dynamics' block both give the added mass; "
+                "keep one of them"
+            )
+        if "centre_of_buoyancy" not in self.model_fields_set and self.mesh is None:
+            raise ValueError(
+                "the document's added mass is at the centre of buoyancy: give "
+                "'centre_of_buoyancy' [m, body frame, z up] or the hull's 'mesh'"
+            )
+        return self
 
     @field_validator("dofs")
     @classmethod
@@ -372,6 +434,7 @@ class RigidBody(_Dynamic):
                 f"force model '{needs[0]}' needs the body's hydrodynamic database: give "
                 "'hydrodynamics' (file: hull.nc, from seacable hydrodb)"
             )
+        _one_incident_pressure(self.external_forces)
         both = {"buoyancy", "non-linear hydrostatic"} <= {f.model for f in self.external_forces}
         if both:
             raise ValueError(
@@ -379,6 +442,27 @@ class RigidBody(_Dynamic):
                 "keep one of them"
             )
         return self
+
+
+def _one_incident_pressure(forces) -> None:
+    """The incident wave's pressure counted once: a database's linear Froude-Krylov force
+    (``diffraction`` with ``froude_krylov``) holds its rho g eta at the waterline and its
+    dynamic part, as the mesh models clipped at the wave elevation do."""
+    linear = [f for f in forces if f.model == "diffraction" and f.froude_krylov]
+    if not linear:
+        return
+    for f in forces:
+        if f.model == "non-linear Froude-Krylov":
+            raise ValueError(
+                "'diffraction' with froude_krylov: true and 'non-linear Froude-Krylov' both "
+                "give the incident wave's pressure; keep one of them"
+            )
+        if f.model == "non-linear hydrostatic" and f.free_surface == "waves":
+            raise ValueError(
+                "'non-linear hydrostatic' clipped at the wave elevation and 'diffraction' with "
+                "froude_krylov: true both count the incident wave's rho g eta; give the "
+                "hydrostatics free_surface: still"
+            )
 
 
 Body = Annotated[FixedBody | ImposedBody | PointBody | RigidBody, Field(discriminator="type")]

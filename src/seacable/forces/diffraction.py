@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from seacable.kernels import waves
 from seacable.kernels.jit import inner
 
 
@@ -39,7 +40,7 @@ def pack(db, wave: np.ndarray, froude_krylov: bool) -> list[float]:
 def add(row, t, wave, pos, rot, scratch, rhs):
     """``scratch`` (6): the body-frame force."""
     m = int(row[0])
-    n = int(row[1])
+    n = min(int(row[1]), wave.shape[0])  # none in still water (statics)
     base = 2 + m
     # the body's heading: its x axis in the horizontal plane
     heading = math.atan2(rot[1, 0], rot[0, 0])
@@ -57,6 +58,9 @@ def add(row, t, wave, pos, rot, scratch, rhs):
             re = (1.0 - f) * row[at0 + 2 * q] + f * row[at1 + 2 * q]
             im = (1.0 - f) * row[at0 + 2 * q + 1] + f * row[at1 + 2 * q + 1]
             fb[q] += re * c - im * s  # Re((re + i im) a e^{i theta})
+    r = waves.ramp(wave, t)[0]
+    for q in range(6):
+        fb[q] *= r
     for q in range(3):
         rhs[q] += rot[q, 0] * fb[0] + rot[q, 1] * fb[1] + rot[q, 2] * fb[2]
         rhs[3 + q] += rot[q, 0] * fb[3] + rot[q, 1] * fb[4] + rot[q, 2] * fb[5]

@@ -5,9 +5,11 @@ three points per wetted triangle (its edge midpoints: second order in the panel 
 ``non-linear hydrostatic`` it gives the whole undisturbed pressure, which vanishes at the wave
 surface.
 
-The row: ``forces.hydrostatic.pack``'s (its level unused: every mesh row has one layout).
+The row: ``forces.hydrostatic.pack``'s (its level and still flag unused: every mesh row has one
+layout).
 """
 
+from seacable.forces.hydrostatic import MESH_AT
 from seacable.kernels import hull
 from seacable.kernels.jit import inner
 
@@ -16,5 +18,5 @@ from seacable.kernels.jit import inner
 def add(row, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
     if wave.shape[0] == 0:
         return
-    hull.place(row[1:], pos, rot, wave, t, work)
-    hull.add_froude_krylov(row[1:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)
+    hull.place(row[MESH_AT:], pos, rot, wave, t, work)
+    hull.add_froude_krylov(row[MESH_AT:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)

@@ -6,9 +6,13 @@ exact at any draft, heel and trim, on planar faces to round-off. In still water 
 conservative: its potential is -rho g int (z - level) dV over the displaced volume
 (``potential``).
 
-The row: the level [m], then the mesh's row (kernels.hull.mesh_row), its vertices in the body
-frame relative to the reference point. ``work`` (nv, 4) is the hull workspace
-(kernels.hull.place).
+``free_surface: still`` clips the mesh at z = 0 whatever the waves: with a database's linear
+excitation that already holds the incident wave's pressure (``diffraction`` with
+``froude_krylov: true``), clipping at the wave elevation too would count its rho g eta twice.
+
+The row: the level [m], 1 when clipped at still water whatever the waves, then the mesh's row
+(kernels.hull.mesh_row), its vertices in the body frame relative to the reference point.
+``work`` (nv, 4) is the hull workspace (kernels.hull.place).
 """
 
 from seacable.kernels import hull
@@ -17,18 +21,22 @@ from seacable.kernels.jit import inner
 LEVEL = 0.0  # the still-water surface [m]
 
 
-def pack(mesh_row) -> list[float]:
-    return [LEVEL, *mesh_row]
+MESH_AT = 2  # where the mesh's row starts in the force model's row
+
+
+def pack(mesh_row, still: bool = False) -> list[float]:
+    return [LEVEL, float(still), *mesh_row]
 
 
 @inner
 def add(row, pos, rot, rho, gravity, wave, t, work, rhs):
-    hull.place(row[1:], pos, rot, wave, t, work)
-    hull.add_hydrostatic(row[1:], row[0], pos, rho, gravity, work, rhs)
+    surface = wave[:0] if row[1] != 0.0 else wave
+    hull.place(row[MESH_AT:], pos, rot, surface, t, work)
+    hull.add_hydrostatic(row[MESH_AT:], row[0], pos, rho, gravity, work, rhs)
 
 
 @inner
 def potential(row, pos, rot, rho, gravity, still, work):
     """The still-water potential [J] (``still``: an empty wave table)."""
-    hull.place(row[1:], pos, rot, still, 0.0, work)
-    return rho * gravity * hull.hydrostatic_potential(row[1:], row[0], pos, work)
+    hull.place(row[MESH_AT:], pos, rot, still, 0.0, work)
+    return rho * gravity * hull.hydrostatic_potential(row[MESH_AT:], row[0], pos, work)

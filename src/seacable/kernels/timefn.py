@@ -46,12 +46,24 @@ def evaluate(breaks, coefs, count, sine, build_up, channel, t):
     start = build_up[channel, 1]
     if t <= 0.0:
         return start, 0.0, 0.0
+    r, dr, ddr = smoothstep(t, duration)
+    g = f - start
+    return start + r * g, dr * g + r * df, ddr * g + 2.0 * dr * df + r * ddf
+
+
+@inner
+def smoothstep(t, duration):
+    """r, r', r'' of the build-up ramp at time ``t`` [s] over ``duration`` [s] (> 0): 0 before
+    it, 1 after it."""
+    if t <= 0.0:
+        return 0.0, 0.0, 0.0
+    if t >= duration:
+        return 1.0, 0.0, 0.0
     s = t / duration
     r = s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
     dr = 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration
     ddr = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / (duration * duration)
-    g = f - start
-    return start + r * g, dr * g + r * df, ddr * g + 2.0 * dr * df + r * ddf
+    return r, dr, ddr
 
 
 @inner

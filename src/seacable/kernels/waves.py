@@ -19,7 +19,11 @@ the surface and the total pressure there vanishes) or vertical (z evaluated at m
 Above the surface every quantity keeps its value at the surface: the callers integrate over the
 wetted part only, whose edges may lie a rounding above it.
 
-``row`` (n, 6) holds per component a, w, k, cos b, sin b, p.
+Build-up: every quantity is multiplied by the ramp r(t) of the components' build-up duration
+(kernels.timefn.smoothstep, the case's ``simulation.build_up``; 0: none), the acceleration by
+r a + r' u: the sea rises from still water at rest, with no jump in force or its rate.
+
+``row`` (n, 7) holds per component a, w, k, cos b, sin b, p and the build-up duration [s].
 """
 
 import math
@@ -27,10 +31,21 @@ import math
 from numba import njit
 
 from seacable.kernels.jit import JIT
+from seacable.kernels.timefn import smoothstep
 
 DEEP = 1e30  # the depth of deep water [m]
 WHEELER, VERTICAL = 0, 1
-A, W, K, COS, SIN, PHASE = range(6)
+A, W, K, COS, SIN, PHASE, BUILD_UP = range(7)
+COLUMNS = 7
+
+
+@njit(inline="always", **JIT)
+def ramp(row, t):
+    """The build-up's r and r' at ``t`` (1, 0 without build-up or components)."""
+    if row.shape[0] == 0 or row[0, BUILD_UP] <= 0.0:
+        return 1.0, 0.0
+    r, dr, _ = smoothstep(t, row[0, BUILD_UP])
+    return r, dr
 
 
 @njit(inline="always", **JIT)
@@ -40,7 +55,7 @@ def elevation(row, t, x, y):
     for i in range(row.shape[0]):
         theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
         total += row[i, A] * math.cos(theta)
-    return total
+    return ramp(row, t)[0] * total
 
 
 @njit(inline="always", **JIT)
@@ -75,7 +90,7 @@ def pressure(row, t, x, y, z, depth, stretch, rho_g):
         theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
         c, _, _ = _factors(row[i, K], zs, depth)
         total += row[i, A] * c * math.cos(theta)
-    return rho_g * total
+    return rho_g * ramp(row, t)[0] * total
 
 
 @njit(inline="always", **JIT)
@@ -97,7 +112,11 @@ def kinematics(row, t, x, y, z, depth, stretch):
         ax += horizontal * w * sin_t * row[i, COS]
         ay += horizontal * w * sin_t * row[i, SIN]
         az -= row[i, A] * w * w * e * cos_t
-    return (ux, uy, uz), (ax, ay, az)
+    r, dr = ramp(row, t)
+    if r == 1.0 and dr == 0.0:
+        return (ux, uy, uz), (ax, ay, az)
+    return ((r * ux, r * uy, r * uz),
+            (r * ax + dr * ux, r * ay + dr * uy, r * az + dr * uz))  # fmt: skip
 
 
 @njit(**JIT)

@@ -204,6 +204,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             added = np.array(body.added_mass, dtype=float)
             added = np.diag(added) if added.ndim == 1 else added
             arrays["body_added"][b] = transported(added, body.added_mass_point)
+            if body.dynamics is not None:  # the ship-simulator document's block
+                arrays["body_added"][b] = hulls.document_added_mass(body, base_dir, where)
             if body.hydrodynamics is not None and not np.any(added):  # the database's A_inf
                 arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where)
             arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]
@@ -262,7 +264,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         seabed_z=-env.water_depth if (seabed and env.water_depth) else -1e30,
         seabed_friction=seabed.friction_coefficient if seabed else 0.0,
         seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
-        current_z=current_z, current_u=current_u, current_v=current_v, **packing.wave_fields(env),
+        current_z=current_z, current_u=current_u, current_v=current_v,
+        **packing.wave_fields(env, case.simulation.build_up),
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
@@ -303,7 +306,9 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         form = linear.FORMS[getattr(spec, "frame", "quadratic")]
         return [*matrix.ravel(), float(form)]
     if isinstance(spec, sch.NonLinearHydrostatic | sch.NonLinearFroudeKrylov):
-        return hydrostatic.pack(hulls.body_mesh(body, base_dir, where.split(".")[0]).row())
+        still = isinstance(spec, sch.NonLinearHydrostatic) and spec.free_surface == "still"
+        mesh = hulls.body_mesh(body, base_dir, where.split(".")[0])
+        return hydrostatic.pack(mesh.row(), still)
     if isinstance(spec, sch.RadiationDamping | sch.Diffraction):
         return hulls.database_row(case, body, spec, base_dir, where)
     if isinstance(spec, sch.ServoForce):

@@ -15,7 +15,8 @@ from seacable.errors import CaseError
 from seacable.forces import diffraction
 from seacable.forces.kinds import RADIATION_DAMPING
 from seacable.kernels import memory
-from seacable.meshes import Mesh, MeshError, checked, read
+from seacable.meshes import Mesh, MeshError, checked, hydrostatics, read
+from seacable.packing import transported
 
 log = logging.getLogger("seacable")
 TAIL = 0.01  # a retardation function above this part of its peak at the cut-off is reported
@@ -48,6 +49,27 @@ def body_mesh(body, base_dir, where: str) -> Mesh:
                        where=f"{where}.mesh ({spec.file})")  # fmt: skip
     except MeshError as exc:
         raise CaseError(str(exc)) from None
+
+
+def document_added_mass(body, base_dir, where: str) -> np.ndarray:
+    """The added mass of the ship-simulator document's ``dynamics`` block at the body's
+    reference point, in seacable's body frame: turned from the document's z-down body frame
+    (T A T, T = diag(Z_DOWN, Z_DOWN): a half turn about x, proper, so that angular motions
+    turn as linear ones) and moved from the centre of buoyancy (the body's
+    ``centre_of_buoyancy``, or its mesh's at the start pose)."""
+    turn = np.zeros((6, 6))
+    turn[:3, :3] = turn[3:, 3:] = Z_DOWN
+    added = turn @ body.dynamics.added_mass.rows() @ turn
+    if "centre_of_buoyancy" in body.model_fields_set:
+        centre = np.asarray(body.centre_of_buoyancy, dtype=float)
+    else:
+        rotation = _matrix(body.orientation_deg)
+        mesh = body_mesh(body, base_dir, where)
+        arm = np.asarray(hydrostatics(mesh, body.position, rotation).centre_of_buoyancy)
+        centre = rotation.T @ arm
+        log.info("%s: the document's added mass is moved from the mesh's centre of buoyancy "
+                 "(%.4g, %.4g, %.4g) m, body frame", where, *centre)  # fmt: skip
+    return transported(added, centre)
 
 
 def body_database(body, base_dir, where: str) -> hydrodb.HydroDB:
@@ -101,7 +123,7 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
                 "implicit scheme"
             )
         return radiation_row(db, spec, 0, where)
-    wave = packing.wave_fields(case.environment)["wave"]
+    wave = packing.wave_fields(case.environment, case.simulation.build_up)["wave"]
     return diffraction.pack(db, wave, spec.froude_krylov)
 
 

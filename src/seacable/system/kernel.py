@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import dynamics, kinematics
-from seacable.forces import kinds, table
+from seacable.forces import hydrostatic, kinds, table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import memory, natural, surface
@@ -152,7 +152,7 @@ class SystemParams(NamedTuple):
     current_z: np.ndarray
     current_u: np.ndarray
     current_v: np.ndarray
-    wave: np.ndarray  # (n, 6) incident wave components (kernels.waves; none: (0, 6))
+    wave: np.ndarray  # (n, 7) incident wave components (kernels.waves; none: (0, 7))
     wave_depth: float  # the depth the waves feel [m] (kernels.waves.DEEP: deep water)
     wave_stretch: int  # kernels.waves WHEELER or VERTICAL
     tf_breaks: np.ndarray
@@ -243,10 +243,11 @@ def _memory(p: SystemParams) -> int:
 
 
 def _vertices(p: SystemParams) -> int:
-    """The most vertices a mesh force model's row holds (kernels.hull: the row's second
-    float after its level)."""
-    counts = [int(p.force_data[at + 1]) for kind, at in zip(p.force_kind, p.force_at, strict=True)
-              if kind in kinds.MESH]  # fmt: skip
+    """The most vertices a mesh force model's row holds (kernels.hull: the first float of the
+    mesh's row)."""
+    at_mesh = hydrostatic.MESH_AT
+    counts = [int(p.force_data[at + at_mesh]) for kind, at in zip(p.force_kind, p.force_at,
+              strict=True) if kind in kinds.MESH]  # fmt: skip
     return max(counts, default=1)
 
 

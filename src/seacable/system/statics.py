@@ -10,6 +10,8 @@ segments' turns) carry the linearisation too: ``jacobian`` gives d(rates)/d(incr
 velocities) about any state; ``mooring_stiffness`` the 6x6 stiffness of a body's lines.
 """
 
+from dataclasses import replace
+
 import numpy as np
 from scipy.sparse.linalg import splu
 
@@ -41,6 +43,14 @@ class StaticsError(SeacableError):
     """The static equilibrium was not found; the message names the body or line at fault."""
 
 
+def still_water(built: BuiltSystem) -> BuiltSystem:
+    """The system without its incident waves (their mean is still water): the statics' and
+    the linearisation's."""
+    if not built.params.wave.shape[0]:
+        return built
+    return replace(built, params=built.params._replace(wave=built.params.wave[:0]))
+
+
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
                 tolerance: float = 1e-9, time: float = 0.0) -> np.ndarray:  # fmt: skip
     """The state at rest in balance, from ``y0``'s positions (velocities set to zero; or, when
@@ -55,7 +65,8 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy; last,
     dynamic relaxation (``system.relax``: the system let move, its kinetic energy taken away,
     until it rests near a balance Newton then finds). Raises StaticsError naming the body or
-    line that stays out of balance."""
+    line that stays out of balance. In still water: the waves' mean position."""
+    built = still_water(built)
     p = built.params
     coords = coordinates(p)
     y = y0.copy()
@@ -306,6 +317,7 @@ def jacobian(
     freedom about ``y`` (dense, central differences): the linearised system dz/dt = A z with
     z = (dx, dv, ds), ds the force models' first-order states (a servo's force; n_s of them,
     last)."""
+    built = still_water(built)
     p = built.params
     coords = coordinates(p)
     n, ns, s0 = len(coords.kind), int(p.n_s), int(p.n_q + p.n_v)

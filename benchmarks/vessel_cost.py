@@ -1,0 +1,190 @@
+"""What a vessel costs: the moored barge of examples/moored_barge_irregular_sea.yaml (a box
+barge of 1,568 triangles, radiation memory over 25 s, database excitation of 180 wave
+components, three chains of 40 segments) and the vessel alone with the document's non-linear
+models on a finer hull (exact clipped hydrostatics and Froude-Krylov on 2,000-odd triangles,
+radiation memory).
+
+1. The cost of one right-hand-side evaluation, split by what it evaluates: each case is built
+   again without one of its parts (the hull mesh models, the radiation memory, the wave
+   excitation, the lines), and the part's share is the time it takes away. A compiled loop
+   evaluates ``system.kernel.rhs`` ``--count`` times at the start state; each variant keeps its
+   fastest of ``--repeat`` rounds (thread CPU time).
+2. How the cost grows: with the hull's triangles, the kernel's length (memory / memory_step)
+   and the lines' segments.
+3. The real-time factor (simulated seconds per second of CPU) of ``--duration`` seconds of each
+   case with the integrators its users would choose: dopri5 at rtol 1e-6 (the example's), and
+   rk4 at the step the stability check allows.
+
+Run: python benchmarks/vessel_cost.py [--count N] [--repeat R] [--duration S]
+"""
+
+import argparse
+import copy
+import logging
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+from numba import njit
+
+import seacable
+from seacable import meshes
+from seacable.system import kernel
+from seacable.system import model as system_model
+
+HERE = Path(__file__).resolve().parent
+EXAMPLE = HERE.parent / "examples" / "moored_barge_irregular_sea.yaml"
+MESH_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov")
+
+
+@njit
+def _loop(t, y, p, w, ydot, count):
+    status = 0
+    for _ in range(count):
+        status |= kernel.rhs(t, y, p, w, ydot)
+    return status
+
+
+def _raw(path: Path = EXAMPLE) -> dict:
+    raw = yaml.safe_load(path.read_text())
+    for body in raw["bodies"]:  # absolute paths: the variants are loaded from a dict
+        for key in ("mesh", "hydrodynamics"):
+            if key in body:
+                body[key]["file"] = str(path.parent / body[key]["file"])
+    return raw
+
+
+def _barge(raw: dict) -> dict:
+    return next(b for b in raw["bodies"] if b["name"] == "barge")
+
+
+def _without(raw: dict, part: str) -> dict:
+    """The case without ``part``: mesh, radiation, excitation or lines."""
+    raw = copy.deepcopy(raw)
+    barge = _barge(raw)
+    forces = barge["external forces"]
+    if part == "mesh":
+        barge["external forces"] = [f for f in forces if f["model"] not in MESH_MODELS]
+        barge["volume"] = 12960.0  # a stand-in for the buoyancy the mesh gave
+        barge["centre_of_buoyancy"] = [0.0, 0.0, -3.0]
+        barge["external forces"].append({"model": "buoyancy"})
+    elif part == "radiation":
+        barge["external forces"] = [f for f in forces if f["model"] != "radiation damping"]
+    elif part == "excitation":
+        barge["external forces"] = [f for f in forces if f["model"] != "diffraction"]
+        barge["external forces"] = [
+            f for f in barge["external forces"] if f["model"] != "non-linear Froude-Krylov"
+        ]
+    elif part == "lines":
+        raw["lines"] = []
+        raw["line_types"] = []
+        raw["bodies"] = [b for b in raw["bodies"] if b["type"] != "fixed"]
+        barge["external forces"].append(
+            {"model": "linear_stiffness", "diagonal": [3e5, 3e5, 0, 0, 0, 1e8]}
+        )
+    raw["start"] = "as_given"
+    return raw
+
+
+def _alone(raw: dict, panel: float, tmp: Path) -> dict:
+    """The vessel alone with the document's non-linear models on a hull of ``panel`` [m]."""
+    raw = _without(raw, "lines")
+    hull = tmp / f"barge_{panel:g}.stl"
+    if not hull.exists():
+        meshes.write_stl(meshes.barge(90.0, 24.0, 12.0, panel), hull)
+    barge = _barge(raw)
+    barge["mesh"]["file"] = str(hull)
+    barge["external forces"] = [
+        {"model": "gravity"}, {"model": "non-linear hydrostatic"},
+        {"model": "non-linear Froude-Krylov"}, {"model": "diffraction"},
+        {"model": "radiation damping", "memory": 25.0, "memory_step": 0.1},
+        {"model": "quadratic_damping", "diagonal": [1e5, 4e5, 0, 0, 0, 2e10]},
+        {"model": "linear_stiffness", "diagonal": [3e5, 3e5, 0, 0, 0, 1e8]},
+    ]  # fmt: skip
+    return raw
+
+
+def _evaluation(raw: dict, count: int, repeat: int) -> float:
+    """CPU microseconds of one evaluation (the fastest round)."""
+    built = system_model.build(seacable.load_case(raw))
+    p, y = built.params, built.y0.copy()
+    w = kernel.make_work(p)
+    ydot = np.zeros_like(y)
+    _loop(1.0, y, p, w, ydot, 2)
+    best = np.inf
+    for _ in range(repeat):
+        start = time.thread_time()
+        _loop(1.0, y, p, w, ydot, count)
+        best = min(best, time.thread_time() - start)
+    return 1e6 * best / count
+
+
+def _realtime(raw: dict, duration: float, integrator: str, step: float | None) -> tuple:
+    raw = copy.deepcopy(raw)
+    sim = raw["simulation"]
+    sim.update(duration=duration, integrator=integrator)
+    if step is not None:
+        sim["time_step"] = step
+    case = seacable.load_case(raw)
+    seacable.simulate(case.model_copy(update={"simulation": case.simulation.model_copy(
+        update={"duration": 1.0})}))  # compiled before the clock starts  # fmt: skip
+    start = time.process_time()
+    results = seacable.simulate(case)
+    spent = time.process_time() - start
+    attrs = results.dataset.attrs
+    return (
+        duration / spent,
+        int(attrs["solver_accepted_steps"]),
+        int(attrs["solver_rhs_evaluations"]),
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--count", type=int, default=2000)
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--duration", type=float, default=60.0)
+    args = parser.parse_args()
+    logging.getLogger("seacable").setLevel(logging.ERROR)  # the example's kernel-tail warning
+    tmp = Path(os.environ.get("TMPDIR", "/tmp")) / "seacable_vessel_cost"
+    tmp.mkdir(exist_ok=True)
+    raw = _raw()
+    print(f"load average {os.getloadavg()[0]:.2f}; CPU time, fastest of {args.repeat}")
+    whole = _evaluation(raw, args.count, args.repeat)
+    print(f"\nmoored barge, one evaluation: {whole:8.1f} us")
+    for part in ("mesh", "radiation", "excitation", "lines"):
+        less = _evaluation(_without(raw, part), args.count, args.repeat)
+        print(f"  {part:10s} {whole - less:8.1f} us  ({100 * (whole - less) / whole:5.1f} %)")
+    print("\nvessel alone (non-linear hydrostatics and Froude-Krylov, radiation, diffraction):")
+    for panel in (6.0, 4.0, 3.0, 2.2):
+        case = _alone(raw, panel, tmp)
+        triangles = len(meshes.read(_barge(case)["mesh"]["file"]).triangles)
+        cost = _evaluation(case, max(10, args.count // 40), args.repeat)
+        print(f"  {triangles:6d} triangles: {cost:8.1f} us")
+    print("\nmoored barge, by the kernel's length (memory 25 s):")
+    for step in (0.2, 0.1, 0.05):
+        case = copy.deepcopy(raw)
+        for f in _barge(case)["external forces"]:
+            if f["model"] == "radiation damping":
+                f["memory_step"] = step
+        samples = int(round(25.0 / step)) + 1
+        print(f"  {samples:5d} samples: {_evaluation(case, args.count, args.repeat):8.1f} us")
+    print("\nmoored barge, by the lines' segments:")
+    for segments in (40, 80, 160):
+        case = copy.deepcopy(raw)
+        for line in case["lines"]:
+            line["sections"][0]["segments"] = segments
+        print(f"  {segments:3d} segments a line: "
+              f"{_evaluation(case, args.count, args.repeat):8.1f} us")  # fmt: skip
+    print(f"\nreal-time factor over {args.duration:g} s (simulated s per CPU s):")
+    for name, case in (("moored barge", raw), ("vessel alone, 3,052 triangles",
+                                                _alone(raw, 2.2, tmp))):  # fmt: skip
+        factor, steps, evaluations = _realtime(case, args.duration, "dopri5", None)
+        print(f"  {name}, dopri5 rtol 1e-6: {factor:6.2f} ({steps} steps, "
+              f"{evaluations} evaluations)")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()
