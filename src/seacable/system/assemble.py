@@ -205,7 +205,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             added = np.diag(added) if added.ndim == 1 else added
             arrays["body_added"][b] = transported(added, body.added_mass_point)
             if body.hydrodynamics is not None and not np.any(added):  # the database's A_inf
-                arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where)
+                arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where, env)
             arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]
             q_at, v_at = q_at + 7, v_at + 6
         else:
