@@ -271,6 +271,21 @@ def test_hdb_total_excitation_section(tmp_path, reference):
     assert _error(db.diffraction + db.froude_krylov, reference.diffraction[KEPT]) < EXPORT
 
 
+def test_hdb_parts_missing_and_damping_names(tmp_path, reference):
+    """xdyn's name variants are read alike; a file with Froude-Krylov forces only (as xdyn's
+    test ship's) cannot give the diffraction part, and says so."""
+    same = hydrodb.read(_edited(tmp_path, "[DAMPING_TERM_", "[DAMPING_TERMS_LINE_", count=-1))
+    assert np.array_equal(same.damping, hydrodb.read(DATA / "box.hdb").damping)
+    text = (DATA / "box.hdb").read_text()
+    start = text.index(" [DIFFRACTION_FORCES_AND_MOMENTS]")
+    end = text.index(" [FROUDE-KRYLOV_FORCES_AND_MOMENTS]")
+    db = hydrodb.read(_edited(tmp_path, text[start:end], ""))
+    assert _error(db.froude_krylov, reference.froude_krylov[KEPT]) < EXPORT
+    for froude_krylov in (True, False):
+        with pytest.raises(HydroDBError, match="has no diffraction forces .Froude-Krylov only"):
+            db.excitation(froude_krylov)
+
+
 # ---- in a case --------------------------------------------------------------------------------
 def _case(path, **hydrodynamics):
     return seacable.load_case({

@@ -134,18 +134,24 @@ class HydroDB:
         (n, m, 6) [N/m, N m/m]; a HydroDBError when the database lacks it."""
         if self.diffraction is not None and (not froude_krylov or self.froude_krylov is not None):
             return self.diffraction + self.froude_krylov if froude_krylov else self.diffraction
-        if froude_krylov and self.excitation_total is not None:
-            return self.excitation_total
-        if froude_krylov:
+        if self.excitation_total is not None:
+            if froude_krylov:
+                return self.excitation_total
             raise HydroDBError(
-                f"hydrodynamic database '{self.source}' has no Froude-Krylov excitation: leave "
-                "froude_krylov out of the diffraction model (non-linear Froude-Krylov instead)"
+                f"hydrodynamic database '{self.source}' gives only the total excitation (Froude-"
+                "Krylov included): set froude_krylov: true on the diffraction model (and no "
+                "non-linear Froude-Krylov), or give the diffraction part (WAMIT .3sc, an HDB's "
+                "DIFFRACTION_FORCES_AND_MOMENTS)"
+            )
+        if self.diffraction is None:
+            raise HydroDBError(
+                f"hydrodynamic database '{self.source}' has no diffraction forces (Froude-Krylov "
+                "only): give a database with them (WAMIT .3 or .3sc, an HDB's "
+                "DIFFRACTION_FORCES_AND_MOMENTS or EXCITATION_FORCES_AND_MOMENTS)"
             )
         raise HydroDBError(
-            f"hydrodynamic database '{self.source}' gives only the total excitation (Froude-"
-            "Krylov included): set froude_krylov: true on the diffraction model (and no "
-            "non-linear Froude-Krylov), or give the diffraction part (WAMIT .3sc, an HDB's "
-            "DIFFRACTION_FORCES_AND_MOMENTS)"
+            f"hydrodynamic database '{self.source}' has no Froude-Krylov forces: leave "
+            "froude_krylov out of the diffraction model (non-linear Froude-Krylov instead)"
         )
 
 
