@@ -22,7 +22,7 @@ LAYER = {
     "hydrodb": 2, "bem": 3,
     "case.legacy": 9,
     "case.legacy_sections": 8,
-    "case.base": 1,
+    "case.base": 1, "hydrodb_formats": 1,
     "kernels": 0,
     "errors": 0,
 }  # fmt: skip

@@ -33,3 +33,8 @@ class SimulationInterrupted(SeacableError, KeyboardInterrupt):
         super().__init__(message)
         self.results = results
         self.signal = signal
+
+
+class HydroDBError(SeacableError, ValueError):
+    """A hydrodynamic database that cannot be read or used (seacable.hydrodb): the message
+    names the file, what is wrong (the section, the line) and the fix."""

@@ -1,6 +1,7 @@
 """Hydrodynamic databases: frequency-domain added mass, radiation damping and wave excitation
-of a hull (from Capytaine's NetCDF output), the retardation functions of radiation memory and
-Ogilvie's relations between them.
+of a hull (Capytaine's NetCDF output; WAMIT's .1/.3/.hst and the HDB text format of Diodore and
+AQUA+ through ``hydrodb_formats``), the retardation functions of radiation memory and Ogilvie's
+relations between them.
 
 Conventions (every database read is turned into these; written into files that carry data):
 
@@ -16,6 +17,12 @@ Conventions (every database read is turned into these; written into files that c
 
 B(w) is taken as linear between the database's frequencies and zero at w = 0: K(t) is then that
 function's cosine transform exactly (``retardation``), whatever t.
+
+The excitation comes in two parts, diffraction (scattering) and Froude-Krylov, or, when a source
+gives only their sum (WAMIT's .3 alone, an HDB's EXCITATION section alone), as that sum
+(``excitation_total``): it serves a ``diffraction`` model with ``froude_krylov: true`` only.
+Each format's conventions and how they are turned into these: ``hydrodb_formats`` and
+docs/conventions.md, "Vessels".
 """
 
 from __future__ import annotations
@@ -27,6 +34,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from seacable import hydrodb_formats
+from seacable.errors import HydroDBError
+
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 CONVENTIONS = {
     "frequency": "angular frequency omega [rad/s]",
@@ -36,9 +46,7 @@ CONVENTIONS = {
     "matrices": "[force, motion] at reference_point, body frame",
 }
 
-
-class HydroDBError(ValueError):
-    """A database that cannot be read or used: the message says why and what to do."""
+__all__ = ["CONVENTIONS", "DOFS", "HydroDB", "HydroDBError", "read", "read_capytaine", "write"]
 
 
 @dataclass(frozen=True)
@@ -47,28 +55,38 @@ class HydroDB:
     added_mass: np.ndarray  # (n, 6, 6)
     damping: np.ndarray  # (n, 6, 6)
     directions: np.ndarray  # (m,) [rad], increasing
-    diffraction: np.ndarray  # (n, m, 6) complex [N/m, N m/m]
-    froude_krylov: np.ndarray  # (n, m, 6) complex
+    diffraction: np.ndarray | None  # (n, m, 6) complex [N/m, N m/m]; None: only the total known
+    froude_krylov: np.ndarray | None  # (n, m, 6) complex [N/m, N m/m]; None: as diffraction
     reference_point: np.ndarray  # (3,) body frame [m]
     infinite: np.ndarray | None = None  # A_inf (6, 6), when the source gives it
     rho: float = 1025.0
     gravity: float = 9.81
     depth: float = math.inf
     source: str = ""
+    # (6, 6) [N/m, N, N m/m, N m/rad] at reference_point (WAMIT's .hst, an HDB's
+    # Hydrostatic_matrix); read for reference, no force model uses it
+    hydrostatic_stiffness: np.ndarray | None = None
+    excitation_total: np.ndarray | None = None  # (n, m, 6): when the parts are not known
 
     def moved(self, point) -> HydroDB:
         """The database at another reference point (body frame): matrices H^T M H, forces
         H^T F (moments about the new point), H = [[I, -[r]x], [0, I]], r from the new point
-        to the old."""
+        to the old. The hydrostatic stiffness is kept only when the point stays (moving it needs
+        the displaced volume, which a database does not carry)."""
         r = self.reference_point - np.asarray(point, dtype=float)
         h = np.eye(6)
         h[:3, 3:] = -_cross(r)
-        forces = np.einsum("ji,...j->...i", h, self.diffraction)
+
+        def force(f):
+            return None if f is None else np.einsum("ji,...j->...i", h, f)
+
         return replace(
             self,
             added_mass=h.T @ self.added_mass @ h, damping=h.T @ self.damping @ h,
-            diffraction=forces, froude_krylov=np.einsum("ji,...j->...i", h, self.froude_krylov),
+            diffraction=force(self.diffraction), froude_krylov=force(self.froude_krylov),
+            excitation_total=force(self.excitation_total),
             infinite=None if self.infinite is None else h.T @ self.infinite @ h,
+            hydrostatic_stiffness=self.hydrostatic_stiffness if not np.any(r) else None,
             reference_point=np.asarray(point, dtype=float),
         )  # fmt: skip
 
@@ -112,32 +130,84 @@ class HydroDB:
                          for w in self.omega])  # fmt: skip
 
     def excitation(self, froude_krylov: bool) -> np.ndarray:
-        return self.diffraction + self.froude_krylov if froude_krylov else self.diffraction
+        """The diffraction part, or the whole linear excitation with ``froude_krylov``
+        (n, m, 6) [N/m, N m/m]; a HydroDBError when the database lacks it."""
+        if self.diffraction is not None and (not froude_krylov or self.froude_krylov is not None):
+            return self.diffraction + self.froude_krylov if froude_krylov else self.diffraction
+        if self.excitation_total is not None:
+            if froude_krylov:
+                return self.excitation_total
+            raise HydroDBError(
+                f"hydrodynamic database '{self.source}' gives only the total excitation (Froude-"
+                "Krylov included): set froude_krylov: true on the diffraction model (and no "
+                "non-linear Froude-Krylov), or give the diffraction part (WAMIT .3sc, an HDB's "
+                "DIFFRACTION_FORCES_AND_MOMENTS)"
+            )
+        if self.diffraction is None:
+            raise HydroDBError(
+                f"hydrodynamic database '{self.source}' has no diffraction forces (Froude-Krylov "
+                "only): give a database with them (WAMIT .3 or .3sc, an HDB's "
+                "DIFFRACTION_FORCES_AND_MOMENTS or EXCITATION_FORCES_AND_MOMENTS)"
+            )
+        raise HydroDBError(
+            f"hydrodynamic database '{self.source}' has no Froude-Krylov forces: leave "
+            "froude_krylov out of the diffraction model (non-linear Froude-Krylov instead)"
+        )
 
 
 def _cross(r) -> np.ndarray:
     return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
 
 
-def read(path: str | Path) -> HydroDB:
-    """A database file: Capytaine's NetCDF (``.nc``)."""
+def read(path: str | Path, rho: float = 1025.0, gravity: float = 9.81,
+         length_scale: float = 1.0, phase_unit: str = "rad") -> HydroDB:  # fmt: skip
+    """A database file, by its suffix: Capytaine's NetCDF (``.nc``, ``.h5``), WAMIT's ``.1``
+    (or the run's stem, or another of its files: ``.3``, ``.3sc``, ``.3fk`` and ``.hst`` are
+    read beside it), an HDB file (``.hdb``, Diodore or AQUA+). WAMIT's nondimensional values are
+    dimensionalised with ``rho`` [kg/m^3], ``gravity`` [m/s^2] and WAMIT's ULEN,
+    ``length_scale`` [m]; ``phase_unit`` ("rad" or "deg") is the HDB file's phases' unit.
+    Every format's conventions are turned into ours (module docstring; hydrodb_formats)."""
     path = Path(path)
-    if not path.exists():
-        raise HydroDBError(f"hydrodynamic database '{path}' does not exist")
-    if path.suffix.lower() not in (".nc", ".h5", ".netcdf"):
+    stem = hydrodb_formats.wamit_stem(path)
+    suffix = path.suffix.lower()
+    if stem is None and not path.exists():
+        raise HydroDBError(f"hydrodynamic database '{path}' does not exist; check the path")
+    if suffix in (".nc", ".h5", ".netcdf"):
+        return read_capytaine(path)
+    if stem is not None:
+        fields = hydrodb_formats.read_wamit(stem, rho, gravity, length_scale)
+    elif suffix == ".hdb":
+        fields = hydrodb_formats.read_hdb(path, rho, gravity, phase_unit)
+    else:
         raise HydroDBError(
             f"hydrodynamic database '{path}': format '{path.suffix}' is not known; give "
-            "Capytaine's NetCDF output (.nc)"
+            "Capytaine's NetCDF (.nc), WAMIT's .1 (with .3 and .hst beside it) or an HDB "
+            "file (.hdb)"
         )
-    return read_capytaine(path)
+    return HydroDB(**_parts(fields))
+
+
+def _parts(fields: dict) -> dict:
+    """The excitation's diffraction and Froude-Krylov parts, the missing one from the total
+    when two of the three are known; the total kept only when the parts are not."""
+    total, diffraction, fk = (fields[k] for k in ("excitation_total", "diffraction",
+                                                  "froude_krylov"))  # fmt: skip
+    if total is not None and diffraction is not None and fk is None:
+        fk = total - diffraction
+    elif total is not None and fk is not None and diffraction is None:
+        diffraction = total - fk
+    if diffraction is not None and fk is not None:
+        total = None
+    return {**fields, "excitation_total": total, "diffraction": diffraction, "froude_krylov": fk}
 
 
 def read_capytaine(path: str | Path) -> HydroDB:
     """Capytaine's NetCDF (``capytaine.export_dataset(..., format="netcdf")``, complex values
     split along a ``complex`` dimension, or xarray's own): added_mass and radiation_damping
     (omega, influenced_dof, radiating_dof), diffraction_force and Froude_Krylov_force (omega,
-    wave_direction, influenced_dof), rotation_center. Capytaine's frame is z up and its time
-    dependence e^{-i w t}: both ours."""
+    wave_direction, influenced_dof) or their sum excitation_force, rotation_center,
+    hydrostatic_stiffness when there. Capytaine's frame is z up and its time dependence
+    e^{-i w t}: both ours."""
     try:
         ds = xr.open_dataset(path)
     except (OSError, ValueError) as exc:
@@ -145,8 +215,10 @@ def read_capytaine(path: str | Path) -> HydroDB:
             f"hydrodynamic database '{path}' is not readable NetCDF: {exc}"
         ) from None
     with ds:
-        missing = [v for v in ("added_mass", "radiation_damping", "diffraction_force",
-                               "Froude_Krylov_force") if v not in ds]  # fmt: skip
+        missing = [v for v in ("added_mass", "radiation_damping") if v not in ds]
+        if not any(v in ds for v in ("diffraction_force", "Froude_Krylov_force",
+                                     "excitation_force")):  # fmt: skip
+            missing.append("diffraction_force")
         if missing or "omega" not in ds.coords:
             raise HydroDBError(
                 f"hydrodynamic database '{path}' lacks {missing or ['omega']}: solve radiation "
@@ -163,6 +235,8 @@ def read_capytaine(path: str | Path) -> HydroDB:
             return ds[name].transpose("omega", "influenced_dof", "radiating_dof").values
 
         def force(name):
+            if name not in ds:
+                return None
             v = ds[name]
             if "complex" in v.dims:
                 v = v.sel(complex="re") + 1j * v.sel(complex="im")
@@ -171,23 +245,30 @@ def read_capytaine(path: str | Path) -> HydroDB:
         infinite = None
         if "added_mass_infinite" in ds:
             infinite = ds["added_mass_infinite"].transpose("influenced_dof", "radiating_dof").values
+        stiffness = None
+        if "hydrostatic_stiffness" in ds:
+            stiffness = ds["hydrostatic_stiffness"].transpose(
+                "influenced_dof", "radiating_dof").values  # fmt: skip
         centre = ds.coords.get("rotation_center")
         depth = float(ds.coords["water_depth"]) if "water_depth" in ds.coords else math.inf
-        return HydroDB(
+        return HydroDB(**_parts(dict(
             omega=np.asarray(ds.coords["omega"].values, dtype=float),
             added_mass=matrix("added_mass"), damping=matrix("radiation_damping"),
             directions=np.asarray(ds.coords["wave_direction"].values, dtype=float),
             diffraction=force("diffraction_force"), froude_krylov=force("Froude_Krylov_force"),
+            excitation_total=force("excitation_force"),
             reference_point=np.zeros(3) if centre is None else np.asarray(centre.values, float),
             rho=float(ds.coords["rho"]) if "rho" in ds.coords else 1025.0,
             gravity=float(ds.coords["g"]) if "g" in ds.coords else 9.81,
             depth=depth, source=f"capytaine:{path}", infinite=infinite,
-        )  # fmt: skip
+            hydrostatic_stiffness=stiffness,
+        )))  # fmt: skip
 
 
 def write(db: HydroDB, path: str | Path) -> None:
     """A database as NetCDF in Capytaine's layout (complex values split along ``complex``),
-    with seacable's conventions in its attributes (``CONVENTIONS``)."""
+    with seacable's conventions in its attributes (``CONVENTIONS``); the excitation's parts,
+    or their sum (``excitation_force``) when only that is known."""
     dofs = list(DOFS)
     coords = {"omega": db.omega, "influenced_dof": dofs, "radiating_dof": dofs,
               "wave_direction": db.directions, "complex": ["re", "im"],
@@ -198,14 +279,20 @@ def write(db: HydroDB, path: str | Path) -> None:
                 np.stack([force.real, force.imag]))  # fmt: skip
 
     matrix = ("omega", "influenced_dof", "radiating_dof")
+    forces = {name: split(f) for name, f in (("diffraction_force", db.diffraction),
+                                             ("Froude_Krylov_force", db.froude_krylov),
+                                             ("excitation_force", db.excitation_total))
+              if f is not None}  # fmt: skip
     ds = xr.Dataset(
         {"added_mass": (matrix, db.added_mass), "radiation_damping": (matrix, db.damping),
-         "diffraction_force": split(db.diffraction),
-         "Froude_Krylov_force": split(db.froude_krylov)},
+         **forces},
         coords={**coords, "rotation_center": ("space_coordinate", db.reference_point),
                 "rho": db.rho, "g": db.gravity, "water_depth": db.depth},
         attrs={**CONVENTIONS, "source": db.source or "seacable"},
     )  # fmt: skip
     if db.infinite is not None:
         ds["added_mass_infinite"] = (("influenced_dof", "radiating_dof"), db.infinite)
+    if db.hydrostatic_stiffness is not None:
+        ds["hydrostatic_stiffness"] = (("influenced_dof", "radiating_dof"),
+                                       db.hydrostatic_stiffness)  # fmt: skip
     ds.to_netcdf(path, engine="h5netcdf")

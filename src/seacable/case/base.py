@@ -444,13 +444,18 @@ Shape = Annotated[Sphere | VerticalCylinder | VolumeTable, Field(discriminator="
 
 
 class HydroDatabase(_Model):
-    """A hull's hydrodynamic database (``file`` relative to the case): Capytaine's NetCDF, as
-    ``seacable hydrodb`` writes it. Its frame is the body frame moved by ``position`` (its
-    origin in the body frame [m]); its matrices and forces are moved from its reference point
-    (Capytaine's rotation centre) to the body's reference point (seacable.hydrodb)."""
+    """A hull's hydrodynamic database (``file`` relative to the case): Capytaine's NetCDF (as
+    ``seacable hydrodb`` writes it), WAMIT's ``.1`` (``.3``, ``.hst`` beside it; dimensional
+    with the environment's water density and gravity and WAMIT's ULEN ``length_scale`` [m]) or
+    an HDB file (Diodore, AQUA+; its phases in ``phase_unit``). Its frame is the body frame
+    moved by ``position`` (its origin in the body frame [m]); its matrices and forces are moved
+    from its reference point (Capytaine's rotation centre, WAMIT's body origin, the HDB's
+    unstated point: its origin) to the body's reference point (seacable.hydrodb)."""
 
     file: str
     position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # [m], body frame
+    length_scale: Pos = 1.0  # [m] WAMIT's ULEN, for a WAMIT database
+    phase_unit: Literal["rad", "deg"] = "rad"  # an HDB file's phases
 
     def path(self, base_dir=None) -> Path:
         path = Path(self.file)

@@ -207,7 +207,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             if body.dynamics is not None:  # the ship-simulator document's block
                 arrays["body_added"][b] = hulls.document_added_mass(body, base_dir, where)
             if body.hydrodynamics is not None and not np.any(added):  # the database's A_inf
-                arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where)
+                arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where, env)
             arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]
             q_at, v_at = q_at + 7, v_at + 6
         else:

@@ -72,12 +72,14 @@ def document_added_mass(body, base_dir, where: str) -> np.ndarray:
     return transported(added, centre)
 
 
-def body_database(body, base_dir, where: str) -> hydrodb.HydroDB:
-    """The body's hydrodynamic database moved to its reference point, or a CaseError naming
-    ``where``."""
+def body_database(body, base_dir, where: str, environment) -> hydrodb.HydroDB:
+    """The body's hydrodynamic database moved to its reference point (a nondimensional one,
+    WAMIT's, made dimensional with the ``environment``'s water density and gravity), or a
+    CaseError naming ``where``."""
     spec = body.hydrodynamics
     try:
-        db = hydrodb.read(spec.path(base_dir))
+        db = hydrodb.read(spec.path(base_dir), environment.water_density, environment.gravity,
+                          spec.length_scale, spec.phase_unit)  # fmt: skip
     except hydrodb.HydroDBError as exc:
         raise CaseError(f"{where}.hydrodynamics.file: {exc}") from None
     db = replace(db, reference_point=db.reference_point + np.asarray(spec.position, float))
@@ -114,7 +116,7 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
     """The row of a database force model (``radiation damping``: kernels.memory's, its
     history block's offset set by ``memory_offsets``; ``diffraction``: forces.diffraction's
     for the case's wave components)."""
-    db = body_database(body, base_dir, where.split(".")[0])
+    db = body_database(body, base_dir, where.split(".")[0], case.environment)
     if spec.model == "radiation damping":
         if case.simulation.integrator == "cvode":
             raise CaseError(
@@ -124,14 +126,17 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
             )
         return radiation_row(db, spec, 0, where)
     wave = packing.wave_fields(case.environment, case.simulation.build_up)["wave"]
-    return diffraction.pack(db, wave, spec.froude_krylov)
+    try:
+        return diffraction.pack(db, wave, spec.froude_krylov)
+    except hydrodb.HydroDBError as exc:
+        raise CaseError(f"{where}: {exc}") from None
 
 
-def database_added_mass(body, base_dir, where: str) -> np.ndarray:
+def database_added_mass(body, base_dir, where: str, environment) -> np.ndarray:
     """A_inf of the body's database, for a body with radiation damping and no added mass."""
     radiation = [f for f in body.external_forces if f.model == "radiation damping"]
     memory, step = (radiation[0].memory, radiation[0].memory_step) if radiation else (25.0, 0.05)
-    return infinite_added_mass(body_database(body, base_dir, where), memory, step)
+    return infinite_added_mass(body_database(body, base_dir, where, environment), memory, step)
 
 
 def memory_offsets(kinds_: list[int], at: list[int], data: list[float]) -> None:
