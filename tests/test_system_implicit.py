@@ -278,10 +278,11 @@ def test_frozen_laws_keep_the_branches_of_the_last_evaluation():
     args = (np.ones(2), np.full(2, 1e5), np.zeros(2))  # lengths [m], EA [N], alpha [s]
     loads = (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
+    still = (0.0, 9.81, np.zeros((0, 6)), 1e30, 0)  # t, g, no waves, depth, stretching
     seabed = (-10.01, np.full(3, 1e4), np.zeros(3), 0.0, 0.01)  # z, k, c, friction, slip
 
     def evaluate(state, mode, w):
-        lk.segment_loads(state, n, 0, 0, *args, mode, *loads, *current, w)
+        lk.segment_loads(state, n, 0, 0, *args, mode, *loads, *current, *still, w)
         lk.seabed_loads(state, n, 0, *seabed, mode, w)
         return w[lk._F : lk._F + 3].copy(), w[lk._T, :n].copy()
 

@@ -1,12 +1,13 @@
 """Loads on the 3D chain's segments: joint bending and damping moments (``joint_torques``),
-kinematics of the nodes, drag, added mass and apparent weight on the relative velocity
-(``segment_loads``), the free surface's share of each (``segment_surface``; numba; rows of
-``chain3d_layout``)."""
+kinematics of the nodes, drag, added mass and apparent weight on the relative velocity, and
+in waves the water's inertia (``segment_loads``), the free surface's share of each
+(``segment_surface``; numba; rows of ``chain3d_layout``)."""
 
 import math
 
 from numba import njit
 
+from seacable.kernels import morison, waves
 from seacable.kernels.chain3d_layout import (
     _E,
     _F,
@@ -66,12 +67,18 @@ def joint_torques(n, y, e0, u0, ref, ref_omega, stiffness, damping, w):
 @inner
 def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_tangential,
                   added_mass, inertia, joint_stiffness, joint_damping, ref, ref_omega,
-                  cz_, cu_, cv_, w):  # fmt: skip
+                  cz_, cu_, cv_, t, gravity, wave, wave_depth, wave_stretch, w):  # fmt: skip
     """Every node's position and velocity from node 0's (rows _P, _V of column 0, set by the
     caller) and the directors; every segment's loads (rows _F), joint and buoyancy moments
-    (_TQ) and its share of the free surface (_SF, _SA, _SJ, _SQ). One line's arrays."""
+    (_TQ) and its share of the free surface (_SF, _SA, _SJ, _SQ). One line's arrays; at time
+    ``t`` [s] in the incident waves ``wave`` (kernels.waves' rows, none: (0, 6)): the drag on
+    the velocity relative to the water and kernels.morison's inertia at the centre, the wetted
+    part under the instantaneous surface (``gravity`` [m/s^2]: the displaced mass from the
+    buoyancy)."""
     uniform = cz_.shape[0] == 1  # read once: a call per segment with the current's arrays
     u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
+    waves_on = wave.shape[0] > 0  # without waves, no wave code runs
+    highest = morison.crest(wave) if waves_on else 0.0
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
@@ -92,6 +99,27 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         rx = w[_V, i] + 0.5 * li * ux - cu
         ry = w[_V + 1, i] + 0.5 * li * uy - cv
         rz = w[_V + 2, i] + 0.5 * li * uz
+        if waves_on:  # wet under the instantaneous surface
+            wet, share = morison.wet_part(
+                wave, t, highest, w[_P, i], w[_P + 1, i], w[_P + 2, i], w[_P, i + 1],
+                w[_P + 1, i + 1], w[_P + 2, i + 1],
+            )  # fmt: skip
+        else:
+            wet, share, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
+        fx = fy = fz = 0.0  # the water's inertia force [N]
+        if waves_on and wet > 0.0:
+            # the water's velocity and acceleration at the wetted part's centroid
+            water, acc = waves.kinematics(
+                wave, t, share * w[_P, i] + (1.0 - share) * w[_P, i + 1],
+                share * w[_P + 1, i] + (1.0 - share) * w[_P + 1, i + 1],
+                share * w[_P + 2, i] + (1.0 - share) * w[_P + 2, i + 1], wave_depth,
+                wave_stretch,
+            )  # fmt: skip
+            rx -= water[0]
+            ry -= water[1]
+            rz -= water[2]
+            fx, fy, fz = morison.inertia(wet * buoyancy[i] / gravity, wet * added_mass[i],
+                                         acc[0], acc[1], acc[2], ex, ey, ez)  # fmt: skip
         vt = rx * ex + ry * ey + rz * ez
         nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
@@ -100,7 +128,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         w[_F, i] = cn * nx + ct * ex
         w[_F + 1, i] = cn * ny + ct * ey
         w[_F + 2, i] = cn * nz + ct * ez - wet_weight[i]
-        wet = segment_surface(added_mass, inertia, length, buoyancy, w, i)
+        segment_surface(added_mass, inertia, length, buoyancy, wet, share, w, i)
         if wet < 1.0:
             # (a branch that rewrites the loads: wholly submerged segments compute bitwise as
             # they always did) the drag and the buoyancy of the submerged part
@@ -109,6 +137,10 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
             w[_F, i] = cn * nx + ct * ex
             w[_F + 1, i] = cn * ny + ct * ey
             w[_F + 2, i] = cn * nz + ct * ez - wet_weight[i] + (wet - 1.0) * buoyancy[i]
+        if waves_on and wet > 0.0:
+            w[_F, i] += fx
+            w[_F + 1, i] += fy
+            w[_F + 2, i] += fz
     joint_torques(n, y, e0, u0, ref, ref_omega, joint_stiffness, joint_damping, w)
     for i in range(n):
         if w[_SF, i] < 1.0:
@@ -118,12 +150,12 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
 
 
 @njit(inline="always", **JIT)
-def segment_surface(added_mass, inertia, length, buoyancy, w, i):
-    """Rows _SF, _SA, _SJ, _SQ of segment i from its nodes' heights in ``w`` (kernels.surface):
-    the added mass of the submerged fraction, spread as the whole segment's (so the rotational
-    added inertia scales alike), and the buoyancy's moment arm to the submerged part's centroid.
-    Returns the fraction."""
-    wet, share_top, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
+def segment_surface(added_mass, inertia, length, buoyancy, wet, share_top, w, i):
+    """Rows _SF, _SA, _SJ, _SQ of segment i from its submerged fraction ``wet`` and the share
+    of it its top node carries (kernels.surface.segment_submersion, or kernels.morison.wet_part
+    in waves): the added mass of the submerged fraction, spread as the whole segment's (so the
+    rotational added inertia scales alike), and the buoyancy's moment arm to the submerged
+    part's centroid."""
     w[_SF, i] = wet
     if wet < 1.0:
         ma = added_mass[i]
@@ -135,4 +167,3 @@ def segment_surface(added_mass, inertia, length, buoyancy, w, i):
         w[_SA, i] = added_mass[i]
         w[_SJ, i] = inertia[i]
         w[_SQ, i] = 0.0
-    return wet

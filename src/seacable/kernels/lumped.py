@@ -5,7 +5,10 @@ Nodes 0..n carry the mass of half of each adjacent segment; segment i joins node
 Axial law (Kelvin-Voigt, no compression): N_i = max(0, EA (eps_i + alpha d eps_i / dt)),
 eps_i = |r_{i+1} - r_i| / l_i - 1. Per segment, on the velocity of its centre relative to the
 current: normal drag 0.5 rho Cd_n d l |v_n| v_n, tangential drag, normal added mass
-Ca rho pi d^2/4 l (I - t t^T), apparent weight; each shared half and half by its nodes. Seabed
+Ca rho pi d^2/4 l (I - t t^T), apparent weight; each shared half and half by its nodes. In
+incident waves (kernels.morison): the drag on the velocity relative to the current and the
+waves' velocity, the Froude-Krylov and added-mass force of the water's acceleration, the
+wetted part under the instantaneous surface, at its centroid (the lever rule). Seabed
 contact per node below z = -depth: a vertical spring-damper and Coulomb friction (regularised)
 along the seabed. Every step is O(n): each free node solves its own 3x3 mass matrix.
 """
@@ -15,6 +18,7 @@ import math
 from numba import njit
 
 from seacable.kernels import chain3d as c3
+from seacable.kernels import morison, waves
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
 
@@ -44,15 +48,21 @@ FROZEN = 2  # the laws on the recorded active set: a semismooth Newton's matrix 
 @njit(**JIT)
 def segment_loads(
     y, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
-    buoyancy, added_mass, current_z, current_u, current_v, w,
+    buoyancy, added_mass, current_z, current_u, current_v, t, gravity, wave, wave_depth,
+    wave_stretch, w,
 ):  # fmt: skip
     """Tension, tangent, hydrodynamic and weight loads of the n segments of one line, shared
     to its nodes: the line's nodes at ``y = [r_0 .. r_n, v_0 .. v_n]`` (3 each), its segment
     properties at ``[s0 + i]`` of the flat arrays (EA ``stiffness`` [N], alpha ``damping`` [s],
     ``slack``: LAW no compression, LINEAR linear, FROZEN the recorded active set), its nodes'
-    workspace columns ``c0 + k``. Every line model and every line of a system computes its
-    segment loads here."""
+    workspace columns ``c0 + k``; at time ``t`` [s] in the incident waves ``wave`` (kernels.waves'
+    rows, none: (0, 6); ``wave_depth`` [m], ``wave_stretch``; kernels.morison's loads,
+    ``gravity`` [m/s^2] giving the displaced mass from the buoyancy). Every line model and every
+    line of a system computes its segment loads here."""
     v0 = 3 * (n + 1)
+    waves_on = wave.shape[0] > 0  # without waves, no wave code runs
+    highest = morison.crest(wave) if waves_on else 0.0
+    wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
     for k in range(c0, c0 + n + 1):
@@ -88,7 +98,11 @@ def segment_loads(
         # loads at the segment centre on the relative velocity; drag, added mass and buoyancy of
         # its submerged part (kernels.surface), the buoyancy at that part's centroid
         zc = 0.5 * (y[a + 2] + y[b + 2])
-        wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
+        if waves_on:  # wet under the instantaneous surface
+            wet, share_a = morison.wet_part(wave, t, highest, y[a], y[a + 1], y[a + 2], y[b],
+                                            y[b + 1], y[b + 2])  # fmt: skip
+        else:
+            wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
         if uniform:
             cu, cv = u_uniform, v_uniform
         else:
@@ -96,6 +110,18 @@ def segment_loads(
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
+        if waves_on and wet > 0.0:
+            # the water's velocity and acceleration at the wetted part's centroid
+            u, acc = waves.kinematics(
+                wave, t, share_a * y[a] + (1.0 - share_a) * y[b],
+                share_a * y[a + 1] + (1.0 - share_a) * y[b + 1],
+                share_a * y[a + 2] + (1.0 - share_a) * y[b + 2], wave_depth, wave_stretch,
+            )  # fmt: skip
+            rx -= u[0]
+            ry -= u[1]
+            rz -= u[2]
+            wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
+                                            acc[0], acc[1], acc[2], tx, ty, tz)  # fmt: skip
         vt = rx * tx + ry * ty + rz * tz
         nx, ny, nz = rx - vt * tx, ry - vt * ty, rz - vt * tz
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)
@@ -121,6 +147,13 @@ def segment_loads(
             w[_F + 2, ka] += buoyancy[s] * (share_a * wet - 0.5)
             w[_F + 2, kb] += buoyancy[s] * ((1.0 - share_a) * wet - 0.5)
             ma *= wet
+        if waves_on and wet > 0.0:  # the water's inertia force at the wetted part's centroid
+            w[_F, ka] += share_a * wax
+            w[_F + 1, ka] += share_a * way
+            w[_F + 2, ka] += share_a * waz
+            w[_F, kb] += (1.0 - share_a) * wax
+            w[_F + 1, kb] += (1.0 - share_a) * way
+            w[_F + 2, kb] += (1.0 - share_a) * waz
         m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
         m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
         for k in (ka, kb):

@@ -35,14 +35,16 @@ def gather(y, n, q, v, ppos, pvel, a, b, yl):
 def loads(
     yl, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
     buoyancy, added_mass, node_bend, seabed_k, seabed_c, seabed_z, friction, slip, current_z,
-    current_u, current_v, w,
+    current_u, current_v, t, gravity, wave, wave_depth, wave_stretch, w,
 ):  # fmt: skip
     """Every load on the line's nodes into the workspace columns c0 .. c0 + n (``slack``:
     kernels.lumped's LAW, the physical laws; LINEAR, for smooth static solves; FROZEN, the
-    laws' branches of the last LAW evaluation, for Newton's matrix)."""
+    laws' branches of the last LAW evaluation, for Newton's matrix), at time ``t`` [s] in the
+    incident waves ``wave`` (kernels.lumped.segment_loads)."""
     lk.segment_loads(
         yl, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
-        buoyancy, added_mass, current_z, current_u, current_v, w,
+        buoyancy, added_mass, current_z, current_u, current_v, t, gravity, wave, wave_depth,
+        wave_stretch, w,
     )  # fmt: skip
     lk.bending(n, c0, node_bend, w)
     lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, slack, w)

@@ -173,10 +173,10 @@ DERIVATIVES_3D = BELOW_3D + 18
 
 
 @inner
-def _call_segments(p, li, y, ref, ref_omega, work, base, end, out):
-    """Line ``li``'s segment loads (``kernels.chain3d_loads.segment_loads``) with node 0 at
-    ``base`` (P, V) and its held end's joint (``end``: ``end_joint``) into ``out`` (8, n: F,
-    torque, SA, SJ), its nodes into ``work``."""
+def _call_segments(t, p, li, y, ref, ref_omega, work, base, end, out):
+    """Line ``li``'s segment loads (``kernels.chain3d_loads.segment_loads``, at time ``t``
+    [s]) with node 0 at ``base`` (P, V) and its held end's joint (``end``: ``end_joint``) into
+    ``out`` (8, n: F, torque, SA, SJ), its nodes into ``work``."""
     n, s0 = p.rs_n[li], p.rs_seg[li]
     e = s0 + n
     for c in range(3):
@@ -185,7 +185,8 @@ def _call_segments(p, li, y, ref, ref_omega, work, base, end, out):
         n, y, p.rs_q[li], p.rs_v[li], p.rs_length[s0:e], p.rs_wet_weight[s0:e],
         p.rs_buoyancy[s0:e], p.rs_drag_normal[s0:e], p.rs_drag_tangential[s0:e],
         p.rs_added[s0:e], p.rs_inertia[s0:e], p.rs_joint_stiffness[s0:e],
-        p.rs_joint_damping[s0:e], ref, ref_omega, p.current_z, p.current_u, p.current_v, work,
+        p.rs_joint_damping[s0:e], ref, ref_omega, p.current_z, p.current_u, p.current_v, t,
+        p.gravity, p.wave, p.wave_depth, p.wave_stretch, work,
     )  # fmt: skip
     if end[0] != 0.0:
         tip_joint.add_torque(end[9] != 0.0, n, y, p.rs_q[li], p.rs_v[li], end[1:4], end[4:7],
@@ -197,14 +198,14 @@ def _call_segments(p, li, y, ref, ref_omega, work, base, end, out):
 
 
 @inner
-def segments_derivatives(p, li, y, ref, ref_omega, end, ws, der):
+def segments_derivatives(t, p, li, y, ref, ref_omega, end, ws, der):
     """Each 3D segment's loads (F, torque, SA, SJ) differentiated into ``der``
-    (DERIVATIVES_3D, n; layout above), as ``loads_derivatives`` does for planar links: node 0
-    moved (the whole line translates), then one component of every third segment's director
-    or rate changed (the segments below it translate: their share is taken off). ``ref``,
-    ``ref_omega``: the first joint's reference and its rate; ``end``: the held end's joint
-    (``end_joint``); ``ws`` the line's workspace after the residual's evaluation (node 0's
-    state read)."""
+    (DERIVATIVES_3D, n; layout above) at time ``t`` [s], as ``loads_derivatives`` does for
+    planar links: node 0 moved (the whole line translates), then one component of every third
+    segment's director or rate changed (the segments below it translate: their share is taken
+    off). ``ref``, ``ref_omega``: the first joint's reference and its rate; ``end``: the held
+    end's joint (``end_joint``); ``ws`` the line's workspace after the residual's evaluation
+    (node 0's state read)."""
     n = p.rs_n[li]
     at = (p.rs_q[li], p.rs_v[li])
     base = np.empty(6)
@@ -215,7 +216,7 @@ def segments_derivatives(p, li, y, ref, ref_omega, end, ws, der):
     f0, f1 = np.empty((OUTPUTS_3D, n)), np.empty((OUTPUTS_3D, n))
     nodes = np.empty((6, n + 1))
     der[:, :] = 0.0
-    _call_segments(p, li, y2, ref, ref_omega, work, base, end, f0)
+    _call_segments(t, p, li, y2, ref, ref_omega, work, base, end, f0)
     for k in range(n + 1):
         for c in range(3):
             nodes[c, k], nodes[3 + c, k] = work[c3._P + c, k], work[c3._V + c, k]
@@ -224,7 +225,7 @@ def segments_derivatives(p, li, y, ref, ref_omega, end, ws, der):
         eps = FD_STEP * max(1.0, abs(base[j]))
         moved[:] = base
         moved[j] += eps
-        _call_segments(p, li, y2, ref, ref_omega, work, moved, end, f1)
+        _call_segments(t, p, li, y2, ref, ref_omega, work, moved, end, f1)
         for i in range(n):
             for o in range(OUTPUTS_3D):
                 der[INPUTS_3D * o + j, i] = (f1[o, i] - f0[o, i]) / eps
@@ -236,7 +237,7 @@ def segments_derivatives(p, li, y, ref, ref_omega, end, ws, der):
                     k = at[rate] + 3 * s + comp
                     eps_of[s] = FD_STEP * max(1.0, abs(y[k]))
                     y2[k] = y[k] + eps_of[s]
-                _call_segments(p, li, y2, ref, ref_omega, work, base, end, f1)
+                _call_segments(t, p, li, y2, ref, ref_omega, work, base, end, f1)
                 for s in range(colour, n, 3):
                     y2[at[rate] + 3 * s + comp] = y[at[rate] + 3 * s + comp]
                 _attribute(n, colour, 6 + 3 * rate + comp, f0, f1, work, nodes, eps_of, der)

@@ -327,7 +327,7 @@ def fill_line(t, y, p, w, li, dynamic, km, kx, kv, geo, r_loc, c_loc, vals):
         ref[c] = (w.rot[base, c, 0] * p.rs_ref[li, 0] + w.rot[base, c, 1] * p.rs_ref[li, 1]
                   + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
     der = np.empty((DERIVATIVES_3D, n))
-    segments_derivatives(p, li, y, ref, w.omega[base], end_joint(p, w, li), ws, der)
+    segments_derivatives(t, p, li, y, ref, w.omega[base], end_joint(p, w, li), ws, der)
     held = p.rs_held[li]
     pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
     state = np.zeros((STATE_ROWS, n + 1))

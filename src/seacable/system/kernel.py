@@ -322,9 +322,9 @@ def rhs(t, y, p, w, ydot):
             y, p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
             p.rs_tip, p.rs_ref, p.rs_length, p.rs_wet_weight, p.rs_buoyancy, p.rs_drag_normal,
             p.rs_drag_tangential, p.rs_added, p.rs_inertia, p.rs_joint_stiffness,
-            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, p.point_body,
-            p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.rs,
-            w.scratch[120:123],
+            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, t, p.gravity, p.wave,
+            p.wave_depth, p.wave_stretch, p.point_body, p.point_offset, w.pos, w.rot, w.vel,
+            w.omega, w.ppos, w.pvel, w.parm, w.rs, w.scratch[120:123],
         )  # fmt: skip
         _tip_joints(
             y, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_to, p.rs_tip_joint,
@@ -363,9 +363,9 @@ def rhs(t, y, p, w, ydot):
         p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed, p.seg_drag_normal,
         p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
         p.node_mass, p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z,
-        p.seabed_friction, p.seabed_slip_speed, p.current_z, p.current_u, p.current_v,
-        p.point_body, p.body_kind, w.ppos, w.pvel, w.parm, w.omega, w.line, w.nodes, w.end_mass,
-        w.end_load, w.mass, w.load, ydot,
+        p.seabed_friction, p.seabed_slip_speed, p.current_z, p.current_u, p.current_v, t,
+        p.gravity, p.wave, p.wave_depth, p.wave_stretch, p.point_body, p.body_kind, w.ppos, w.pvel,
+        w.parm, w.omega, w.line, w.nodes, w.end_mass, w.end_load, w.mass, w.load, ydot,
     ):  # fmt: skip
         status = NON_FINITE
     # force models
@@ -426,11 +426,13 @@ def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, lin
                   stiffness, damping, slack_allowed, drag_normal, drag_tangential, wet_weight,
                   buoyancy, added_mass, bend, node_mass, seabed_stiffness, seabed_damping,
                   seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u, current_v,
-                  point_body, body_kind, ppos, pvel, parm, omega, line, nodes, end_mass,
-                  end_load, body_mass, load, ydot):  # fmt: skip
-    """Every lumped-mass line: its loads, its interior nodes' rates into ``ydot``, its end
-    nodes' mass and loads handed to their bodies (``body_mass`` = ``w.mass``). False when a
-    rate is not finite. The arrays come one by one, as in ``_solve_bodies``."""
+                  t, gravity, wave, wave_depth, wave_stretch, point_body, body_kind, ppos, pvel,
+                  parm, omega, line, nodes, end_mass, end_load, body_mass, load,
+                  ydot):  # fmt: skip
+    """Every lumped-mass line: its loads (at time ``t`` [s], in the incident waves ``wave``),
+    its interior nodes' rates into ``ydot``, its end nodes' mass and loads handed to their
+    bodies (``body_mass`` = ``w.mass``). False when a rate is not finite. The arrays come one
+    by one, as in ``_solve_bodies``."""
     ok = True
     for li in range(line_n.shape[0]):
         n, s0, c0 = line_n[li], line_seg[li], line_node[li]
@@ -440,7 +442,7 @@ def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, lin
             line, n, s0, c0, length, stiffness, damping, slack_allowed, drag_normal,
             drag_tangential, wet_weight, buoyancy, added_mass, bend, seabed_stiffness,
             seabed_damping, seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u,
-            current_v, nodes,
+            current_v, t, gravity, wave, wave_depth, wave_stretch, nodes,
         )  # fmt: skip
         ok = lumped_mass.interior_rates(line, n, line_q[li], line_v[li], c0, node_mass, nodes,
                                         ydot) and ok  # fmt: skip

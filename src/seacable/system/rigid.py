@@ -66,13 +66,15 @@ def planar_reference(rot, ref):
 @inner
 def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_ref,
                     length, wet_weight, buoyancy, drag_normal, drag_tangential, added, inertia,
-                    joint_stiffness, joint_damping, current_z, current_u, current_v, point_body,
-                    point_offset, pos, rot, vel, omega, ppos, pvel, parm, work, ref):  # fmt: skip
+                    joint_stiffness, joint_damping, current_z, current_u, current_v, t, gravity,
+                    wave, wave_depth, wave_stretch, point_body, point_offset, pos, rot, vel,
+                    omega, ppos, pvel, parm, work, ref):  # fmt: skip
     """Every rigid line's nodes and loads, bases first; a carried body's position and velocity
     from its line's last node. The arrays of the parameter and work tuples (``rs_*``,
-    ``point_*``, ``current_*``, the bodies' and points' states, ``work`` = ``w.rs``; ``ref``: 3
-    floats of scratch) come one by one: a call that receives the tuples takes and drops a
-    reference to each of their arrays (docs/architecture.md)."""
+    ``point_*``, ``current_*``, the waves' (at time ``t``: 3D lines only), the bodies' and
+    points' states, ``work`` = ``w.rs``; ``ref``: 3 floats of scratch) come one by one: a call
+    that receives the tuples takes and drops a reference to each of their arrays
+    (docs/architecture.md)."""
     for j in range(order.shape[0] - 1, -1, -1):
         li = order[j]
         n, s0, ws = _view(rs_n, rs_seg, rs_node, work, li)
@@ -106,7 +108,7 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
             n, y, rs_q[li], rs_v[li], length[s0:e], wet_weight[s0:e], buoyancy[s0:e],
             drag_normal[s0:e], drag_tangential[s0:e], added[s0:e], inertia[s0:e],
             joint_stiffness[s0:e], joint_damping[s0:e], ref, omega[base], current_z, current_u,
-            current_v, ws,
+            current_v, t, gravity, wave, wave_depth, wave_stretch, ws,
         )  # fmt: skip
         if tip >= 0:
             for c in range(3):

@@ -1,0 +1,64 @@
+"""Incident waves on a cable segment (Morison's equation; numba): the segment's wetted part
+under the instantaneous surface, the water's velocity and acceleration at that part's centroid
+(kernels.waves, stretched above the mean level), and the inertia force of the water's
+acceleration. The lumped-mass (kernels.lumped) and 3D rigid-segment (kernels.chain3d_loads)
+lines share them.
+
+On a segment of displaced mass m_d = rho A l [kg] and normal added mass m_a = Ca m_d [kg],
+both of its wetted fraction s, in water of velocity u and acceleration a (at the wetted part's
+centroid):
+
+- drag on the velocity relative to the water (the current's and the waves' velocity), normal
+  and tangential, as the current's alone;
+- Froude-Krylov and added-mass inertia ``s (m_d a + m_a (a - (a . t) t))`` [N]: the pressure
+  gradient of the undisturbed wave on the whole displaced volume (as the buoyancy acts, a full
+  vector) and the added mass on the water's normal acceleration, the same matrix
+  m_a (I - t t^T) the segment's own acceleration meets. A neutrally buoyant, drag-free node
+  whose mass is its displaced mass is carried: its acceleration is the water's.
+
+Above the instantaneous surface there is no water: the wetted fraction is that of the segment
+below the surface drawn straight between the elevations at its two ends.
+"""
+
+from numba import njit
+
+from seacable.kernels import waves
+from seacable.kernels.jit import JIT
+from seacable.kernels.surface import segment_submersion
+
+
+@njit(inline="always", **JIT)
+def crest(wave):
+    """The highest the surface can rise, sum |a_i| [m] (0 without waves): a segment wholly
+    below minus it is wholly wet, its ends' elevations not needed."""
+    total = 0.0
+    for i in range(wave.shape[0]):
+        total += abs(wave[i, waves.A])
+    return total
+
+
+@njit(inline="always", **JIT)
+def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb):
+    """The wetted fraction s of a segment from a to b [m] under the waves' surface at time t
+    [s] (``highest``: :func:`crest`), and the share of it carried by end a (kernels.surface's
+    lever rule: the wetted part's centroid is ``share r_a + (1 - share) r_b``). Without waves
+    (or their amplitudes zero) exactly kernels.surface.segment_submersion's."""
+    if max(za, zb) <= -highest:
+        return 1.0, 0.5
+    wet, share, _ = segment_submersion(
+        za - waves.elevation(wave, t, xa, ya), zb - waves.elevation(wave, t, xb, yb)
+    )
+    return wet, share
+
+
+@njit(inline="always", **JIT)
+def inertia(displaced, added, ax, ay, az, tx, ty, tz):
+    """Froude-Krylov and added-mass force [N] of the water's acceleration (ax, ay, az)
+    [m/s^2] on a segment of displaced mass ``displaced`` and normal added mass ``added`` [kg]
+    (both of its wetted part), unit tangent (tx, ty, tz)."""
+    along = ax * tx + ay * ty + az * tz
+    return (
+        displaced * ax + added * (ax - along * tx),
+        displaced * ay + added * (ay - along * ty),
+        displaced * az + added * (az - along * tz),
+    )
