@@ -67,7 +67,7 @@ def angle(row, first, t, rot, omega, tf):
     if row[9] != 0.0:
         heading = math.atan2(rot[1, 0], rot[0, 0])
         error = value - heading
-        error -= 2.0 * math.pi * math.floor((error + math.pi) / (2.0 * math.pi))  # (-pi, pi]
+        error -= 2.0 * math.pi * math.floor((error + math.pi) / (2.0 * math.pi))  # [-pi, pi)
         value = row[10] * error - row[11] * omega[2]
     limit = row[12]
     if limit > 0.0:
