@@ -261,6 +261,16 @@ def turn(rot, v):
     )
 
 
+@njit(inline="always", **JIT)
+def turn_back(rot, v):
+    """R^T v for a 3-vector v (a tuple): an earth-frame vector in the body frame."""
+    return (
+        rot[0, 0] * v[0] + rot[1, 0] * v[1] + rot[2, 0] * v[2],
+        rot[0, 1] * v[0] + rot[1, 1] * v[1] + rot[2, 1] * v[2],
+        rot[0, 2] * v[0] + rot[1, 2] * v[1] + rot[2, 2] * v[2],
+    )
+
+
 @njit(**JIT)
 def imposed_acceleration(work, out):
     """Acceleration (3) and angular acceleration (3, earth frame) of an imposed body from its

@@ -313,6 +313,17 @@ class Current(_Model):
         return data[:, 0].copy(), data[:, 1].copy()
 
 
+class Wind(_Model):
+    """A uniform wind blowing towards ``direction_deg`` (from +x towards +y, as the current;
+    not the meteorological "from"), at ``speed`` [m/s]; both time functions (or constants),
+    exempt from the build-up as the current is. It acts through the bodies' ``wind`` force
+    models, at ``air_density`` [kg/m^3]."""
+
+    speed: TimeFunction  # [m/s]
+    direction_deg: TimeFunction = Constant(value=0.0)  # [deg], the direction it blows towards
+    air_density: Pos = 1.225  # [kg/m^3]
+
+
 class Seabed(_Model):
     """Seabed contact of lumped-mass cables: per metre of line, a vertical ``stiffness``
     [N/m per m of line] and ``damping`` [N s/m per m] while a node is below the seabed, and
@@ -378,6 +389,7 @@ class Environment(_Model):
     water_density: Pos = 1025.0  # [kg/m^3]
     water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
     current: Current | None = None
+    wind: Wind | None = None  # for the bodies' ``wind`` force models
     in_air: bool = False  # true: no buoyancy, no drag, no added mass
     seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
     waves: list[Wave] = []  # superposed (kernels.waves)

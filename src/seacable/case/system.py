@@ -208,6 +208,128 @@ class Diffraction(_Model):
     froude_krylov: bool = False
 
 
+# ---- controlled forces, wind and current loads (a vessel's) --------------------------------------
+BodyPoint = str | Vector  # a point's name (``origin``: the reference point) or its body-frame
+# coordinates [m]
+
+
+class SpeedController(_Model):
+    """A thruster's surge-speed controller: T = feedforward + gain (target - u), u the body's
+    surge speed over ground [m/s] (forces.thruster); proportional, so without the feed-forward
+    thrust (the resistance at the target speed) the speed settles below the target."""
+
+    kind: Literal["surge_speed"]
+    target: TimeFunction  # U [m/s]
+    gain: Pos  # K [N s/m]
+    feedforward: TimeFunction = Constant(value=0.0)  # T_ff [N]
+
+
+class Thruster(_Model):
+    """A propeller, tunnel or azimuth thruster (forces.thruster): thrust [N] at ``point`` along
+    the body-frame unit ``direction`` (default +x, ahead) or, for an azimuth thruster, along
+    ``azimuth_deg`` (a time function: the angle from the bow towards port, in the horizontal
+    body plane); from the time function ``thrust`` or the ``controller``, exactly one; |thrust|
+    limited to ``max_thrust`` when given."""
+
+    model: Literal["thruster"]
+    point: BodyPoint = ORIGIN
+    direction: Vector = (1.0, 0.0, 0.0)  # body frame
+    azimuth_deg: TimeFunction | None = None  # [deg]
+    thrust: TimeFunction | None = None  # [N]
+    controller: SpeedController | None = None
+    max_thrust: Pos | None = None  # [N]
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.thrust is None) == (self.controller is None):
+            raise ValueError("give exactly one of 'thrust' [N, time function] or 'controller' "
+                             "({kind: surge_speed, target, gain})")  # fmt: skip
+        if not sum(v * v for v in self.direction) > 0.0:
+            raise ValueError(f"direction {list(self.direction)} has no length; give a non-zero "
+                             "body-frame vector such as [1, 0, 0] (ahead)")  # fmt: skip
+        if self.azimuth_deg is not None and self.direction != (1.0, 0.0, 0.0):
+            raise ValueError("give 'direction' (a fixed thruster) or 'azimuth_deg' (an azimuth "
+                             "thruster), not both")  # fmt: skip
+        return self
+
+
+class Autopilot(_Model):
+    """A heading autopilot: rudder angle = gain (heading - psi) - rate_gain r, limited to
+    +-max_angle_deg (psi the body's heading, r its yaw rate [rad/s]; forces.rudder)."""
+
+    heading_deg: TimeFunction  # target, from +x towards +y [deg]
+    gain: Pos  # K_p [deg of rudder per deg of heading error]
+    rate_gain: NonNeg = 0.0  # K_d [s]
+    max_angle_deg: Annotated[float, Field(gt=0, le=90)] = 35.0
+
+
+class Rudder(_Model):
+    """A rudder (forces.rudder): a foil of ``area`` [m^2] at ``point``, its lift perpendicular to
+    the water's flow past it and its drag along it, in the horizontal body plane; C_L from the
+    ``lift_slope`` [1/rad] up to ``stall_angle_deg`` (held beyond) with C_D = drag_coefficient
+    + C_L^2 / (pi aspect_ratio), or both from ``coefficients`` [[alpha_deg, C_L, C_D], ...].
+    The rudder angle (positive: trailing edge to port, turning the ship to port) from
+    ``angle_deg`` or the ``autopilot``, exactly one. ``slipstream_factor`` multiplies the
+    inflow's fore-and-aft component (a propeller's wash)."""
+
+    model: Literal["rudder"]
+    point: BodyPoint = ORIGIN
+    area: Pos  # [m^2]
+    lift_slope: Pos | None = None  # [1/rad]
+    stall_angle_deg: Annotated[float, Field(gt=0, le=90)] = 35.0
+    drag_coefficient: NonNeg = 0.0  # C_D0
+    aspect_ratio: Pos | None = None  # Lambda, for the induced drag
+    coefficients: list[tuple[float, float, NonNeg]] | None = Field(default=None, min_length=2)
+    slipstream_factor: Pos = 1.0
+    angle_deg: TimeFunction | None = None  # [deg]
+    autopilot: Autopilot | None = None
+
+    @model_validator(mode="after")
+    def _one_of_each(self):
+        if (self.angle_deg is None) == (self.autopilot is None):
+            raise ValueError("give exactly one of 'angle_deg' [deg, time function] or "
+                             "'autopilot' ({heading_deg, gain, rate_gain})")  # fmt: skip
+        if (self.lift_slope is None) == (self.coefficients is None):
+            raise ValueError("give exactly one of 'lift_slope' [1/rad] or 'coefficients' "
+                             "[[alpha_deg, C_L, C_D], ...]")  # fmt: skip
+        if self.coefficients is not None:
+            alphas = [row[0] for row in self.coefficients]
+            if any(b <= a for a, b in zip(alphas, alphas[1:], strict=False)) or any(
+                    abs(a) > 90.0 for a in alphas):  # fmt: skip
+                raise ValueError(f"coefficients: angles of attack {alphas} must increase "
+                                 "strictly within [-90, 90] deg")  # fmt: skip
+        return self
+
+
+class _CoefficientLoad(_Model):
+    """OCIMF-style loads from coefficient tables (forces.coefficients): F_x = q A_T C_X(psi),
+    F_y = q A_L C_Y(psi), M_z = q A_L L C_N(psi) at ``point``, q = 1/2 rho V^2, V the flow's
+    speed relative to the point, psi the direction it comes from (from the bow towards port);
+    the coefficients dimensionless, [[psi_deg, C_X, C_Y, C_N], ...] or a CSV file of those
+    four columns (a header line allowed), psi ascending over less than 360 deg, interpolated
+    linearly and periodically. ``symmetric``: the table covers 0 to 180 deg and the other side
+    mirrors it (C_X even, C_Y and C_N odd in psi)."""
+
+    point: Vector = (0.0, 0.0, 0.0)  # where the force acts and C_N refers to, body frame [m]
+    transverse_area: Pos  # A_T [m^2]
+    lateral_area: Pos  # A_L [m^2]
+    length: Pos  # L [m]
+    coefficients: list[tuple[float, float, float, float]] | str
+    symmetric: bool = False
+
+
+class WindLoad(_CoefficientLoad):
+    """The wind's load (environment.wind, air_density)."""
+
+    model: Literal["wind"]
+
+
+class CurrentLoad(_CoefficientLoad):
+    """The current's load (environment.current at the point's elevation, water_density)."""
+
+    model: Literal["current"]
+
+
 ForceModel = Annotated[
     Gravity
     | Buoyancy
@@ -220,7 +342,11 @@ ForceModel = Annotated[
     | QuadraticDamping
     | NonLinearFroudeKrylov
     | RadiationDamping
-    | Diffraction,
+    | Diffraction
+    | Thruster
+    | Rudder
+    | WindLoad
+    | CurrentLoad,
     Field(discriminator="model"),
 ]
 

@@ -24,6 +24,10 @@ class ForceKind(IntEnum):
     NON_LINEAR_FROUDE_KRYLOV = 9
     RADIATION_DAMPING = 10
     DIFFRACTION = 11
+    THRUSTER = 12
+    RUDDER = 13
+    WIND = 14
+    CURRENT = 15
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -38,6 +42,10 @@ QUADRATIC_DAMPING = int(ForceKind.QUADRATIC_DAMPING)
 NON_LINEAR_FROUDE_KRYLOV = int(ForceKind.NON_LINEAR_FROUDE_KRYLOV)
 RADIATION_DAMPING = int(ForceKind.RADIATION_DAMPING)
 DIFFRACTION = int(ForceKind.DIFFRACTION)
+THRUSTER = int(ForceKind.THRUSTER)
+RUDDER = int(ForceKind.RUDDER)
+WIND = int(ForceKind.WIND)
+CURRENT = int(ForceKind.CURRENT)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 STATES = {SERVO: 3}  # states of the models that have some
 

@@ -6,18 +6,22 @@ from numba import njit
 
 from seacable.forces import (
     applied,
+    coefficients,
     diffraction,
     drag,
     froude_krylov,
     hydrostatic,
     linear,
     radiation,
+    rudder,
     servo,
+    thruster,
     weight,
 )
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
+    CURRENT,
     DIFFRACTION,
     DRAG,
     GRAVITY,
@@ -27,7 +31,10 @@ from seacable.forces.kinds import (
     NON_LINEAR_HYDROSTATIC,
     QUADRATIC_DAMPING,
     RADIATION_DAMPING,
+    RUDDER,
     SERVO,
+    THRUSTER,
+    WIND,
 )
 from seacable.kernels import memory
 from seacable.kernels.jit import JIT
@@ -73,6 +80,23 @@ def add_all(
         elif k == NON_LINEAR_FROUDE_KRYLOV:
             froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip
+        elif k == THRUSTER or k == RUDDER or k == WIND or k == CURRENT:
+            _vessel(k, row, first[f], t, rho, pos[b], rot[b], vel[b], omega[b], current_z,
+                    current_u, current_v, tf, rhs[b])  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def _vessel(k, row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v, tf,
+            rhs):  # fmt: skip
+    """A vessel's controlled forces (thruster, rudder) and coefficient loads (wind, current)."""
+    if k == THRUSTER:
+        thruster.add(row, first, t, rot, vel, tf, rhs)
+    elif k == RUDDER:
+        rudder.add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v,
+                   tf, rhs)  # fmt: skip
+    else:
+        coefficients.add(row, t, tf, rho, pos, rot, vel, omega, current_z, current_u,
+                         current_v, rhs)  # fmt: skip
 
 
 @njit(inline="always", **JIT)

@@ -15,7 +15,16 @@ from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import applied, drag, hydrostatic, linear, servo
+from seacable.forces import (
+    applied,
+    coefficients,
+    drag,
+    hydrostatic,
+    linear,
+    rudder,
+    servo,
+    thruster,
+)
 from seacable.forces.kinds import STATES, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
@@ -48,6 +57,7 @@ class Layout:
     natural: list[str] = field(default_factory=list)  # natural-variables strings
     points: list[tuple[int, str]] = field(default_factory=list)  # (body, point name)
     point_index: dict = field(default_factory=dict)  # "body.point" -> index
+    wind_channel: int = -1  # the wind's speed channel, its direction [rad] next (-1: none)
 
 
 @dataclass(frozen=True)
@@ -155,6 +165,11 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         "body_coriolis": np.zeros(nb), "body_free": np.zeros((nb, 6)), "body_volume": np.zeros(nb),
         "body_cob": np.zeros((nb, 3)), "body_shape": np.zeros((nb, width)),
     }  # fmt: skip
+    if env.wind is not None:  # exempt from the build-up, as the current
+        layout.wind_channel = len(channels)
+        channels.append(tfn.steady(channel(env.wind.speed, base_dir, "environment.wind.speed")))
+        channels.append(tfn.steady(_rad(channel(env.wind.direction_deg, base_dir,
+                                                "environment.wind.direction_deg"))))  # fmt: skip
     tips = topology.rigid_tips(case)
     carried = set(tips) | natural_lines.tips(case)  # no state: a line's end carries them
     q_at = v_at = 0
@@ -265,7 +280,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         seabed_friction=seabed.friction_coefficient if seabed else 0.0,
         seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
         current_z=current_z, current_u=current_u, current_v=current_v,
-        **packing.wave_fields(env, case.simulation.build_up),
+        **packing.wave_fields(env, case.simulation.build_up), wind_channel=layout.wind_channel,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
@@ -293,6 +308,8 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         for name in applied.CHANNELS:
             channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
         return applied.pack(_offset(body, spec.point), spec.frame == "body")
+    if isinstance(spec, sch.Thruster | sch.Rudder | sch.WindLoad | sch.CurrentLoad):
+        return _vessel_row(case, layout, spec, body, base_dir, channels, where)
     if isinstance(spec, sch.LinearStiffness):
         position: Any = spec.equilibrium_position or body.position
         angles: Any = spec.equilibrium_orientation_deg or getattr(
@@ -317,6 +334,58 @@ def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list
         step = spec.step or sim.time_step or min(0.01, sim.output_interval)
         return servo.pack(spec.gain, spec.rate_gain, step, target)
     return []  # gravity, buoyancy: the body's own fields
+
+
+def _body_point(body, point, where: str) -> tuple[float, float, float]:
+    """A force model's ``point``: a point's name, or body-frame coordinates [m]."""
+    if not isinstance(point, str):
+        return tuple(float(v) for v in point)  # type: ignore[return-value]
+    if point != sch.ORIGIN and point not in body.points:
+        raise CaseError(f"{where}.point: body '{body.name}' has no point '{point}'; its points "
+                        f"are {[sch.ORIGIN, *body.points]}, or give [x, y, z] in the body "
+                        "frame [m]")  # fmt: skip
+    return _offset(body, point)
+
+
+def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[float]:
+    """The row and channels of a thruster, a rudder, or a wind or current load."""
+    if not isinstance(body, sch.RigidBody):
+        raise CaseError(f"{where}: model '{spec.model}' acts on a vessel: a 'rigid' body (this "
+                        f"one is '{body.type}')")  # fmt: skip
+    if isinstance(spec, sch.Thruster):
+        law = spec.thrust if spec.controller is None else spec.controller.target
+        channels.append(channel(law, base_dir, f"{where}.thrust"))
+        feed = sch.Constant(value=0.0) if spec.controller is None else spec.controller.feedforward
+        channels.append(channel(feed, base_dir, f"{where}.controller.feedforward"))
+        channels.append(_rad(channel(spec.azimuth_deg, base_dir, f"{where}.azimuth_deg")))
+        return thruster.pack(_body_point(body, spec.point, where), spec.direction,
+                             spec.azimuth_deg is not None, spec.controller is not None,
+                             spec.controller.gain if spec.controller else 0.0,
+                             spec.max_thrust)  # fmt: skip
+    if isinstance(spec, sch.Rudder):
+        pilot = spec.autopilot
+        law = spec.angle_deg if pilot is None else pilot.heading_deg
+        channels.append(_rad(channel(law, base_dir, f"{where}.angle_deg")))
+        return rudder.pack(
+            _body_point(body, spec.point, where), spec.area, spec.lift_slope,
+            spec.stall_angle_deg, spec.drag_coefficient, spec.aspect_ratio,
+            spec.slipstream_factor, (pilot.gain, pilot.rate_gain) if pilot else None,
+            pilot.max_angle_deg if pilot else None, spec.coefficients,
+        )  # fmt: skip
+    wind = case.environment.wind
+    if isinstance(spec, sch.WindLoad) and wind is None:
+        raise CaseError(f"{where}: model 'wind' needs environment.wind ({{speed [m/s], "
+                        "direction_deg}}); add it, or remove the wind model")  # fmt: skip
+    try:
+        table = coefficients.table_rows(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None
+    is_wind = isinstance(spec, sch.WindLoad)
+    return coefficients.pack(
+        spec.point, (spec.transverse_area, spec.lateral_area), spec.length,
+        wind.air_density if is_wind and wind else 0.0,
+        layout.wind_channel if is_wind else -1, table,
+    )  # fmt: skip
 
 
 def _sections(case, line, rho, extensible=True):

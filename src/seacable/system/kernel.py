@@ -155,6 +155,7 @@ class SystemParams(NamedTuple):
     wave: np.ndarray  # (n, 7) incident wave components (kernels.waves; none: (0, 7))
     wave_depth: float  # the depth the waves feel [m] (kernels.waves.DEEP: deep water)
     wave_stretch: int  # kernels.waves WHEELER or VERTICAL
+    wind_channel: int  # the wind's speed channel, its direction [rad] the next (-1: no wind)
     tf_breaks: np.ndarray
     tf_coefs: np.ndarray
     tf_count: np.ndarray

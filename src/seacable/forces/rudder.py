@@ -1,0 +1,128 @@
+"""A rudder of a vessel (``model: rudder``): lift and drag of a foil of area A [m^2] at a
+body-frame point P, in the horizontal body plane.
+
+Rudder angle delta [rad]: positive with the trailing edge to port (+y), which turns a ship
+going ahead to port (a positive yaw rate, counter-clockwise seen from above) when the rudder is
+aft. The foil's chord, trailing edge to leading edge, points along e = (cos delta, -sin delta)
+in the body frame.
+
+Inflow: s = R^T (v + omega x r_P - c(z_P)), the rudder's velocity through the water in the body
+frame (c the current at P's elevation), its x component times the slipstream factor k (a
+propeller's wash); (s_x, s_y) its horizontal part, V its length. The angle of attack alpha is
+the signed angle from e to (s_x, s_y) (counter-clockwise positive: alpha = delta when going
+straight ahead), folded into [-90, 90] deg (the foil taken as symmetric fore and aft, for flow
+from astern). With q = 1/2 rho V^2, the force in the body frame is
+
+    F = q A (C_L(alpha) (s_y, -s_x) / V - C_D(alpha) (s_x, s_y) / V),
+
+lift perpendicular to the inflow, drag along the water's flow past the foil. C_L = a alpha up
+to the stall angle and held at a alpha_stall beyond (a the lift slope [1/rad]), C_D = C_D0 +
+C_L^2 / (pi Lambda) (Lambda the aspect ratio; no induced drag when not given); or C_L, C_D from
+a table in alpha (held at its end values).
+
+delta is a time function, or the heading autopilot's PD law
+delta = K_p wrap(psi_t - psi) - K_d r, psi the heading (atan2(R_10, R_00)), r the yaw rate
+(omega_z) [rad/s], K_p [-], K_d [s], limited to +-max_angle.
+
+Row: P (3), A, a, alpha_stall, C_D0, 1/(pi Lambda) (0: none), k, 1 with the autopilot, K_p,
+K_d, the largest |delta| [rad] (0: none), the table's rows n (0: the lift slope), then n rows
+(alpha [rad] ascending, C_L, C_D). Channel: delta, or psi_t [rad].
+"""
+
+import math
+
+from numba import njit
+
+from seacable.bodies.dynamics import add_force
+from seacable.bodies.kinematics import turn
+from seacable.forces.coefficients import relative_flow
+from seacable.kernels import chain3d as c3
+from seacable.kernels.jit import JIT
+from seacable.kernels.timefn import evaluate
+
+HEADER = 14
+
+
+def pack(point, area, lift_slope, stall_deg, drag, aspect_ratio, slipstream, autopilot,
+         max_angle_deg, table) -> list[float]:  # fmt: skip
+    """The row: ``point`` P [m] (body frame), ``area`` [m^2], ``lift_slope`` [1/rad], the stall
+    angle [deg], C_D0, the aspect ratio (None: no induced drag), the slipstream factor, the
+    autopilot's (K_p, K_d [s]) or None, the largest |delta| [deg] (None: none), the table's
+    rows (alpha [deg], C_L, C_D) or None."""
+    gains = autopilot or (0.0, 0.0)
+    rows = [[math.radians(r[0]), float(r[1]), float(r[2])] for r in table or []]
+    return [*(float(v) for v in point), float(area), float(lift_slope or 0.0),
+            math.radians(stall_deg), float(drag),
+            1.0 / (math.pi * aspect_ratio) if aspect_ratio else 0.0, float(slipstream),
+            1.0 if autopilot else 0.0, float(gains[0]), float(gains[1]),
+            math.radians(max_angle_deg or 0.0), float(len(rows)),
+            *(v for r in rows for v in r)]  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def angle(row, first, t, rot, omega, tf):
+    """The rudder angle delta [rad]: its time function or the autopilot's, limited."""
+    breaks, coefs, count, sine, build_up = tf
+    value, _, _ = evaluate(breaks, coefs, count, sine, build_up, first, t)
+    if row[9] != 0.0:
+        heading = math.atan2(rot[1, 0], rot[0, 0])
+        error = value - heading
+        error -= 2.0 * math.pi * math.floor((error + math.pi) / (2.0 * math.pi))  # [-pi, pi)
+        value = row[10] * error - row[11] * omega[2]
+    limit = row[12]
+    if limit > 0.0:
+        value = min(limit, max(-limit, value))
+    return value
+
+
+@njit(inline="always", **JIT)
+def _table(row, n, column, alpha):
+    """Column ``column`` of the (alpha, C_L, C_D) table at ``alpha``, held beyond its ends."""
+    at = HEADER
+    if alpha <= row[at]:
+        return row[at + column]
+    last = at + 3 * (n - 1)
+    if alpha >= row[last]:
+        return row[last + column]
+    k = 0
+    while row[at + 3 * (k + 1)] <= alpha:
+        k += 1
+    a0, a1 = row[at + 3 * k], row[at + 3 * (k + 1)]
+    y0, y1 = row[at + 3 * k + column], row[at + 3 * (k + 1) + column]
+    return y0 + (y1 - y0) * (alpha - a0) / (a1 - a0)
+
+
+@njit(inline="always", **JIT)
+def coefficients(row, alpha):
+    """C_L and C_D at the angle of attack ``alpha`` [rad] (in [-pi/2, pi/2])."""
+    n = int(row[13])
+    if n > 0:
+        return _table(row, n, 1, alpha), _table(row, n, 2, alpha)
+    stall = row[5]
+    lift = row[4] * min(stall, max(-stall, alpha))
+    return lift, row[6] + row[7] * lift * lift
+
+
+@njit(inline="always", **JIT)
+def add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v, tf, rhs):
+    """The rudder's lift and drag at P, in the earth frame, added to ``rhs``."""
+    arm = turn(rot, (row[0], row[1], row[2]))
+    cu, cv = c3._current(current_z, current_u, current_v, pos[2] + arm[2])
+    w = relative_flow(arm, rot, vel, omega, cu, cv)  # the water past P: -s
+    sx, sy = -w[0] * row[8], -w[1]
+    speed = math.sqrt(sx * sx + sy * sy)
+    if speed == 0.0:
+        return
+    delta = angle(row, first, t, rot, omega, tf)
+    ex, ey = math.cos(delta), -math.sin(delta)
+    alpha = math.atan2(ex * sy - ey * sx, ex * sx + ey * sy)
+    if alpha > 0.5 * math.pi:
+        alpha -= math.pi
+    elif alpha < -0.5 * math.pi:
+        alpha += math.pi
+    lift, drag = coefficients(row, alpha)
+    scale = 0.5 * rho * speed * row[3]  # q A / V
+    fx = scale * (lift * sy - drag * sx)
+    fy = scale * (-lift * sx - drag * sy)
+    f0, f1, f2 = turn(rot, (fx, fy, 0.0))
+    add_force(arm, f0, f1, f2, rhs)
