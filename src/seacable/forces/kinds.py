@@ -39,7 +39,6 @@ NON_LINEAR_FROUDE_KRYLOV = int(ForceKind.NON_LINEAR_FROUDE_KRYLOV)
 RADIATION_DAMPING = int(ForceKind.RADIATION_DAMPING)
 DIFFRACTION = int(ForceKind.DIFFRACTION)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
-STATES = {SERVO: 3}  # states of the models that have some
 
 
 def kind_of(model: str) -> int:
