@@ -15,7 +15,7 @@ from seacable.case.system import DOF_NAMES
 from seacable.forces.contract import StatefulForceModel
 from seacable.system import model
 from test_hydrodb import ALPHA, BETA, DATA, analytic_db
-from test_radiation import MASS, STIFFNESS, _case, _database, _excitation, _steady
+from test_radiation import A_INF, MASS, SCALE33, STIFFNESS, _case, _database, _excitation, _steady
 
 STEP, MEMORY = 0.05, 25.0
 TIMES = np.arange(int(MEMORY / STEP) + 1) * STEP
@@ -66,10 +66,13 @@ def test_an_order_two_kernel_is_fitted_exactly():
 def test_the_hemisphere_kernels_and_damping_are_reproduced():
     """Every non-negligible entry of the shipped hemisphere's K (Capytaine, B up to 5 rad/s)
     fitted within the default 1 % (relative L2 over 25 s, through e^{A dt}) with at most 12
-    states and poles in the left half-plane; the transfer functions' real parts give back the
-    database's B(w) within 2 % of each diagonal entry's peak below its last frequency (where
-    B drops to zero: K rings as sin(w_max t)/t there, for the convolution as much). The
-    entries left out are below 1e-6 of the largest."""
+    states and poles in the left half-plane (measured: 18 entries, 8 to 10 states each, the
+    worst 0.99 %); the transfer functions' real parts give back the database's B(w) below its
+    last frequency (where B drops to zero: K rings as sin(w_max t)/t there, for the
+    convolution as much) within 1 % of each translation's peak and 2.5 % of each rotation's,
+    whose damping is a few millionths of surge's, the panel method's noise (measured: 0.8 %,
+    0.8 %, 0.9 %; 1.6 %, 1.6 %, 1.9 %). The entries left out are below 1e-6 of the
+    largest."""
     db = hydrodb.read(DATA / "hemisphere_hydrodb.nc")
     kernel = db.retardation(TIMES)
     fits = realization.fit_matrix(TIMES, kernel)
@@ -85,14 +88,16 @@ def test_the_hemisphere_kernels_and_damping_are_reproduced():
     for i in range(6):
         damping = db.damping[below, i, i]
         fitted = _transfer(fits[i, i], db.omega[below]).real
-        assert np.abs(fitted - damping).max() < 0.02 * np.abs(damping).max(), i
+        tolerance = 0.01 if i < 3 else 0.025
+        assert np.abs(fitted - damping).max() < tolerance * np.abs(damping).max(), i
 
 
 @pytest.mark.parametrize("omega", [0.6, 1.15, 2.0])
 def test_regular_waves_give_the_convolutions_response_and_the_rao(tmp_path, omega):
     """The buoy of tests/test_radiation.py in regular waves, below, at and above resonance:
     its steady heave with state spaces within 1 % of the convolution's and of the database's
-    RAO, amplitude and phase (measured: within 0.1 % of both)."""
+    RAO, amplitude and phase (measured: 0.04 %, 0.09 %, 0.02 % from the convolution's; 0.03 %,
+    0.10 %, 0.02 % from the RAO)."""
     path = tmp_path / "db.nc"
     db = _database(path)
     case = _case(path, omega)
@@ -110,9 +115,9 @@ def test_regular_waves_give_the_convolutions_response_and_the_rao(tmp_path, omeg
 @pytest.mark.parametrize("integrator", ["rk4", "dopri5", "generalized_alpha", "bdf"])
 def test_a_free_decay_follows_the_convolution(tmp_path, integrator):
     """Released 0.5 m above its equilibrium, the buoy's heave with state spaces follows the
-    convolution's within 0.2 % of the offset over 20 s, with each kind of integrator
-    (explicit, adaptive, implicit, SciPy's), and radiation does damp it (below 40 % after
-    three periods: without it nothing would)."""
+    convolution's within 0.1 % of the offset over 20 s (measured 0.022 % with each), with
+    each kind of integrator (explicit, adaptive, implicit, SciPy's), and radiation does damp
+    it (below 25 % of the offset after 16 s, measured 12.7 %: without it nothing would)."""
     path = tmp_path / "db.nc"
     _database(path)
     case = _case(path, 1.0, integrator=integrator, duration=20.0)
@@ -122,9 +127,9 @@ def test_a_free_decay_follows_the_convolution(tmp_path, integrator):
             for m in ("convolution", "state_space")]  # fmt: skip
     z = [r["bodies/buoy"]["position_z"].values for r in runs]
     assert all(r.complete for r in runs)
-    assert np.abs(z[1] - z[0]).max() < 0.002 * 0.5
+    assert np.abs(z[1] - z[0]).max() < 0.001 * 0.5
     late = runs[0]["time"].values > 16.0
-    assert np.abs(z[1][late]).max() < 0.4 * 0.5
+    assert np.abs(z[1][late]).max() < 0.25 * 0.5
 
 
 def test_sundials_runs_a_state_space(tmp_path):
@@ -149,7 +154,8 @@ def test_the_states_rest_at_rest_and_follow_their_system(tmp_path):
 
     assert isinstance(radiation, StatefulForceModel)
     path = tmp_path / "db.nc"
-    hydrodb.write(analytic_db(np.linspace(0.02, 30.0, 3000)), path)
+    db = analytic_db(np.linspace(0.02, 30.0, 3000))
+    hydrodb.write(db, path)
     case = _with(_case(path, 1.0), method="state_space", waves=False)
     body = case.bodies[0].model_copy(update={"dofs": list(DOF_NAMES)})
     built = model.build(case.model_copy(update={"bodies": [body]}))
@@ -168,12 +174,15 @@ def test_the_states_rest_at_rest_and_follow_their_system(tmp_path):
     rot = w.rot[0]
     nu = np.concatenate([rot.T @ y[p.n_q : p.n_q + 3], rot.T @ y[p.n_q + 3 : p.n_q + 6]])
     force, s = np.zeros(6), p.n_q + p.n_v
-    for i, j, a, b, c in _entries(p.force_data[p.force_at[1] :]):
-        x = y[s : s + len(b)]
-        np.testing.assert_allclose(ydot[s : s + len(b)], a @ x + b * nu[j], rtol=1e-12,
-                                   atol=1e-12 * np.abs(a @ x).max())  # fmt: skip
-        force[i] -= c @ x
-        s += len(b)
+    fits = realization.fit_matrix(TIMES, db.retardation(TIMES))  # the case's defaults
+    assert sum(fit.order for fit in fits.values()) == p.n_s
+    for (i, j), fit in fits.items():  # in the row's order
+        x = y[s : s + fit.order]
+        expected_rates = fit.a @ x + fit.b * nu[j]
+        np.testing.assert_allclose(ydot[s : s + fit.order], expected_rates, rtol=1e-12,
+                                   atol=1e-12 * np.abs(expected_rates).max())  # fmt: skip
+        force[i] -= fit.c @ x
+        s += fit.order
     expected = np.concatenate([rot @ force[:3], rot @ force[3:]])
     stiffness = np.zeros(6)  # the case's other force model: its linear stiffness
     w2 = kernel.make_work(p)
@@ -191,19 +200,6 @@ def _quaternion(angles):
     return np.array(kinematics.euler_quaternion(*angles))
 
 
-def _entries(row):
-    """(i, j, A, B, C) of a state space's row (forces.radiation)."""
-    out, at = [], 3
-    for _ in range(int(row[1])):
-        i, j, m = int(row[at]), int(row[at + 1]), int(row[at + 2])
-        a = row[at + 3 : at + 3 + m * m].reshape(m, m)
-        b = row[at + 3 + m * m : at + 3 + m * m + m]
-        c = row[at + 3 + m * m + m : at + 3 + m * m + 2 * m]
-        out.append((i, j, a, b, c))
-        at += 3 + m * m + 2 * m
-    return out
-
-
 def test_a_poor_fit_is_reported(caplog):
     """An entry whose fit stays above the tolerance with the states allowed is reported with
     its name, its error and the fix; the run still builds."""
@@ -215,3 +211,23 @@ def test_a_poor_fit_is_reported(caplog):
     assert built.params.n_s == 2 * len(realization.fit_matrix(
         TIMES, hydrodb.read(path).retardation(TIMES), 2, 0.01))  # fmt: skip
     assert math.isfinite(built.y0.sum())
+
+
+def test_the_linearised_heave_has_the_closed_form_modes(tmp_path):
+    """The radiation states enter the linearisation (statics.jacobian, seacable modes): the
+    buoy's heave with K(t) = S e^{-alpha t} cos(beta t) has the modes lambda of
+    lambda^2 (M + A_inf) + lambda S (lambda + alpha) / ((lambda + alpha)^2 + beta^2) + C = 0
+    (the Laplace transform of K in the equation of motion): the four roots of that quartic
+    are eigenvalues of the linearised system within 0.1 % (measured 0.03 %; its database's B
+    is cut at 30 rad/s, and the fit has three states)."""
+    from seacable.system import statics
+
+    path = tmp_path / "db.nc"
+    _database(path)
+    built = model.build(_with(_case(path, 1.0), method="state_space", waves=False))
+    eigenvalues = np.linalg.eigvals(statics.jacobian(built, built.y0)[0])
+    mass = MASS + A_INF
+    quartic = np.polyadd(np.polymul([mass, 0.0, STIFFNESS], [1.0, 2 * ALPHA, ALPHA**2 + BETA**2]),
+                         np.polymul([SCALE33, 0.0], [1.0, ALPHA]))  # fmt: skip
+    for root in np.roots(quartic):
+        assert np.abs(eigenvalues - root).min() < 1e-3 * abs(root), (root, eigenvalues)
