@@ -19,7 +19,7 @@ LAYER = {
     "packing": 3,
     "case.units": 3,
     "case.system": 2, "case.schema": 2, "timefunctions": 2, "meshes": 2, "seastate": 2,
-    "hydrodb": 2, "bem": 3,
+    "hydrodb": 2, "realization": 2, "bem": 3,
     "case.legacy": 9,
     "case.legacy_sections": 8,
     "case.base": 1, "hydrodb_formats": 1,

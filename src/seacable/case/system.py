@@ -190,11 +190,20 @@ class RadiationDamping(_Model):
     (25 s, the document's) sampled every ``memory_step``. The database's infinite-frequency
     added mass (its own, or from Ogilvie's relation) is the body's added mass unless the body
     gives one. A kernel still above 1 % of its peak at the cut-off is reported. The body is
-    taken at rest before the run starts."""
+    taken at rest before the run starts.
+
+    ``method: convolution`` (the default) integrates over the recorded velocity history;
+    ``method: state_space`` replaces each non-negligible K_ij(t) (sampled as above) by a fitted
+    stable system of at most ``order`` first-order states, the lowest order whose relative L2
+    error over the samples is within ``tolerance`` (seacable.realization; an entry above it is
+    reported): a cost independent of ``memory``."""
 
     model: Literal["radiation damping"]
     memory: Pos = 25.0  # Tc [s]
     memory_step: Pos = 0.05  # [s]
+    method: Literal["convolution", "state_space"] = "convolution"
+    order: Annotated[int, Field(ge=2, le=40)] = 12  # most states per entry (state_space)
+    tolerance: Annotated[float, Field(gt=0, lt=1)] = 0.01  # relative L2 error (state_space)
 
 
 class Diffraction(_Model):

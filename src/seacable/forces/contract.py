@@ -28,8 +28,8 @@ class ForceTable(Protocol):
        vector of R R_eq^T is not the gradient of a potential at finite angles).
     4. A dissipative model (drag without current, linear damping with a positive semi-definite
        matrix) never does positive work: F . v + M . omega <= 0.
-    5. A model with states (``forces.kinds.STATES``) follows ``StatefulForceModel``;
-       ``state_rates`` gives their rates.
+    5. A model with states (``table.STATEFUL``) follows ``StatefulForceModel``;
+       ``state_rates`` gives their rates, ``state_count`` their number from its row.
     6. A new model is a ``ForceKind`` value with a branch in ``add_all`` (and in
        ``state_rates`` when it has states) and a schema class: the schema's models and the
        kinds are checked to match one to one.
@@ -42,16 +42,18 @@ class ForceTable(Protocol):
 @runtime_checkable
 class StatefulForceModel(Protocol):
     """A force model with states of its own (the trajectory servo's force; radiation memory
-    next): ``ROW`` floats in its row, ``forces.kinds.STATES`` states, first-order, after the
-    velocities in the state vector.
+    as a state space): ``state_count(row)`` first-order states, read from its packed row (so
+    that a model's states may vary in number from one row to the next: a state space's order),
+    laid out after the velocities in the state vector (``system.assemble``: ``force_state``).
 
-    1. ``pack``: its row (the parts computed once the system is built may start at zero).
+    1. ``pack`` (or ``pack_*``): its row (the parts computed once the system is built may
+       start at zero).
     2. ``add``: its force and moment from its states (and its row, the body's pose and twist).
     3. ``rates``: the rates of its states; they vanish at the model's equilibrium (the servo's
-       body on its target and moving with it), so that a static start stays at rest.
+       body on its target and moving with it; radiation's at rest with its states zero), so
+       that a static start stays at rest.
     """
 
-    ROW: int
-    pack: Callable[..., Any]
+    state_count: Callable[..., int]
     add: Callable[..., Any]
     rates: Callable[..., Any]

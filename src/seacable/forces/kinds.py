@@ -47,7 +47,6 @@ RUDDER = int(ForceKind.RUDDER)
 WIND = int(ForceKind.WIND)
 CURRENT = int(ForceKind.CURRENT)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
-STATES = {SERVO: 3}  # states of the models that have some
 
 
 def kind_of(model: str) -> int:

@@ -16,6 +16,12 @@ from seacable.kernels.jit import JIT
 
 ROW = 9 + 4
 GAIN, RATE_GAIN, STEP, TARGET = 9, 10, 11, 12
+STATES = 3  # the force F
+
+
+def state_count(row) -> int:
+    """The model's first-order states: the force (3)."""
+    return STATES
 
 
 def pack(gain: float, rate_gain: float, step: float, target: int) -> list[float]:

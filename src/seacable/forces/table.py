@@ -74,7 +74,7 @@ def add_all(
         elif k == NON_LINEAR_HYDROSTATIC:
             hydrostatic.add(row, pos[b], rot[b], rho, gravity, wave, t, hull, rhs[b])
         elif k == RADIATION_DAMPING:
-            radiation.add(row, t, rot[b], vel[b], omega[b], history, rhs[b])
+            radiation.add(row, t, y, state[f], rot[b], vel[b], omega[b], history, rhs[b])
         elif k == DIFFRACTION:
             diffraction.add(row, t, wave, pos[b], rot[b], history[0 : memory.SCRATCH], rhs[b])
         elif k == NON_LINEAR_FROUDE_KRYLOV:
@@ -100,11 +100,23 @@ def _vessel(k, row, first, t, rho, pos, rot, vel, omega, current_z, current_u, c
 
 
 @njit(inline="always", **JIT)
-def state_rates(kind, body, at, state, data, pos, vel, ppos, pvel, ydot):
-    """The rates of every force model's states into ``ydot``."""
+def state_rates(y, kind, body, at, state, data, pos, rot, vel, omega, ppos, pvel, ydot):
+    """The rates of every force model's states (read from ``y``) into ``ydot``."""
     for f in range(kind.shape[0]):
         if state[f] < 0:
             continue
+        b = body[f]
         if kind[f] == SERVO:
-            b = body[f]
             servo.rates(data[at[f] :], pos[b], vel[b], ppos, pvel, state[f], ydot)
+        elif kind[f] == RADIATION_DAMPING:
+            radiation.rates(data[at[f] :], y, state[f], rot[b], vel[b], omega[b], ydot)
+
+
+STATEFUL = {SERVO: servo.state_count, RADIATION_DAMPING: radiation.state_count}
+
+
+def state_count(kind: int, row) -> int:
+    """The first-order states of a force model of ``kind`` with its packed ``row`` (a
+    ``StatefulForceModel``'s ``state_count``; none for the others)."""
+    count = STATEFUL.get(kind)
+    return 0 if count is None else count(row)

@@ -23,9 +23,10 @@ from seacable.forces import (
     linear,
     rudder,
     servo,
+    table,
     thruster,
 )
-from seacable.forces.kinds import STATES, kind_of
+from seacable.forces.kinds import kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import hulls, natural_lines, topology
@@ -172,7 +173,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                                                 "environment.wind.direction_deg"))))  # fmt: skip
     tips = topology.rigid_tips(case)
     carried = set(tips) | natural_lines.tips(case)  # no state: a line's end carries them
-    q_at = v_at = 0
+    q_at = v_at = n_s = 0  # n_s: the force models' states
     y_q: list[float] = []
     y_v: list[float] = []
     for b, body in enumerate(case.bodies):
@@ -240,10 +241,12 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             f["body"].append(b)
             f["at"].append(len(data))
             f["first"].append(len(channels))
-            states = STATES.get(f["kind"][-1], 0)
-            f["state"].append(sum(STATES.get(k, 0) for k in f["kind"][:-1]) if states else -1)
-            data += _force_row(case, layout, spec, body, rho, base_dir, channels,
-                               f"{where}.external forces[{k}]")  # fmt: skip
+            row = _force_row(case, layout, spec, body, rho, base_dir, channels,
+                             f"{where}.external forces[{k}]")  # fmt: skip
+            data += row
+            states = table.state_count(f["kind"][-1], row)  # its states follow the others'
+            f["state"].append(n_s if states else -1)
+            n_s += states
     hulls.memory_offsets(f["kind"], f["at"], data)
     bodies_q, bodies_v = q_at, v_at
     lines = _lines(case, layout, rho, q_at, v_at)
@@ -262,7 +265,6 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     arrays["body_v"] = np.where(arrays["body_v"] >= 0, arrays["body_v"] + n_q, -1)
     lines["line_v"] = lines["line_v"] + n_q
     rigid_lines["rs_v"] = rigid_lines["rs_v"] + n_q
-    n_s = sum(STATES.get(k, 0) for k in f["kind"])
     f["state"] = [s + n_q + n_v if s >= 0 else -1 for s in f["state"]]
     ties = _ties(case, layout)
     points = np.array([b for b, _ in layout.points], dtype=np.int64)

@@ -98,7 +98,7 @@ def _where(system: BuiltSystem, amplitude: np.ndarray) -> str:
     coords = coordinates(p)
     forces = amplitude[p.n_q + p.n_v :]
     if not len(coords.kind) or (forces.size and forces.max() >= amplitude[: p.n_q + p.n_v].max()):
-        return "a force model's state (a servo)"
+        return "a force model's state (a servo's force, a radiation state space's)"
     width = np.where(coords.kind == 3, 3, np.where(coords.kind == 7, 2, 1))
     size = amplitude[coords.v].copy()
     for k in (1, 2):  # a director's three rates, a string tangent's two

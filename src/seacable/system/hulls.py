@@ -9,10 +9,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from seacable import hydrodb, packing
+from seacable import hydrodb, packing, realization
 from seacable.bodies import kinematics
 from seacable.errors import CaseError
-from seacable.forces import diffraction
+from seacable.forces import diffraction, radiation
 from seacable.forces.kinds import RADIATION_DAMPING
 from seacable.kernels import memory
 from seacable.meshes import Mesh, MeshError, checked, hydrostatics, read
@@ -86,10 +86,11 @@ def body_database(body, base_dir, where: str, environment) -> hydrodb.HydroDB:
     return db.moved((0.0, 0.0, 0.0))
 
 
-def radiation_row(db: hydrodb.HydroDB, spec, memory_at: int, where: str) -> list[float]:
-    """kernels.memory's row: K sampled every ``spec.memory_step`` over ``spec.memory`` seconds,
-    the history block at ``memory_at``; a kernel above 1 % of its peak at the cut-off is
-    reported."""
+def radiation_row(db: hydrodb.HydroDB, spec, where: str) -> list[float]:
+    """forces.radiation's row: K sampled every ``spec.memory_step`` over ``spec.memory``
+    seconds, convolved (kernels.memory's row, its history block's offset set by
+    ``memory_offsets``) or fitted by state spaces (``state_space_entries``); a kernel above 1 %
+    of its peak at the cut-off is reported."""
     count = int(round(spec.memory / spec.memory_step)) + 1
     times = np.arange(count) * spec.memory_step
     k = db.retardation(times)
@@ -101,7 +102,25 @@ def radiation_row(db: hydrodb.HydroDB, spec, memory_at: int, where: str) -> list
             "(memory %.4g s); lengthen 'memory' or check the database's frequencies",
             where, 100 * tail / peak, spec.memory,
         )  # fmt: skip
-    return [float(count), float(spec.memory_step), float(memory_at), *k.reshape(-1)]
+    if spec.method == "state_space":
+        return radiation.pack_state_space(state_space_entries(times, k, spec, where))
+    return radiation.pack_convolution(count, spec.memory_step, k)
+
+
+def state_space_entries(times, kernel, spec, where: str) -> list:
+    """(i, j, A, B, C) of every non-negligible entry of ``kernel`` (len(times), 6, 6) fitted
+    within ``spec.tolerance`` with at most ``spec.order`` states (seacable.realization); an
+    entry whose fit stays above the tolerance is reported with its error."""
+    fits = realization.fit_matrix(times, kernel, spec.order, spec.tolerance)
+    for (i, j), fit in fits.items():
+        if fit.error > spec.tolerance:
+            log.warning(
+                "%s: the state space of K_%s%s (%s on %s) fits it within %.2g %% only with %d "
+                "states (tolerance %.2g %%); raise 'order' or 'tolerance', or use 'method: "
+                "convolution'", where, i + 1, j + 1, hydrodb.DOFS[i], hydrodb.DOFS[j],
+                100 * fit.error, fit.order, 100 * spec.tolerance,
+            )  # fmt: skip
+    return [(i, j, fit.a, fit.b, fit.c) for (i, j), fit in fits.items()]
 
 
 def infinite_added_mass(db: hydrodb.HydroDB, memory: float, step: float) -> np.ndarray:
@@ -118,13 +137,13 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
     for the case's wave components)."""
     db = body_database(body, base_dir, where.split(".")[0], case.environment)
     if spec.model == "radiation damping":
-        if case.simulation.integrator == "cvode":
+        if case.simulation.integrator == "cvode" and spec.method == "convolution":
             raise CaseError(
                 f"{where}: radiation memory is recorded after each accepted step, and SUNDIALS "
-                "keeps its steps to itself; use integrator bdf, radau, dopri5, rk4 or an "
-                "implicit scheme"
+                "keeps its steps to itself; use method: state_space, or integrator bdf, radau, "
+                "dopri5, rk4 or an implicit scheme"
             )
-        return radiation_row(db, spec, 0, where)
+        return radiation_row(db, spec, where)
     wave = packing.wave_fields(case.environment, case.simulation.build_up)["wave"]
     try:
         return diffraction.pack(db, wave, spec.froude_krylov)
@@ -140,9 +159,11 @@ def database_added_mass(body, base_dir, where: str, environment) -> np.ndarray:
 
 
 def memory_offsets(kinds_: list[int], at: list[int], data: list[float]) -> None:
-    """Each radiation row's history block laid out after the one before (kernels.memory)."""
+    """Each radiation convolution's history block laid out after the one before
+    (kernels.memory)."""
     offset = memory.SCRATCH
     for kind, first in zip(kinds_, at, strict=True):
-        if kind == RADIATION_DAMPING:
-            data[first + 2] = float(offset)
-            offset += memory.block_size(int(data[first]))
+        if kind == RADIATION_DAMPING and radiation.uses_history(data[first : first + 1]):
+            row = first + radiation.MEMORY
+            data[row + 2] = float(offset)
+            offset += memory.block_size(int(data[row]))

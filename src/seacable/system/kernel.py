@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import dynamics, kinematics
-from seacable.forces import hydrostatic, kinds, table
+from seacable.forces import hydrostatic, kinds, radiation, table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import memory, natural, surface
@@ -74,7 +74,7 @@ class SystemParams(NamedTuple):
     force_body: np.ndarray  # (nf,) int
     force_at: np.ndarray  # (nf,) int: first float of the row in force_data
     force_first: np.ndarray  # (nf,) int: first channel
-    force_state: np.ndarray  # (nf,) int: first state in y (-1: none; forces.kinds.STATES)
+    force_state: np.ndarray  # (nf,) int: first state in y (-1: none; forces.table.state_count)
     force_data: np.ndarray  # floats of every row
     line_n: np.ndarray  # (nl,) int: segments
     line_seg: np.ndarray  # (nl,) int: first segment in the segment arrays
@@ -235,11 +235,14 @@ def make_work(p: SystemParams) -> SystemWork:
 
 
 def _memory(p: SystemParams) -> int:
-    """The floats of every radiation model's history block (kernels.memory: each row's offset
-    and its count)."""
-    ends = [int(p.force_data[at + 2]) + memory.block_size(int(p.force_data[at]))
-            for kind, at in zip(p.force_kind, p.force_at, strict=True)
-            if kind == kinds.RADIATION_DAMPING]  # fmt: skip
+    """The floats of every radiation convolution's history block (kernels.memory: each row's
+    offset and its count)."""
+    rows = [
+        p.force_data[at + radiation.MEMORY :]
+        for kind, at in zip(p.force_kind, p.force_at, strict=True)
+        if kind == kinds.RADIATION_DAMPING and radiation.uses_history(p.force_data[at:])
+    ]
+    ends = [int(row[2]) + memory.block_size(int(row[0])) for row in rows]  # fmt: skip
     return max(ends, default=memory.SCRATCH)
 
 
@@ -377,8 +380,9 @@ def rhs(t, y, p, w, ydot):
         p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.load,
     )  # fmt: skip
     if p.n_s > 0:
-        table.state_rates(p.force_kind, p.force_body, p.force_at, p.force_state, p.force_data,
-                          w.pos, w.vel, w.ppos, w.pvel, ydot)  # fmt: skip
+        table.state_rates(y, p.force_kind, p.force_body, p.force_at, p.force_state,
+                          p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel,
+                          ydot)  # fmt: skip
     if p.rs_n.shape[0] > 0:  # for the statics' moment balance of rigid lines
         w.own_load[:, :] = w.load[:, 0:3]
     if p.rs_n.shape[0] > 0 and not rigid.backward(
@@ -478,21 +482,30 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
 
 @njit(**JIT)
 def after_step(t, y, p, w):
-    """An accepted step ending at (t, y): the radiation models record their body's velocity
-    (kernels.memory). Every integrator calls it where it projects the state."""
+    """An accepted step ending at (t, y): the radiation convolutions record their body's
+    velocity (kernels.memory). Every integrator calls it where it projects the state."""
     for f in range(p.force_kind.shape[0]):
-        if p.force_kind[f] == kinds.RADIATION_DAMPING:
+        if _convolves(p, f):
             _body_nu(y, p, p.force_body[f], w.memory)
-            memory.record(p.force_data[p.force_at[f] :], w.memory, t, w.memory[0:6])
+            memory.record(p.force_data[p.force_at[f] + radiation.MEMORY :], w.memory, t,
+                          w.memory[0:6])  # fmt: skip
 
 
 @njit(**JIT)
 def start_memory(t, y, p, w):
-    """The radiation models' histories at the run's start (at rest before it)."""
+    """The radiation convolutions' histories at the run's start (at rest before it)."""
     for f in range(p.force_kind.shape[0]):
-        if p.force_kind[f] == kinds.RADIATION_DAMPING:
+        if _convolves(p, f):
             _body_nu(y, p, p.force_body[f], w.memory)
-            memory.start(p.force_data[p.force_at[f] :], w.memory, t, w.memory[0:6])
+            memory.start(p.force_data[p.force_at[f] + radiation.MEMORY :], w.memory, t,
+                         w.memory[0:6])  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def _convolves(p, f):
+    """Force model f is a radiation convolution (forces.radiation), which keeps a history."""
+    return (p.force_kind[f] == kinds.RADIATION_DAMPING
+            and p.force_data[p.force_at[f]] == radiation.CONVOLUTION)  # fmt: skip
 
 
 @inner

@@ -34,7 +34,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0, params = initial_state(built)
     built = BuiltSystem(params=params, y0=built.y0, layout=built.layout, case=case)
     p = built.params
-    if p.n_s:  # the servos' stiffness and their start: each body held at its target
+    if servo.servos(built):  # each servo's stiffness and start: its body held at its target
         p, held = servo.start(built, y0)
         if case.start == "static":
             y0 = held

@@ -260,11 +260,12 @@ def _held_at(built: BuiltSystem, targets: dict[int, tuple]) -> BuiltSystem:
 
 def _kept(built: BuiltSystem) -> np.ndarray:
     """Which entries of the state remain when the servo bodies are held (``_held_at``): all
-    but their own states and the force models'."""
+    but their own states and their servos' (another force model's states, a radiation state
+    space's, remain)."""
     p = built.params
     keep = np.ones(p.n_q + p.n_v + p.n_s, dtype=bool)
-    keep[p.n_q + p.n_v :] = False
-    for _, b, _ in servos(built):
+    for f, b, _ in servos(built):
+        keep[p.force_state[f] : p.force_state[f] + servo.STATES] = False
         if p.body_q[b] >= 0:
             keep[p.body_q[b] : p.body_q[b] + 3] = False
             keep[p.body_v[b] : p.body_v[b] + 3] = False
@@ -278,7 +279,7 @@ def _without(built: BuiltSystem, y: np.ndarray) -> np.ndarray:
 
 def _restored(built: BuiltSystem, held: BuiltSystem, state: np.ndarray) -> np.ndarray:
     """A state of ``held`` in the layout of ``built``: each servo body where it is held,
-    moving as its target's reference body; the force models' states zero."""
+    moving as its target's reference body; the servos' forces zero (``start`` sets them)."""
     p = built.params
     out = np.zeros(p.n_q + p.n_v + p.n_s)
     out[_kept(built)] = state

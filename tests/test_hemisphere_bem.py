@@ -1,0 +1,92 @@
+"""A floating hemisphere in heave, computed with Capytaine through seacable.bem, against Hulme's
+tabulated solution; and the retardation function seacable builds from that database giving back
+its added mass by Ogilvie's relation.
+
+Reference: A. Hulme, "The wave forces acting on a floating hemisphere undergoing forced periodic
+oscillations", J. Fluid Mech. 121 (1982) 443-463, doi:10.1017/S0022112082001980, the heave table
+(a multipole solution): mu = A33 / (rho V) and lambda = B33 / (rho V omega), V = 2/3 pi a^3 the
+displaced volume, against K a = omega^2 a / g, deep water. The numbers below are the table's as
+transcribed in LHEEA's Hulme_Heaving_Sphere (comparison/HulmeResult.dat, Y. Choi, Ecole Centrale
+de Nantes). They agree with the known limits: mu -> 0.5 as K a -> infinity (the image of the
+hemisphere in phi = 0 is a whole sphere, added mass 1/2 rho 4/3 pi a^3; the table reaches 0.4771
+at K a = 10), lambda / (3 pi K a / 4) -> 1 as K a -> 0 (Haskind with the long-wave heave force rho
+g pi a^2; 0.88 at K a = 0.05 in the table, 0.96 at 0.02 from Capytaine); and Capytaine on
+meshes.sphere(1, n) converges on them like 1/n (frequencies up to K a = 2, the lid then on z = 0):
+mu above the table by 1.53, 1.19, 1.01 % and lambda by 1.01, 0.78, 0.52 % at K a = 1 for n = 24,
+32, 40, mu extrapolated within 0.3 % of it from K a = 0.1 to 2.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from seacable import bem, meshes
+
+RADIUS, RHO, GRAVITY = 1.0, 1000.0, 9.81
+VOLUME = 2.0 / 3.0 * math.pi * RADIUS**3
+# Hulme (1982), heave: K a -> (mu, lambda); lambda's peak is near K a = 0.4
+HULME = {
+    0.05: (0.8764, 0.1036),
+    0.1: (0.8627, 0.1816),
+    0.2: (0.7938, 0.2793),
+    0.3: (0.7157, 0.3254),
+    0.4: (0.6452, 0.3410),
+    0.5: (0.5861, 0.3391),
+    0.6: (0.5381, 0.3271),
+    0.8: (0.4698, 0.2899),
+    1.0: (0.4284, 0.2484),
+    1.2: (0.4047, 0.2096),
+    1.4: (0.3924, 0.1756),
+    2.0: (0.3884, 0.1031),
+}
+# frequencies for the retardation function only: its low end and the damping's tail. Near
+# K a = 2.6-3 lies the hemisphere's first irregular frequency, which the lid removes only in
+# part (the damping at K a = 3 comes out 7 % under Hulme's), and above it the panels (pi a / 24)
+# grow coarse for the short waves: not compared.
+TAIL = (0.02, 0.15, 1.7, 2.5, 3.0, 4.0, 5.0, 6.0)
+BANDS = 24  # meshes.sphere: 24 bands of latitude, 48 meridians; 1104 panels below z = 0
+
+
+@pytest.fixture(scope="module")
+def hemisphere():
+    """The database of the sphere of radius 1 m cut at z = 0, at 20 frequencies (16 s of one
+    core, once per module)."""
+    pytest.importorskip("capytaine")
+    ka = np.array(sorted([*HULME, *TAIL]))
+    omega = np.sqrt(ka * GRAVITY / RADIUS)
+    db = bem.compute(meshes.sphere(RADIUS, BANDS), omega, directions_deg=(0.0,), rho=RHO,
+                     gravity=GRAVITY, name="hemisphere")  # fmt: skip
+    return ka, db
+
+
+@pytest.mark.slow  # 20 s with Capytaine's start (the fixture, shared with the next test)
+def test_heave_added_mass_and_damping_match_hulme(hemisphere):
+    """mu and lambda within 1.8 % and 1.5 % of Hulme's from K a = 0.05 to 2 (measured at most
+    +1.29 % and +1.04 %, both too large by the flat panels' first-order error, which a finer mesh
+    shrinks: see the module's note)."""
+    pytest.importorskip("capytaine")
+    ka, db = hemisphere
+    at = np.isin(ka, list(HULME))
+    omega = db.omega[at]
+    mu = db.added_mass[at, 2, 2] / (RHO * VOLUME)
+    lam = db.damping[at, 2, 2] / (RHO * VOLUME * omega)
+    expected = np.array([HULME[k] for k in ka[at]])
+    np.testing.assert_allclose(mu, expected[:, 0], rtol=1.8e-2)
+    np.testing.assert_allclose(lam, expected[:, 1], rtol=1.5e-2)
+
+
+@pytest.mark.slow  # the database of the test above; the kernel itself takes well under a second
+def test_retardation_gives_back_the_added_mass(hemisphere):
+    """K(t) from the database's damping (20 frequencies, K a 0.02 to 6) over 20 s: Ogilvie's
+    A_inf (the mean over the frequencies) within 3 % of the exact high-frequency limit 0.5 rho V
+    (measured +1.8 %: the panels' +1.2 % and B cut at K a = 6), and A(w) = A_inf - (1/w) int K
+    sin(w t) dt back within 1 % of the database's from K a = 0.05 to 2 (measured 0.67 %)."""
+    pytest.importorskip("capytaine")
+    ka, db = hemisphere
+    t = np.linspace(0.0, 20.0, 2001)
+    infinite, _ = db.ogilvie(t)
+    assert infinite[2, 2] / (RHO * VOLUME) == pytest.approx(0.5, rel=3e-2)
+    rebuilt = db.added_mass_from_kernel(t, infinite)[:, 2, 2]
+    at = np.isin(ka, list(HULME))
+    np.testing.assert_allclose(rebuilt[at], db.added_mass[at, 2, 2], rtol=1e-2)
