@@ -35,7 +35,7 @@ def _case(tmp_path, n, amplitude, forces, heading=0.0, phase=0.0):
 
 def _load(built, t, angles=(0.0, 0.0, 0.0)):
     p, y = built.params, built.y0.copy()
-    y[3:7] = kinematics.euler_quaternion(*angles)
+    y[3:7] = kinematics.euler_quaternion(*(float(a) for a in angles))
     w = kernel.make_work(p)
     kernel.rhs(t, y, p, w, np.zeros_like(y))
     return w.load[0].copy()

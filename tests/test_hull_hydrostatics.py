@@ -186,7 +186,7 @@ def _loads(built, position, angles):
     y = built.y0.copy()
     q = int(p.body_q[0])
     y[q : q + 3] = position
-    y[q + 3 : q + 7] = kinematics.euler_quaternion(*angles)
+    y[q + 3 : q + 7] = kinematics.euler_quaternion(*(float(a) for a in angles))
     w = kernel.make_work(p)
     kernel.rhs(0.0, y, p, w, np.zeros_like(y))
     return w.load[0].copy()

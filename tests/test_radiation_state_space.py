@@ -197,7 +197,7 @@ def test_the_states_rest_at_rest_and_follow_their_system(tmp_path):
 def _quaternion(angles):
     from seacable.bodies import kinematics
 
-    return np.array(kinematics.euler_quaternion(*angles))
+    return np.array(kinematics.euler_quaternion(*(float(a) for a in angles)))
 
 
 def test_a_poor_fit_is_reported(caplog):

@@ -110,7 +110,7 @@ def _states(results, built):
         y = built.y0.copy()
         y[0:3] = [ship[f"position_{c}"].values[k] for c in "xyz"]
         angles = [math.radians(ship[n].values[k]) for n in ("roll", "pitch", "yaw")]
-        y[3:7] = kinematics.euler_quaternion(*angles)
+        y[3:7] = kinematics.euler_quaternion(*(float(a) for a in angles))
         y[7:10] = [ship[f"velocity_{c}"].values[k] for c in "xyz"]
         y[10:13] = [ship[f"angular_velocity_{c}"].values[k] for c in "xyz"]
         rows.append(y)
@@ -157,7 +157,7 @@ def test_the_documents_form_keeps_the_energy_but_not_the_impulse_of_free_motion(
 def _loads(case, velocity, omega, angles):
     built = model.build(case)
     p, y = built.params, built.y0.copy()
-    y[3:7] = kinematics.euler_quaternion(*angles)
+    y[3:7] = kinematics.euler_quaternion(*(float(a) for a in angles))
     v = int(p.body_v[0])
     y[v : v + 3], y[v + 3 : v + 6] = velocity, omega
     w = kernel.make_work(p)
@@ -184,7 +184,7 @@ def test_body_frame_damping():
     b = matrix @ matrix.T
     angles = (0.3, -0.2, 1.1)
     rot = np.zeros((3, 3))
-    kinematics.rotation(*kinematics.euler_quaternion(*angles), rot)
+    kinematics.rotation(*kinematics.euler_quaternion(*(float(a) for a in angles)), rot)
     r6 = np.kron(np.eye(2), rot)
     velocity, omega = rng.normal(size=3), rng.normal(size=3)
     body, _ = _loads(_damped([{"model": "linear_damping", "frame": "body",
