@@ -477,6 +477,8 @@ def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
             rows, cols = rows[inside], cols[inside]
             steps = np.broadcast_to(step[:, None], inside.shape)[inside]
             ab[half + rows - cols, cols] = dr[rows] / steps
+        if not np.isfinite(ab).all():
+            break  # the lines went where their loads are not finite: keep the best state met
         delta = solve_banded((half, half), ab, -r)
         # the seabed's contact is not smooth: when no shorter step lowers the residual, the
         # full step is taken anyway, and the best state met is kept
