@@ -7,7 +7,7 @@ import math
 
 from numba import njit
 
-from seacable.kernels import morison, waves
+from seacable.kernels import morison
 from seacable.kernels.chain3d_layout import (
     _E,
     _F,
@@ -109,17 +109,14 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         fx = fy = fz = 0.0  # the water's inertia force [N]
         if waves_on and wet > 0.0:
             # the water's velocity and acceleration at the wetted part's centroid
-            water, acc = waves.kinematics(
-                wave, t, share * w[_P, i] + (1.0 - share) * w[_P, i + 1],
-                share * w[_P + 1, i] + (1.0 - share) * w[_P + 1, i + 1],
-                share * w[_P + 2, i] + (1.0 - share) * w[_P + 2, i + 1], wave_depth,
-                wave_stretch,
+            water, (fx, fy, fz) = morison.at_wetted(
+                wave, t, share, (w[_P, i], w[_P + 1, i], w[_P + 2, i]),
+                (w[_P, i + 1], w[_P + 1, i + 1], w[_P + 2, i + 1]), wave_depth, wave_stretch,
+                wet * buoyancy[i] / gravity, wet * added_mass[i], (ex, ey, ez),
             )  # fmt: skip
             rx -= water[0]
             ry -= water[1]
             rz -= water[2]
-            fx, fy, fz = morison.inertia(wet * buoyancy[i] / gravity, wet * added_mass[i],
-                                         acc[0], acc[1], acc[2], ex, ey, ez)  # fmt: skip
         vt = rx * ex + ry * ey + rz * ez
         nx, ny, nz = rx - vt * ex, ry - vt * ey, rz - vt * ez
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)

@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 from seacable.kernels import chain3d as c3
-from seacable.kernels import morison, waves
+from seacable.kernels import morison
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
 
@@ -112,16 +112,14 @@ def segment_loads(
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
         if waves_on and wet > 0.0:
             # the water's velocity and acceleration at the wetted part's centroid
-            u, acc = waves.kinematics(
-                wave, t, share_a * y[a] + (1.0 - share_a) * y[b],
-                share_a * y[a + 1] + (1.0 - share_a) * y[b + 1],
-                share_a * y[a + 2] + (1.0 - share_a) * y[b + 2], wave_depth, wave_stretch,
+            u, (wax, way, waz) = morison.at_wetted(
+                wave, t, share_a, (y[a], y[a + 1], y[a + 2]), (y[b], y[b + 1], y[b + 2]),
+                wave_depth, wave_stretch, wet * buoyancy[s] / gravity, wet * added_mass[s],
+                (tx, ty, tz),
             )  # fmt: skip
             rx -= u[0]
             ry -= u[1]
             rz -= u[2]
-            wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
-                                            acc[0], acc[1], acc[2], tx, ty, tz)  # fmt: skip
         vt = rx * tx + ry * ty + rz * tz
         nx, ny, nz = rx - vt * tx, ry - vt * ty, rz - vt * tz
         vn = math.sqrt(nx * nx + ny * ny + nz * nz)

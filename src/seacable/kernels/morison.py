@@ -52,6 +52,19 @@ def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb):
 
 
 @njit(inline="always", **JIT)
+def at_wetted(wave, t, share, a, b, depth, stretch, displaced, added, tangent):
+    """The water's velocity (3) [m/s] at the wetted part's centroid ``share a + (1 - share)
+    b`` (points, tuples [m]) and the inertia force (3) [N] of its acceleration on the wetted
+    part (displaced and normal added mass [kg], unit ``tangent``)."""
+    u, acc = waves.kinematics(
+        wave, t, share * a[0] + (1.0 - share) * b[0], share * a[1] + (1.0 - share) * b[1],
+        share * a[2] + (1.0 - share) * b[2], depth, stretch,
+    )  # fmt: skip
+    force = inertia(displaced, added, acc[0], acc[1], acc[2], tangent[0], tangent[1], tangent[2])
+    return u, force
+
+
+@njit(inline="always", **JIT)
 def inertia(displaced, added, ax, ay, az, tx, ty, tz):
     """Froude-Krylov and added-mass force [N] of the water's acceleration (ax, ay, az)
     [m/s^2] on a segment of displaced mass ``displaced`` and normal added mass ``added`` [kg]
