@@ -5,6 +5,7 @@ in waves the water's inertia (``segment_loads``), the free surface's share of ea
 
 import math
 
+import numpy as np
 from numba import njit
 
 from seacable.kernels import morison
@@ -79,6 +80,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
     u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
     waves_on = wave.shape[0] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
+    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch: each phase once per point
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
@@ -112,7 +114,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
             water, (fx, fy, fz) = morison.at_wetted(
                 wave, t, share, (w[_P, i], w[_P + 1, i], w[_P + 2, i]),
                 (w[_P, i + 1], w[_P + 1, i + 1], w[_P + 2, i + 1]), wave_depth, wave_stretch,
-                wet * buoyancy[i] / gravity, wet * added_mass[i], (ex, ey, ez),
+                wet * buoyancy[i] / gravity, wet * added_mass[i], (ex, ey, ez), trig,
             )  # fmt: skip
             rx -= water[0]
             ry -= water[1]

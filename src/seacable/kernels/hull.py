@@ -145,13 +145,13 @@ def add_hydrostatic(row, level, pos, rho, gravity, work, rhs):
 
 
 @njit(inline="always", **JIT)
-def _add_wave_pressure(a, b, c, pos, wave, t, depth, stretch, rho_g, rhs):
+def _add_wave_pressure(a, b, c, pos, wave, t, depth, stretch, rho_g, trig, rhs):
     """-int p n dA and its moment over triangle a b c (arms), p the incident wave's dynamic
     pressure at its three edge midpoints."""
     s = _area_vector(a, b, c)
     for m in (_mid(a, b), _mid(b, c), _mid(c, a)):
         p = waves.pressure(wave, t, pos[0] + m[0], pos[1] + m[1], pos[2] + m[2], depth, stretch,
-                           rho_g) / 3.0  # fmt: skip
+                           rho_g, trig) / 3.0  # fmt: skip
         rhs[0] -= p * s[0]
         rhs[1] -= p * s[1]
         rhs[2] -= p * s[2]
@@ -169,14 +169,15 @@ def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs
         return
     t0 = HEADER + 3 * int(row[0])
     rho_g = rho * gravity
+    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch
     for k in range(int(row[1])):
         count, parts = _wet(row, t0, k, work)
         if count >= 1:
             _add_wave_pressure(parts[0], parts[1], parts[2], pos, wave, t, depth, stretch, rho_g,
-                               rhs)  # fmt: skip
+                               trig, rhs)  # fmt: skip
         if count == 2:
             _add_wave_pressure(parts[3], parts[4], parts[5], pos, wave, t, depth, stretch, rho_g,
-                               rhs)  # fmt: skip
+                               trig, rhs)  # fmt: skip
 
 
 @njit(inline="always", **JIT)

@@ -15,6 +15,7 @@ along the seabed. Every step is O(n): each free node solves its own 3x3 mass mat
 
 import math
 
+import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
@@ -62,6 +63,7 @@ def segment_loads(
     v0 = 3 * (n + 1)
     waves_on = wave.shape[0] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
+    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch: each phase once per point
     wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
@@ -115,7 +117,7 @@ def segment_loads(
             u, (wax, way, waz) = morison.at_wetted(
                 wave, t, share_a, (y[a], y[a + 1], y[a + 2]), (y[b], y[b + 1], y[b + 2]),
                 wave_depth, wave_stretch, wet * buoyancy[s] / gravity, wet * added_mass[s],
-                (tx, ty, tz),
+                (tx, ty, tz), trig,
             )  # fmt: skip
             rx -= u[0]
             ry -= u[1]

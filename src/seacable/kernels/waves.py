@@ -28,6 +28,7 @@ r a + r' u: the sea rises from still water at rest, with no jump in force or its
 
 import math
 
+import numpy as np
 from numba import njit
 
 from seacable.kernels.jit import JIT
@@ -70,41 +71,69 @@ def stretched(z, eta, depth, stretch):
 
 @njit(inline="always", **JIT)
 def _factors(k, z, depth):
-    """C, D, E of the module docstring at z <= 0."""
-    up = math.exp(k * z)
+    """C, D, E of the module docstring at z <= 0 (one exponential in deep water, two in
+    finite depth: e^{-k (z + 2h)} = e^{-2kh} / e^{kz}; below the seabed, their values on it)."""
     if depth >= DEEP or k * depth > 40.0:
+        up = math.exp(k * z)
         return up, up, up
-    down = math.exp(-k * (z + 2.0 * depth))
+    up = math.exp(k * max(z, -depth))
     deep = math.exp(-2.0 * k * depth)
+    down = deep / up
     return (up + down) / (1.0 + deep), (up + down) / (1.0 - deep), (up - down) / (1.0 - deep)
 
 
 @njit(inline="always", **JIT)
-def pressure(row, t, x, y, z, depth, stretch, rho_g):
-    """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
-    callers integrate over the wetted part: points on its edges may lie a rounding above)."""
-    eta = elevation(row, t, x, y)
-    zs = stretched(z, eta, depth, stretch)
+def _phases(row, t, x, y, trig, sines):
+    """cos theta_i (and sin theta_i with ``sines``) at (x, y) into ``trig[i, 0]`` (``[i, 1]``);
+    returns the elevation before the build-up's ramp, sum a_i cos theta_i [m]."""
     total = 0.0
     for i in range(row.shape[0]):
         theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
-        c, _, _ = _factors(row[i, K], zs, depth)
-        total += row[i, A] * c * math.cos(theta)
-    return rho_g * ramp(row, t)[0] * total
+        c = math.cos(theta)
+        trig[i, 0] = c
+        if sines:
+            trig[i, 1] = math.sin(theta)
+        total += row[i, A] * c
+    return total
 
 
 @njit(inline="always", **JIT)
-def kinematics(row, t, x, y, z, depth, stretch):
-    """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
-    free surface, their values there (the callers weigh by the submerged part)."""
-    eta = elevation(row, t, x, y)
-    zs = stretched(z, eta, depth, stretch)
-    ux = uy = uz = ax = ay = az = 0.0
+def pressure(row, t, x, y, z, depth, stretch, rho_g, trig):
+    """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
+    callers integrate over the wetted part: points on its edges may lie a rounding above).
+    ``trig``: scratch of (n, 2) floats (allocated once per caller). Each component's phase is
+    evaluated once, for the elevation and the pressure, and C once per distinct wave number
+    (the rows of a spectrum come frequency by frequency)."""
+    r = ramp(row, t)[0]
+    zs = stretched(z, r * _phases(row, t, x, y, trig, False), depth, stretch)
+    total = 0.0
+    k_last = -1.0
+    c = 0.0
     for i in range(row.shape[0]):
+        if row[i, K] != k_last:
+            k_last = row[i, K]
+            c, _, _ = _factors(k_last, zs, depth)
+        total += row[i, A] * c * trig[i, 0]
+    return rho_g * r * total
+
+
+@njit(inline="always", **JIT)
+def kinematics(row, t, x, y, z, depth, stretch, trig):
+    """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
+    free surface, their values there (the callers weigh by the submerged part). ``trig``:
+    scratch of (n, 2) floats. Each component's phase is evaluated once, for the
+    elevation and the kinematics, and D and E once per distinct wave number."""
+    r, dr = ramp(row, t)
+    zs = stretched(z, r * _phases(row, t, x, y, trig, True), depth, stretch)
+    ux = uy = uz = ax = ay = az = 0.0
+    k_last = -1.0
+    d = e = 0.0
+    for i in range(row.shape[0]):
+        if row[i, K] != k_last:
+            k_last = row[i, K]
+            _, d, e = _factors(k_last, zs, depth)
         w = row[i, W]
-        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - w * t + row[i, PHASE]
-        _, d, e = _factors(row[i, K], zs, depth)
-        cos_t, sin_t = math.cos(theta), math.sin(theta)
+        cos_t, sin_t = trig[i, 0], trig[i, 1]
         horizontal = row[i, A] * w * d
         ux += horizontal * cos_t * row[i, COS]
         uy += horizontal * cos_t * row[i, SIN]
@@ -112,7 +141,6 @@ def kinematics(row, t, x, y, z, depth, stretch):
         ax += horizontal * w * sin_t * row[i, COS]
         ay += horizontal * w * sin_t * row[i, SIN]
         az -= row[i, A] * w * w * e * cos_t
-    r, dr = ramp(row, t)
     if r == 1.0 and dr == 0.0:
         return (ux, uy, uz), (ax, ay, az)
     return ((r * ux, r * uy, r * uz),
@@ -128,11 +156,11 @@ def elevation_at(row, t, x, y):
 @njit(**JIT)
 def pressure_at(row, t, x, y, z, depth, stretch, rho_g):
     """The dynamic pressure [Pa] (from Python)."""
-    return pressure(row, t, x, y, z, depth, stretch, rho_g)
+    return pressure(row, t, x, y, z, depth, stretch, rho_g, np.empty((row.shape[0], 2)))
 
 
 @njit(**JIT)
 def field(row, t, x, y, z, depth, stretch):
     """(u_x, u_y, u_z, a_x, a_y, a_z) of the water at a point (from Python)."""
-    u, a = kinematics(row, t, x, y, z, depth, stretch)
+    u, a = kinematics(row, t, x, y, z, depth, stretch, np.empty((row.shape[0], 2)))
     return u[0], u[1], u[2], a[0], a[1], a[2]
