@@ -11,7 +11,7 @@ from numba import njit
 
 import seacable
 from seacable.bodies.contract import BodyDynamics, BodyKinematics
-from seacable.case import system as sch
+from seacable.case.forces import ForceModel
 from seacable.forces import kinds, table
 from seacable.forces.contract import ForceTable, StatefulForceModel
 from seacable.kernels import chain3d as c3
@@ -34,7 +34,7 @@ def test_the_system_model_is_a_run_model():
 
 
 def _schema_force_models() -> list[str]:
-    union = typing.get_args(typing.get_args(sch.ForceModel)[0])
+    union = typing.get_args(typing.get_args(ForceModel)[0])
     return [typing.get_args(cls.model_fields["model"].annotation)[0] for cls in union]
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from seacable import seastate
-from seacable.case.base import Environment
+from seacable.case.environment import Environment
 from seacable.kernels import waves
 
 G, RHO = 9.81, 1025.0

@@ -1,7 +1,7 @@
 """The parts of the case-file schema every case form shares: numbers and points, time functions,
-the environment, body shapes and the simulation settings (frozen, validated pydantic models;
-units in every field). ``case.schema`` (one cable with its ends) and ``case.system`` (bodies and
-lines) build on them.
+body shapes and the simulation settings (frozen, validated pydantic models; units in every
+field); the environment is in ``case.environment``. ``case.schema`` (one cable with its ends)
+and ``case.system`` (bodies and lines) build on them.
 
 Conventions (see docs/conventions.md): SI units, z up with z = 0 at the still-water surface,
 angles in the case file in degrees (keys end in ``_deg``), radians everywhere inside.
@@ -282,125 +282,6 @@ class ShipTravel(_Model):
     def _one_law(self):
         if (self.speed is None) == (self.distance is None):
             raise ValueError("give exactly one of 'speed' [m/s] or 'distance' [m, time function]")
-        return self
-
-
-# ---- environment ---------------------------------------------------------------------------------
-class Current(_Model):
-    """Current flowing towards ``direction_deg`` (from +x towards +y; 0 = along +x): either a
-    uniform ``velocity`` [m/s] or a ``profile`` of [elevation z (m, negative below the surface),
-    speed (m/s)] pairs, linearly interpolated and held constant beyond the end points."""
-
-    velocity: float | None = None
-    profile: list[tuple[float, float]] | None = None
-    direction_deg: float = 0.0
-
-    @model_validator(mode="after")
-    def _one(self):
-        if (self.velocity is None) == (self.profile is None):
-            raise ValueError("give exactly one of 'velocity' [m/s] or 'profile' [[z, u], ...]")
-        if self.profile is not None:
-            if len(self.profile) < 2:
-                raise ValueError("a current profile needs at least 2 points")
-        return self
-
-    def arrays(self):
-        if self.profile is None:
-            return np.array([0.0]), np.array([float(self.velocity)])
-        data = np.array(sorted(self.profile), dtype=float)
-        if np.any(np.diff(data[:, 0]) <= 0):
-            raise ValueError("current profile elevations must be distinct")
-        return data[:, 0].copy(), data[:, 1].copy()
-
-
-class Wind(_Model):
-    """A uniform wind blowing towards ``direction_deg`` (from +x towards +y, as the current;
-    not the meteorological "from"), at ``speed`` [m/s]; both time functions (or constants),
-    exempt from the build-up as the current is. It acts through the bodies' ``wind`` force
-    models, at ``air_density`` [kg/m^3]."""
-
-    speed: TimeFunction  # [m/s]
-    direction_deg: TimeFunction = Constant(value=0.0)  # [deg], the direction it blows towards
-    air_density: Pos = 1.225  # [kg/m^3]
-
-
-class Seabed(_Model):
-    """Seabed contact of lumped-mass cables: per metre of line, a vertical ``stiffness``
-    [N/m per m of line] and ``damping`` [N s/m per m] while a node is below the seabed, and
-    Coulomb friction along it (``friction_coefficient``, regularised below ``slip_speed``)."""
-
-    stiffness: Pos = 1.0e5
-    damping: NonNeg = 0.0
-    friction_coefficient: NonNeg = 0.0
-    slip_speed: Pos = 0.01  # [m/s]
-
-
-class RegularWave(_Model):
-    """An Airy wave: eta = H/2 cos(k (x cos b + y sin b) - 2 pi t / T + phase), k from the
-    dispersion relation at the water depth (seastate.wave_number)."""
-
-    kind: Literal["airy"]
-    height: Pos  # crest to trough [m]
-    period: Pos  # [s]
-    direction_deg: float = 0.0  # the direction it travels towards, from +x towards +y
-    phase_deg: float = 0.0
-
-
-class WaveSpectrum(_Model):
-    """An irregular sea (seastate): a JONSWAP or Pierson-Moskowitz spectrum of significant
-    height Hs and peak period Tp, spread over directions as cos^2s((b - direction) / 2),
-    discretised into ``frequencies`` x ``directions`` components with random frequencies
-    inside equal bands between frequency_range times the peak frequency and random phases,
-    from ``seed``."""
-
-    kind: Literal["jonswap", "pierson_moskowitz"]
-    significant_height: Pos  # Hs [m]
-    peak_period: Pos  # Tp [s]
-    gamma: Annotated[float, Field(ge=1.0, le=20.0)] | None = None  # JONSWAP's (3.3 by default)
-    direction_deg: float = 0.0  # the mean direction the waves travel towards
-    spreading_exponent: NonNeg = 0.0  # s of cos^2s
-    directions: Annotated[int, Field(ge=1, le=101)] = 1
-    frequencies: Annotated[int, Field(ge=1, le=5000)] = 200
-    frequency_range: tuple[Pos, Pos] = (0.5, 3.0)  # [low, high] times 2 pi / Tp
-    seed: Annotated[int, Field(ge=0)] = 0
-
-    @model_validator(mode="after")
-    def _consistent(self):
-        if self.kind == "pierson_moskowitz" and self.gamma is not None:
-            raise ValueError("'gamma' is JONSWAP's peak enhancement; remove it, or use "
-                             "kind: jonswap")  # fmt: skip
-        if self.directions % 2 == 0:
-            raise ValueError(f"directions ({self.directions}) must be odd, so that one is "
-                             "the mean direction")  # fmt: skip
-        if self.directions > 1 and self.spreading_exponent == 0.0:
-            raise ValueError("several directions need a spreading_exponent (s of cos^2s, "
-                             "e.g. 2 for wind sea, 10 or more for swell)")  # fmt: skip
-        low, high = self.frequency_range
-        if not low < high:
-            raise ValueError(f"frequency_range [{low:g}, {high:g}] must increase")
-        return self
-
-
-Wave = Annotated[RegularWave | WaveSpectrum, Field(discriminator="kind")]
-
-
-class Environment(_Model):
-    gravity: Pos = 9.81  # [m/s^2]
-    water_density: Pos = 1025.0  # [kg/m^3]
-    water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
-    current: Current | None = None
-    wind: Wind | None = None  # for the bodies' ``wind`` force models
-    in_air: bool = False  # true: no buoyancy, no drag, no added mass
-    seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
-    waves: list[Wave] = []  # superposed (kernels.waves)
-    # the wave kinematics above the mean surface, under a crest: "wheeler" (the water column
-    # stretched to the surface) or "vertical" (held at their value at z = 0)
-    wave_stretching: Literal["wheeler", "vertical"] = "wheeler"
-
-    @model_validator(mode="after")
-    def _waves_in_water(self):
-        if self.waves and self.in_air:
-            raise ValueError("waves need water: remove 'waves' or set in_air: false")
         return self
 
 

@@ -1,6 +1,6 @@
 """The case-file schema of one cable with its ends (the single-cable form): frozen, validated
-pydantic models. Units are given for every field; the parts every case form shares (time
-functions, environment, shapes, simulation) are in ``case.base``.
+pydantic models. Units are given for every field; the parts every case form shares are in
+``case.base`` (time functions, shapes, simulation) and ``case.environment``.
 
 Conventions (see docs/conventions.md): SI units, z up with z = 0 at the still-water surface,
 angles in the case file in degrees (keys end in ``_deg``), radians everywhere inside.
@@ -21,14 +21,11 @@ from seacable.case.base import (
     AccelerationPhase,
     AccelerationProfile,
     Constant,
-    Current,
-    Environment,
     NonNeg,
     PerAxis,
     Point,
     Pos,
     Ramp,
-    Seabed,
     Shape,
     ShipTravel,
     Simulation,
@@ -43,6 +40,7 @@ from seacable.case.base import (
     per_axis,
     xyz,
 )
+from seacable.case.environment import Current, Environment, Seabed
 
 
 # ---- cable -------------------------------------------------------------------------------------
@@ -472,7 +470,7 @@ class Case(_Model):
         return self
 
 
-# the shared parts (case.base) are re-exported: ``schema.Sine`` etc. keep working
+# the shared parts (case.base, case.environment) are re-exported: ``schema.Sine`` etc. keep working
 __all__ = [
     "AccelerationPhase",
     "AccelerationProfile",

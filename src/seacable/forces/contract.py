@@ -14,7 +14,7 @@ class ForceTable(Protocol):
     ``data[at[f]:]``, its time-function channels from ``first[f]``, its states from
     ``state[f]`` (-1: none). The rules every force model honours:
 
-    1. Its schema class (``case.system``) validates its inputs, and its ``pack`` turns them into
+    1. Its schema class (``case.forces``) validates its inputs, and its ``pack`` turns them into
        one row of floats (and channels for time functions); nothing of it depends on how many
        bodies or forces a case has (compiled types stay the same).
     2. ``add_all``: it adds a force and its moment about the body's reference point, both in the

@@ -2,7 +2,7 @@
 -int_0^Tc K(tau) nu(t - tau) d tau of the retardation functions K of a hydrodynamic database
 (seacable.hydrodb) on the body-frame velocity history nu of the body's reference point, turned
 into the earth frame. The database's infinite-frequency added mass is the body's added mass
-(case.system.RadiationDamping). Two methods:
+(case.forces.RadiationDamping). Two methods:
 
 - ``convolution``: the integral over a recorded velocity history (kernels.memory);
 - ``state_space``: each non-negligible entry K_ij(t) ~ C e^{A t} B (seacable.realization), its

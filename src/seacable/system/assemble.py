@@ -4,6 +4,7 @@ sections cut into segments, time functions compiled into channels."""
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -15,21 +16,12 @@ from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import (
-    applied,
-    coefficients,
-    drag,
-    hydrostatic,
-    linear,
-    rudder,
-    servo,
-    table,
-    thruster,
-)
+from seacable.forces import table
 from seacable.forces.kinds import kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import hulls, natural_lines, topology
+from seacable.system.force_rows import force_row, in_radians, offset
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
@@ -107,14 +99,6 @@ def _track(track: sch.Track, base_dir, where: str) -> tuple[tfn.Piecewise, list[
     return distance, row
 
 
-def _rad(function: tfn.Piecewise) -> tfn.Piecewise:
-    """A degree-valued time function in radians."""
-    k = math.pi / 180.0
-    amplitude, omega, phase = function.sine
-    return tfn.Piecewise(function.breaks, function.coefs * k, (amplitude * k, omega, phase),
-                         function.builds_up)  # fmt: skip
-
-
 def _point(case: sch.SystemCase, layout: Layout, ref: str, where: str) -> int:
     """Index of the point ``body`` or ``body.point`` (created on first use)."""
     if ref in layout.point_index:
@@ -147,6 +131,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     env = case.environment
     rho = 0.0 if env.in_air else env.water_density
     layout = Layout(bodies=[b.name for b in case.bodies])
+    point = partial(_point, case, layout)  # (ref, where) -> the point's index
     channels: list[tfn.Piecewise] = []
     nb = len(case.bodies)
     tables = [
@@ -169,7 +154,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     if env.wind is not None:  # exempt from the build-up, as the current
         layout.wind_channel = len(channels)
         channels.append(tfn.steady(channel(env.wind.speed, base_dir, "environment.wind.speed")))
-        channels.append(tfn.steady(_rad(channel(env.wind.direction_deg, base_dir,
+        channels.append(tfn.steady(in_radians(channel(env.wind.direction_deg, base_dir,
                                                 "environment.wind.direction_deg"))))  # fmt: skip
     tips = topology.rigid_tips(case)
     carried = set(tips) | natural_lines.tips(case)  # no state: a line's end carries them
@@ -189,7 +174,9 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             for axis in ("x", "y", "z"):
                 channels.append(channel(getattr(body, axis), base_dir, f"{where}.{axis}"))
             for angle in ("roll_deg", "pitch_deg", "yaw_deg"):
-                channels.append(_rad(channel(getattr(body, angle), base_dir, f"{where}.{angle}")))
+                channels.append(
+                    in_radians(channel(getattr(body, angle), base_dir, f"{where}.{angle}"))
+                )
                 if getattr(body, angle) != sch.Constant(value=0.0):
                     arrays["body_motion"][b] = kinematics.TURNS
             arrays["body_parent"][b] = _parent(case, body, where)
@@ -241,8 +228,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             f["body"].append(b)
             f["at"].append(len(data))
             f["first"].append(len(channels))
-            row = _force_row(case, layout, spec, body, rho, base_dir, channels,
-                             f"{where}.external forces[{k}]")  # fmt: skip
+            row = force_row(case, layout, spec, body, rho, base_dir, channels,
+                            f"{where}.external forces[{k}]", point)  # fmt: skip
             data += row
             states = table.state_count(f["kind"][-1], row)  # its states follow the others'
             f["state"].append(n_s if states else -1)
@@ -255,9 +242,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     rigid_lines = _rigid_lines(case, layout, rho, q_at, v_at, tips, arrays["body_free"])
     n_q = q_at + rigid_lines.pop("directors")
     n_v = v_at + rigid_lines.pop("rates")
-    strings, string_q = natural_lines.table(
-        case, layout, lambda ref, where: _point(case, layout, ref, where), n_q, n_v
-    )
+    strings, string_q = natural_lines.table(case, layout, point, n_q, n_v)
     strings["nat_v"] = strings["nat_v"] + n_q + len(string_q)  # absolute, as below
     first_string = n_q
     n_q, n_v = n_q + len(string_q), n_v + len(string_q)
@@ -268,7 +253,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     f["state"] = [s + n_q + n_v if s >= 0 else -1 for s in f["state"]]
     ties = _ties(case, layout)
     points = np.array([b for b, _ in layout.points], dtype=np.int64)
-    offsets = np.array([_offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
+    offsets = np.array([offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
     current_z, current_u, current_v = current_arrays(env)
     seabed = env.seabed
     fields: dict[str, Any] = dict(
@@ -293,101 +278,6 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
-
-
-def _offset(body, point: str) -> tuple[float, float, float]:
-    if point == sch.ORIGIN:
-        return (0.0, 0.0, 0.0)
-    return body.points[point]
-
-
-def _force_row(case, layout, spec, body, rho, base_dir, channels, where) -> list[float]:
-    if isinstance(spec, sch.Drag):
-        return drag.pack(spec, rho)
-    if isinstance(spec, sch.AppliedForce):
-        _point(case, layout, f"{body.name}.{spec.point}" if spec.point != sch.ORIGIN
-               else body.name, where)  # fmt: skip
-        for name in applied.CHANNELS:
-            channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
-        return applied.pack(_offset(body, spec.point), spec.frame == "body")
-    if isinstance(spec, sch.Thruster | sch.Rudder | sch.WindLoad | sch.CurrentLoad):
-        return _vessel_row(case, layout, spec, body, base_dir, channels, where)
-    if isinstance(spec, sch.LinearStiffness):
-        position: Any = spec.equilibrium_position or body.position
-        angles: Any = spec.equilibrium_orientation_deg or getattr(
-            body, "orientation_deg", (0.0, 0.0, 0.0)
-        )
-        roll, pitch, yaw = (math.radians(a) for a in angles)
-        quaternion = kinematics.euler_quaternion(roll, pitch, yaw)
-        return [*linear.matrix(spec).ravel(), *position, *quaternion]
-    if isinstance(spec, sch.LinearDamping | sch.QuadraticDamping):
-        matrix = transported(linear.matrix(spec), spec.point)
-        form = linear.FORMS[getattr(spec, "frame", "quadratic")]
-        return [*matrix.ravel(), float(form)]
-    if isinstance(spec, sch.NonLinearHydrostatic | sch.NonLinearFroudeKrylov):
-        still = isinstance(spec, sch.NonLinearHydrostatic) and spec.free_surface == "still"
-        mesh = hulls.body_mesh(body, base_dir, where.split(".")[0])
-        return hydrostatic.pack(mesh.row(), still)
-    if isinstance(spec, sch.RadiationDamping | sch.Diffraction):
-        return hulls.database_row(case, body, spec, base_dir, where)
-    if isinstance(spec, sch.ServoForce):
-        target = _point(case, layout, spec.target, f"{where}.target")
-        sim = case.simulation
-        step = spec.step or sim.time_step or min(0.01, sim.output_interval)
-        return servo.pack(spec.gain, spec.rate_gain, step, target)
-    return []  # gravity, buoyancy: the body's own fields
-
-
-def _body_point(body, point, where: str) -> tuple[float, float, float]:
-    """A force model's ``point``: a point's name, or body-frame coordinates [m]."""
-    if not isinstance(point, str):
-        return tuple(float(v) for v in point)  # type: ignore[return-value]
-    if point != sch.ORIGIN and point not in body.points:
-        raise CaseError(f"{where}.point: body '{body.name}' has no point '{point}'; its points "
-                        f"are {[sch.ORIGIN, *body.points]}, or give [x, y, z] in the body "
-                        "frame [m]")  # fmt: skip
-    return _offset(body, point)
-
-
-def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[float]:
-    """The row and channels of a thruster, a rudder, or a wind or current load."""
-    if not isinstance(body, sch.RigidBody):
-        raise CaseError(f"{where}: model '{spec.model}' acts on a vessel: a 'rigid' body (this "
-                        f"one is '{body.type}')")  # fmt: skip
-    if isinstance(spec, sch.Thruster):
-        law = spec.thrust if spec.controller is None else spec.controller.target
-        channels.append(channel(law, base_dir, f"{where}.thrust"))
-        feed = sch.Constant(value=0.0) if spec.controller is None else spec.controller.feedforward
-        channels.append(channel(feed, base_dir, f"{where}.controller.feedforward"))
-        channels.append(_rad(channel(spec.azimuth_deg, base_dir, f"{where}.azimuth_deg")))
-        return thruster.pack(_body_point(body, spec.point, where), spec.direction,
-                             spec.azimuth_deg is not None, spec.controller is not None,
-                             spec.controller.gain if spec.controller else 0.0,
-                             spec.max_thrust)  # fmt: skip
-    if isinstance(spec, sch.Rudder):
-        pilot = spec.autopilot
-        law = spec.angle_deg if pilot is None else pilot.heading_deg
-        channels.append(_rad(channel(law, base_dir, f"{where}.angle_deg")))
-        return rudder.pack(
-            _body_point(body, spec.point, where), spec.area, spec.lift_slope,
-            spec.stall_angle_deg, spec.drag_coefficient, spec.aspect_ratio,
-            spec.slipstream_factor, (pilot.gain, pilot.rate_gain) if pilot else None,
-            pilot.max_angle_deg if pilot else None, spec.coefficients,
-        )  # fmt: skip
-    wind = case.environment.wind
-    if isinstance(spec, sch.WindLoad) and wind is None:
-        raise CaseError(f"{where}: model 'wind' needs environment.wind ({{speed [m/s], "
-                        "direction_deg}}); add it, or remove the wind model")  # fmt: skip
-    try:
-        table = coefficients.table_rows(spec, base_dir)
-    except ValueError as exc:
-        raise CaseError(f"{where}: {exc}") from None
-    is_wind = isinstance(spec, sch.WindLoad)
-    return coefficients.pack(
-        spec.point, (spec.transverse_area, spec.lateral_area), spec.length,
-        wind.air_density if is_wind and wind else 0.0,
-        layout.wind_channel if is_wind else -1, table,
-    )  # fmt: skip
 
 
 def _sections(case, line, rho, extensible=True):

@@ -22,6 +22,7 @@ import numpy as np
 from scipy.sparse.linalg import splu
 
 from seacable.case import system as sch
+from seacable.case.forces import ServoForce
 from seacable.errors import CaseError
 from seacable.forces import servo
 from seacable.forces.kinds import SERVO
@@ -83,7 +84,7 @@ class ServoLoop:
         return low
 
 
-def servos(built: BuiltSystem) -> list[tuple[int, int, sch.ServoForce]]:
+def servos(built: BuiltSystem) -> list[tuple[int, int, ServoForce]]:
     """Every servo: (its force row f, its body b, its spec)."""
     p = built.params
     rows = [f for f in range(len(p.force_kind)) if p.force_kind[f] == SERVO]
@@ -181,7 +182,7 @@ def _equilibria(built: BuiltSystem, y: np.ndarray, time: float):
     return held, solved, {b: -loads[b, :3] for b in targets}, targets
 
 
-def _stiffness(held, solved, forces, targets, b: int, spec: sch.ServoForce, time: float):
+def _stiffness(held, solved, forces, targets, b: int, spec: ServoForce, time: float):
     """K [N/m] of body b's lines: its holding force with the body moved on the sphere around
     its target (the other servo bodies held at theirs), by least squares."""
     displacements = spec.sphere_radius * sphere_directions()

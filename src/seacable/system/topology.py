@@ -9,6 +9,7 @@ its plane (``planar_ends``)."""
 import numpy as np
 
 from seacable.case import system as sch
+from seacable.case.forces import LinearStiffness
 from seacable.errors import CaseError
 
 
@@ -35,7 +36,7 @@ def groups(case: sch.SystemCase) -> list[list[str]]:
 def _holds(body) -> bool:
     if isinstance(body, sch.FixedBody | sch.ImposedBody):
         return True
-    return any(isinstance(f, sch.LinearStiffness) for f in body.external_forces)
+    return any(isinstance(f, LinearStiffness) for f in body.external_forces)
 
 
 def check_held(case: sch.SystemCase) -> None:

@@ -1,0 +1,131 @@
+"""The rows of a system's force models: each body's ``external forces`` (case.forces) packed
+by its model's ``pack`` (src/seacable/forces) into the flat rows and time-function channels of
+SystemParams (system.assemble lays them out)."""
+
+import math
+from typing import Any
+
+from seacable import timefunctions as tfn
+from seacable.bodies import kinematics
+from seacable.case import forces as fm
+from seacable.case.base import Constant
+from seacable.case.system import RigidBody
+from seacable.errors import CaseError
+from seacable.forces import (
+    applied,
+    coefficients,
+    drag,
+    hydrostatic,
+    linear,
+    rudder,
+    servo,
+    thruster,
+)
+from seacable.packing import channel, transported
+from seacable.system import hulls
+
+
+def in_radians(function: tfn.Piecewise) -> tfn.Piecewise:
+    """A degree-valued time function in radians."""
+    k = math.pi / 180.0
+    amplitude, omega, phase = function.sine
+    return tfn.Piecewise(function.breaks, function.coefs * k, (amplitude * k, omega, phase),
+                         function.builds_up)  # fmt: skip
+
+
+def offset(body, point: str) -> tuple[float, float, float]:
+    """A named point's body-frame coordinates [m] (the reference point's: zero)."""
+    if point == fm.ORIGIN:
+        return (0.0, 0.0, 0.0)
+    return body.points[point]
+
+
+def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -> list[float]:
+    """A force model's row of floats (its ``pack``), its time functions appended to
+    ``channels``; ``point(ref, where)`` is the index of the point ``body`` or ``body.point``
+    (system.assemble's, created on first use)."""
+    if isinstance(spec, fm.Drag):
+        return drag.pack(spec, rho)
+    if isinstance(spec, fm.AppliedForce):
+        point(f"{body.name}.{spec.point}" if spec.point != fm.ORIGIN else body.name, where)
+        for name in applied.CHANNELS:
+            channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
+        return applied.pack(offset(body, spec.point), spec.frame == "body")
+    if isinstance(spec, fm.Thruster | fm.Rudder | fm.WindLoad | fm.CurrentLoad):
+        return _vessel_row(case, layout, spec, body, base_dir, channels, where)
+    if isinstance(spec, fm.LinearStiffness):
+        position: Any = spec.equilibrium_position or body.position
+        angles: Any = spec.equilibrium_orientation_deg or getattr(
+            body, "orientation_deg", (0.0, 0.0, 0.0)
+        )
+        roll, pitch, yaw = (math.radians(a) for a in angles)
+        quaternion = kinematics.euler_quaternion(roll, pitch, yaw)
+        return [*linear.matrix(spec).ravel(), *position, *quaternion]
+    if isinstance(spec, fm.LinearDamping | fm.QuadraticDamping):
+        matrix = transported(linear.matrix(spec), spec.point)
+        form = linear.FORMS[getattr(spec, "frame", "quadratic")]
+        return [*matrix.ravel(), float(form)]
+    if isinstance(spec, fm.NonLinearHydrostatic | fm.NonLinearFroudeKrylov):
+        still = isinstance(spec, fm.NonLinearHydrostatic) and spec.free_surface == "still"
+        mesh = hulls.body_mesh(body, base_dir, where.split(".")[0])
+        return hydrostatic.pack(mesh.row(), still)
+    if isinstance(spec, fm.RadiationDamping | fm.Diffraction):
+        return hulls.database_row(case, body, spec, base_dir, where)
+    if isinstance(spec, fm.ServoForce):
+        target = point(spec.target, f"{where}.target")
+        sim = case.simulation
+        step = spec.step or sim.time_step or min(0.01, sim.output_interval)
+        return servo.pack(spec.gain, spec.rate_gain, step, target)
+    return []  # gravity, buoyancy: the body's own fields
+
+
+def _body_point(body, point, where: str) -> tuple[float, float, float]:
+    """A force model's ``point``: a point's name, or body-frame coordinates [m]."""
+    if not isinstance(point, str):
+        return tuple(float(v) for v in point)  # type: ignore[return-value]
+    if point != fm.ORIGIN and point not in body.points:
+        raise CaseError(f"{where}.point: body '{body.name}' has no point '{point}'; its points "
+                        f"are {[fm.ORIGIN, *body.points]}, or give [x, y, z] in the body "
+                        "frame [m]")  # fmt: skip
+    return offset(body, point)
+
+
+def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[float]:
+    """The row and channels of a thruster, a rudder, or a wind or current load."""
+    if not isinstance(body, RigidBody):
+        raise CaseError(f"{where}: model '{spec.model}' acts on a vessel: a 'rigid' body (this "
+                        f"one is '{body.type}')")  # fmt: skip
+    if isinstance(spec, fm.Thruster):
+        law = spec.thrust if spec.controller is None else spec.controller.target
+        channels.append(channel(law, base_dir, f"{where}.thrust"))
+        feed = Constant(value=0.0) if spec.controller is None else spec.controller.feedforward
+        channels.append(channel(feed, base_dir, f"{where}.controller.feedforward"))
+        channels.append(in_radians(channel(spec.azimuth_deg, base_dir, f"{where}.azimuth_deg")))
+        return thruster.pack(_body_point(body, spec.point, where), spec.direction,
+                             spec.azimuth_deg is not None, spec.controller is not None,
+                             spec.controller.gain if spec.controller else 0.0,
+                             spec.max_thrust)  # fmt: skip
+    if isinstance(spec, fm.Rudder):
+        pilot = spec.autopilot
+        law = spec.angle_deg if pilot is None else pilot.heading_deg
+        channels.append(in_radians(channel(law, base_dir, f"{where}.angle_deg")))
+        return rudder.pack(
+            _body_point(body, spec.point, where), spec.area, spec.lift_slope,
+            spec.stall_angle_deg, spec.drag_coefficient, spec.aspect_ratio,
+            spec.slipstream_factor, (pilot.gain, pilot.rate_gain) if pilot else None,
+            pilot.max_angle_deg if pilot else None, spec.coefficients,
+        )  # fmt: skip
+    wind = case.environment.wind
+    if isinstance(spec, fm.WindLoad) and wind is None:
+        raise CaseError(f"{where}: model 'wind' needs environment.wind ({{speed [m/s], "
+                        "direction_deg}}); add it, or remove the wind model")  # fmt: skip
+    try:
+        table = coefficients.table_rows(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None
+    is_wind = isinstance(spec, fm.WindLoad)
+    return coefficients.pack(
+        spec.point, (spec.transverse_area, spec.lateral_area), spec.length,
+        wind.air_density if is_wind and wind else 0.0,
+        layout.wind_channel if is_wind else -1, table,
+    )  # fmt: skip
