@@ -80,7 +80,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
     u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
     waves_on = wave.shape[0] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
-    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch: each phase once per point
+    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch: each phase once per point
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]

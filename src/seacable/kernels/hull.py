@@ -169,7 +169,7 @@ def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs
         return
     t0 = HEADER + 3 * int(row[0])
     rho_g = rho * gravity
-    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch
+    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch
     for k in range(int(row[1])):
         count, parts = _wet(row, t0, k, work)
         if count >= 1:

@@ -37,7 +37,13 @@ _PM = 16  # 3 rows: point_mass less the emerged share of the added mass [kg]
 # with ``slack`` FROZEN: 1.0 where segment i is taut, where node k touches the seabed
 _TAUT = 19
 _CONTACT = 20
-N_WORK_ROWS = 21
+# the water's velocity and acceleration at segment i's wetted centroid at the last evaluation
+# with ``slack`` LAW, read back with FROZEN: Newton's matrix is built without evaluating the
+# waves again (their gradient along a difference quotient's small move is left out of the
+# matrix, not of the residual); zero where the segment was dry
+_WU = 21
+_WA = 24
+N_WORK_ROWS = 27
 
 # ``slack`` modes of segment_loads and seabed_loads
 LINEAR = 0  # the axial law linear in tension and compression (smooth static solves)
@@ -63,7 +69,7 @@ def segment_loads(
     v0 = 3 * (n + 1)
     waves_on = wave.shape[0] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
-    trig = np.empty((wave.shape[0], 2))  # kernels.waves' scratch: each phase once per point
+    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch: each phase once per point
     wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
@@ -112,13 +118,11 @@ def segment_loads(
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
-        if waves_on and wet > 0.0:
-            # the water's velocity and acceleration at the wetted part's centroid
-            u, (wax, way, waz) = morison.at_wetted(
-                wave, t, share_a, (y[a], y[a + 1], y[a + 2]), (y[b], y[b + 1], y[b + 2]),
-                wave_depth, wave_stretch, wet * buoyancy[s] / gravity, wet * added_mass[s],
-                (tx, ty, tz), trig,
-            )  # fmt: skip
+        if waves_on:  # the water's velocity and acceleration at the wetted part's centroid
+            u, acc = _water(wave, t, slack, wet, share_a, y, a, b, wave_depth, wave_stretch,
+                            trig, w, ka)  # fmt: skip
+            wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
+                                            acc[0], acc[1], acc[2], tx, ty, tz)  # fmt: skip
             rx -= u[0]
             ry -= u[1]
             rz -= u[2]
@@ -163,6 +167,24 @@ def segment_loads(
             w[_MA + 3, k] += m11
             w[_MA + 4, k] += m12
             w[_MA + 5, k] += m22
+
+
+@njit(inline="always", **JIT)
+def _water(wave, t, slack, wet, share_a, y, a, b, depth, stretch, trig, w, ka):
+    """The water's velocity and acceleration (kernels.morison.water) at the wetted centroid of
+    the segment from node a to b (``y`` indices), zero where it is dry; with ``slack`` LAW
+    recorded in the workspace column ``ka``, with FROZEN read from it."""
+    if slack == FROZEN:
+        return ((w[_WU, ka], w[_WU + 1, ka], w[_WU + 2, ka]),
+                (w[_WA, ka], w[_WA + 1, ka], w[_WA + 2, ka]))  # fmt: skip
+    u = acc = (0.0, 0.0, 0.0)
+    if wet > 0.0:
+        u, acc = morison.water(wave, t, share_a, (y[a], y[a + 1], y[a + 2]),
+                               (y[b], y[b + 1], y[b + 2]), depth, stretch, trig)  # fmt: skip
+    if slack == LAW:
+        for c in range(3):
+            w[_WU + c, ka], w[_WA + c, ka] = u[c], acc[c]
+    return u, acc
 
 
 @njit(**JIT)

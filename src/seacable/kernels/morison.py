@@ -52,15 +52,22 @@ def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb):
 
 
 @njit(inline="always", **JIT)
-def at_wetted(wave, t, share, a, b, depth, stretch, displaced, added, tangent, trig):
-    """The water's velocity (3) [m/s] at the wetted part's centroid ``share a + (1 - share)
-    b`` (points, tuples [m]) and the inertia force (3) [N] of its acceleration on the wetted
-    part (displaced and normal added mass [kg], unit ``tangent``; ``trig``: kernels.waves'
+def water(wave, t, share, a, b, depth, stretch, trig):
+    """The water's velocity (3) [m/s] and acceleration (3) [m/s^2] at the wetted part's
+    centroid ``share a + (1 - share) b`` (points, tuples [m]; ``trig``: kernels.waves'
     scratch)."""
-    u, acc = waves.kinematics(
+    return waves.kinematics(
         wave, t, share * a[0] + (1.0 - share) * b[0], share * a[1] + (1.0 - share) * b[1],
         share * a[2] + (1.0 - share) * b[2], depth, stretch, trig,
     )  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def at_wetted(wave, t, share, a, b, depth, stretch, displaced, added, tangent, trig):
+    """The water's velocity (3) [m/s] at the wetted part's centroid (:func:`water`) and the
+    inertia force (3) [N] of its acceleration on the wetted part (displaced and normal added
+    mass [kg], unit ``tangent``)."""
+    u, acc = water(wave, t, share, a, b, depth, stretch, trig)
     force = inertia(displaced, added, acc[0], acc[1], acc[2], tangent[0], tangent[1], tangent[2])
     return u, force
 

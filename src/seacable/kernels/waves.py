@@ -33,6 +33,7 @@ from numba import njit
 
 from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import smoothstep
+from seacable.kernels.trig import cos_sin
 
 DEEP = 1e30  # the depth of deep water [m]
 WHEELER, VERTICAL = 0, 1
@@ -83,17 +84,18 @@ def _factors(k, z, depth):
 
 
 @njit(inline="always", **JIT)
-def _phases(row, t, x, y, trig, sines):
-    """cos theta_i (and sin theta_i with ``sines``) at (x, y) into ``trig[i, 0]`` (``[i, 1]``);
-    returns the elevation before the build-up's ramp, sum a_i cos theta_i [m]."""
+def _phases(row, t, x, y, trig):
+    """cos theta_i and sin theta_i at (x, y) into ``trig[0, i]`` and ``trig[1, i]`` (row 2:
+    the phases; kernels.trig, a vectorised loop); returns the elevation before the build-up's
+    ramp, sum a_i cos theta_i [m]."""
+    n = row.shape[0]
+    for i in range(n):
+        trig[2, i] = (row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t
+                      + row[i, PHASE])  # fmt: skip
+    cos_sin(trig, n)
     total = 0.0
-    for i in range(row.shape[0]):
-        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
-        c = math.cos(theta)
-        trig[i, 0] = c
-        if sines:
-            trig[i, 1] = math.sin(theta)
-        total += row[i, A] * c
+    for i in range(n):
+        total += row[i, A] * trig[0, i]
     return total
 
 
@@ -101,11 +103,11 @@ def _phases(row, t, x, y, trig, sines):
 def pressure(row, t, x, y, z, depth, stretch, rho_g, trig):
     """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
     callers integrate over the wetted part: points on its edges may lie a rounding above).
-    ``trig``: scratch of (n, 2) floats (allocated once per caller). Each component's phase is
+    ``trig``: scratch of (3, n) floats (allocated once per caller). Each component's phase is
     evaluated once, for the elevation and the pressure, and C once per distinct wave number
     (the rows of a spectrum come frequency by frequency)."""
     r = ramp(row, t)[0]
-    zs = stretched(z, r * _phases(row, t, x, y, trig, False), depth, stretch)
+    zs = stretched(z, r * _phases(row, t, x, y, trig), depth, stretch)
     total = 0.0
     k_last = -1.0
     c = 0.0
@@ -113,7 +115,7 @@ def pressure(row, t, x, y, z, depth, stretch, rho_g, trig):
         if row[i, K] != k_last:
             k_last = row[i, K]
             c, _, _ = _factors(k_last, zs, depth)
-        total += row[i, A] * c * trig[i, 0]
+        total += row[i, A] * c * trig[0, i]
     return rho_g * r * total
 
 
@@ -121,10 +123,10 @@ def pressure(row, t, x, y, z, depth, stretch, rho_g, trig):
 def kinematics(row, t, x, y, z, depth, stretch, trig):
     """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
     free surface, their values there (the callers weigh by the submerged part). ``trig``:
-    scratch of (n, 2) floats. Each component's phase is evaluated once, for the
+    scratch of (3, n) floats. Each component's phase is evaluated once, for the
     elevation and the kinematics, and D and E once per distinct wave number."""
     r, dr = ramp(row, t)
-    zs = stretched(z, r * _phases(row, t, x, y, trig, True), depth, stretch)
+    zs = stretched(z, r * _phases(row, t, x, y, trig), depth, stretch)
     ux = uy = uz = ax = ay = az = 0.0
     k_last = -1.0
     d = e = 0.0
@@ -133,7 +135,7 @@ def kinematics(row, t, x, y, z, depth, stretch, trig):
             k_last = row[i, K]
             _, d, e = _factors(k_last, zs, depth)
         w = row[i, W]
-        cos_t, sin_t = trig[i, 0], trig[i, 1]
+        cos_t, sin_t = trig[0, i], trig[1, i]
         horizontal = row[i, A] * w * d
         ux += horizontal * cos_t * row[i, COS]
         uy += horizontal * cos_t * row[i, SIN]
@@ -156,11 +158,11 @@ def elevation_at(row, t, x, y):
 @njit(**JIT)
 def pressure_at(row, t, x, y, z, depth, stretch, rho_g):
     """The dynamic pressure [Pa] (from Python)."""
-    return pressure(row, t, x, y, z, depth, stretch, rho_g, np.empty((row.shape[0], 2)))
+    return pressure(row, t, x, y, z, depth, stretch, rho_g, np.empty((3, row.shape[0])))
 
 
 @njit(**JIT)
 def field(row, t, x, y, z, depth, stretch):
     """(u_x, u_y, u_z, a_x, a_y, a_z) of the water at a point (from Python)."""
-    u, a = kinematics(row, t, x, y, z, depth, stretch, np.empty((row.shape[0], 2)))
+    u, a = kinematics(row, t, x, y, z, depth, stretch, np.empty((3, row.shape[0])))
     return u[0], u[1], u[2], a[0], a[1], a[2]

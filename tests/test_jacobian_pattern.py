@@ -1,0 +1,66 @@
+"""The sparsity pattern of a moored body's Jacobian and its colouring: the pattern holds every
+entry of the Jacobian, couples a line's nodes to the body at their own end only (before, the
+nodes next to a fixed anchor were taken as coupled to the moored body too), and the colouring
+reaches the fewest colours the pattern allows."""
+
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+import seacable
+from seacable.system import coordinates, kernel, model
+
+EXAMPLE = Path(__file__).parent.parent / "examples" / "platform_three_catenary_lines.yaml"
+SEGMENTS = 8
+
+
+def _platform():
+    """The platform on three catenary lines, 8 segments each, the third line written from
+    the platform to its anchor (both orientations of a line)."""
+    raw = yaml.safe_load(EXAMPLE.read_text())
+    for line in raw["lines"]:
+        line["sections"][0]["segments"] = SEGMENTS
+    third = raw["lines"][2]
+    third["from"], third["to"] = third["to"], third["from"]
+    return model.build(seacable.load_case(raw))
+
+
+def test_moored_body_jacobian_lies_in_its_pattern_and_anchor_nodes_are_apart():
+    system = _platform()
+    p = system.params
+    w = model.workspace(system)
+    y = system.y0.copy()
+    y[p.n_q :] += 0.3 * np.random.default_rng(2).normal(size=len(y) - p.n_q)  # moving
+    base, ydot = np.empty_like(y), np.empty_like(y)
+    kernel.rhs(1.0, y, p, w, base)
+    jac = np.zeros((len(y), len(y)))
+    for j in range(len(y)):
+        step = 1e-6 * max(1.0, abs(y[j]))
+        bumped = y.copy()
+        bumped[j] += step
+        kernel.rhs(1.0, bumped, p, w, ydot)
+        jac[:, j] = (ydot - base) / step
+    pattern = model.jacobian_sparsity(system).toarray() != 0
+    assert np.abs(jac).max() > 1.0
+    assert np.abs(jac[~pattern]).max() == 0.0
+    # the body's accelerations (its velocity rows come first) reach two nodes at each fairlead:
+    # 6 + 3 lines x 2 nodes x 3 coordinates velocity columns, none at the anchors
+    nq = int(p.n_q)
+    body_rows = pattern[nq : nq + 6, nq : p.n_q + p.n_v]
+    assert body_rows.any(axis=0).sum() == 6 + 3 * 2 * 3
+
+
+def test_colouring_reaches_the_clique_of_the_body_and_its_fairlead_nodes():
+    """The 24 velocity columns the body's rows share (its own and its fairlead nodes') need a
+    colour each; every other column fits among them (natural order needed 27 colours here, and
+    42 for the moored barge's 40-segment chains)."""
+    system = _platform()
+    p = system.params
+    nq, nv = int(p.n_q), int(p.n_v)
+    velocities = model.jacobian_sparsity(system).tocsr()[nq : nq + nv, nq : nq + nv]
+    colours = coordinates.colour(velocities)
+    assert colours.max() + 1 == 6 + 3 * 2 * 3
+    for c in range(colours.max() + 1):  # no two columns of a colour share a row
+        members = velocities[:, colours == c]
+        assert np.asarray(abs(members).sum(axis=1)).max() <= 1
