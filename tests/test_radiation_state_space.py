@@ -174,7 +174,7 @@ def test_the_states_rest_at_rest_and_follow_their_system(tmp_path):
     rot = w.rot[0]
     nu = np.concatenate([rot.T @ y[p.n_q : p.n_q + 3], rot.T @ y[p.n_q + 3 : p.n_q + 6]])
     force, s = np.zeros(6), p.n_q + p.n_v
-    fits = realization.fit_matrix(TIMES, db.retardation(TIMES))  # the case's defaults
+    fits = realization.fit_matrix(TIMES, db.retardation(TIMES, 3))  # the case's: tail p = 3
     assert sum(fit.order for fit in fits.values()) == p.n_s
     for (i, j), fit in fits.items():  # in the row's order
         x = y[s : s + fit.order]

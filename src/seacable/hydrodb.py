@@ -16,7 +16,10 @@ Conventions (every database read is turned into these; written into files that c
   -int_0^Tc K(tau) nu(t - tau) d tau, Ogilvie: A(w) = A_inf - (1/w) int_0^inf K(t) sin(w t) dt.
 
 B(w) is taken as linear between the database's frequencies and zero at w = 0: K(t) is then that
-function's cosine transform exactly (``retardation``), whatever t.
+function's cosine transform exactly (``retardation``), whatever t. Beyond the last frequency w_N,
+B is zero (``tail_power=None``), or the power tail B(w) = B(w_N) (w_N / w)^p (p = 2, 3 or 4),
+whose cosine transform is added in closed form (``tail_transform``): a database cut where B is
+still large then leaves no step in B, whose transform rings as B(w_N) sin(w_N t) / t.
 
 The excitation comes in two parts, diffraction (scattering) and Froude-Krylov, or, when a source
 gives only their sum (WAMIT's .3 alone, an HDB's EXCITATION section alone), as that sum
@@ -46,7 +49,10 @@ CONVENTIONS = {
     "matrices": "[force, motion] at reference_point, body frame",
 }
 
-__all__ = ["CONVENTIONS", "DOFS", "HydroDB", "HydroDBError", "read", "read_capytaine", "write"]
+__all__ = [
+    "CONVENTIONS", "DOFS", "HydroDB", "HydroDBError", "read", "read_capytaine",
+    "tail_transform", "write",
+]  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -90,9 +96,11 @@ class HydroDB:
             reference_point=np.asarray(point, dtype=float),
         )  # fmt: skip
 
-    def retardation(self, times) -> np.ndarray:
-        """K(t) (len(times), 6, 6): the exact cosine transform of B taken linear between the
-        frequencies and from zero at w = 0."""
+    def retardation(self, times, tail_power: int | None = None) -> np.ndarray:
+        """K(t) (len(times), 6, 6) at ``times`` [s]: the exact cosine transform of B taken
+        linear between the frequencies and from zero at w = 0; beyond the last frequency w_N,
+        B zero (``tail_power`` None) or B(w_N) (w_N / w)^p, p = ``tail_power`` (module
+        docstring)."""
         w = np.concatenate([[0.0], self.omega]) if self.omega[0] > 0.0 else self.omega
         b = self.damping
         if self.omega[0] > 0.0:
@@ -109,23 +117,27 @@ class HydroDB:
         k = ends + parts
         trapezoid = np.trapezoid(b.reshape(len(w), 36), w, axis=0)
         k = np.where(t == 0.0, trapezoid[None, :], k)
+        if tail_power is not None:  # int_wN^inf B_N (wN / w)^p cos(w t) dw = B_N wN F_p(wN t)
+            k = k + w[-1] * tail_transform(tail_power, w[-1] * t) * b[-1].reshape(1, 36)
         return (2.0 / math.pi) * k.reshape(len(t), 6, 6)
 
-    def ogilvie(self, times, kernel=None):
-        """A_inf from each frequency by Ogilvie's relation with K truncated at times[-1]
-        (``times`` uniform from 0): (the mean over frequencies, the estimate at each)."""
+    def ogilvie(self, times, kernel=None, tail_power: int | None = None):
+        """A_inf from each frequency by Ogilvie's relation with K (``retardation``'s, with
+        ``tail_power``, unless ``kernel`` is given) truncated at times[-1] (``times`` uniform
+        from 0 [s]): (the mean over frequencies, the estimate at each)."""
         t = np.asarray(times, dtype=float)
-        k = self.retardation(t) if kernel is None else kernel
+        k = self.retardation(t, tail_power) if kernel is None else kernel
         each = np.array([
             a + np.trapezoid(k * np.sin(w * t)[:, None, None], t, axis=0) / w
             for w, a in zip(self.omega, self.added_mass, strict=True)
         ])  # fmt: skip
         return each.mean(axis=0), each
 
-    def added_mass_from_kernel(self, times, infinite) -> np.ndarray:
-        """A(w) = A_inf - (1/w) int_0^T K(t) sin(w t) dt at the database's frequencies."""
+    def added_mass_from_kernel(self, times, infinite, tail_power: int | None = None):
+        """A(w) = A_inf - (1/w) int_0^T K(t) sin(w t) dt at the database's frequencies, K
+        ``retardation``'s with ``tail_power``."""
         t = np.asarray(times, dtype=float)
-        k = self.retardation(t)
+        k = self.retardation(t, tail_power)
         return np.array([infinite - np.trapezoid(k * np.sin(w * t)[:, None, None], t, axis=0) / w
                          for w in self.omega])  # fmt: skip
 
@@ -153,6 +165,27 @@ class HydroDB:
             f"hydrodynamic database '{self.source}' has no Froude-Krylov forces: leave "
             "froude_krylov out of the diffraction model (non-linear Froude-Krylov instead)"
         )
+
+
+def tail_transform(power: int, a) -> np.ndarray:
+    """F_p(a) = a^(p-1) int_a^inf x^(-p) cos(x) dx [-] for p = 2, 3 or 4 and a >= 0, so that
+    int_wN^inf (wN / w)^p cos(w t) dw = wN F_p(wN t); F_p(0) = 1 / (p - 1).
+
+    Closed form: from f_1 = -Ci(a), g_1 = pi/2 - Si(a) (g_p = a^(p-1) int_a^inf x^(-p) sin x dx),
+    integration by parts gives f_(q+1) = (cos a - a g_q) / q, g_(q+1) = (sin a + a f_q) / q.
+    The rounding error grows as 1e-16 a^(p-2) (against F_p ~ sin(a) / a for large a): for
+    p = 4, 5e-12 at a = 72 and 1e-9 at a = 360 (w_N = 6 rad/s, 60 s); p is kept to 4."""
+    from scipy.special import sici
+
+    if power not in (2, 3, 4):
+        raise ValueError(f"tail power {power}: 2, 3 or 4 are allowed")
+    a = np.asarray(a, dtype=float)
+    safe = np.where(a > 0.0, a, 1.0)
+    si, ci = sici(safe)
+    f, g = -ci, 0.5 * math.pi - si
+    for q in range(1, int(power)):
+        f, g = (np.cos(safe) - safe * g) / q, (np.sin(safe) + safe * f) / q
+    return np.where(a > 0.0, f, 1.0 / (power - 1))
 
 
 def _cross(r) -> np.ndarray:

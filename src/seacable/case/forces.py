@@ -174,6 +174,13 @@ class RadiationDamping(_Model):
     gives one. A kernel still above 1 % of its peak at the cut-off is reported. The body is
     taken at rest before the run starts.
 
+    Beyond the database's last frequency w_N, B(w) is taken as ``high_frequency_tail: power``
+    (the default) B(w_N) (w_N / w)^p, p = ``tail_power`` (3: the radiated wave energy flux of a
+    surface-piercing wall moving horizontally falls as rho g^2 / (2 w^3) per metre of
+    waterline), or zero (``none``: a database cut where B is still large then gives a K that
+    rings as B(w_N) sin(w_N t) / t). The tail is in K, in its state-space fit and in Ogilvie's
+    A_inf alike (seacable.hydrodb).
+
     ``method: convolution`` (the default) integrates over the recorded velocity history;
     ``method: state_space`` replaces each non-negligible K_ij(t) (sampled as above) by a fitted
     stable system of at most ``order`` first-order states, the lowest order whose relative L2
@@ -186,6 +193,8 @@ class RadiationDamping(_Model):
     method: Literal["convolution", "state_space"] = "convolution"
     order: Annotated[int, Field(ge=2, le=40)] = 12  # most states per entry (state_space)
     tolerance: Annotated[float, Field(gt=0, lt=1)] = 0.01  # relative L2 error (state_space)
+    high_frequency_tail: Literal["power", "none"] = "power"  # B beyond the last frequency
+    tail_power: Annotated[int, Field(ge=2, le=4)] = 3  # p of B(w_N) (w_N / w)^p [-]
 
 
 class Diffraction(_Model):

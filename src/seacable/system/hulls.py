@@ -11,6 +11,7 @@ import numpy as np
 
 from seacable import hydrodb, packing, realization
 from seacable.bodies import kinematics
+from seacable.case.forces import RadiationDamping
 from seacable.errors import CaseError
 from seacable.forces import diffraction, radiation
 from seacable.forces.kinds import RADIATION_DAMPING
@@ -93,7 +94,7 @@ def radiation_row(db: hydrodb.HydroDB, spec, where: str) -> list[float]:
     of its peak at the cut-off is reported."""
     count = int(round(spec.memory / spec.memory_step)) + 1
     times = np.arange(count) * spec.memory_step
-    k = db.retardation(times)
+    k = db.retardation(times, tail_power(spec))
     peak = np.abs(k).max()
     tail = np.abs(k[-1]).max()
     if peak > 0.0 and tail > TAIL * peak:
@@ -123,12 +124,20 @@ def state_space_entries(times, kernel, spec, where: str) -> list:
     return [(i, j, fit.a, fit.b, fit.c) for (i, j), fit in fits.items()]
 
 
-def infinite_added_mass(db: hydrodb.HydroDB, memory: float, step: float) -> np.ndarray:
-    """A_inf: the database's, or Ogilvie's estimate with K over ``memory`` seconds."""
+def tail_power(spec) -> int | None:
+    """The power p of the damping's tail beyond the database's frequencies (hydrodb), or None
+    (no tail) for a ``radiation damping`` model ``spec``."""
+    return spec.tail_power if spec.high_frequency_tail == "power" else None
+
+
+def infinite_added_mass(db: hydrodb.HydroDB, memory: float, step: float,
+                        tail: int | None = None) -> np.ndarray:  # fmt: skip
+    """A_inf: the database's, or Ogilvie's estimate with K (its damping's tail of power
+    ``tail``, or none) over ``memory`` seconds sampled every ``step`` [s]."""
     if db.infinite is not None:
         return db.infinite
     times = np.arange(int(round(memory / step)) + 1) * step
-    return db.ogilvie(times)[0]
+    return db.ogilvie(times, tail_power=tail)[0]
 
 
 def database_row(case, body, spec, base_dir, where: str) -> list[float]:
@@ -154,8 +163,9 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
 def database_added_mass(body, base_dir, where: str, environment) -> np.ndarray:
     """A_inf of the body's database, for a body with radiation damping and no added mass."""
     radiation = [f for f in body.external_forces if f.model == "radiation damping"]
-    memory, step = (radiation[0].memory, radiation[0].memory_step) if radiation else (25.0, 0.05)
-    return infinite_added_mass(body_database(body, base_dir, where, environment), memory, step)
+    spec = radiation[0] if radiation else RadiationDamping(model="radiation damping")
+    return infinite_added_mass(body_database(body, base_dir, where, environment), spec.memory,
+                               spec.memory_step, tail_power(spec))  # fmt: skip
 
 
 def memory_offsets(kinds_: list[int], at: list[int], data: list[float]) -> None:
