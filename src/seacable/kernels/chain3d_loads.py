@@ -104,7 +104,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         if waves_on:  # wet under the instantaneous surface
             wet, share = morison.wet_part(
                 wave, t, highest, w[_P, i], w[_P + 1, i], w[_P + 2, i], w[_P, i + 1],
-                w[_P + 1, i + 1], w[_P + 2, i + 1],
+                w[_P + 1, i + 1], w[_P + 2, i + 1], trig,
             )  # fmt: skip
         else:
             wet, share, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])

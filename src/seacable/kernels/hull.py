@@ -46,6 +46,7 @@ def place(row, pos, rot, wave, t, work):
     """Each vertex's arm R v from the reference point (earth frame) into ``work[i, 0:3]`` and
     its depth below the free surface, eta(x, y) - z (kernels.waves; 0 for still water), into
     ``work[i, 3]``."""
+    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch
     for i in range(int(row[0])):
         k = HEADER + 3 * i
         x, y, z = row[k], row[k + 1], row[k + 2]
@@ -53,7 +54,7 @@ def place(row, pos, rot, wave, t, work):
             work[i, c] = rot[c, 0] * x + rot[c, 1] * y + rot[c, 2] * z
         eta = 0.0
         if wave.shape[0] > 0:
-            eta = waves.elevation(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1])
+            eta = waves.elevation(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1], trig)
         work[i, 3] = eta - pos[2] - work[i, 2]
 
 

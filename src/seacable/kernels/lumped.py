@@ -108,7 +108,7 @@ def segment_loads(
         zc = 0.5 * (y[a + 2] + y[b + 2])
         if waves_on:  # wet under the instantaneous surface
             wet, share_a = morison.wet_part(wave, t, highest, y[a], y[a + 1], y[a + 2], y[b],
-                                            y[b + 1], y[b + 2])  # fmt: skip
+                                            y[b + 1], y[b + 2], trig)  # fmt: skip
         else:
             wet, share_a, _ = segment_submersion(y[a + 2], y[b + 2])
         if uniform:

@@ -38,15 +38,16 @@ def crest(wave):
 
 
 @njit(inline="always", **JIT)
-def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb):
+def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb, trig):
     """The wetted fraction s of a segment from a to b [m] under the waves' surface at time t
     [s] (``highest``: :func:`crest`), and the share of it carried by end a (kernels.surface's
-    lever rule: the wetted part's centroid is ``share r_a + (1 - share) r_b``). Without waves
+    lever rule: the wetted part's centroid is ``share r_a + (1 - share) r_b``; ``trig``:
+    kernels.waves' scratch). Without waves
     (or their amplitudes zero) exactly kernels.surface.segment_submersion's."""
     if max(za, zb) <= -highest:
         return 1.0, 0.5
     wet, share, _ = segment_submersion(
-        za - waves.elevation(wave, t, xa, ya), zb - waves.elevation(wave, t, xb, yb)
+        za - waves.elevation(wave, t, xa, ya, trig), zb - waves.elevation(wave, t, xb, yb, trig)
     )
     return wet, share
 

@@ -51,13 +51,9 @@ def ramp(row, t):
 
 
 @njit(inline="always", **JIT)
-def elevation(row, t, x, y):
-    """eta [m] at (x, y)."""
-    total = 0.0
-    for i in range(row.shape[0]):
-        theta = row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t + row[i, PHASE]
-        total += row[i, A] * math.cos(theta)
-    return ramp(row, t)[0] * total
+def elevation(row, t, x, y, trig):
+    """eta [m] at (x, y) (``trig``: scratch of (3, n) floats, as ``kinematics``')."""
+    return ramp(row, t)[0] * _phases(row, t, x, y, trig)
 
 
 @njit(inline="always", **JIT)
@@ -152,7 +148,7 @@ def kinematics(row, t, x, y, z, depth, stretch, trig):
 @njit(**JIT)
 def elevation_at(row, t, x, y):
     """eta [m] (from Python: tests, outputs)."""
-    return elevation(row, t, x, y)
+    return elevation(row, t, x, y, np.empty((3, row.shape[0])))
 
 
 @njit(**JIT)

@@ -178,20 +178,8 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
         ends_all = (int(p.point_body[p.line_from[li]]), int(p.point_body[p.line_to[li]]))
         ends = [b for b in ends_all if b in moving]
         groups.append(ends)
-        n_int = int(p.line_n[li]) - 1
-        reach = 2  # bending couples nodes two apart
-        for j in range(n_int):
-            near = [
-                node_index[(li, k)] for k in range(max(0, j - reach), min(n_int, j + reach + 1))
-            ]
-            links.append((node_index[(li, j)], [c for cols in near for c in cols]))
-        first, last = range(min(reach, n_int)), range(max(0, n_int - reach), n_int)
-        for end, nodes in zip(ends_all, (first, last), strict=True):  # each end its own nodes
-            if end not in moving:
-                continue
-            for j in nodes:
-                links.append((node_index[(li, j)], body_cols[end]))
-                links.append((body_cols[end], node_index[(li, j)]))
+        ends_cols = [body_cols[b] if b in moving else None for b in ends_all]
+        links += _lumped_links(li, int(p.line_n[li]) - 1, node_index, ends_cols)
     for k in range(len(p.tie_from)):
         groups.append([b for b in (int(p.point_body[p.tie_from[k]]),
                                    int(p.point_body[p.tie_to[k]])) if b in moving])  # fmt: skip
@@ -206,6 +194,26 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
             cols.extend(c)
     data = np.ones(len(rows))
     return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
+
+
+def _lumped_links(li: int, n_int: int, node_index: dict, ends_cols: list) -> list:
+    """A lumped line's links: each of its ``n_int`` interior nodes to the nodes within reach
+    along it (bending couples nodes two apart), and the nodes within reach of each end to and
+    from that end's body's columns (``ends_cols``: from and to; None for a body that does not
+    move)."""
+    reach = 2
+    links = []
+    for j in range(n_int):
+        near = [node_index[(li, k)] for k in range(max(0, j - reach), min(n_int, j + reach + 1))]
+        links.append((node_index[(li, j)], [c for cols in near for c in cols]))
+    first, last = range(min(reach, n_int)), range(max(0, n_int - reach), n_int)
+    for cols, nodes in zip(ends_cols, (first, last), strict=True):  # each end its own nodes
+        if cols is None:
+            continue
+        for j in nodes:
+            links.append((node_index[(li, j)], cols))
+            links.append((cols, node_index[(li, j)]))
+    return links
 
 
 def _string_links(coords: Coordinates) -> list[tuple[list[int], list[int]]]:
