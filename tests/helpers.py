@@ -87,3 +87,25 @@ def turning_body_case(simulation):
     return {"name": "turning body", "start": "as_given", "environment": {"in_air": True},
             "bodies": [top, box, weight], "lines": lines, "line_types": [rope],
             "simulation": simulation}  # fmt: skip
+
+
+def dense_jacobian(system, t: float, spread: float, seed: int) -> np.ndarray:
+    """d(ydot)/dy of a built system by forward differences of its compiled right-hand side, at
+    its start state with every velocity moved by ``spread`` times a normal draw (``seed``):
+    a moving state."""
+    from seacable.system import kernel, model
+
+    p = system.params
+    w = model.workspace(system)
+    y = system.y0.copy()
+    y[p.n_q :] += spread * np.random.default_rng(seed).normal(size=len(y))[p.n_q :]
+    base, ydot = np.empty_like(y), np.empty_like(y)
+    kernel.rhs(t, y, p, w, base)
+    jac = np.zeros((len(y), len(y)))
+    for j in range(len(y)):
+        step = 1e-6 * max(1.0, abs(y[j]))
+        bumped = y.copy()
+        bumped[j] += step
+        kernel.rhs(t, bumped, p, w, ydot)
+        jac[:, j] = (ydot - base) / step
+    return jac

@@ -9,7 +9,8 @@ import numpy as np
 import yaml
 
 import seacable
-from seacable.system import coordinates, kernel, model
+from helpers import dense_jacobian
+from seacable.system import coordinates, model
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "platform_three_catenary_lines.yaml"
 SEGMENTS = 8
@@ -29,18 +30,7 @@ def _platform():
 def test_moored_body_jacobian_lies_in_its_pattern_and_anchor_nodes_are_apart():
     system = _platform()
     p = system.params
-    w = model.workspace(system)
-    y = system.y0.copy()
-    y[p.n_q :] += 0.3 * np.random.default_rng(2).normal(size=len(y) - p.n_q)  # moving
-    base, ydot = np.empty_like(y), np.empty_like(y)
-    kernel.rhs(1.0, y, p, w, base)
-    jac = np.zeros((len(y), len(y)))
-    for j in range(len(y)):
-        step = 1e-6 * max(1.0, abs(y[j]))
-        bumped = y.copy()
-        bumped[j] += step
-        kernel.rhs(1.0, bumped, p, w, ydot)
-        jac[:, j] = (ydot - base) / step
+    jac = dense_jacobian(system, 1.0, 0.3, 2)
     pattern = model.jacobian_sparsity(system).toarray() != 0
     assert np.abs(jac).max() > 1.0
     assert np.abs(jac[~pattern]).max() == 0.0

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 import seacable
-from helpers import system_data, upgraded
+from helpers import dense_jacobian, system_data, upgraded
 from seacable.case import loader
-from seacable.system import kernel, model
+from seacable.system import model
 
 EXAMPLES = Path(__file__).parent / "legacy_cases"  # the single-cable form of the examples
 
@@ -149,20 +149,7 @@ def test_star_jacobian_lies_in_its_sparsity_pattern():
     """Every entry of the star's Jacobian (dense finite differences of the compiled right-hand
     side, in a moving state) falls inside the pattern SciPy's coloured differences assume."""
     system = model.build(_asymmetric(duration=0.3))
-    p = system.params
-    w = model.workspace(system)
-    y = system.y0.copy()
-    moving = np.random.default_rng(1).normal(size=len(y))
-    y[p.n_q :] += 0.5 * moving[p.n_q :]  # every velocity
-    base, ydot = np.empty_like(y), np.empty_like(y)
-    kernel.rhs(0.3, y, p, w, base)
-    jac = np.zeros((len(y), len(y)))
-    for j in range(len(y)):
-        step = 1e-6 * max(1.0, abs(y[j]))
-        bumped = y.copy()
-        bumped[j] += step
-        kernel.rhs(0.3, bumped, p, w, ydot)
-        jac[:, j] = (ydot - base) / step
+    jac = dense_jacobian(system, 0.3, 0.5, 1)
     pattern = model.jacobian_sparsity(system).toarray() != 0
     assert np.abs(jac).max() > 1.0
     outside = np.abs(jac[~pattern]).max()
