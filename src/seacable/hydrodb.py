@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from scipy.special import sici
 
 from seacable import hydrodb_formats
 from seacable.errors import HydroDBError
@@ -175,8 +176,6 @@ def tail_transform(power: int, a) -> np.ndarray:
     integration by parts gives f_(q+1) = (cos a - a g_q) / q, g_(q+1) = (sin a + a f_q) / q.
     The rounding error grows as 1e-16 a^(p-2) (against F_p ~ sin(a) / a for large a): for
     p = 4, 5e-12 at a = 72 and 1e-9 at a = 360 (w_N = 6 rad/s, 60 s); p is kept to 4."""
-    from scipy.special import sici
-
     if power not in (2, 3, 4):
         raise ValueError(f"tail power {power}: 2, 3 or 4 are allowed")
     a = np.asarray(a, dtype=float)
