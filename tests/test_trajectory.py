@@ -217,10 +217,15 @@ def test_lumped_servo_tracks_and_agrees_with_the_exact_force(lumped):
         assert np.max(np.abs(force_servo - force_exact)) < 0.05 * np.max(np.abs(force_exact))
 
 
+@pytest.mark.slow  # 32-38 s: ten refreshes, each a towed statics of the 50 lumped segments
 def test_lumped_servo_error_shrinks_with_a_refreshed_stiffness(lumped):
     """The refresh at t = 35 s balances the umbilical in the steady tow of the ship and the
     held end (the target vehicle, which holds nothing, moves otherwise: before, it made the
-    tow unsteady, the statics looked for the line at rest and found no balance)."""
+    tow unsteady, the statics looked for the line at rest and found no balance). Measured:
+    0.571 m refreshed against 0.671 m. The default suite refreshes the rigid line's servo
+    (test_servo_error_shrinks_with_a_refreshed_stiffness, the same system.servo refresh) and
+    checks the lumped line's towed start statics (test_lumped_servo_starts_with_the_rigid_
+    models_stiffness)."""
     refreshed = _rows_of(_lumped("stiffness_servo", recompute_interval=5.0))
     error = lumped["servo"]["tracking_error"].max()
     assert refreshed["tracking_error"].max() < 0.9 * error
