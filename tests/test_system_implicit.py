@@ -300,6 +300,47 @@ def test_frozen_laws_keep_the_branches_of_the_last_evaluation():
     assert w[lk._F + 2, 2] < -1e4 * 0.009  # the seabed pulls it back down: k (z_bed - z) < 0
 
 
+def test_lagged_water_kinematics_are_reused_only_near_where_and_when_they_were_taken():
+    """kernels.lumped LAGGED (an implicit step's residuals): a segment's water kinematics are
+    those of the last evaluation at the same time while its wetted centroid has moved less
+    than REUSE / k_max; farther, or at another time, they are evaluated again, bitwise as LAW
+    evaluates them. A reused value differs from the field's by less than REUSE times the
+    field's size."""
+    n = 2
+    y = np.array([0.0, 0, -10.0, 1.0, 0, -10.5, 2.0, 0, -11.0, *np.zeros(9)])
+    args = (np.ones(2), np.full(2, 1e5), np.zeros(2))  # lengths [m], EA [N], alpha [s]
+    loads = (np.full(2, 5.0), np.ones(2), np.zeros(2), np.full(2, 7.0), np.ones(2))
+    current = (np.zeros(1), np.zeros(1), np.zeros(1))
+    k = 2.0 / 9.81  # deep water, 2 rad/s
+    wave = np.array([[1.5, 2.0, k, 1.0, 0.0, 0.3, 0.0]])  # waves.A, W, K, COS, SIN, PHASE
+    reach = lk.REUSE / k
+
+    def evaluate(state, mode, w, t=3.0):
+        lk.segment_loads(state, n, 0, 0, *args, mode, *loads, *current, t, 9.81, wave, 1e30,
+                         0, w)  # fmt: skip
+        return w[lk._F : lk._F + 3].copy(), w[lk._WU : lk._WU + 6, :n].copy()
+
+    w = np.zeros((lk.N_WORK_ROWS, n + 1))
+    law, water = evaluate(y, lk.LAW, w)
+    assert np.abs(water).max() > 0.1  # [m/s, m/s^2]: the wave reaches the segments
+    np.testing.assert_array_equal(evaluate(y, lk.LAGGED, w)[0], law)
+    near = y.copy()
+    near[0] += 0.4 * reach  # segment 0's centroid moves 0.2 reach, segment 1's not at all
+    reused, kept = evaluate(near, lk.LAGGED, w)
+    np.testing.assert_array_equal(kept, water)
+    fresh, exact = evaluate(near, lk.LAW, np.zeros_like(w))
+    assert 0.0 < np.abs(exact - water).max() <= lk.REUSE * np.abs(water).max()
+    assert np.abs(reused - fresh).max() > 0.0
+    far = y.copy()
+    far[0] += 3.0 * reach  # beyond reach: evaluated again
+    evaluate(y, lk.LAW, w)
+    np.testing.assert_array_equal(evaluate(far, lk.LAGGED, w)[0],
+                                  evaluate(far, lk.LAW, np.zeros_like(w))[0])  # fmt: skip
+    evaluate(y, lk.LAW, w)
+    later = evaluate(y, lk.LAGGED, w, t=3.01)[0]  # another time: evaluated again
+    np.testing.assert_array_equal(later, evaluate(y, lk.LAW, np.zeros_like(w), t=3.01)[0])
+
+
 @functools.cache
 def _slack_reference(ea):
     """The tight dopri5 run of ``_slack_pendulum`` (1.2 s at EA 1e7 N, 6.4 s at 1e8 N), shared

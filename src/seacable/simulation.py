@@ -287,8 +287,8 @@ class _Run:
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return system_implicit.chunk(
             first_step, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
-            sim.max_newton_iterations, self.p, system_implicit.frozen(self.p), self.w,
-            *self.newton, carry, states, times, work,
+            sim.max_newton_iterations, system_implicit.lagged(self.p),
+            system_implicit.frozen(self.p), self.w, *self.newton, carry, states, times, work,
         )  # fmt: skip
 
     def units(self) -> int:

@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
-from seacable.kernels import morison
+from seacable.kernels import morison, waves
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
 
@@ -33,23 +33,31 @@ _L = 13  # stretched length of each segment
 _SF = 14  # submerged fraction of the node's body (1 without a shape)
 _SK = 15  # hydrostatic heave stiffness rho g A_wp [N/m]
 _PM = 16  # 3 rows: point_mass less the emerged share of the added mass [kg]
-# the laws' branches at the last evaluation with ``slack`` LAW (the active set), read back
-# with ``slack`` FROZEN: 1.0 where segment i is taut, where node k touches the seabed
+# the laws' branches at the last evaluation with ``slack`` LAW or LAGGED (the active set),
+# read back with ``slack`` FROZEN: 1.0 where segment i is taut, where node k touches the seabed
 _TAUT = 19
 _CONTACT = 20
 # the water's velocity and acceleration at segment i's wetted centroid at the last evaluation
-# with ``slack`` LAW, read back with FROZEN: Newton's matrix is built without evaluating the
-# waves again (their gradient along a difference quotient's small move is left out of the
-# matrix, not of the residual); zero where the segment was dry
+# with ``slack`` LAW (or LAGGED, where it evaluated them), read back with FROZEN: Newton's
+# matrix is built without evaluating the waves again (their gradient along a difference
+# quotient's small move is left out of the matrix, not of the residual); zero where dry
 _WU = 21
 _WA = 24
-N_WORK_ROWS = 27
+# where and when they were evaluated (``slack`` LAW or LAGGED): the wetted centroid (3 rows)
+# and the time (NaN where the segment was dry)
+_WX = 27
+_WT = 30
+N_WORK_ROWS = 31
 
 # ``slack`` modes of segment_loads and seabed_loads
 LINEAR = 0  # the axial law linear in tension and compression (smooth static solves)
 LAW = 1  # the physical laws: no compression, the seabed pushes only; records the active set
 FROZEN = 2  # the laws on the recorded active set: a semismooth Newton's matrix (its
 # difference quotients never straddle a kink: a slack segment stays slack, a taut one taut)
+LAGGED = 3  # the physical laws, recording the active set as LAW does, with the water's
+# kinematics of a segment reused from the last evaluation at the same time while its wetted
+# centroid has moved less than REUSE / k_max (an implicit step's residuals: _water)
+REUSE = 1e-3  # k_max times the move [rad]: the kinematics' first-order change, relative
 
 
 @njit(**JIT)
@@ -69,6 +77,7 @@ def segment_loads(
     v0 = 3 * (n + 1)
     waves_on = wave.shape[0] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
+    reach = _reach(wave) if slack == LAGGED else 0.0
     trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch: each phase once per point
     wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
@@ -95,7 +104,7 @@ def segment_loads(
         strain = length_now / l0 - 1.0
         strain_rate = (dvx * tx + dvy * ty + dvz * tz) / l0
         tension = stiffness[s] * (strain + damping[s] * strain_rate)
-        if slack == LAW:
+        if slack == LAW or slack == LAGGED:
             w[_TAUT, ka] = 1.0 if tension > 0.0 else 0.0
             tension = max(tension, 0.0)
         elif slack == FROZEN and w[_TAUT, ka] == 0.0:
@@ -120,7 +129,7 @@ def segment_loads(
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
         if waves_on:  # the water's velocity and acceleration at the wetted part's centroid
             u, acc = _water(wave, t, slack, wet, share_a, y, a, b, wave_depth, wave_stretch,
-                            trig, w, ka)  # fmt: skip
+                            trig, reach, w, ka)  # fmt: skip
             wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
                                             acc[0], acc[1], acc[2], tx, ty, tz)  # fmt: skip
             rx -= u[0]
@@ -170,20 +179,43 @@ def segment_loads(
 
 
 @njit(inline="always", **JIT)
-def _water(wave, t, slack, wet, share_a, y, a, b, depth, stretch, trig, w, ka):
+def _reach(wave):
+    """How far [m] a segment's wetted centroid may move with its water kinematics reused
+    (LAGGED): REUSE / k_max, the shortest component's wave number."""
+    k_max = 0.0
+    for i in range(wave.shape[0]):
+        k_max = max(k_max, wave[i, waves.K])
+    return REUSE / k_max if k_max > 0.0 else 0.0
+
+
+@njit(inline="always", **JIT)
+def _water(wave, t, slack, wet, share_a, y, a, b, depth, stretch, trig, reach, w, ka):
     """The water's velocity and acceleration (kernels.morison.water) at the wetted centroid of
-    the segment from node a to b (``y`` indices), zero where it is dry; with ``slack`` LAW
-    recorded in the workspace column ``ka``, with FROZEN read from it."""
+    the segment from node a to b (``y`` indices), zero where it is dry. With ``slack`` LAW
+    recorded in the workspace column ``ka`` with the centroid and the time; with FROZEN read
+    from it; with LAGGED read from it when recorded at time ``t`` within ``reach`` [m] of the
+    centroid (else evaluated and recorded). Reused values differ from the field's by its
+    gradient along the move: at most about REUSE times the component's own size."""
     if slack == FROZEN:
         return ((w[_WU, ka], w[_WU + 1, ka], w[_WU + 2, ka]),
                 (w[_WA, ka], w[_WA + 1, ka], w[_WA + 2, ka]))  # fmt: skip
+    cx = share_a * y[a] + (1.0 - share_a) * y[b]
+    cy = share_a * y[a + 1] + (1.0 - share_a) * y[b + 1]
+    cz = share_a * y[a + 2] + (1.0 - share_a) * y[b + 2]
+    if slack == LAGGED and w[_WT, ka] == t:
+        dx, dy, dz = cx - w[_WX, ka], cy - w[_WX + 1, ka], cz - w[_WX + 2, ka]
+        if dx * dx + dy * dy + dz * dz <= reach * reach:
+            return ((w[_WU, ka], w[_WU + 1, ka], w[_WU + 2, ka]),
+                    (w[_WA, ka], w[_WA + 1, ka], w[_WA + 2, ka]))  # fmt: skip
     u = acc = (0.0, 0.0, 0.0)
     if wet > 0.0:
         u, acc = morison.water(wave, t, share_a, (y[a], y[a + 1], y[a + 2]),
                                (y[b], y[b + 1], y[b + 2]), depth, stretch, trig)  # fmt: skip
-    if slack == LAW:
+    if slack == LAW or slack == LAGGED:
         for c in range(3):
             w[_WU + c, ka], w[_WA + c, ka] = u[c], acc[c]
+        w[_WX, ka], w[_WX + 1, ka], w[_WX + 2, ka] = cx, cy, cz
+        w[_WT, ka] = t if wet > 0.0 else math.nan
     return u, acc
 
 

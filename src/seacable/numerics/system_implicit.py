@@ -430,6 +430,16 @@ def frozen(p):
     return p._replace(slack_allowed=lumped.FROZEN) if p.slack_allowed == lumped.LAW else p
 
 
+def lagged(p):
+    """The parameters a step's residuals are evaluated with: the physical laws, a lumped
+    segment's water kinematics reused within the step while its wetted centroid moves less
+    than kernels.lumped.REUSE / k_max from where they were evaluated at that time
+    (kernels.lumped LAGGED): Newton's iterates move the nodes by fractions of a millimetre,
+    and a fresh sum over every wave component at every segment was most of a residual's cost
+    (benchmarks/vessel_cost.py)."""
+    return p._replace(slack_allowed=lumped.LAGGED) if p.slack_allowed == lumped.LAW else p
+
+
 def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     """The arrays a run carries from step to step (``numerics.contract.ChunkIntegrator``, point
     5): [a1, the last step's change of acceleration], [factors valid, their step length, the
