@@ -224,6 +224,11 @@ def _realtimes(raw: dict, args, tmp: Path) -> None:
         f"setup: a run of {SETUP:g} s, its CPU s given); errors against dopri5 at rtol 1e-9:"
     )
     _, _, _, _, reference = _realtime(raw, args.duration, {"integrator": "dopri5", "rtol": 1e-9})
+    tension, tree = _tension(reference), reference.dataset
+    offsets = [tree[f"bodies/barge/position_{c}"].values for c in "xy"]
+    print(f"  the reference: surge {offsets[0].min():.1f} to {offsets[0].max():.1f} m, sway "
+          f"{offsets[1].min():.1f} to {offsets[1].max():.1f} m, fairlead tensions "
+          f"{tension.min() / 1e3:.0f} to {tension.max() / 1e3:.0f} kN")  # fmt: skip
     implicit = {"integrator": "generalized_alpha"}
     for label, settings in (
         ("dopri5 rtol 1e-6", {"integrator": "dopri5", "rtol": 1e-6}),
