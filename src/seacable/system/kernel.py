@@ -205,6 +205,9 @@ class SystemWork(NamedTuple):
     hull: np.ndarray  # (largest mesh's vertices, 4) kernels.hull.place's workspace
     memory: np.ndarray  # a force model's scratch, then the radiation models' velocity
     # histories (kernels.memory)
+    models: np.ndarray  # (nb, 6) the force models' loads at the last evaluation of them
+    models_key: np.ndarray  # (1 + 13 nb + n_s,) what they were evaluated at: the time, every
+    # body's pos, quat, vel and omega, the models' states (NaN: none; see _models)
 
 
 def make_work(p: SystemParams) -> SystemWork:
@@ -230,7 +233,8 @@ def make_work(p: SystemParams) -> SystemWork:
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
         nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
-        memory=np.zeros(max(memory.SCRATCH, _memory(p))),
+        memory=np.zeros(max(memory.SCRATCH, _memory(p))), models=np.zeros((nb, 6)),
+        models_key=np.full(1 + 13 * nb + int(p.n_s), np.nan),
     )  # fmt: skip
 
 
@@ -373,12 +377,16 @@ def rhs(t, y, p, w, ydot):
     ):  # fmt: skip
         status = NON_FINITE
     # force models
-    table.add_all(
-        t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
-        p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
-        w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-        p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.load,
-    )  # fmt: skip
+    if not _models_kept(t, y, p.n_q + p.n_v, p.slack_allowed == lk.FROZEN, w.pos, w.quat,
+                        w.vel, w.omega, w.models_key):  # fmt: skip
+        w.models[:, :] = 0.0
+        table.add_all(
+            t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
+            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction,
+            w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u,
+            p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.models,
+        )  # fmt: skip
+    w.load[:, :] += w.models
     if p.n_s > 0:
         table.state_rates(y, p.force_kind, p.force_body, p.force_at, p.force_state,
                           p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel,
@@ -416,6 +424,38 @@ def rhs(t, y, p, w, ydot):
                                 w.nat_dot, ydot) != OK:  # fmt: skip
             status = NON_FINITE
     return status if _finite(ydot) else NON_FINITE
+
+
+@inner
+def _models_kept(t, y, s0, reuse, pos, quat, vel, omega, key):
+    """Whether the force models' loads of the last evaluation that computed them hold here:
+    with ``reuse`` (Newton's matrix: kernels.lumped FROZEN), at the same time, bodies' states
+    and models' states (``y[s0:]``) to the bit, as where a difference quotient moves only a
+    line's nodes (a model reads nothing else that an evaluation changes; the radiation
+    histories change between steps only, and after_step forgets the key). Otherwise records
+    the key of the evaluation about to compute them and returns False."""
+    nb = pos.shape[0]
+    same = reuse and key[0] == t
+    for b in range(nb):
+        o = 1 + 13 * b
+        for c in range(3):
+            same = same and key[o + c] == pos[b, c] and key[o + 7 + c] == vel[b, c]
+            same = same and key[o + 10 + c] == omega[b, c]
+        for c in range(4):
+            same = same and key[o + 3 + c] == quat[b, c]
+    for i in range(y.shape[0] - s0):
+        same = same and key[1 + 13 * nb + i] == y[s0 + i]
+    if same:
+        return True
+    key[0] = t
+    for b in range(nb):
+        o = 1 + 13 * b
+        key[o : o + 3] = pos[b]
+        key[o + 3 : o + 7] = quat[b]
+        key[o + 7 : o + 10] = vel[b]
+        key[o + 10 : o + 13] = omega[b]
+    key[1 + 13 * nb :] = y[s0:]
+    return False
 
 
 @njit(inline="always", **JIT)
@@ -484,6 +524,7 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
 def after_step(t, y, p, w):
     """An accepted step ending at (t, y): the radiation convolutions record their body's
     velocity (kernels.memory). Every integrator calls it where it projects the state."""
+    w.models_key[0] = np.nan  # the histories change: the force models' loads with them
     for f in range(p.force_kind.shape[0]):
         if _convolves(p, f):
             _body_nu(y, p, p.force_body[f], w.memory)
@@ -494,6 +535,7 @@ def after_step(t, y, p, w):
 @njit(**JIT)
 def start_memory(t, y, p, w):
     """The radiation convolutions' histories at the run's start (at rest before it)."""
+    w.models_key[0] = np.nan
     for f in range(p.force_kind.shape[0]):
         if _convolves(p, f):
             _body_nu(y, p, p.force_body[f], w.memory)
