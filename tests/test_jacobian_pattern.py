@@ -10,7 +10,9 @@ import yaml
 
 import seacable
 from helpers import dense_jacobian
-from seacable.system import coordinates, model
+from seacable.bodies import kinematics
+from seacable.numerics import system_implicit
+from seacable.system import coordinates, kernel, model
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "platform_three_catenary_lines.yaml"
 SEGMENTS = 8
@@ -54,3 +56,46 @@ def test_colouring_reaches_the_clique_of_the_body_and_its_fairlead_nodes():
     for c in range(colours.max() + 1):  # no two columns of a colour share a row
         members = velocities[:, colours == c]
         assert np.asarray(abs(members).sum(axis=1)).max() <= 1
+
+
+def test_newtons_matrix_keeps_the_force_models_loads_only_where_nothing_they_read_moved():
+    """system.kernel._models_kept: a frozen residual (Newton's matrix) whose difference
+    quotient moves only a line's nodes takes the force models' loads of the evaluation before
+    it (shown by marking them); one that moves the body, or any residual not frozen, or one
+    after an accepted step (after_step) evaluates them again, bitwise as a fresh workspace."""
+    system = _platform()
+    p, y = system.params, system.y0.copy()
+    assert p.force_kind.shape[0] > 0
+    frozen = system_implicit.frozen(p)
+
+    def after_law(state):
+        w = kernel.make_work(p)
+        kernel.rhs(2.0, state, p, w, np.zeros_like(state))
+        return w
+
+    def frozen_rhs(state, w):
+        ydot = np.zeros_like(state)
+        kernel.rhs(2.0, state, frozen, w, ydot)
+        return ydot
+
+    node = int(p.line_q[0]) + 3  # a line's second interior node, x
+    moved = y.copy()
+    moved[node] += 1e-6
+    marked = after_law(y)
+    marked.models[:, 0] += 1.0  # [N]: a mark only a kept load carries into the rates
+    assert not np.array_equal(frozen_rhs(moved, marked), frozen_rhs(moved, after_law(y)))
+    body = y.copy()
+    body[int(p.body_q[np.flatnonzero(p.body_kind == kinematics.DYNAMIC)[0]])] += 1e-6
+    marked = after_law(y)
+    marked.models[:, 0] += 1.0
+    np.testing.assert_array_equal(frozen_rhs(body, marked), frozen_rhs(body, after_law(y)))
+    marked = after_law(y)
+    marked.models[:, 0] += 1.0
+    kernel.after_step(2.0, y, p, marked)
+    np.testing.assert_array_equal(frozen_rhs(moved, marked), frozen_rhs(moved, after_law(y)))
+    marked = after_law(y)
+    marked.models[:, 0] += 1.0
+    ydot, fresh = np.zeros_like(y), np.zeros_like(y)
+    kernel.rhs(2.0, moved, p, marked, ydot)
+    kernel.rhs(2.0, moved, p, after_law(y), fresh)
+    np.testing.assert_array_equal(ydot, fresh)
