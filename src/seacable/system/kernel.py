@@ -207,7 +207,7 @@ class SystemWork(NamedTuple):
     # histories (kernels.memory)
     models: np.ndarray  # (nb, 6) the force models' loads at the last evaluation of them
     models_key: np.ndarray  # (1 + 13 nb + n_s,) what they were evaluated at: the time, every
-    # body's pos, quat, vel and omega, the models' states (NaN: none; see _models)
+    # body's pos, quat, vel and omega, the models' states (NaN: none; see _models_kept)
 
 
 def make_work(p: SystemParams) -> SystemWork:
