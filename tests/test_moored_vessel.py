@@ -54,7 +54,7 @@ def test_the_incident_pressure_is_counted_once():
         seacable.load_case(raw)
 
 
-@pytest.mark.slow  # 22 s: the chains in a 180-component sea (benchmarks/vessel_cost.py)
+@pytest.mark.slow  # 6 s: the chains in a 180-component sea (benchmarks/vessel_cost.py)
 def test_the_sea_rises_from_rest():
     """From its static start the barge is at rest and the excitation starts from zero: in the
     first second it moves less than a millimetre, and as the sea rises it moves."""
