@@ -190,31 +190,30 @@ def _reach(wave):
 
 @njit(inline="always", **JIT)
 def _water(wave, t, slack, wet, share_a, y, a, b, depth, stretch, trig, reach, w, ka):
-    """The water's velocity and acceleration (kernels.morison.water) at the wetted centroid of
-    the segment from node a to b (``y`` indices), zero where it is dry. With ``slack`` LAW
-    recorded in the workspace column ``ka`` with the centroid and the time; with FROZEN read
-    from it; with LAGGED read from it when recorded at time ``t`` within ``reach`` [m] of the
-    centroid (else evaluated and recorded). Reused values differ from the field's by its
+    """The water's velocity and acceleration (kernels.morison.water_at) at the wetted
+    centroid of the segment from node a to b (``y`` indices), zero where it is dry. With
+    ``slack`` LAW recorded in the workspace column ``ka`` with the centroid and the time; with
+    FROZEN read from it; with LAGGED read from it when recorded at time ``t`` within ``reach``
+    [m] of the centroid (else evaluated and recorded). Reused values differ from the field's by its
     gradient along the move: at most about REUSE times the component's own size."""
     if slack == FROZEN:
         return ((w[_WU, ka], w[_WU + 1, ka], w[_WU + 2, ka]),
                 (w[_WA, ka], w[_WA + 1, ka], w[_WA + 2, ka]))  # fmt: skip
-    cx = share_a * y[a] + (1.0 - share_a) * y[b]
-    cy = share_a * y[a + 1] + (1.0 - share_a) * y[b + 1]
-    cz = share_a * y[a + 2] + (1.0 - share_a) * y[b + 2]
+    centre = morison.centroid(share_a, (y[a], y[a + 1], y[a + 2]),
+                              (y[b], y[b + 1], y[b + 2]))  # fmt: skip
     if slack == LAGGED and w[_WT, ka] == t:
-        dx, dy, dz = cx - w[_WX, ka], cy - w[_WX + 1, ka], cz - w[_WX + 2, ka]
+        dx, dy = centre[0] - w[_WX, ka], centre[1] - w[_WX + 1, ka]
+        dz = centre[2] - w[_WX + 2, ka]
         if dx * dx + dy * dy + dz * dz <= reach * reach:
             return ((w[_WU, ka], w[_WU + 1, ka], w[_WU + 2, ka]),
                     (w[_WA, ka], w[_WA + 1, ka], w[_WA + 2, ka]))  # fmt: skip
     u = acc = (0.0, 0.0, 0.0)
     if wet > 0.0:
-        u, acc = morison.water(wave, t, share_a, (y[a], y[a + 1], y[a + 2]),
-                               (y[b], y[b + 1], y[b + 2]), depth, stretch, trig)  # fmt: skip
+        u, acc = morison.water_at(wave, t, centre, depth, stretch, trig)
     if slack == LAW or slack == LAGGED:
         for c in range(3):
             w[_WU + c, ka], w[_WA + c, ka] = u[c], acc[c]
-        w[_WX, ka], w[_WX + 1, ka], w[_WX + 2, ka] = cx, cy, cz
+        w[_WX, ka], w[_WX + 1, ka], w[_WX + 2, ka] = centre
         w[_WT, ka] = t if wet > 0.0 else math.nan
     return u, acc
 

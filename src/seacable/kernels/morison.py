@@ -53,14 +53,24 @@ def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb, trig):
 
 
 @njit(inline="always", **JIT)
-def water(wave, t, share, a, b, depth, stretch, trig):
+def centroid(share, a, b):
+    """The wetted part's centroid ``share a + (1 - share) b`` [m] (points, tuples)."""
+    return (share * a[0] + (1.0 - share) * b[0], share * a[1] + (1.0 - share) * b[1],
+            share * a[2] + (1.0 - share) * b[2])  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def water_at(wave, t, c, depth, stretch, trig):
     """The water's velocity (3) [m/s] and acceleration (3) [m/s^2] at the wetted part's
-    centroid ``share a + (1 - share) b`` (points, tuples [m]; ``trig``: kernels.waves'
-    scratch)."""
-    return waves.kinematics(
-        wave, t, share * a[0] + (1.0 - share) * b[0], share * a[1] + (1.0 - share) * b[1],
-        share * a[2] + (1.0 - share) * b[2], depth, stretch, trig,
-    )  # fmt: skip
+    centroid ``c`` (:func:`centroid`; ``trig``: kernels.waves' scratch)."""
+    return waves.kinematics(wave, t, c[0], c[1], c[2], depth, stretch, trig)
+
+
+@njit(inline="always", **JIT)
+def water(wave, t, share, a, b, depth, stretch, trig):
+    """The water's velocity and acceleration at the wetted part's centroid between points a
+    and b (:func:`centroid`, :func:`water_at`)."""
+    return water_at(wave, t, centroid(share, a, b), depth, stretch, trig)
 
 
 @njit(inline="always", **JIT)
