@@ -37,10 +37,10 @@ from seacable.forces.kinds import (
     WIND,
 )
 from seacable.kernels import memory
-from seacable.kernels.jit import JIT
+from seacable.kernels.jit import JIT, inner
 
 
-@njit(inline="always", **JIT)  # inlined: a call would pass and count every array
+@inner  # compiled once: inlined, its body was compiled again into each caller
 def add_all(
     t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos, rot,
     vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth, wave_stretch,
@@ -49,8 +49,7 @@ def add_all(
     """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6); a model
     with states reads them from ``y`` at ``state[f]``; the mesh models share the workspace
     ``hull`` (kernels.hull.place), the radiation models read their velocity ``history``
-    (kernels.memory; its first floats are a model's scratch). At most 30 arguments: CPython
-    passes more as *args, which numba cannot inline."""
+    (kernels.memory; its first floats are a model's scratch)."""
     for f in range(kind.shape[0]):
         b = body[f]
         row = data[at[f] :]
