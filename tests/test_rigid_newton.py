@@ -113,7 +113,7 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
 
     def residual(a):
         out = np.zeros(nv)
-        system_implicit._residual(0.3, y, acc, a, h, scheme, p, w, inc, vec[0], vec[1],
+        system_implicit._residual(0.3 + h, y, acc, a, h, scheme, p, w, inc, vec[0], vec[1],
                                   vec[2][:nv], out, vec[9][:nv])  # fmt: skip
         return out
 
@@ -127,7 +127,7 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
     mat = np.zeros(lay.size)
     piv = np.zeros(lay.order.shape[0], dtype=np.int64)
     counters = np.zeros(8, dtype=np.int64)
-    status = system_implicit._jacobian(0.3, y, acc, a1, h, scheme, p, w, inc, lay, rows, mat,
+    status = system_implicit._jacobian(0.3 + h, y, acc, a1, h, scheme, p, w, inc, lay, rows, mat,
                                        res, vec, counters)  # fmt: skip
     assert status == 0
     assert bordered.factor(lay, mat, piv)

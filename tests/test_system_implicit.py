@@ -265,7 +265,9 @@ def test_a_bent_lumped_line_with_newmark_agrees_with_dopri5():
     ds = _bent("newmark", time_step=5e-4, newton_tolerance=1e-10)
     gap = np.abs(ds["bodies/ball/position_x"].values - reference).max()
     assert gap < 1e-4, gap  # measured 1.3e-5 m of a 0.77 m swing
-    assert ds.attrs["solver_linear_solves"] <= 4 * ds.attrs["solver_accepted_steps"]
+    steps = ds.attrs["solver_accepted_steps"]  # measured: 4,379 iterations, 29 matrices in
+    assert ds.attrs["solver_linear_solves"] <= 5 * steps  # 1,000 steps (a matrix is rebuilt
+    assert ds.attrs["solver_jacobian_evaluations"] <= 0.05 * steps  # when iterating costs more)
 
 
 def test_frozen_laws_keep_the_branches_of_the_last_evaluation():

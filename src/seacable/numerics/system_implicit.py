@@ -49,9 +49,13 @@ are held, with a free, held or body-carrying tip, is written instead in maximal 
 (``numerics.rigid_newton`` and ``numerics.rigid_newton_3d``, docs/rigid_newton.md: banded,
 exact, O(n) to build and factorise), with auxiliary unknowns after the velocity variables; the
 others (trees of lines, lines held on a free body, turning bases) keep the dense block. The
-factors are kept from step to step while they serve (modified Newton: rebuilt when an
-iteration contracts slower than ``SLOW`` or after ``REFRESH`` iterations on one matrix, and
-whenever the step length changes), so most steps cost two or three residuals.
+factors are kept from step to step while they serve (modified Newton: rebuilt when, at the
+contraction the last two corrections show, more than ``PATIENCE`` iterations would still be
+needed, and whenever the step length changes), so most steps cost two or three residuals.
+Every residual of a step is evaluated at the step's end time as the next step's start time
+computes it (``chunk``: t0 + h may differ from it in the last bit), so that the next step's
+f(t0) finds the water kinematics its last residual recorded at that very time (kernels.lumped
+LAGGED).
 A Jacobian counts its residuals in the rhs evaluations.
 """
 
@@ -72,8 +76,13 @@ from seacable.system import kernel as system_kernel
 
 FD_STEP = 1.5e-8  # relative change of a position for the difference quotients
 MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to this many parts
-REFRESH = 3  # modified Newton: the matrix is rebuilt after REFRESH iterations on one matrix
-SLOW = 0.5  # ... or as soon as a correction is larger than SLOW times the one before
+PATIENCE = 4.0  # modified Newton: the matrix is rebuilt when, at the contraction the last two
+# corrections show, more than PATIENCE iterations would still be needed (or more than are left).
+# A matrix costs about 13 residuals of an iteration on the moored barge (24 difference
+# quotients, most without the hull's models, and a factorisation); benchmarks/vessel_cost.py,
+# 100 s at 0.05 s: PATIENCE 2, 3, 4, 6: 43.1, 43.8, 44.9, 40.9 times real time. The rule it
+# replaces (rebuilt after 3 iterations on one matrix, or when a correction shrank by less than
+# half) gave 37.0.
 SEARCH = 4  # a correction that does not lower the residual is halved up to SEARCH times
 
 
@@ -234,14 +243,15 @@ def _state(y0, acc, a1, h, coef, inc, y, d, nq):
 
 
 @njit(inline="always", **JIT)
-def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
-    """res = (1 - am) a1 + am a0 - [(1 - af) f(t + h, end state) + af f0], f0 = f(t, y0):
+def _residual(t1, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
+    """res = (1 - am) a1 + am a0 - [(1 - af) f(t1, end state) + af f0], f0 = f(t, y0), t1 the
+    step's end time (t + h to the last bit):
     the forces blended at the alpha point (as Chung and Hulbert write the scheme), so that an
     imposed body's motion enters at the step's two ends exactly, as the free states do (a
     force model's state alike, its rate in place of an acceleration); returns the status."""
     am, af = coef[3], coef[4]
     _state(y0, acc, a1, h, coef, inc, ya, d, p.n_q)
-    status = system_kernel.rhs(t + h, ya, p, w, ydot)
+    status = system_kernel.rhs(t1, ya, p, w, ydot)
     nq = p.n_q
     for i in range(a1.shape[0]):
         res[i] = (1.0 - am) * a1[i] + am * acc[i] - (1.0 - af) * ydot[nq + i] - af * f0[i]
@@ -249,7 +259,7 @@ def _residual(t, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
 
 
 @njit(inline="always", **JIT)
-def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work):
+def _jacobian(t1, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work):
     """Newton's matrix into ``mat``: the rigid lines of ``rows`` in maximal coordinates at the
     residual r0 just evaluated (``rigid_newton.fill``: ``w`` and ``vec[0]`` hold its
     evaluation), then the rest by differences of the residual, colour by colour, with the
@@ -258,7 +268,7 @@ def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work
     ya, ydot, d, ap, rp, eps = vec[0], vec[1], vec[2][:nv], vec[3][:nv], vec[4][:nv], vec[5][:nv]
     f0 = vec[9][:nv]
     mat[:] = 0.0
-    if rows.line.shape[0] > 0 and not rigid_newton.fill(t + h, ya, h, coef, pj, w, rows, mat):
+    if rows.line.shape[0] > 0 and not rigid_newton.fill(t1, ya, h, coef, pj, w, rows, mat):
         return NON_FINITE
     reach = coef[1] * h * h  # d(end position) / d(a1)
     nq, n_pos = pj.n_q, inc.q_of_v.shape[0]
@@ -273,7 +283,7 @@ def _jacobian(t, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work
                 size = max(abs(y0[q]), inc.scale[j]) if q >= 0 else inc.scale[j]
                 eps[j] = FD_STEP * size / reach
             ap[j] += eps[j]
-        status = _residual(t, y0, acc, ap, h, coef, pj, w, inc, ya, ydot, d, rp, f0)
+        status = _residual(t1, y0, acc, ap, h, coef, pj, w, inc, ya, ydot, d, rp, f0)
         work[2] += 1
         if status != OK:
             return status
@@ -299,7 +309,7 @@ def _merit(res, inc, rate):
 
 
 @njit(inline="always", **JIT)
-def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
+def _search(t1, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
     """a1 -= s da with s = 1, 1/2, ... (SEARCH halvings at most) until the residual's merit
     falls (Armijo's test); the residual at the new a1 into vec[6]. Returns (status, merit,
     whether the correction was cut)."""
@@ -312,7 +322,7 @@ def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
     for cut in range(SEARCH + 1):
         for i in range(nv):
             trial[i] = a1[i] - fraction * da[i]
-        status = _residual(t, y, acc, trial, h, coef, p, w, inc, ya, ydot, d, res_trial, f0)
+        status = _residual(t1, y, acc, trial, h, coef, p, w, inc, ya, ydot, d, res_trial, f0)
         work[2] += 1
         trial_merit = _merit(res_trial, inc, coef[2] / (coef[1] * h)) if status == OK else math.inf
         if trial_merit <= (1.0 - 1e-4 * fraction) * merit or cut == SEARCH:
@@ -324,11 +334,28 @@ def _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
 
 
 @njit(inline="always", **JIT)
-def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, vec, big, work):
-    """One implicit step of length h from (t, y, acc); updates y and acc only when it succeeds.
-    A modified Newton iteration on the matrix of ``_jacobian``, kept from step to step while
-    it serves: rebuilt when it has taken REFRESH iterations, when a correction shrinks by less
-    than SLOW, when a line search cut the step, or when the step length changes. Each
+def _stale(largest, previous, limit, left):
+    """Whether Newton's matrix is to be rebuilt after a correction of (scaled) size
+    ``largest`` that followed one of ``previous`` on it (inf: none): when it did not shrink, or
+    when at this contraction more than PATIENCE iterations, or more than ``left``, would still
+    be needed to bring it under ``limit``."""
+    if largest >= previous:
+        return True
+    if previous == math.inf:
+        return False
+    needed = math.log(limit / largest) / math.log(largest / previous)
+    return needed > PATIENCE or needed > left
+
+
+@njit(inline="always", **JIT)
+def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, vec, big,
+          work):  # fmt: skip
+    """One implicit step of length h from (t, y, acc) to t1 (t + h as the next step's start
+    computes it); updates y and acc only when it succeeds. A modified Newton iteration on the
+    matrix of ``_jacobian``, kept from step to step while it serves: rebuilt when a correction
+    is no smaller than the one before, when at the contraction of the last two more than
+    PATIENCE iterations (or more than are left) would still be needed, when a line search cut
+    the step, or when the step length changes. Each
     correction that does not meet the tolerance is damped by halving (at most SEARCH times)
     until the residual's ``_merit`` falls: the laws' kinks (a segment going slack, a node
     touching the seabed) otherwise make Newton cycle between their branches. ``big`` (3,
@@ -351,27 +378,26 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
     a1[:] = acc
     if fresh[2] == h:
         a1 += trend
-    uses = 0
+    rebuild = False
     previous = math.inf
-    status = _residual(t, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
+    status = _residual(t1, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
     work[2] += 1
     rate = coef[2] / (b * h)  # a state's change per unit of rate against a position's
     merit = _merit(res, inc, rate)
-    for _ in range(max_iter):
-        if status == OK and (fresh[0] == 0.0 or fresh[1] != h or uses >= REFRESH):
-            status = _jacobian(t, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec,
+    for it in range(max_iter):
+        if status == OK and (fresh[0] == 0.0 or fresh[1] != h or rebuild):
+            status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec,
                                work)  # fmt: skip
             work[4] += 1
             if status == OK and not bordered.factor(lay, mat, piv):
                 status = NON_FINITE
             fresh[0], fresh[1] = 1.0, h
-            uses = 0
+            rebuild = False
             previous = math.inf
         if status != OK:
             work[3] += 1
             fresh[0] = 0.0
             return status
-        uses += 1
         work[5] += 1
         if rows.line.shape[0] > 0:
             rigid_newton.rhs(rows, p, res, big[0])
@@ -391,7 +417,7 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
             a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
             system_kernel.project(ya, p)
-            system_kernel.after_step(t + h, ya, p, w)
+            system_kernel.after_step(t1, ya, p, w)
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]
@@ -399,12 +425,11 @@ def _step(t, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, ve
             acc[:] = a1
             work[0] += 1
             return OK
-        if largest > SLOW * previous:
-            uses = REFRESH
+        rebuild = _stale(largest, previous, tol / (b * h * h), max_iter - it - 2)
         previous = largest
-        status, merit, cut = _search(t, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work)
+        status, merit, cut = _search(t1, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work)
         if cut:
-            uses = REFRESH
+            rebuild = True
     fresh[0] = 0.0
     fresh[2] = 0.0
     return NEWTON_FAILED
@@ -493,6 +518,7 @@ def chunk(
     j = np.int64(0)  # not a literal: record compiles once
     for _ in range(n_steps):
         t = step_time(first_output, output_interval, steps_per_output, step, dt)
+        t_next = step_time(first_output, output_interval, steps_per_output, step + 1, dt)
         y_saved[:] = y
         acc_saved[:] = acc
         parts = 1
@@ -500,7 +526,8 @@ def chunk(
             status = OK
             h = dt / parts
             for k in range(parts):
-                status = _step(t + k * h, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
+                t1 = t_next if k + 1 == parts else t + (k + 1) * h
+                status = _step(t + k * h, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
                                lay, rows, carried, vec, big, work)  # fmt: skip
                 if status != OK:
                     break
