@@ -63,6 +63,16 @@ def _lumped_line(integrator, **simulation):
     )
 
 
+def _lumped_line_in_waves(integrator, **simulation):
+    """The chain of ``_lumped_line`` in an irregular sea: an implicit step's residuals reuse
+    the water's kinematics they recorded at its end time (kernels.lumped LAGGED), which the
+    outputs evaluated where a chunk ends must not disturb."""
+    data = _lumped_line(integrator, **simulation)
+    data["environment"]["waves"] = [{"kind": "jonswap", "significant_height": 3.0,
+                                     "peak_period": 8.0, "frequencies": 20, "seed": 3}]  # fmt: skip
+    return data
+
+
 def _rigid_chain(integrator, **simulation):
     """A planar chain of six rigid links swinging in water from a heaving floating structure:
     the implicit schemes keep its factorised Newton matrix from step to step."""
@@ -116,6 +126,11 @@ CASES = {
     "theta lumped": (_lumped_line, "theta", {"time_step": 0.01, "theta": 0.6}),
     "newmark lumped": (_lumped_line, "newmark", {"time_step": 0.01}),
     "generalized_alpha lumped": (_lumped_line, "generalized_alpha", {"time_step": 0.01}),
+    "generalized_alpha lumped waves": (
+        _lumped_line_in_waves,
+        "generalized_alpha",
+        {"time_step": 0.05},
+    ),  # fmt: skip
     "newmark rigid": (_rigid_chain, "newmark", {"time_step": 0.01}),
     "generalized_alpha rigid": (_rigid_chain, "generalized_alpha", {"time_step": 0.01}),
     "bdf lumped": (_lumped_line, "bdf", {}),

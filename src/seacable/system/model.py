@@ -279,10 +279,19 @@ BODY_NAMES = (
 
 
 def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
+    """The output rows of ``states`` at ``times``, evaluated with the run's workspace ``w`` (its
+    radiation histories) but leaving its lines' records (``w.nodes``: the branches and water
+    kinematics an implicit step's residuals reuse, kernels.lumped LAGGED) as the steps left
+    them: the outputs run where a chunk ends, and an output's evaluation at the next step's
+    start time made that step reuse its records instead of the last step's, so that results
+    depended on where chunks ended, that is on the machine's load (1.4e-5 in 10 s of the
+    moored barge; ``tests/test_reproducible.py``)."""
     p = system.params
     m = len(times)
     filled = outputs.allocate(p, m)
+    kept = w.nodes.copy()
     status = outputs.fill(times, states, p, w, filled)
+    w.nodes[:] = kept
     bodies, nodes, tension, ends, ties, energy, rigid = filled
     out: dict = {"time": times}
     for k, name in enumerate(list(ENERGY_VARIABLES)[:3]):
