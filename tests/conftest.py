@@ -7,6 +7,9 @@ from the one recorded with the cache, the cached builds are deleted and compiled
 """
 
 import hashlib
+import subprocess
+import sys
+import tempfile
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "seacable"
@@ -33,3 +36,20 @@ def _drop_stale_numba_cache() -> None:
 
 
 _drop_stale_numba_cache()
+
+
+def pytest_sessionstart(session) -> None:
+    """On several xdist workers, compile the shared code once before they start
+    (tests/warm_cache.py; xdist starts its workers in a later hook of the same name)."""
+    config = session.config
+    workers = getattr(config.option, "numprocesses", None)
+    if hasattr(config, "workerinput") or workers in (None, 0, 1, "0", "1"):
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        marker = Path(tmp) / "first-done"
+        script = str(Path(__file__).with_name("warm_cache.py"))
+        parts = [subprocess.Popen([sys.executable, script, part, str(marker)],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                 for part in ("first", "second")]  # fmt: skip
+        for part in parts:
+            part.wait()  # a failure here only leaves the compiling to the workers
