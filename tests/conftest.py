@@ -9,7 +9,6 @@ from the one recorded with the cache, the cached builds are deleted and compiled
 import hashlib
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "seacable"
@@ -45,11 +44,10 @@ def pytest_sessionstart(session) -> None:
     workers = getattr(config.option, "numprocesses", None)
     if hasattr(config, "workerinput") or workers in (None, 0, 1, "0", "1"):
         return
-    with tempfile.TemporaryDirectory() as tmp:
-        marker = Path(tmp) / "first-done"
-        script = str(Path(__file__).with_name("warm_cache.py"))
-        parts = [subprocess.Popen([sys.executable, script, part, str(marker)],
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                 for part in ("first", "second")]  # fmt: skip
-        for part in parts:
-            part.wait()  # a failure here only leaves the compiling to the workers
+    script = str(Path(__file__).with_name("warm_cache.py"))
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    parts = [
+        subprocess.Popen([sys.executable, script, part], **quiet) for part in ("first", "second")
+    ]
+    for part in parts:
+        part.wait()  # a failure here only leaves the compiling to the workers
