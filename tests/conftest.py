@@ -4,6 +4,9 @@ numba keys an on-disk cached function by its own source file only, so a cached i
 an old copy of a kernel it inlined after the kernel's file is edited (a stale, possibly wrong
 build). Before the tests import seacable, the package's sources are hashed; when the hash differs
 from the one recorded with the cache, the cached builds are deleted and compiled afresh.
+
+On several xdist workers, the shared code is then compiled once, in two processes, before the
+workers start (``pytest_sessionstart``, ``tests/warm_cache.py``).
 """
 
 import hashlib

@@ -79,10 +79,11 @@ MAX_SUBSTEPS = 64  # a step whose Newton iteration fails is retried in up to thi
 PATIENCE = 4.0  # modified Newton: the matrix is rebuilt when, at the contraction the last two
 # corrections show, more than PATIENCE iterations would still be needed (or more than are left).
 # A matrix costs about 13 residuals of an iteration on the moored barge (24 difference
-# quotients, most without the hull's models, and a factorisation); benchmarks/vessel_cost.py,
-# 100 s at 0.05 s: PATIENCE 2, 3, 4, 6: 43.1, 43.8, 44.9, 40.9 times real time. The rule it
-# replaces (rebuilt after 3 iterations on one matrix, or when a correction shrank by less than
-# half) gave 37.0.
+# quotients, most without the hull's models, and a factorisation). Its example run for 100 s at
+# 0.05 s (a scratch run timed as benchmarks/vessel_cost.py times its runs): PATIENCE 2, 3, 4, 6
+# gave 43.1, 43.8, 44.9, 40.9 times real time; the rule it replaces (rebuilt after 3
+# iterations on one matrix, or when a correction shrank by less than half) 37.0. Over the
+# benchmark's 200 s (python benchmarks/vessel_cost.py --realtime-only): 34.6, was 26.6.
 SEARCH = 4  # a correction that does not lower the residual is halved up to SEARCH times
 
 
