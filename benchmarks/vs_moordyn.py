@@ -275,7 +275,13 @@ def case(segments, duration, integrator, damping, time_step=None, **simulation):
             "environment": {
                 "water_density": 1025.0,
                 "water_depth": DEPTH,
-                "seabed": {"stiffness": SEABED_K, "damping": SEABED_C, "friction_coefficient": 0},
+                # MoorDyn's plain spring-damper: no smoothing band (environment.Seabed)
+                "seabed": {
+                    "stiffness": SEABED_K,
+                    "damping": SEABED_C,
+                    "friction_coefficient": 0,
+                    "contact_band": 0.0,
+                },
             },
             "bodies": [
                 {"name": "fairlead", "type": "imposed", "x": surge, "z": FAIRLEAD_Z},

@@ -281,7 +281,7 @@ def test_frozen_laws_keep_the_branches_of_the_last_evaluation():
     loads = (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
     still = (0.0, 9.81, np.zeros((0, 6)), 1e30, 0)  # t, g, no waves, depth, stretching
-    seabed = (-10.01, np.full(3, 1e4), np.zeros(3), 0.0, 0.01)  # z, k, c, friction, slip
+    seabed = (-10.01, np.full(3, 1e4), np.zeros(3), 0.0, 0.01, 0.0)  # z, k, c, mu, slip, band
 
     def evaluate(state, mode, w):
         lk.segment_loads(state, n, 0, 0, *args, mode, *loads, *current, *still, w)

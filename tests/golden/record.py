@@ -89,9 +89,13 @@ def derived(stem: str, changes: Mapping):
     """The example's case with ``changes`` (a nested mapping of case keys, as
     :func:`seacable.case.loader.derive_case` takes) applied through the loader's validation.
     The single-cable keys are dropped (``cables``: the servo's step, kept at the example's
-    while the time step was refined, is written in the system example)."""
+    while the time step was refined, is written in the system example). A seabed is the
+    plain spring the goldens were recorded with (``contact_band`` 0)."""
     case = seacable.load_case(example_path(stem))
     changes = {key: value for key, value in changes.items() if key != "cables"}
+    if case.environment.seabed is not None:
+        assert "environment" not in changes
+        changes["environment"] = {"seabed": {"contact_band": 0.0}}
     return derive_case(case, changes)
 
 

@@ -56,12 +56,17 @@ class Wind(_Model):
 class Seabed(_Model):
     """Seabed contact of lumped-mass cables: per metre of line, a vertical ``stiffness``
     [N/m per m of line] and ``damping`` [N s/m per m] while a node is below the seabed, and
-    Coulomb friction along it (``friction_coefficient``, regularised below ``slip_speed``)."""
+    Coulomb friction along it (``friction_coefficient``, regularised below ``slip_speed``).
+    Over the first ``contact_band`` of depth the stiffness (and the share of the damping that
+    acts) rises linearly from zero, so that the push is smooth (C1) in the depth and implicit
+    steps converge through touchdown; below the band the push is ``stiffness`` (depth -
+    band / 2). 0 gives the plain spring, as MoorDyn's."""
 
     stiffness: Pos = 1.0e5
     damping: NonNeg = 0.0
     friction_coefficient: NonNeg = 0.0
     slip_speed: Pos = 0.01  # [m/s]
+    contact_band: NonNeg = 0.005  # [m]
 
 
 class RegularWave(_Model):

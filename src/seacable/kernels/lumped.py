@@ -218,26 +218,64 @@ def _water(wave, t, slack, wet, share_a, y, a, b, depth, stretch, trig, reach, w
     return u, acc
 
 
+@inner
+def seabed_spring(depth, stiffness, band):
+    """The seabed's elastic push [N] on a node ``depth`` [m] below it, and the share (0 to 1)
+    of its damping that acts: C1 in the depth, so that Newton does not cycle across the kink
+    of a plain spring. Over the first ``band`` [m] the stiffness rises linearly from 0 to
+    ``stiffness`` [N/m]; below it the spring is linear, offset by band / 2 (the push is
+    k (depth - band / 2)). With band 0 it is the plain spring k depth, continued linearly
+    above the seabed (where only ``seabed_loads`` FROZEN evaluates it)."""
+    if depth >= band:
+        return stiffness * (depth - 0.5 * band), 1.0
+    if depth > 0.0:
+        return 0.5 * stiffness * depth * depth / band, depth / band
+    if band == 0.0:
+        return stiffness * depth, 1.0
+    return 0.0, 0.0
+
+
+@inner
+def seabed_potential(depth, stiffness, band):
+    """The elastic energy [J] of seabed_spring's push at ``depth`` [m] (zero above it)."""
+    if depth <= 0.0:
+        return 0.0
+    if depth < band:
+        return stiffness * depth**3 / (6.0 * band)
+    return stiffness * (0.5 * depth * depth - 0.5 * band * depth + band * band / 6.0)
+
+
+def seabed_resting_depth(weight, stiffness, band):
+    """The depth [m] at which seabed_spring carries ``weight`` [N] (seabed_spring's inverse)."""
+    if weight >= 0.5 * stiffness * band:
+        return weight / stiffness + 0.5 * band
+    return math.sqrt(2.0 * band * weight / stiffness)
+
+
 @njit(**JIT)
-def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, mode, w):
+def seabed_loads(y, n, c0, seabed_z, stiffness, damping, friction, slip_speed, band, mode, w):
     """Seabed contact of the n + 1 nodes of one line (``y`` as in segment_loads; per-node
     stiffness [N/m] and damping [N s/m] at ``[c0 + k]``, as its workspace columns): a
-    vertical spring-damper below ``seabed_z`` that only pushes, and regularised Coulomb
-    friction along it. ``mode`` FROZEN: on the contacts recorded by the last evaluation in
-    any other mode (see segment_loads)."""
+    vertical spring-damper below ``seabed_z`` that only pushes (seabed_spring, its stiffness
+    rising over the first ``band`` [m]), and regularised Coulomb friction along it. ``mode``
+    FROZEN: on the contacts recorded by the last evaluation in any other mode (see
+    segment_loads)."""
     v0 = 3 * (n + 1)
     for j in range(n + 1):
         k = c0 + j
         depth = seabed_z - y[3 * j + 2]
         vz = y[v0 + 3 * j + 2]
-        normal = stiffness[k] * depth - damping[k] * vz
         if mode == FROZEN:
             if w[_CONTACT, k] == 0.0:
                 continue
-        else:
-            touching = depth > 0.0 and normal > 0.0
-            w[_CONTACT, k] = 1.0 if touching else 0.0
-            if not touching:
+        elif depth <= 0.0:
+            w[_CONTACT, k] = 0.0
+            continue
+        spring, share = seabed_spring(depth, stiffness[k], band)
+        normal = spring - share * damping[k] * vz
+        if mode != FROZEN:
+            w[_CONTACT, k] = 1.0 if normal > 0.0 else 0.0
+            if normal <= 0.0:
                 continue
         w[_F + 2, k] += normal
         vx, vy = y[v0 + 3 * j], y[v0 + 3 * j + 1]

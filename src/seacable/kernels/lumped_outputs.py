@@ -9,6 +9,7 @@ from seacable.kernels.jit import inner
 from seacable.kernels.lumped import (
     _bend_angle,
     _node_mass_into,
+    seabed_potential,
 )
 from seacable.kernels.surface import segment_potential
 
@@ -16,7 +17,7 @@ from seacable.kernels.surface import segment_potential
 @inner
 def line_energies(
     yl, n, s0, c0, node_mass, length, stiffness, wet_weight, buoyancy, seabed_z, seabed_k,
-    bend, slack, w,
+    seabed_band, bend, slack, w,
 ):  # fmt: skip
     """Kinetic (added mass included), gravity potential (apparent weight and the buoyancy of
     the submerged part) and elastic (axial, seabed, bending) energies of one line's nodes
@@ -35,9 +36,7 @@ def line_energies(
             + vy * (m3[3] * vx + m3[4] * vy + m3[5] * vz)
             + vz * (m3[6] * vx + m3[7] * vy + m3[8] * vz)
         )
-        depth = seabed_z - yl[3 * j + 2]
-        if depth > 0.0:
-            elastic += 0.5 * seabed_k[k] * depth * depth
+        elastic += seabed_potential(seabed_z - yl[3 * j + 2], seabed_k[k], seabed_band)
         if 0 < j < n and bend[k] > 0.0:
             phi, _, _ = _bend_angle(w, k)
             elastic += 0.5 * bend[k] * phi * phi

@@ -34,7 +34,7 @@ def gather(y, n, q, v, ppos, pvel, a, b, yl):
 @njit(inline="always", **JIT)
 def loads(
     yl, n, s0, c0, length, stiffness, damping, slack, drag_normal, drag_tangential, wet_weight,
-    buoyancy, added_mass, node_bend, seabed_k, seabed_c, seabed_z, friction, slip, current_z,
+    buoyancy, added_mass, node_bend, seabed_k, seabed_c, seabed_z, friction, slip, band, current_z,
     current_u, current_v, t, gravity, wave, wave_depth, wave_stretch, w,
 ):  # fmt: skip
     """Every load on the line's nodes into the workspace columns c0 .. c0 + n (``slack``:
@@ -47,7 +47,7 @@ def loads(
         wave_stretch, w,
     )  # fmt: skip
     lk.bending(n, c0, node_bend, w)
-    lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, slack, w)
+    lk.seabed_loads(yl, n, c0, seabed_z, seabed_k, seabed_c, friction, slip, band, slack, w)
 
 
 @njit(inline="always", **JIT)

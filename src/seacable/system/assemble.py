@@ -266,6 +266,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         seabed_z=-env.water_depth if (seabed and env.water_depth) else -1e30,
         seabed_friction=seabed.friction_coefficient if seabed else 0.0,
         seabed_slip_speed=seabed.slip_speed if seabed else 0.01,
+        seabed_band=seabed.contact_band if seabed else 0.0,
         current_z=current_z, current_u=current_u, current_v=current_v,
         **packing.wave_fields(env, case.simulation.build_up), wind_channel=layout.wind_channel,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),

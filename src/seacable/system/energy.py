@@ -33,7 +33,7 @@ def _lines(y, p, w):
         k, g, e = line_energies(
             w.line, n, p.line_seg[li], p.line_node[li], p.node_mass, p.seg_length,
             p.seg_stiffness, p.seg_wet_weight, p.seg_buoyancy, p.seabed_z,
-            p.node_seabed_stiffness, p.node_bend, p.slack_allowed, w.nodes,
+            p.node_seabed_stiffness, p.seabed_band, p.node_bend, p.slack_allowed, w.nodes,
         )  # fmt: skip
         kinetic += k
         gravity += g

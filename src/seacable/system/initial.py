@@ -13,6 +13,7 @@ from scipy.linalg import solve_banded
 from seacable.bodies import kinematics
 from seacable.case import system as sch
 from seacable.errors import CaseError
+from seacable.kernels import lumped as lk
 from seacable.lines import catenary
 from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
@@ -58,7 +59,7 @@ def _catenary(p, li, start, end, env, where):
         # nodes lying on the seabed start at the penetration that carries their weight
         stiffness_per_length = p.node_seabed_stiffness[p.line_node[li]] / (0.5 * lengths[0])
         lying = (np.abs(z) < 1e-9) & (np.arange(n + 1) < n)
-        nodes[lying, 2] -= w / stiffness_per_length
+        nodes[lying, 2] -= lk.seabed_resting_depth(w, stiffness_per_length, p.seabed_band)
     return nodes[::-1] if not flip else nodes
 
 
@@ -432,6 +433,18 @@ def pushed(p, w) -> float:
 
 
 def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
+    """``_newton_at``; with a seabed contact band (kernels.lumped.seabed_spring), first with
+    the plain spring and then from its balance with the band: the band's soft foot makes
+    Newton's long first steps wander where the plain spring's did not (an eight-segment chain
+    from its catenary start settled with the plain spring and folded into a zigzag with a 5
+    mm band); from the plain spring's balance the lying nodes sink by about half the band,
+    where the law is linear, and Newton takes a step or two."""
+    if p.seabed_band > 0.0:
+        y0 = _newton_at(p._replace(seabed_band=0.0), y0, iterations, time, central)
+    return _newton_at(p, y0, iterations, time, central)
+
+
+def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False):
     """The lines' interior nodes in balance by Newton, its block-tridiagonal Jacobian by forward
     differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6; two residuals per
     colour, and a stop once the step is at the positions' rounding: the residual's floor).

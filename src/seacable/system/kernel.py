@@ -149,6 +149,7 @@ class SystemParams(NamedTuple):
     seabed_z: float  # [m] (-1e30: none)
     seabed_friction: float
     seabed_slip_speed: float  # [m/s]
+    seabed_band: float  # [m] over which the contact stiffness rises (kernels.lumped)
     current_z: np.ndarray
     current_u: np.ndarray
     current_v: np.ndarray
@@ -371,9 +372,10 @@ def rhs(t, y, p, w, ydot):
         p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed, p.seg_drag_normal,
         p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
         p.node_mass, p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z,
-        p.seabed_friction, p.seabed_slip_speed, p.current_z, p.current_u, p.current_v, t,
-        p.gravity, p.wave, p.wave_depth, p.wave_stretch, p.point_body, p.body_kind, w.ppos, w.pvel,
-        w.parm, w.omega, w.line, w.nodes, w.end_mass, w.end_load, w.mass, w.load, ydot,
+        p.seabed_friction, p.seabed_slip_speed, p.seabed_band, p.current_z, p.current_u,
+        p.current_v, t, p.gravity, p.wave, p.wave_depth, p.wave_stretch, p.point_body,
+        p.body_kind, w.ppos, w.pvel, w.parm, w.omega, w.line, w.nodes, w.end_mass, w.end_load,
+        w.mass, w.load, ydot,
     ):  # fmt: skip
         status = NON_FINITE
     # force models
@@ -470,9 +472,9 @@ def _finite(ydot):
 def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, line_to, length,
                   stiffness, damping, slack_allowed, drag_normal, drag_tangential, wet_weight,
                   buoyancy, added_mass, bend, node_mass, seabed_stiffness, seabed_damping,
-                  seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u, current_v,
-                  t, gravity, wave, wave_depth, wave_stretch, point_body, body_kind, ppos, pvel,
-                  parm, omega, line, nodes, end_mass, end_load, body_mass, load,
+                  seabed_z, seabed_friction, seabed_slip_speed, seabed_band, current_z, current_u,
+                  current_v, t, gravity, wave, wave_depth, wave_stretch, point_body, body_kind,
+                  ppos, pvel, parm, omega, line, nodes, end_mass, end_load, body_mass, load,
                   ydot):  # fmt: skip
     """Every lumped-mass line: its loads (at time ``t`` [s], in the incident waves ``wave``),
     its interior nodes' rates into ``ydot``, its end nodes' mass and loads handed to their
@@ -486,8 +488,8 @@ def _lumped_lines(y, line_n, line_seg, line_node, line_q, line_v, line_from, lin
         lumped_mass.loads(
             line, n, s0, c0, length, stiffness, damping, slack_allowed, drag_normal,
             drag_tangential, wet_weight, buoyancy, added_mass, bend, seabed_stiffness,
-            seabed_damping, seabed_z, seabed_friction, seabed_slip_speed, current_z, current_u,
-            current_v, t, gravity, wave, wave_depth, wave_stretch, nodes,
+            seabed_damping, seabed_z, seabed_friction, seabed_slip_speed, seabed_band, current_z,
+            current_u, current_v, t, gravity, wave, wave_depth, wave_stretch, nodes,
         )  # fmt: skip
         ok = lumped_mass.interior_rates(line, n, line_q[li], line_v[li], c0, node_mass, nodes,
                                         ydot) and ok  # fmt: skip
