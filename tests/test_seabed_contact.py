@@ -188,3 +188,39 @@ def test_a_line_that_falls_onto_the_seabed_keeps_its_energy():
     energy = tree["total_energy"].values
     drift = np.max(np.abs(energy - energy[0])) / np.ptp(tree["kinetic_energy"].values)
     assert drift < 1e-6, drift
+
+
+@pytest.mark.parametrize(
+    "depth, velocity",
+    [
+        (0.002, (0.0, 0.0, 0.0)),  # in the band, at rest
+        (0.003, (0.004, -0.002, -0.05)),  # in the band, sliding slower than slip_speed, sinking
+        (0.02, (0.3, 0.1, 0.02)),  # below the band, sliding, rising
+        (0.02, (-0.001, 0.0, 0.0)),  # below the band, nearly stuck
+        (0.003, (0.0, 0.0, 0.05)),  # in the band, rising: the damping would pull, no contact
+    ],
+)
+def test_the_seabed_gradient_is_the_derivative_of_its_loads(depth, velocity):
+    """kernels.lumped.seabed_gradient (Newton's matrix keeps the seabed's terms current with
+    it) against central differences of seabed_loads (LAW), friction and damping on."""
+    n = 1
+    args = (-10.0, np.full(2, K), np.full(2, 2.0e3), 0.6, 0.01, BAND)  # z, k, c, mu, slip, band
+    y = np.array([0.0, 0.0, -10.0 - depth, 5.0, 0.0, -2.0, *velocity, 0.0, 0.0, 0.0])
+
+    def force(state):
+        w = np.zeros((lk.N_WORK_ROWS, n + 1))
+        lk.seabed_loads(state, n, 0, *args, lk.LAW, w)
+        return w[lk._F : lk._F + 3, 0].copy()
+
+    numeric = np.empty((3, 4))  # dF/dz, dF/dv_x, dF/dv_y, dF/dv_z
+    for col, (index, step) in enumerate([(2, 1e-7), (6, 1e-7), (7, 1e-7), (8, 1e-7)]):
+        up, down = y.copy(), y.copy()
+        up[index] += step
+        down[index] -= step
+        numeric[:, col] = (force(up) - force(down)) / (2 * step)
+    out = np.empty(12)
+    lk.seabed_gradient(y[2], *velocity, *args[:1], K, 2.0e3, *args[3:], out)
+    analytic = np.column_stack([out[0:3], out[3:12].reshape(3, 3)])
+    scale = np.abs(numeric).max(axis=0)
+    np.testing.assert_allclose(analytic, numeric, rtol=1e-5, atol=1e-6 * scale.max())
+    assert out[2] < 0.0 or not force(y).any()  # deeper pushes harder: dF_z/dz < 0

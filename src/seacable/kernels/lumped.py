@@ -236,6 +236,51 @@ def seabed_spring(depth, stiffness, band):
 
 
 @inner
+def seabed_slopes(depth, stiffness, band):
+    """d(push)/d(depth) [N/m] and d(share)/d(depth) [1/m] of seabed_spring at ``depth``."""
+    if depth >= band:
+        return stiffness, 0.0
+    if depth > 0.0:
+        return stiffness * depth / band, 1.0 / band
+    if band == 0.0:
+        return stiffness, 0.0
+    return 0.0, 0.0
+
+
+@njit(**JIT)
+def seabed_gradient(z, vx, vy, vz, seabed_z, stiffness, damping, friction, slip_speed, band,
+                    out):  # fmt: skip
+    """The derivatives of seabed_loads' force on one node (position height ``z``, velocity
+    ``v``) under its physical law (``mode`` LAW): ``out[0:3]`` = dF/dz, ``out[3:12]`` = dF/dv
+    row by row (dF_x/dv_x, dF_x/dv_y, ...); zero where the node does not touch. Its position
+    along the seabed does not enter the law."""
+    out[:] = 0.0
+    depth = seabed_z - z
+    if depth <= 0.0:
+        return
+    spring, share = seabed_spring(depth, stiffness, band)
+    normal = spring - share * damping * vz
+    if normal <= 0.0:
+        return
+    slope, share_slope = seabed_slopes(depth, stiffness, band)
+    dn_dz = -(slope - share_slope * damping * vz)  # depth = seabed_z - z
+    dn_dvz = -share * damping
+    speed = math.sqrt(vx * vx + vy * vy + slip_speed**2)
+    cube = speed * speed * speed
+    # F_x = -mu N v_x / speed, F_y = -mu N v_y / speed, F_z = N
+    out[0] = -friction * vx / speed * dn_dz
+    out[1] = -friction * vy / speed * dn_dz
+    out[2] = dn_dz
+    out[3] = -friction * normal * (speed * speed - vx * vx) / cube
+    out[4] = friction * normal * vx * vy / cube
+    out[5] = -friction * vx / speed * dn_dvz
+    out[6] = friction * normal * vx * vy / cube
+    out[7] = -friction * normal * (speed * speed - vy * vy) / cube
+    out[8] = -friction * vy / speed * dn_dvz
+    out[11] = dn_dvz
+
+
+@inner
 def seabed_potential(depth, stiffness, band):
     """The elastic energy [J] of seabed_spring's push at ``depth`` [m] (zero above it)."""
     if depth <= 0.0:

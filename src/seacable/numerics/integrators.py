@@ -20,6 +20,7 @@ WORK_NAMES = (
     "failed_evaluations",
     "jacobian_evaluations",
     "linear_solves",
+    "matrix_updates",
 )
 
 

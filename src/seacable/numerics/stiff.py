@@ -114,4 +114,4 @@ class StiffStepper:
         """Counters in the order of ``integrators.WORK_NAMES``."""
         steps = -1 if self.name == "cvode" else self.steps
         solves = -1 if self.name == "cvode" else self.nlu
-        return np.array([steps, -1, self.nfev, 0, self.njev, solves], dtype=np.int64)
+        return np.array([steps, -1, self.nfev, 0, self.njev, solves, 0], dtype=np.int64)

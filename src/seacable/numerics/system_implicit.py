@@ -22,7 +22,8 @@ tension 2.4 times less accurate at 25 ms: 3.7e-3 of its peak against 1.6e-3.)
 The theta-method with theta = 1/2 (the trapezoidal rule) and Newmark's average acceleration
 (beta = 1/4, gamma = 1/2) are the same scheme here. The integrator follows the contract of
 ``numerics.integrators``; its work counters add Jacobian evaluations (matrices built and
-factorised) and linear solves (Newton iterations).
+factorised), linear solves (Newton iterations) and matrix updates (a kept matrix's seabed
+terms brought to the iterate and refactorised).
 
 The unknowns of a step are the accelerations a1 of every velocity variable of the system
 (``y = [Q, V, S]``: bodies, lumped nodes, rigid segments' director rates, links' angle rates,
@@ -84,6 +85,11 @@ PATIENCE = 4.0  # modified Newton: the matrix is rebuilt when, at the contractio
 # gave 43.1, 43.8, 44.9, 40.9 times real time; the rule it replaces (rebuilt after 3
 # iterations on one matrix, or when a correction shrank by less than half) 37.0. Over the
 # benchmark's 200 s (python benchmarks/vessel_cost.py --realtime-only): 34.6, was 26.6.
+UPDATES = 2  # a stale matrix's seabed terms are updated at most UPDATES times a step, then it
+# is rebuilt (_matrix): the rest of it ages too. The moored barge over the benchmark's 200 s at
+# 0.05 s (a scratch run timed as the benchmark times them): 46.8 times real time without
+# updates (1,597 matrices, 19 failed steps); once a step 49.5 (723, 41); twice 52.9 (428, 47);
+# without a limit 53.1 (170, 86). Updating the contact's terms without the friction's: 35.5.
 SEARCH = 4  # a correction that does not lower the residual is halved up to SEARCH times
 
 
@@ -348,21 +354,97 @@ def _stale(largest, previous, limit, left):
     return needed > PATIENCE or needed > left
 
 
+@inner
+def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
+    """The seabed law's terms in Newton's matrix at the state ``y`` (``w`` evaluated there):
+    for each interior node of each lumped line, G = dF/dr b h^2 + dF/dv g h, the derivatives
+    of its seabed force (kernels.lumped.seabed_gradient) with respect to the node's
+    acceleration a1. ``update`` False: G is recorded in ``held`` (the matrix just built by
+    differences holds it). True: the unfactorised matrix ``raw`` is moved by -(1 - af) M^-1
+    (G - held) at each node's diagonal block (M its 3 x 3 mass matrix) and ``held`` becomes
+    G. Returns whether any node's terms changed."""
+    if p.seabed_z < -1e29:
+        return False
+    b, g, af = coef[1], coef[2], coef[4]
+    grad = np.empty(12)
+    m3 = np.empty(9)
+    change = np.empty(9)
+    moved = False
+    for li in range(p.line_n.shape[0]):
+        c0, q0, v0 = p.line_node[li], p.line_q[li], p.line_v[li]
+        for j in range(1, p.line_n[li]):
+            k = c0 + j
+            q, v = q0 + 3 * (j - 1), v0 + 3 * (j - 1)
+            lumped.seabed_gradient(
+                y[q + 2], y[v], y[v + 1], y[v + 2], p.seabed_z, p.node_seabed_stiffness[k],
+                p.node_seabed_damping[k], p.seabed_friction, p.seabed_slip_speed,
+                p.seabed_band, grad,
+            )  # fmt: skip
+            same = True
+            for e in range(9):
+                term = grad[3 + e] * g * h + (grad[e // 3] * b * h * h if e % 3 == 2 else 0.0)
+                change[e] = term - held[e, k]
+                held[e, k] = term
+                same = same and change[e] == 0.0
+            if not update or same:
+                continue
+            moved = True
+            lumped._node_mass_into(p.node_mass[k], w.nodes, k, m3)
+            inverse = np.linalg.inv(m3.reshape(3, 3))
+            first = v - p.n_q
+            for c in range(3):
+                col = first + c
+                for z in range(lay.nz_ptr[col], lay.nz_ptr[col + 1]):
+                    r = lay.nz_row[z] - first
+                    if 0 <= r < 3:
+                        total = 0.0
+                        for e in range(3):
+                            total += inverse[r, e] * change[3 * e + c]
+                        raw[lay.nz_dest[z]] -= (1.0 - af) * total
+    return moved
+
+
+@njit(inline="always", **JIT)
+def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, work, updates):
+    """Newton's matrix factorised for the iterate a1 (its state in ``vec[0]``, its residual
+    ``res`` evaluated into ``w``): a kept matrix of this step length has its seabed terms
+    brought to the iterate (``_seabed_terms``); when none changed, or when the step length
+    did, it is built afresh (``_jacobian``). Returns the status."""
+    _, fresh, mat, piv, raw, held = carry
+    if fresh[0] != 0.0 and fresh[1] == h and updates < UPDATES:
+        if _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, True):
+            mat[:] = raw
+            work[6] += 1
+            return (OK if bordered.factor(lay, mat, piv) else NON_FINITE), updates + 1
+    _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, False)
+    status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work)
+    work[4] += 1
+    raw[:] = mat
+    if status == OK and not bordered.factor(lay, mat, piv):
+        status = NON_FINITE
+    fresh[0], fresh[1] = 1.0, h
+    return status, updates
+
+
 @njit(inline="always", **JIT)
 def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, vec, big,
           work):  # fmt: skip
     """One implicit step of length h from (t, y, acc) to t1 (t + h as the next step's start
     computes it); updates y and acc only when it succeeds. A modified Newton iteration on the
-    matrix of ``_jacobian``, kept from step to step while it serves: rebuilt when a correction
+    matrix of ``_jacobian``, kept from step to step while it serves: stale when a correction
     is no smaller than the one before, when at the contraction of the last two more than
-    PATIENCE iterations (or more than are left) would still be needed, when a line search cut
-    the step, or when the step length changes. Each
+    PATIENCE iterations (or more than are left) would still be needed, or when a line search
+    cut the step; rebuilt then, or when the step length changes. A stale matrix has its lumped
+    nodes' seabed terms brought to the current iterate instead (``_seabed_terms``: analytic,
+    node by node, then a factorisation) when any changed: the contact's stiffness and the
+    friction's dependence on the sliding speed change within millimetres and centimetres per
+    second, and they made most of the rebuilds on the moored barge. Each
     correction that does not meet the tolerance is damped by halving (at most SEARCH times)
     until the residual's ``_merit`` falls: the laws' kinks (a segment going slack, a node
     touching the seabed) otherwise make Newton cycle between their branches. ``big`` (3,
     ``rows.size``): Newton's right-hand side, correction and scratch over every unknown, the
     rigid lines' auxiliary ones included (``rigid_newton.rhs``)."""
-    q, fresh, mat, piv = carry
+    q, fresh, mat, piv, raw, held = carry
     a1, trend = q[0], q[1]
     nv = a1.shape[0]
     ya, ydot, d, res, da, z = vec[0], vec[1], vec[2][:nv], vec[6][:nv], vec[7][:nv], vec[8][:nv]
@@ -385,14 +467,11 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     work[2] += 1
     rate = coef[2] / (b * h)  # a state's change per unit of rate against a position's
     merit = _merit(res, inc, rate)
+    updates = 0
     for it in range(max_iter):
-        if status == OK and (fresh[0] == 0.0 or fresh[1] != h or rebuild):
-            status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec,
-                               work)  # fmt: skip
-            work[4] += 1
-            if status == OK and not bordered.factor(lay, mat, piv):
-                status = NON_FINITE
-            fresh[0], fresh[1] = 1.0, h
+        if status == OK and (rebuild or fresh[0] == 0.0 or fresh[1] != h):
+            status, updates = _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry,
+                                      res, vec, work, updates)  # fmt: skip
             rebuild = False
             previous = math.inf
         if status != OK:
@@ -469,11 +548,13 @@ def lagged(p):
 def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     """The arrays a run carries from step to step (``numerics.contract.ChunkIntegrator``, point
     5): [a1, the last step's change of acceleration], [factors valid, their step length, the
-    step length of that change], the factors and their row swaps."""
+    step length of that change], the factors and their row swaps, the matrix before its
+    factorisation and the seabed terms it holds for each lumped node (``_seabed_terms``)."""
     nv = int(system.params.n_v) + int(system.params.n_s)
     return (
         np.zeros((2, nv)), np.zeros(3), np.zeros(lay.size),
-        np.zeros(lay.order.shape[0], dtype=np.int64),
+        np.zeros(lay.order.shape[0], dtype=np.int64), np.zeros(lay.size),
+        np.zeros((9, system.params.node_mass.shape[0])),
     )  # fmt: skip
 
 
@@ -505,8 +586,8 @@ def chunk(
     seabed friction can make Newton cycle at long steps) is retried in 2, 4, ... MAX_SUBSTEPS
     equal parts, each retry counted as a rejected step. Returns (outputs reached, status);
     ``work`` gets [accepted, rejected, rhs evaluations, failed evaluations, Jacobian
-    evaluations, linear solves] (a Jacobian's residuals count as rhs evaluations; accepted
-    counts substeps)."""
+    evaluations, linear solves, matrix updates] (a Jacobian's residuals count as rhs
+    evaluations; accepted counts substeps; an update: the seabed's terms alone, see _step)."""
     ny = y.shape[0]
     nv = acc.shape[0]
     dt = output_interval / steps_per_output

@@ -356,30 +356,47 @@ def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
     with segments pushed at 1.9 kN, where the forward one stays near the taut towed shape that
     the statics' Newton then finishes."""
     linear = p._replace(slack_allowed=0)
-    direct = _newton(linear, y0, iterations, time)
+    if p.seabed_band > 0.0:
+        # the whole search on the plain spring first, then continued to the band (see
+        # _newton); else each Newton of the search continued so
+        plain = _static_lines(linear._replace(seabed_band=0.0), y0, iterations, time)[0]
+        continued = _newton_at(linear, plain, iterations, time)
+        if _settled(linear, continued, time) and not _pushes(linear, continued, time):
+            return continued
+    best, left = _static_lines(linear, y0, iterations, time, _newton)
+    if left is not None:
+        log.warning(
+            "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
+            "(Newton from the catenary start and from EA stages both stopped short)",
+            left,
+        )
+    return best
+
+
+def _static_lines(linear, y0, iterations, time, newton=None):
+    """static_lines' search with the parameters ``linear`` (the linear axial law) by
+    ``newton`` (default ``_newton_at``, on one seabed law): the balance, and None; or the
+    state nearest it, and its largest node acceleration [m/s^2]."""
+    newton = newton or _newton_at
+    direct = newton(linear, y0, iterations, time)
     if _settled(linear, direct, time):
-        return direct
+        return direct, None
     y = y0.copy()
-    target = p.seg_stiffness
+    target = linear.seg_stiffness
     for factor in (1e-3, 1e-2, 1e-1, 1.0):
-        stage = p._replace(seg_stiffness=np.ascontiguousarray(target * factor), slack_allowed=0)
-        y = _newton(stage, y, iterations, time)
+        stage = linear._replace(seg_stiffness=np.ascontiguousarray(target * factor))
+        y = newton(stage, y, iterations, time)
     if _settled(linear, y, time):
-        return y
+        return y, None
     # Newton from the start again, longer (a catenary start can need some 40 iterations; tried
     # last because the stages keep the lines taut where a long Newton may not)
-    longer = _newton(linear, direct, 2 * iterations, time)
+    longer = newton(linear, direct, 2 * iterations, time)
     if _settled(linear, longer, time):
-        return longer
+        return longer, None
     tried = [(_unbalance(linear, state, time), k, state)
              for k, state in enumerate((direct, y, longer))]  # fmt: skip
     left, _, best = min(tried)
-    log.warning(
-        "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
-        "(Newton from the catenary start and from EA stages both stopped short)",
-        left,
-    )
-    return best
+    return best, left
 
 
 def _unbalance(p, y, time: float = 0.0) -> float:
@@ -390,6 +407,14 @@ def _unbalance(p, y, time: float = 0.0) -> float:
     ydot = np.zeros_like(y)
     kernel.rhs(time, _at_rest(p, y, time), p, kernel.make_work(p), ydot)
     return float(np.abs(ydot[index]).max())
+
+
+def _pushes(p, y, time: float = 0.0) -> bool:
+    """Whether a lumped segment is pushed at rest (``pushed``): a balance of the linear axial
+    law that the physical law has not."""
+    w = kernel.make_work(p)
+    kernel.rhs(time, _at_rest(p, y, time), p, w, np.zeros_like(y))
+    return pushed(p, w) > 0.0
 
 
 def _at_rest(p, y, time: float = 0.0) -> np.ndarray:
@@ -435,10 +460,12 @@ def pushed(p, w) -> float:
 def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
     """``_newton_at``; with a seabed contact band (kernels.lumped.seabed_spring), first with
     the plain spring and then from its balance with the band: the band's soft foot makes
-    Newton's long first steps wander where the plain spring's did not (an eight-segment chain
-    from its catenary start settled with the plain spring and folded into a zigzag with a 5
-    mm band); from the plain spring's balance the lying nodes sink by about half the band,
-    where the law is linear, and Newton takes a step or two."""
+    Newton's long first steps wander where the plain spring's did not (two moored buoys'
+    statics found no balance with a 5 mm band); from the plain spring's balance the lying
+    nodes sink by about half the band, where the law is linear, and Newton takes a step or
+    two. ``static_lines`` continues its whole search so (an eight-segment chain from its
+    catenary start, whose first Newton fails, folded into a zigzag of the linear law on the
+    band, at 63 MN)."""
     if p.seabed_band > 0.0:
         y0 = _newton_at(p._replace(seabed_band=0.0), y0, iterations, time, central)
     return _newton_at(p, y0, iterations, time, central)
