@@ -407,9 +407,10 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
 @njit(inline="always", **JIT)
 def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, work, updates):
     """Newton's matrix factorised for the iterate a1 (its state in ``vec[0]``, its residual
-    ``res`` evaluated into ``w``): a kept matrix of this step length has its seabed terms
-    brought to the iterate (``_seabed_terms``); when none changed, or when the step length
-    did, it is built afresh (``_jacobian``). Returns the status."""
+    ``res`` evaluated into ``w``): a kept matrix of this step length, updated fewer than
+    UPDATES times in this step (``updates``), has its seabed terms brought to the iterate
+    (``_seabed_terms``); when none changed, or otherwise, it is built afresh (``_jacobian``).
+    Returns the status and the step's updates so far."""
     _, fresh, mat, piv, raw, held = carry
     if fresh[0] != 0.0 and fresh[1] == h and updates < UPDATES:
         if _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, True):
@@ -435,10 +436,10 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     is no smaller than the one before, when at the contraction of the last two more than
     PATIENCE iterations (or more than are left) would still be needed, or when a line search
     cut the step; rebuilt then, or when the step length changes. A stale matrix has its lumped
-    nodes' seabed terms brought to the current iterate instead (``_seabed_terms``: analytic,
-    node by node, then a factorisation) when any changed: the contact's stiffness and the
-    friction's dependence on the sliding speed change within millimetres and centimetres per
-    second, and they made most of the rebuilds on the moored barge. Each
+    nodes' seabed terms brought to the current iterate instead (``_matrix``: analytic, node by
+    node, then a factorisation; at most UPDATES times a step) when any changed: the contact's
+    stiffness and the friction's dependence on the sliding speed change within millimetres and
+    centimetres per second, and they made most of the rebuilds on the moored barge. Each
     correction that does not meet the tolerance is damped by halving (at most SEARCH times)
     until the residual's ``_merit`` falls: the laws' kinks (a segment going slack, a node
     touching the seabed) otherwise make Newton cycle between their branches. ``big`` (3,
