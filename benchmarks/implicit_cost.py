@@ -34,7 +34,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from rigid_implicit import MODELS, case  # noqa: E402
-from seacable.numerics import bordered, integrators, system_implicit  # noqa: E402
+from seacable.numerics import bordered, implicit_setup, integrators, system_implicit  # noqa: E402
 from seacable.system import kernel  # noqa: E402
 from seacable.system import model as system_model  # noqa: E402
 
@@ -42,7 +42,7 @@ STEP = 0.02  # [s]
 START = 0.5  # [s] the state the matrix and the steps are taken at (the line in motion)
 SCHEME = "generalized_alpha"
 TOLERANCE = 1e-6  # [m] Newton's tolerance (the schema's default newton_tolerance x shortest link)
-COEF = system_implicit.scheme(SCHEME, spectral_radius=0.9)
+COEF = implicit_setup.scheme(SCHEME, spectral_radius=0.9)
 
 
 def _setup(model, n):
@@ -53,11 +53,11 @@ def _setup(model, n):
     y = system.y0.copy()
     acc = np.zeros(int(p.n_v))
     w = kernel.make_work(p)
-    system_implicit.initial_acceleration(0.0, y, p, w, acc)
-    inc, lay, rows = system_implicit.newton(c, system)
+    implicit_setup.initial_acceleration(0.0, y, p, w, acc)
+    inc, lay, rows = implicit_setup.newton(c, system)
     _, status = system_implicit.chunk(
         0, y, acc, START, round(START / STEP), round(START / STEP), COEF, TOLERANCE, 20, p,
-        system_implicit.frozen(p), w, inc, lay, rows, system_implicit.carry(system, lay),
+        implicit_setup.frozen(p), w, inc, lay, rows, implicit_setup.carry(system, lay),
         np.empty((1, len(y))), np.empty(1), _counters(),
     )  # fmt: skip
     if status != 0:
@@ -81,13 +81,13 @@ def _time(function, repeat):
 def measure(c, system, y0, maximal, steps, repeat):
     """(matrix [s], step [s], residuals per step, matrices per step, state after the steps)."""
     p = system.params
-    inc, lay, rows = system_implicit.newton(c, system, maximal=maximal)
+    inc, lay, rows = implicit_setup.newton(c, system, maximal=maximal)
     w = kernel.make_work(p)
     coef = COEF
     nv = int(p.n_v)
     acc = np.zeros(nv)
-    system_implicit.initial_acceleration(START, y0, p, w, acc)
-    pj = system_implicit.frozen(p)
+    implicit_setup.initial_acceleration(START, y0, p, w, acc)
+    pj = implicit_setup.frozen(p)
     ny = len(y0)
     vec = np.zeros((10, ny))
     work = _counters()
@@ -109,7 +109,7 @@ def measure(c, system, y0, maximal, steps, repeat):
     def run():
         y = y0.copy()
         a = acc.copy()
-        carried = system_implicit.carry(system, lay)
+        carried = implicit_setup.carry(system, lay)
         counters = _counters()
         done, status = system_implicit.chunk(
             round(START / (STEP * steps)) * steps, y, a, STEP * steps, steps, steps, coef,

@@ -11,7 +11,7 @@ import yaml
 import seacable
 from helpers import dense_jacobian
 from seacable.bodies import kinematics
-from seacable.numerics import system_implicit
+from seacable.numerics import implicit_setup
 from seacable.system import coordinates, kernel, model
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "platform_three_catenary_lines.yaml"
@@ -66,7 +66,7 @@ def test_newtons_matrix_keeps_the_force_models_loads_only_where_nothing_they_rea
     system = _platform()
     p, y = system.params, system.y0.copy()
     assert p.force_kind.shape[0] > 0
-    frozen = system_implicit.frozen(p)
+    frozen = implicit_setup.frozen(p)
 
     def after_law(state):
         w = kernel.make_work(p)

@@ -9,7 +9,7 @@ import pytest
 
 import seacable
 from seacable.bodies import kinematics
-from seacable.numerics import bordered, rigid_newton, system_implicit
+from seacable.numerics import bordered, implicit_setup, rigid_newton, system_implicit
 from seacable.system import kernel, rigid
 from seacable.system import model as system_model
 
@@ -76,8 +76,8 @@ def _line_case(n, integrator="generalized_alpha", duration=1.0, held=False, **si
 
 
 SCHEMES = [
-    (system_implicit.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
-    (system_implicit.scheme("implicit_euler"), 0.01),
+    (implicit_setup.scheme("generalized_alpha", spectral_radius=0.5), 0.05),
+    (implicit_setup.scheme("implicit_euler"), 0.01),
 ]  # the schemes and steps [s] the corrections are compared at
 
 
@@ -98,13 +98,13 @@ def _corrections(case, scheme, h, lines=1, bodies=0):
         u = 0.5 * rng.normal(size=(n, 3))
         y[v : v + 3 * n] += (u - np.sum(u * e, axis=1)[:, None] * e).ravel()
     acc = np.zeros(nv)
-    assert system_implicit.initial_acceleration(0.3, y, p, w, acc) == 0
+    assert implicit_setup.initial_acceleration(0.3, y, p, w, acc) == 0
     a1 = acc + rng.normal(size=nv)
     for body in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):  # held axes keep a0's
         bv, size = int(p.body_v[body]) - nq, 6 if p.body_rigid[body] else 3
         held = np.flatnonzero(p.body_free[body, :size] == 0.0)
         a1[bv + held] = acc[bv + held]  # (their rows k_m delta = r give delta = 0 in a run)
-    inc, lay, rows = system_implicit.newton(case, system)
+    inc, lay, rows = implicit_setup.newton(case, system)
     assert (len(rows.line), len(rows.body)) == (lines, bodies)
     vec = np.zeros((10, len(y)))
     ydot = np.empty(len(y))
@@ -152,12 +152,12 @@ def test_the_band_does_not_grow_with_the_links(planar, aux, rates):
     for n in (10, 40, 160):
         case = _line_case(n) if planar else _line_3d_case(n)
         system = system_model.build(case)
-        inc, lay, rows = system_implicit.newton(case, system)
+        inc, lay, rows = implicit_setup.newton(case, system)
         assert list(rows.line) == [0] and len(lay.start) == 3  # one block, no border
         assert rows.size == int(system.params.n_v) + aux[0] * n + aux[1]
         widths.append((int(lay.kl[0]), int(lay.ku[0])))
         assert lay.size <= 60 * rows.size  # entries: O(unknowns)
-        dense = system_implicit.newton(case, system, maximal=False)[1]
+        dense = implicit_setup.newton(case, system, maximal=False)[1]
         assert dense.kl[0] == rates * n - 1  # the block in the rates: full
     assert widths[0] == widths[1] == widths[2]
     assert widths[0] == ((9, 9) if planar else (16, 17))
@@ -255,7 +255,7 @@ def _buoy_with_two_lines():
 
 
 def test_a_body_carrying_two_lines_keeps_the_dense_correction():
-    scheme = system_implicit.scheme("generalized_alpha", spectral_radius=0.5)
+    scheme = implicit_setup.scheme("generalized_alpha", spectral_radius=0.5)
     maximal, dense = _corrections(_buoy_with_two_lines(), scheme, 0.05, lines=2, bodies=1)
     assert np.abs(maximal - dense).max() < 1e-5 * np.abs(dense).max()
 

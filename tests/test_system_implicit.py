@@ -384,7 +384,7 @@ def test_a_stiff_slack_string_steps_through_its_kinks(integrator, stiffness, bou
     """A stiff string released slack at 5 ms steps (EA 1e7 N: 2,500 times the explicit limit's
     step; 1e8 N: 7,900 times). Forward differences across the slack kink gave slack segments
     their taut stiffness and Newton crept or cycled: three of the four schemes failed at
-    t = 0. Newton's matrix on the laws' branches (``system_implicit.frozen``) and a line search
+    t = 0. Newton's matrix on the laws' branches (``implicit_setup.frozen``) and a line search
     step through; the end mass follows a tight dopri5 run (its swing 0.4 s long, 0.8 m
     down)."""
     reference = _slack_reference(stiffness)

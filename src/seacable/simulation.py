@@ -13,7 +13,7 @@ from seacable.case.system import SystemCase
 from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels.status import Status
-from seacable.numerics import integrators, stability, stiff, system_implicit
+from seacable.numerics import implicit_setup, integrators, stability, stiff, system_implicit
 from seacable.numerics.stability import rk4_step
 from seacable.results import (
     STATUS_COMPLETE,
@@ -68,7 +68,7 @@ def _solver_settings(sim: schema.Simulation) -> dict:
 
 
 def _scheme(sim: schema.Simulation) -> np.ndarray:
-    return system_implicit.scheme(
+    return implicit_setup.scheme(
         sim.integrator,
         theta=sim.theta,
         gamma=sim.newmark_gamma,
@@ -183,8 +183,8 @@ class _Run:
         self.carry = None
         self.newton = None  # a system's implicit steps: how increments move, the matrix layout
         if self.sim.integrator in IMPLICIT:
-            self.newton = system_implicit.newton(case, system)
-            self.carry = system_implicit.carry(system, self.newton[1])
+            self.newton = implicit_setup.newton(case, system)
+            self.carry = implicit_setup.carry(system, self.newton[1])
         self.atol, self.magnitude = absolute_tolerance(case, model, system)
         self.watch = model.watch(system)  # what the rows must not show (system.geometry)
         # adaptive integrators: state values at output times whose error weight atol set
@@ -225,9 +225,9 @@ class _Run:
         elif sim.integrator in stiff.STIFF:
             system_kernel.rhs(0.0, y, self.p, self.w, np.empty_like(y))
         elif sim.integrator in IMPLICIT and self.newton is not None:
-            if system_implicit.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
+            if implicit_setup.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
-            carry = system_implicit.carry(self.system, self.newton[1])
+            carry = implicit_setup.carry(self.system, self.newton[1])
             self._newmark(y, 1, 0, empty, np.empty(0), work, carry)
         else:
             integrators.dopri5_chunk(
@@ -287,8 +287,8 @@ class _Run:
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return system_implicit.chunk(
             first_step, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
-            sim.max_newton_iterations, system_implicit.lagged(self.p),
-            system_implicit.frozen(self.p), self.w, *self.newton, carry, states, times, work,
+            sim.max_newton_iterations, implicit_setup.lagged(self.p),
+            implicit_setup.frozen(self.p), self.w, *self.newton, carry, states, times, work,
         )  # fmt: skip
 
     def units(self) -> int:
