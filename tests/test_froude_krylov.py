@@ -94,16 +94,16 @@ def test_the_undisturbed_pressure_vanishes_on_the_wave_surface(tmp_path):
     built = model.build(_case(tmp_path, 6, amplitude, ["non-linear hydrostatic",
                                                        "non-linear Froude-Krylov"],
                               heading=30.0, phase=40.0))  # fmt: skip
-    rows = seastate.components(
-        built.case.environment.waves[0], waves.DEEP, G
-    )  # the wave the kernel sees
-    assert np.array_equal(rows, built.params.wave)
+    rows = waves.table(seastate.components(built.case.environment.waves[0], waves.DEEP, G),
+                       waves.DEEP)  # fmt: skip
+    assert np.array_equal(rows, built.params.wave)  # the wave the kernel sees
     # along a vertical line, the total pressure vanishes at eta and grows downwards at
     # rho g (1 - sum a k cos(theta)) (Wheeler: d p_dyn / dz = rho g sum a k e^{k(z - eta)} cos)
     x, y, t = 3.0, B / 2, 1.7
     eta = waves.elevation_at(rows, t, x, y)
-    theta = rows[:, 2] * (x * rows[:, 3] + y * rows[:, 4]) - rows[:, 1] * t + rows[:, 5]
-    slope = RHO * G * (1 - np.sum(rows[:, 0] * rows[:, 2] * np.cos(theta)))
+    a, w, k, cb, sb, phase = rows[: waves.BUILD_UP]
+    theta = k * (x * cb + y * sb) - w * t + phase
+    slope = RHO * G * (1 - np.sum(a * k * np.cos(theta)))
     for depth in (1e-6, 1e-3):
         z = eta - depth
         total = -RHO * G * z + waves.pressure_at(rows, t, x, y, z, waves.DEEP, waves.WHEELER,

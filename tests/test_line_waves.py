@@ -13,6 +13,7 @@ from scipy.optimize import brentq
 import seacable
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
+from seacable.kernels import waves as kw
 from seacable.system import kernel, model
 
 RHO, G = 1025.0, 9.81
@@ -160,8 +161,8 @@ def test_waves_of_zero_height_are_bitwise_still_water(monkeypatch, line_model):
 
     def flat(env, build_up=0.0):
         fields = original(env, build_up)
-        fields["wave"][:, 0] = 0.0
-        rows.append(len(fields["wave"]))
+        fields["wave"][kw.A] = 0.0
+        rows.append(fields["wave"].shape[1])
         return fields
 
     monkeypatch.setattr(packing, "wave_fields", flat)

@@ -36,7 +36,7 @@ def test_statics_are_in_still_water():
     calm["environment"]["waves"] = []
     wavy = model.build(seacable.load_case(raw))
     still = model.build(seacable.load_case(calm))
-    assert wavy.params.wave.shape[0] == 180 and still.params.wave.shape[0] == 0
+    assert wavy.params.wave.shape[1] == 180 and still.params.wave.shape[1] == 0
     assert np.array_equal(wavy.y0, still.y0)
 
 

@@ -16,6 +16,7 @@ from scipy.spatial.transform import Rotation
 import seacable
 from helpers import turning_body_case
 from seacable.kernels import lumped as lk
+from seacable.kernels import waves
 from seacable.numerics import bordered
 from seacable.system.coordinates import colour
 
@@ -280,7 +281,7 @@ def test_frozen_laws_keep_the_branches_of_the_last_evaluation():
     args = (np.ones(2), np.full(2, 1e5), np.zeros(2))  # lengths [m], EA [N], alpha [s]
     loads = (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
-    still = (0.0, 9.81, np.zeros((0, 6)), 1e30, 0)  # t, g, no waves, depth, stretching
+    still = (0.0, 9.81, waves.still(), 1e30, 0)  # t, g, no waves, depth, stretching
     seabed = (-10.01, np.full(3, 1e4), np.zeros(3), 0.0, 0.01, 0.0)  # z, k, c, mu, slip, band
 
     def evaluate(state, mode, w):
@@ -314,7 +315,7 @@ def test_lagged_water_kinematics_are_reused_only_near_where_and_when_they_were_t
     loads = (np.full(2, 5.0), np.ones(2), np.zeros(2), np.full(2, 7.0), np.ones(2))
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
     k = 2.0 / 9.81  # deep water, 2 rad/s
-    wave = np.array([[1.5, 2.0, k, 1.0, 0.0, 0.3, 0.0]])  # waves.A, W, K, COS, SIN, PHASE
+    wave = waves.table([[1.5, 2.0, k, 1.0, 0.0, 0.3, 0.0]], waves.DEEP)  # A, W, K, COS, SIN, PHASE
     reach = lk.REUSE / k
 
     def evaluate(state, mode, w, t=3.0):

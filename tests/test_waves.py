@@ -22,7 +22,7 @@ def _rows(depth, *components):
         omega = 2 * math.pi / period
         k = seastate.wave_number(np.array([omega]), depth, G)[0]
         out.append([amplitude, omega, k, math.cos(direction), math.sin(direction), phase, 0.0])
-    return np.array(out)
+    return waves.table(out, depth)
 
 
 def test_dispersion_relation():
@@ -147,7 +147,7 @@ def test_the_sea_rises_over_the_build_up():
     still the velocity's time derivative (the ramp's rate included)."""
     rows = _rows(40.0, (1.5, 8.0, 0.3, 0.4), (0.7, 5.0, -1.0, 2.0))
     ramped = rows.copy()
-    ramped[:, waves.BUILD_UP] = 20.0
+    ramped[waves.BUILD_UP] = 20.0
     x, y, z = 3.0, -2.0, -4.0
     assert waves.elevation_at(ramped, 0.0, x, y) == 0.0
     assert waves.field(ramped, 0.0, x, y, z, 40.0, waves.WHEELER) == (0.0,) * 6
@@ -181,3 +181,47 @@ def test_vectorised_cos_sin_agree_with_the_c_library(limit):
     c, s = trig.cos_sin_at(np.array([0.0, -0.0, math.pi, 2.0 * math.pi, 1e-300]))
     assert np.array_equal(c, np.cos([0.0, -0.0, math.pi, 2.0 * math.pi, 1e-300]))
     assert s[0] == 0.0 and s[4] == 1e-300
+
+
+def test_vectorised_exp_agrees_with_the_c_library():
+    """kernels.trig's exponentials (the components' depth factors, a vectorised loop) against
+    numpy's over the range the waves use (k z <= 0) and beyond, to two roundings; 0 below the
+    normal doubles (e^-708)."""
+    from seacable.kernels import trig
+
+    rng = np.random.default_rng(5)
+    x = np.concatenate([rng.uniform(-708.0, 0.0, 100_000), rng.uniform(-1.0, 1.0, 100_000),
+                        rng.uniform(0.0, 709.0, 10_000), [0.0, -0.0, 1.0, -1e-300]])  # fmt: skip
+    assert np.abs(trig.exp_at(x) / np.exp(x) - 1.0).max() <= 4.5e-16
+    assert np.array_equal(trig.exp_at(np.array([-709.0, -1e4, -1e30, -np.inf])), np.zeros(4))
+
+
+@pytest.mark.parametrize("depth", [3.0, 60.0, 2000.0, waves.DEEP])
+def test_the_depth_factors_are_the_hyperbolic_ones(depth):
+    """The pressure and the kinematics of one component against the textbook's cosh and sinh
+    (shallow, intermediate, deep and infinite depth; from the surface to the seabed)."""
+    a, period, phase = 0.8, 7.0, 0.3
+    rows = _rows(depth, (a, period, 0.0, phase))
+    omega, k = rows[waves.W, 0], rows[waves.K, 0]
+    bottom = min(depth, 150.0)
+    for z in np.linspace(-bottom, 0.0, 13):
+        x, t = 2.0, 1.3
+        theta = k * x - omega * t + phase
+        if depth < waves.DEEP:
+            c = math.cosh(k * (z + depth)) / math.cosh(k * depth)
+            d = math.cosh(k * (z + depth)) / math.sinh(k * depth)
+            e = math.sinh(k * (z + depth)) / math.sinh(k * depth)
+        else:
+            c = d = e = math.exp(k * z)
+        p = waves.pressure_at(rows, t, x, 0.0, z, depth, waves.VERTICAL, RHO * G)
+        assert p == pytest.approx(RHO * G * a * c * math.cos(theta), rel=1e-13, abs=1e-9)
+        ux, uy, uz, ax, ay, az = waves.field(rows, t, x, 0.0, z, depth, waves.VERTICAL)
+        expected = (
+            a * omega * d * math.cos(theta),
+            0.0,
+            a * omega * e * math.sin(theta),
+            a * omega**2 * d * math.sin(theta),
+            0.0,
+            -a * omega**2 * e * math.cos(theta),
+        )
+        assert (ux, uy, uz, ax, ay, az) == pytest.approx(expected, rel=1e-13, abs=1e-13)

@@ -24,13 +24,13 @@ def current_arrays(env: schema.Environment):
 
 def wave_fields(env: schema.Environment, build_up: float = 0.0) -> dict:
     """The incident waves' SystemParams fields: every wave's components (seastate), raised
-    over ``build_up`` [s] (the simulation's), in one table, the depth they feel and the
-    stretching."""
+    over ``build_up`` [s] (the simulation's), in one table (kernels.waves.table), the depth
+    they feel and the stretching."""
     depth = env.water_depth or waves.DEEP
-    tables = [seastate.components(wave, depth, env.gravity, build_up) for wave in env.waves]
-    rows = np.concatenate(tables) if tables else np.zeros((0, waves.COLUMNS))
+    rows = [seastate.components(wave, depth, env.gravity, build_up) for wave in env.waves]
+    table = waves.table(np.concatenate(rows) if rows else np.zeros((0, waves.GIVEN)), depth)
     stretch = waves.WHEELER if env.wave_stretching == "wheeler" else waves.VERTICAL
-    return {"wave": rows, "wave_depth": float(depth), "wave_stretch": stretch}
+    return {"wave": table, "wave_depth": float(depth), "wave_stretch": stretch}
 
 
 def channel(spec, base_dir, where: str) -> tfn.Piecewise:

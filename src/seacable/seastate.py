@@ -72,8 +72,8 @@ def spreading(angles, exponent: float) -> np.ndarray:
 
 
 def components(spec, depth: float, gravity: float, build_up: float = 0.0) -> np.ndarray:
-    """The rows (n, 7: a, w, k, cos b, sin b, phase, build-up [s]; kernels.waves) of a schema
-    wave (``case.environment``'s RegularWave or WaveSpectrum)."""
+    """The rows (n, kernels.waves.GIVEN: a, w, k, cos b, sin b, phase, build-up [s]) of a
+    schema wave (``case.environment``'s RegularWave or WaveSpectrum)."""
     rows = _components(spec, depth, gravity)
     return np.column_stack([rows, np.full(len(rows), float(build_up))])
 

@@ -23,8 +23,8 @@ def pack(db, wave: np.ndarray, froude_krylov: bool) -> list[float]:
     reference point."""
     x = db.excitation(froude_krylov)  # (n, m, 6)
     m = len(db.directions)
-    out = [float(m), float(len(wave)), *db.directions.tolist()]
-    for omega in wave[:, 1]:
+    out = [float(m), float(wave.shape[1]), *db.directions.tolist()]
+    for omega in wave[waves.W]:
         inside = db.omega[0] <= omega <= db.omega[-1]
         per = np.zeros((m, 6), complex)
         if inside:
@@ -40,17 +40,18 @@ def pack(db, wave: np.ndarray, froude_krylov: bool) -> list[float]:
 def add(row, t, wave, pos, rot, scratch, rhs):
     """``scratch`` (6): the body-frame force."""
     m = int(row[0])
-    n = min(int(row[1]), wave.shape[0])  # none in still water (statics)
+    n = min(int(row[1]), wave.shape[1])  # none in still water (statics)
     base = 2 + m
     # the body's heading: its x axis in the horizontal plane
     heading = math.atan2(rot[1, 0], rot[0, 0])
     fb = scratch[0:6]
     fb[:] = 0.0
     for i in range(n):
-        a, w, k = wave[i, 0], wave[i, 1], wave[i, 2]
-        theta = k * (pos[0] * wave[i, 3] + pos[1] * wave[i, 4]) - w * t + wave[i, 5]
+        a, w, k = wave[waves.A, i], wave[waves.W, i], wave[waves.K, i]
+        cb, sb = wave[waves.COS, i], wave[waves.SIN, i]
+        theta = k * (pos[0] * cb + pos[1] * sb) - w * t + wave[waves.PHASE, i]
         c, s = a * math.cos(theta), a * math.sin(theta)
-        relative = math.atan2(wave[i, 4], wave[i, 3]) - heading
+        relative = math.atan2(sb, cb) - heading
         j, f = _bracket(row, m, relative)
         at0 = base + 12 * (m * i + j)
         at1 = base + 12 * (m * i + (j + 1 if m > 1 else j))

@@ -16,7 +16,7 @@ from seacable.kernels.jit import inner
 
 @inner
 def add(row, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
-    if wave.shape[0] == 0:
+    if wave.shape[1] == 0:
         return
     hull.place(row[MESH_AT:], pos, rot, wave, t, work)
     hull.add_froude_krylov(row[MESH_AT:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)

@@ -5,10 +5,9 @@ in waves the water's inertia (``segment_loads``), the free surface's share of ea
 
 import math
 
-import numpy as np
 from numba import njit
 
-from seacable.kernels import morison
+from seacable.kernels import morison, waves
 from seacable.kernels.chain3d_layout import (
     _E,
     _F,
@@ -78,9 +77,9 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
     buoyancy)."""
     uniform = cz_.shape[0] == 1  # read once: a call per segment with the current's arrays
     u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
-    waves_on = wave.shape[0] > 0  # without waves, no wave code runs
+    waves_on = wave.shape[1] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
-    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch: each phase once per point
+    trig = waves.scratch(wave)  # each phase once per point
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]

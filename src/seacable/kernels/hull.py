@@ -46,14 +46,14 @@ def place(row, pos, rot, wave, t, work):
     """Each vertex's arm R v from the reference point (earth frame) into ``work[i, 0:3]`` and
     its depth below the free surface, eta(x, y) - z (kernels.waves; 0 for still water), into
     ``work[i, 3]``."""
-    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch
+    trig = waves.scratch(wave)
     for i in range(int(row[0])):
         k = HEADER + 3 * i
         x, y, z = row[k], row[k + 1], row[k + 2]
         for c in range(3):
             work[i, c] = rot[c, 0] * x + rot[c, 1] * y + rot[c, 2] * z
         eta = 0.0
-        if wave.shape[0] > 0:
+        if wave.shape[1] > 0:
             eta = waves.elevation(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1], trig)
         work[i, 3] = eta - pos[2] - work[i, 2]
 
@@ -166,11 +166,11 @@ def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs
     """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
     the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
     and moment."""
-    if wave.shape[0] == 0:
+    if wave.shape[1] == 0:
         return
     t0 = HEADER + 3 * int(row[0])
     rho_g = rho * gravity
-    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch
+    trig = waves.scratch(wave)
     for k in range(int(row[1])):
         count, parts = _wet(row, t0, k, work)
         if count >= 1:
@@ -200,7 +200,7 @@ def surface_integrals(row, level, pos, rot, out):
     ``INTEGRANDS`` of the arms from ``pos`` (earth axes)."""
     out[:, :] = 0.0
     work = np.zeros((int(row[0]), 4))
-    place(row, pos, rot, np.zeros((0, waves.COLUMNS)), 0.0, work)
+    place(row, pos, rot, np.zeros((waves.FIELDS, 0)), 0.0, work)
     for i in range(work.shape[0]):
         work[i, 3] += level
     t0 = HEADER + 3 * int(row[0])

@@ -15,7 +15,6 @@ along the seabed. Every step is O(n): each free node solves its own 3x3 mass mat
 
 import math
 
-import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
@@ -75,10 +74,10 @@ def segment_loads(
     ``gravity`` [m/s^2] giving the displaced mass from the buoyancy). Every line model and every
     line of a system computes its segment loads here."""
     v0 = 3 * (n + 1)
-    waves_on = wave.shape[0] > 0  # without waves, no wave code runs
+    waves_on = wave.shape[1] > 0  # without waves, no wave code runs
     highest = morison.crest(wave) if waves_on else 0.0
     reach = _reach(wave) if slack == LAGGED else 0.0
-    trig = np.empty((3, wave.shape[0]))  # kernels.waves' scratch: each phase once per point
+    trig = waves.scratch(wave)  # each phase once per point
     wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
@@ -183,8 +182,8 @@ def _reach(wave):
     """How far [m] a segment's wetted centroid may move with its water kinematics reused
     (LAGGED): REUSE / k_max, the shortest component's wave number."""
     k_max = 0.0
-    for i in range(wave.shape[0]):
-        k_max = max(k_max, wave[i, waves.K])
+    for k in wave[waves.K]:
+        k_max = max(k_max, k)
     return REUSE / k_max if k_max > 0.0 else 0.0
 
 

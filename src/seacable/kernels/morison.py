@@ -32,8 +32,8 @@ def crest(wave):
     """The highest the surface can rise, sum |a_i| [m] (0 without waves): a segment wholly
     below minus it is wholly wet, its ends' elevations not needed."""
     total = 0.0
-    for i in range(wave.shape[0]):
-        total += abs(wave[i, waves.A])
+    for a in wave[waves.A]:
+        total += abs(a)
     return total
 
 

@@ -23,37 +23,78 @@ Build-up: every quantity is multiplied by the ramp r(t) of the components' build
 (kernels.timefn.smoothstep, the case's ``simulation.build_up``; 0: none), the acceleration by
 r a + r' u: the sea rises from still water at rest, with no jump in force or its rate.
 
-``row`` (n, 7) holds per component a, w, k, cos b, sin b, p and the build-up duration [s].
+A wave table (``FIELDS``, n) holds one component per column, in contiguous rows so that the
+loops over components vectorise (:func:`table` builds it, its components sorted by wave
+number): a, w, k, cos b, sin b, p, the build-up duration [s] and ``GROUP``, the index of the
+component's wave number among the m distinct ones; and in its first m columns, per distinct
+wave number, ``NUMBER`` (k) and the depth's scales 1 / (1 + e^{-2kh}) and 1 / (1 - e^{-2kh})
+(1 in deep water). A spread sea has a few components per wave number: C, D and E are
+evaluated per distinct wave number at a point, from e^{kz} and e^{-k(z + 2h)} (kernels.trig's
+vectorised exp). The elevation and the pressure are summed in interleaved partial sums (the
+kinematics' six sums are independent already).
+Callers allocate one scratch of ``SCRATCH`` rows per table (:func:`scratch`).
 """
-
-import math
 
 import numpy as np
 from numba import njit
 
 from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import smoothstep
-from seacable.kernels.trig import cos_sin
+from seacable.kernels.trig import cos_sin, exp_rows
 
 DEEP = 1e30  # the depth of deep water [m]
 WHEELER, VERTICAL = 0, 1
-A, W, K, COS, SIN, PHASE, BUILD_UP = range(7)
-COLUMNS = 7
+A, W, K, COS, SIN, PHASE, BUILD_UP, GROUP = range(8)  # per component
+NUMBER, COSH_SCALE, SINH_SCALE = range(8, 11)  # per distinct wave number
+FIELDS = 11
+GIVEN = 7  # the fields a table is built from (A .. BUILD_UP)
+SCRATCH = 5  # rows: cos theta, sin theta, theta (then exp's scratch), and two per wave number
+
+
+def table(rows, depth: float) -> np.ndarray:
+    """The wave table (FIELDS, n) of components given as rows (n, GIVEN: a, w, k, cos b,
+    sin b, p, build-up [s]) at water depth ``depth`` [m] (DEEP: deep water), sorted by wave
+    number (stable: the given order among equal ones)."""
+    rows = np.asarray(rows, dtype=float).reshape(-1, GIVEN)
+    rows = rows[np.argsort(rows[:, K], kind="stable")]
+    out = np.zeros((FIELDS, len(rows)))
+    out[:GIVEN] = rows.T
+    numbers, out[GROUP] = np.unique(rows[:, K], return_inverse=True)
+    m = len(numbers)
+    out[NUMBER, :m] = numbers
+    out[COSH_SCALE:, :m] = 1.0
+    if depth < DEEP:
+        decay = np.exp(-2.0 * numbers * depth)
+        with np.errstate(divide="ignore"):
+            out[COSH_SCALE, :m] = 1.0 / (1.0 + decay)
+            out[SINH_SCALE, :m] = 1.0 / (1.0 - decay)
+    return out
+
+
+def still() -> np.ndarray:
+    """A table without components (still water)."""
+    return np.zeros((FIELDS, 0))
 
 
 @njit(inline="always", **JIT)
-def ramp(row, t):
+def scratch(wave):
+    """The scratch the functions below need for ``wave`` (allocate once per caller)."""
+    return np.empty((SCRATCH, wave.shape[1]))
+
+
+@njit(inline="always", **JIT)
+def ramp(wave, t):
     """The build-up's r and r' at ``t`` (1, 0 without build-up or components)."""
-    if row.shape[0] == 0 or row[0, BUILD_UP] <= 0.0:
+    if wave.shape[1] == 0 or wave[BUILD_UP, 0] <= 0.0:
         return 1.0, 0.0
-    r, dr, _ = smoothstep(t, row[0, BUILD_UP])
+    r, dr, _ = smoothstep(t, wave[BUILD_UP, 0])
     return r, dr
 
 
 @njit(inline="always", **JIT)
-def elevation(row, t, x, y, trig):
-    """eta [m] at (x, y) (``trig``: scratch of (3, n) floats, as ``kinematics``')."""
-    return ramp(row, t)[0] * _phases(row, t, x, y, trig)
+def elevation(wave, t, x, y, trig):
+    """eta [m] at (x, y) (``trig``: :func:`scratch`)."""
+    return ramp(wave, t)[0] * _phases(wave, t, x, y, trig)
 
 
 @njit(inline="always", **JIT)
@@ -67,78 +108,97 @@ def stretched(z, eta, depth, stretch):
 
 
 @njit(inline="always", **JIT)
-def _factors(k, z, depth):
-    """C, D, E of the module docstring at z <= 0 (one exponential in deep water, two in
-    finite depth: e^{-k (z + 2h)} = e^{-2kh} / e^{kz}; below the seabed, their values on it)."""
-    if depth >= DEEP or k * depth > 40.0:
-        up = math.exp(k * z)
-        return up, up, up
-    up = math.exp(k * max(z, -depth))
-    deep = math.exp(-2.0 * k * depth)
-    down = deep / up
-    return (up + down) / (1.0 + deep), (up + down) / (1.0 - deep), (up - down) / (1.0 - deep)
-
-
-@njit(inline="always", **JIT)
-def _phases(row, t, x, y, trig):
+def _phases(wave, t, x, y, trig):
     """cos theta_i and sin theta_i at (x, y) into ``trig[0, i]`` and ``trig[1, i]`` (row 2:
     the phases; kernels.trig, a vectorised loop); returns the elevation before the build-up's
-    ramp, sum a_i cos theta_i [m]."""
-    n = row.shape[0]
+    ramp, sum a_i cos theta_i [m] (four interleaved sums)."""
+    n = wave.shape[1]
+    a, w, k, cb, sb, p = wave[A], wave[W], wave[K], wave[COS], wave[SIN], wave[PHASE]
+    theta, c = trig[2], trig[0]
     for i in range(n):
-        trig[2, i] = (row[i, K] * (x * row[i, COS] + y * row[i, SIN]) - row[i, W] * t
-                      + row[i, PHASE])  # fmt: skip
+        theta[i] = k[i] * (x * cb[i] + y * sb[i]) - w[i] * t + p[i]
     cos_sin(trig, n)
-    total = 0.0
-    for i in range(n):
-        total += row[i, A] * trig[0, i]
-    return total
+    s0 = s1 = s2 = s3 = 0.0
+    m = n - n % 4
+    for i in range(0, m, 4):
+        s0 += a[i] * c[i]
+        s1 += a[i + 1] * c[i + 1]
+        s2 += a[i + 2] * c[i + 2]
+        s3 += a[i + 3] * c[i + 3]
+    for i in range(m, n):
+        s0 += a[i] * c[i]
+    return (s0 + s1) + (s2 + s3)
 
 
 @njit(inline="always", **JIT)
-def pressure(row, t, x, y, z, depth, stretch, rho_g, trig):
+def _depth_terms(wave, zs, depth, trig):
+    """e^{k_j z} and e^{-k_j (z + 2h)} into ``trig[3, j]`` and ``trig[4, j]`` for the m
+    distinct wave numbers, at z = ``zs`` <= 0 (below the seabed, on it; the second is 0 in
+    deep water); returns m. C, D and E of the module docstring are their sum and difference
+    times the table's scales."""
+    n = wave.shape[1]
+    m = int(wave[GROUP, n - 1]) + 1 if n > 0 else 0
+    k = wave[NUMBER]
+    zc = max(zs, -depth)
+    below = -(zc + 2.0 * depth)
+    up, down = trig[3], trig[4]
+    for j in range(m):
+        up[j] = k[j] * zc
+        down[j] = k[j] * below
+    exp_rows(trig, 3, 5, m, 2)
+    return m
+
+
+@njit(inline="always", **JIT)
+def pressure(wave, t, x, y, z, depth, stretch, rho_g, trig):
     """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
     callers integrate over the wetted part: points on its edges may lie a rounding above).
-    ``trig``: scratch of (3, n) floats (allocated once per caller). Each component's phase is
-    evaluated once, for the elevation and the pressure, and C once per distinct wave number
-    (the rows of a spectrum come frequency by frequency)."""
-    r = ramp(row, t)[0]
-    zs = stretched(z, r * _phases(row, t, x, y, trig), depth, stretch)
-    total = 0.0
-    k_last = -1.0
-    c = 0.0
-    for i in range(row.shape[0]):
-        if row[i, K] != k_last:
-            k_last = row[i, K]
-            c, _, _ = _factors(k_last, zs, depth)
-        total += row[i, A] * c * trig[0, i]
-    return rho_g * r * total
+    ``trig``: :func:`scratch`. Each component's phase is evaluated once, for the elevation
+    and the pressure."""
+    r = ramp(wave, t)[0]
+    zs = stretched(z, r * _phases(wave, t, x, y, trig), depth, stretch)
+    groups = _depth_terms(wave, zs, depth, trig)
+    scale, up, down = wave[COSH_SCALE], trig[3], trig[4]
+    for j in range(groups):
+        up[j] = (up[j] + down[j]) * scale[j]  # C
+    n = wave.shape[1]
+    a, group, c = wave[A], wave[GROUP], trig[0]
+    s0 = s1 = 0.0
+    m = n - n % 2
+    for i in range(0, m, 2):
+        s0 += a[i] * up[int(group[i])] * c[i]
+        s1 += a[i + 1] * up[int(group[i + 1])] * c[i + 1]
+    for i in range(m, n):
+        s0 += a[i] * up[int(group[i])] * c[i]
+    return rho_g * r * (s0 + s1)
 
 
 @njit(inline="always", **JIT)
-def kinematics(row, t, x, y, z, depth, stretch, trig):
+def kinematics(wave, t, x, y, z, depth, stretch, trig):
     """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
     free surface, their values there (the callers weigh by the submerged part). ``trig``:
-    scratch of (3, n) floats. Each component's phase is evaluated once, for the
-    elevation and the kinematics, and D and E once per distinct wave number."""
-    r, dr = ramp(row, t)
-    zs = stretched(z, r * _phases(row, t, x, y, trig), depth, stretch)
+    :func:`scratch`. Each component's phase is evaluated once, for the elevation and the
+    kinematics."""
+    r, dr = ramp(wave, t)
+    zs = stretched(z, r * _phases(wave, t, x, y, trig), depth, stretch)
+    groups = _depth_terms(wave, zs, depth, trig)
+    scale, d, e = wave[SINH_SCALE], trig[3], trig[4]
+    for j in range(groups):
+        d[j], e[j] = (d[j] + e[j]) * scale[j], (d[j] - e[j]) * scale[j]
+    n = wave.shape[1]
+    a, w, cb, sb, group = wave[A], wave[W], wave[COS], wave[SIN], wave[GROUP]
+    c, s = trig[0], trig[1]
     ux = uy = uz = ax = ay = az = 0.0
-    k_last = -1.0
-    d = e = 0.0
-    for i in range(row.shape[0]):
-        if row[i, K] != k_last:
-            k_last = row[i, K]
-            _, d, e = _factors(k_last, zs, depth)
-        w = row[i, W]
-        cos_t, sin_t = trig[0, i], trig[1, i]
-        horizontal = row[i, A] * w * d
-        ux += horizontal * cos_t * row[i, COS]
-        uy += horizontal * cos_t * row[i, SIN]
-        uz += row[i, A] * w * e * sin_t
-        ax += horizontal * w * sin_t * row[i, COS]
-        ay += horizontal * w * sin_t * row[i, SIN]
-        az -= row[i, A] * w * w * e * cos_t
+    for i in range(n):
+        g, aw = int(group[i]), a[i] * w[i]
+        horizontal, vertical = aw * d[g], aw * e[g]
+        hc, hs = horizontal * c[i], horizontal * w[i] * s[i]
+        ux += hc * cb[i]
+        uy += hc * sb[i]
+        uz += vertical * s[i]
+        ax += hs * cb[i]
+        ay += hs * sb[i]
+        az -= vertical * w[i] * c[i]
     if r == 1.0 and dr == 0.0:
         return (ux, uy, uz), (ax, ay, az)
     return ((r * ux, r * uy, r * uz),
@@ -146,19 +206,19 @@ def kinematics(row, t, x, y, z, depth, stretch, trig):
 
 
 @njit(**JIT)
-def elevation_at(row, t, x, y):
+def elevation_at(wave, t, x, y):
     """eta [m] (from Python: tests, outputs)."""
-    return elevation(row, t, x, y, np.empty((3, row.shape[0])))
+    return elevation(wave, t, x, y, scratch(wave))
 
 
 @njit(**JIT)
-def pressure_at(row, t, x, y, z, depth, stretch, rho_g):
+def pressure_at(wave, t, x, y, z, depth, stretch, rho_g):
     """The dynamic pressure [Pa] (from Python)."""
-    return pressure(row, t, x, y, z, depth, stretch, rho_g, np.empty((3, row.shape[0])))
+    return pressure(wave, t, x, y, z, depth, stretch, rho_g, scratch(wave))
 
 
 @njit(**JIT)
-def field(row, t, x, y, z, depth, stretch):
+def field(wave, t, x, y, z, depth, stretch):
     """(u_x, u_y, u_z, a_x, a_y, a_z) of the water at a point (from Python)."""
-    u, a = kinematics(row, t, x, y, z, depth, stretch, np.empty((3, row.shape[0])))
+    u, a = kinematics(wave, t, x, y, z, depth, stretch, scratch(wave))
     return u[0], u[1], u[2], a[0], a[1], a[2]

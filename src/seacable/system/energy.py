@@ -14,6 +14,7 @@ from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
 from seacable.forces import hydrostatic, linear
 from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS, NON_LINEAR_HYDROSTATIC
+from seacable.kernels import waves
 from seacable.kernels.chain3d_outputs import segment_energies
 from seacable.kernels.jit import inner
 from seacable.kernels.lumped_outputs import line_energies
@@ -92,7 +93,7 @@ def _bodies(y, p, w):
         elif kind == NON_LINEAR_HYDROSTATIC:
             row = p.force_data[p.force_at[f] :]
             gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity,
-                                             p.wave[:0], w.hull)  # fmt: skip
+                                             np.zeros((waves.FIELDS, 0)), w.hull)  # fmt: skip
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
             elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])

@@ -17,7 +17,7 @@ from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
-from seacable.kernels import surface
+from seacable.kernels import surface, waves
 from seacable.system import kernel, natural_lines, nested, outputs, relax, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import (
@@ -46,9 +46,9 @@ class StaticsError(SeacableError):
 def still_water(built: BuiltSystem) -> BuiltSystem:
     """The system without its incident waves (their mean is still water): the statics' and
     the linearisation's."""
-    if not built.params.wave.shape[0]:
+    if not built.params.wave.shape[1]:
         return built
-    return replace(built, params=built.params._replace(wave=built.params.wave[:0]))
+    return replace(built, params=built.params._replace(wave=waves.still()))
 
 
 def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
