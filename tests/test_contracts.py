@@ -2,6 +2,7 @@
 
 import ast
 import inspect
+import math
 import typing
 from pathlib import Path
 
@@ -539,6 +540,40 @@ def test_the_servo_state_rests_at_its_equilibrium():
     servo.rates(row, pos, vel, points, speeds, 2, ydot)
     expected = stiffness @ (0.7 * (points[1] - pos) / 0.5 - 0.4 * (speeds[1] - vel))
     np.testing.assert_allclose(ydot[2:], expected, rtol=1e-12)
+
+
+def test_the_control_states_rest_at_their_equilibrium():
+    """StatefulForceModel rules on the controls: a speed controller's integral and a steering
+    gear's angle (their modules follow the protocol); their rates vanish with the ship at its
+    target speed and the rudder on its command, and are U - u and the gear's law off them."""
+    from seacable.forces import radiation, rudder, servo, thruster
+    from seacable.system import kernel
+
+    for module in (servo, radiation, rudder, thruster):
+        assert isinstance(module, StatefulForceModel)
+    controller = {"kind": "surge_speed", "target": 3.0, "gain": 1e5, "integral_gain": 1e4}
+    gear = {"max_rate_deg_s": 2.0, "time_constant": 0.5}
+    case = seacable.load_case({
+        "bodies": [{"name": "ship", "type": "rigid", "position": [0, 0, 0], "mass": 1e6,
+                    "inertia": [1e8, 1e8, 1e8], "dofs": ["surge", "sway", "yaw"],
+                    "external forces": [
+                        {"model": "thruster", "controller": controller},
+                        {"model": "rudder", "point": [-40, 0, -3], "area": 10.0,
+                         "lift_slope": 3.0, "angle_deg": 12.0, "steering_gear": gear}]}],
+        "start": "as_given", "simulation": {"duration": 1.0, "output_interval": 1.0},
+    })  # fmt: skip
+    built = system_model.build(case)
+    p, y = built.params, built.y0.copy()
+    w, ydot = kernel.make_work(p), np.zeros_like(y)
+    s_thrust, s_rudder = int(p.force_state[0]), int(p.force_state[1])
+    v = int(p.body_v[0])
+    for speed, angle in ((3.0, 12.0), (2.5, 11.0), (3.4, -20.0)):
+        y[v] = speed
+        y[s_rudder] = math.radians(angle)
+        kernel.rhs(0.0, y, p, w, ydot)
+        assert ydot[s_thrust] == pytest.approx(3.0 - speed, abs=1e-15)
+        expected = max(-2.0, min(2.0, (12.0 - angle) / 0.5))
+        assert math.degrees(ydot[s_rudder]) == pytest.approx(expected, abs=1e-12)
 
 
 def _small_run():

@@ -106,15 +106,22 @@ def test_thrust_against_quadratic_damping_reaches_its_closed_form_speed():
     assert abs(v[-1]) < 1e-9 and abs(r[-1]) < 1e-12
 
 
-@pytest.mark.parametrize("law", ["feedforward", "proportional", "saturated"])
+@pytest.mark.parametrize(
+    "law", ["feedforward", "proportional", "saturated", "integral", "integral saturated"]
+)
 def test_the_speed_controller(law):
-    """T = T_ff + K (U - u): with the resistance at U as T_ff the ship settles on U; without it
-    at K (U - u) = Q u^2; limited to max_thrust below Q U^2 at sqrt(max_thrust / Q)."""
-    target, gain = 6.0, 4.0e5
+    """T = T_ff + K (U - u) + K_i I: with the resistance at U as T_ff the ship settles on U;
+    proportional alone at K (U - u) = Q u^2; limited to max_thrust below Q U^2 at
+    sqrt(max_thrust / Q). With the integral (no feed-forward) it settles on U with
+    K_i I = Q U^2; saturated from the start, the integral is held at 0 (without the hold it
+    would have grown to about 2,600 m)."""
+    target, gain, integral_gain = 6.0, 4.0e5, 2.0e4
     controller = {"kind": "surge_speed", "target": target, "gain": gain}
     thruster = {"model": "thruster", "point": [-45, 0, -4], "controller": controller}
-    if law == "feedforward":
-        controller["feedforward"] = Q11 * target**2
+    if law.startswith("integral"):
+        controller["integral_gain"] = integral_gain
+    if law in ("feedforward", "integral"):
+        controller["feedforward"] = Q11 * target**2 if law == "feedforward" else 0.0
         expected = target
     elif law == "proportional":
         expected = (-gain + math.sqrt(gain**2 + 4 * Q11 * gain * target)) / (2 * Q11)
@@ -122,9 +129,17 @@ def test_the_speed_controller(law):
         thruster["max_thrust"] = 0.5 * Q11 * target**2
         expected = math.sqrt(0.5) * target
     case = _case([thruster, DAMPING], duration=1500.0, **HORIZONTAL)
-    u, _, _, _ = _body_velocities(seacable.simulate(case))
+    results = seacable.simulate(case)
+    u, _, _, _ = _body_velocities(results)
     assert u[-1] == pytest.approx(expected, rel=1e-9)
     assert law != "proportional" or u[-1] < 0.9 * target  # the proportional law's offset
+    if law == "integral":
+        integral = results["bodies/ship"]["speed_integral"].values
+        assert integral[-1] == pytest.approx(Q11 * target**2 / integral_gain, rel=1e-9)
+    elif law == "integral saturated":
+        assert np.array_equal(results["bodies/ship"]["speed_integral"].values, np.zeros(1501))
+    else:
+        assert "speed_integral" not in results["bodies/ship"]
 
 
 # ---- rudder --------------------------------------------------------------------------------------
@@ -218,6 +233,23 @@ def test_a_fixed_rudder_turns_the_ship_to_port_and_settles_on_the_steady_turn():
         assert abs(r[-1] - r[-11]) < 1e-6 * abs(r[-1])  # steady
         expected = _steady_turn(10.0 * sign)
         assert [u[-1], v[-1], r[-1]] == pytest.approx(expected, rel=1e-7)
+
+
+def test_the_steering_gear_turns_the_rudder_at_its_rate_then_settles_as_a_lag():
+    """A 10 deg command through a steering gear of 2.3 deg/s and 0.1 s: the rudder turns at
+    2.3 deg/s from amidships until it is rate T from the command (at t1 = (10 - rate T) / rate),
+    then closes in as e^{-(t - t1)/T}; the ship ends on the fixed rudder's steady turn."""
+    rate, lag = 2.3, 0.1
+    rudder = _rudder(steering_gear={"max_rate_deg_s": rate, "time_constant": lag})
+    results = seacable.simulate(_turning(rudder))
+    time = results["time"].values
+    angle = results["bodies/ship"]["rudder_angle"].values
+    t1 = (10.0 - rate * lag) / rate
+    expected = np.where(time < t1, rate * time,
+                        10.0 - rate * lag * np.exp(-np.maximum(time - t1, 0.0) / lag))  # fmt: skip
+    assert angle == pytest.approx(expected, abs=1e-7)
+    u, v, r, _ = _body_velocities(results)
+    assert [u[-1], v[-1], r[-1]] == pytest.approx(_steady_turn(10.0), rel=1e-7)
 
 
 def test_the_autopilot_brings_the_heading_to_its_target():

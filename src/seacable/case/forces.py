@@ -214,13 +214,16 @@ BodyPoint = str | Vector  # a point's name (``origin``: the reference point) or 
 
 
 class SpeedController(_Model):
-    """A thruster's surge-speed controller: T = feedforward + gain (target - u), u the body's
-    surge speed over ground [m/s] (forces.thruster); proportional, so without the feed-forward
-    thrust (the resistance at the target speed) the speed settles below the target."""
+    """A thruster's surge-speed controller: T = feedforward + gain (target - u) +
+    integral_gain I, dI/dt = target - u, u the body's surge speed over ground [m/s]
+    (forces.thruster). Proportional alone (integral_gain 0), the speed settles below the
+    target unless the feed-forward thrust is the resistance there; the integral removes the
+    offset, and is held while ``max_thrust`` limits the thrust (no wind-up)."""
 
     kind: Literal["surge_speed"]
     target: TimeFunction  # U [m/s]
     gain: Pos  # K [N s/m]
+    integral_gain: NonNeg = 0.0  # K_i [N/m]
     feedforward: TimeFunction = Constant(value=0.0)  # T_ff [N]
 
 
@@ -263,14 +266,26 @@ class Autopilot(_Model):
     max_angle_deg: Annotated[float, Field(gt=0, le=90)] = 35.0
 
 
+class SteeringGear(_Model):
+    """The rudder's steering gear: the angle follows the command (``angle_deg`` or the
+    autopilot's) at most at ``max_rate_deg_s`` [deg/s] (SOLAS II-1/29: 35 deg on one side to
+    30 deg on the other within 28 s, 2.3 deg/s), as a first-order lag of ``time_constant``
+    [s] within that rate (the default, 0.1 s, is close to the pure rate limit of manoeuvring
+    standards and only rounds the arrival on the command). The rudder starts amidships."""
+
+    max_rate_deg_s: Pos
+    time_constant: Pos = 0.1  # [s]
+
+
 class Rudder(_Model):
     """A rudder (forces.rudder): a foil of ``area`` [m^2] at ``point``, its lift perpendicular to
     the water's flow past it and its drag along it, in the horizontal body plane; C_L from the
     ``lift_slope`` [1/rad] up to ``stall_angle_deg`` (held beyond) with C_D = drag_coefficient
     + C_L^2 / (pi aspect_ratio), or both from ``coefficients`` [[alpha_deg, C_L, C_D], ...].
     The rudder angle (positive: trailing edge to port, turning the ship to port) from
-    ``angle_deg`` or the ``autopilot``, exactly one. ``slipstream_factor`` multiplies the
-    inflow's fore-and-aft component (a propeller's wash)."""
+    ``angle_deg`` or the ``autopilot``, exactly one, through the ``steering_gear`` when given
+    (else at once). ``slipstream_factor`` multiplies the inflow's fore-and-aft component (a
+    propeller's wash)."""
 
     model: Literal["rudder"]
     point: BodyPoint = ORIGIN
@@ -283,6 +298,7 @@ class Rudder(_Model):
     slipstream_factor: Pos = 1.0
     angle_deg: TimeFunction | None = None  # [deg]
     autopilot: Autopilot | None = None
+    steering_gear: SteeringGear | None = None
 
     @model_validator(mode="after")
     def _one_of_each(self):

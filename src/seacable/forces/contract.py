@@ -42,9 +42,10 @@ class ForceTable(Protocol):
 @runtime_checkable
 class StatefulForceModel(Protocol):
     """A force model with states of its own (the trajectory servo's force; radiation memory
-    as a state space): ``state_count(row)`` first-order states, read from its packed row (so
-    that a model's states may vary in number from one row to the next: a state space's order),
-    laid out after the velocities in the state vector (``system.assemble``: ``force_state``).
+    as a state space; a speed controller's integral; a steering gear's rudder angle):
+    ``state_count(row)`` first-order states, read from its packed row (so that a model's
+    states may vary in number from one row to the next: a state space's order), laid out
+    after the velocities in the state vector (``system.assemble``: ``force_state``).
 
     1. ``pack`` (or ``pack_*``): its row (the parts computed once the system is built may
        start at zero).

@@ -24,9 +24,18 @@ delta is a time function, or the heading autopilot's PD law
 delta = K_p wrap(psi_t - psi) - K_d r, psi the heading (atan2(R_10, R_00)), r the yaw rate
 (omega_z) [rad/s], K_p [-], K_d [s], limited to +-max_angle.
 
+The steering gear (optional): the law above is then the command delta_c, and delta is a
+state of the system, from 0 (amidships), that follows it as a rate-limited first-order lag,
+
+    d delta/dt = clip((delta_c - delta) / T, -rate, rate),
+
+T the gear's time constant [s], ``rate`` its largest turning rate [rad/s] (SOLAS II-1/29 asks
+for 35 deg on one side to 30 deg on the other within 28 s: 2.3 deg/s).
+
 Row: P (3), A, a, alpha_stall, C_D0, 1/(pi Lambda) (0: none), k, 1 with the autopilot, K_p,
-K_d, the largest |delta| [rad] (0: none), the table's rows n (0: the lift slope), then n rows
-(alpha [rad] ascending, C_L, C_D). Channel: delta, or psi_t [rad].
+K_d, the largest |delta| [rad] (0: none), the table's rows n (0: the lift slope), the gear's
+rate [rad/s] (0: no gear) and T [s], then n rows (alpha [rad] ascending, C_L, C_D). Channel:
+delta, or psi_t [rad].
 """
 
 import math
@@ -40,28 +49,37 @@ from seacable.kernels import chain3d as c3
 from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import evaluate
 
-HEADER = 14
+GEAR_RATE, GEAR_TIME = 14, 15
+HEADER = 16
 
 
 def pack(point, area, lift_slope, stall_deg, drag, aspect_ratio, slipstream, autopilot,
-         max_angle_deg, table) -> list[float]:  # fmt: skip
+         max_angle_deg, table, gear=None) -> list[float]:  # fmt: skip
     """The row: ``point`` P [m] (body frame), ``area`` [m^2], ``lift_slope`` [1/rad], the stall
     angle [deg], C_D0, the aspect ratio (None: no induced drag), the slipstream factor, the
     autopilot's (K_p, K_d [s]) or None, the largest |delta| [deg] (None: none), the table's
-    rows (alpha [deg], C_L, C_D) or None."""
+    rows (alpha [deg], C_L, C_D) or None, the steering gear's (rate [deg/s], T [s]) or
+    None."""
     gains = autopilot or (0.0, 0.0)
+    rate, lag = gear or (0.0, 0.0)
     rows = [[math.radians(r[0]), float(r[1]), float(r[2])] for r in table or []]
     return [*(float(v) for v in point), float(area), float(lift_slope or 0.0),
             math.radians(stall_deg), float(drag),
             1.0 / (math.pi * aspect_ratio) if aspect_ratio else 0.0, float(slipstream),
             1.0 if autopilot else 0.0, float(gains[0]), float(gains[1]),
-            math.radians(max_angle_deg or 0.0), float(len(rows)),
-            *(v for r in rows for v in r)]  # fmt: skip
+            math.radians(max_angle_deg or 0.0), float(len(rows)), math.radians(rate),
+            float(lag), *(v for r in rows for v in r)]  # fmt: skip
+
+
+def state_count(row) -> int:
+    """The rudder's angle when it has a steering gear; none otherwise."""
+    return 1 if row[GEAR_RATE] > 0.0 else 0
 
 
 @njit(inline="always", **JIT)
 def angle(row, first, t, rot, omega, tf):
-    """The rudder angle delta [rad]: its time function or the autopilot's, limited."""
+    """The rudder angle delta [rad] its law commands: its time function or the
+    autopilot's, limited."""
     breaks, coefs, count, sine, build_up = tf
     value, _, _ = evaluate(breaks, coefs, count, sine, build_up, first, t)
     if row[9] != 0.0:
@@ -73,6 +91,14 @@ def angle(row, first, t, rot, omega, tf):
     if limit > 0.0:
         value = min(limit, max(-limit, value))
     return value
+
+
+@njit(inline="always", **JIT)
+def rates(row, first, t, rot, omega, tf, y, state, ydot):
+    """The steering gear's d delta/dt into ``ydot[state]``."""
+    command = angle(row, first, t, rot, omega, tf)
+    rate = row[GEAR_RATE]
+    ydot[state] = min(rate, max(-rate, (command - y[state]) / row[GEAR_TIME]))
 
 
 @njit(inline="always", **JIT)
@@ -104,8 +130,10 @@ def coefficients(row, alpha):
 
 
 @njit(inline="always", **JIT)
-def add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v, tf, rhs):
-    """The rudder's lift and drag at P, in the earth frame, added to ``rhs``."""
+def add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v, tf, y,
+        state, rhs):  # fmt: skip
+    """The rudder's lift and drag at P, in the earth frame, added to ``rhs`` (``y[state]``:
+    the steering gear's angle; ``state`` -1: none)."""
     arm = turn(rot, (row[0], row[1], row[2]))
     cu, cv = c3._current(current_z, current_u, current_v, pos[2] + arm[2])
     w = relative_flow(arm, rot, vel, omega, cu, cv)  # the water past P: -s
@@ -113,7 +141,7 @@ def add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_
     speed = math.sqrt(sx * sx + sy * sy)
     if speed == 0.0:
         return
-    delta = angle(row, first, t, rot, omega, tf)
+    delta = y[state] if state >= 0 else angle(row, first, t, rot, omega, tf)
     ex, ey = math.cos(delta), -math.sin(delta)
     alpha = math.atan2(ex * sy - ey * sx, ex * sx + ey * sy)
     if alpha > 0.5 * math.pi:

@@ -80,38 +80,50 @@ def add_all(
             froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip
         elif k == THRUSTER or k == RUDDER or k == WIND or k == CURRENT:
-            _vessel(k, row, first[f], t, rho, pos[b], rot[b], vel[b], omega[b], current_z,
-                    current_u, current_v, tf, rhs[b])  # fmt: skip
+            _vessel(k, row, first[f], t, y, state[f], rho, pos[b], rot[b], vel[b], omega[b],
+                    current_z, current_u, current_v, tf, rhs[b])  # fmt: skip
 
 
 @njit(inline="always", **JIT)
-def _vessel(k, row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v, tf,
-            rhs):  # fmt: skip
-    """A vessel's controlled forces (thruster, rudder) and coefficient loads (wind, current)."""
+def _vessel(k, row, first, t, y, state, rho, pos, rot, vel, omega, current_z, current_u,
+            current_v, tf, rhs):  # fmt: skip
+    """A vessel's controlled forces (thruster, rudder; ``state``: their controller's or
+    gear's, -1: none) and coefficient loads (wind, current)."""
     if k == THRUSTER:
-        thruster.add(row, first, t, rot, vel, tf, rhs)
+        thruster.add(row, first, t, rot, vel, tf, y, state, rhs)
     elif k == RUDDER:
         rudder.add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v,
-                   tf, rhs)  # fmt: skip
+                   tf, y, state, rhs)  # fmt: skip
     else:
         coefficients.add(row, t, tf, rho, pos, rot, vel, omega, current_z, current_u,
                          current_v, rhs)  # fmt: skip
 
 
 @njit(inline="always", **JIT)
-def state_rates(y, kind, body, at, state, data, pos, rot, vel, omega, ppos, pvel, ydot):
+def state_rates(t, y, kind, body, at, first, state, data, pos, rot, vel, omega, ppos, pvel, tf,
+                ydot):  # fmt: skip
     """The rates of every force model's states (read from ``y``) into ``ydot``."""
     for f in range(kind.shape[0]):
         if state[f] < 0:
             continue
         b = body[f]
+        row = data[at[f] :]
         if kind[f] == SERVO:
-            servo.rates(data[at[f] :], pos[b], vel[b], ppos, pvel, state[f], ydot)
+            servo.rates(row, pos[b], vel[b], ppos, pvel, state[f], ydot)
         elif kind[f] == RADIATION_DAMPING:
-            radiation.rates(data[at[f] :], y, state[f], rot[b], vel[b], omega[b], ydot)
+            radiation.rates(row, y, state[f], rot[b], vel[b], omega[b], ydot)
+        elif kind[f] == THRUSTER:
+            thruster.rates(row, first[f], t, rot[b], vel[b], tf, y, state[f], ydot)
+        elif kind[f] == RUDDER:
+            rudder.rates(row, first[f], t, rot[b], omega[b], tf, y, state[f], ydot)
 
 
-STATEFUL = {SERVO: servo.state_count, RADIATION_DAMPING: radiation.state_count}
+STATEFUL = {
+    SERVO: servo.state_count,
+    RADIATION_DAMPING: radiation.state_count,
+    THRUSTER: thruster.state_count,
+    RUDDER: rudder.state_count,
+}
 
 
 def state_count(kind: int, row) -> int:

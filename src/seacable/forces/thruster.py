@@ -3,15 +3,18 @@ direction d at a body-frame point P; its moment about the reference point is r_P
 
 d is a fixed unit vector (a propeller, a tunnel thruster) or, for an azimuth thruster,
 (cos a, sin a, 0) with a(t) the azimuth [rad] from the bow (+x) towards port (+y). T is a time
-function, or the surge-speed controller's proportional law
+function, or the surge-speed controller's proportional-integral law
 
-    T = T_ff(t) + K (U(t) - u),        u = (R^T v)_x,
+    T = T_ff(t) + K (U(t) - u) + K_i I,        dI/dt = U(t) - u,        u = (R^T v)_x,
 
 u the surge speed over ground of the reference point [m/s], U the target [m/s], K the gain
-[N s/m], T_ff a feed-forward thrust [N] (the ship's resistance at U: without it the speed
-settles below U, where K (U - u) balances the resistance). |T| is limited to ``max_thrust``
-when given. Row: P (3), d (3), 1 when d turns with the azimuth, 1 with the controller, K,
-the largest |T| (0: none). Channels from the model's first: T or U, T_ff, a [rad].
+[N s/m], K_i the integral gain [N/m], T_ff a feed-forward thrust [N] (the ship's resistance at
+U). Proportional alone (K_i = 0, no state), the speed settles below U unless T_ff is the
+resistance there; the integral I [m] (a state of the system, from 0) removes that offset.
+|T| is limited to ``max_thrust`` when given; while the limit holds the thrust and the error
+would push it further, I is held (conditional integration: no wind-up past the limit).
+Row: P (3), d (3), 1 when d turns with the azimuth, 1 with the controller, K, the largest |T|
+(0: none), K_i. Channels from the model's first: T or U, T_ff, a [rad].
 """
 
 import math
@@ -24,37 +27,65 @@ from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import evaluate
 
 CHANNELS = 3  # thrust (or target speed), feed-forward thrust, azimuth
+CONTROLLED, GAIN, LIMIT, INTEGRAL_GAIN = 7, 8, 9, 10
 
 
 def pack(point, direction, azimuth: bool, controlled: bool, gain: float,
-         max_thrust: float | None) -> list[float]:  # fmt: skip
+         max_thrust: float | None, integral_gain: float = 0.0) -> list[float]:  # fmt: skip
     """The row: ``point`` P [m] and unit ``direction`` d (body frame), whether d turns with the
-    azimuth channel, whether T comes from the speed controller of ``gain`` K [N s/m], and the
-    largest |T| [N] (None: unlimited)."""
+    azimuth channel, whether T comes from the speed controller of ``gain`` K [N s/m] and
+    ``integral_gain`` K_i [N/m], and the largest |T| [N] (None: unlimited)."""
     norm = math.sqrt(sum(float(v) ** 2 for v in direction))
     return [*(float(v) for v in point), *(float(v) / norm for v in direction),
-            float(azimuth), float(controlled), float(gain), float(max_thrust or 0.0)]  # fmt: skip
+            float(azimuth), float(controlled), float(gain), float(max_thrust or 0.0),
+            float(integral_gain)]  # fmt: skip
+
+
+def state_count(row) -> int:
+    """The controller's integral I [m] when it has an integral gain; none otherwise."""
+    return 1 if row[CONTROLLED] != 0.0 and row[INTEGRAL_GAIN] > 0.0 else 0
 
 
 @njit(inline="always", **JIT)
-def thrust(row, first, t, rot, vel, tf):
-    """T [N], saturated."""
+def _law(row, first, t, rot, vel, tf, y, state):
+    """T [N] before the limit, and the controller's error U - u [m/s] (0 without it)."""
     breaks, coefs, count, sine, build_up = tf
     value, _, _ = evaluate(breaks, coefs, count, sine, build_up, first, t)
-    if row[7] != 0.0:
-        surge = rot[0, 0] * vel[0] + rot[1, 0] * vel[1] + rot[2, 0] * vel[2]
-        feed, _, _ = evaluate(breaks, coefs, count, sine, build_up, first + 1, t)
-        value = feed + row[8] * (value - surge)
-    limit = row[9]
+    if row[CONTROLLED] == 0.0:
+        return value, 0.0
+    surge = rot[0, 0] * vel[0] + rot[1, 0] * vel[1] + rot[2, 0] * vel[2]
+    feed, _, _ = evaluate(breaks, coefs, count, sine, build_up, first + 1, t)
+    error = value - surge
+    value = feed + row[GAIN] * error
+    if state >= 0:
+        value += row[INTEGRAL_GAIN] * y[state]
+    return value, error
+
+
+@njit(inline="always", **JIT)
+def thrust(row, first, t, rot, vel, tf, y, state):
+    """T [N], limited (``y[state]``: the controller's integral; ``state`` -1: none)."""
+    value, _ = _law(row, first, t, rot, vel, tf, y, state)
+    limit = row[LIMIT]
     if limit > 0.0:
         value = min(limit, max(-limit, value))
     return value
 
 
 @njit(inline="always", **JIT)
-def add(row, first, t, rot, vel, tf, rhs):
+def rates(row, first, t, rot, vel, tf, y, state, ydot):
+    """dI/dt = U - u into ``ydot[state]``, 0 while the limit holds and the error pushes the
+    thrust further beyond it."""
+    value, error = _law(row, first, t, rot, vel, tf, y, state)
+    limit = row[LIMIT]
+    held = limit > 0.0 and ((value >= limit and error > 0.0) or (value <= -limit and error < 0.0))
+    ydot[state] = 0.0 if held else error
+
+
+@njit(inline="always", **JIT)
+def add(row, first, t, rot, vel, tf, y, state, rhs):
     """The thrust and its moment, in the earth frame, added to ``rhs``."""
-    value = thrust(row, first, t, rot, vel, tf)
+    value = thrust(row, first, t, rot, vel, tf, y, state)
     dx, dy, dz = row[3], row[4], row[5]
     if row[6] != 0.0:
         breaks, coefs, count, sine, build_up = tf

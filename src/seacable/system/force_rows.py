@@ -104,7 +104,8 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
         return thruster.pack(_body_point(body, spec.point, where), spec.direction,
                              spec.azimuth_deg is not None, spec.controller is not None,
                              spec.controller.gain if spec.controller else 0.0,
-                             spec.max_thrust)  # fmt: skip
+                             spec.max_thrust,
+                             spec.controller.integral_gain if spec.controller else 0.0)  # fmt: skip
     if isinstance(spec, fm.Rudder):
         pilot = spec.autopilot
         law = spec.angle_deg if pilot is None else pilot.heading_deg
@@ -114,6 +115,7 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
             spec.stall_angle_deg, spec.drag_coefficient, spec.aspect_ratio,
             spec.slipstream_factor, (pilot.gain, pilot.rate_gain) if pilot else None,
             pilot.max_angle_deg if pilot else None, spec.coefficients,
+            (gear.max_rate_deg_s, gear.time_constant) if (gear := spec.steering_gear) else None,
         )  # fmt: skip
     wind = case.environment.wind
     if isinstance(spec, fm.WindLoad) and wind is None:

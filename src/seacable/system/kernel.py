@@ -390,9 +390,9 @@ def rhs(t, y, p, w, ydot):
         )  # fmt: skip
     w.load[:, :] += w.models
     if p.n_s > 0:
-        table.state_rates(y, p.force_kind, p.force_body, p.force_at, p.force_state,
-                          p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel,
-                          ydot)  # fmt: skip
+        table.state_rates(t, y, p.force_kind, p.force_body, p.force_at, p.force_first,
+                          p.force_state, p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos,
+                          w.pvel, tf, ydot)  # fmt: skip
     if p.rs_n.shape[0] > 0:  # for the statics' moment balance of rigid lines
         w.own_load[:, :] = w.load[:, 0:3]
     if p.rs_n.shape[0] > 0 and not rigid.backward(

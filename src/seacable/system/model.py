@@ -153,7 +153,43 @@ def _body_variables(body) -> dict:
         for c in AXES:
             out[f"target_{c}"] = (("time",), "m", f"the servo's target point, {c}")
         out["tracking_error"] = (("time",), "m", "distance of the body from its target")
+    for _, name, model_ in _controls(body):
+        out[name] = (("time",), *CONTROL_STATES[model_][1:])
     return out
+
+
+# a force model's control state in the results: its variable's name, unit, description
+CONTROL_STATES = {
+    "rudder": ("rudder_angle", "degree", "the rudder's angle (its steering gear's state)"),
+    "thruster": ("speed_integral", "m", "the speed controller's integral of (target - u)"),
+}
+
+
+def _controls(body) -> list[tuple[int, str, str]]:
+    """(k, variable, model) of each of the body's force models with a control state: a
+    rudder's steering gear, a speed controller's integral (forces.rudder, forces.thruster);
+    the second of a kind is named with ``_2``, and so on."""
+    out: list[tuple[int, str, str]] = []
+    seen: dict[str, int] = {}
+    for k, spec in enumerate(getattr(body, "external_forces", [])):
+        if (spec.model == "rudder" and spec.steering_gear is not None) or (
+                spec.model == "thruster" and spec.controller is not None
+                and spec.controller.integral_gain > 0.0):  # fmt: skip
+            base = CONTROL_STATES[spec.model][0]
+            seen[base] = seen.get(base, 0) + 1
+            out.append((k, base if seen[base] == 1 else f"{base}_{seen[base]}", spec.model))
+    return out
+
+
+def _control_rows(system: BuiltSystem, states, out: dict) -> None:
+    """Each rudder's steering-gear angle [deg] and speed controller's integral [m]."""
+    p = system.params
+    for b, body in enumerate(system.case.bodies):
+        rows = np.flatnonzero(p.force_body == b)  # the body's models, in its order
+        for k, name, model_ in _controls(body):
+            s = int(p.force_state[rows[k]])
+            values = states[:, s]
+            out[f"bodies/{body.name}/{name}"] = np.degrees(values) if model_ == "rudder" else values
 
 
 def _line_variables(tension: str) -> dict:
@@ -301,6 +337,7 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
         for k, name in enumerate(BODY_NAMES):
             out[f"bodies/{body.name}/{name}"] = bodies[:, b, k]
     _servo_rows(system, states, bodies, out)
+    _control_rows(system, states, out)
     for li, line in enumerate(system.layout.lines):
         n, c0, s0 = int(p.line_n[li]), int(p.line_node[li]), int(p.line_seg[li])
         for c, axis in enumerate(AXES):
