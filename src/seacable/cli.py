@@ -11,12 +11,12 @@ import click
 import h5netcdf
 import numpy as np
 import xarray as xr
-import yaml
 
 import seacable
 from seacable import analysis, bem, meshes, simulation, viz
 from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
+from seacable.results import restore_case
 
 # exit codes (README, "Command line"): 0 done; 1 a bug in seacable; 2 the input (case file,
 # output path, no equilibrium, a file that cannot be read or written); 3 the run diverged;
@@ -128,25 +128,14 @@ def repeat(results_file: str, output: str, progress: bool) -> None:
     the case named outside its folder, by an absolute path or '..', is put in that folder and
     the case text pointed at it)."""
     with h5netcdf.File(results_file, "r") as f:
-        if "case" not in f.attrs:
-            _fail(f"{results_file}: not a seacable results file (no 'case' attribute)", EXIT_INPUT)
-        text, files = str(f.attrs["case"]), yaml.safe_load(str(f.attrs.get("input_files", "{}")))
+        attrs = dict(f.attrs)
     with tempfile.TemporaryDirectory() as folder:
-        for k, (name, content) in enumerate((files or {}).items()):
-            kept = name
-            if Path(name).is_absolute() or ".." in Path(name).parts:
-                # a file outside the case's folder: kept inside the temporary one, and the case
-                # text pointed at it (the name is the exact text the case gives)
-                kept = f"outside_{k}_{Path(name).name}"
-                if text.count(name) != 1:
-                    _fail(f"{results_file}: input file '{name}' cannot be put back in the "
-                          "case's text; run the case itself", EXIT_INPUT)  # fmt: skip
-                text = text.replace(name, kept)
-            (Path(folder) / kept).parent.mkdir(parents=True, exist_ok=True)
-            (Path(folder) / kept).write_text(content)
-        (Path(folder) / "case.yaml").write_text(text)
-        results = seacable.simulate(seacable.load_case(Path(folder) / "case.yaml"),
-                                    output=output, progress=progress)  # fmt: skip
+        try:
+            case_file = restore_case(attrs, folder)
+        except ValueError as exc:
+            _fail(f"{results_file}: {exc}", EXIT_INPUT)
+        results = seacable.simulate(seacable.load_case(case_file), output=output,
+                                    progress=progress)  # fmt: skip
     click.echo(f"{results.status}: {results.message}; results in {output}")
 
 

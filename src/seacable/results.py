@@ -51,6 +51,30 @@ REPEAT = (
 )
 
 
+def restore_case(attrs, folder) -> Path:
+    """Write the case a results file was run from (its ``case`` attribute) and the files it
+    read (``input_files``) into ``folder``; returns the case file's path. A file the case named
+    outside its folder (an absolute path or '..') is put inside, and the case text pointed at
+    it. ValueError when the file holds no case or such a name cannot be put back."""
+    import yaml
+
+    if "case" not in attrs:
+        raise ValueError("not a seacable results file (no 'case' attribute)")
+    text, files = str(attrs["case"]), yaml.safe_load(str(attrs.get("input_files", "{}")))
+    for k, (name, content) in enumerate((files or {}).items()):
+        kept = name
+        if Path(name).is_absolute() or ".." in Path(name).parts:
+            kept = f"outside_{k}_{Path(name).name}"
+            if text.count(name) != 1:
+                raise ValueError(f"input file '{name}' cannot be put back in the case's text; "
+                                 "run the case itself")  # fmt: skip
+            text = text.replace(name, kept)
+        (Path(folder) / kept).parent.mkdir(parents=True, exist_ok=True)
+        (Path(folder) / kept).write_text(content)
+    (Path(folder) / "case.yaml").write_text(text)
+    return Path(folder) / "case.yaml"
+
+
 def _software() -> str:
     """The versions a run's numbers depend on."""
     from seacable import __version__

@@ -2,15 +2,27 @@
 elevation and plan views of every line and body at a few times, with the water surface and the
 seabed; a range graph of each line's tension along its length (least, mean and largest over the
 run, as OrcaFlex draws them); end tensions, body positions and rotations over time. Only finite
-rows set the axes, so a diverged run still draws what it computed."""
+rows set the axes, so a diverged run still draws what it computed.
 
+Animations draw each body with a hull mesh as its outline (the convex hull of its vertices
+projected on the view, turned and moved with the body) and, in elevation, the incident waves'
+surface along y = 0, both rebuilt from the case the results keep (``results.restore_case``);
+the other bodies are drawn as their reference point."""
+
+import logging
 import math
+import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 import yaml
 
+from seacable import packing
+from seacable.case.loader import load_case
+from seacable.kernels import waves
+from seacable.results import restore_case
+from seacable.system.hulls import body_mesh
 from seacable.viz.common import (
     _finish,
     _frame_indices,
@@ -186,6 +198,45 @@ def plot_system(tree: xr.DataTree, path, every: float | None = None) -> Path:
     return path
 
 
+log = logging.getLogger("seacable")
+
+
+def _scene(tree: xr.DataTree) -> tuple[dict[str, np.ndarray], dict]:
+    """The hull vertices (body frame [m]) of each body with a mesh, and the incident waves
+    (``wave``, ``wave_depth``: kernels.waves) of the case the results keep; none of either,
+    logged, when that case cannot be rebuilt."""
+    try:
+        with tempfile.TemporaryDirectory() as folder:
+            case = load_case(restore_case(tree.attrs, folder))
+            hulls = {body.name: body_mesh(body, folder, f"bodies[{k}]").vertices
+                     for k, body in enumerate(case.bodies)
+                     if getattr(body, "mesh", None) is not None}  # fmt: skip
+        return hulls, packing.wave_fields(case.environment, case.simulation.build_up)
+    except Exception as exc:  # an old or hand-made file: bodies as points, a flat surface
+        log.warning("animation: hulls and waves not drawn (the results' case cannot be "
+                    "rebuilt: %s)", exc)  # fmt: skip
+        return {}, {}
+
+
+def _outline(vertices: np.ndarray, ds: xr.Dataset, i: int, a: str, b: str):
+    """The outline of a hull (body-frame ``vertices``) in the view (a, b) at output i: the
+    convex hull of its vertices turned by R = Rz(yaw) Ry(pitch) Rx(roll) and moved to the
+    body's position."""
+    from scipy.spatial import ConvexHull
+    from scipy.spatial.transform import Rotation
+
+    angles = [float(ds[name].values[i]) for name in ("roll", "pitch", "yaw")]
+    turn = Rotation.from_euler("xyz", angles, degrees=True).as_matrix()
+    axes = ["xyz".index(a), "xyz".index(b)]
+    placed = vertices @ turn.T + [float(ds[f"position_{c}"].values[i]) for c in "xyz"]
+    points = placed[:, axes]
+    if not np.isfinite(points).all():
+        return [], []
+    ring = ConvexHull(points).vertices
+    ring = np.append(ring, ring[0])
+    return points[ring, 0], points[ring, 1]
+
+
 def _extent(tree: xr.DataTree, frames, a: str) -> tuple[float, float]:
     low, high = math.inf, -math.inf
     for ds in _groups(tree, "lines").values():
@@ -227,10 +278,14 @@ def animate_system(
     frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     env = _environment(tree)
     lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
+    hulls, sea = _scene(tree)
+    reach = max((float(np.abs(v).max()) for v in hulls.values()), default=0.0)
     fig, axes = plt.subplots(1, 2, figsize=(14, 6))
     artists = []
+    surface = None
     for ax, (a, b) in zip(axes, (("x", "y"), ("x", "z")), strict=True):
         (h0, h1), (v0, v1) = _extent(tree, frames, a), _extent(tree, frames, b)
+        h0, h1, v0, v1 = h0 - reach, h1 + reach, v0 - reach, v1 + reach
         if b == "z":
             v1 = max(v1, 0.0)
         pad = 0.05 * max(h1 - h0, v1 - v0, 1.0)
@@ -241,27 +296,38 @@ def animate_system(
         ax.set_ylabel(f"{b} [m]")
         if b == "z":
             ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+            if sea and sea["wave"].shape[1] > 0:
+                along = np.linspace(h0 - pad, h1 + pad, 400)
+                (surface,) = ax.plot([], [], color="tab:blue", lw=1.0)
             depth = env.get("water_depth")
             if isinstance(depth, int | float):
                 ax.axhline(-float(depth), color="saddlebrown", lw=1.2)
         for ds in lines.values():
             (artist,) = ax.plot([], [], "k.-", lw=1.2, ms=2)
-            artists.append((artist, ds, a, b))
-        for ds in bodies.values():
-            (artist,) = ax.plot([], [], "s", ms=5, mfc="none", color="tab:red")
-            artists.append((artist, ds, a, b))
+            artists.append((artist, ds, a, b, None))
+        for name, ds in bodies.items():
+            if name in hulls and "roll" in ds:
+                (artist,) = ax.plot([], [], "-", lw=1.2, color="tab:red")
+            else:
+                (artist,) = ax.plot([], [], "s", ms=5, mfc="none", color="tab:red")
+            artists.append((artist, ds, a, b, hulls.get(name) if "roll" in ds else None))
     label = fig.suptitle("")
     title = _title(tree)
     path.parent.mkdir(parents=True, exist_ok=True)
     writer = _gif_stream(fps)
     with writer.saving(fig, path, dpi=80):
         for i in _progress(frames, progress, path.name):
-            for artist, ds, a, b in artists:
-                if f"position_{a}" in ds:
+            for artist, ds, a, b, hull in artists:
+                if hull is not None:
+                    artist.set_data(*_outline(hull, ds, int(i), a, b))
+                elif f"position_{a}" in ds:
                     artist.set_data([ds[f"position_{a}"].values[i]],
                                     [ds[f"position_{b}"].values[i]])  # fmt: skip
                 else:
                     artist.set_data(*_shape(ds, int(i), a, b))
+            if surface is not None:
+                eta = [waves.elevation_at(sea["wave"], float(times[i]), x, 0.0) for x in along]
+                surface.set_data(along, eta)
             label.set_text(f"{title}  t = {times[i]:.2f} s")
             writer.grab_frame()
     plt.close(fig)
