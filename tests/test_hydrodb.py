@@ -115,6 +115,26 @@ def test_a_database_moved_keeps_energy_and_work():
                 moved.diffraction[k, 0] @ at_new, rel=1e-12)  # fmt: skip
 
 
+def test_the_excitations_phase_moved_to_another_point():
+    """X refers to the wave's phase at the database's origin; phase_moved(P, k) to its phase
+    at P: the same wave gives the same force, Re(X a e^{i p_O}) = Re(X_P a e^{i p_P}) with
+    p_P = p_O + k (x_P cos b + y_P sin b), at every frequency and direction; the matrices
+    stay. A body's reference point away from the database's origin needs it
+    (tests/test_rao_barge.py)."""
+    db = hydrodb.read(DATA / "barge_hydrodb.nc")
+    point = np.array([20.0, -7.0, -6.0])
+    k = db.omega**2 / db.gravity
+    moved = db.phase_moved(point, k)
+    shift = k[:, None] * (point[0] * np.cos(db.directions) + point[1] * np.sin(db.directions))
+    for p_origin in (0.0, 1.3, -2.9):
+        for part in ("diffraction", "froude_krylov"):
+            at_origin = getattr(db, part) * np.exp(1j * p_origin)
+            at_point = getattr(moved, part) * np.exp(1j * (p_origin + shift))[:, :, None]
+            assert np.allclose(at_point.real, at_origin.real, rtol=0.0,
+                               atol=1e-12 * np.abs(at_origin).max())  # fmt: skip
+    assert moved.added_mass is db.added_mass and moved.damping is db.damping
+
+
 def test_capytaine_output_is_read():
     """The example's database (a hemisphere of radius 2.5 m, computed with Capytaine through
     seacable.bem): six degrees of freedom in order, symmetric matrices, a heave damping that

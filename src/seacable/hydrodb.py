@@ -10,8 +10,10 @@ Conventions (every database read is turned into these; written into files that c
   [force, motion] (F_i = -A_ij x''_j - B_ij x'_j), at ``reference_point`` (body frame [m]);
 - excitation per metre of wave amplitude, for a wave travelling towards ``directions`` (rad,
   from +x towards +y, relative to the body's x axis), with the time dependence e^{-i w t}: a
-  wave eta = a cos(k (x cos b + y sin b) - w t + p) at the reference point's place gives
-  F(t) = Re(X a e^{i p} e^{-i w t}) (kernels.waves's phase);
+  wave eta = a cos(k (x cos b + y sin b) - w t + p), x and y in the database's frame, gives
+  F(t) = Re(X a e^{i p} e^{-i w t}) (kernels.waves's phase): X refers to the wave's phase at
+  the frame's origin (Capytaine's, WAMIT's), whatever ``reference_point`` the moments are
+  about (``moved`` keeps it there; ``phase_moved`` moves it);
 - the retardation function K(t) = (2/pi) int_0^inf B(w) cos(w t) dw, the radiation force
   -int_0^Tc K(tau) nu(t - tau) d tau, Ogilvie: A(w) = A_inf - (1/w) int_0^inf K(t) sin(w t) dt.
 
@@ -95,6 +97,24 @@ class HydroDB:
             infinite=None if self.infinite is None else h.T @ self.infinite @ h,
             hydrostatic_stiffness=self.hydrostatic_stiffness if not np.any(r) else None,
             reference_point=np.asarray(point, dtype=float),
+        )  # fmt: skip
+
+    def phase_moved(self, point, wave_number) -> HydroDB:
+        """The excitation referred to the incident wave's phase at ``point`` (the database's
+        frame [m]; its horizontal part counts) instead of at the frame's origin:
+        X e^{-i k (x cos b + y sin b)}, ``wave_number`` k (n,) [rad/m] at the database's
+        frequencies (w^2 = g k tanh(k h) of the water the body is in). The matrices stay."""
+        x, y = float(point[0]), float(point[1])
+        k = np.asarray(wave_number, dtype=float)[:, None, None]
+        turn = np.exp(-1j * k * (x * np.cos(self.directions) + y * np.sin(self.directions))[
+            None, :, None])  # fmt: skip
+
+        def force(f):
+            return None if f is None else f * turn
+
+        return replace(
+            self, diffraction=force(self.diffraction), froude_krylov=force(self.froude_krylov),
+            excitation_total=force(self.excitation_total),
         )  # fmt: skip
 
     def retardation(self, times, tail_power: int | None = None) -> np.ndarray:

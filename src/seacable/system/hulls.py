@@ -9,13 +9,13 @@ from dataclasses import replace
 
 import numpy as np
 
-from seacable import hydrodb, packing, realization
+from seacable import hydrodb, packing, realization, seastate
 from seacable.bodies import kinematics
 from seacable.case.forces import RadiationDamping
 from seacable.errors import CaseError
 from seacable.forces import diffraction, radiation
 from seacable.forces.kinds import RADIATION_DAMPING
-from seacable.kernels import memory
+from seacable.kernels import memory, waves
 from seacable.meshes import Mesh, MeshError, checked, hydrostatics, read
 from seacable.packing import transported
 
@@ -74,16 +74,22 @@ def document_added_mass(body, base_dir, where: str) -> np.ndarray:
 
 
 def body_database(body, base_dir, where: str, environment) -> hydrodb.HydroDB:
-    """The body's hydrodynamic database moved to its reference point (a nondimensional one,
-    WAMIT's, made dimensional with the ``environment``'s water density and gravity), or a
-    CaseError naming ``where``."""
+    """The body's hydrodynamic database moved to its reference point, its excitation referred
+    to the wave's phase there (forces.diffraction takes the phase at the reference point; the
+    database's origin is at ``position`` in the body frame), a nondimensional one (WAMIT's) made
+    dimensional with the ``environment``'s water density and gravity; or a CaseError naming
+    ``where``."""
     spec = body.hydrodynamics
     try:
         db = hydrodb.read(spec.path(base_dir), environment.water_density, environment.gravity,
                           spec.length_scale, spec.phase_unit)  # fmt: skip
     except hydrodb.HydroDBError as exc:
         raise CaseError(f"{where}.hydrodynamics.file: {exc}") from None
-    db = replace(db, reference_point=db.reference_point + np.asarray(spec.position, float))
+    origin = np.asarray(spec.position, float)
+    db = replace(db, reference_point=db.reference_point + origin)
+    if np.any(origin[:2]):
+        depth = environment.water_depth or waves.DEEP
+        db = db.phase_moved(-origin, seastate.wave_number(db.omega, depth, environment.gravity))
     return db.moved((0.0, 0.0, 0.0))
 
 
