@@ -281,7 +281,7 @@ def animate_system(
     hulls, sea = _scene(tree)
     reach = max((float(np.abs(v).max()) for v in hulls.values()), default=0.0)
     fig, axes = plt.subplots(1, 2, figsize=(14, 6))
-    artists = []
+    artists: list[tuple] = []
     surface = None
     for ax, (a, b) in zip(axes, (("x", "y"), ("x", "z")), strict=True):
         (h0, h1), (v0, v1) = _extent(tree, frames, a), _extent(tree, frames, b)
