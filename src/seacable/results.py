@@ -19,6 +19,7 @@ import numba
 import numpy as np
 import scipy
 import xarray as xr
+import yaml
 
 from seacable.errors import OutputError
 
@@ -56,8 +57,6 @@ def restore_case(attrs, folder) -> Path:
     read (``input_files``) into ``folder``; returns the case file's path. A file the case named
     outside its folder (an absolute path or '..') is put inside, and the case text pointed at
     it. ValueError when the file holds no case or such a name cannot be put back."""
-    import yaml
-
     if "case" not in attrs:
         raise ValueError("not a seacable results file (no 'case' attribute)")
     text, files = str(attrs["case"]), yaml.safe_load(str(attrs.get("input_files", "{}")))
