@@ -186,9 +186,14 @@ def db():
     return hydrodb.read(DB)
 
 
+# make test keeps the resonances (heave and pitch in head seas, roll in beam seas) and the
+# oblique sea that moves all six; the frequencies around them are `slow` (make test-all)
+LONG = pytest.mark.slow
 CASES = [
-    (180.0, 0.5), (180.0, 0.85), (180.0, 0.9), (180.0, 1.2), (180.0, 1.5),
-    (90.0, 0.5), (90.0, 0.7), (90.0, 0.8), (90.0, 1.0), (90.0, 1.2),
+    pytest.param(180.0, 0.5, marks=LONG), pytest.param(180.0, 0.85, marks=LONG), (180.0, 0.9),
+    pytest.param(180.0, 1.2, marks=LONG), pytest.param(180.0, 1.5, marks=LONG),
+    pytest.param(90.0, 0.5, marks=LONG), (90.0, 0.7), pytest.param(90.0, 0.8, marks=LONG),
+    pytest.param(90.0, 1.0, marks=LONG), pytest.param(90.0, 1.2, marks=LONG),
     (150.0, 0.6), (150.0, 0.9), (150.0, 1.2),
 ]  # fmt: skip
 
