@@ -15,8 +15,6 @@ The row: the level [m], 1 when clipped at still water whatever the waves, then t
 ``work`` (nv, 4) is the hull workspace (kernels.hull.place).
 """
 
-import numpy as np
-
 from seacable.kernels import hull, waves
 from seacable.kernels.jit import inner
 
@@ -32,7 +30,7 @@ def pack(mesh_row, still: bool = False) -> list[float]:
 
 @inner
 def add(row, pos, rot, rho, gravity, wave, t, work, rhs):
-    surface = np.zeros((waves.FIELDS, 0)) if row[1] != 0.0 else wave
+    surface = waves.still() if row[1] != 0.0 else wave
     hull.place(row[MESH_AT:], pos, rot, surface, t, work)
     hull.add_hydrostatic(row[MESH_AT:], row[0], pos, rho, gravity, work, rhs)
 

@@ -200,7 +200,7 @@ def surface_integrals(row, level, pos, rot, out):
     ``INTEGRANDS`` of the arms from ``pos`` (earth axes)."""
     out[:, :] = 0.0
     work = np.zeros((int(row[0]), 4))
-    place(row, pos, rot, np.zeros((waves.FIELDS, 0)), 0.0, work)
+    place(row, pos, rot, waves.still(), 0.0, work)
     for i in range(work.shape[0]):
         work[i, 3] += level
     t0 = HEADER + 3 * int(row[0])

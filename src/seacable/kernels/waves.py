@@ -71,8 +71,9 @@ def table(rows, depth: float) -> np.ndarray:
     return out
 
 
-def still() -> np.ndarray:
-    """A table without components (still water)."""
+@njit(inline="always", **JIT)
+def still():
+    """A table without components (still water; from Python or compiled code)."""
     return np.zeros((FIELDS, 0))
 
 

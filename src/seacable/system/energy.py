@@ -93,7 +93,7 @@ def _bodies(y, p, w):
         elif kind == NON_LINEAR_HYDROSTATIC:
             row = p.force_data[p.force_at[f] :]
             gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity,
-                                             np.zeros((waves.FIELDS, 0)), w.hull)  # fmt: skip
+                                             waves.still(), w.hull)  # fmt: skip
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
             elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])

@@ -10,6 +10,7 @@ from scipy import sparse
 
 from seacable.bodies import kinematics
 from seacable.case import system as sch
+from seacable.forces.kinds import RUDDER, THRUSTER
 from seacable.system import coordinates, geometry, kernel, outputs, servo, statics, topology
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
@@ -126,7 +127,7 @@ def after_step(system: BuiltSystem, w: kernel.SystemWork, t: float, y: np.ndarra
     kernel.after_step(t, y, system.params, w)
 
 
-def _body_variables(body) -> dict:
+def _body_variables(body, controls) -> dict:
     out = {}
     for c in AXES:
         out[f"position_{c}"] = (("time",), "m", f"position of the reference point, {c}")
@@ -153,43 +154,41 @@ def _body_variables(body) -> dict:
         for c in AXES:
             out[f"target_{c}"] = (("time",), "m", f"the servo's target point, {c}")
         out["tracking_error"] = (("time",), "m", "distance of the body from its target")
-    for _, name, model_ in _controls(body):
-        out[name] = (("time",), *CONTROL_STATES[model_][1:])
+    for _, name, kind in controls:
+        out[name] = (("time",), *CONTROL_STATES[kind][1:])
     return out
 
 
 # a force model's control state in the results: its variable's name, unit, description
 CONTROL_STATES = {
-    "rudder": ("rudder_angle", "degree", "the rudder's angle (its steering gear's state)"),
-    "thruster": ("speed_integral", "m", "the speed controller's integral of (target - u)"),
+    RUDDER: ("rudder_angle", "degree", "the rudder's angle (its steering gear's state)"),
+    THRUSTER: ("speed_integral", "m", "the speed controller's integral of (target - u)"),
 }
 
 
-def _controls(body) -> list[tuple[int, str, str]]:
-    """(k, variable, model) of each of the body's force models with a control state: a
-    rudder's steering gear, a speed controller's integral (forces.rudder, forces.thruster);
-    the second of a kind is named with ``_2``, and so on."""
-    out: list[tuple[int, str, str]] = []
-    seen: dict[str, int] = {}
-    for k, spec in enumerate(getattr(body, "external_forces", [])):
-        if (spec.model == "rudder" and spec.steering_gear is not None) or (
-                spec.model == "thruster" and spec.controller is not None
-                and spec.controller.integral_gain > 0.0):  # fmt: skip
-            base = CONTROL_STATES[spec.model][0]
-            seen[base] = seen.get(base, 0) + 1
-            out.append((k, base if seen[base] == 1 else f"{base}_{seen[base]}", spec.model))
+def _controls(system: BuiltSystem, b: int) -> list[tuple[int, str, int]]:
+    """(state, variable, kind) of each of body b's force models with a control state (a
+    rudder's steering gear, a speed controller's integral: forces.table.state_count), in the
+    body's order; the second of a kind is named with ``_2``, and so on."""
+    p = system.params
+    out: list[tuple[int, str, int]] = []
+    seen: dict[int, int] = {}
+    for f in np.flatnonzero(p.force_body == b):
+        kind = int(p.force_kind[f])
+        if kind in CONTROL_STATES and p.force_state[f] >= 0:
+            seen[kind] = seen.get(kind, 0) + 1
+            base = CONTROL_STATES[kind][0]
+            out.append((int(p.force_state[f]), base if seen[kind] == 1 else f"{base}_{seen[kind]}",
+                        kind))  # fmt: skip
     return out
 
 
 def _control_rows(system: BuiltSystem, states, out: dict) -> None:
     """Each rudder's steering-gear angle [deg] and speed controller's integral [m]."""
-    p = system.params
     for b, body in enumerate(system.case.bodies):
-        rows = np.flatnonzero(p.force_body == b)  # the body's models, in its order
-        for k, name, model_ in _controls(body):
-            s = int(p.force_state[rows[k]])
+        for s, name, kind in _controls(system, b):
             values = states[:, s]
-            out[f"bodies/{body.name}/{name}"] = np.degrees(values) if model_ == "rudder" else values
+            out[f"bodies/{body.name}/{name}"] = np.degrees(values) if kind == RUDDER else values
 
 
 def _line_variables(tension: str) -> dict:
@@ -246,8 +245,8 @@ ENERGY_VARIABLES = {
 def variables(system: BuiltSystem) -> dict:
     """Every output variable, its name prefixed by its group (the energies at the top)."""
     out: dict[str, tuple] = dict(ENERGY_VARIABLES)
-    for body in system.case.bodies:
-        for name, spec in _body_variables(body).items():
+    for b, body in enumerate(system.case.bodies):
+        for name, spec in _body_variables(body, _controls(system, b)).items():
             out[f"bodies/{body.name}/{name}"] = spec
     for line in system.layout.lines:
         for name, spec in _line_variables(LUMPED_TENSION).items():
