@@ -346,6 +346,61 @@ class CurrentLoad(_CoefficientLoad):
     model: Literal["current"]
 
 
+class HullDerivatives(_Model):
+    """Clarke's linear derivatives (non-dimensional, prime: Y_v per 1/2 rho L^2 U, Y_r and N_v
+    per 1/2 rho L^3 U, N_r per 1/2 rho L^4 U) replacing the values Clarke, Gedling and Hine's
+    regression gives for the hull's L, B, T and C_B; any of them."""
+
+    Y_v: float | None = None
+    Y_r: float | None = None
+    N_v: float | None = None
+    N_r: float | None = None
+
+
+class _HullCurrent(_Model):
+    """A ship hull's forces in the horizontal plane from the water flowing past it, at any
+    drift angle, with yaw-rate terms (forces.hull_current): on the velocity relative to the
+    water at ``point`` (midship), the loads acting there."""
+
+    point: Vector = (0.0, 0.0, 0.0)  # midship, body frame [m]
+    length: Pos  # L, between perpendiculars [m]
+    beam: Pos  # B [m]
+    draught: Pos  # T [m]
+    block_coefficient: Annotated[float, Field(gt=0.0, le=1.0)]  # C_B [-]
+    wetted_area: Pos | None = None  # S [m^2]; default Denny-Mumford's 1.7 L T + C_B L B
+    cross_flow_drag: Pos  # C_Y, the drag coefficient in beam flow, on L T [-] (0.6 to 1.1
+    # for tankers; higher in shallow water)
+    cross_flow_centre: float = 0.0  # x_Y, where the beam flow's force acts, forward of
+    # ``point`` [m]
+    form_factor: NonNeg = 0.25  # k in (1 + k) C_F, the friction's form factor [-]
+    kinematic_viscosity: Pos = 1.19e-6  # nu of the water [m^2/s] (sea water at 15 C)
+    derivatives: HullDerivatives | None = None  # Clarke's, replaced
+
+
+class ShortWing(_HullCurrent):
+    """Leite, Aranha, Umeda and de Conti's (1998) short-wing model; its yaw-rate terms:
+    Clarke's Y_r, N_r times |u| and the cross-flow drag of each station."""
+
+    model: Literal["short-wing"]
+
+    @model_validator(mode="after")
+    def _static_terms_are_the_models(self):
+        d = self.derivatives
+        if d is not None and (d.Y_v is not None or d.N_v is not None):
+            raise ValueError(
+                "derivatives: the short-wing model's drift terms come from its own formula; "
+                "give only Y_r and N_r, or use model: cross-flow to set Y_v and N_v"
+            )
+        return self
+
+
+class CrossFlow(_HullCurrent):
+    """The low-speed manoeuvring model of the MMG kind: Clarke's linear lift terms, which
+    vanish in beam flow, plus the cross-flow drag integrated along the hull."""
+
+    model: Literal["cross-flow"]
+
+
 ForceModel = Annotated[
     Gravity
     | Buoyancy
@@ -362,6 +417,8 @@ ForceModel = Annotated[
     | Thruster
     | Rudder
     | WindLoad
-    | CurrentLoad,
+    | CurrentLoad
+    | ShortWing
+    | CrossFlow,
     Field(discriminator="model"),
 ]

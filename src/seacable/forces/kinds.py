@@ -28,6 +28,8 @@ class ForceKind(IntEnum):
     RUDDER = 13
     WIND = 14
     CURRENT = 15
+    SHORT_WING = 16
+    CROSS_FLOW = 17
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -46,6 +48,8 @@ THRUSTER = int(ForceKind.THRUSTER)
 RUDDER = int(ForceKind.RUDDER)
 WIND = int(ForceKind.WIND)
 CURRENT = int(ForceKind.CURRENT)
+SHORT_WING = int(ForceKind.SHORT_WING)
+CROSS_FLOW = int(ForceKind.CROSS_FLOW)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

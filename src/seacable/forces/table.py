@@ -10,6 +10,7 @@ from seacable.forces import (
     diffraction,
     drag,
     froude_krylov,
+    hull_current,
     hydrostatic,
     linear,
     radiation,
@@ -21,6 +22,7 @@ from seacable.forces import (
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
+    CROSS_FLOW,
     CURRENT,
     DIFFRACTION,
     DRAG,
@@ -33,6 +35,7 @@ from seacable.forces.kinds import (
     RADIATION_DAMPING,
     RUDDER,
     SERVO,
+    SHORT_WING,
     THRUSTER,
     WIND,
 )
@@ -79,7 +82,14 @@ def add_all(
         elif k == NON_LINEAR_FROUDE_KRYLOV:
             froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip
-        elif k == THRUSTER or k == RUDDER or k == WIND or k == CURRENT:
+        elif (
+            k == THRUSTER
+            or k == RUDDER
+            or k == WIND
+            or k == CURRENT
+            or k == SHORT_WING
+            or (k == CROSS_FLOW)
+        ):
             _vessel(k, row, first[f], t, y, state[f], rho, pos[b], rot[b], vel[b], omega[b],
                     current_z, current_u, current_v, tf, rhs[b])  # fmt: skip
 
@@ -88,15 +98,18 @@ def add_all(
 def _vessel(k, row, first, t, y, state, rho, pos, rot, vel, omega, current_z, current_u,
             current_v, tf, rhs):  # fmt: skip
     """A vessel's controlled forces (thruster, rudder; ``state``: their controller's or
-    gear's, -1: none) and coefficient loads (wind, current)."""
+    gear's, -1: none), coefficient loads (wind, current) and hull loads (short-wing,
+    cross-flow)."""
     if k == THRUSTER:
         thruster.add(row, first, t, rot, vel, tf, y, state, rhs)
     elif k == RUDDER:
         rudder.add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_v,
                    tf, y, state, rhs)  # fmt: skip
-    else:
+    elif k == WIND or k == CURRENT:
         coefficients.add(row, t, tf, rho, pos, rot, vel, omega, current_z, current_u,
                          current_v, rhs)  # fmt: skip
+    else:
+        hull_current.add(row, rho, pos, rot, vel, omega, current_z, current_u, current_v, rhs)
 
 
 @njit(inline="always", **JIT)

@@ -424,7 +424,8 @@ def fill(t, y, h, coef, p, w, rows, mat):
     masses, bias = np.empty_like(w.mass), np.empty_like(w.bias)  # the bodies' own
     system_kernel._body_masses(
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
-        p.body_coriolis, p.body_shape, w.fraction, w.rot, w.vel, w.omega, masses, bias,
+        p.body_coriolis, p.body_shape, w.fraction, w.pos, w.rot, w.vel, w.omega, p.current_z,
+        p.current_u, p.current_v, masses, bias,
     )  # fmt: skip
     for j in range(rows.body.shape[0]):
         b = rows.body[j]

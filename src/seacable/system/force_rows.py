@@ -15,6 +15,7 @@ from seacable.forces import (
     applied,
     coefficients,
     drag,
+    hull_current,
     hydrostatic,
     linear,
     rudder,
@@ -53,6 +54,16 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         return applied.pack(offset(body, spec.point), spec.frame == "body")
     if isinstance(spec, fm.Thruster | fm.Rudder | fm.WindLoad | fm.CurrentLoad):
         return _vessel_row(case, layout, spec, body, base_dir, channels, where)
+    if isinstance(spec, fm.ShortWing | fm.CrossFlow):
+        if not isinstance(body, RigidBody):
+            raise CaseError(f"{where}: model '{spec.model}' acts on a ship: a 'rigid' body "
+                            f"(this one is '{body.type}')")  # fmt: skip
+        given = spec.derivatives.model_dump(exclude_none=True) if spec.derivatives else {}
+        return hull_current.pack(
+            spec.model, _body_point(body, spec.point, where), spec.length, spec.beam,
+            spec.draught, spec.block_coefficient, spec.wetted_area, spec.cross_flow_drag,
+            spec.cross_flow_centre, spec.kinematic_viscosity, spec.form_factor, given,
+        )  # fmt: skip
     if isinstance(spec, fm.LinearStiffness):
         position: Any = spec.equilibrium_position or body.position
         angles: Any = spec.equilibrium_orientation_deg or getattr(
