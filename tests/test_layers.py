@@ -10,7 +10,7 @@ LAYER = {
     "cli": 13,
     "viz": 12,
     "__init__": 12,
-    "simulation": 11, "analysis": 11,
+    "simulation": 11, "analysis": 11, "stability": 11,
     "case.loader": 10, "results": 10,
     "numerics": 8,
     "system": 7,

@@ -5,6 +5,7 @@ Public API::
     case = seacable.load_case("examples/thesis_6_1_sim6_submerged_60_links_forced.yaml")
     results = seacable.simulate(case, output="run.nc")
     results.dataset["lines/umbilical/tension"]  # a DataTree: a group per body and per line
+    seacable.equilibria(case)  # ships on turrets and hawsers: every equilibrium, its stability
 """
 
 from seacable.analysis import statics
@@ -19,6 +20,8 @@ from seacable.errors import (
 )
 from seacable.results import Results
 from seacable.simulation import simulate
+from seacable.stability.api import continuation, equilibria
+from seacable.stability.plane import Weather
 from seacable.system.statics import StaticsError
 
 __version__ = "0.1.0"
@@ -32,7 +35,10 @@ __all__ = [
     "SimulationInterrupted",
     "StaticsError",
     "SystemCase",
+    "Weather",
     "__version__",
+    "continuation",
+    "equilibria",
     "load_case",
     "simulate",
     "statics",

@@ -4,6 +4,7 @@ import logging
 import math
 import sys
 import tempfile
+from dataclasses import replace
 from pathlib import Path
 from typing import NoReturn
 
@@ -228,6 +229,108 @@ def modes(case_file: str, count: int) -> None:
             f"{k + 1:4d}  {found['period'].values[k]:10.4g}  "
             f"{found['damping_ratio'].values[k]:13.3g}  {found['dominant'].values[k]}"
         )
+
+
+def _weather(case, current, wind) -> seacable.Weather:
+    """The case's weather with the options' current and wind (speed, towards_deg) replacing
+    its own."""
+    from seacable.stability.api import weather_of
+
+    weather = weather_of(case)
+    if current is not None:
+        weather = replace(weather, current_speed=current[0], current_towards_deg=current[1])
+    if wind is not None:
+        weather = replace(weather, wind_speed=wind[0], wind_towards_deg=wind[1])
+    return weather
+
+
+WEATHER_OPTIONS = [
+    click.option("--current", nargs=2, type=float, default=None,
+                 help="Uniform current: speed [m/s] and the direction it goes towards [deg] "
+                      "(default: the case's)."),
+    click.option("--wind", nargs=2, type=float, default=None,
+                 help="Constant wind: speed [m/s] and the direction it blows towards [deg] "
+                      "(default: the case's)."),
+    click.option("--headings", type=int, default=12, show_default=True,
+                 help="Starting headings per body in the search for equilibria."),
+]  # fmt: skip
+
+
+def _weather_options(command):
+    for option in reversed(WEATHER_OPTIONS):
+        command = option(command)
+    return command
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@_weather_options
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+def equilibria(case_file: str, current, wind, headings: int, output: str | None) -> None:
+    """Every equilibrium of the ships of CASE_FILE in the horizontal plane (surge, sway, yaw)
+    for a current and a wind, and its stability from the linearised system's eigenvalues."""
+    case = seacable.load_case(case_file)
+    weather = _weather(case, current, wind)
+    found = seacable.equilibria(case, weather, headings=headings)
+    click.echo(f"current {weather.current_speed:g} m/s towards {weather.current_towards_deg:g} "
+               f"deg, wind {weather.wind_speed:g} m/s towards {weather.wind_towards_deg:g} deg: "
+               f"{found.sizes['equilibrium']} equilibria")  # fmt: skip
+    for i in range(found.sizes["equilibrium"]):
+        e = found.isel(equilibrium=i)
+        poses = "; ".join(
+            f"{b} at ({e['x'].values[j]:.2f}, {e['y'].values[j]:.2f}) m heading "
+            f"{e['heading'].values[j]:.2f} deg" for j, b in enumerate(found["body"].values)
+        )  # fmt: skip
+        growth = float(e["eigenvalue_real"].values.max())
+        tensions = ", ".join(f"{t} {e['tension'].values[k] / 1e3:.4g} kN"
+                             for k, t in enumerate(found["tie"].values))  # fmt: skip
+        click.echo(f"{i + 1}. {e['kind'].item()} (largest Re lambda {growth:.3g} 1/s): {poses}"
+                   + (f"; {tensions}" if tensions else ""))  # fmt: skip
+    if output:
+        found.to_netcdf(output)
+        click.echo(f"equilibria written: {output}")
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option(
+    "--parameter",
+    "path",
+    required=True,
+    help="What varies: current.speed, current.towards_deg, wind.speed, "
+    "wind.towards_deg, lines.<tie>.unstretched_length, lines.<tie>.stiffness, "
+    "bodies.<body>.points.<point>.x, bodies.<body>.external forces.<k>.force_x",
+)
+@click.option("--from", "start", type=float, required=True, help="The parameter's first value.")
+@click.option("--to", "end", type=float, required=True, help="Its last value.")
+@_weather_options
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Bifurcation diagram (.png).")
+def continuation(case_file: str, path: str, start: float, end: float, current, wind,
+                 headings: int, output: str | None, plot: str | None) -> None:  # fmt: skip
+    """Branches of equilibria of the ships of CASE_FILE as a parameter varies, with their
+    folds, branch points and Hopf points (pseudo-arclength continuation)."""
+    case = seacable.load_case(case_file)
+    found = seacable.continuation(case, path, start, end, _weather(case, current, wind),
+                                  headings=headings)  # fmt: skip
+    branches = np.unique(found["branch"].values)
+    click.echo(f"{len(branches)} branches, {found.sizes['point']} points")
+    for i in range(found.sizes["special"]):
+        s = found.isel(special=i)
+        extra = (f", period {2 * math.pi / s['special_frequency'].item():.4g} s"
+                 if s["special_kind"].item() == "hopf" else "")  # fmt: skip
+        headings_text = ", ".join(f"{b} {s['special_heading'].values[j]:.3f} deg"
+                                  for j, b in enumerate(found["body"].values))  # fmt: skip
+        click.echo(f"{s['special_kind'].item()} at {path} = "
+                   f"{s['special_parameter'].item():.10g} (branch "
+                   f"{s['special_branch'].item()}; {headings_text}{extra})")  # fmt: skip
+    if output:
+        found.to_netcdf(output)
+        click.echo(f"branches written: {output}")
+    if plot:
+        from seacable.viz import plot_bifurcation
+
+        click.echo(f"diagram written: {plot_bifurcation(found, plot)}")
 
 
 @main.command()

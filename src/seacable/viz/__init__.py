@@ -9,7 +9,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from seacable.viz import system
+from seacable.viz import bifurcation, system
 
 
 def plot_results(tree: xr.DataTree, path, every: float | None = None) -> Path:
@@ -22,4 +22,9 @@ def animate_results(tree: xr.DataTree, path, **options) -> Path:
     return system.animate_system(tree, path, **options)
 
 
-__all__ = ["animate_results", "plot_results"]
+def plot_bifurcation(ds: xr.Dataset, path) -> Path:
+    """The bifurcation diagram of a continuation (``viz.bifurcation``)."""
+    return bifurcation.plot_bifurcation(ds, path)
+
+
+__all__ = ["animate_results", "plot_bifurcation", "plot_results"]

@@ -1,0 +1,203 @@
+"""The analyses' public forms: every equilibrium of a case for a weather, and the branches of
+equilibria in a parameter, as xarray Datasets (``seacable.equilibria``,
+``seacable.continuation``)."""
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from seacable.case import loader
+from seacable.case.base import Constant
+from seacable.case.system import SystemCase
+from seacable.errors import CaseError
+from seacable.stability import equilibria as eq
+from seacable.stability.continuation import Branch, Continuation, ContinuationError
+from seacable.stability.parameters import parameter as named_parameter
+from seacable.stability.plane import Plane, Weather
+
+
+def weather_of(case: SystemCase) -> Weather:
+    """The case's own weather: its uniform current and its constant wind (a CaseError line for
+    a wind that changes in time)."""
+    env = case.environment
+    current = env.current
+    speed = float(current.velocity or 0.0) if current is not None else 0.0
+    towards = float(current.direction_deg) if current is not None else 0.0
+    wind_speed, wind_towards = 0.0, 0.0
+    if env.wind is not None:
+        for name in ("speed", "direction_deg"):
+            if not isinstance(getattr(env.wind, name), Constant):
+                raise CaseError(f"environment.wind.{name}: a time function; the horizontal-plane "
+                                "analyses take a constant wind: give a number")  # fmt: skip
+        wind_speed = float(env.wind.speed.value)  # type: ignore[union-attr]
+        wind_towards = float(env.wind.direction_deg.value)  # type: ignore[union-attr]
+    return Weather(speed, towards, wind_speed, wind_towards)
+
+
+def _plane(case: SystemCase | str) -> Plane:
+    if isinstance(case, str):
+        case = loader.load_case(case)
+    if not isinstance(case, SystemCase):
+        raise CaseError("the horizontal-plane analyses need a case with bodies: and lines:")
+    return Plane.of(case, loader.case_base_dir(case))
+
+
+def _pose_variables(plane: Plane, xs: np.ndarray, dim: str) -> dict:
+    return {
+        "x": ((dim, "body"), xs[:, 0::3], {"units": "m", "long_name": "reference point x"}),
+        "y": ((dim, "body"), xs[:, 1::3], {"units": "m", "long_name": "reference point y"}),
+        "heading": ((dim, "body"), np.degrees(xs[:, 2::3]),
+                    {"units": "deg", "long_name": "heading, from +x towards +y"}),
+    }  # fmt: skip
+
+
+def equilibria(case: SystemCase | str, weather: Weather | None = None,
+               headings: int = 12) -> xr.Dataset:  # fmt: skip
+    """Every equilibrium of ``case`` in the horizontal plane for ``weather`` (the case's own by
+    default), from ``headings`` headings per body (seacable.stability.equilibria), most visited
+    first.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per ``equilibrium`` and ``body``: ``x``, ``y`` [m], ``heading`` [deg]; per
+        equilibrium: ``stable``, ``kind`` (stable, unstable: divergent / oscillatory),
+        ``residual`` (the force balance, relative), ``hits`` (starts that reached it),
+        ``tension`` (per ``tie``) [N]; ``eigenvalue_real``, ``eigenvalue_imag`` [1/s] per
+        ``mode``, largest real part first.
+    """
+    plane = _plane(case)
+    weather = weather or weather_of(plane.built.case)
+    found = eq.find(plane, weather, headings)
+    n = len(plane.bodies)
+    xs = np.array([e.x for e in found]).reshape(len(found), 3 * n)
+    lam = np.array([e.eigenvalues[np.argsort(-e.eigenvalues.real)] for e in found]).reshape(
+        len(found), 6 * n
+    )
+    tension = np.zeros((len(found), len(plane.built.layout.ties)))
+    for i, e in enumerate(found):
+        plane.rates(np.concatenate([e.x, np.zeros(3 * n)]))
+        tension[i] = plane.work.tie_tension
+    return xr.Dataset(
+        {
+            **_pose_variables(plane, xs, "equilibrium"),
+            "stable": ("equilibrium", np.array([e.stable for e in found], dtype=bool)),
+            "kind": ("equilibrium", np.array([e.kind for e in found], dtype=str)),
+            "residual": ("equilibrium", np.array([e.residual for e in found]), {"units": "1"}),
+            "hits": ("equilibrium", np.array([e.hits for e in found])),
+            "tension": (("equilibrium", "tie"), tension, {"units": "N"}),
+            "eigenvalue_real": (("equilibrium", "mode"), lam.real, {"units": "1/s"}),
+            "eigenvalue_imag": (("equilibrium", "mode"), lam.imag, {"units": "1/s"}),
+        },
+        coords={"body": plane.names, "tie": list(plane.built.layout.ties)},
+        attrs=_weather_attrs(weather),
+    )
+
+
+def _weather_attrs(weather: Weather) -> dict:
+    return {
+        "current_speed": weather.current_speed,
+        "current_towards_deg": weather.current_towards_deg,
+        "wind_speed": weather.wind_speed,
+        "wind_towards_deg": weather.wind_towards_deg,
+    }
+
+
+def continuation(case: SystemCase | str, parameter: str, start: float, end: float,
+                 weather: Weather | None = None, headings: int = 12, step: float = 0.02,
+                 switch: bool = True, points: int = 2000) -> xr.Dataset:  # fmt: skip
+    """The branches of equilibria of ``case`` as ``parameter`` (a path, as
+    seacable.stability.parameters names them) goes from ``start`` to ``end``: from every
+    equilibrium at ``start`` (``headings`` per body), and with ``switch`` from every branch
+    point found, both ways along the other branch. Folds, branch points and Hopf points are
+    located (seacable.stability.continuation).
+
+    Returns
+    -------
+    xarray.Dataset
+        Per ``point``: ``parameter``, ``branch`` (its number), ``unstable`` (eigenvalues with a
+        positive real part), ``x``, ``y`` [m], ``heading`` [deg] per ``body``; per ``special``
+        point: ``special_kind`` (fold, branch point, hopf), ``special_parameter``,
+        ``special_branch``, ``special_frequency`` [rad/s] (Hopf), ``special_heading`` [deg].
+    """
+    plane = _plane(case)
+    weather = weather or weather_of(plane.built.case)
+    weather.apply(plane.built)
+    par = named_parameter(plane, parameter, weather)
+    par.set(plane, start)
+    work = Continuation(plane, par)
+    branches: list[Branch] = []
+    for e in eq.find(plane, None, headings):
+        if any(_on(b, e.x, start) for b in branches):
+            continue
+        try:
+            branches.append(work.run(e.x, start, end, step=step, points=points))
+        except ContinuationError:
+            continue
+    if switch:
+        for b in list(branches):
+            for sp in [s for s in b.special if s.kind == "branch point"]:
+                for sign in (1.0, -1.0):
+                    direction = sign * work.null_direction(sp.x, sp.parameter)
+                    try:
+                        new = work.run(sp.x, sp.parameter, end if sign > 0 else start,
+                                       step=step, points=points, direction=direction)  # fmt: skip
+                    except ContinuationError:
+                        continue
+                    near = 1e-6 * par.scale
+                    new.special = [s for s in new.special if abs(s.parameter - sp.parameter) > near]
+                    # the branch point itself first, for the diagram
+                    new.parameter.insert(0, sp.parameter)
+                    new.x.insert(0, sp.x)
+                    new.unstable.insert(0, new.unstable[0])
+                    new.eigenvalues.insert(0, new.eigenvalues[0])
+                    branches.append(new)
+    par.set(plane, start)
+    return _branches_dataset(plane, parameter, branches, weather)
+
+
+def _on(branch: Branch, x: np.ndarray, mu: float, tolerance: float = 1e-3) -> bool:
+    """Whether the point (x, mu) lies on ``branch`` (within ``tolerance`` m and rad)."""
+    for bx, bm in zip(branch.x, branch.parameter, strict=True):
+        d = np.abs(bx - x)
+        d[2::3] = np.abs((d[2::3] + math.pi) % (2 * math.pi) - math.pi)
+        if abs(bm - mu) < 1e-9 * max(1.0, abs(mu)) and d.max() < tolerance:
+            return True
+    return False
+
+
+def _branches_dataset(plane, parameter, branches, weather) -> xr.Dataset:
+    n = len(plane.bodies)
+    xs = np.concatenate([np.array(b.x).reshape(-1, 3 * n) for b in branches]) if branches else (
+        np.zeros((0, 3 * n)))  # fmt: skip
+    index = np.concatenate([np.full(len(b.parameter), k) for k, b in enumerate(branches)]) if (
+        branches) else np.zeros(0, int)  # fmt: skip
+    special = [(k, s) for k, b in enumerate(branches) for s in b.special]
+    sx = np.array([s.x for _, s in special]).reshape(len(special), 3 * n)
+    return xr.Dataset(
+        {
+            "parameter": (
+                "point",
+                np.concatenate([b.parameter for b in branches]) if branches else np.zeros(0),
+                {"long_name": parameter},
+            ),  # fmt: skip
+            "branch": ("point", index),
+            "unstable": (
+                "point",
+                np.concatenate([b.unstable for b in branches]) if branches else np.zeros(0, int),
+            ),  # fmt: skip
+            **_pose_variables(plane, xs, "point"),
+            "special_kind": ("special", np.array([s.kind for _, s in special], dtype=str)),
+            "special_parameter": ("special", np.array([s.parameter for _, s in special])),
+            "special_branch": ("special", np.array([k for k, _ in special], dtype=int)),
+            "special_frequency": (
+                "special",
+                np.array([s.frequency for _, s in special]),
+                {"units": "rad/s"},
+            ),  # fmt: skip
+            "special_heading": (("special", "body"), np.degrees(sx[:, 2::3]), {"units": "deg"}),
+        },
+        coords={"body": plane.names},
+        attrs={"parameter": parameter, **_weather_attrs(weather)},
+    )

@@ -1,0 +1,119 @@
+"""The parameters a continuation or a map varies, named by paths into the case:
+
+- ``current.speed`` [m/s], ``current.towards_deg``, ``wind.speed`` [m/s], ``wind.towards_deg``:
+  the weather (a uniform current and a constant wind; the directions they go towards);
+- ``lines.<tie>.unstretched_length`` [m], ``lines.<tie>.stiffness`` [N/m] (a linear tie);
+- ``bodies.<body>.points.<point>.x`` (or ``.y``) [m]: a point's place on its body (a turret,
+  a hawser's fairlead);
+- ``bodies.<body>.external forces.<k>.force_x`` (any of an ``applied`` model's six channels,
+  k counted from 0 in the body's list) [N, N m]: a constant load (a shuttle's astern thrust).
+
+Each is written into the built system's parameters in place (``Parameter.set``).
+"""
+
+from dataclasses import replace
+
+from seacable.case import forces as fm
+from seacable.errors import CaseError
+from seacable.forces import applied
+from seacable.stability.continuation import Parameter
+from seacable.stability.plane import Plane, Weather, set_constant
+
+FORMS = ("current.speed", "current.towards_deg", "wind.speed", "wind.towards_deg",
+         "lines.<tie>.unstretched_length", "lines.<tie>.stiffness",
+         "bodies.<body>.points.<point>.x (or .y)",
+         "bodies.<body>.external forces.<k>.<force_x ... moment_z>")  # fmt: skip
+
+
+def _refuse(path: str, why: str) -> CaseError:
+    return CaseError(f"parameter '{path}': {why}; the parameters are {', '.join(FORMS)}")
+
+
+def parameter(plane: Plane, path: str, weather: Weather | None = None) -> Parameter:
+    """The parameter at ``path`` (module docstring) of ``plane``; ``weather`` is the weather
+    whose one field a weather parameter changes (calm by default)."""
+    parts = path.split(".")
+    if parts[0] in ("current", "wind") and len(parts) == 2:
+        return _weather(path, parts, weather or Weather())
+    if parts[0] == "lines" and len(parts) == 3:
+        return _tie(plane, path, parts)
+    if parts[0] == "bodies" and len(parts) == 5:
+        names = [b.name for b in plane.built.case.bodies]
+        if parts[1] not in names:
+            raise _refuse(path, f"no body '{parts[1]}' (bodies: {names})")
+        if parts[2] == "points" and parts[4] in ("x", "y"):
+            return _point(plane, path, parts)
+        if parts[2] == "external forces" and parts[4] in applied.CHANNELS:
+            return _load(plane, path, parts, names.index(parts[1]))
+    raise _refuse(path, "not one of them")
+
+
+def _weather(path: str, parts: list[str], weather: Weather) -> Parameter:
+    names = {"speed": f"{parts[0]}_speed", "towards_deg": f"{parts[0]}_towards_deg"}
+    if parts[1] not in names:
+        raise _refuse(path, f"'{parts[1]}' is not speed or towards_deg")
+    name = names[parts[1]]
+    state = {"weather": weather}
+
+    def set_weather(pl: Plane, value: float) -> None:
+        state["weather"] = replace(state["weather"], **{name: value})
+        state["weather"].apply(pl.built)
+
+    return Parameter(path, set_weather, 1.0 if parts[1] == "speed" else 10.0)
+
+
+def _tie(plane: Plane, path: str, parts: list[str]) -> Parameter:
+    built, p = plane.built, plane.built.params
+    if parts[1] not in built.layout.ties:
+        raise _refuse(path, f"no tie '{parts[1]}' (ties: {built.layout.ties})")
+    k = built.layout.ties.index(parts[1])
+    if parts[2] == "unstretched_length":
+
+        def set_length(pl: Plane, value: float) -> None:
+            pl.built.params.tie_length[k] = value
+
+        return Parameter(path, set_length, max(float(p.tie_length[k]), 1.0) / 10.0)
+    if parts[2] != "stiffness":
+        raise _refuse(path, f"'{parts[2]}' is not unstretched_length or stiffness")
+    if p.tie_count[k] > 0:
+        raise _refuse(path, f"tie '{parts[1]}' follows a tension table")
+
+    def set_stiffness(pl: Plane, value: float) -> None:
+        pl.built.params.tie_stiffness[k] = value
+
+    return Parameter(path, set_stiffness, float(p.tie_stiffness[k]) / 10.0)
+
+
+def _point(plane: Plane, path: str, parts: list[str]) -> Parameter:
+    key = f"{parts[1]}.{parts[3]}"
+    if key not in plane.built.layout.point_index:
+        raise _refuse(path, f"body '{parts[1]}' has no point '{parts[3]}' used by a line or a "
+                      "model")  # fmt: skip
+    i = plane.built.layout.point_index[key]
+    axis = "xy".index(parts[4])
+
+    def set_point(pl: Plane, value: float) -> None:
+        pl.built.params.point_offset[i, axis] = value
+
+    return Parameter(path, set_point, 10.0)
+
+
+def _load(plane: Plane, path: str, parts: list[str], b: int) -> Parameter:
+    p = plane.built.params
+    models = getattr(plane.built.case.bodies[b], "external_forces", [])
+    try:
+        k = int(parts[3])
+        spec = models[k]
+    except (ValueError, IndexError):
+        raise _refuse(path, f"body '{parts[1]}' has {len(models)} force models, counted "
+                      f"from 0; '{parts[3]}' is none of them") from None  # fmt: skip
+    if not isinstance(spec, fm.AppliedForce):
+        raise _refuse(path, f"force model {k} of '{parts[1]}' is '{spec.model}', not "
+                      "'applied'")  # fmt: skip
+    rows = [f for f in range(p.force_body.shape[0]) if p.force_body[f] == b]
+    channel = int(p.force_first[rows[k]]) + applied.CHANNELS.index(parts[4])
+
+    def set_load(pl: Plane, value: float) -> None:
+        set_constant(pl.built.params, channel, value)
+
+    return Parameter(path, set_load, 1e4 if parts[4].startswith("force") else 1e6)

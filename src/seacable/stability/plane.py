@@ -1,0 +1,313 @@
+"""A system whose free bodies move in the horizontal plane (surge, sway, yaw), as the vector
+field dx/dt = f(x) that the stability analyses work on.
+
+The state is x = (X, V): X the positions (x [m], y [m], psi [rad] of each free body, in the
+order of the case), V their rates (the earth-frame velocity of the reference point, v_x and v_y
+[m/s], and the yaw rate r [rad/s]). f is the system's own right-hand side
+(``system.kernel.rhs``): the force models, ties, current, wind and the bodies' equations are
+the ones a time simulation integrates, evaluated here with the states put in place and the
+rates read back (``rates``, compiled). The weather is changed in place in the system's
+parameters (``Weather``): a uniform current and a constant wind, without rebuilding.
+
+What the analyses accept (``Plane.of``, one line naming the body or line otherwise): every
+free body is a rigid body with ``dofs: [surge, sway, yaw]``, level (roll and pitch 0) and
+without force models that carry states; lines are ties (massless) or none.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from seacable.case.system import RigidBody, SystemCase, Tie
+from seacable.errors import CaseError
+from seacable.kernels.jit import JIT
+from seacable.system import kernel
+from seacable.system import model as system_model
+from seacable.system.assemble import BuiltSystem
+
+PLANE_DOFS = {"surge", "sway", "yaw"}
+
+
+@njit(**JIT)
+def rates(t, x, y, q, v, p, w, ydot, out):
+    """f(x) into ``out`` (module docstring); ``y`` the system's state, its other entries as
+    built, ``q`` and ``v`` the bodies' offsets in it, ``ydot`` scratch. The status of the
+    system's right-hand side is returned (kernels.status; OK is 0)."""
+    n = q.shape[0]
+    for j in range(n):
+        a, b = q[j], v[j]
+        half = 0.5 * x[3 * j + 2]
+        y[a], y[a + 1] = x[3 * j], x[3 * j + 1]
+        y[a + 3], y[a + 4], y[a + 5], y[a + 6] = math.cos(half), 0.0, 0.0, math.sin(half)
+        y[b], y[b + 1], y[b + 2] = x[3 * n + 3 * j], x[3 * n + 3 * j + 1], 0.0
+        y[b + 3], y[b + 4], y[b + 5] = 0.0, 0.0, x[3 * n + 3 * j + 2]
+    status = kernel.rhs(t, y, p, w, ydot)
+    for j in range(n):
+        b = v[j]
+        for k in range(3):
+            out[3 * j + k] = x[3 * n + 3 * j + k]
+        out[3 * n + 3 * j] = ydot[b]
+        out[3 * n + 3 * j + 1] = ydot[b + 1]
+        out[3 * n + 3 * j + 2] = ydot[b + 5]
+    return status
+
+
+@njit(**JIT)
+def jacobian(t, x, y, q, v, p, w, ydot, out, step):
+    """df/dx at ``x`` (central differences: ``step`` [m, rad, m/s, rad/s] per entry) into
+    ``out`` (n, n); the rates at ``x`` are left in ``ydot``'s scratch."""
+    n = x.shape[0]
+    up, down = np.empty(n), np.empty(n)
+    xx = x.copy()
+    for j in range(n):
+        h = step[j]
+        xx[j] = x[j] + h
+        rates(t, xx, y, q, v, p, w, ydot, up)
+        xx[j] = x[j] - h
+        rates(t, xx, y, q, v, p, w, ydot, down)
+        xx[j] = x[j]
+        for i in range(n):
+            out[i, j] = (up[i] - down[i]) / (2.0 * h)
+
+
+@njit(**JIT)
+def at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac):
+    """G(X): the accelerations with the bodies at rest at positions X = ``x`` (3 per body),
+    weighted by ``weight`` (``g``), and dG/dX (``jac``, central differences of ``step``);
+    ``jac`` is skipped when it has no rows."""
+    m = x.shape[0]
+    xx = np.zeros(2 * m)
+    f = np.empty(2 * m)
+    xx[:m] = x
+    rates(t, xx, y, q, v, p, w, ydot, f)
+    for i in range(m):
+        g[i] = f[m + i] * weight[i]
+    if jac.shape[0] == 0:
+        return
+    up, down = np.empty(2 * m), np.empty(2 * m)
+    for j in range(m):
+        xx[j] = x[j] + step[j]
+        rates(t, xx, y, q, v, p, w, ydot, up)
+        xx[j] = x[j] - step[j]
+        rates(t, xx, y, q, v, p, w, ydot, down)
+        xx[j] = x[j]
+        for i in range(m):
+            jac[i, j] = (up[m + i] - down[m + i]) * weight[i] / (2.0 * step[j])
+
+
+@njit(**JIT)
+def balance(t, x0, y, q, v, p, w, ydot, weight, step, reach, iterations, out):
+    """Newton's method for the positions X (3 per body) at which the accelerations vanish with
+    the bodies at rest, from ``x0`` (the positions), the residual weighted by ``weight`` (the
+    bodies' masses and inertias: forces [N] and moments per metre). Each step is limited to
+    ``reach`` (per entry) and halved until the weighted residual falls. The solution goes to
+    ``out``; returned: the weighted residual's largest entry, the iterations taken (negative
+    when Newton stalled)."""
+    m = x0.shape[0]
+    x = x0.copy()
+    g, gt = np.empty(m), np.empty(m)
+    jac = np.empty((m, m))
+    none = np.empty((0, 0))
+    trial = np.empty(m)
+    at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, none)
+    norm = np.abs(g).max()
+    for it in range(iterations):
+        at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac)
+        if not np.all(np.isfinite(jac)):
+            out[:] = x
+            return norm, -(it + 1)
+        try:
+            dx = np.linalg.solve(jac, -g)
+        except Exception:  # singular: a free direction (a body not held)
+            out[:] = x
+            return norm, -(it + 1)
+        scale = 1.0
+        for i in range(m):
+            if abs(dx[i]) * scale > reach[i]:
+                scale = reach[i] / abs(dx[i])
+        accepted = False
+        nt = norm
+        for _ in range(30):
+            trial[:] = x + scale * dx
+            at_rest(t, trial, y, q, v, p, w, ydot, weight, step, gt, none)
+            nt = np.abs(gt).max()
+            if nt < norm or nt == 0.0:
+                accepted = True
+                break
+            scale *= 0.5
+        if not accepted:
+            out[:] = x
+            return norm, -(it + 1)
+        small = scale == 1.0  # a full Newton step, and a small one
+        for i in range(m):
+            if abs(dx[i]) > 1e-10 * max(1.0, abs(x[i])):
+                small = False
+        x[:] = trial
+        norm = nt
+        if small:
+            out[:] = x
+            return norm, it + 1
+    out[:] = x
+    return norm, iterations
+
+
+@dataclass
+class Plane:
+    """A built system seen as the vector field f (module docstring)."""
+
+    built: BuiltSystem
+    bodies: np.ndarray  # the free bodies' indices in the case
+    names: list[str]
+    q: np.ndarray  # their position offsets in the system's state
+    v: np.ndarray  # their velocity offsets
+    y: np.ndarray  # the system's state (its other entries as built)
+    work: kernel.SystemWork
+    ydot: np.ndarray
+    weight: np.ndarray  # per position: mass (+ added) [kg], or inertia / length [kg m]
+    length: np.ndarray  # per body: a length for its moments [m] (its mesh's or sqrt(I/m))
+
+    @classmethod
+    def of(cls, case: SystemCase, base_dir=None) -> "Plane":
+        """The plane view of ``case`` (its own start, not its statics); a CaseError line when
+        the case is not one the analyses accept (module docstring)."""
+        for line in case.lines:
+            if not isinstance(line, Tie):
+                raise CaseError(f"lines.{line.name}: the horizontal-plane analyses take ties "
+                                f"(model: tie) between the bodies; '{line.model}' lines run "
+                                "in time simulations only")  # fmt: skip
+        free = []
+        for i, body in enumerate(case.bodies):
+            if body.type in ("fixed", "imposed"):
+                continue
+            where = f"bodies.{body.name}"
+            if not isinstance(body, RigidBody) or set(body.dofs) != PLANE_DOFS:
+                dofs = getattr(body, "dofs", None)
+                raise CaseError(f"{where}.dofs: {dofs}; the horizontal-plane analyses need "
+                                "rigid bodies with dofs: [surge, sway, yaw]")  # fmt: skip
+            if body.orientation_deg[0] != 0.0 or body.orientation_deg[1] != 0.0:
+                raise CaseError(f"{where}.orientation_deg: roll and pitch "
+                                f"{list(body.orientation_deg[:2])}; the horizontal-plane "
+                                "analyses take level bodies: give them 0")  # fmt: skip
+            free.append(i)
+        if not free:
+            raise CaseError("bodies: no free body; the horizontal-plane analyses need at least "
+                            "one rigid body with dofs: [surge, sway, yaw]")  # fmt: skip
+        built = system_model.build(case, base_dir)
+        p = built.params
+        if p.n_s:
+            raise CaseError(
+                "external forces: a force model with states (a controller's integral, a "
+                "steering gear, radiation memory, a servo); the horizontal-plane analyses take "
+                "force models without states"
+            )
+        bodies = np.array(free)
+        q = p.body_q[bodies].astype(np.int64)
+        v = p.body_v[bodies].astype(np.int64)
+        weight, length = [], []
+        for b in bodies:
+            mass = p.body_mass[b]
+            izz = p.body_inertia[b, 2, 2] + mass * (p.body_cog[b, 0] ** 2 + p.body_cog[b, 1] ** 2)
+            size = math.sqrt(max(izz + p.body_added[b, 5, 5], 1e-30) / max(mass, 1e-30))
+            weight += [mass + p.body_added[b, 0, 0], mass + p.body_added[b, 1, 1],
+                       (izz + p.body_added[b, 5, 5]) / size]  # fmt: skip
+            length.append(size)
+        y = built.y0.copy()
+        return cls(built, bodies, [case.bodies[b].name for b in bodies], q, v, y,
+                   kernel.make_work(p), np.zeros_like(y), np.array(weight),
+                   np.array(length))  # fmt: skip
+
+    @property
+    def size(self) -> int:
+        """Entries of x: 6 per free body."""
+        return 6 * len(self.bodies)
+
+    def start(self) -> np.ndarray:
+        """The case's own start, x0."""
+        y0, n = self.built.y0, len(self.bodies)
+        x = np.zeros(6 * n)
+        for j, (a, b) in enumerate(zip(self.q, self.v, strict=True)):
+            quat = y0[a + 3 : a + 7]
+            x[3 * j : 3 * j + 3] = y0[a], y0[a + 1], level_yaw(quat)
+            x[3 * n + 3 * j : 3 * n + 3 * j + 3] = y0[b], y0[b + 1], y0[b + 5]
+        return x
+
+    def rates(self, x: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """f(x)."""
+        out = np.empty(self.size)
+        rates(t, np.asarray(x, dtype=float), self.y, self.q, self.v, self.built.params,
+              self.work, self.ydot, out)  # fmt: skip
+        return out
+
+    def steps(self) -> np.ndarray:
+        """The differencing steps of x's entries: 0.1 mm and 1e-8 rad, 1e-8 m/s and 1e-10
+        rad/s. Small: the hull loads' |v| v terms are C^1 but not C^2 at v = 0, where a central
+        difference of step h is off by C_Y h (relative to the linear terms, C_Y h / (pi T/L))."""
+        n = len(self.bodies)
+        return np.concatenate([np.tile([1e-4, 1e-4, 1e-8], n), np.tile([1e-8, 1e-8, 1e-10], n)])
+
+    def at_rest(self, positions: np.ndarray, jacobian: bool = True, t: float = 0.0):
+        """(G, dG/dX) at ``positions`` (``plane.at_rest``; dG/dX None unless ``jacobian``)."""
+        m = 3 * len(self.bodies)
+        g = np.empty(m)
+        jac = np.empty((m, m) if jacobian else (0, 0))
+        at_rest(t, np.asarray(positions, dtype=float), self.y, self.q, self.v,
+                self.built.params, self.work, self.ydot, self.weight, self.steps()[:m], g,
+                jac)  # fmt: skip
+        return g, (jac if jacobian else None)
+
+    def jacobian(self, x: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """df/dx at ``x``."""
+        out = np.empty((self.size, self.size))
+        jacobian(t, np.asarray(x, dtype=float), self.y, self.q, self.v, self.built.params,
+                 self.work, self.ydot, out, self.steps())  # fmt: skip
+        return out
+
+
+def level_yaw(quat) -> float:
+    """The yaw [rad] of a level body's quaternion (w, x, y, z)."""
+    return 2.0 * math.atan2(float(quat[3]), float(quat[0]))
+
+
+@dataclass(frozen=True)
+class Weather:
+    """A uniform current and a constant wind, each a speed [m/s] and the direction it goes
+    TOWARDS [deg] (from +x towards +y, as ``environment.current`` and ``environment.wind``)."""
+
+    current_speed: float = 0.0
+    current_towards_deg: float = 0.0
+    wind_speed: float = 0.0
+    wind_towards_deg: float = 0.0
+
+    def apply(self, built: BuiltSystem) -> None:
+        """Write this weather into ``built``'s parameters, in place (the case's current must be
+        uniform; its wind, if a model needs one, is replaced by constants)."""
+        p = built.params
+        if p.current_z.shape[0] != 1:
+            raise CaseError(
+                "environment.current: a profile; the horizontal-plane analyses set a uniform "
+                "current: give velocity [m/s] instead of profile"
+            )
+        angle = math.radians(self.current_towards_deg)
+        p.current_u[0] = self.current_speed * math.cos(angle)
+        p.current_v[0] = self.current_speed * math.sin(angle)
+        channel = int(p.wind_channel)
+        if channel < 0:
+            if self.wind_speed != 0.0:
+                raise CaseError("environment.wind: none, and no body has a 'wind' force model; "
+                                "add them to analyse a wind")  # fmt: skip
+            return
+        set_constant(p, channel, self.wind_speed)
+        set_constant(p, channel + 1, math.radians(self.wind_towards_deg))
+
+
+def set_constant(p: kernel.SystemParams, channel: int, value: float) -> None:
+    """Make time-function channel ``channel`` the constant ``value``, in place."""
+    p.tf_coefs[channel, :, :] = 0.0
+    p.tf_coefs[channel, :, 0] = value
+    p.tf_sine[channel, :] = 0.0
+    p.tf_build_up[channel, :] = 0.0
+
+
+__all__ = ["Plane", "Weather", "at_rest", "balance", "jacobian", "rates", "set_constant"]

@@ -1,0 +1,57 @@
+"""The bifurcation diagram of a continuation (``seacable.continuation``'s Dataset): each body's
+heading against the parameter, a solid line where the equilibrium is stable and a dashed one
+where it is not, the folds, branch points and Hopf points marked."""
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from seacable.viz.common import _pyplot
+
+MARKS = {"fold": ("s", "tab:orange"), "branch point": ("o", "tab:green"),
+         "hopf": ("*", "tab:red")}  # fmt: skip
+
+
+def plot_bifurcation(ds: xr.Dataset, path) -> Path:
+    """The diagram of ``ds`` (module docstring), one panel per body, written to ``path``."""
+    plt = _pyplot()
+    bodies = list(ds["body"].values)
+    fig, axes = plt.subplots(1, len(bodies), figsize=(7 * len(bodies), 5), squeeze=False,
+                             constrained_layout=True)  # fmt: skip
+    for j, body in enumerate(bodies):
+        ax = axes[0, j]
+        for k in np.unique(ds["branch"].values):
+            at = np.flatnonzero(ds["branch"].values == k)
+            mu = ds["parameter"].values[at]
+            heading = np.degrees(np.unwrap(np.radians(ds["heading"].values[at, j])))
+            stable = ds["unstable"].values[at] == 0
+            for lo, hi in _runs(stable):
+                style = "-" if stable[lo] else "--"
+                end = min(hi + 1, len(at))  # joined to the next run
+                ax.plot(mu[lo:end], heading[lo:end], style, color=f"C{k % 10}", lw=1.5)
+        for kind, (marker, colour) in MARKS.items():
+            at = np.flatnonzero(ds["special_kind"].values == kind)
+            if at.size:
+                ax.plot(ds["special_parameter"].values[at], ds["special_heading"].values[at, j],
+                        marker, color=colour, ms=9, ls="none", label=kind)  # fmt: skip
+        ax.set_xlabel(ds.attrs.get("parameter", "parameter"))
+        ax.set_ylabel(f"{body} heading [deg]")
+        ax.set_title(f"{body}: stable (solid), unstable (dashed)")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def _runs(flags: np.ndarray) -> list[tuple[int, int]]:
+    """The runs of equal values: (first, last) index pairs."""
+    runs, start = [], 0
+    for i in range(1, len(flags) + 1):
+        if i == len(flags) or flags[i] != flags[start]:
+            runs.append((start, i - 1))
+            start = i
+    return runs
