@@ -202,3 +202,135 @@ def test_the_tandem_example_from_the_command_line(tmp_path):
         "--from", "0", "--to", "1",
     ])  # fmt: skip
     assert run.exit_code != 0 and "no tie 'nothing'" in run.output
+
+
+def _simulate_from(case, plane, x, duration, output_interval):
+    """The system's own time simulation (seacable.simulate, dopri5 at rtol 1e-10) from the
+    plane state ``x`` of the case's one free body."""
+    data = case.model_dump(by_alias=True)
+    body = data["bodies"][1]
+    body["position"] = [float(x[0]), float(x[1]), 0.0]
+    body["orientation_deg"] = [0.0, 0.0, math.degrees(x[2])]
+    body["velocity"] = [float(x[3]), float(x[4]), 0.0]
+    body["angular_velocity"] = [0.0, 0.0, float(x[5])]
+    data["simulation"] = {"duration": duration, "output_interval": output_interval,
+                          "integrator": "dopri5", "rtol": 1e-10, "atol": 1e-12}  # fmt: skip
+    return seacable.simulate(seacable.load_case(data)).dataset["bodies/shuttle"]
+
+
+def _equilibrium_and_pair(plane):
+    """The shuttle's equilibrium heading into the current and its fishtailing pair (the
+    oscillation that turns it most for its sideways motion; the other is the surge on the
+    hawser)."""
+    found = [e for e in equilibria.find(plane, Weather(U, 180.0)) if abs(e.x[2]) < 1.0][0]
+    x = np.concatenate([found.x, np.zeros(3)])
+    lam, vectors = np.linalg.eig(plane.jacobian(x))
+    pairs = np.flatnonzero(np.abs(lam.imag) > 1e-12)
+    turning = np.abs(vectors[2, pairs]) * 100.0 / np.abs(vectors[:2, pairs]).sum(axis=0)
+    k = pairs[np.argmax(turning)]
+    return x, lam[k], vectors[:, k].real
+
+
+@pytest.mark.parametrize("thrust", [0.0, 2.0e5])
+def test_the_eigenvalues_give_the_growth_and_decay_a_simulation_shows(thrust):
+    """Without astern thrust the shuttle's least damped pair grows (fishtailing starts); with
+    200 kN it decays: the envelope of the yaw of a time simulation from a small push along the
+    pair's eigenvector grows or decays at Re(lambda), its period 2 pi / Im(lambda)."""
+    case = shuttle_case("short-wing", thrust=thrust)
+    plane = Plane.of(case)
+    x, lam, push = _equilibrium_and_pair(plane)
+    start = x + 1e-4 * push / np.abs(push[:3]).max()
+    period = 2 * math.pi / abs(lam.imag)
+    ship = _simulate_from(case, plane, start, float(math.ceil(6 * period)), 1.0)
+    t, yaw = ship["time"].values, np.radians(ship["yaw"].values) - x[2]
+    peaks = np.flatnonzero((yaw[1:-1] > yaw[:-2]) & (yaw[1:-1] >= yaw[2:])) + 1
+    peaks = peaks[t[peaks] > period]  # past the start's transient of the other modes
+    slope = np.polyfit(t[peaks], np.log(yaw[peaks]), 1)[0]
+    assert slope == pytest.approx(lam.real, rel=0.02)
+    assert np.diff(t[peaks]).mean() == pytest.approx(period, rel=0.01)
+    assert (lam.real > 0) == (thrust == 0.0)
+
+
+def test_the_shuttles_limit_cycle_and_its_floquet_multipliers_against_simulation():
+    """Without astern thrust the shuttle settles on a fishtailing cycle: shooting finds it
+    (the residual to round-off, a multiplier of 1 along it, the others inside the unit
+    circle); a long time simulation of the system settles on the same period and amplitude;
+    a push along the leading multiplier's eigenvector shrinks by |multiplier| each period."""
+    from seacable.stability import orbits
+
+    case = shuttle_case("short-wing")
+    cycle = seacable.periodic_orbit(case)
+    assert bool(cycle["converged"]) and float(cycle["residual"]) < 1e-9
+    mult = cycle["multiplier_real"].values + 1j * cycle["multiplier_imag"].values
+    assert abs(mult[0] - 1.0) < 1e-4 and bool(cycle["stable"])
+    period = float(cycle["period"])
+    # the system's own simulation, from near the equilibrium, settles on the cycle
+    plane = Plane.of(case)
+    x, _, push = _equilibrium_and_pair(plane)
+    ship = _simulate_from(case, plane, x + 1e-2 * push / np.abs(push[:3]).max(), 100_000.0, 1.0)
+    t, yaw = ship["time"].values, ship["yaw"].values
+    tail = t > 75_000.0  # settled (the crossings' intervals still drift by 0.06 s at 50,000 s)
+    s = yaw[tail] - yaw[tail].mean()
+    up = np.flatnonzero((s[:-1] < 0) & (s[1:] >= 0))
+    crossings = t[tail][up] - s[up] / (s[up + 1] - s[up])
+    assert np.diff(crossings).mean() == pytest.approx(period, rel=2e-6)
+    assert np.ptp(yaw[tail]) == pytest.approx(float(cycle["amplitude_heading"][0]), rel=2e-3)
+    # Floquet: a push off the cycle along the leading nontrivial multiplier's eigenvector
+    Weather(U, 180.0).apply(plane.built)
+    x0 = np.array([cycle["x"].values[0, 0], cycle["y"].values[0, 0],
+                   math.radians(cycle["heading"].values[0, 0])])  # fmt: skip
+    orbit = orbits.shoot(plane, np.concatenate([x0, _cycle_velocity(plane, cycle)]), period)
+    scale = orbits._scales(plane)
+    steps = orbits._steps(plane, orbit.x0, orbit.period)
+    monodromy = orbits._monodromy(plane, orbit.x0, orbit.period, steps, scale)
+    values, vectors = np.linalg.eig(monodromy)
+    lead = np.argsort(-np.abs(values))[1]  # the largest after the 1 along the orbit
+    push = (vectors[:, lead].real + vectors[:, lead].imag) * scale
+    start = orbit.x0 + 1e-3 * push / np.abs(push[:3]).max()
+    every = orbit.period / 1000
+    ship = _simulate_from(case, plane, start, 3000 * every, every)
+    states = np.column_stack([ship["position_x"], ship["position_y"], np.radians(ship["yaw"]),
+                              ship["velocity_x"], ship["velocity_y"],
+                              ship["angular_velocity_z"]])  # fmt: skip
+    coefficients = np.linalg.solve(vectors, ((states[::1000] - orbit.x0) / scale).T)
+    growth = np.abs(coefficients[lead, 1:] / coefficients[lead, :-1])
+    assert growth == pytest.approx(np.abs(values[lead]), rel=0.02)
+
+
+def _cycle_velocity(plane, cycle):
+    """The cycle's start velocities, from its track (central differences of one step)."""
+    dt = float(cycle["time"][1] - cycle["time"][0])
+    x = cycle["x"].values[:, 0]
+    y = cycle["y"].values[:, 0]
+    psi = np.unwrap(np.radians(cycle["heading"].values[:, 0]))
+    return np.array([(x[1] - x[-2]) / (2 * dt), (y[1] - y[-2]) / (2 * dt),
+                     (psi[1] - psi[-2]) / (2 * dt)])  # fmt: skip
+
+
+def test_clearance_between_outlines():
+    from seacable.stability.orbits import clearance
+
+    box = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+    assert clearance([box, box + (5.0, 0.0)]) == pytest.approx(3.0)
+    assert clearance([box, box + (4.0, 4.0)]) == pytest.approx(math.sqrt(8.0))
+    assert clearance([box, box + (1.0, 0.5)]) == 0.0
+    turned = np.array([[2.0, 0.0], [0.0, 2.0], [-2.0, 0.0], [0.0, -2.0]]) + (5.0, 0.0)
+    assert clearance([box, turned]) == pytest.approx(2.0)
+
+
+def test_the_orbit_command(tmp_path):
+    import yaml
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    case = tmp_path / "shuttle.yaml"
+    data = shuttle_case("cross-flow").model_dump(by_alias=True, exclude_none=True)
+    case.write_text(yaml.safe_dump(data))
+    run = CliRunner().invoke(main, ["orbit", str(case), "-o", str(tmp_path / "o.nc")])
+    assert run.exit_code == 0, run.output
+    assert "limit cycle: period" in run.output and "shooting converged" in run.output
+    assert "hawser: tension 0 to" in run.output  # it goes slack in every cycle
+    root = __import__("pathlib").Path(__file__).parent.parent
+    run = CliRunner().invoke(main, ["orbit", str(root / EXAMPLE)])  # it comes to rest
+    assert run.exit_code != 0 and "no limit cycle from there" in run.output

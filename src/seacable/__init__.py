@@ -20,7 +20,7 @@ from seacable.errors import (
 )
 from seacable.results import Results
 from seacable.simulation import simulate
-from seacable.stability.api import continuation, equilibria
+from seacable.stability.api import continuation, equilibria, periodic_orbit
 from seacable.stability.plane import Weather
 from seacable.system.statics import StaticsError
 
@@ -40,6 +40,7 @@ __all__ = [
     "continuation",
     "equilibria",
     "load_case",
+    "periodic_orbit",
     "simulate",
     "statics",
 ]

@@ -334,6 +334,45 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
 
 
 @main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option(
+    "--parameter", "path", default=None, help="A parameter set first (as continuation's)."
+)
+@click.option("--value", type=float, default=None, help="Its value.")
+@click.option("--settle", type=float, default=None,
+              help="Seconds of motion before shooting (default 30 periods).")  # fmt: skip
+@_weather_options
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+def orbit(case_file: str, path: str | None, value: float | None, settle: float | None, current,
+          wind, headings: int, output: str | None) -> None:  # fmt: skip
+    """The limit cycle (fishtailing) the ships of CASE_FILE settle on from their oscillatory
+    unstable equilibrium: period, amplitudes, hawser tensions, the hulls' least clearance and
+    its Floquet multipliers (shooting)."""
+    case = seacable.load_case(case_file)
+    found = seacable.periodic_orbit(case, _weather(case, current, wind), path, value, settle,
+                                    headings=headings)  # fmt: skip
+    state = "stable" if bool(found["stable"]) else "unstable"
+    moduli = np.abs(found["multiplier_real"].values + 1j * found["multiplier_imag"].values)
+    largest = ", ".join(f"{m:.4g}" for m in moduli[:3])
+    shooting = "converged" if bool(found["converged"]) else "did NOT converge"
+    click.echo(f"limit cycle: period {float(found['period']):.6g} s, {state} (largest "
+               f"multipliers {largest}); shooting {shooting}, residual "
+               f"{float(found['residual']):.2g}")  # fmt: skip
+    for j, b in enumerate(found["body"].values):
+        click.echo(f"  {b}: x {found['amplitude_x'].values[j]:.4g} m, y "
+                   f"{found['amplitude_y'].values[j]:.4g} m, heading "
+                   f"{found['amplitude_heading'].values[j]:.4g} deg (peak to peak)")  # fmt: skip
+    for k, tie in enumerate(found["tie"].values):
+        click.echo(f"  {tie}: tension {found['tension_min'].values[k] / 1e3:.4g} to "
+                   f"{found['tension_max'].values[k] / 1e3:.4g} kN")  # fmt: skip
+    if np.isfinite(float(found["clearance"])):
+        click.echo(f"  least clearance between the hulls: {float(found['clearance']):.4g} m")
+    if output:
+        found.to_netcdf(output)
+        click.echo(f"limit cycle written: {output}")
+
+
+@main.command()
 @click.argument("mesh_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="NetCDF database to write (default: MESH_FILE with .nc).")  # fmt: skip

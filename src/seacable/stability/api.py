@@ -201,3 +201,115 @@ def _branches_dataset(plane, parameter, branches, weather) -> xr.Dataset:
         coords={"body": plane.names},
         attrs={"parameter": parameter, **_weather_attrs(weather)},
     )
+
+
+def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
+                   parameter: str | None = None, value: float | None = None,
+                   settle: float | None = None, headings: int = 12) -> xr.Dataset:  # fmt: skip
+    """The limit cycle the system settles on from its oscillatory unstable equilibrium (the
+    most visited), found by shooting (seacable.stability.orbits), for ``weather`` (the case's
+    by default) and ``parameter`` at ``value`` (a path, as seacable.stability.parameters names
+    them) when given. The start: that equilibrium, pushed along the real part of its growing
+    oscillation's eigenvector, integrated for ``settle`` seconds (default 30 of that
+    oscillation's periods).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``period`` [s], ``converged``, ``residual``, ``stable`` (Floquet), ``multiplier_real``,
+        ``multiplier_imag`` (per ``mode``); per ``body``: ``amplitude_x``, ``amplitude_y``
+        [m], ``amplitude_heading`` [deg] (peak to peak); per ``tie``: ``tension_min``,
+        ``tension_max`` [N]; ``clearance`` [m], the least distance between the first two hulls'
+        outlines (nan: fewer than two hulls); the track over one period per ``time`` and
+        ``body``: ``x``, ``y``, ``heading``, and ``tension`` per ``tie``.
+    """
+    from seacable.stability import orbits
+
+    plane = _plane(case)
+    weather = weather or weather_of(plane.built.case)
+    weather.apply(plane.built)
+    if parameter is not None:
+        if value is None:
+            raise CaseError(f"parameter '{parameter}': give its value")
+        named_parameter(plane, parameter, weather).set(plane, value)
+    found = eq.find(plane, None, headings)
+    n = plane.size
+    growing = [e for e in found if not e.stable and "oscillatory" in e.kind]
+    if not growing:
+        raise CaseError("no equilibrium with a growing oscillation: nothing to settle on a "
+                        "limit cycle from (the equilibria: "
+                        f"{', '.join(e.kind for e in found) or 'none'})")  # fmt: skip
+    start = growing[0]
+    lam, vectors = np.linalg.eig(plane.jacobian(np.concatenate([start.x, np.zeros(n // 2)])))
+    pairs = np.flatnonzero(np.abs(lam.imag) > 1e-12)
+    k = pairs[np.argmax(lam[pairs].real)]
+    guess_period = 2 * math.pi / abs(lam[k].imag)
+    push = vectors[:, k].real
+    push = push / np.abs(push[: n // 2]).max()  # a metre (or a radian) at most
+    x0 = np.concatenate([start.x, np.zeros(n // 2)]) + 1e-2 * push
+    duration = settle if settle is not None else 30.0 * guess_period
+    x_settled, period = orbits.settle(plane, x0, duration, step=min(1.0, guess_period / 400))
+    if not math.isfinite(period):
+        raise CaseError(
+            f"the motion from the unstable equilibrium ({start.kind}) did not settle on an "
+            f"oscillation within {duration:g} s: it came to rest (on a stable equilibrium) "
+            "or kept changing; no limit cycle from there (give a longer settle time to wait "
+            "longer)"
+        )
+    orbit = orbits.shoot(plane, x_settled, period)
+    if (np.ptp(orbit.path, axis=0) / orbits._scales(plane)).max() < 1e-2:
+        raise CaseError("shooting found an orbit of under 1 cm and 1e-5 rad: an equilibrium, "
+                        "not a limit cycle")  # fmt: skip
+    return _orbit_dataset(plane, orbit, weather, parameter, value)
+
+
+def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> xr.Dataset:
+    from seacable.stability import orbits
+
+    m = 3 * len(plane.bodies)
+    path = orbit.path
+    ties = list(plane.built.layout.ties)
+    tension = np.empty((path.shape[0], len(ties)))
+    clear = np.full(path.shape[0], math.nan)
+    for i, state in enumerate(path):
+        plane.rates(state)
+        tension[i] = plane.work.tie_tension
+        hulls = [o for o in plane.outlines(state[:m]) if o is not None]
+        if len(hulls) >= 2:
+            clear[i] = orbits.clearance(hulls[:2])
+    heading = np.degrees(path[:, 2:m:3])
+    mult = orbit.multipliers[np.argsort(-np.abs(orbit.multipliers))]
+    return xr.Dataset(
+        {
+            "period": ((), orbit.period, {"units": "s"}),
+            "converged": ((), orbit.converged),
+            "residual": ((), orbit.residual, {"units": "1"}),
+            "stable": ((), orbit.stable),
+            "multiplier_real": ("mode", mult.real),
+            "multiplier_imag": ("mode", mult.imag),
+            "amplitude_x": ("body", np.ptp(path[:, 0:m:3], axis=0), {"units": "m"}),
+            "amplitude_y": ("body", np.ptp(path[:, 1:m:3], axis=0), {"units": "m"}),
+            "amplitude_heading": ("body", np.ptp(heading, axis=0), {"units": "deg"}),
+            "tension_min": ("tie", tension.min(axis=0), {"units": "N"}),
+            "tension_max": ("tie", tension.max(axis=0), {"units": "N"}),
+            "clearance": (
+                (),
+                float(np.nanmin(clear)) if np.isfinite(clear).any() else math.nan,
+                {"units": "m", "long_name": "least distance between the hulls"},
+            ),  # fmt: skip
+            "x": (("time", "body"), path[:, 0:m:3], {"units": "m"}),
+            "y": (("time", "body"), path[:, 1:m:3], {"units": "m"}),
+            "heading": (("time", "body"), heading, {"units": "deg"}),
+            "tension": (("time", "tie"), tension, {"units": "N"}),
+        },
+        coords={
+            "time": np.linspace(0.0, orbit.period, path.shape[0]),
+            "body": plane.names,
+            "tie": ties,
+        },  # fmt: skip
+        attrs={
+            **_weather_attrs(weather),
+            "parameter": parameter or "",
+            "value": math.nan if value is None else value,
+        },  # fmt: skip
+    )

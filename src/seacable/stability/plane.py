@@ -22,6 +22,7 @@ from numba import njit
 
 from seacable.case.system import RigidBody, SystemCase, Tie
 from seacable.errors import CaseError
+from seacable.forces import kinds
 from seacable.kernels.jit import JIT
 from seacable.system import kernel
 from seacable.system import model as system_model
@@ -256,6 +257,27 @@ class Plane:
                 self.built.params, self.work, self.ydot, self.weight, self.steps()[:m], g,
                 jac)  # fmt: skip
         return g, (jac if jacobian else None)
+
+    def outlines(self, positions: np.ndarray) -> list[np.ndarray | None]:
+        """Each free body's hull outline in the earth frame at ``positions`` (3 per body): the
+        L x B rectangle about the point of its ``short-wing`` or ``cross-flow`` model (None:
+        no such model)."""
+        p = self.built.params
+        out: list[np.ndarray | None] = []
+        for j, b in enumerate(self.bodies):
+            rows = [f for f in range(p.force_kind.shape[0]) if p.force_body[f] == b
+                    and p.force_kind[f] in (kinds.SHORT_WING, kinds.CROSS_FLOW)]  # fmt: skip
+            if not rows:
+                out.append(None)
+                continue
+            row = p.force_data[p.force_at[rows[0]] :]
+            half_l, half_b = 0.5 * row[3], 0.5 * row[4]
+            corners = np.array([[half_l, half_b], [-half_l, half_b], [-half_l, -half_b],
+                                [half_l, -half_b]]) + row[:2]  # fmt: skip
+            x, y, psi = positions[3 * j : 3 * j + 3]
+            c, s = math.cos(psi), math.sin(psi)
+            out.append(corners @ np.array([[c, s], [-s, c]]) + (x, y))
+        return out
 
     def jacobian(self, x: np.ndarray, t: float = 0.0) -> np.ndarray:
         """df/dx at ``x``."""
