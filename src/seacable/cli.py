@@ -372,6 +372,67 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
         click.echo(f"limit cycle written: {output}")
 
 
+def _angles(text: str, option: str) -> np.ndarray:
+    """Degrees from 'first:stop:step' (stop excluded) or a comma-separated list."""
+    try:
+        if ":" in text:
+            first, stop, step = (float(v) for v in text.split(":"))
+            return np.arange(first, stop - 1e-9, step)
+        return np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        _fail(f"{option} '{text}': give first:stop:step (e.g. 0:360:10) or values separated "
+              "by commas", EXIT_INPUT)  # fmt: skip
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("--current-speed", type=float, required=True, help="[m/s]")
+@click.option("--current-towards", default="0:360:10", show_default=True,
+              help="Current directions [deg]: first:stop:step or a list.")  # fmt: skip
+@click.option("--wind-towards", default="0:360:10", show_default=True,
+              help="Wind directions [deg]: first:stop:step or a list.")  # fmt: skip
+@click.option("--ratios", default="10,20,30", show_default=True,
+              help="Wind speed over current speed, a list.")  # fmt: skip
+@click.option("--clearance", type=float, default=0.0, help="Least clearance of the hulls [m].")
+@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, float),
+              help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
+@click.option("--simulate", type=float, default=None,
+              help="Also move each state this many seconds from its equilibrium.")  # fmt: skip
+@click.option(
+    "--dask",
+    "scheduler",
+    default="local",
+    show_default=True,
+    help="'local' (a local cluster), 'none' (this process) or a scheduler address.",
+)
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the map (.png).")
+def operability(case_file: str, current_speed: float, current_towards: str, wind_towards: str,
+                ratios: str, clearance: float, tension, simulate: float | None, scheduler: str,
+                output: str | None, plot: str | None) -> None:  # fmt: skip
+    """An operability map of the ships of CASE_FILE: for every current and wind direction and
+    wind-to-current speed ratio, stable / limit exceeded / cycling / collision risk."""
+    from seacable.stability.operability import Limits, grid
+    from seacable.stability.operability import operability as run_map
+
+    states, shape = grid(current_speed, _angles(current_towards, "--current-towards"),
+                         _angles(wind_towards, "--wind-towards"),
+                         _angles(ratios, "--ratios"))  # fmt: skip
+    limits = Limits(clearance, tuple((name, value) for name, value in tension))
+    found = run_map(seacable.load_case(case_file), states, shape, limits, simulate,
+                    None if scheduler == "none" else scheduler)  # fmt: skip
+    names, counts = np.unique(found["status"].values, return_counts=True)
+    click.echo(f"{len(states)} weather states: "
+               + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
+    if output:
+        found.to_netcdf(output)
+        click.echo(f"map written: {output}")
+    if plot:
+        from seacable.viz import plot_operability
+
+        click.echo(f"picture written: {plot_operability(found, plot)}")
+
+
 @main.command()
 @click.argument("mesh_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from seacable.errors import SeacableError
+from seacable.kernels import roots
 from seacable.stability.plane import Plane
 
 
@@ -223,9 +224,7 @@ class Continuation:
         point = None
         side = 0
         for _ in range(60):
-            s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
-            if not (min(a, b) < s < max(a, b)):
-                s = 0.5 * (a + b)
+            s = roots.trial(a, fa, b, fb)
             zs, _ = self._correct(za, t, s)
             if zs is None:
                 return
@@ -233,16 +232,7 @@ class Continuation:
             point = zs
             if abs(b - a) * max(abs(t[self.m]), 1e-3) < tolerance or fs == 0.0:
                 break
-            if (fs < 0) == (fb < 0):
-                b, fb = s, fs
-                if side == -1:
-                    fa *= 0.5
-                side = -1
-            else:
-                a, fa = s, fs
-                if side == 1:
-                    fb *= 0.5
-                side = 1
+            a, fa, b, fb, side = roots.narrow(a, fa, b, fb, s, fs, side)
             if abs(b - a) < tolerance * 1e-3:
                 break
         if point is None:

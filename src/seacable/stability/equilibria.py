@@ -1,7 +1,8 @@
 """Every static equilibrium of a system in the horizontal plane for a given weather, and the
 stability of each from the eigenvalues of the linearised system.
 
-The equilibria are found from many starts (``starts``): a grid of headings for each free body,
+The equilibria are found from many starts: the case's own start, a grid of headings for each
+free body,
 each body placed by its ties (a tie from a body already placed, or from a fixed one, at its
 unstretched length, streaming behind the point; a body without one where the case puts it),
 then Newton's method on the accelerations at rest (``plane.balance``). Newton's solutions are
@@ -79,6 +80,8 @@ def _placed_starts(plane: Plane, headings: int) -> list[np.ndarray]:
     order = list(range(n))
     free_index = {int(b): j for j, b in enumerate(plane.bodies)}
     start = plane.start()[: 3 * n]
+    if headings <= 0:
+        return []
     grid = np.linspace(-math.pi, math.pi, headings, endpoint=False)
     starts = []
     for combo in itertools.product(grid, repeat=n):
@@ -137,7 +140,9 @@ def find(
     reach = np.tile([50.0, 50.0, 0.5], n)
     found: list[Equilibrium] = []
     out = np.empty(3 * n)
-    starts = [*_placed_starts(plane, headings), *(extra or [])]
+    starts = [*(extra or []), *_placed_starts(plane, headings)]
+    if headings > 0:  # the case's own start too
+        starts.append(plane.start()[: 3 * n])
     # the loads' size: the largest unbalanced load of a start, or a tie's tension at one
     scale = 1e-30
     for x0 in starts:

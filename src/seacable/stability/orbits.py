@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from seacable.kernels import roots
 from seacable.kernels.jit import JIT
 from seacable.stability.plane import Plane, rates
 
@@ -69,24 +70,13 @@ def _split(x, h, kink, fa, fb, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, part, s
     side = 0
     theta = 0.5
     for _ in range(60):
-        theta = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
-        if not (a < theta < b):
-            theta = 0.5 * (a + b)
+        theta = roots.trial(a, fa, b, fb)
         _rk4(x, theta * h, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, part)
         _stretches(part, y, q, v, p, w, ydot, scratch, sp)
         f = sp[kink]
         if f == 0.0 or b - a < 1e-14:
             break
-        if (f > 0.0) == (fb > 0.0):
-            b, fb = theta, f
-            if side == -1:
-                fa *= 0.5
-            side = -1
-        else:
-            a, fa = theta, f
-            if side == 1:
-                fb *= 0.5
-            side = 1
+        a, fa, b, fb, side = roots.narrow(a, fa, b, fb, theta, f, side)
     _rk4(x, theta * h, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, part)
     _rk4(part, (1.0 - theta) * h, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, out)
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from seacable.viz import bifurcation, system
+from seacable.viz import bifurcation, operability, system
 
 
 def plot_results(tree: xr.DataTree, path, every: float | None = None) -> Path:
@@ -27,4 +27,9 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
     return bifurcation.plot_bifurcation(ds, path)
 
 
-__all__ = ["animate_results", "plot_bifurcation", "plot_results"]
+def plot_operability(ds: xr.Dataset, path) -> Path:
+    """The picture of an operability map (``viz.operability``)."""
+    return operability.plot_operability(ds, path)
+
+
+__all__ = ["animate_results", "plot_bifurcation", "plot_operability", "plot_results"]

@@ -1,0 +1,276 @@
+"""An operability map: for many weather states (a grid of current and wind directions and
+speeds, or a user's table), is the tandem safe?
+
+Each state gets one status (``STATUSES``):
+
+- ``stable``: a stable equilibrium exists, its hulls' clearance and its ties' tensions within
+  the limits (with ``simulate``: and the motion from it stays within them);
+- ``limit exceeded``: the stable equilibrium (the one nearest the ships' nominal places) breaks
+  a tension limit or comes closer than the clearance limit;
+- ``cycling``: no stable equilibrium: the ships oscillate (fishtailing); with ``simulate`` the
+  motion stays within the limits;
+- ``collision risk``: with ``simulate``, the motion brings the hulls closer than the clearance
+  limit (or a stable equilibrium with overlapping hulls);
+- ``no equilibrium``: the search found none (the ships may drift on, or the search missed
+  them: it is not exhaustive, see below);
+- ``failed``: the state could not be analysed; its message says why. A failed state is a row
+  with its message, never a lost map.
+
+The equilibria of a state are found from the previous state's (the map is swept in order, so
+neighbours start each other) and, when those give no stable one, from placed starts
+(``headings`` per body, then twice as many), and
+classified by their eigenvalues (seacable.stability.equilibria). The search is not
+exhaustive: with few headings it misses equilibria that more starts find (the example's head
+wind of 24 m/s has 4 equilibria from 4 headings per body, 10 from 12; its stable one only from
+24). With ``simulate`` [s] each
+state is also integrated for that long (the fixed-step flow of seacable.stability.orbits) from
+the stable equilibrium pushed off by 1 m and 1 deg, or, without one, from the unstable one
+nearest the nominal places.
+
+States run in chunks, in this process (``scheduler=None``) or on Dask: ``"local"`` starts a
+local cluster of one single-threaded worker process per core; any other string is the address
+of a running scheduler. Dask does the scheduling and the transport; a chunk lost with its
+worker becomes rows of ``failed``.
+"""
+
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from seacable.case import loader
+from seacable.case.system import SystemCase
+from seacable.errors import CaseError
+from seacable.stability import equilibria as eq
+from seacable.stability import orbits
+from seacable.stability.plane import Plane, Weather
+
+STATUSES = ("stable", "limit exceeded", "cycling", "collision risk", "no equilibrium", "failed")
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The operator's limits: the least clearance between the hulls [m] and the largest
+    tension of each tie [N] (by name; a tie not named has none)."""
+
+    clearance: float = 0.0
+    tension: tuple[tuple[str, float], ...] = ()
+
+
+def grid(current_speed: float, current_towards: np.ndarray, wind_towards: np.ndarray,
+         ratios: np.ndarray) -> tuple[list[Weather], dict]:  # fmt: skip
+    """The weather states of a grid: every current direction (towards) [deg] with every wind
+    direction [deg] and every ratio of wind speed to current speed; returns the states (current
+    direction slowest, ratio fastest) and the grid's coordinates."""
+    states = [Weather(current_speed, float(c), float(r) * current_speed, float(w))
+              for c in current_towards for w in wind_towards for r in ratios]  # fmt: skip
+    coords = {"current_towards_deg": np.asarray(current_towards, float),
+              "wind_towards_deg": np.asarray(wind_towards, float),
+              "wind_current_ratio": np.asarray(ratios, float)}  # fmt: skip
+    return states, coords
+
+
+def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, float]],
+             limits: Limits, simulate: float | None, headings: int) -> list[dict]:  # fmt: skip
+    """The rows of a chunk of weather states (each (current speed, towards, wind speed,
+    towards)), in order, the equilibria of one seeding the next. Runs where Dask sends it:
+    plain data in and out."""
+    try:
+        case = loader.load_case(case_data)
+        assert isinstance(case, SystemCase)
+        plane = Plane.of(case, base_dir)
+    except Exception as exc:  # the whole chunk fails the same way
+        return [_failed(f"the case: {exc}") for _ in states]
+    nominal = plane.start()[: 3 * len(plane.bodies)]
+    previous: list[np.ndarray] = []
+    rows = []
+    for state in states:
+        try:
+            Weather(*state).apply(plane.built)
+            # the neighbour's equilibria first; fresh starts only when they give no stable one
+            found = eq.find(plane, None, 0, extra=previous, iterations=30) if previous else []
+            for count in (headings, 2 * headings):  # more starts before saying "unstable"
+                if any(e.stable for e in found):
+                    break
+                more = eq.find(plane, None, count, extra=previous, iterations=30)
+                found = more if len(more) >= len(found) else found
+            previous = [e.x for e in found]
+            rows.append(_classify(plane, found, nominal, limits, simulate))
+        except Exception as exc:  # one state's failure is its row
+            rows.append(_failed(f"{type(exc).__name__}: {exc}"))
+    return rows
+
+
+def _failed(message: str) -> dict:
+    return {"status": "failed", "message": message, "equilibria": 0, "stable_equilibria": 0,
+            "growth": math.nan, "clearance": math.nan, "tension": math.nan,
+            "period": math.nan}  # fmt: skip
+
+
+def _clearance(plane: Plane, positions: np.ndarray) -> float:
+    hulls = [o for o in plane.outlines(positions) if o is not None]
+    return orbits.clearance(hulls[:2]) if len(hulls) >= 2 else math.inf
+
+
+def _tension_excess(plane: Plane, tension: np.ndarray, limits: Limits) -> tuple[float, str]:
+    """The largest tension over its limit (ratio, > 1: exceeded) and the tie's name."""
+    worst, name = 0.0, ""
+    ties = list(plane.built.layout.ties)
+    for tie, limit in limits.tension:
+        ratio = float(tension[ties.index(tie)]) / limit
+        if ratio > worst:
+            worst, name = ratio, tie
+    return worst, name
+
+
+def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
+              simulate: float | None) -> dict:  # fmt: skip
+    n = len(plane.bodies)
+    stable = [e for e in found if e.stable]
+    pool = stable or found
+    if not pool:
+        row = _failed("the search found no equilibrium")
+        row["status"] = "no equilibrium"
+        return row
+    best = min(pool, key=lambda e: _distance(e.x, nominal))
+    state = np.concatenate([best.x, np.zeros(3 * n)])
+    plane.rates(state)
+    tension = plane.work.tie_tension.copy()
+    clearance = _clearance(plane, best.x)
+    growth = float(best.eigenvalues.real.max())
+    row = {"equilibria": len(found), "stable_equilibria": len(stable), "growth": growth,
+           "clearance": clearance, "tension": float(tension.max()) if tension.size else 0.0,
+           "period": math.nan, "message": ""}  # fmt: skip
+    excess, tie = _tension_excess(plane, tension, limits)
+    if simulate:
+        push = state.copy()
+        push[0 : 3 * n : 3] += 1.0
+        push[2 : 3 * n : 3] += math.radians(1.0)
+        steps = int(math.ceil(simulate))  # 1 s steps
+        _, path = orbits.integrate(plane, push, simulate, steps, record=True)
+        least, peak = math.inf, 0.0
+        for k in range(0, path.shape[0], 5):
+            least = min(least, _clearance(plane, path[k, : 3 * n]))
+            plane.rates(path[k])
+            for name, limit in limits.tension:
+                ties = list(plane.built.layout.ties)
+                peak = max(peak, float(plane.work.tie_tension[ties.index(name)]) / limit)
+        row["clearance"], excess = least, max(excess, peak)
+    if row["clearance"] < limits.clearance:
+        row["status"] = "collision risk" if (simulate or row["clearance"] == 0.0) else (
+            "limit exceeded")  # fmt: skip
+        row["message"] = f"hulls {row['clearance']:.1f} m apart (limit {limits.clearance:g} m)"
+    elif excess > 1.0:
+        row["status"] = "limit exceeded"
+        row["message"] = f"tie {tie or 'a tie'} at {excess:.2f} times its tension limit"
+    else:
+        row["status"] = "stable" if stable else "cycling"
+    return row
+
+
+def _distance(x: np.ndarray, nominal: np.ndarray) -> float:
+    d = np.abs(x - nominal)
+    d[2::3] = np.abs((d[2::3] + math.pi) % (2 * math.pi) - math.pi) * 100.0
+    return float(d.sum())
+
+
+def operability(case: SystemCase | str, states: list[Weather], shape: dict | None = None,
+                limits: Limits = Limits(), simulate: float | None = None,
+                scheduler: str | None = "local", chunk: int = 36,
+                headings: int = 6) -> xr.Dataset:  # fmt: skip
+    """The map (module docstring) of ``states``; ``shape`` (from ``grid``): their grid's
+    coordinates (else a dimension ``state``).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``status`` (a string of ``STATUSES``), ``message``, ``equilibria``,
+        ``stable_equilibria``, ``growth`` [1/s] (the largest real part at the equilibrium kept),
+        ``clearance`` [m], ``tension`` [N] (its largest tie tension), and the weather's four
+        fields, over the grid or ``state``.
+    """
+    if isinstance(case, str):
+        case = loader.load_case(case)
+    if not isinstance(case, SystemCase):
+        raise CaseError("operability: give a case with bodies: and lines:")
+    Plane.of(case, loader.case_base_dir(case))  # refused here, with its one line, if it must be
+    data = case.model_dump(by_alias=True, exclude_none=True)
+    base = loader.case_base_dir(case)
+    plain = [(w.current_speed, w.current_towards_deg, w.wind_speed, w.wind_towards_deg)
+             for w in states]  # fmt: skip
+    chunks = [plain[i : i + chunk] for i in range(0, len(plain), chunk)]
+    if scheduler is None:
+        rows = [r for c in chunks for r in evaluate(data, base, c, limits, simulate, headings)]
+    else:
+        rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings)
+    return _dataset(rows, plain, shape, limits, simulate)
+
+
+def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> list[dict]:
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise CaseError(
+            "a map on Dask needs dask.distributed: pip install 'seacable[dask]' (or run it in "
+            "this process: scheduler None, --dask none)"
+        ) from None
+    cluster = None
+    if scheduler == "local":
+        cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1,
+                               processes=True, dashboard_address=None)  # fmt: skip
+        client = Client(cluster)
+    else:
+        client = Client(scheduler)
+    try:
+        futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, pure=False)
+                   for c in chunks]  # fmt: skip
+        rows: list[dict] = []
+        for chunk, future in zip(chunks, futures, strict=True):
+            try:
+                rows.extend(future.result())
+            except Exception as exc:  # the chunk's worker died, or the task could not run
+                rows.extend(_failed(f"on Dask: {type(exc).__name__}: {exc}") for _ in chunk)
+        return rows
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
+    dims: tuple[str, ...] = ("state",)
+    coords: dict = {}
+    sizes: tuple[int, ...] = (len(rows),)
+    if shape is not None:
+        dims = tuple(shape)
+        coords = shape
+        sizes = tuple(len(v) for v in shape.values())
+
+    def field(name, dtype=float):
+        return np.array([r[name] for r in rows], dtype=dtype).reshape(sizes)
+
+    weather = np.array(plain, dtype=float).reshape(*sizes, 4)
+    return xr.Dataset(
+        {
+            "status": (dims, field("status", str)),
+            "message": (dims, field("message", str)),
+            "equilibria": (dims, field("equilibria", int)),
+            "stable_equilibria": (dims, field("stable_equilibria", int)),
+            "growth": (dims, field("growth"), {"units": "1/s"}),
+            "clearance": (dims, field("clearance"), {"units": "m"}),
+            "tension": (dims, field("tension"), {"units": "N"}),
+            "current_speed": (dims, weather[..., 0], {"units": "m/s"}),
+            "current_towards": (dims, weather[..., 1], {"units": "deg"}),
+            "wind_speed": (dims, weather[..., 2], {"units": "m/s"}),
+            "wind_towards": (dims, weather[..., 3], {"units": "deg"}),
+        },
+        coords=coords,
+        attrs={
+            "clearance_limit": limits.clearance,
+            "tension_limits": "; ".join(f"{t} {v:g} N" for t, v in limits.tension),
+            "simulated": simulate or 0.0,
+            "statuses": ", ".join(STATUSES),
+        },  # fmt: skip
+    )
