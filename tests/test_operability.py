@@ -94,3 +94,26 @@ def test_a_map_on_a_running_scheduler_gives_the_same_rows_and_keeps_a_failed_sta
     found = operability(case, bad, None, limits, scheduler=dask_cluster, chunk=1, headings=6)
     assert list(found["status"].values[:1]) == [here["status"].values.ravel()[0]]
     assert found["status"].values[1] in ("failed", "no equilibrium")
+
+
+def test_the_operability_command_writes_the_map_and_its_picture(tmp_path):
+    import xarray as xr
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    root = __import__("pathlib").Path(__file__).parent.parent
+    run = CliRunner().invoke(main, [
+        "operability", str(root / EXAMPLE), "--current-speed", "0.8",
+        "--current-towards", "180,150", "--wind-towards", "0:360:180", "--ratios", "15",
+        "--clearance", "30", "--tension-limit", "hawser", "3e6", "--dask", "none",
+        "-o", str(tmp_path / "m.nc"), "--plot", str(tmp_path / "m.png"),
+    ])  # fmt: skip
+    assert run.exit_code == 0, run.output
+    assert "4 weather states:" in run.output
+    found = xr.open_dataset(tmp_path / "m.nc")
+    assert found["status"].shape == (2, 2, 1)
+    assert (tmp_path / "m.png").stat().st_size > 20_000
+    run = CliRunner().invoke(main, ["operability", str(root / EXAMPLE), "--current-speed", "1",
+                                    "--wind-towards", "0:x:1"])  # fmt: skip
+    assert run.exit_code != 0 and "--wind-towards '0:x:1'" in run.output

@@ -23,14 +23,14 @@ import numpy as np
 from numba import njit
 
 from seacable.kernels import roots
-from seacable.kernels.jit import JIT
+from seacable.kernels.jit import JIT, inner
 from seacable.stability.plane import Plane, rates
 
 STEPS_PER_PERIOD = 2000
 STEPS_PER_FASTEST = 40
 
 
-@njit(**JIT)
+@inner
 def _rk4(x, h, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, out):
     """One classical Runge-Kutta step of ``h`` [s] from ``x`` into ``out``."""
     n = x.shape[0]
@@ -48,7 +48,7 @@ def _rk4(x, h, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, out):
         out[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
-@njit(**JIT)
+@inner
 def _stretches(x, y, q, v, p, w, ydot, scratch, out):
     """Each tie's d - L0 [m] at state ``x`` (negative: slack)."""
     rates(0.0, x, y, q, v, p, w, ydot, scratch)
@@ -60,7 +60,7 @@ def _stretches(x, y, q, v, p, w, ydot, scratch, out):
         out[k] = math.sqrt(d) - p.tie_length[k]
 
 
-@njit(**JIT)
+@inner
 def _split(x, h, kink, fa, fb, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, part, scratch, sp,
            out):  # fmt: skip
     """The step of ``h`` from ``x`` in two, where tie ``kink``'s stretch (``fa`` at the start,
