@@ -18,6 +18,8 @@ from seacable import analysis, bem, meshes, simulation, viz
 from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
+from seacable.stability import operability as stability_map
+from seacable.stability.api import weather_of
 
 # exit codes (README, "Command line"): 0 done; 1 a bug in seacable; 2 the input (case file,
 # output path, no equilibrium, a file that cannot be read or written); 3 the run diverged;
@@ -234,8 +236,6 @@ def modes(case_file: str, count: int) -> None:
 def _weather(case, current, wind) -> seacable.Weather:
     """The case's weather with the options' current and wind (speed, towards_deg) replacing
     its own."""
-    from seacable.stability.api import weather_of
-
     weather = weather_of(case)
     if current is not None:
         weather = replace(weather, current_speed=current[0], current_towards_deg=current[1])
@@ -328,9 +328,7 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
         found.to_netcdf(output)
         click.echo(f"branches written: {output}")
     if plot:
-        from seacable.viz import plot_bifurcation
-
-        click.echo(f"diagram written: {plot_bifurcation(found, plot)}")
+        click.echo(f"diagram written: {viz.plot_bifurcation(found, plot)}")
 
 
 @main.command()
@@ -412,15 +410,13 @@ def operability(case_file: str, current_speed: float, current_towards: str, wind
                 output: str | None, plot: str | None) -> None:  # fmt: skip
     """An operability map of the ships of CASE_FILE: for every current and wind direction and
     wind-to-current speed ratio, stable / limit exceeded / cycling / collision risk."""
-    from seacable.stability.operability import Limits, grid
-    from seacable.stability.operability import operability as run_map
-
-    states, shape = grid(current_speed, _angles(current_towards, "--current-towards"),
+    states, shape = stability_map.grid(current_speed, _angles(current_towards, "--current-towards"),
                          _angles(wind_towards, "--wind-towards"),
                          _angles(ratios, "--ratios"))  # fmt: skip
-    limits = Limits(clearance, tuple((name, value) for name, value in tension))
-    found = run_map(seacable.load_case(case_file), states, shape, limits, simulate,
-                    None if scheduler == "none" else scheduler)  # fmt: skip
+    limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
+    where = None if scheduler == "none" else scheduler
+    case = seacable.load_case(case_file)
+    found = stability_map.operability(case, states, shape, limits, simulate, where)
     names, counts = np.unique(found["status"].values, return_counts=True)
     click.echo(f"{len(states)} weather states: "
                + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
@@ -428,9 +424,7 @@ def operability(case_file: str, current_speed: float, current_towards: str, wind
         found.to_netcdf(output)
         click.echo(f"map written: {output}")
     if plot:
-        from seacable.viz import plot_operability
-
-        click.echo(f"picture written: {plot_operability(found, plot)}")
+        click.echo(f"picture written: {viz.plot_operability(found, plot)}")
 
 
 @main.command()

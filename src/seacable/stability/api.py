@@ -12,6 +12,7 @@ from seacable.case.base import Constant
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import equilibria as eq
+from seacable.stability import orbits
 from seacable.stability.continuation import Branch, Continuation, ContinuationError
 from seacable.stability.parameters import parameter as named_parameter
 from seacable.stability.plane import Plane, Weather
@@ -55,8 +56,8 @@ def _pose_variables(plane: Plane, xs: np.ndarray, dim: str) -> dict:
 def equilibria(case: SystemCase | str, weather: Weather | None = None,
                headings: int = 12) -> xr.Dataset:  # fmt: skip
     """Every equilibrium of ``case`` in the horizontal plane for ``weather`` (the case's own by
-    default), from ``headings`` headings per body (seacable.stability.equilibria), most visited
-    first.
+    default), from ``headings`` headings per body (seacable.stability.equilibria), the stable
+    ones first, then the most visited.
 
     Returns
     -------
@@ -223,8 +224,6 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
         outlines (nan: fewer than two hulls); the track over one period per ``time`` and
         ``body``: ``x``, ``y``, ``heading``, and ``tension`` per ``tie``.
     """
-    from seacable.stability import orbits
-
     plane = _plane(case)
     weather = weather or weather_of(plane.built.case)
     weather.apply(plane.built)
@@ -264,8 +263,6 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
 
 
 def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> xr.Dataset:
-    from seacable.stability import orbits
-
     m = 3 * len(plane.bodies)
     path = orbit.path
     ties = list(plane.built.layout.ties)

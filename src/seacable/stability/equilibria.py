@@ -131,7 +131,8 @@ def find(
     extra: list[np.ndarray] | None = None, iterations: int = 60,
 ) -> list[Equilibrium]:  # fmt: skip
     """Every equilibrium reached from the starts (module docstring) and from ``extra`` starts
-    (positions), most visited first; ``weather`` applied first when given."""
+    (positions), the stable ones first, then the most visited; ``weather`` applied first when
+    given."""
     if weather is not None:
         weather.apply(plane.built)
     p = plane.built.params
@@ -176,5 +177,5 @@ def find(
     for eq in found:
         state = np.concatenate([eq.x, np.zeros(3 * n)])
         eq.eigenvalues = np.linalg.eigvals(plane.jacobian(state))
-    found.sort(key=lambda e: -e.hits)
+    found.sort(key=lambda e: (not e.stable, -e.hits))  # the stable ones first
     return found
