@@ -89,6 +89,8 @@ def test_no_import_inside_functions_except_lazy_optional():
     lazy_ok |= {"sksundae.cvode"}  # SUNDIALS, loaded when a case asks for integrator: cvode
     lazy_ok |= {"PIL"}  # Pillow, loaded when an animation is written
     lazy_ok |= {"capytaine"}  # the [bem] extra, loaded when a database is computed
+    lazy_ok |= {"distributed"}  # the [dask] extra, loaded when a map runs on Dask
+    lazy_ok |= {"matplotlib.colors", "matplotlib.patches"}  # the operability map's picture
     # SciPy's slow imports, loaded where used (docs/architecture.md, "Compile time"): a run with
     # rk4, dopri5 or the implicit schemes needs none of them
     lazy_ok |= {"scipy", "scipy.integrate", "scipy.interpolate", "scipy.optimize"}
