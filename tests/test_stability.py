@@ -153,6 +153,10 @@ def test_the_analyses_refuse_what_they_cannot_take():
     data["bodies"][1]["dofs"] = ["surge", "sway", "heave", "yaw"]
     with pytest.raises(CaseError, match="dofs: \\[surge, sway, yaw\\]"):
         Plane.of(seacable.load_case(data))
+    data = case.model_dump(by_alias=True)
+    data["bodies"][0] = {"name": "anchor", "type": "imposed"}  # at the origin, at rest
+    with pytest.raises(CaseError, match="an imposed body moves in time"):
+        Plane.of(seacable.load_case(data))
     plane = Plane.of(case)
     with pytest.raises(CaseError, match="no tie 'hawser'"):
         parameter(plane, "lines.hawser.unstretched_length")

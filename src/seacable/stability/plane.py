@@ -186,9 +186,13 @@ class Plane:
                                 "in time simulations only")  # fmt: skip
         free = []
         for i, body in enumerate(case.bodies):
-            if body.type in ("fixed", "imposed"):
-                continue
             where = f"bodies.{body.name}"
+            if body.type == "imposed":
+                raise CaseError(f"{where}: an imposed body moves in time; the horizontal-plane "
+                                "analyses take fixed bodies and free ships: make it "
+                                "type: fixed at the place to analyse")  # fmt: skip
+            if body.type == "fixed":
+                continue
             if not isinstance(body, RigidBody) or set(body.dofs) != PLANE_DOFS:
                 dofs = getattr(body, "dofs", None)
                 raise CaseError(f"{where}.dofs: {dofs}; the horizontal-plane analyses need "
