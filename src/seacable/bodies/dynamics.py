@@ -27,6 +27,9 @@ A held degree of freedom has its row replaced by a_i = 0.
 import numpy as np
 from numba import njit
 
+from seacable.bodies.kinematics import has_mass
+from seacable.kernels import chain3d as c3
+from seacable.kernels import surface
 from seacable.kernels.jit import JIT, inner
 
 RIGID_BODY, EXACT = 0, 1  # the added mass's velocity terms (module docstring)
@@ -317,3 +320,31 @@ def body_rates(y, q, v, rigid_body, acc, ydot):
         ydot[q + 6] = 0.5 * (wz * qw + wx * qy - wy * qx)
         for c in range(3):
             ydot[v + 3 + c] = acc[3 + c]
+
+
+@inner
+def body_masses(p_kind, p_rigid, mass, cog, inertia, added, coriolis, shape, fraction, pos,
+                 rot, vel, omega, current_z, current_u, current_v, out_mass, out_bias):  # fmt: skip
+    """Each body's mass matrix and velocity terms; the added mass's act on the velocity
+    relative to the water at the reference point (the current's there): a hull's added mass
+    is the water's, so that a body carried by a steady current feels what it feels at rest in
+    still water (the rigid-body terms do not depend on the translation's velocity)."""
+    for b in range(p_kind.shape[0]):
+        if not has_mass(p_kind[b]):
+            continue
+        # a shaped body's added mass follows its submerged fraction
+        scale = fraction[b] if shape[b, 0] != surface.POINT else 1.0
+        cx, cy = c3._current(current_z, current_u, current_v, pos[b, 2])
+        rigid_mass(
+            mass[b],
+            cog[b],
+            inertia[b],
+            added[b],
+            rot[b],
+            (vel[b, 0] - cx, vel[b, 1] - cy, vel[b, 2]),
+            omega[b],
+            scale,
+            coriolis[b],
+            out_mass[b],
+            out_bias[b],
+        )

@@ -37,7 +37,7 @@ import numpy as np
 from numba import njit
 from scipy import sparse
 
-from seacable.bodies import kinematics
+from seacable.bodies import dynamics, kinematics
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.jit import JIT, inner
 from seacable.numerics import bordered
@@ -49,7 +49,6 @@ from seacable.numerics.rigid_derivatives import (
     point_derivatives,
 )
 from seacable.system import coordinates, rigid
-from seacable.system import kernel as system_kernel
 
 PER_LINK = 9  # unknowns (and rows) per link; two more at the tip
 # where each of a link's unknowns (delta, dA (2), dlam (2), dP (2), dV (2)) stands in the block:
@@ -422,7 +421,7 @@ def fill(t, y, h, coef, p, w, rows, mat):
     if rows.body.shape[0] == 0:
         return ok
     masses, bias = np.empty_like(w.mass), np.empty_like(w.bias)  # the bodies' own
-    system_kernel._body_masses(
+    dynamics.body_masses(
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
         p.body_coriolis, p.body_shape, w.fraction, w.pos, w.rot, w.vel, w.omega, p.current_z,
         p.current_u, p.current_v, masses, bias,

@@ -269,34 +269,6 @@ def _fractions(kind, shape, pos, fraction):
 
 
 @inner
-def _body_masses(p_kind, p_rigid, mass, cog, inertia, added, coriolis, shape, fraction, pos,
-                 rot, vel, omega, current_z, current_u, current_v, out_mass, out_bias):  # fmt: skip
-    """Each body's mass matrix and velocity terms; the added mass's act on the velocity
-    relative to the water at the reference point (the current's there): a hull's added mass
-    is the water's, so that a body carried by a steady current feels what it feels at rest in
-    still water (the rigid-body terms do not depend on the translation's velocity)."""
-    for b in range(p_kind.shape[0]):
-        if not kinematics.has_mass(p_kind[b]):
-            continue
-        # a shaped body's added mass follows its submerged fraction
-        scale = fraction[b] if shape[b, 0] != surface.POINT else 1.0
-        cx, cy = c3._current(current_z, current_u, current_v, pos[b, 2])
-        dynamics.rigid_mass(
-            mass[b],
-            cog[b],
-            inertia[b],
-            added[b],
-            rot[b],
-            (vel[b, 0] - cx, vel[b, 1] - cy, vel[b, 2]),
-            omega[b],
-            scale,
-            coriolis[b],
-            out_mass[b],
-            out_bias[b],
-        )
-
-
-@inner
 def _tip_joints(y, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_to, joints, point_body, rot,
                 omega, work, ref):  # fmt: skip
     """The joints at lines' ends (``rs_tip_joint``): each one's moment on its line's last
@@ -357,7 +329,7 @@ def rhs(t, y, p, w, ydot):
     )
     _fractions(p.body_kind, p.body_shape, w.pos, w.fraction)
     w.load[:, :] = 0.0
-    _body_masses(
+    dynamics.body_masses(
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
         p.body_coriolis, p.body_shape, w.fraction, w.pos, w.rot, w.vel, w.omega, p.current_z,
         p.current_u, p.current_v, w.mass, w.bias,
