@@ -20,7 +20,7 @@ from seacable.errors import (
 )
 from seacable.results import Results
 from seacable.simulation import simulate
-from seacable.stability.api import continuation, equilibria, periodic_orbit
+from seacable.stability.api import compare, continuation, equilibria, periodic_orbit
 from seacable.stability.plane import Weather
 from seacable.system.statics import StaticsError
 
@@ -37,6 +37,7 @@ __all__ = [
     "SystemCase",
     "Weather",
     "__version__",
+    "compare",
     "continuation",
     "equilibria",
     "load_case",

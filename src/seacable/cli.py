@@ -286,9 +286,7 @@ def equilibria(case_file: str, current, wind, headings: int, output: str | None)
                              for k, t in enumerate(found["tie"].values))  # fmt: skip
         click.echo(f"{i + 1}. {e['kind'].item()} (largest Re lambda {growth:.3g} 1/s): {poses}"
                    + (f"; {tensions}" if tensions else ""))  # fmt: skip
-    if output:
-        found.to_netcdf(output)
-        click.echo(f"equilibria written: {output}")
+    _write(found, output, "equilibria")
 
 
 @main.command()
@@ -324,11 +322,7 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
         click.echo(f"{s['special_kind'].item()} at {path} = "
                    f"{s['special_parameter'].item():.10g} (branch "
                    f"{s['special_branch'].item()}; {headings_text}{extra})")  # fmt: skip
-    if output:
-        found.to_netcdf(output)
-        click.echo(f"branches written: {output}")
-    if plot:
-        click.echo(f"diagram written: {viz.plot_bifurcation(found, plot)}")
+    _write(found, output, "branches", plot, viz.plot_bifurcation, "diagram")
 
 
 @main.command()
@@ -365,9 +359,18 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
                    f"{found['tension_max'].values[k] / 1e3:.4g} kN")  # fmt: skip
     if np.isfinite(float(found["clearance"])):
         click.echo(f"  least clearance between the hulls: {float(found['clearance']):.4g} m")
+    _write(found, output, "limit cycle")
+
+
+def _write(found: xr.Dataset, output: str | None, what: str, plot: str | None = None,
+           draw=None, picture: str = "picture") -> None:  # fmt: skip
+    """An analysis's Dataset to ``output`` (NetCDF) and its picture to ``plot`` by ``draw``,
+    each said in one line."""
     if output:
         found.to_netcdf(output)
-        click.echo(f"limit cycle written: {output}")
+        click.echo(f"{what} written: {output}")
+    if plot and draw is not None:
+        click.echo(f"{picture} written: {draw(found, plot)}")
 
 
 def _angles(text: str, option: str) -> np.ndarray:
@@ -396,6 +399,9 @@ def _angles(text: str, option: str) -> np.ndarray:
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
 @click.option("--simulate", type=float, default=None,
               help="Also move each state this many seconds from its equilibrium.")  # fmt: skip
+@click.option("--control", type=click.Choice(["off", "on", "both"]), default=None,
+              help="The ships' compensator off, on, or both side by side (default: as the "
+                   "case says).")  # fmt: skip
 @click.option(
     "--dask",
     "scheduler",
@@ -406,8 +412,9 @@ def _angles(text: str, option: str) -> np.ndarray:
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the map (.png).")
 def operability(case_file: str, current_speed: float, current_towards: str, wind_towards: str,
-                ratios: str, clearance: float, tension, simulate: float | None, scheduler: str,
-                output: str | None, plot: str | None) -> None:  # fmt: skip
+                ratios: str, clearance: float, tension, simulate: float | None,
+                control: str | None, scheduler: str, output: str | None,
+                plot: str | None) -> None:  # fmt: skip
     """An operability map of the ships of CASE_FILE: for every current and wind direction and
     wind-to-current speed ratio, stable / limit exceeded / cycling / collision risk."""
     states, shape = stability_map.grid(current_speed, _angles(current_towards, "--current-towards"),
@@ -416,15 +423,49 @@ def operability(case_file: str, current_speed: float, current_towards: str, wind
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     where = None if scheduler == "none" else scheduler
     case = seacable.load_case(case_file)
-    found = stability_map.operability(case, states, shape, limits, simulate, where)
-    names, counts = np.unique(found["status"].values, return_counts=True)
-    click.echo(f"{len(states)} weather states: "
-               + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
-    if output:
-        found.to_netcdf(output)
-        click.echo(f"map written: {output}")
-    if plot:
-        click.echo(f"picture written: {viz.plot_operability(found, plot)}")
+    found = stability_map.operability(case, states, shape, limits, simulate, where,
+                                      control=control)  # fmt: skip
+    for part, label in _controls(found):
+        names, counts = np.unique(part["status"].values, return_counts=True)
+        click.echo(f"{label}{len(states)} weather states: "
+                   + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
+    _write(found, output, "map", plot, viz.plot_operability)
+
+
+def _controls(found: xr.Dataset) -> list[tuple[xr.Dataset, str]]:
+    """A map's parts per control setting, each with its label ("" without the dimension)."""
+    if "control" not in found.dims:
+        return [(found, "")]
+    return [(found.sel(control=c), f"{c}: ") for c in found["control"].values]
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
+@_weather_options
+@click.option("--duration", type=float, default=None, help="[s] (default: the case's).")
+@click.option("--clearance", type=float, default=0.0, help="Least clearance of the hulls [m].")
+@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, float),
+              help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Picture of both runs (.png).")
+def compare(case_file: str, current, wind, headings: int, duration: float | None,
+            clearance: float, tension, output: str | None, plot: str | None) -> None:  # fmt: skip
+    """The ships of CASE_FILE in one weather without and with their compensator, side by side:
+    is it safe, with and without control? (distance, tension, thrust, clearance)."""
+    case = seacable.load_case(case_file)
+    limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
+    found = seacable.compare(case, _weather(case, current, wind), duration, limits=limits)
+    for control in found["control"].values:
+        run = found.sel(control=control)
+        peaks = ", ".join(f"{t} {run['peak_tension'].sel(tie=t).item() / 1e3:.4g} kN"
+                          for t in found["tie"].values)  # fmt: skip
+        why = run["message"].item()
+        click.echo(f"{control}: {run['verdict'].item()}" + (f" ({why})" if why else "")
+                   + f"; least clearance {run['least_clearance'].item():.4g} m; peak tension "
+                   f"{peaks}; compensator up to {run['peak_surge_force'].item() / 1e3:.4g} kN "
+                   f"and {run['peak_yaw_moment'].item() / 1e6:.4g} MN m, cut by its limits "
+                   f"{100 * run['saturated'].item():.0f} % of the time")  # fmt: skip
+    _write(found, output, "comparison", plot, viz.plot_compare)
 
 
 @main.command()

@@ -329,19 +329,21 @@ def body_masses(p_kind, p_rigid, mass, cog, inertia, added, coriolis, shape, fra
     relative to the water at the reference point (the current's there): a hull's added mass
     is the water's, so that a body carried by a steady current feels what it feels at rest in
     still water (the rigid-body terms do not depend on the translation's velocity)."""
+    relative = np.empty(3)  # an array, as energy.py's call gives: one compiled signature
     for b in range(p_kind.shape[0]):
         if not has_mass(p_kind[b]):
             continue
         # a shaped body's added mass follows its submerged fraction
         scale = fraction[b] if shape[b, 0] != surface.POINT else 1.0
         cx, cy = c3._current(current_z, current_u, current_v, pos[b, 2])
+        relative[0], relative[1], relative[2] = vel[b, 0] - cx, vel[b, 1] - cy, vel[b, 2]
         rigid_mass(
             mass[b],
             cog[b],
             inertia[b],
             added[b],
             rot[b],
-            (vel[b, 0] - cx, vel[b, 1] - cy, vel[b, 2]),
+            relative,
             omega[b],
             scale,
             coriolis[b],

@@ -401,6 +401,29 @@ class CrossFlow(_HullCurrent):
     model: Literal["cross-flow"]
 
 
+class Compensator(_Model):
+    """The tandem compensator (forces.compensator): the surge force and yaw moment, by feedback
+    linearisation, that hold the horizontal distance from this body's ``point`` (its hawser's
+    fairlead) to the ``target`` point (``body.point``, the FPSO's stern) at ``distance`` and
+    the ship's heading at ``heading_deg`` from the target body's heading (``relative``) or from
+    the bearing of the target point (``line of sight``), each error then obeying
+    e'' + 2 z w e' + w^2 e = 0; the force and moment limited to the ship's thrust."""
+
+    model: Literal["compensator"]
+    point: str  # this body's point [name]
+    target: str  # "body.point"
+    distance: Pos  # d* [m]
+    heading: Literal["relative", "line of sight"] = "relative"
+    heading_deg: float = 0.0  # h* [deg]
+    frequency: Pos = 0.02  # w1 of the distance [rad/s]
+    heading_frequency: Pos = 0.02  # w2 [rad/s]
+    damping_ratio: Pos = 1.0  # z1 = z2
+    max_ahead: Pos | None = None  # [N]; none: unlimited
+    max_astern: Pos | None = None  # [N]
+    max_yaw_moment: Pos | None = None  # [N m]
+    enabled: bool = True  # false: the ship uncontrolled (the same case, for comparison)
+
+
 ForceModel = Annotated[
     Gravity
     | Buoyancy
@@ -419,6 +442,7 @@ ForceModel = Annotated[
     | WindLoad
     | CurrentLoad
     | ShortWing
-    | CrossFlow,
+    | CrossFlow
+    | Compensator,
     Field(discriminator="model"),
 ]

@@ -30,6 +30,7 @@ class ForceKind(IntEnum):
     CURRENT = 15
     SHORT_WING = 16
     CROSS_FLOW = 17
+    COMPENSATOR = 18
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -50,6 +51,7 @@ WIND = int(ForceKind.WIND)
 CURRENT = int(ForceKind.CURRENT)
 SHORT_WING = int(ForceKind.SHORT_WING)
 CROSS_FLOW = int(ForceKind.CROSS_FLOW)
+COMPENSATOR = int(ForceKind.COMPENSATOR)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

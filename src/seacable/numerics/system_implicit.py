@@ -238,10 +238,10 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
     """The seabed law's terms in Newton's matrix at the state ``y`` (``w`` evaluated there):
     for each interior node of each lumped line, G = dF/dr b h^2 + dF/dv g h, the derivatives
     of its seabed force (kernels.lumped.seabed_gradient) with respect to the node's
-    acceleration a1. ``update`` False: G is recorded in ``held`` (the matrix just built by
-    differences holds it). True: the unfactorised matrix ``raw`` is moved by -(1 - af) M^-1
-    (G - held) at each node's diagonal block (M its 3 x 3 mass matrix) and ``held`` becomes
-    G. Returns whether any node's terms changed."""
+    acceleration a1. ``update`` 0.0 (a float: literal bools compiled it twice): G is recorded
+    in ``held`` (the matrix just built by differences holds it). 1.0: the unfactorised matrix
+    ``raw`` is moved by -(1 - af) M^-1 (G - held) at each node's diagonal block (M its 3 x 3
+    mass matrix) and ``held`` becomes G. Returns whether any node's terms changed."""
     if p.seabed_z < -1e29:
         return False
     b, g, af = coef[1], coef[2], coef[4]
@@ -265,7 +265,7 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
                 change[e] = term - held[e, k]
                 held[e, k] = term
                 same = same and change[e] == 0.0
-            if not update or same:
+            if update == 0.0 or same:
                 continue
             moved = True
             lumped._node_mass_into(p.node_mass[k], w.nodes, k, m3)
@@ -292,11 +292,11 @@ def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, 
     Returns the status and the step's updates so far."""
     _, fresh, mat, piv, raw, held = carry
     if fresh[0] != 0.0 and fresh[1] == h and updates < UPDATES:
-        if _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, True):
+        if _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 1.0):
             mat[:] = raw
             work[6] += 1
             return (OK if bordered.factor(lay, mat, piv) else NON_FINITE), updates + 1
-    _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, False)
+    _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 0.0)
     status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work)
     work[4] += 1
     raw[:] = mat

@@ -47,6 +47,9 @@ from seacable.stability import equilibria as eq
 from seacable.stability import orbits
 from seacable.stability.plane import Plane, Weather
 
+CONTROLS = ("uncontrolled", "controlled")
+# the compensators' settings a map runs (``operability``'s ``control``)
+CONTROL: dict = {None: (None,), "off": (False,), "on": (True,), "both": (False, True)}
 STATUSES = ("stable", "limit exceeded", "cycling", "collision risk", "no equilibrium", "failed")
 
 
@@ -73,14 +76,18 @@ def grid(current_speed: float, current_towards: np.ndarray, wind_towards: np.nda
 
 
 def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, float]],
-             limits: Limits, simulate: float | None, headings: int) -> list[dict]:  # fmt: skip
+             limits: Limits, simulate: float | None, headings: int,
+             controlled: bool | None = None) -> list[dict]:  # fmt: skip
     """The rows of a chunk of weather states (each (current speed, towards, wind speed,
-    towards)), in order, the equilibria of one seeding the next. Runs where Dask sends it:
-    plain data in and out."""
+    towards)), in order, the equilibria of one seeding the next, with the compensators on or
+    off (``controlled``; None: as the case says). Runs where Dask sends it: plain data in and
+    out."""
     try:
         case = loader.load_case(case_data)
         assert isinstance(case, SystemCase)
         plane = Plane.of(case, base_dir)
+        if controlled is not None:
+            plane.control(controlled)
     except Exception as exc:  # the whole chunk fails the same way
         return [_failed(f"the case: {exc}") for _ in states]
     nominal = plane.start()[: 3 * len(plane.bodies)]
@@ -106,10 +113,12 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, 
 def _failed(message: str) -> dict:
     return {"status": "failed", "message": message, "equilibria": 0, "stable_equilibria": 0,
             "growth": math.nan, "clearance": math.nan, "tension": math.nan,
-            "period": math.nan}  # fmt: skip
+            "period": math.nan, "surge_force": math.nan, "yaw_moment": math.nan}  # fmt: skip
 
 
-def _clearance(plane: Plane, positions: np.ndarray) -> float:
+def clearance_at(plane: Plane, positions: np.ndarray) -> float:
+    """The least distance [m] between the first two hulls' outlines at ``positions`` (inf:
+    fewer than two hulls)."""
     hulls = [o for o in plane.outlines(positions) if o is not None]
     return orbits.clearance(hulls[:2]) if len(hulls) >= 2 else math.inf
 
@@ -138,11 +147,13 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
     state = np.concatenate([best.x, np.zeros(3 * n)])
     plane.rates(state)
     tension = plane.work.tie_tension.copy()
-    clearance = _clearance(plane, best.x)
+    control = plane.work.control[0].copy() if plane.controlled else np.zeros(4)
+    clearance = clearance_at(plane, best.x)
     growth = float(best.eigenvalues.real.max())
     row = {"equilibria": len(found), "stable_equilibria": len(stable), "growth": growth,
            "clearance": clearance, "tension": float(tension.max()) if tension.size else 0.0,
-           "period": math.nan, "message": ""}  # fmt: skip
+           "period": math.nan, "message": "", "surge_force": float(control[0]),
+           "yaw_moment": float(control[1])}  # fmt: skip
     excess, tie = _tension_excess(plane, tension, limits)
     if simulate:
         push = state.copy()
@@ -152,7 +163,7 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
         _, path = orbits.integrate(plane, push, simulate, steps, record=True)
         least, peak = math.inf, 0.0
         for k in range(0, path.shape[0], 5):
-            least = min(least, _clearance(plane, path[k, : 3 * n]))
+            least = min(least, clearance_at(plane, path[k, : 3 * n]))
             plane.rates(path[k])
             for name, limit in limits.tension:
                 ties = list(plane.built.layout.ties)
@@ -165,6 +176,12 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
     elif excess > 1.0:
         row["status"] = "limit exceeded"
         row["message"] = f"tie {tie or 'a tie'} at {excess:.2f} times its tension limit"
+    elif control[0] != control[2] or control[1] != control[3]:
+        row["status"] = "limit exceeded"
+        row["message"] = (
+            f"the compensator needs {control[2] / 1e3:.4g} kN and "
+            f"{control[3] / 1e6:.4g} MN m to hold its ship: over its limits"
+        )
     else:
         row["status"] = "stable" if stable else "cycling"
     return row
@@ -179,33 +196,49 @@ def _distance(x: np.ndarray, nominal: np.ndarray) -> float:
 def operability(case: SystemCase | str, states: list[Weather], shape: dict | None = None,
                 limits: Limits = Limits(), simulate: float | None = None,
                 scheduler: str | None = "local", chunk: int = 36,
-                headings: int = 6) -> xr.Dataset:  # fmt: skip
+                headings: int = 6, control: str | None = None) -> xr.Dataset:  # fmt: skip
     """The map (module docstring) of ``states``; ``shape`` (from ``grid``): their grid's
-    coordinates (else a dimension ``state``).
+    coordinates (else a dimension ``state``); ``control``: the compensators (forces.compensator)
+    as the case says (None), "off", "on", or "both" (a leading dimension ``control``:
+    uncontrolled, controlled).
 
     Returns
     -------
     xarray.Dataset
         ``status`` (a string of ``STATUSES``), ``message``, ``equilibria``,
         ``stable_equilibria``, ``growth`` [1/s] (the largest real part at the equilibrium kept),
-        ``clearance`` [m], ``tension`` [N] (its largest tie tension), and the weather's four
-        fields, over the grid or ``state``.
+        ``clearance`` [m], ``tension`` [N] (its largest tie tension), ``surge_force`` [N] and
+        ``yaw_moment`` [N m] (the compensator's there), and the weather's four fields, over
+        the grid or ``state``.
     """
     if isinstance(case, str):
         case = loader.load_case(case)
     if not isinstance(case, SystemCase):
         raise CaseError("operability: give a case with bodies: and lines:")
-    Plane.of(case, loader.case_base_dir(case))  # refused here, with its one line, if it must be
+    plane = Plane.of(case, loader.case_base_dir(case))  # refused here, with its one line
+    if control not in CONTROL:
+        raise CaseError(f"control '{control}': give one of {list(CONTROL)[1:]} (or none: as "
+                        "the case says)")  # fmt: skip
+    if control not in (None, "off") and plane.controlled is None:
+        raise CaseError(f"control '{control}': no ship has a 'compensator' force model; add "
+                        "one ({model: compensator, point, target, distance})")  # fmt: skip
     data = case.model_dump(by_alias=True, exclude_none=True)
     base = loader.case_base_dir(case)
     plain = [(w.current_speed, w.current_towards_deg, w.wind_speed, w.wind_towards_deg)
              for w in states]  # fmt: skip
-    chunks = [plain[i : i + chunk] for i in range(0, len(plain), chunk)]
+    chunks = [(plain[i : i + chunk], flag) for flag in CONTROL[control]
+              for i in range(0, len(plain), chunk)]  # fmt: skip
     if scheduler is None:
-        rows = [r for c in chunks for r in evaluate(data, base, c, limits, simulate, headings)]
+        rows = [r for c, flag in chunks
+                for r in evaluate(data, base, c, limits, simulate, headings, flag)]  # fmt: skip
     else:
         rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings)
-    return _dataset(rows, plain, shape, limits, simulate)
+    if control is None:
+        return _dataset(rows, plain, shape, limits, simulate)
+    parts = [_dataset(rows[k * len(plain) : (k + 1) * len(plain)], plain, shape, limits,
+                      simulate) for k in range(len(CONTROL[control]))]  # fmt: skip
+    names = [CONTROLS[int(flag)] for flag in CONTROL[control]]
+    return xr.concat(parts, dim="control").assign_coords(control=names)
 
 
 def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> list[dict]:
@@ -224,10 +257,10 @@ def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> 
     else:
         client = Client(scheduler)
     try:
-        futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, pure=False)
-                   for c in chunks]  # fmt: skip
+        futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, flag,
+                                 pure=False) for c, flag in chunks]  # fmt: skip
         rows: list[dict] = []
-        for chunk, future in zip(chunks, futures, strict=True):
+        for (chunk, _), future in zip(chunks, futures, strict=True):
             try:
                 rows.extend(future.result())
             except Exception as exc:  # the chunk's worker died, or the task could not run
@@ -261,6 +294,8 @@ def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
             "growth": (dims, field("growth"), {"units": "1/s"}),
             "clearance": (dims, field("clearance"), {"units": "m"}),
             "tension": (dims, field("tension"), {"units": "N"}),
+            "surge_force": (dims, field("surge_force"), {"units": "N"}),
+            "yaw_moment": (dims, field("yaw_moment"), {"units": "N m"}),
             "current_speed": (dims, weather[..., 0], {"units": "m/s"}),
             "current_towards": (dims, weather[..., 1], {"units": "deg"}),
             "wind_speed": (dims, weather[..., 2], {"units": "m/s"}),

@@ -67,7 +67,7 @@ def _split(x, h, kink, fa, fb, y, q, v, p, w, ydot, k1, k2, k3, k4, tmp, part, s
     ``fb`` at the end, of opposite signs) crosses zero (the Illinois secant in the fraction of
     the step), into ``out``."""
     a, b = 0.0, 1.0
-    side = 0
+    side = np.int64(0)  # not the literal 0: numba would compile narrow for Literal[int](0) too
     theta = 0.5
     for _ in range(60):
         theta = roots.trial(a, fa, b, fb)

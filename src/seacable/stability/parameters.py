@@ -6,23 +6,39 @@
 - ``bodies.<body>.points.<point>.x`` (or ``.y``) [m]: a point's place on its body (a turret,
   a hawser's fairlead);
 - ``bodies.<body>.external forces.<k>.force_x`` (any of an ``applied`` model's six channels,
-  k counted from 0 in the body's list) [N, N m]: a constant load (a shuttle's astern thrust).
+  k counted from 0 in the body's list) [N, N m]: a constant load (a shuttle's astern thrust);
+- ``bodies.<body>.external forces.<k>.distance`` (or ``heading_deg``, ``frequency``,
+  ``heading_frequency``, ``max_ahead``, ``max_astern``, ``max_yaw_moment``) of a
+  ``compensator`` [m, deg, rad/s, N, N m]: its set points, laws and limits.
 
 Each is written into the built system's parameters in place (``Parameter.set``).
 """
 
+import math
 from dataclasses import replace
 
 from seacable.case import forces as fm
 from seacable.errors import CaseError
-from seacable.forces import applied
+from seacable.forces import applied, compensator
 from seacable.stability.continuation import Parameter
 from seacable.stability.plane import Plane, Weather, set_constant
 
 FORMS = ("current.speed", "current.towards_deg", "wind.speed", "wind.towards_deg",
          "lines.<tie>.unstretched_length", "lines.<tie>.stiffness",
          "bodies.<body>.points.<point>.x (or .y)",
-         "bodies.<body>.external forces.<k>.<force_x ... moment_z>")  # fmt: skip
+         "bodies.<body>.external forces.<k>.<force_x ... moment_z>",
+         "bodies.<body>.external forces.<k>.<distance, heading_deg, ...> (compensator)",
+         )  # fmt: skip
+
+
+# a compensator's settings: their place in its row and their steps' scale
+SETTINGS = {"distance": compensator.DISTANCE, "heading_deg": compensator.HEADING,
+            "frequency": compensator.W1, "heading_frequency": compensator.W2,
+            "max_ahead": compensator.MAX_AHEAD, "max_astern": compensator.MAX_ASTERN,
+            "max_yaw_moment": compensator.MAX_MOMENT}  # fmt: skip
+SCALES = {"distance": 1.0, "heading_deg": 1.0, "frequency": 1e-3,
+          "heading_frequency": 1e-3, "max_ahead": 1e4, "max_astern": 1e4,
+          "max_yaw_moment": 1e6}  # fmt: skip
 
 
 def _refuse(path: str, why: str) -> CaseError:
@@ -43,7 +59,7 @@ def parameter(plane: Plane, path: str, weather: Weather | None = None) -> Parame
             raise _refuse(path, f"no body '{parts[1]}' (bodies: {names})")
         if parts[2] == "points" and parts[4] in ("x", "y"):
             return _point(plane, path, parts)
-        if parts[2] == "external forces" and parts[4] in applied.CHANNELS:
+        if parts[2] == "external forces" and parts[4] in (*applied.CHANNELS, *SETTINGS):
             return _load(plane, path, parts, names.index(parts[1]))
     raise _refuse(path, "not one of them")
 
@@ -107,10 +123,18 @@ def _load(plane: Plane, path: str, parts: list[str], b: int) -> Parameter:
     except (ValueError, IndexError):
         raise _refuse(path, f"body '{parts[1]}' has {len(models)} force models, counted "
                       f"from 0; '{parts[3]}' is none of them") from None  # fmt: skip
-    if not isinstance(spec, fm.AppliedForce):
-        raise _refuse(path, f"force model {k} of '{parts[1]}' is '{spec.model}', not "
-                      "'applied'")  # fmt: skip
     rows = [f for f in range(p.force_body.shape[0]) if p.force_body[f] == b]
+    if isinstance(spec, fm.Compensator) and parts[4] in SETTINGS:
+        at = int(p.force_at[rows[k]]) + SETTINGS[parts[4]]
+        unit = math.pi / 180.0 if parts[4] == "heading_deg" else 1.0  # the row's in radians
+
+        def set_setting(pl: Plane, value: float) -> None:
+            pl.built.params.force_data[at] = value * unit
+
+        return Parameter(path, set_setting, SCALES[parts[4]])
+    if not isinstance(spec, fm.AppliedForce) or parts[4] not in applied.CHANNELS:
+        raise _refuse(path, f"force model {k} of '{parts[1]}' is '{spec.model}': no "
+                      f"'{parts[4]}' there")  # fmt: skip
     channel = int(p.force_first[rows[k]]) + applied.CHANNELS.index(parts[4])
 
     def set_load(pl: Plane, value: float) -> None:

@@ -22,7 +22,7 @@ from numba import njit
 
 from seacable.case.system import RigidBody, SystemCase, Tie
 from seacable.errors import CaseError
-from seacable.forces import kinds
+from seacable.forces import compensator, kinds
 from seacable.kernels.jit import JIT
 from seacable.system import kernel
 from seacable.system import model as system_model
@@ -268,13 +268,12 @@ class Plane:
                 jac)  # fmt: skip
         return g, (jac if jacobian else None)
 
-    def outlines(self, positions: np.ndarray) -> list[np.ndarray | None]:
-        """Each free body's hull outline in the earth frame at ``positions`` (3 per body): the
-        L x B rectangle about the point of its ``short-wing`` or ``cross-flow`` model (None:
-        no such model)."""
+    def hulls(self) -> list[np.ndarray | None]:
+        """Each free body's hull outline in its body frame (4, 2): the L x B rectangle about
+        the point of its ``short-wing`` or ``cross-flow`` model (None: no such model)."""
         p = self.built.params
         out: list[np.ndarray | None] = []
-        for j, b in enumerate(self.bodies):
+        for b in self.bodies:
             rows = [f for f in range(p.force_kind.shape[0]) if p.force_body[f] == b
                     and p.force_kind[f] in (kinds.SHORT_WING, kinds.CROSS_FLOW)]  # fmt: skip
             if not rows:
@@ -282,12 +281,33 @@ class Plane:
                 continue
             row = p.force_data[p.force_at[rows[0]] :]
             half_l, half_b = 0.5 * row[3], 0.5 * row[4]
-            corners = np.array([[half_l, half_b], [-half_l, half_b], [-half_l, -half_b],
-                                [half_l, -half_b]]) + row[:2]  # fmt: skip
+            out.append(np.array([[half_l, half_b], [-half_l, half_b], [-half_l, -half_b],
+                                 [half_l, -half_b]]) + row[:2])  # fmt: skip
+        return out
+
+    def outlines(self, positions: np.ndarray) -> list[np.ndarray | None]:
+        """Each free body's hull outline (``hulls``) in the earth frame at ``positions`` (3
+        per body)."""
+        out: list[np.ndarray | None] = []
+        for j, corners in enumerate(self.hulls()):
             x, y, psi = positions[3 * j : 3 * j + 3]
             c, s = math.cos(psi), math.sin(psi)
-            out.append(corners @ np.array([[c, s], [-s, c]]) + (x, y))
+            out.append(None if corners is None else corners @ np.array([[c, s], [-s, c]]) + (x, y))
         return out
+
+    @property
+    def controlled(self) -> bool | None:
+        """Whether the compensators (forces.compensator) act (None: the case has none)."""
+        p = self.built.params
+        if not p.compensator.shape[0]:
+            return None
+        return bool(p.force_data[p.force_at[p.compensator[0]] + compensator.ENABLED] != 0.0)
+
+    def control(self, enabled: bool) -> None:
+        """Switch every compensator on or off, in place (the same system otherwise)."""
+        p = self.built.params
+        for f in p.compensator:
+            p.force_data[p.force_at[f] + compensator.ENABLED] = float(enabled)
 
     def jacobian(self, x: np.ndarray, t: float = 0.0) -> np.ndarray:
         """df/dx at ``x``."""

@@ -16,8 +16,8 @@ from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import table
-from seacable.forces.kinds import kind_of
+from seacable.forces import compensator, table
+from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import hulls, natural_lines, topology
@@ -35,7 +35,7 @@ INT_FIELDS = frozenset({
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
-    "body_group", "group_first", "group_member",
+    "body_group", "group_first", "group_member", "compensator",
 })  # fmt: skip
 
 
@@ -272,6 +272,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
+    fields["compensator"] = _compensators(case, f, fields, points)
     params = typed(SystemParams, fields, INT_FIELDS)
     y0 = np.zeros(n_q + n_v + n_s)
     y0[:bodies_q] = y_q
@@ -279,6 +280,33 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
+
+
+def _compensators(case, f: dict, fields: dict, points: np.ndarray) -> list[int]:
+    """The force rows of the compensators (forces.compensator), refused where their loads would
+    not be complete when they act (a rigid line's end, a group) or would depend on each other."""
+    rows = [i for i, k in enumerate(f["kind"]) if k == COMPENSATOR]
+    controlled = {int(f["body"][i]) for i in rows}
+    rigid_ends = {int(points[k]) for k in (*fields["rs_from"], *fields["rs_to"])}
+    data = fields["force_data"]
+    for i in rows:
+        b = int(f["body"][i])
+        target = int(points[int(data[f["at"][i] + compensator.TARGET])])
+        where = f"bodies ({case.bodies[b].name}).external forces (compensator)"
+        for c in (b, target):
+            if c in rigid_ends or fields["body_group"][c][0] >= 0:
+                raise CaseError(f"{where}: body '{case.bodies[c].name}' carries a rigid line or "
+                                "is part of a group; the compensator needs ships moved by their "
+                                "own loads and ties or lumped lines")  # fmt: skip
+        if sum(1 for j in rows if f["body"][j] == b) > 1:
+            raise CaseError(f"{where}: a second compensator on the same ship; give one")
+        if target == b:
+            raise CaseError(f"{where}: the target point is on the ship itself; give a point "
+                            "of the other body ('body.point')")  # fmt: skip
+        if target in controlled:
+            raise CaseError(f"{where}: its target body '{case.bodies[target].name}' has a "
+                            "compensator too; give one ship of a pair the compensator")  # fmt: skip
+    return rows
 
 
 def _sections(case, line, rho, extensible=True):

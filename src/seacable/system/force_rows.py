@@ -14,6 +14,7 @@ from seacable.errors import CaseError
 from seacable.forces import (
     applied,
     coefficients,
+    compensator,
     drag,
     hull_current,
     hydrostatic,
@@ -87,7 +88,28 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         sim = case.simulation
         step = spec.step or sim.time_step or min(0.01, sim.output_interval)
         return servo.pack(spec.gain, spec.rate_gain, step, target)
+    if isinstance(spec, fm.Compensator):
+        return _compensator_row(spec, body, where, point)
     return []  # gravity, buoyancy: the body's own fields
+
+
+def _compensator_row(spec, body, where: str, point) -> list[float]:
+    """The compensator's row: its points' indices, created on first use."""
+    if not isinstance(body, RigidBody):
+        raise CaseError(f"{where}: model 'compensator' steers a ship: a 'rigid' body (this one "
+                        f"is '{body.type}')")  # fmt: skip
+    if spec.point != fm.ORIGIN and spec.point not in body.points:
+        raise CaseError(f"{where}.point: body '{body.name}' has no point '{spec.point}'; its "
+                        f"points are {[fm.ORIGIN, *body.points]}")  # fmt: skip
+    own = point(body.name if spec.point == fm.ORIGIN else f"{body.name}.{spec.point}", where)
+    target = point(spec.target, f"{where}.target")
+    inf = math.inf
+    limits = (spec.max_ahead or inf, spec.max_astern or inf, spec.max_yaw_moment or inf)
+    return compensator.pack(own, target, spec.heading == "line of sight", spec.distance,
+                            math.radians(spec.heading_deg),
+                            (spec.frequency, spec.heading_frequency),
+                            (spec.damping_ratio, spec.damping_ratio), limits,
+                            spec.enabled)  # fmt: skip
 
 
 def _body_point(body, point, where: str) -> tuple[float, float, float]:

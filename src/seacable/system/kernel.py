@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import dynamics, kinematics
-from seacable.forces import hydrostatic, kinds, radiation, table
+from seacable.forces import compensator, hydrostatic, kinds, radiation, table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import lumped as lk
 from seacable.kernels import memory, natural, surface
@@ -76,6 +76,7 @@ class SystemParams(NamedTuple):
     force_first: np.ndarray  # (nf,) int: first channel
     force_state: np.ndarray  # (nf,) int: first state in y (-1: none; forces.table.state_count)
     force_data: np.ndarray  # floats of every row
+    compensator: np.ndarray  # (nc,) int: the force rows of the compensators (forces.compensator)
     line_n: np.ndarray  # (nl,) int: segments
     line_seg: np.ndarray  # (nl,) int: first segment in the segment arrays
     line_node: np.ndarray  # (nl,) int: first node (workspace column, node arrays)
@@ -207,6 +208,7 @@ class SystemWork(NamedTuple):
     memory: np.ndarray  # a force model's scratch, then the radiation models' velocity
     # histories (kernels.memory)
     models: np.ndarray  # (nb, 6) the force models' loads at the last evaluation of them
+    control: np.ndarray  # (nc, compensator.RECORD) each compensator's force and moment
     models_key: np.ndarray  # (1 + 13 nb + n_s,) what they were evaluated at: the time, every
     # body's pos, quat, vel and omega, the models' states (NaN: none; see _models_kept)
 
@@ -236,6 +238,7 @@ def make_work(p: SystemParams) -> SystemWork:
         nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
         memory=np.zeros(max(memory.SCRATCH, _memory(p))), models=np.zeros((nb, 6)),
         models_key=np.full(1 + 13 * nb + int(p.n_s), np.nan),
+        control=np.zeros((max(1, len(p.compensator)), compensator.RECORD)),
     )  # fmt: skip
 
 
@@ -367,6 +370,11 @@ def rhs(t, y, p, w, ydot):
             p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.models,
         )  # fmt: skip
     w.load[:, :] += w.models
+    compensator.apply_all(  # after every other load: it cancels them
+        p.compensator, p.force_body, p.force_at, p.force_data, p.point_body, p.body_kind,
+        p.body_free, w.mass, w.bias, w.load, w.acc, w.ppos, w.pvel, w.parm, w.rot, w.omega,
+        w.control,
+    )  # fmt: skip
     if p.n_s > 0:
         table.state_rates(t, y, p.force_kind, p.force_body, p.force_at, p.force_first,
                           p.force_state, p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos,

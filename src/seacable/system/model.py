@@ -148,6 +148,12 @@ def _body_variables(body, controls) -> dict:
                 ("time",), "N m",
                 f"moment of the lines and ties about the reference point, {c}",
             )  # fmt: skip
+    return out | _control_variables(body, controls)
+
+
+def _control_variables(body, controls) -> dict:
+    """A body's servo's, controllers' and compensator's variables."""
+    out = {}
     if any(spec.model == "servo" for spec in getattr(body, "external_forces", [])):
         for c in AXES:
             out[f"servo_force_{c}"] = (("time",), "N", f"force the servo applies to the body, {c}")
@@ -156,7 +162,19 @@ def _body_variables(body, controls) -> dict:
         out["tracking_error"] = (("time",), "m", "distance of the body from its target")
     for _, name, kind in controls:
         out[name] = (("time",), *CONTROL_STATES[kind][1:])
+    if any(spec.model == "compensator" for spec in getattr(body, "external_forces", [])):
+        for name, unit, text in COMPENSATOR_VARIABLES:
+            out[name] = (("time",), unit, text)
     return out
+
+
+# the compensator's record (forces.compensator.RECORD), in its order
+COMPENSATOR_VARIABLES = (
+    ("compensator_surge_force", "N", "the compensator's surge force, as applied (saturated)"),
+    ("compensator_yaw_moment", "N m", "the compensator's yaw moment, as applied (saturated)"),
+    ("compensator_surge_demand", "N", "the surge force the compensator's law demands"),
+    ("compensator_yaw_demand", "N m", "the yaw moment the compensator's law demands"),
+)
 
 
 # a force model's control state in the results: its variable's name, unit, description
@@ -327,7 +345,7 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     kept = w.nodes.copy()
     status = outputs.fill(times, states, p, w, filled)
     w.nodes[:] = kept
-    bodies, nodes, tension, ends, ties, energy, rigid = filled
+    bodies, nodes, tension, ends, ties, energy, rigid, control = filled
     out: dict = {"time": times}
     for k, name in enumerate(list(ENERGY_VARIABLES)[:3]):
         out[name] = energy[:, k]
@@ -337,6 +355,10 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
             out[f"bodies/{body.name}/{name}"] = bodies[:, b, k]
     _servo_rows(system, states, bodies, out)
     _control_rows(system, states, out)
+    for k, f in enumerate(p.compensator):
+        group = f"bodies/{system.case.bodies[int(p.force_body[f])].name}"
+        for i, (name, _, _) in enumerate(COMPENSATOR_VARIABLES):
+            out[f"{group}/{name}"] = control[:, k, i]
     for li, line in enumerate(system.layout.lines):
         n, c0, s0 = int(p.line_n[li]), int(p.line_node[li]), int(p.line_seg[li])
         for c, axis in enumerate(AXES):

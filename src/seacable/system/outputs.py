@@ -9,6 +9,7 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies.dynamics import add_force
+from seacable.forces.compensator import RECORD
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.jit import JIT, inner
@@ -22,12 +23,13 @@ BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, fo
 
 
 @njit(**JIT)
-def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid):
+def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid,
+                  control):  # fmt: skip
     """Rows of every output time (bodies (m, nb, BODY_COLUMNS), nodes (m, total nodes, 3),
     tension (m, total segments), ends (m, nl, 2, 3): force of the line on its from / to
     point, ties (m, nt, 8): tension, length, from point, to point, energy (m, 3): kinetic,
     gravity potential, elastic (system.energy)); ``rigid`` the rigid lines' (nodes, tension,
-    ends) alike."""
+    ends) alike; ``control`` (m, nc, compensator.RECORD) the compensators' (w.control)."""
     status = OK
     ydot = np.empty(states.shape[1])
     a = np.empty(3)
@@ -37,6 +39,8 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
         st = kernel.rhs(t, y, p, w, ydot)
         if st != OK and status == OK:
             status = st
+        for k in range(p.compensator.shape[0]):
+            control[j, k, :] = w.control[k]
         on_body[:, :] = 0.0
         for li in range(p.line_n.shape[0]):
             n, c0, s0 = p.line_n[li], p.line_node[li], p.line_seg[li]
@@ -97,7 +101,7 @@ class Rows(NamedTuple):
     """Output rows of ``m`` times, as ``outputs_chunk`` fills them: bodies (m, nb,
     BODY_COLUMNS), lumped nodes (m, total nodes, 3), tensions (m, total segments), line ends
     (m, nl, 2, 3), ties (m, nt, 8), energies (m, 3), the rigid lines' and strings'
-    (``rigid_rows``)."""
+    (``rigid_rows``), the compensators' force and moment (m, nc, compensator.RECORD)."""
 
     bodies: np.ndarray
     nodes: np.ndarray
@@ -106,6 +110,7 @@ class Rows(NamedTuple):
     ties: np.ndarray
     energy: np.ndarray
     rigid: tuple
+    control: np.ndarray
 
 
 def allocate(p, m: int) -> Rows:
@@ -114,7 +119,7 @@ def allocate(p, m: int) -> Rows:
     return Rows(
         np.empty((m, nb, BODY_COLUMNS)), np.empty((m, len(p.node_mass), 3)),
         np.empty((m, len(p.seg_length))), np.empty((m, nl, 2, 3)), np.empty((m, nt, 8)),
-        np.empty((m, 3)), rigid_rows(p, m),
+        np.empty((m, 3)), rigid_rows(p, m), np.empty((m, len(p.compensator), RECORD)),
     )  # fmt: skip
 
 

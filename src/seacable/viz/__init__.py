@@ -9,7 +9,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from seacable.viz import bifurcation, operability, system
+from seacable.viz import bifurcation, compare, operability, system
 
 
 def plot_results(tree: xr.DataTree, path, every: float | None = None) -> Path:
@@ -32,4 +32,10 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
     return operability.plot_operability(ds, path)
 
 
-__all__ = ["animate_results", "plot_bifurcation", "plot_operability", "plot_results"]
+def plot_compare(ds: xr.Dataset, path) -> Path:
+    """The ships without and with their compensator, side by side (``viz.compare``)."""
+    return compare.plot_compare(ds, path)
+
+
+__all__ = ["animate_results", "plot_bifurcation", "plot_compare", "plot_operability",
+           "plot_results"]  # fmt: skip

@@ -1,0 +1,98 @@
+"""The picture of the ships without and with their compensator in the same weather
+(``seacable.stability.api.compare``'s Dataset): above, each run's track (the hulls' outlines
+every so often, darker as time goes on, the reference points' paths, the ties at the end);
+below, both runs over time: the ties' distances and the hulls' clearance, the ties' tensions,
+and the compensator's surge force and yaw moment."""
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from seacable.viz.common import _pyplot
+
+OUTLINES = 24  # hull outlines drawn along a track
+STYLE = {"uncontrolled": dict(color="#d62728", ls="--"), "controlled": dict(color="#1f77b4")}
+
+
+def plot_compare(ds: xr.Dataset, path) -> Path:
+    """The picture of ``ds`` (module docstring), written to ``path``."""
+    plt = _pyplot()
+    fig = plt.figure(figsize=(15, 10), constrained_layout=True)
+    grid = fig.add_gridspec(2, 6, height_ratios=(1.3, 1.0))
+    controls = list(ds["control"].values)
+    tracks = [fig.add_subplot(grid[0, 3 * k : 3 * k + 3]) for k in range(len(controls))]
+    for ax, control in zip(tracks, controls, strict=True):
+        _track(ax, ds.sel(control=control))
+        run = ds.sel(control=control)
+        why = run["message"].item()
+        ax.set_title(f"{control}: {run['verdict'].item()}" + (f" ({why})" if why else ""))
+    _same_box(tracks)
+    series = [fig.add_subplot(grid[1, 2 * k : 2 * k + 2]) for k in range(3)]
+    time = ds["time"].values
+    for control in controls:
+        run, style = ds.sel(control=control), STYLE.get(str(control), {})
+        for tie in ds["tie"].values:
+            series[0].plot(time, run["distance"].sel(tie=tie), label=f"{control}: {tie}",
+                           **style)  # fmt: skip
+            series[1].plot(time, run["tension"].sel(tie=tie) / 1e3, label=f"{control}: {tie}",
+                           **style)  # fmt: skip
+        series[2].plot(time, run["surge_force"] / 1e3, label=f"{control}: surge [kN]", **style)
+        series[2].plot(time, run["yaw_moment"] / 1e6, label=f"{control}: yaw [MN m]",
+                       **{**style, "alpha": 0.5})  # fmt: skip
+    clearance = ds["clearance"]
+    if np.isfinite(clearance.values).any():
+        twin = series[0].twinx()
+        for control in controls:
+            twin.plot(time, clearance.sel(control=control), lw=0.8, color="grey",
+                      ls=STYLE.get(str(control), {}).get("ls", "-"))  # fmt: skip
+        twin.set_ylabel("hull clearance [m] (grey)")
+    for ax, label in zip(series, ("tie distance [m]", "tie tension [kN]",
+                                  "compensator: kN, MN m"), strict=True):  # fmt: skip
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"current {ds.attrs['current_speed']:g} m/s towards "
+                 f"{ds.attrs['current_towards_deg']:g} deg, wind {ds.attrs['wind_speed']:g} m/s "
+                 f"towards {ds.attrs['wind_towards_deg']:g} deg")  # fmt: skip
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def _track(ax, run: xr.Dataset) -> None:
+    """One run's hull outlines, reference-point paths and ties at the end."""
+    m = run.sizes["time"]
+    rows = np.unique(np.linspace(0, m - 1, min(OUTLINES, m)).astype(int))
+    for j, body in enumerate(run["body"].values):
+        x, y = run["x"].values[:, j], run["y"].values[:, j]
+        psi = np.radians(run["heading"].values[:, j])
+        ax.plot(x, y, lw=0.8, color=f"C{j}", label=str(body))
+        hull = np.stack([run["hull_x"].values[j], run["hull_y"].values[j]], axis=1)
+        if not np.isfinite(hull).all():
+            continue
+        closed = np.vstack([hull, hull[:1]])
+        for k, i in enumerate(rows):
+            c, s = np.cos(psi[i]), np.sin(psi[i])
+            earth = closed @ np.array([[c, s], [-s, c]]) + (x[i], y[i])
+            ax.plot(earth[:, 0], earth[:, 1], color=f"C{j}", lw=0.6,
+                    alpha=0.15 + 0.85 * (k + 1) / len(rows))  # fmt: skip
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.legend(fontsize=7, loc="best")
+    ax.grid(alpha=0.3)
+
+
+def _same_box(axes) -> None:
+    """One square box of the same limits for every track (the same scale side by side)."""
+    boxes = np.array([[*ax.get_xlim(), *ax.get_ylim()] for ax in axes])
+    x0, x1, y0, y1 = boxes[:, 0].min(), boxes[:, 1].max(), boxes[:, 2].min(), boxes[:, 3].max()
+    half = 0.5 * max(x1 - x0, y1 - y0)
+    cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+    for ax in axes:
+        ax.set_xlim(cx - half, cx + half)
+        ax.set_ylim(cy - half, cy + half)
+        ax.set_aspect("equal", adjustable="box")
