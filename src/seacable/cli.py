@@ -304,13 +304,18 @@ def equilibria(case_file: str, current, wind, headings: int, output: str | None)
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Bifurcation diagram (.png).")
+@click.option("--cycles", type=int, default=0, show_default=True,
+              help="Periodic orbits to follow from each Hopf point, and its kind.")  # fmt: skip
 def continuation(case_file: str, path: str, start: float, end: float, current, wind,
-                 headings: int, output: str | None, plot: str | None) -> None:  # fmt: skip
+                 headings: int, output: str | None, plot: str | None,
+                 cycles: int) -> None:  # fmt: skip
     """Branches of equilibria of the ships of CASE_FILE as a parameter varies, with their
-    folds, branch points and Hopf points (pseudo-arclength continuation)."""
+    folds, branch points and Hopf points (pseudo-arclength continuation); with --cycles, the
+    branches of limit cycles born at the Hopf points and whether each is super- or
+    subcritical, by simulation."""
     case = seacable.load_case(case_file)
     found = seacable.continuation(case, path, start, end, _weather(case, current, wind),
-                                  headings=headings)  # fmt: skip
+                                  headings=headings, cycles=cycles)  # fmt: skip
     branches = np.unique(found["branch"].values)
     click.echo(f"{len(branches)} branches, {found.sizes['point']} points")
     for i in range(found.sizes["special"]):
@@ -319,9 +324,22 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
                  if s["special_kind"].item() == "hopf" else "")  # fmt: skip
         headings_text = ", ".join(f"{b} {s['special_heading'].values[j]:.3f} deg"
                                   for j, b in enumerate(found["body"].values))  # fmt: skip
+        if "special_criticality" in found and s["special_criticality"].item():
+            extra += f", {s['special_criticality'].item()} by simulation"
+        if s["special_kind"].item() == "fold of cycles":
+            headings_text = "where the limit cycles turn back"
         click.echo(f"{s['special_kind'].item()} at {path} = "
                    f"{s['special_parameter'].item():.10g} (branch "
                    f"{s['special_branch'].item()}; {headings_text}{extra})")  # fmt: skip
+    if "cycle" in found.dims:
+        for k in np.unique(found["cycle_special"].values):
+            on = found.where(found["cycle_special"] == k, drop=True)
+            click.echo(f"  cycles from the Hopf point {k + 1}: {on.sizes['cycle']} orbits, "
+                       f"{path} {on['cycle_parameter'].values[0]:.6g} to "
+                       f"{on['cycle_parameter'].values[-1]:.6g}, period "
+                       f"{on['cycle_period'].values[0]:.5g} to "
+                       f"{on['cycle_period'].values[-1]:.5g} s, "
+                       f"{int(on['cycle_stable'].sum())} stable")  # fmt: skip
     _write(found, output, "branches", plot, viz.plot_bifurcation, "diagram")
 
 

@@ -11,9 +11,15 @@ from seacable.case import loader
 from seacable.case.base import Constant
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
+from seacable.stability import cycles as cycle_branches
 from seacable.stability import equilibria as eq
 from seacable.stability import operability, orbits
-from seacable.stability.continuation import Branch, Continuation, ContinuationError
+from seacable.stability.continuation import (
+    Branch,
+    Continuation,
+    ContinuationError,
+    SpecialPoint,
+)
 from seacable.stability.operability import CONTROLS, Limits
 from seacable.stability.parameters import parameter as named_parameter
 from seacable.stability.plane import Plane, Weather
@@ -108,12 +114,15 @@ def _weather_attrs(weather: Weather) -> dict:
 
 def continuation(case: SystemCase | str, parameter: str, start: float, end: float,
                  weather: Weather | None = None, headings: int = 12, step: float = 0.02,
-                 switch: bool = True, points: int = 2000) -> xr.Dataset:  # fmt: skip
+                 switch: bool = True, points: int = 2000,
+                 cycles: int = 0) -> xr.Dataset:  # fmt: skip
     """The branches of equilibria of ``case`` as ``parameter`` (a path, as
     seacable.stability.parameters names them) goes from ``start`` to ``end``: from every
     equilibrium at ``start`` (``headings`` per body), and with ``switch`` from every branch
     point found, both ways along the other branch. Folds, branch points and Hopf points are
-    located (seacable.stability.continuation).
+    located (seacable.stability.continuation). With ``cycles`` > 0, from each Hopf point a
+    branch of up to that many periodic orbits, and the point's criticality by simulation
+    (seacable.stability.cycles).
 
     Returns
     -------
@@ -121,7 +130,15 @@ def continuation(case: SystemCase | str, parameter: str, start: float, end: floa
         Per ``point``: ``parameter``, ``branch`` (its number), ``unstable`` (eigenvalues with a
         positive real part), ``x``, ``y`` [m], ``heading`` [deg] per ``body``; per ``special``
         point: ``special_kind`` (fold, branch point, hopf), ``special_parameter``,
-        ``special_branch``, ``special_frequency`` [rad/s] (Hopf), ``special_heading`` [deg].
+        ``special_branch``, ``special_frequency`` [rad/s] (Hopf), ``special_heading`` [deg],
+        ``special_criticality`` (a Hopf point's, with ``cycles``: supercritical, subcritical,
+        undecided, not judged; else empty), ``special_hysteresis`` (1: a subcritical point's
+        large cycle persists where the equilibrium is stable, 0: not, -1: not judged). With
+        ``cycles``, per ``cycle``: ``cycle_special`` (its Hopf point's index),
+        ``cycle_parameter``, ``cycle_period`` [s], ``cycle_stable``, ``cycle_multiplier`` (the
+        largest modulus but the one at 1), and per body ``cycle_heading_low``,
+        ``cycle_heading_high`` [deg], ``cycle_amplitude_y`` [m] (peak to peak); the folds of
+        cycles are special points of kind "fold of cycles".
     """
     plane = _plane(case)
     weather = weather or weather_of(plane.built.case)
@@ -155,8 +172,69 @@ def continuation(case: SystemCase | str, parameter: str, start: float, end: floa
                     new.unstable.insert(0, new.unstable[0])
                     new.eigenvalues.insert(0, new.eigenvalues[0])
                     branches.append(new)
+    found = _cycles(plane, par, branches, (min(start, end), max(start, end)), cycles)
     par.set(plane, start)
-    return _branches_dataset(plane, parameter, branches, weather)
+    ds = _branches_dataset(plane, parameter, branches, weather)
+    return ds if found is None else _with_cycles(ds, plane, *found)
+
+
+def _cycles(plane: Plane, par, branches: list[Branch], bounds: tuple[float, float],
+            count: int):  # fmt: skip
+    """The cycle branches and criticalities of every Hopf point (None without ``count``);
+    folds of cycles are added to their Hopf point's branch as special points."""
+    if count <= 0:
+        return None
+    out = []
+    for branch in branches:
+        for sp in [s for s in branch.special if s.kind == "hopf"]:
+            cycle, kind = cycle_branches.from_hopf(plane, par, sp.x, sp.parameter, sp.frequency,
+                                                   bounds, count, 0.2 * par.scale)  # fmt: skip
+            out.append((cycle, kind))
+            for mu in cycle.folds:
+                branch.special.append(SpecialPoint("fold of cycles", mu,
+                                                   np.full_like(sp.x, np.nan)))  # fmt: skip
+    return (out,)
+
+
+def _with_cycles(ds: xr.Dataset, plane: Plane, found: list) -> xr.Dataset:
+    """``ds`` with the cycles' variables (``continuation``'s Returns)."""
+    hopf = np.flatnonzero(ds["special_kind"].values == "hopf")
+    criticality = np.full(ds.sizes["special"], "", dtype=object)
+    hysteresis = np.full(ds.sizes["special"], -1)
+    names = ("special", "parameter", "period", "stable", "multiplier", "low", "high",
+             "amplitude_y")  # fmt: skip
+    rows: dict[str, list] = {k: [] for k in names}
+    for index, (cycle, kind) in zip(hopf, found, strict=True):
+        criticality[index] = kind.kind
+        hysteresis[index] = -1 if kind.hysteresis is None else int(kind.hysteresis)
+        for i in range(len(cycle.parameter)):
+            m = cycle.multipliers[i]
+            rows["special"].append(index)
+            rows["parameter"].append(cycle.parameter[i])
+            rows["period"].append(cycle.period[i])
+            rows["stable"].append(cycle.stable[i])
+            rows["multiplier"].append(float(np.sort(np.abs(np.delete(
+                m, np.argmin(np.abs(m - 1.0)))))[-1]))  # fmt: skip
+            rows["low"].append(np.degrees(cycle.low[i][2::3]))
+            rows["high"].append(np.degrees(cycle.high[i][2::3]))
+            rows["amplitude_y"].append(cycle.amplitude[i][1::3])
+    nb = len(plane.bodies)
+
+    def body(name):
+        return np.array(rows[name]).reshape(-1, nb)
+
+    return ds.assign(
+        special_criticality=("special", criticality.astype(str)),
+        special_hysteresis=("special", hysteresis),
+        cycle_special=("cycle", np.array(rows["special"], dtype=int)),
+        cycle_parameter=("cycle", np.array(rows["parameter"], dtype=float)),
+        cycle_period=("cycle", np.array(rows["period"], dtype=float), {"units": "s"}),
+        cycle_stable=("cycle", np.array(rows["stable"], dtype=bool)),
+        cycle_multiplier=("cycle", np.array(rows["multiplier"], dtype=float)),
+        cycle_heading_low=(("cycle", "body"), body("low"), {"units": "deg"}),
+        cycle_heading_high=(("cycle", "body"), body("high"), {"units": "deg"}),
+        cycle_amplitude_y=(("cycle", "body"), body("amplitude_y"), {"units": "m"}),
+    )
 
 
 def _on(branch: Branch, x: np.ndarray, mu: float, tolerance: float = 1e-3) -> bool:

@@ -1,6 +1,7 @@
 """The bifurcation diagram of a continuation (``seacable.continuation``'s Dataset): each body's
 heading against the parameter, a solid line where the equilibrium is stable and a dashed one
-where it is not, the folds, branch points and Hopf points marked."""
+where it is not, the folds, branch points and Hopf points marked; with cycles, each limit
+cycle's least and largest heading (filled: stable, open: unstable)."""
 
 from pathlib import Path
 
@@ -9,8 +10,11 @@ import xarray as xr
 
 from seacable.viz.common import _pyplot
 
-MARKS = {"fold": ("s", "tab:orange"), "branch point": ("o", "tab:green"),
-         "hopf": ("*", "tab:red")}  # fmt: skip
+MARKS = {
+    "fold": ("s", "tab:orange"),
+    "branch point": ("o", "tab:green"),
+    "hopf": ("*", "tab:red"),
+}  # fmt: skip (a fold of cycles has no heading: not marked)
 
 
 def plot_bifurcation(ds: xr.Dataset, path) -> Path:
@@ -30,6 +34,15 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
                 style = "-" if stable[lo] else "--"
                 end = min(hi + 1, len(at))  # joined to the next run
                 ax.plot(mu[lo:end], heading[lo:end], style, color=f"C{k % 10}", lw=1.5)
+        if "cycle" in ds.dims:  # the limit cycles' heading range: filled stable, open not
+            stable = ds["cycle_stable"].values
+            for edge in ("cycle_heading_low", "cycle_heading_high"):
+                for flag, face in ((True, "tab:purple"), (False, "none")):
+                    at = np.flatnonzero(stable == flag)
+                    ax.plot(ds["cycle_parameter"].values[at], ds[edge].values[at, j], "o",
+                            ms=4, mfc=face, mec="tab:purple", ls="none",
+                            label=("limit cycle, " + ("stable" if flag else "unstable"))
+                            if edge.endswith("low") and at.size else None)  # fmt: skip
         for kind, (marker, colour) in MARKS.items():
             at = np.flatnonzero(ds["special_kind"].values == kind)
             if at.size:
