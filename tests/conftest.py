@@ -26,6 +26,7 @@ PYTHON_ONLY = (
     "cli.py", "viz/", "results.py", "simulation.py", "analysis.py", "case/loader.py",
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",
     "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",
+    "stability/two_parameter.py",
 )  # fmt: skip
 
 

@@ -20,7 +20,7 @@ from seacable.errors import (
 )
 from seacable.results import Results
 from seacable.simulation import simulate
-from seacable.stability.api import compare, continuation, equilibria, periodic_orbit
+from seacable.stability.api import compare, continuation, curves, equilibria, periodic_orbit
 from seacable.stability.plane import Weather
 from seacable.system.statics import StaticsError
 
@@ -39,6 +39,7 @@ __all__ = [
     "__version__",
     "compare",
     "continuation",
+    "curves",
     "equilibria",
     "load_case",
     "periodic_orbit",

@@ -345,6 +345,37 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
 
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
+@click.option("--parameter", "path", required=True, help="The first parameter (a path, as "
+              "for continuation).")  # fmt: skip
+@click.option("--from", "start", type=float, required=True, help="Its first value.")
+@click.option("--to", "end", type=float, required=True, help="Its last value.")
+@click.option("--second", required=True, help="The second parameter (a path).")
+@click.option("--second-from", "second_start", type=float, required=True,
+              help="Its value where the curves start.")  # fmt: skip
+@click.option("--second-to", "second_end", type=float, required=True, help="Its last value.")
+@_weather_options
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the curves (.png).")
+def curves(case_file: str, path: str, start: float, end: float, second: str,
+           second_start: float, second_end: float, current, wind, headings: int,
+           output: str | None, plot: str | None) -> None:  # fmt: skip
+    """Curves of folds and Hopf points of the ships of CASE_FILE in two parameters: those a
+    continuation in the first finds with the second at --second-from, followed as both
+    change."""
+    case = seacable.load_case(case_file)
+    found = seacable.curves(case, path, start, end, second, second_start, second_end,
+                            _weather(case, current, wind), headings=headings)  # fmt: skip
+    click.echo(f"{found.sizes['curve']} curves")
+    for k, kind in enumerate(found["kind"].values):
+        on = found.where(found["curve"] == k, drop=True)
+        a, b = on["first"].values, on["second"].values
+        click.echo(f"{k + 1}. {kind}: {on.sizes['curve_point']} points, {path} {a[0]:.8g} to "
+                   f"{a[-1]:.8g} as {second} goes {b[0]:.6g} to {b[-1]:.6g}")  # fmt: skip
+    _write(found, output, "curves", plot, viz.plot_curves)
+
+
+@main.command()
+@click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option(
     "--parameter", "path", default=None, help="A parameter set first (as continuation's)."
 )

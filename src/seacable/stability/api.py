@@ -13,7 +13,7 @@ from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import cycles as cycle_branches
 from seacable.stability import equilibria as eq
-from seacable.stability import operability, orbits
+from seacable.stability import operability, orbits, two_parameter
 from seacable.stability.continuation import (
     Branch,
     Continuation,
@@ -531,3 +531,80 @@ def _verdict(run: dict, ties: list[str], limits: Limits, diverged: str) -> tuple
         if peak > limit:
             return "limit exceeded", f"tie {tie} at {peak / limit:.2f} times its tension limit"
     return "safe", ""
+
+
+def curves(case: SystemCase | str, first: str, start: float, end: float, second: str,
+           second_start: float, second_end: float, weather: Weather | None = None,
+           headings: int = 12, points: int = 400) -> xr.Dataset:  # fmt: skip
+    """Curves of folds and Hopf points in two parameters (paths, as
+    seacable.stability.parameters names them): the folds and Hopf points that a continuation
+    in ``first`` from ``start`` to ``end`` finds with ``second`` at ``second_start``, each
+    followed (seacable.stability.two_parameter) as ``second`` goes to ``second_end`` (and
+    ``first`` stays between ``start`` and ``end``), up to ``points`` points a curve.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per ``curve``: ``kind`` (fold, hopf); per ``curve_point``: ``curve`` (its number),
+        ``first`` and ``second`` (the parameters' values), ``frequency`` [rad/s] (Hopf: the
+        crossing pair's), ``x``, ``y`` [m] and ``heading`` [deg] per ``body``.
+    """
+    plane = _plane(case)
+    weather = weather or weather_of(plane.built.case)
+    weather.apply(plane.built)
+    shared = {"weather": weather}
+    par1 = named_parameter(plane, first, weather, shared)
+    par2 = named_parameter(plane, second, weather, shared)
+    par2.set(plane, second_start)
+    par1.set(plane, start)
+    found: list = []
+    for e in eq.find(plane, None, headings):
+        try:
+            branch = Continuation(plane, par1).run(e.x, start, end)
+        except ContinuationError:
+            continue
+        for sp in branch.special:
+            if sp.kind in two_parameter.KINDS and not any(
+                k == sp.kind and abs(mu - sp.parameter) < 1e-6 * par1.scale for k, mu, _, _ in found
+            ):
+                found.append((sp.kind, sp.parameter, sp.x, sp.frequency))
+    box = (min(start, end), max(start, end))
+    traced = []
+    for kind, mu, x, omega in found:
+        try:
+            traced.append(two_parameter.CurveContinuation(plane, par1, par2, kind).run(
+                x, mu, second_start, second_end, box, 0.0 if kind == "fold" else omega,
+                points=points))  # fmt: skip
+        except ContinuationError:
+            continue
+    par1.set(plane, start)
+    par2.set(plane, second_start)
+    n = len(plane.bodies)
+    xs = np.array([x for c in traced for x in c.x]).reshape(-1, 3 * n)
+    return xr.Dataset(
+        {
+            "kind": ("curve", np.array([c.kind for c in traced], dtype=str)),
+            "curve": (
+                "curve_point",
+                np.array([k for k, c in enumerate(traced) for _ in c.first], dtype=int),
+            ),  # fmt: skip
+            "first": (
+                "curve_point",
+                np.array([v for c in traced for v in c.first]),
+                {"long_name": first},
+            ),  # fmt: skip
+            "second": (
+                "curve_point",
+                np.array([v for c in traced for v in c.second]),
+                {"long_name": second},
+            ),  # fmt: skip
+            "frequency": (
+                "curve_point",
+                np.array([v for c in traced for v in c.frequency]),
+                {"units": "rad/s"},
+            ),  # fmt: skip
+            **_pose_variables(plane, xs, "curve_point"),
+        },
+        coords={"body": plane.names},
+        attrs={"first": first, "second": second, **_weather_attrs(weather)},
+    )

@@ -45,12 +45,15 @@ def _refuse(path: str, why: str) -> CaseError:
     return CaseError(f"parameter '{path}': {why}; the parameters are {', '.join(FORMS)}")
 
 
-def parameter(plane: Plane, path: str, weather: Weather | None = None) -> Parameter:
+def parameter(plane: Plane, path: str, weather: Weather | None = None,
+              shared: dict | None = None) -> Parameter:  # fmt: skip
     """The parameter at ``path`` (module docstring) of ``plane``; ``weather`` is the weather
-    whose one field a weather parameter changes (calm by default)."""
+    whose one field a weather parameter changes (calm by default); ``shared``: the holder of
+    that weather for two weather parameters varied together (``{"weather": weather}``), so
+    that each keeps the other's field."""
     parts = path.split(".")
     if parts[0] in ("current", "wind") and len(parts) == 2:
-        return _weather(path, parts, weather or Weather())
+        return _weather(path, parts, weather or Weather(), shared)
     if parts[0] == "lines" and len(parts) == 3:
         return _tie(plane, path, parts)
     if parts[0] == "bodies" and len(parts) == 5:
@@ -64,12 +67,12 @@ def parameter(plane: Plane, path: str, weather: Weather | None = None) -> Parame
     raise _refuse(path, "not one of them")
 
 
-def _weather(path: str, parts: list[str], weather: Weather) -> Parameter:
+def _weather(path: str, parts: list[str], weather: Weather, shared: dict | None) -> Parameter:
     names = {"speed": f"{parts[0]}_speed", "towards_deg": f"{parts[0]}_towards_deg"}
     if parts[1] not in names:
         raise _refuse(path, f"'{parts[1]}' is not speed or towards_deg")
     name = names[parts[1]]
-    state = {"weather": weather}
+    state = {"weather": weather} if shared is None else shared
 
     def set_weather(pl: Plane, value: float) -> None:
         state["weather"] = replace(state["weather"], **{name: value})

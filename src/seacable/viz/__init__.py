@@ -32,10 +32,15 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
     return operability.plot_operability(ds, path)
 
 
+def plot_curves(ds: xr.Dataset, path) -> Path:
+    """Curves of folds and Hopf points in two parameters (``viz.bifurcation``)."""
+    return bifurcation.plot_curves(ds, path)
+
+
 def plot_compare(ds: xr.Dataset, path) -> Path:
     """The ships without and with their compensator, side by side (``viz.compare``)."""
     return compare.plot_compare(ds, path)
 
 
-__all__ = ["animate_results", "plot_bifurcation", "plot_compare", "plot_operability",
-           "plot_results"]  # fmt: skip
+__all__ = ["animate_results", "plot_bifurcation", "plot_compare", "plot_curves",
+           "plot_operability", "plot_results"]  # fmt: skip

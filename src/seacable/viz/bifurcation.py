@@ -60,6 +60,34 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
     return path
 
 
+CURVE_COLOURS = {"fold": "tab:orange", "hopf": "tab:red"}
+
+
+def plot_curves(ds: xr.Dataset, path) -> Path:
+    """The two-parameter curves of ``seacable.stability.api.curves`` (folds, Hopf points): the
+    second parameter against the first, written to ``path``."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 5.5), constrained_layout=True)
+    seen = set()
+    for k, kind in enumerate(ds["kind"].values):
+        at = np.flatnonzero(ds["curve"].values == k)
+        ax.plot(ds["first"].values[at], ds["second"].values[at], "-", lw=1.8,
+                color=CURVE_COLOURS.get(str(kind), "k"),
+                label=None if kind in seen else f"{kind} points")  # fmt: skip
+        seen.add(kind)
+    ax.set_xlabel(ds.attrs.get("first", "first parameter"))
+    ax.set_ylabel(ds.attrs.get("second", "second parameter"))
+    ax.set_title("where the equilibria fold or start to oscillate")
+    ax.grid(alpha=0.3)
+    if seen:
+        ax.legend(fontsize=8)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
 def _runs(flags: np.ndarray) -> list[tuple[int, int]]:
     """The runs of equal values: (first, last) index pairs."""
     runs, start = [], 0
