@@ -331,8 +331,10 @@ def test_the_orbit_command(tmp_path):
     case = tmp_path / "shuttle.yaml"
     data = shuttle_case("cross-flow").model_dump(by_alias=True, exclude_none=True)
     case.write_text(yaml.safe_dump(data))
-    run = CliRunner().invoke(main, ["orbit", str(case), "-o", str(tmp_path / "o.nc")])
+    run = CliRunner().invoke(main, ["orbit", str(case), "-o", str(tmp_path / "o.nc"),
+                                    "--plot", str(tmp_path / "o.png")])  # fmt: skip
     assert run.exit_code == 0, run.output
+    assert (tmp_path / "o.png").stat().st_size > 10_000
     assert "limit cycle: period" in run.output and "shooting converged" in run.output
     assert "hawser: tension 0 to" in run.output  # it goes slack in every cycle
     root = __import__("pathlib").Path(__file__).parent.parent

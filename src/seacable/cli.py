@@ -384,8 +384,10 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
               help="Seconds of motion before shooting (default 30 periods).")  # fmt: skip
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
+@click.option("--plot", type=click.Path(dir_okay=False),
+              help="Picture of the ships' tracks and tensions over a period (.png).")  # fmt: skip
 def orbit(case_file: str, path: str | None, value: float | None, settle: float | None, current,
-          wind, headings: int, output: str | None) -> None:  # fmt: skip
+          wind, headings: int, output: str | None, plot: str | None) -> None:  # fmt: skip
     """The limit cycle (fishtailing) the ships of CASE_FILE settle on from their oscillatory
     unstable equilibrium: period, amplitudes, hawser tensions, the hulls' least clearance and
     its Floquet multipliers (shooting)."""
@@ -408,7 +410,7 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
                    f"{found['tension_max'].values[k] / 1e3:.4g} kN")  # fmt: skip
     if np.isfinite(float(found["clearance"])):
         click.echo(f"  least clearance between the hulls: {float(found['clearance']):.4g} m")
-    _write(found, output, "limit cycle")
+    _write(found, output, "limit cycle", plot, viz.plot_orbit)
 
 
 def _write(found: xr.Dataset, output: str | None, what: str, plot: str | None = None,

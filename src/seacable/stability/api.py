@@ -301,7 +301,8 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
         [m], ``amplitude_heading`` [deg] (peak to peak); per ``tie``: ``tension_min``,
         ``tension_max`` [N]; ``clearance`` [m], the least distance between the first two hulls'
         outlines (nan: fewer than two hulls); the track over one period per ``time`` and
-        ``body``: ``x``, ``y``, ``heading``, and ``tension`` per ``tie``.
+        ``body``: ``x``, ``y``, ``heading``, and ``tension`` per ``tie``; ``hull_x``,
+        ``hull_y`` per ``body`` and ``corner``: the hull outlines in the body frame.
     """
     plane = _plane(case)
     weather = weather or weather_of(plane.built.case)
@@ -377,6 +378,7 @@ def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> x
             "y": (("time", "body"), path[:, 1:m:3], {"units": "m"}),
             "heading": (("time", "body"), heading, {"units": "deg"}),
             "tension": (("time", "tie"), tension, {"units": "N"}),
+            **_hull_variables(plane),
         },
         coords={
             "time": np.linspace(0.0, orbit.period, path.shape[0]),
@@ -452,9 +454,7 @@ def compare(case: SystemCase | str, weather: Weather | None = None,
         data[name] = ("control", np.array([r[name] for r in runs]), {"units": unit})
     data["peak_tension"] = (("control", "tie"), np.stack([r["peak_tension"] for r in runs]),
                             {"units": "N"})  # fmt: skip
-    hulls = np.array([np.full((4, 2), np.nan) if h is None else h for h in plane.hulls()])
-    data["hull_x"] = (("body", "corner"), hulls[:, :, 0], {"units": "m", "long_name": "body frame"})
-    data["hull_y"] = (("body", "corner"), hulls[:, :, 1], {"units": "m", "long_name": "body frame"})
+    data.update(_hull_variables(plane))
     data["verdict"] = ("control", np.array([r["verdict"] for r in runs], dtype=str))
     data["message"] = ("control", np.array([r["message"] for r in runs], dtype=str))
     return xr.Dataset(
@@ -465,6 +465,14 @@ def compare(case: SystemCase | str, weather: Weather | None = None,
                "clearance_limit": limits.clearance,
                "tension_limits": "; ".join(f"{t} {v:g} N" for t, v in limits.tension)},
     )  # fmt: skip
+
+
+def _hull_variables(plane: Plane) -> dict:
+    """Each body's hull outline in its body frame (``Plane.hulls``; nan: no hull model)."""
+    hulls = np.array([np.full((4, 2), np.nan) if h is None else h for h in plane.hulls()])
+    unit = {"units": "m", "long_name": "hull outline, body frame"}
+    return {"hull_x": (("body", "corner"), hulls[:, :, 0], unit),
+            "hull_y": (("body", "corner"), hulls[:, :, 1], unit)}  # fmt: skip
 
 
 def _run(plane: Plane, duration: float, steps: int, stride: int, limits: Limits) -> dict:

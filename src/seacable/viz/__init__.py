@@ -37,10 +37,15 @@ def plot_curves(ds: xr.Dataset, path) -> Path:
     return bifurcation.plot_curves(ds, path)
 
 
+def plot_orbit(ds: xr.Dataset, path) -> Path:
+    """A limit cycle's tracks and tensions (``viz.compare``)."""
+    return compare.plot_orbit(ds, path)
+
+
 def plot_compare(ds: xr.Dataset, path) -> Path:
     """The ships without and with their compensator, side by side (``viz.compare``)."""
     return compare.plot_compare(ds, path)
 
 
 __all__ = ["animate_results", "plot_bifurcation", "plot_compare", "plot_curves",
-           "plot_operability", "plot_results"]  # fmt: skip
+           "plot_operability", "plot_orbit", "plot_results"]  # fmt: skip

@@ -2,7 +2,8 @@
 (``seacable.stability.api.compare``'s Dataset): above, each run's track (the hulls' outlines
 every so often, darker as time goes on, the reference points' paths, the ties at the end);
 below, both runs over time: the ties' distances and the hulls' clearance, the ties' tensions,
-and the compensator's surge force and yaw moment."""
+and the compensator's surge force and yaw moment. A limit cycle's tracks alike
+(``plot_orbit``)."""
 
 from pathlib import Path
 
@@ -56,6 +57,28 @@ def plot_compare(ds: xr.Dataset, path) -> Path:
     fig.suptitle(f"current {ds.attrs['current_speed']:g} m/s towards "
                  f"{ds.attrs['current_towards_deg']:g} deg, wind {ds.attrs['wind_speed']:g} m/s "
                  f"towards {ds.attrs['wind_towards_deg']:g} deg")  # fmt: skip
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def plot_orbit(ds: xr.Dataset, path) -> Path:
+    """A limit cycle (``seacable.periodic_orbit``'s Dataset): the ships' tracks over one period
+    with their hulls, and the ties' tensions, written to ``path``."""
+    plt = _pyplot()
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 6), constrained_layout=True)
+    _track(left, ds)
+    _same_box([left])
+    left.set_title(f"limit cycle: period {float(ds['period']):.5g} s, "
+                   f"{'stable' if bool(ds['stable']) else 'unstable'}")  # fmt: skip
+    for tie in ds["tie"].values:
+        right.plot(ds["time"].values, ds["tension"].sel(tie=tie) / 1e3, label=str(tie))
+    right.set_xlabel("time along the period [s]")
+    right.set_ylabel("tie tension [kN]")
+    right.legend(fontsize=8)
+    right.grid(alpha=0.3)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=100, bbox_inches="tight")
