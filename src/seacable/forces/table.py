@@ -22,6 +22,7 @@ from seacable.forces import (
 from seacable.forces.kinds import (
     APPLIED,
     BUOYANCY,
+    COMPENSATOR,
     CROSS_FLOW,
     CURRENT,
     DIFFRACTION,
@@ -130,6 +131,10 @@ def state_rates(t, y, kind, body, at, first, state, data, pos, rot, vel, omega, 
         elif kind[f] == RUDDER:
             rudder.rates(row, first[f], t, rot[b], omega[b], tf, y, state[f], ydot)
 
+
+# kinds evaluated after every other load of the system, which they need (system.kernel.rhs:
+# forces.compensator.apply_all), not by add_all
+LAST = (COMPENSATOR,)
 
 STATEFUL = {
     SERVO: servo.state_count,
