@@ -255,6 +255,7 @@ def test_the_eigenvalues_give_the_growth_and_decay_a_simulation_shows(thrust):
     assert (lam.real > 0) == (thrust == 0.0)
 
 
+@pytest.mark.slow  # a 100,000 s simulation: 100 s; make test-all runs it
 def test_the_shuttles_limit_cycle_and_its_floquet_multipliers_against_simulation():
     """Without astern thrust the shuttle settles on a fishtailing cycle: shooting finds it
     (the residual to round-off, a multiplier of 1 along it, the others inside the unit
