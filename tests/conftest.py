@@ -23,10 +23,11 @@ STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
 # compiled function of their own, and the layer rule keeps every compiled module (and the
 # constants it reads) below them; a change in them leaves the cache valid
 PYTHON_ONLY = (
-    "cli.py", "viz/", "results.py", "simulation.py", "analysis.py", "case/loader.py",
+    "cli.py", "cli_ships.py", "viz/", "results.py", "simulation.py", "analysis.py",
+    "case/loader.py",
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",
     "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",
-    "stability/two_parameter.py",
+    "stability/two_parameter.py", "stability/compare.py", "stability/datasets.py",
 )  # fmt: skip
 
 

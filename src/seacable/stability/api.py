@@ -1,63 +1,35 @@
 """The analyses' public forms: every equilibrium of a case for a weather, and the branches of
 equilibria in a parameter, as xarray Datasets (``seacable.equilibria``,
-``seacable.continuation``)."""
+``seacable.continuation``), the limit cycles (``seacable.periodic_orbit``), the curves of
+folds and Hopf points in two parameters (``seacable.curves``); ``compare`` and ``weather_of``
+come from their own modules (``stability.compare``, ``stability.datasets``)."""
 
 import math
 
 import numpy as np
 import xarray as xr
 
-from seacable.case import loader
-from seacable.case.base import Constant
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import cycles as cycle_branches
 from seacable.stability import equilibria as eq
-from seacable.stability import operability, orbits, two_parameter
+from seacable.stability import orbits, two_parameter
+from seacable.stability.compare import compare
 from seacable.stability.continuation import (
     Branch,
     Continuation,
     ContinuationError,
     SpecialPoint,
 )
-from seacable.stability.operability import CONTROLS, Limits
+from seacable.stability.datasets import (
+    hull_variables,
+    plane_of,
+    pose_variables,
+    weather_attrs,
+    weather_of,
+)
 from seacable.stability.parameters import parameter as named_parameter
 from seacable.stability.plane import Plane, Weather
-
-
-def weather_of(case: SystemCase) -> Weather:
-    """The case's own weather: its uniform current and its constant wind (a CaseError line for
-    a wind that changes in time)."""
-    env = case.environment
-    current = env.current
-    speed = float(current.velocity or 0.0) if current is not None else 0.0
-    towards = float(current.direction_deg) if current is not None else 0.0
-    wind_speed, wind_towards = 0.0, 0.0
-    if env.wind is not None:
-        for name in ("speed", "direction_deg"):
-            if not isinstance(getattr(env.wind, name), Constant):
-                raise CaseError(f"environment.wind.{name}: a time function; the horizontal-plane "
-                                "analyses take a constant wind: give a number")  # fmt: skip
-        wind_speed = float(env.wind.speed.value)  # type: ignore[union-attr]
-        wind_towards = float(env.wind.direction_deg.value)  # type: ignore[union-attr]
-    return Weather(speed, towards, wind_speed, wind_towards)
-
-
-def _plane(case: SystemCase | str) -> Plane:
-    if isinstance(case, str):
-        case = loader.load_case(case)
-    if not isinstance(case, SystemCase):
-        raise CaseError("the horizontal-plane analyses need a case with bodies: and lines:")
-    return Plane.of(case, loader.case_base_dir(case))
-
-
-def _pose_variables(plane: Plane, xs: np.ndarray, dim: str) -> dict:
-    return {
-        "x": ((dim, "body"), xs[:, 0::3], {"units": "m", "long_name": "reference point x"}),
-        "y": ((dim, "body"), xs[:, 1::3], {"units": "m", "long_name": "reference point y"}),
-        "heading": ((dim, "body"), np.degrees(xs[:, 2::3]),
-                    {"units": "deg", "long_name": "heading, from +x towards +y"}),
-    }  # fmt: skip
 
 
 def equilibria(case: SystemCase | str, weather: Weather | None = None,
@@ -75,7 +47,7 @@ def equilibria(case: SystemCase | str, weather: Weather | None = None,
         ``tension`` (per ``tie``) [N]; ``eigenvalue_real``, ``eigenvalue_imag`` [1/s] per
         ``mode``, largest real part first.
     """
-    plane = _plane(case)
+    plane = plane_of(case)
     weather = weather or weather_of(plane.built.case)
     found = eq.find(plane, weather, headings)
     n = len(plane.bodies)
@@ -89,7 +61,7 @@ def equilibria(case: SystemCase | str, weather: Weather | None = None,
         tension[i] = plane.work.tie_tension
     return xr.Dataset(
         {
-            **_pose_variables(plane, xs, "equilibrium"),
+            **pose_variables(plane, xs, "equilibrium"),
             "stable": ("equilibrium", np.array([e.stable for e in found], dtype=bool)),
             "kind": ("equilibrium", np.array([e.kind for e in found], dtype=str)),
             "residual": ("equilibrium", np.array([e.residual for e in found]), {"units": "1"}),
@@ -99,17 +71,8 @@ def equilibria(case: SystemCase | str, weather: Weather | None = None,
             "eigenvalue_imag": (("equilibrium", "mode"), lam.imag, {"units": "1/s"}),
         },
         coords={"body": plane.names, "tie": list(plane.built.layout.ties)},
-        attrs=_weather_attrs(weather),
+        attrs=weather_attrs(weather),
     )
-
-
-def _weather_attrs(weather: Weather) -> dict:
-    return {
-        "current_speed": weather.current_speed,
-        "current_towards_deg": weather.current_towards_deg,
-        "wind_speed": weather.wind_speed,
-        "wind_towards_deg": weather.wind_towards_deg,
-    }
 
 
 def continuation(case: SystemCase | str, parameter: str, start: float, end: float,
@@ -140,7 +103,7 @@ def continuation(case: SystemCase | str, parameter: str, start: float, end: floa
         ``cycle_heading_high`` [deg], ``cycle_amplitude_y`` [m] (peak to peak); the folds of
         cycles are special points of kind "fold of cycles".
     """
-    plane = _plane(case)
+    plane = plane_of(case)
     weather = weather or weather_of(plane.built.case)
     weather.apply(plane.built)
     par = named_parameter(plane, parameter, weather)
@@ -267,7 +230,7 @@ def _branches_dataset(plane, parameter, branches, weather) -> xr.Dataset:
                 "point",
                 np.concatenate([b.unstable for b in branches]) if branches else np.zeros(0, int),
             ),  # fmt: skip
-            **_pose_variables(plane, xs, "point"),
+            **pose_variables(plane, xs, "point"),
             "special_kind": ("special", np.array([s.kind for _, s in special], dtype=str)),
             "special_parameter": ("special", np.array([s.parameter for _, s in special])),
             "special_branch": ("special", np.array([k for k, _ in special], dtype=int)),
@@ -279,7 +242,7 @@ def _branches_dataset(plane, parameter, branches, weather) -> xr.Dataset:
             "special_heading": (("special", "body"), np.degrees(sx[:, 2::3]), {"units": "deg"}),
         },
         coords={"body": plane.names},
-        attrs={"parameter": parameter, **_weather_attrs(weather)},
+        attrs={"parameter": parameter, **weather_attrs(weather)},
     )
 
 
@@ -304,7 +267,7 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
         ``body``: ``x``, ``y``, ``heading``, and ``tension`` per ``tie``; ``hull_x``,
         ``hull_y`` per ``body`` and ``corner``: the hull outlines in the body frame.
     """
-    plane = _plane(case)
+    plane = plane_of(case)
     weather = weather or weather_of(plane.built.case)
     weather.apply(plane.built)
     if parameter is not None:
@@ -378,7 +341,7 @@ def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> x
             "y": (("time", "body"), path[:, 1:m:3], {"units": "m"}),
             "heading": (("time", "body"), heading, {"units": "deg"}),
             "tension": (("time", "tie"), tension, {"units": "N"}),
-            **_hull_variables(plane),
+            **hull_variables(plane),
         },
         coords={
             "time": np.linspace(0.0, orbit.period, path.shape[0]),
@@ -386,159 +349,11 @@ def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> x
             "tie": ties,
         },  # fmt: skip
         attrs={
-            **_weather_attrs(weather),
+            **weather_attrs(weather),
             "parameter": parameter or "",
             "value": math.nan if value is None else value,
         },  # fmt: skip
     )
-
-
-def compare(case: SystemCase | str, weather: Weather | None = None,
-            duration: float | None = None, step: float = 1.0, every: float = 10.0,
-            limits: Limits | None = None) -> xr.Dataset:  # fmt: skip
-    """The ships in ``weather`` (the case's by default) without and with their compensator
-    (forces.compensator), side by side: each run from the case's start (the ships at their
-    nominal places, at rest) for ``duration`` [s] (default the case's), on the RK4 flow of
-    ``step`` [s] split at the ties' kinks (seacable.stability.orbits), a row every ``every``
-    [s]; ``limits``: the operator's (seacable.stability.operability.Limits; none by default).
-
-    Returns
-    -------
-    xarray.Dataset
-        Per ``control`` (uncontrolled, controlled), ``time`` and ``body``: ``x``, ``y`` [m],
-        ``heading`` [deg]; per control and time: ``tension`` and ``distance`` per ``tie``
-        [N, m], ``clearance`` [m] (the first two hulls' outlines), ``surge_force`` [N] and
-        ``yaw_moment`` [N m] (the compensator's, applied), ``surge_demand``, ``yaw_demand``
-        (before saturation); per control: ``verdict`` (safe, limit exceeded, collision risk,
-        diverged), ``message``, ``least_clearance`` [m], ``peak_tension`` per tie [N],
-        ``peak_surge_force`` [N], ``peak_yaw_moment`` [N m], ``saturated`` (the fraction of
-        rows where the limits cut the demand); per ``body`` and ``corner``: ``hull_x``,
-        ``hull_y`` [m], its outline in its body frame (nan: no hull model).
-    """
-    plane = _plane(case)
-    if plane.controlled is None:
-        raise CaseError("compare: no ship has a 'compensator' force model; add one ({model: "
-                        "compensator, point, target, distance}) to compare the ships with and "
-                        "without it")  # fmt: skip
-    weather = weather or weather_of(plane.built.case)
-    weather.apply(plane.built)
-    limits = limits or Limits()
-    duration = float(duration if duration is not None else plane.built.case.simulation.duration)
-    steps = max(1, math.ceil(duration / step))
-    stride = max(1, round(every / (duration / steps)))
-    was = plane.controlled
-    runs = []
-    try:
-        for enabled in (False, True):
-            plane.control(enabled)
-            runs.append(_run(plane, duration, steps, stride, limits))
-    finally:
-        plane.control(bool(was))
-    rows = min(len(r["time"]) for r in runs)
-    ties = list(plane.built.layout.ties)
-
-    def stack(name):
-        return np.stack([r[name][:rows] for r in runs])
-
-    per_time = {"tension": ("tie", "N"), "distance": ("tie", "m"), "clearance": (None, "m"),
-                "surge_force": (None, "N"), "yaw_moment": (None, "N m"),
-                "surge_demand": (None, "N"), "yaw_demand": (None, "N m")}  # fmt: skip
-    data: dict = {
-        name: (("control", "time") + ((dim,) if dim else ()), stack(name), {"units": unit})
-        for name, (dim, unit) in per_time.items()
-    }
-    for name, unit in (("x", "m"), ("y", "m"), ("heading", "deg")):
-        data[name] = (("control", "time", "body"), stack(name), {"units": unit})
-    for name, unit in (("least_clearance", "m"), ("peak_surge_force", "N"),
-                       ("peak_yaw_moment", "N m"), ("saturated", "1")):  # fmt: skip
-        data[name] = ("control", np.array([r[name] for r in runs]), {"units": unit})
-    data["peak_tension"] = (("control", "tie"), np.stack([r["peak_tension"] for r in runs]),
-                            {"units": "N"})  # fmt: skip
-    data.update(_hull_variables(plane))
-    data["verdict"] = ("control", np.array([r["verdict"] for r in runs], dtype=str))
-    data["message"] = ("control", np.array([r["message"] for r in runs], dtype=str))
-    return xr.Dataset(
-        data,
-        coords={"control": list(CONTROLS), "time": runs[0]["time"][:rows],
-                "body": plane.names, "tie": ties},  # fmt: skip
-        attrs={**_weather_attrs(weather), "duration": duration, "step": duration / steps,
-               "clearance_limit": limits.clearance,
-               "tension_limits": "; ".join(f"{t} {v:g} N" for t, v in limits.tension)},
-    )  # fmt: skip
-
-
-def _hull_variables(plane: Plane) -> dict:
-    """Each body's hull outline in its body frame (``Plane.hulls``; nan: no hull model)."""
-    hulls = np.array([np.full((4, 2), np.nan) if h is None else h for h in plane.hulls()])
-    unit = {"units": "m", "long_name": "hull outline, body frame"}
-    return {"hull_x": (("body", "corner"), hulls[:, :, 0], unit),
-            "hull_y": (("body", "corner"), hulls[:, :, 1], unit)}  # fmt: skip
-
-
-def _run(plane: Plane, duration: float, steps: int, stride: int, limits: Limits) -> dict:
-    """One run's rows (``compare``); a run that leaves finite values keeps the rows before."""
-    n, ties = len(plane.bodies), list(plane.built.layout.ties)
-    try:
-        _, path = orbits.integrate(plane, plane.start(), duration, steps, record=True)
-        diverged = ""
-    except FloatingPointError:  # rerun in pieces to keep what was finite
-        path, diverged = _finite_part(plane, duration, steps), "the motion left finite values"
-    path = path[::stride]
-    m = path.shape[0]
-    out: dict = {"time": np.arange(m) * stride * duration / steps,
-                 "tension": np.empty((m, len(ties))), "distance": np.empty((m, len(ties))),
-                 "clearance": np.full(m, math.nan)}  # fmt: skip
-    control = np.zeros((m, 4))
-    p = plane.built.params
-    for i, state in enumerate(path):
-        plane.rates(state)
-        out["tension"][i] = plane.work.tie_tension
-        for k in range(len(ties)):
-            a, b = p.tie_from[k], p.tie_to[k]
-            out["distance"][i, k] = np.linalg.norm(plane.work.ppos[b] - plane.work.ppos[a])
-        if p.compensator.shape[0]:
-            control[i] = plane.work.control[0]
-        out["clearance"][i] = operability.clearance_at(plane, state[: 3 * n])
-    for k, name in enumerate(("surge_force", "yaw_moment", "surge_demand", "yaw_demand")):
-        out[name] = control[:, k]
-    out["x"], out["y"] = path[:, 0 : 3 * n : 3], path[:, 1 : 3 * n : 3]
-    out["heading"] = np.degrees(path[:, 2 : 3 * n : 3])
-    out["least_clearance"] = float(np.nanmin(out["clearance"])) if m else math.nan
-    out["peak_tension"] = out["tension"].max(axis=0) if m else np.zeros(len(ties))
-    out["peak_surge_force"] = float(np.abs(control[:, 0]).max()) if m else 0.0
-    out["peak_yaw_moment"] = float(np.abs(control[:, 1]).max()) if m else 0.0
-    cut = (control[:, 0] != control[:, 2]) | (control[:, 1] != control[:, 3])
-    out["saturated"] = float(cut.mean()) if m else 0.0
-    out["verdict"], out["message"] = _verdict(out, ties, limits, diverged)
-    return out
-
-
-def _finite_part(plane: Plane, duration: float, steps: int) -> np.ndarray:
-    """The states of the flow up to where it stopped being finite (in pieces of 100 steps)."""
-    h = duration / steps
-    x = plane.start()
-    kept = [x[None, :]]
-    for first in range(0, steps, 100):
-        count = min(100, steps - first)
-        try:
-            x, path = orbits.integrate(plane, x, count * h, count, record=True)
-        except FloatingPointError:
-            break
-        kept.append(path[1:])
-    return np.concatenate(kept)
-
-
-def _verdict(run: dict, ties: list[str], limits: Limits, diverged: str) -> tuple[str, str]:
-    if diverged:
-        return "diverged", diverged
-    least = run["least_clearance"]
-    if least < max(limits.clearance, 0.0) or least == 0.0:
-        return "collision risk", f"hulls {least:.1f} m apart (limit {limits.clearance:g} m)"
-    for tie, limit in limits.tension:
-        peak = float(run["peak_tension"][ties.index(tie)])
-        if peak > limit:
-            return "limit exceeded", f"tie {tie} at {peak / limit:.2f} times its tension limit"
-    return "safe", ""
 
 
 def curves(case: SystemCase | str, first: str, start: float, end: float, second: str,
@@ -557,7 +372,7 @@ def curves(case: SystemCase | str, first: str, start: float, end: float, second:
         ``first`` and ``second`` (the parameters' values), ``frequency`` [rad/s] (Hopf: the
         crossing pair's), ``x``, ``y`` [m] and ``heading`` [deg] per ``body``.
     """
-    plane = _plane(case)
+    plane = plane_of(case)
     weather = weather or weather_of(plane.built.case)
     weather.apply(plane.built)
     shared = {"weather": weather}
@@ -611,8 +426,11 @@ def curves(case: SystemCase | str, first: str, start: float, end: float, second:
                 np.array([v for c in traced for v in c.frequency]),
                 {"units": "rad/s"},
             ),  # fmt: skip
-            **_pose_variables(plane, xs, "curve_point"),
+            **pose_variables(plane, xs, "curve_point"),
         },
         coords={"body": plane.names},
-        attrs={"first": first, "second": second, **_weather_attrs(weather)},
+        attrs={"first": first, "second": second, **weather_attrs(weather)},
     )
+
+
+__all__ = ["compare", "continuation", "curves", "equilibria", "periodic_orbit", "weather_of"]

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from seacable.viz.common import _pyplot
+from seacable.viz.common import _pyplot, save
 
 MARKS = {
     "fold": ("s", "tab:orange"),
@@ -53,11 +53,7 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
         ax.set_title(f"{body}: stable (solid), unstable (dashed)")
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=8)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 CURVE_COLOURS = {"fold": "tab:orange", "hopf": "tab:red"}
@@ -81,11 +77,7 @@ def plot_curves(ds: xr.Dataset, path) -> Path:
     ax.grid(alpha=0.3)
     if seen:
         ax.legend(fontsize=8)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def _runs(flags: np.ndarray) -> list[tuple[int, int]]:

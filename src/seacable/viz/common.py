@@ -1,9 +1,10 @@
 """What the pictures of a system's results share: matplotlib loaded lazily (the Agg backend),
 the output times of snapshots and of animation frames, the frames' checks, progress and the
-GIF writer, the axes' finish (``viz.system``)."""
+GIF writer, the axes' finish (``viz.system``); a figure written and closed (``save``)."""
 
 import logging
 from io import BytesIO
+from pathlib import Path
 
 import numpy as np
 
@@ -17,6 +18,16 @@ def _pyplot():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def save(fig, path, tight: bool = False) -> Path:
+    """Write ``fig`` to ``path`` (its folder made; ``tight``: cropped to what is drawn), close
+    it, and return the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100, bbox_inches="tight" if tight else None)
+    _pyplot().close(fig)
+    return path
 
 
 def _snapshot_indices(times: np.ndarray, every: float | None) -> np.ndarray:

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from seacable.viz.common import _pyplot
+from seacable.viz.common import _pyplot, save
 
 OUTLINES = 24  # hull outlines drawn along a track
 STYLE = {"uncontrolled": dict(color="#d62728", ls="--"), "controlled": dict(color="#1f77b4")}
@@ -57,11 +57,7 @@ def plot_compare(ds: xr.Dataset, path) -> Path:
     fig.suptitle(f"current {ds.attrs['current_speed']:g} m/s towards "
                  f"{ds.attrs['current_towards_deg']:g} deg, wind {ds.attrs['wind_speed']:g} m/s "
                  f"towards {ds.attrs['wind_towards_deg']:g} deg")  # fmt: skip
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return save(fig, path, tight=True)
 
 
 def plot_orbit(ds: xr.Dataset, path) -> Path:
@@ -79,11 +75,7 @@ def plot_orbit(ds: xr.Dataset, path) -> Path:
     right.set_ylabel("tie tension [kN]")
     right.legend(fontsize=8)
     right.grid(alpha=0.3)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return save(fig, path, tight=True)
 
 
 def _track(ax, run: xr.Dataset) -> None:

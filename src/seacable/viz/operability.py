@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from seacable.viz.common import _pyplot
+from seacable.viz.common import _pyplot, save
 
 COLOURS = {
     "stable": "#2ca02c",
@@ -47,8 +47,4 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
                          + f"wind speed = {ratio:g} x current speed")  # fmt: skip
     fig.legend(handles=[Patch(color=COLOURS[n], label=n) for n in names], loc="lower center",
                ncol=len(names), bbox_to_anchor=(0.5, -0.08))  # fmt: skip
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return save(fig, path, tight=True)
