@@ -1,5 +1,5 @@
 """The picture of the ships without and with their compensator in the same weather
-(``seacable.stability.api.compare``'s Dataset): above, each run's track (the hulls' outlines
+(``seacable.compare``'s Dataset): above, each run's track (the hulls' outlines
 every so often, darker as time goes on, the reference points' paths, the ties at the end);
 below, both runs over time: the ties' distances and the hulls' clearance, the ties' tensions,
 and the compensator's surge force and yaw moment. A limit cycle's tracks alike
