@@ -1,16 +1,24 @@
 """Every static equilibrium of a system in the horizontal plane for a given weather, and the
 stability of each from the eigenvalues of the linearised system.
 
-The equilibria are found from many starts: the case's own start, a grid of headings for each
-free body,
-each body placed by its ties (a tie from a body already placed, or from a fixed one, at its
-unstretched length, streaming behind the point; a body without one where the case puts it),
-then Newton's method on the accelerations at rest (``plane.balance``). Newton's solutions are
-merged when they are within a millimetre and a microradian of each other, and each is kept
-only when its force and moment balance holds to round-off (``BALANCED``, relative to the
-largest unbalanced load at a start, or a tie's tension there). The linearisation df/dx
-(``plane.jacobian``) gives the eigenvalues: an equilibrium is stable when every real part is
-below -``STABLE`` |lambda| (or 1e-9 1/s).
+The equilibria are found by Newton's method on the accelerations at rest (``plane.balance``)
+from many starts:
+
+- scanned starts (``_scanned_starts``): each body placed so that its tie balances the loads
+  it carries (``_balanced``: its forces balance at any headings), and the roots of the
+  moments found body by body, by a scan of ``SCAN`` headings refined by Brent's method. When
+  every free body hangs on a chain of ties from a fixed one and the loads at rest depend on
+  the headings only, these are every equilibrium (to the scan's resolution); otherwise they
+  are starts like any other;
+- a grid of headings for each free body, each body placed the same way, unless every scanned
+  start balances already (the scan's premise held: ``_settled``);
+- the case's own start, and any the caller gives (a map's neighbours).
+
+Newton's solutions are merged when they are within a millimetre and a microradian of each
+other, and each is kept only when its force and moment balance holds to round-off
+(``BALANCED``, relative to the largest tie tension or force of a force model there).
+The linearisation df/dx (``plane.jacobian``) gives the eigenvalues: an equilibrium is stable
+when every real part is below -``STABLE`` |lambda| (or 1e-9 1/s).
 """
 
 import itertools
@@ -18,12 +26,16 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize
 
 from seacable.stability.plane import Plane, Weather, balance
 
 BALANCED = 1e-9  # the weighted residual, relative to the bodies' largest loads
+CONVERGED = 1e-11  # Newton stops there (round-off is about 1e-13)
 STABLE = 1e-7  # Re(lambda) below -STABLE |lambda| (or 1e-9 1/s): stable
 SAME_POSITION, SAME_ANGLE = 1e-3, 1e-6  # [m], [rad]: one equilibrium
+SCAN = 72  # headings a body's moment is scanned at (``_scanned_starts``)
+SETTLED = 1e-6  # a scanned start's residual, relative to its ties' tensions: the scan held
 
 
 @dataclass
@@ -72,67 +84,197 @@ def _points(plane: Plane, x: np.ndarray):
     return pose
 
 
-def _placed_starts(plane: Plane, headings: int) -> list[np.ndarray]:
-    """Starts: every combination of ``headings`` headings per body, each body placed by a tie
-    to a body placed before it (module docstring)."""
+def _tie_order(plane: Plane) -> list[tuple[int, tuple[int, int, int] | None]]:
+    """The free bodies (their index j) in an order their ties allow: each with its tie to a
+    body placed before it (its point, the other point, the tie's index), or None (a body not
+    tied to one: it stays where the case puts it)."""
     p = plane.built.params
+    free = {int(b): j for j, b in enumerate(plane.bodies)}
+    placed = {b for b in range(p.body_kind.shape[0]) if b not in free}
+    order: list[tuple[int, tuple[int, int, int] | None]] = []
+    while len(order) < len(free):
+        for b, j in free.items():
+            if b in placed:
+                continue
+            tie = _tie_to_placed(p, b, placed)
+            if tie is not None:
+                order.append((j, tie))
+                placed.add(b)
+                break
+        else:  # the rest are not tied to a placed body
+            order += [(j, None) for b, j in free.items() if b not in placed]
+            break
+    return order
+
+
+def _stretch(p, k: int, tension: float) -> float:
+    """The elongation [m] of tie ``k`` at ``tension`` [N] (its table's or its stiffness's; its
+    last slope beyond its table)."""
+    count = int(p.tie_count[k])
+    if count == 0:
+        return tension / p.tie_stiffness[k] if p.tie_stiffness[k] > 0.0 else 0.0
+    rows = p.tie_table[int(p.tie_first[k]) : int(p.tie_first[k]) + count]
+    if tension <= rows[-1, 1] or count < 2:
+        return float(np.interp(tension, rows[:, 1], rows[:, 0]))
+    slope = (rows[-1, 0] - rows[-2, 0]) / max(rows[-1, 1] - rows[-2, 1], 1e-30)
+    return float(rows[-1, 0] + slope * (tension - rows[-1, 1]))
+
+
+def _place(plane: Plane, x: np.ndarray, j: int, tie, direction) -> None:
+    """Put body j (in ``x``, at its heading there) with its tie point ``tie[0]`` at the other
+    point plus ``direction`` (a vector [m], earth frame)."""
+    p = plane.built.params
+    here, there, _ = tie
+    pose = _points(plane, x)
+    ab = p.point_body[there]
+    oa, ob = p.point_offset[there], p.point_offset[here]
+    ca, sa = math.cos(pose[ab, 2]), math.sin(pose[ab, 2])
+    anchor = pose[ab, :2] + (ca * oa[0] - sa * oa[1], sa * oa[0] + ca * oa[1])
+    c, s = math.cos(x[3 * j + 2]), math.sin(x[3 * j + 2])
+    x[3 * j : 3 * j + 2] = anchor + direction - (c * ob[0] - s * ob[1], s * ob[0] + c * ob[1])
+
+
+def _balanced(plane: Plane, x: np.ndarray, order) -> None:
+    """Place the tied bodies in ``x`` (in place, at their headings there; ``order``:
+    ``_tie_order``) so that each tie balances the loads it carries: with every tie slack, each
+    body's own load at rest (current, wind, thrust at its heading) is summed over the bodies it
+    holds up the chain of ties, and the tie is laid along that sum, stretched to carry it. A
+    body's forces then balance; only its moment is left (module docstring)."""
+    p = plane.built.params
+    for j, tie in order:  # every tie slack: each body's point on its anchor
+        if tie is not None:
+            _place(plane, x, j, tie, np.zeros(2))
+    plane.at_rest(x, jacobian=False)
+    load = {j: plane.work.load[b, :2].copy() for j, b in enumerate(plane.bodies)}  # [N]
+    parent = {j: int(p.point_body[tie[1]]) for j, tie in order if tie is not None}
+    index = {int(b): j for j, b in enumerate(plane.bodies)}
+    for j, _tie in order[::-1]:  # each tie carries its body's load and what it holds
+        up = index.get(parent.get(j, -1), -1)
+        if up >= 0:
+            load[up] += load[j]
+    for j, tie in order:
+        if tie is None:
+            continue
+        size = float(np.hypot(*load[j]))
+        if size > 0.0:
+            along = load[j] / size * (p.tie_length[tie[2]] + _stretch(p, tie[2], size))
+        else:  # no load: streaming behind the point at its length
+            away = -1.0 if p.point_offset[tie[0]][0] >= 0.0 else 1.0
+            psi = x[3 * j + 2]
+            along = away * p.tie_length[tie[2]] * np.array([math.cos(psi), math.sin(psi)])
+        _place(plane, x, j, tie, along)
+
+
+def _placed_starts(plane: Plane, headings: int) -> list[np.ndarray]:
+    """Starts: every combination of ``headings`` headings per body, the bodies placed by their
+    ties (``_balanced``)."""
     n = len(plane.bodies)
-    order = list(range(n))
-    free_index = {int(b): j for j, b in enumerate(plane.bodies)}
-    start = plane.start()[: 3 * n]
     if headings <= 0:
         return []
-    grid = np.linspace(-math.pi, math.pi, headings, endpoint=False)
+    order = _tie_order(plane)
+    start = plane.start()[: 3 * n]
     starts = []
-    for combo in itertools.product(grid, repeat=n):
+    for combo in itertools.product(np.linspace(-math.pi, math.pi, headings, endpoint=False),
+                                   repeat=n):  # fmt: skip
         x = start.copy()
-        placed = {int(b) for b in range(p.body_kind.shape[0]) if int(b) not in free_index}
-        for j in order:
-            x[3 * j + 2] = combo[j]
-        for _ in range(n):  # bodies placed in the order their ties allow
-            for j in order:
-                b = int(plane.bodies[j])
-                if b in placed:
-                    continue
-                tie = _tie_to_placed(p, b, placed)
-                if tie is None:
-                    continue
-                pose = _points(plane, x)
-                here, there, length = tie
-                ob = p.point_offset[here]
-                ab = p.point_body[there]
-                oa = p.point_offset[there]
-                ca, sa = math.cos(pose[ab, 2]), math.sin(pose[ab, 2])
-                anchor = pose[ab, :2] + (ca * oa[0] - sa * oa[1], sa * oa[0] + ca * oa[1])
-                psi = x[3 * j + 2]
-                c, s = math.cos(psi), math.sin(psi)
-                away = -1.0 if ob[0] >= 0.0 else 1.0  # streaming behind the point
-                end = anchor + away * length * np.array([c, s])
-                x[3 * j : 3 * j + 2] = end - (c * ob[0] - s * ob[1], s * ob[0] + c * ob[1])
-                placed.add(b)
+        x[2::3] = combo
+        _balanced(plane, x, order)
         starts.append(x)
     return starts
 
 
+def _scanned_starts(plane: Plane, count: int) -> list[np.ndarray]:
+    """Starts on the balanced placement (``_balanced``), where only the bodies' yaw moments
+    are left: when every free body hangs on a chain of ties from a fixed one and the loads at
+    rest depend on the headings only (a uniform current and wind, thrust fixed to the hull),
+    a body's moment depends on its own heading and on those of the bodies it holds, not on
+    the others'. Its roots are then found body by body from the ends of the chains: a scan
+    of ``count`` headings, each change of sign refined by Brent's method, for every
+    combination of roots of the bodies it holds. Where the premise fails (a compensator, a
+    restoring force model), these are starts like any other."""
+    order = _tie_order(plane)
+    n = len(plane.bodies)
+    if count <= 0 or any(tie is None for _, tie in order):
+        return []
+    base = plane.start()[: 3 * n]
+    # half a step off the headings that symmetric weather makes roots of (0, +-90, 180 deg),
+    # so that no root falls on the seam where the scan closes on itself
+    grid = np.linspace(-math.pi, math.pi, count + 1) + math.pi / count
+    partial: list[dict[int, float]] = [{}]
+    for j, _tie in order[::-1]:  # the ends of the chains first
+
+        def moment(psi: float, fixed: dict[int, float], j: int = j) -> float:
+            x = base.copy()
+            for k, value in fixed.items():
+                x[3 * k + 2] = value
+            x[3 * j + 2] = psi
+            _balanced(plane, x, order)
+            plane.at_rest(x, jacobian=False)
+            return float(plane.work.load[plane.bodies[j], 5])  # [N m], about z
+
+        more = []
+        for fixed in partial:
+            values = [moment(psi, fixed) for psi in grid]  # the ends: round-off apart
+            for k in range(count):
+                fa, fb = values[k], values[k + 1]
+                if fa == 0.0:
+                    more.append({**fixed, j: float(grid[k])})
+                elif fa * fb < 0.0:
+                    psi = optimize.brentq(moment, grid[k], grid[k + 1], args=(fixed,),
+                                          xtol=1e-9)  # fmt: skip
+                    more.append({**fixed, j: float(psi)})
+        partial = more
+    starts = []
+    for headings in partial:
+        x = base.copy()
+        for k, value in headings.items():
+            x[3 * k + 2] = value
+        _balanced(plane, x, order)
+        starts.append(x)
+    return starts
+
+
+def _scale(plane: Plane, x: np.ndarray) -> float:
+    """The size of the loads at positions ``x`` [N]: the largest tie tension or force of a
+    force model on a free body (what a balance there is relative to)."""
+    plane.at_rest(x, jacobian=False)
+    work = plane.work
+    tie = float(np.abs(work.tie_tension).max()) if work.tie_tension.size else 0.0
+    return max(tie, float(np.abs(work.models[plane.bodies, :2]).max()), 1e-30)
+
+
+def _settled(plane: Plane, scanned: list[np.ndarray]) -> bool:
+    """Whether every scanned start balances already, to ``SETTLED`` of its ties' tensions
+    (Brent's method leaves the moments near 1e-9 of their slopes): the scan's premise held,
+    and its starts are every equilibrium."""
+    for x in scanned:
+        g, _ = plane.at_rest(x, jacobian=False)
+        if np.abs(g).max() > SETTLED * max(np.abs(plane.work.tie_tension).max(), 1e-30):
+            return False
+    return True
+
+
 def _tie_to_placed(p, body: int, placed: set[int]):
     """A tie between ``body`` and a placed body: (its point on ``body``, the other point, the
-    unstretched length), or None."""
+    tie's index), or None."""
     for k in range(p.tie_from.shape[0]):
         a, b = int(p.tie_from[k]), int(p.tie_to[k])
         if p.point_body[a] == body and int(p.point_body[b]) in placed:
-            return a, b, float(p.tie_length[k])
+            return a, b, k
         if p.point_body[b] == body and int(p.point_body[a]) in placed:
-            return b, a, float(p.tie_length[k])
+            return b, a, k
     return None
 
 
 def find(
     plane: Plane, weather: Weather | None = None, headings: int = 12,
-    extra: list[np.ndarray] | None = None, iterations: int = 60,
+    extra: list[np.ndarray] | None = None, iterations: int = 60, scan: int = SCAN,
 ) -> list[Equilibrium]:  # fmt: skip
-    """Every equilibrium reached from the starts (module docstring) and from ``extra`` starts
-    (positions), the stable ones first, then the most visited; ``weather`` applied first when
-    given."""
+    """Every equilibrium reached by Newton from the starts (module docstring: ``extra``
+    positions, the scanned starts of ``scan`` headings, the placed starts of ``headings`` a
+    body unless every scanned start balances already, the case's own; with ``headings`` 0
+    only ``extra``), the stable ones first, then the most visited; ``weather`` applied first
+    when given."""
     if weather is not None:
         weather.apply(plane.built)
     p = plane.built.params
@@ -141,22 +283,28 @@ def find(
     reach = np.tile([50.0, 50.0, 0.5], n)
     found: list[Equilibrium] = []
     out = np.empty(3 * n)
-    starts = [*(extra or []), *_placed_starts(plane, headings)]
-    if headings > 0:  # the case's own start too
-        starts.append(plane.start()[: 3 * n])
-    # the loads' size: the largest unbalanced load of a start, or a tie's tension at one
-    scale = 1e-30
+    starts = [np.asarray(x, dtype=float) for x in (extra or [])]
+    if headings > 0:
+        scanned = _scanned_starts(plane, scan)
+        starts += scanned
+        if not (scanned and _settled(plane, scanned)):  # the grid, unless the scan settles it
+            starts += _placed_starts(plane, headings)
+        starts.append(plane.start()[: 3 * n])  # the case's own start too
     for x0 in starts:
-        g, _ = plane.at_rest(np.asarray(x0, dtype=float), jacobian=False)
-        tie = np.abs(plane.work.tie_tension).max() if plane.work.tie_tension.size else 0.0
-        scale = max(scale, float(np.abs(g).max()), tie)
-    for x0 in starts:
-        norm, its = balance(0.0, np.asarray(x0, dtype=float), plane.y, plane.q, plane.v, p,
-                            plane.work, plane.ydot, plane.weight, steps, reach, iterations,
-                            out)  # fmt: skip
+        scale = _scale(plane, x0)
+        norm, _ = balance(0.0, x0, plane.y, plane.q, plane.v, p, plane.work, plane.ydot,
+                          plane.weight, steps, reach, iterations, CONVERGED * scale,
+                          out)  # fmt: skip
         if not np.all(np.isfinite(out)):
-            continue  # a stalled Newton (its < 0) is kept when it stalled at round-off
+            continue  # a stalled Newton is kept when it stalled at round-off
         x = out.copy()
+        scale = _scale(plane, x)
+        if CONVERGED * scale < norm < 1e-3 * scale:  # stopped on a wild start's loads: polish
+            norm, _ = balance(0.0, x, plane.y, plane.q, plane.v, p, plane.work, plane.ydot,
+                              plane.weight, steps, reach, iterations, CONVERGED * scale,
+                              out)  # fmt: skip
+            x = out.copy()
+            scale = _scale(plane, x)
         x[2::3] = _wrap(x[2::3])
         if norm > BALANCED * scale:
             continue

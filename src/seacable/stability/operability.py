@@ -17,12 +17,9 @@ Each state gets one status (``STATUSES``):
   with its message, never a lost map.
 
 The equilibria of a state are found from the previous state's (the map is swept in order, so
-neighbours start each other) and, when those give no stable one, from placed starts
-(``headings`` per body, then twice as many), and
-classified by their eigenvalues (seacable.stability.equilibria). The search is not
-exhaustive: with few headings it misses equilibria that more starts find (the example's head
-wind of 24 m/s has 4 equilibria from 4 headings per body, 10 from 12; its stable one only from
-24). With ``simulate`` [s] each
+neighbours start each other) and, when those give no stable one, by the whole search (scanned
+starts and ``headings`` per body: seacable.stability.equilibria), and classified by their
+eigenvalues. With ``simulate`` [s] each
 state is also integrated for that long (the fixed-step flow of seacable.stability.orbits) from
 the stable equilibrium pushed off by 1 m and 1 deg, or, without one, from the unstable one
 nearest the nominal places.
@@ -91,23 +88,33 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, 
     except Exception as exc:  # the whole chunk fails the same way
         return [_failed(f"the case: {exc}") for _ in states]
     nominal = plane.start()[: 3 * len(plane.bodies)]
-    previous: list[np.ndarray] = []
+    solved: list[tuple[np.ndarray, list[np.ndarray]]] = []  # (weather's place, equilibria)
     rows = []
     for state in states:
         try:
             Weather(*state).apply(plane.built)
-            # the neighbour's equilibria first; fresh starts only when they give no stable one
-            found = eq.find(plane, None, 0, extra=previous, iterations=30) if previous else []
-            for count in (headings, 2 * headings):  # more starts before saying "unstable"
-                if any(e.stable for e in found):
-                    break
-                more = eq.find(plane, None, count, extra=previous, iterations=30)
-                found = more if len(more) >= len(found) else found
-            previous = [e.x for e in found]
+            # the equilibria of the nearest state solved, continued; the whole search (scanned
+            # and placed starts: seacable.stability.equilibria) when they give no stable one
+            here = _place_of(state)
+            near = min(solved, key=lambda s: float(np.abs(s[0] - here).sum()), default=None)
+            found = eq.find(plane, None, 0, extra=near[1] if near else [], iterations=30)
+            if not any(e.stable for e in found):
+                found = eq.find(plane, None, headings, extra=[e.x for e in found],
+                                iterations=30)  # fmt: skip
+            solved.append((here, [e.x for e in found]))
             rows.append(_classify(plane, found, nominal, limits, simulate))
         except Exception as exc:  # one state's failure is its row
             rows.append(_failed(f"{type(exc).__name__}: {exc}"))
     return rows
+
+
+def _place_of(state: tuple[float, float, float, float]) -> np.ndarray:
+    """A weather state (current speed, towards, wind speed, towards) as a point in which
+    near states are near: the current's velocity [m/s] and the wind's over 30."""
+    cs, ct, ws, wt = state
+    ct, wt = math.radians(ct), math.radians(wt)
+    return np.array([cs * math.cos(ct), cs * math.sin(ct), ws * math.cos(wt) / 30.0,
+                     ws * math.sin(wt) / 30.0])  # fmt: skip
 
 
 def _failed(message: str) -> dict:
@@ -195,7 +202,7 @@ def _distance(x: np.ndarray, nominal: np.ndarray) -> float:
 
 def operability(case: SystemCase | str, states: list[Weather], shape: dict | None = None,
                 limits: Limits = Limits(), simulate: float | None = None,
-                scheduler: str | None = "local", chunk: int = 36,
+                scheduler: str | None = "local", chunk: int = 108,
                 headings: int = 6, control: str | None = None) -> xr.Dataset:  # fmt: skip
     """The map (module docstring) of ``states``; ``shape`` (from ``grid``): their grid's
     coordinates (else a dimension ``state``); ``control``: the compensators (forces.compensator)

@@ -74,10 +74,11 @@ def jacobian(t, x, y, q, v, p, w, ydot, out, step):
 
 
 @njit(**JIT)
-def at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac):
+def at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac, sides):
     """G(X): the accelerations with the bodies at rest at positions X = ``x`` (3 per body),
-    weighted by ``weight`` (``g``), and dG/dX (``jac``, central differences of ``step``);
-    ``jac`` is skipped when it has no rows."""
+    weighted by ``weight`` (``g``), and dG/dX (``jac``, differences of ``step``: central when
+    ``sides`` is 2, forward from G when 1, half the cost, for Newton's steps); ``jac`` is
+    skipped when it has no rows."""
     m = x.shape[0]
     xx = np.zeros(2 * m)
     f = np.empty(2 * m)
@@ -91,37 +92,47 @@ def at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac):
     for j in range(m):
         xx[j] = x[j] + step[j]
         rates(t, xx, y, q, v, p, w, ydot, up)
-        xx[j] = x[j] - step[j]
-        rates(t, xx, y, q, v, p, w, ydot, down)
+        if sides == 2:
+            xx[j] = x[j] - step[j]
+            rates(t, xx, y, q, v, p, w, ydot, down)
+        else:
+            down[m:] = f[m:]
         xx[j] = x[j]
         for i in range(m):
-            jac[i, j] = (up[m + i] - down[m + i]) * weight[i] / (2.0 * step[j])
+            jac[i, j] = (up[m + i] - down[m + i]) * weight[i] / (sides * step[j])
 
 
 @njit(**JIT)
-def balance(t, x0, y, q, v, p, w, ydot, weight, step, reach, iterations, out):
+def balance(t, x0, y, q, v, p, w, ydot, weight, step, reach, iterations, tolerance, out):
     """Newton's method for the positions X (3 per body) at which the accelerations vanish with
     the bodies at rest, from ``x0`` (the positions), the residual weighted by ``weight`` (the
     bodies' masses and inertias: forces [N] and moments per metre). Each step is limited to
-    ``reach`` (per entry) and halved until the weighted residual falls. The solution goes to
-    ``out``; returned: the weighted residual's largest entry, the iterations taken (negative
-    when Newton stalled)."""
+    ``reach`` (per entry) and halved until the weighted residual's 2-norm falls (Newton's
+    step descends on it, not always on the largest entry); its Jacobian is of forward
+    differences. It stops when that residual's largest entry is at most ``tolerance``
+    or a full step is below 1e-10 of the positions. The solution goes to ``out``; returned:
+    the weighted residual's largest entry, the iterations taken (negative when Newton
+    stalled)."""
     m = x0.shape[0]
     x = x0.copy()
     g, gt = np.empty(m), np.empty(m)
     jac = np.empty((m, m))
     none = np.empty((0, 0))
     trial = np.empty(m)
-    at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, none)
+    one = np.int64(1)  # forward differences: Newton's steps need no more
+    at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, none, one)
     norm = np.abs(g).max()
-    before = norm  # the residual ten iterations ago: a start that gains under 10 %, stalls
+    before = norm  # the residual five iterations ago: a start that gains under 10 %, stalls
     for it in range(iterations):
-        if it % 10 == 0:
+        if norm <= tolerance:
+            out[:] = x
+            return norm, it
+        if it % 5 == 0:
             if it > 0 and norm > 0.9 * before:
                 out[:] = x
                 return norm, -(it + 1)
             before = norm
-        at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac)
+        at_rest(t, x, y, q, v, p, w, ydot, weight, step, g, jac, one)
         if not np.all(np.isfinite(jac)):
             out[:] = x
             return norm, -(it + 1)
@@ -136,11 +147,12 @@ def balance(t, x0, y, q, v, p, w, ydot, weight, step, reach, iterations, out):
                 scale = reach[i] / abs(dx[i])
         accepted = False
         nt = norm
+        size = np.dot(g, g)
         for _ in range(16):  # down to 1.5e-5 of the step
             trial[:] = x + scale * dx
-            at_rest(t, trial, y, q, v, p, w, ydot, weight, step, gt, none)
+            at_rest(t, trial, y, q, v, p, w, ydot, weight, step, gt, none, one)
             nt = np.abs(gt).max()
-            if nt < norm or nt == 0.0:
+            if np.dot(gt, gt) < size or nt == 0.0:
                 accepted = True
                 break
             scale *= 0.5
@@ -265,7 +277,7 @@ class Plane:
         jac = np.empty((m, m) if jacobian else (0, 0))
         at_rest(t, np.asarray(positions, dtype=float), self.y, self.q, self.v,
                 self.built.params, self.work, self.ydot, self.weight, self.steps()[:m], g,
-                jac)  # fmt: skip
+                jac, np.int64(2))  # fmt: skip
         return g, (jac if jacobian else None)
 
     def hulls(self) -> list[np.ndarray | None]:
