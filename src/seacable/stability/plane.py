@@ -26,7 +26,7 @@ from numba import njit
 
 from seacable import packing
 from seacable.case import forces as fm
-from seacable.case.environment import Environment
+from seacable.case.environment import Environment, RegularWave
 from seacable.case.system import RigidBody, SystemCase, Tie
 from seacable.errors import CaseError
 from seacable.forces import compensator, kinds
@@ -350,12 +350,13 @@ class Weather:
     """A uniform current and a constant wind, each a speed [m/s] and the direction it goes
     TOWARDS [deg] (from +x towards +y, as ``environment.current`` and ``environment.wind``);
     and the case's waves (``environment.waves``, as realised for a simulation), which act
-    through the ships' ``wave drift``: ``wave_height`` the significant height Hs = 4 sqrt(m0)
-    [m] they are scaled to (every component's amplitude by Hs / Hs_case, m0 = sum a_i^2 / 2:
-    for a regular wave of height H, Hs = sqrt(2) H), ``wave_towards_deg`` the mean direction
-    they are turned to [deg] (every component's by the same angle; the mean is the direction
-    of sum a_i^2 (cos b_i, sin b_i), the wave's own for one wave or a spread spectrum). None:
-    the case's own."""
+    through the ships' ``wave drift``: ``wave_height`` the significant height Hs [m] they are
+    scaled to (every component's amplitude by Hs / Hs_case, so the drift by (Hs /
+    Hs_case)^2; Hs_case = 4 sqrt(m0) of the case's waves as given, m0 the sum of each
+    spectrum's Hs^2 / 16 and each regular wave's H^2 / 8: a regular wave of height H alone has
+    Hs_case = sqrt(2) H), ``wave_towards_deg`` the mean direction they are turned to [deg]
+    (every component's by the same angle; the mean is the direction of sum a_i^2 (cos b_i,
+    sin b_i), the wave's own for one wave or a spread spectrum). None: the case's own."""
 
     current_speed: float = 0.0
     current_towards_deg: float = 0.0
@@ -408,7 +409,7 @@ class Weather:
         energy = sea[waves.A] ** 2
         scale, turn = 1.0, 0.0
         if self.wave_height is not None:
-            scale = self.wave_height / (4.0 * math.sqrt(0.5 * energy.sum()))
+            scale = self.wave_height / significant_height(built.case.environment)
         if self.wave_towards_deg is not None:
             mean = math.atan2((energy * sea[waves.SIN]).sum(), (energy * sea[waves.COS]).sum())
             turn = math.radians(self.wave_towards_deg) - mean
@@ -416,6 +417,14 @@ class Weather:
         p.wave[waves.A] = scale * sea[waves.A]
         p.wave[waves.COS] = c * sea[waves.COS] - s * sea[waves.SIN]
         p.wave[waves.SIN] = s * sea[waves.COS] + c * sea[waves.SIN]
+
+
+def significant_height(environment: Environment) -> float:
+    """Hs = 4 sqrt(m0) [m] of the waves as given: m0 the sum of each spectrum's Hs^2 / 16
+    and each regular wave's H^2 / 8 (its a^2 / 2)."""
+    m0 = sum(w.height**2 / 8.0 if isinstance(w, RegularWave) else w.significant_height**2 / 16.0
+             for w in environment.waves)  # fmt: skip
+    return 4.0 * math.sqrt(m0)
 
 
 _SEAS: dict[str, np.ndarray] = {}  # case_sea's, by the environment's JSON
@@ -443,13 +452,5 @@ def set_constant(p: kernel.SystemParams, channel: int, value: float) -> None:
     p.tf_build_up[channel, :] = 0.0
 
 
-__all__ = [
-    "Plane",
-    "Weather",
-    "at_rest",
-    "balance",
-    "case_sea",
-    "jacobian",
-    "rates",
-    "set_constant",
-]
+__all__ = ["Plane", "Weather", "at_rest", "balance", "case_sea", "jacobian", "rates",
+           "set_constant", "significant_height"]  # fmt: skip
