@@ -5,6 +5,7 @@ steady drift speed in a time simulation, and a turret-moored tanker that weather
 the waves in the horizontal-plane analyses (Weather's wave_towards_deg turning it)."""
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -233,3 +234,35 @@ def test_the_plane_refuses_first_order_wave_loads_and_waves_it_cannot_vary():
     plane = Plane.of(turret_case("short-wing"))
     with pytest.raises(CaseError, match="environment.waves: none"):
         Weather(1.0, 180.0, wave_height=2.0).apply(plane.built)
+
+
+def test_the_examples_fpso_settles_between_current_wind_and_waves():
+    """examples/turret_fpso_wave_drift.yaml: a stable equilibrium with the case's weather; its
+    waves scaled to nothing give the heading of the same FPSO without its wave drift model
+    (to 1e-6 deg), and the waves, from 30 deg off the bow, turn it by more than a degree
+    towards them (headings grow towards port: waves towards 150 deg come from -30 deg)."""
+    from seacable.case import loader
+    from seacable.stability.datasets import weather_of
+
+    case = loader.load_case(EXAMPLES / "turret_fpso_wave_drift.yaml")
+    weather = weather_of(case)
+    plane = Plane.of(case, loader.case_base_dir(case))
+    stable, _ = _stable_headings_in(plane, weather)
+    calm = replace(weather, wave_height=1e-9)
+    still, _ = _stable_headings_in(plane, calm)
+    data = case.model_dump(by_alias=True, exclude_none=True)
+    data["bodies"][1]["external forces"].pop()
+    without = Plane.of(seacable.load_case(data), loader.case_base_dir(case))
+    bare, _ = _stable_headings_in(without, weather)
+    assert len(stable) == len(still) == len(bare) == 1
+    assert _wrapped(still[0]) == pytest.approx(_wrapped(bare[0]), abs=1e-6)
+    assert _wrapped(stable[0]) < _wrapped(bare[0]) - 1.0
+
+
+def _stable_headings_in(plane, weather):
+    weather.apply(plane.built)
+    return _stable_headings(plane)
+
+
+def _wrapped(degrees):
+    return (degrees + 180.0) % 360.0 - 180.0

@@ -12,9 +12,11 @@ import xarray as xr
 
 import seacable
 from seacable import viz
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import operability as stability_map
 from seacable.stability.api import weather_of
+from seacable.stability.plane import significant_height
 
 
 def _weather(case, current, wind) -> seacable.Weather:
@@ -56,9 +58,11 @@ def equilibria(case_file: str, current, wind, headings: int, output: str | None)
     case = seacable.load_case(case_file)
     weather = _weather(case, current, wind)
     found = seacable.equilibria(case, weather, headings=headings)
+    waves = case.environment.waves if isinstance(case, SystemCase) else []
+    sea = f", the case's waves (Hs {significant_height(case.environment):g} m)" if waves else ""
     click.echo(f"current {weather.current_speed:g} m/s towards {weather.current_towards_deg:g} "
-               f"deg, wind {weather.wind_speed:g} m/s towards {weather.wind_towards_deg:g} deg: "
-               f"{found.sizes['equilibrium']} equilibria")  # fmt: skip
+               f"deg, wind {weather.wind_speed:g} m/s towards {weather.wind_towards_deg:g} deg"
+               f"{sea}: {found.sizes['equilibrium']} equilibria")  # fmt: skip
     for i in range(found.sizes["equilibrium"]):
         e = found.isel(equilibrium=i)
         poses = "; ".join(
