@@ -154,6 +154,26 @@ def test_bad_tables_and_a_model_without_waves_are_refused_with_the_field_named()
         seacable.simulate(_case([_drift(rows)], env=env))
 
 
+def test_a_csv_table_gives_the_inline_tables_load(tmp_path):
+    """A CSV file of five columns (a header, a comment) gives the inline table's load; a second
+    header line and a row of six columns are refused with the file named."""
+    rows = [[w, r[0], *(r[1:] * w)] for w in (0.4, 0.9) for r in TABLE]
+    env = {"waves": [_jonswap(100.0, frequencies=40)]}
+    text = "# a drift table\nomega,beta_deg,D_X,D_Y,D_N\n" + "".join(
+        ",".join(repr(float(v)) for v in row) + "\n" for row in rows
+    )
+    (tmp_path / "drift.csv").write_text(text)
+    inline = _loads(_case([_drift(rows)], env=env), angles=(0, 0, 0.3))
+    from_file = _loads(_case([_drift(str(tmp_path / "drift.csv"))], env=env), angles=(0, 0, 0.3))
+    np.testing.assert_array_equal(from_file, inline)
+    (tmp_path / "two.csv").write_text("a second header\n" + text)
+    with pytest.raises(CaseError, match=r"two\.csv': bad row \['omega'"):
+        seacable.simulate(_case([_drift(str(tmp_path / "two.csv"))], env=env))
+    (tmp_path / "six.csv").write_text(text + "0.9,10,1,2,3,4\n")
+    with pytest.raises(CaseError, match=r"six\.csv': row .* needs 4 or 5 columns"):
+        seacable.simulate(_case([_drift(str(tmp_path / "six.csv"))], env=env))
+
+
 # ---- the horizontal-plane analyses ---------------------------------------------------------
 RHO, G = 1025.0, 9.81
 

@@ -75,15 +75,17 @@ def csv_rows(file: str, base_dir, widths: tuple[int, ...], names: str) -> np.nda
     (comment lines with '#', a header allowed); ``names`` the columns, for the messages."""
     text = Table(kind="table", file=file).text(base_dir)
     rows: list[list[float]] = []
+    header = False
     for row in csv.reader(io.StringIO(text)):
         if not row or row[0].strip().startswith("#"):
             continue
         try:
             values = [float(v) for v in row]
         except ValueError:
-            if rows:
+            if rows or header:
                 raise ValueError(f"coefficients file '{file}': bad row {row!r}") from None
-            continue  # the header
+            header = True  # one header line, before the numbers
+            continue
         if len(values) not in widths or (rows and len(values) != len(rows[0])):
             raise ValueError(f"coefficients file '{file}': row {row!r} needs "
                              f"{' or '.join(map(str, widths))} columns ({names}), as many "
