@@ -286,3 +286,24 @@ def _stable_headings_in(plane, weather):
 
 def _wrapped(degrees):
     return (degrees + 180.0) % 360.0 - 180.0
+
+
+def test_the_command_lines_waves_option_scales_and_turns_the_sea():
+    """`seacable equilibria --waves 5 150` on the example: the sea of Hs 5 m (twice the case's)
+    turns the FPSO to -12.28 deg (-1.89 deg in the case's own sea); `seacable continuation
+    --parameter waves.towards_deg` follows its heading as the waves turn."""
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    example = str(EXAMPLES / "turret_fpso_wave_drift.yaml")
+    run = CliRunner().invoke(main, ["equilibria", example, "--waves", "5", "150"])
+    assert run.exit_code == 0, run.output
+    assert "waves Hs 5 m towards 150 deg: 2 equilibria" in run.output
+    assert "1. stable" in run.output and "heading -12.28 deg" in run.output
+    run = CliRunner().invoke(main, ["equilibria", example])
+    assert "waves Hs 2.5 m: 2 equilibria" in run.output and "heading -1.89 deg" in run.output
+    arguments = ["--parameter", "waves.towards_deg", "--from", "120", "--to", "180"]
+    run = CliRunner().invoke(main, ["continuation", example, *arguments])
+    assert run.exit_code == 0, run.output
+    assert " branches, " in run.output
