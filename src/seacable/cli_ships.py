@@ -12,19 +12,23 @@ import xarray as xr
 
 import seacable
 from seacable import viz
+from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import operability as stability_map
 from seacable.stability.api import weather_of
+from seacable.stability.plane import significant_height
 
 
-def _weather(case, current, wind) -> seacable.Weather:
-    """The case's weather with the options' current and wind (speed, towards_deg) replacing
-    its own."""
+def _weather(case, current, wind, waves) -> seacable.Weather:
+    """The case's weather with the options' current and wind (speed, towards_deg) and waves
+    (significant height, towards_deg) replacing its own."""
     weather = weather_of(case)
     if current is not None:
         weather = replace(weather, current_speed=current[0], current_towards_deg=current[1])
     if wind is not None:
         weather = replace(weather, wind_speed=wind[0], wind_towards_deg=wind[1])
+    if waves is not None:
+        weather = replace(weather, wave_height=waves[0], wave_towards_deg=waves[1])
     return weather
 
 
@@ -35,6 +39,10 @@ WEATHER_OPTIONS = [
     click.option("--wind", nargs=2, type=float, default=None,
                  help="Constant wind: speed [m/s] and the direction it blows towards [deg] "
                       "(default: the case's)."),
+    click.option("--waves", nargs=2, type=float, default=None,
+                 help="The case's waves scaled to a significant height [m] and turned to a mean "
+                      "direction they go towards [deg] (default: the case's; they act through "
+                      "the ships' wave drift)."),
     click.option("--headings", type=int, default=12, show_default=True,
                  help="Starting headings per body in the search for equilibria."),
 ]  # fmt: skip
@@ -50,15 +58,21 @@ def _weather_options(command):
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
-def equilibria(case_file: str, current, wind, headings: int, output: str | None) -> None:
+def equilibria(case_file: str, current, wind, waves, headings: int, output: str | None) -> None:
     """Every equilibrium of the ships of CASE_FILE in the horizontal plane (surge, sway, yaw)
     for a current and a wind, and its stability from the linearised system's eigenvalues."""
     case = seacable.load_case(case_file)
-    weather = _weather(case, current, wind)
+    weather = _weather(case, current, wind, waves)
     found = seacable.equilibria(case, weather, headings=headings)
+    sea = ""
+    if isinstance(case, SystemCase) and case.environment.waves:
+        height = weather.wave_height or significant_height(case.environment)
+        towards = ("" if weather.wave_towards_deg is None
+                   else f" towards {weather.wave_towards_deg:g} deg")  # fmt: skip
+        sea = f", waves Hs {height:g} m{towards}"
     click.echo(f"current {weather.current_speed:g} m/s towards {weather.current_towards_deg:g} "
-               f"deg, wind {weather.wind_speed:g} m/s towards {weather.wind_towards_deg:g} deg: "
-               f"{found.sizes['equilibrium']} equilibria")  # fmt: skip
+               f"deg, wind {weather.wind_speed:g} m/s towards {weather.wind_towards_deg:g} deg"
+               f"{sea}: {found.sizes['equilibrium']} equilibria")  # fmt: skip
     for i in range(found.sizes["equilibrium"]):
         e = found.isel(equilibrium=i)
         poses = "; ".join(
@@ -80,7 +94,8 @@ def equilibria(case_file: str, current, wind, headings: int, output: str | None)
     "path",
     required=True,
     help="What varies: current.speed, current.towards_deg, wind.speed, "
-    "wind.towards_deg, lines.<tie>.unstretched_length, lines.<tie>.stiffness, "
+    "wind.towards_deg, waves.height, waves.towards_deg, lines.<tie>.unstretched_length, "
+    "lines.<tie>.stiffness, "
     "bodies.<body>.points.<point>.x, bodies.<body>.external forces.<k>.force_x",
 )
 @click.option("--from", "start", type=float, required=True, help="The parameter's first value.")
@@ -90,7 +105,7 @@ def equilibria(case_file: str, current, wind, headings: int, output: str | None)
 @click.option("--plot", type=click.Path(dir_okay=False), help="Bifurcation diagram (.png).")
 @click.option("--cycles", type=int, default=0, show_default=True,
               help="Periodic orbits to follow from each Hopf point, and its kind.")  # fmt: skip
-def continuation(case_file: str, path: str, start: float, end: float, current, wind,
+def continuation(case_file: str, path: str, start: float, end: float, current, wind, waves,
                  headings: int, output: str | None, plot: str | None,
                  cycles: int) -> None:  # fmt: skip
     """Branches of equilibria of the ships of CASE_FILE as a parameter varies, with their
@@ -98,7 +113,7 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
     branches of limit cycles born at the Hopf points and whether each is super- or
     subcritical, by simulation."""
     case = seacable.load_case(case_file)
-    found = seacable.continuation(case, path, start, end, _weather(case, current, wind),
+    found = seacable.continuation(case, path, start, end, _weather(case, current, wind, waves),
                                   headings=headings, cycles=cycles)  # fmt: skip
     branches = np.unique(found["branch"].values)
     click.echo(f"{len(branches)} branches, {found.sizes['point']} points")
@@ -141,14 +156,14 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the curves (.png).")
 def curves(case_file: str, path: str, start: float, end: float, second: str,
-           second_start: float, second_end: float, current, wind, headings: int,
+           second_start: float, second_end: float, current, wind, waves, headings: int,
            output: str | None, plot: str | None) -> None:  # fmt: skip
     """Curves of folds and Hopf points of the ships of CASE_FILE in two parameters: those a
     continuation in the first finds with the second at --second-from, followed as both
     change."""
     case = seacable.load_case(case_file)
     found = seacable.curves(case, path, start, end, second, second_start, second_end,
-                            _weather(case, current, wind), headings=headings)  # fmt: skip
+                            _weather(case, current, wind, waves), headings=headings)  # fmt: skip
     click.echo(f"{found.sizes['curve']} curves")
     for k, kind in enumerate(found["kind"].values):
         on = found.where(found["curve"] == k, drop=True)
@@ -171,12 +186,12 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
 @click.option("--plot", type=click.Path(dir_okay=False),
               help="Picture of the ships' tracks and tensions over a period (.png).")  # fmt: skip
 def orbit(case_file: str, path: str | None, value: float | None, settle: float | None, current,
-          wind, headings: int, output: str | None, plot: str | None) -> None:  # fmt: skip
+          wind, waves, headings: int, output: str | None, plot: str | None) -> None:  # fmt: skip
     """The limit cycle (fishtailing) the ships of CASE_FILE settle on from their oscillatory
     unstable equilibrium: period, amplitudes, hawser tensions, the hulls' least clearance and
     its Floquet multipliers (shooting)."""
     case = seacable.load_case(case_file)
-    found = seacable.periodic_orbit(case, _weather(case, current, wind), path, value, settle,
+    found = seacable.periodic_orbit(case, _weather(case, current, wind, waves), path, value, settle,
                                     headings=headings)  # fmt: skip
     state = "stable" if bool(found["stable"]) else "unstable"
     moduli = np.abs(found["multiplier_real"].values + 1j * found["multiplier_imag"].values)
@@ -284,13 +299,13 @@ def _controls(found: xr.Dataset) -> list[tuple[xr.Dataset, str]]:
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of both runs (.png).")
-def compare(case_file: str, current, wind, headings: int, duration: float | None,
+def compare(case_file: str, current, wind, waves, headings: int, duration: float | None,
             clearance: float, tension, output: str | None, plot: str | None) -> None:  # fmt: skip
     """The ships of CASE_FILE in one weather without and with their compensator, side by side:
     is it safe, with and without control? (distance, tension, thrust, clearance)."""
     case = seacable.load_case(case_file)
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
-    found = seacable.compare(case, _weather(case, current, wind), duration, limits=limits)
+    found = seacable.compare(case, _weather(case, current, wind, waves), duration, limits=limits)
     for control in found["control"].values:
         run = found.sel(control=control)
         peaks = ", ".join(f"{t} {run['peak_tension'].sel(tie=t).item() / 1e3:.4g} kN"

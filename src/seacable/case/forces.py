@@ -346,6 +346,25 @@ class CurrentLoad(_CoefficientLoad):
     model: Literal["current"]
 
 
+class WaveDrift(_Model):
+    """The mean wave drift force (forces.wave_drift) of the case's ``environment.waves``:
+    F = sum_i a_i^2 D(w_i, beta_i) at ``point``, a_i [m] and w_i [rad/s] the sea's
+    components, beta_i the direction each comes from, from the bow towards port (0: head
+    seas). ``coefficients``: [[beta_deg, D_X, D_Y, D_N], ...] (independent of frequency) or
+    [[omega, beta_deg, D_X, D_Y, D_N], ...] (omega [rad/s] ascending, the same headings at
+    each), or a CSV file of those columns; D_X, D_Y in N/m^2, D_N in N m/m^2 (per unit
+    squared amplitude); beta ascending over less than 360 deg, interpolated linearly and
+    periodically, omega linearly (held at its ends). ``symmetric``: 0 to 180 deg given, the
+    other side mirrored (D_X even, D_Y and D_N odd in beta)."""
+
+    model: Literal["wave drift"]
+    point: BodyPoint = ORIGIN  # where the force acts and D_N refers to
+    coefficients: (
+        list[tuple[float, float, float, float] | tuple[float, float, float, float, float]] | str
+    )
+    symmetric: bool = False
+
+
 class HullDerivatives(_Model):
     """Clarke's linear derivatives (non-dimensional, prime: Y_v per 1/2 rho L^2 U, Y_r and N_v
     per 1/2 rho L^3 U, N_r per 1/2 rho L^4 U) replacing the values Clarke, Gedling and Hine's
@@ -443,6 +462,7 @@ ForceModel = Annotated[
     | CurrentLoad
     | ShortWing
     | CrossFlow
-    | Compensator,
+    | Compensator
+    | WaveDrift,
     Field(discriminator="model"),
 ]

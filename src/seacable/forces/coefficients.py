@@ -43,16 +43,23 @@ def table_rows(spec, base_dir=None) -> np.ndarray:
     ``coefficients`` (inline, or a CSV file), mirrored when ``symmetric``; a ValueError line
     when the file cannot be read or the angles are not ascending within 360 deg."""
     if isinstance(spec.coefficients, str):
-        rows = _csv_rows(spec.coefficients, base_dir)
+        rows = csv_rows(spec.coefficients, base_dir, (COLUMNS,), "psi_deg, C_X, C_Y, C_N")
     else:
         rows = np.array(spec.coefficients, dtype=float).reshape(-1, COLUMNS)
+    return heading_table(rows, spec.symmetric, "[psi_deg, C_X, C_Y, C_N]")
+
+
+def heading_table(rows: np.ndarray, symmetric: bool, columns: str) -> np.ndarray:
+    """``rows`` (angle [deg], X, Y, N) checked (at least 2, the angles increasing strictly
+    over less than 360 deg) and, when ``symmetric`` (0 to 180 deg given), mirrored: X even,
+    Y and N odd in the angle. ``columns`` names them in the messages (ValueError lines)."""
     if rows.shape[0] < 2:
-        raise ValueError("coefficients: give at least 2 rows [psi_deg, C_X, C_Y, C_N]")
+        raise ValueError(f"coefficients: give at least 2 rows {columns}")
     psi = rows[:, 0]
     if np.any(np.diff(psi) <= 0) or psi[-1] - psi[0] >= 360.0:
         raise ValueError(f"coefficients: angles {psi.tolist()} must increase strictly and "
                          "span less than 360 deg")  # fmt: skip
-    if spec.symmetric:
+    if symmetric:
         if psi[0] < 0.0 or psi[-1] > 180.0:
             raise ValueError(f"coefficients: a symmetric table covers 0 to 180 deg; its "
                              f"angles run from {psi[0]:g} to {psi[-1]:g}")  # fmt: skip
@@ -63,24 +70,28 @@ def table_rows(spec, base_dir=None) -> np.ndarray:
     return rows
 
 
-def _csv_rows(file: str, base_dir) -> np.ndarray:
-    """The rows of a CSV file of four numbers (comment lines with '#', a header allowed)."""
+def csv_rows(file: str, base_dir, widths: tuple[int, ...], names: str) -> np.ndarray:
+    """The rows of a CSV file of numbers, each row of one of ``widths`` columns, all alike
+    (comment lines with '#', a header allowed); ``names`` the columns, for the messages."""
     text = Table(kind="table", file=file).text(base_dir)
     rows: list[list[float]] = []
+    header = False
     for row in csv.reader(io.StringIO(text)):
         if not row or row[0].strip().startswith("#"):
             continue
         try:
             values = [float(v) for v in row]
         except ValueError:
-            if rows:
+            if rows or header:
                 raise ValueError(f"coefficients file '{file}': bad row {row!r}") from None
-            continue  # the header
-        if len(values) != COLUMNS:
-            raise ValueError(f"coefficients file '{file}': row {row!r} needs 4 columns "
-                             "(psi_deg, C_X, C_Y, C_N)")  # fmt: skip
+            header = True  # one header line, before the numbers
+            continue
+        if len(values) not in widths or (rows and len(values) != len(rows[0])):
+            raise ValueError(f"coefficients file '{file}': row {row!r} needs "
+                             f"{' or '.join(map(str, widths))} columns ({names}), as many "
+                             "as the first row")  # fmt: skip
         rows.append(values)
-    data = np.array(rows, dtype=float).reshape(-1, COLUMNS)
+    data = np.array(rows, dtype=float).reshape(-1, len(rows[0]) if rows else widths[0])
     if not np.all(np.isfinite(data)) or (data.size and np.abs(data).max() > LARGEST_NUMBER):
         raise ValueError(f"coefficients file '{file}': NaN, infinite or huge values (beyond "
                          f"{LARGEST_NUMBER:.0e})")  # fmt: skip
@@ -157,9 +168,16 @@ def add(row, t, tf, rho, pos, rot, vel, omega, current_z, current_u, current_v, 
     cx = periodic(row, HEADER, n, COLUMNS, 1, psi)
     cy = periodic(row, HEADER, n, COLUMNS, 2, psi)
     cn = periodic(row, HEADER, n, COLUMNS, 3, psi)
-    f0, f1, f2 = turn(rot, (q * row[3] * cx, q * row[4] * cy, 0.0))
+    add_plane_load(rot, arm, q * row[3] * cx, q * row[4] * cy, q * row[4] * row[5] * cn, rhs)
+
+
+@njit(inline="always", **JIT)
+def add_plane_load(rot, arm, fx, fy, moment, rhs):
+    """A load in the body's horizontal plane: the force (``fx``, ``fy``) [N] (body frame) at
+    the point at ``arm`` (earth frame, from the reference point) and the ``moment`` [N m]
+    about the body's z through it, added to ``rhs`` in the earth frame."""
+    f0, f1, f2 = turn(rot, (fx, fy, 0.0))
     add_force(arm, f0, f1, f2, rhs)
-    moment = q * row[4] * row[5] * cn
     rhs[3] += rot[0, 2] * moment
     rhs[4] += rot[1, 2] * moment
     rhs[5] += rot[2, 2] * moment

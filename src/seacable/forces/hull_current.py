@@ -72,9 +72,8 @@ import math
 
 from numba import njit
 
-from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn
-from seacable.forces.coefficients import relative_flow
+from seacable.forces.coefficients import add_plane_load, relative_flow
 from seacable.kernels import chain3d as c3
 from seacable.kernels.jit import JIT, inner
 
@@ -200,9 +199,4 @@ def add(row, rho, pos, rot, vel, omega, current_z, current_u, current_v, rhs):
     r = rot[0, 2] * omega[0] + rot[1, 2] * omega[1] + rot[2, 2] * omega[2]
     x, y, n = coefficients(row, -w[0], -w[1], r)
     scale = 0.5 * rho * row[3] * row[5]
-    f0, f1, f2 = turn(rot, (scale * x, scale * y, 0.0))
-    add_force(arm, f0, f1, f2, rhs)
-    moment = scale * row[3] * n
-    rhs[3] += rot[0, 2] * moment
-    rhs[4] += rot[1, 2] * moment
-    rhs[5] += rot[2, 2] * moment
+    add_plane_load(rot, arm, scale * x, scale * y, scale * row[3] * n, rhs)

@@ -31,6 +31,7 @@ class ForceKind(IntEnum):
     SHORT_WING = 16
     CROSS_FLOW = 17
     COMPENSATOR = 18
+    WAVE_DRIFT = 19
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -52,6 +53,7 @@ CURRENT = int(ForceKind.CURRENT)
 SHORT_WING = int(ForceKind.SHORT_WING)
 CROSS_FLOW = int(ForceKind.CROSS_FLOW)
 COMPENSATOR = int(ForceKind.COMPENSATOR)
+WAVE_DRIFT = int(ForceKind.WAVE_DRIFT)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

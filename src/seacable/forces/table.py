@@ -17,6 +17,7 @@ from seacable.forces import (
     rudder,
     servo,
     thruster,
+    wave_drift,
     weight,
 )
 from seacable.forces.kinds import (
@@ -38,6 +39,7 @@ from seacable.forces.kinds import (
     SERVO,
     SHORT_WING,
     THRUSTER,
+    WAVE_DRIFT,
     WIND,
 )
 from seacable.kernels import memory
@@ -83,6 +85,8 @@ def add_all(
         elif k == NON_LINEAR_FROUDE_KRYLOV:
             froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip
+        elif k == WAVE_DRIFT:
+            wave_drift.add(row, t, wave, rot[b], rhs[b])
         elif (
             k == THRUSTER
             or k == RUDDER
@@ -133,7 +137,8 @@ def state_rates(t, y, kind, body, at, first, state, data, pos, rot, vel, omega, 
 
 
 # kinds evaluated after every other load of the system, which they need (system.kernel.rhs:
-# forces.compensator.apply_all), not by add_all
+# forces.compensator.apply_all), not by add_all, whatever their value (a kind added after
+# them, as WAVE_DRIFT, is still a load they see)
 LAST = (COMPENSATOR,)
 
 STATEFUL = {

@@ -49,12 +49,17 @@ def pose_variables(plane: Plane, xs: np.ndarray, dim: str) -> dict:
 
 
 def weather_attrs(weather: Weather) -> dict:
-    return {
+    """The weather's fields (its waves' only when they differ from the case's)."""
+    attrs = {
         "current_speed": weather.current_speed,
         "current_towards_deg": weather.current_towards_deg,
         "wind_speed": weather.wind_speed,
         "wind_towards_deg": weather.wind_towards_deg,
     }
+    for name in ("wave_height", "wave_towards_deg"):
+        if getattr(weather, name) is not None:
+            attrs[name] = getattr(weather, name)
+    return attrs
 
 
 def hull_variables(plane: Plane) -> dict:

@@ -2,6 +2,9 @@
 
 - ``current.speed`` [m/s], ``current.towards_deg``, ``wind.speed`` [m/s], ``wind.towards_deg``:
   the weather (a uniform current and a constant wind; the directions they go towards);
+  ``waves.height`` [m] (the significant height the case's sea is scaled to) and
+  ``waves.towards_deg`` (its mean direction), acting through the ships' ``wave drift``
+  (``plane.Weather``);
 - ``lines.<tie>.unstretched_length`` [m], ``lines.<tie>.stiffness`` [N/m] (a linear tie);
 - ``bodies.<body>.points.<point>.x`` (or ``.y``) [m]: a point's place on its body (a turret,
   a hawser's fairlead);
@@ -24,6 +27,7 @@ from seacable.stability.continuation import Parameter
 from seacable.stability.plane import Plane, Weather, set_constant
 
 FORMS = ("current.speed", "current.towards_deg", "wind.speed", "wind.towards_deg",
+         "waves.height", "waves.towards_deg",
          "lines.<tie>.unstretched_length", "lines.<tie>.stiffness",
          "bodies.<body>.points.<point>.x (or .y)",
          "bodies.<body>.external forces.<k>.<force_x ... moment_z>",
@@ -31,6 +35,10 @@ FORMS = ("current.speed", "current.towards_deg", "wind.speed", "wind.towards_deg
          )  # fmt: skip
 
 
+# the weather's parameters: the Weather field each sets
+WEATHER = {"current": {"speed": "current_speed", "towards_deg": "current_towards_deg"},
+           "wind": {"speed": "wind_speed", "towards_deg": "wind_towards_deg"},
+           "waves": {"height": "wave_height", "towards_deg": "wave_towards_deg"}}  # fmt: skip
 # a compensator's settings: their place in its row and their steps' scale
 SETTINGS = {"distance": compensator.DISTANCE, "heading_deg": compensator.HEADING,
             "frequency": compensator.W1, "heading_frequency": compensator.W2,
@@ -52,7 +60,7 @@ def parameter(plane: Plane, path: str, weather: Weather | None = None,
     that weather for two weather parameters varied together (``{"weather": weather}``), so
     that each keeps the other's field."""
     parts = path.split(".")
-    if parts[0] in ("current", "wind") and len(parts) == 2:
+    if parts[0] in WEATHER and len(parts) == 2:
         return _weather(path, parts, weather or Weather(), shared)
     if parts[0] == "lines" and len(parts) == 3:
         return _tie(plane, path, parts)
@@ -68,9 +76,9 @@ def parameter(plane: Plane, path: str, weather: Weather | None = None,
 
 
 def _weather(path: str, parts: list[str], weather: Weather, shared: dict | None) -> Parameter:
-    names = {"speed": f"{parts[0]}_speed", "towards_deg": f"{parts[0]}_towards_deg"}
+    names = WEATHER[parts[0]]
     if parts[1] not in names:
-        raise _refuse(path, f"'{parts[1]}' is not speed or towards_deg")
+        raise _refuse(path, f"'{parts[1]}' is not {' or '.join(names)}")
     name = names[parts[1]]
     state = {"weather": weather} if shared is None else shared
 
@@ -78,7 +86,7 @@ def _weather(path: str, parts: list[str], weather: Weather, shared: dict | None)
         state["weather"] = replace(state["weather"], **{name: value})
         state["weather"].apply(pl.built)
 
-    return Parameter(path, set_weather, 1.0 if parts[1] == "speed" else 10.0)
+    return Parameter(path, set_weather, 10.0 if parts[1] == "towards_deg" else 1.0)
 
 
 def _tie(plane: Plane, path: str, parts: list[str]) -> Parameter:

@@ -11,7 +11,11 @@ parameters (``Weather``): a uniform current and a constant wind, without rebuild
 
 What the analyses accept (``Plane.of``, one line naming the body or line otherwise): every
 free body is a rigid body with ``dofs: [surge, sway, yaw]``, level (roll and pitch 0) and
-without force models that carry states; lines are ties (massless) or none.
+without force models that carry states; lines are ties (massless) or none. Waves act through
+their mean drift only (``wave drift``, constant in time once the sea has risen: the plane
+takes it risen, without the build-up); the first-order wave loads (``diffraction``,
+``non-linear Froude-Krylov``, ``non-linear hydrostatic`` on the waves' surface) oscillate in
+time and are refused in waves.
 """
 
 import math
@@ -20,9 +24,13 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from seacable import packing
+from seacable.case import forces as fm
+from seacable.case.environment import Environment, RegularWave
 from seacable.case.system import RigidBody, SystemCase, Tie
 from seacable.errors import CaseError
 from seacable.forces import compensator, kinds
+from seacable.kernels import waves
 from seacable.kernels.jit import JIT
 from seacable.system import kernel
 from seacable.system import model as system_model
@@ -213,6 +221,7 @@ class Plane:
                 raise CaseError(f"{where}.orientation_deg: roll and pitch "
                                 f"{list(body.orientation_deg[:2])}; the horizontal-plane "
                                 "analyses take level bodies: give them 0")  # fmt: skip
+            _refuse_first_order_waves(case, body, where)
             free.append(i)
         if not free:
             raise CaseError("bodies: no free body; the horizontal-plane analyses need at least "
@@ -225,6 +234,7 @@ class Plane:
                 "steering gear, radiation memory, a servo); the horizontal-plane analyses take "
                 "force models without states"
             )
+        p.wave[waves.BUILD_UP, :] = 0.0  # the sea risen: its mean drift is constant
         bodies = np.array(free)
         q = p.body_q[bodies].astype(np.int64)
         v = p.body_v[bodies].astype(np.int64)
@@ -329,6 +339,19 @@ class Plane:
         return out
 
 
+def _refuse_first_order_waves(case: SystemCase, body: RigidBody, where: str) -> None:
+    """A CaseError line for a wave load that oscillates in time, when the case has waves."""
+    if not case.environment.waves:
+        return
+    for k, spec in enumerate(body.external_forces):
+        still = isinstance(spec, fm.NonLinearHydrostatic) and spec.free_surface == "still"
+        if spec.model in (*fm.MESH_MODELS, "diffraction") and not still:
+            raise CaseError(f"{where}.external forces.{k}: '{spec.model}' in waves; its "
+                            "load oscillates with them, and the horizontal-plane analyses take "
+                            "loads constant in time: remove it (the waves act through 'wave "
+                            "drift', their mean) or analyse the case by simulation")  # fmt: skip
+
+
 def level_yaw(quat) -> float:
     """The yaw [rad] of a level body's quaternion (w, x, y, z)."""
     return 2.0 * math.atan2(float(quat[3]), float(quat[0]))
@@ -337,16 +360,27 @@ def level_yaw(quat) -> float:
 @dataclass(frozen=True)
 class Weather:
     """A uniform current and a constant wind, each a speed [m/s] and the direction it goes
-    TOWARDS [deg] (from +x towards +y, as ``environment.current`` and ``environment.wind``)."""
+    TOWARDS [deg] (from +x towards +y, as ``environment.current`` and ``environment.wind``);
+    and the case's waves (``environment.waves``, as realised for a simulation), which act
+    through the ships' ``wave drift``: ``wave_height`` the significant height Hs [m] they are
+    scaled to (every component's amplitude by Hs / Hs_case, so the drift by (Hs /
+    Hs_case)^2; Hs_case = 4 sqrt(m0) of the case's waves as given, m0 the sum of each
+    spectrum's Hs^2 / 16 and each regular wave's H^2 / 8: a regular wave of height H alone has
+    Hs_case = sqrt(2) H), ``wave_towards_deg`` the mean direction they are turned to [deg]
+    (every component's by the same angle; the mean is the direction of sum a_i^2 (cos b_i,
+    sin b_i), the wave's own for one wave or a spread spectrum). None: the case's own."""
 
     current_speed: float = 0.0
     current_towards_deg: float = 0.0
     wind_speed: float = 0.0
     wind_towards_deg: float = 0.0
+    wave_height: float | None = None
+    wave_towards_deg: float | None = None
 
     def apply(self, built: BuiltSystem) -> None:
         """Write this weather into ``built``'s parameters, in place (the case's current must be
-        uniform; its wind, if a model needs one, is replaced by constants)."""
+        uniform; its wind, if a model needs one, is replaced by constants; its waves scaled
+        and turned from the case's own)."""
         p = built.params
         if p.current_z.shape[0] != 1:
             raise CaseError(
@@ -356,6 +390,7 @@ class Weather:
         angle = math.radians(self.current_towards_deg)
         p.current_u[0] = self.current_speed * math.cos(angle)
         p.current_v[0] = self.current_speed * math.sin(angle)
+        self._waves(built)
         channel = int(p.wind_channel)
         if channel < 0:
             if self.wind_speed != 0.0:
@@ -364,6 +399,61 @@ class Weather:
             return
         set_constant(p, channel, self.wind_speed)
         set_constant(p, channel + 1, math.radians(self.wind_towards_deg))
+
+    def _waves(self, built: BuiltSystem) -> None:
+        """The case's waves, scaled to ``wave_height`` and turned to ``wave_towards_deg``."""
+        p = built.params
+        given = self.wave_height is not None or self.wave_towards_deg is not None
+        if p.wave.shape[1] == 0:
+            if given:
+                raise CaseError("environment.waves: none; the weather's wave_height and "
+                                "wave_towards_deg scale and turn the case's sea: add a wave "
+                                "(kind: airy) or a spectrum (kind: jonswap) to analyse "
+                                "waves")  # fmt: skip
+            return
+        if self.wave_height and not np.any(p.force_kind == kinds.WAVE_DRIFT):
+            raise CaseError("environment.waves: no body has a 'wave drift' force model; add "
+                            "them to analyse waves")  # fmt: skip
+        sea = case_sea(built.case.environment)
+        if sea.shape != p.wave.shape:
+            raise CaseError("environment.waves: the built system's sea is not the case's; "
+                            "build the plane from this case")  # fmt: skip
+        energy = sea[waves.A] ** 2
+        scale, turn = 1.0, 0.0
+        if self.wave_height is not None:
+            scale = self.wave_height / significant_height(built.case.environment)
+        if self.wave_towards_deg is not None:
+            mean = math.atan2((energy * sea[waves.SIN]).sum(), (energy * sea[waves.COS]).sum())
+            turn = math.radians(self.wave_towards_deg) - mean
+        c, s = math.cos(turn), math.sin(turn)
+        p.wave[waves.A] = scale * sea[waves.A]
+        p.wave[waves.COS] = c * sea[waves.COS] - s * sea[waves.SIN]
+        p.wave[waves.SIN] = s * sea[waves.COS] + c * sea[waves.SIN]
+
+
+def significant_height(environment: Environment) -> float:
+    """Hs = 4 sqrt(m0) [m] of the waves as given: m0 the sum of each spectrum's Hs^2 / 16
+    and each regular wave's H^2 / 8 (its a^2 / 2)."""
+    m0 = sum(w.height**2 / 8.0 if isinstance(w, RegularWave) else w.significant_height**2 / 16.0
+             for w in environment.waves)  # fmt: skip
+    return 4.0 * math.sqrt(m0)
+
+
+_SEAS: dict[str, np.ndarray] = {}  # case_sea's, by the environment's JSON
+
+
+def case_sea(environment: Environment) -> np.ndarray:
+    """The sea (kernels.waves table) ``environment`` realises, without build-up: the one
+    ``system.assemble`` builds, the same components in the same order (kept, read-only, for
+    the next weather)."""
+    key = environment.model_dump_json()
+    if key not in _SEAS:
+        if len(_SEAS) >= 8:
+            _SEAS.clear()
+        table = packing.wave_fields(environment)["wave"]
+        table.setflags(write=False)
+        _SEAS[key] = table
+    return _SEAS[key]
 
 
 def set_constant(p: kernel.SystemParams, channel: int, value: float) -> None:
@@ -374,4 +464,5 @@ def set_constant(p: kernel.SystemParams, channel: int, value: float) -> None:
     p.tf_build_up[channel, :] = 0.0
 
 
-__all__ = ["Plane", "Weather", "at_rest", "balance", "jacobian", "rates", "set_constant"]
+__all__ = ["Plane", "Weather", "at_rest", "balance", "case_sea", "jacobian", "rates",
+           "set_constant", "significant_height"]  # fmt: skip

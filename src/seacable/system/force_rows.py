@@ -22,6 +22,7 @@ from seacable.forces import (
     rudder,
     servo,
     thruster,
+    wave_drift,
 )
 from seacable.packing import channel, transported
 from seacable.system import hulls
@@ -90,6 +91,8 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         return servo.pack(spec.gain, spec.rate_gain, step, target)
     if isinstance(spec, fm.Compensator):
         return _compensator_row(spec, body, where, point)
+    if isinstance(spec, fm.WaveDrift):
+        return _wave_drift_row(case, spec, body, base_dir, where)
     return []  # gravity, buoyancy: the body's own fields
 
 
@@ -164,3 +167,20 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
         wind.air_density if is_wind and wind else 0.0,
         layout.wind_channel if is_wind else -1, table,
     )  # fmt: skip
+
+
+def _wave_drift_row(case, spec, body, base_dir, where: str) -> list[float]:
+    """The mean wave drift's row (forces.wave_drift): its point and tables."""
+    if not isinstance(body, RigidBody):
+        raise CaseError(f"{where}: model 'wave drift' acts on a ship: a 'rigid' body (this one "
+                        f"is '{body.type}')")  # fmt: skip
+    if not case.environment.waves:
+        raise CaseError(f"{where}: model 'wave drift' needs environment.waves (a regular wave "
+                        "{kind: airy, height [m], period [s], direction_deg} or a spectrum "
+                        "{kind: jonswap, significant_height [m], peak_period [s], "
+                        "direction_deg}); add them, or remove the wave drift model")  # fmt: skip
+    try:
+        omegas, per = wave_drift.tables(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None
+    return wave_drift.pack(_body_point(body, spec.point, where), omegas, per)
