@@ -5,6 +5,9 @@ cluster of 2 worker processes (aim under 10 minutes). CPU and wall times, after 
 map (numba's compilation is cached on disk and not counted).
 
     python benchmarks/operability_map.py [--count 36] [--workers 2] [--skip-simulated]
+                                         [--control off|on|both]
+
+``--control``: the example's compensator as the case says (off), on, or both (the map twice).
 """
 
 import argparse
@@ -20,25 +23,40 @@ from seacable.stability.operability import Limits, grid, operability
 EXAMPLE = Path(__file__).parent.parent / "examples" / "tandem_offloading_fpso_shuttle.yaml"
 
 
+def _counts(found) -> str:
+    """The statuses' counts, per control when the map has that dimension."""
+    parts = [found.sel(control=c) for c in found["control"].values] if "control" in found.dims \
+        else [found]  # fmt: skip
+    out = []
+    for part in parts:
+        names, counts = np.unique(part["status"].values, return_counts=True)
+        label = f"{part['control'].item()}: " if "control" in part.coords else ""
+        out.append(label + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))
+    return "; ".join(out)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--count", type=int, default=36, help="directions of each kind")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--skip-simulated", action="store_true")
+    parser.add_argument("--control", choices=["off", "on", "both"], default=None)
     args = parser.parse_args()
     case = seacable.load_case(EXAMPLE)
     limits = Limits(30.0, (("hawser", 3.0e6),))
     angles = np.arange(0.0, 360.0, 360.0 / args.count)
     states, shape = grid(0.8, angles, angles, np.array([10.0, 20.0, 30.0]))
     small, small_shape = grid(0.8, angles[:2], angles[:2], np.array([10.0]))
-    operability(case, small, small_shape, limits, simulate=600.0, scheduler=None)  # warm-up
+    warm = {"simulate": 600.0, "scheduler": None, "control": args.control}
+    operability(case, small, small_shape, limits, **warm)  # warm-up
     cpu, wall = time.process_time(), time.perf_counter()
-    found = operability(case, states, shape, limits, scheduler=None)
+    found = operability(case, states, shape, limits, scheduler=None, control=args.control)
     cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
-    names, counts = np.unique(found["status"].values, return_counts=True)
-    print(f"equilibria and stability, {len(states)} states, one core (this process): "
-          f"CPU {cpu:.1f} s, wall {wall:.1f} s ({1e3 * cpu / len(states):.1f} ms a state); "
-          + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
+    count = found["status"].size
+    print(f"equilibria and stability, {count} states (control {args.control or 'as the case'}"
+          "), one core (this process): "
+          f"CPU {cpu:.1f} s, wall {wall:.1f} s ({1e3 * cpu / count:.1f} ms a state); "
+          + _counts(found))  # fmt: skip
     if args.skip_simulated:
         return
     from distributed import Client, LocalCluster
@@ -46,14 +64,16 @@ def main() -> None:
     with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:  # fmt: skip
         address = client.scheduler.address
-        operability(case, small, small_shape, limits, simulate=600.0, scheduler=address)
+        operability(case, small, small_shape, limits, simulate=600.0, scheduler=address,
+                    control=args.control)  # fmt: skip
         wall = time.perf_counter()
-        found = operability(case, states, shape, limits, simulate=600.0, scheduler=address)
+        found = operability(
+            case, states, shape, limits, simulate=600.0, scheduler=address, control=args.control
+        )
         wall = time.perf_counter() - wall
-    names, counts = np.unique(found["status"].values, return_counts=True)
     print(f"with 600 s of motion a state, {args.workers} worker processes on "
           f"{os.cpu_count()} cores: wall {wall:.1f} s; "
-          + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
+          + _counts(found))  # fmt: skip
 
 
 if __name__ == "__main__":

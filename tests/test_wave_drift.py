@@ -209,7 +209,8 @@ def turret_in_waves(towards=180.0, turret=120.0):
 
 def _stable_headings(plane):
     found = equilibria.find(plane, None, 8)
-    return [math.degrees(e.x[2]) % 360.0 for e in found if e.stable], found
+    # in [0, 360), a heading of -1e-15 deg read as 0
+    return [(math.degrees(e.x[2]) + 1e-9) % 360.0 - 1e-9 for e in found if e.stable], found
 
 
 def test_a_turret_moored_tanker_weathervanes_to_head_the_waves():
