@@ -93,6 +93,7 @@ def test_an_orbit_of_the_branch_returns_to_its_start_under_dopri5(hopf_cycles):
     assert swing == pytest.approx(found.amplitude[k][1], rel=1e-3)
 
 
+@SLOW  # the criticality's simulations: about 110 s of one core
 def test_the_command_line_reports_the_cycles_and_their_kind(tmp_path):
     from click.testing import CliRunner
 

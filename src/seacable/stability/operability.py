@@ -5,21 +5,21 @@ Each state gets one status (``STATUSES``):
 
 - ``stable``: a stable equilibrium exists, its hulls' clearance and its ties' tensions within
   the limits (with ``simulate``: and the motion from it stays within them);
-- ``limit exceeded``: the stable equilibrium (the one nearest the ships' nominal places) breaks
-  a tension limit or comes closer than the clearance limit;
+- ``limit exceeded``: the stable equilibrium (one whose hulls do not overlap, the nearest the
+  ships' nominal places) breaks a tension limit or comes closer than the clearance limit;
 - ``cycling``: no stable equilibrium: the ships oscillate (fishtailing); with ``simulate`` the
   motion stays within the limits;
 - ``collision risk``: with ``simulate``, the motion brings the hulls closer than the clearance
-  limit (or a stable equilibrium with overlapping hulls);
+  limit (or every stable equilibrium has overlapping hulls);
 - ``no equilibrium``: the search found none (the ships may drift on, or the search missed
-  them: it is not exhaustive, see below);
+  them: it is exhaustive only where its scan's premise holds, see below);
 - ``failed``: the state could not be analysed; its message says why. A failed state is a row
   with its message, never a lost map.
 
-The equilibria of a state are found from the previous state's (the map is swept in order, so
-neighbours start each other) and, when those give no stable one, by the whole search (scanned
-starts and ``headings`` per body: seacable.stability.equilibria), and classified by their
-eigenvalues. With ``simulate`` [s] each
+The equilibria of a state are found from those of the nearest state solved (the map is swept
+in order, so neighbours start each other) and, when those give no stable one with the hulls
+apart, by the whole search (scanned starts and ``headings`` per body:
+seacable.stability.equilibria), and classified by their eigenvalues. With ``simulate`` [s] each
 state is also integrated for that long (the fixed-step flow of seacable.stability.orbits) from
 the stable equilibrium pushed off by 1 m and 1 deg, or, without one, from the unstable one
 nearest the nominal places.
@@ -95,10 +95,11 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, 
             Weather(*state).apply(plane.built)
             # the equilibria of the nearest state solved, continued; the whole search (scanned
             # and placed starts: seacable.stability.equilibria) when they give no stable one
+            # with the hulls apart
             here = _place_of(state)
             near = min(solved, key=lambda s: float(np.abs(s[0] - here).sum()), default=None)
             found = eq.find(plane, None, 0, extra=near[1] if near else [], iterations=30)
-            if not any(e.stable for e in found):
+            if not any(e.stable and clearance_at(plane, e.x) > 0.0 for e in found):
                 found = eq.find(plane, None, headings, extra=[e.x for e in found],
                                 iterations=30)  # fmt: skip
             solved.append((here, [e.x for e in found]))
@@ -150,7 +151,10 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
         row = _failed("the search found no equilibrium")
         row["status"] = "no equilibrium"
         return row
-    best = min(pool, key=lambda e: _distance(e.x, nominal))
+    # one whose hulls do not overlap (without a contact model, overlapping equilibria exist,
+    # the compensator's among them, that no ship reaches), then the nearest the nominal places
+    apart = [e for e in pool if clearance_at(plane, e.x) > 0.0]
+    best = min(apart or pool, key=lambda e: _distance(e.x, nominal))
     state = np.concatenate([best.x, np.zeros(3 * n)])
     plane.rates(state)
     tension = plane.work.tie_tension.copy()
