@@ -18,21 +18,16 @@ from pathlib import Path
 import numpy as np
 
 import seacable
-from seacable.stability.operability import Limits, grid, operability
+from seacable.stability.operability import Limits, grid, operability, shares
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "tandem_offloading_fpso_shuttle.yaml"
 
 
 def _counts(found) -> str:
     """The statuses' counts, per control when the map has that dimension."""
-    parts = [found.sel(control=c) for c in found["control"].values] if "control" in found.dims \
-        else [found]  # fmt: skip
-    out = []
-    for part in parts:
-        names, counts = np.unique(part["status"].values, return_counts=True)
-        label = f"{part['control'].item()}: " if "control" in part.coords else ""
-        out.append(label + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))
-    return "; ".join(out)
+    return "; ".join((f"{label}: " if label else "")
+                     + ", ".join(f"{n} {c}" for n, c in counts.items())
+                     for label, counts, _ in shares(found))  # fmt: skip
 
 
 def main() -> None:

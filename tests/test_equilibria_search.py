@@ -1,6 +1,7 @@
 """The global search for equilibria (seacable.stability.equilibria): the scanned starts, on the
 placement where each tie balances the loads it carries, find every equilibrium that a brute
-force of 256 starts finds, and more, where the brute force misses some."""
+force of 256 starts finds, and more, where the brute force misses some; with a compensator
+on, every equilibrium where it does not saturate."""
 
 import math
 from pathlib import Path
@@ -68,22 +69,45 @@ def test_the_search_finds_what_a_brute_force_finds(plane, weather):
         assert np.abs(g).max() < 1e-6 * plane.work.tie_tension.max()
 
 
-def test_the_scan_gives_way_where_its_premise_fails(plane):
-    """With the compensator on, the shuttle's loads depend on where it is: the scanned starts
-    are starts like any other, and Newton from them finds the controlled equilibrium at the
-    set distance."""
+@pytest.mark.parametrize("weather", [Weather(0.8, 180.0, 15.0, 200.0),
+                                     Weather(0.8, 120.0, 24.0, 250.0)])  # fmt: skip
+def test_the_controlled_scan_finds_every_equilibrium_where_the_compensator_holds(plane, weather):
+    """With the compensator on, the shuttle's loads depend on where it is, but where the
+    compensator does not saturate its errors are zero at rest: the hawser 95 m long, the
+    shuttle on the FPSO's heading. The scanned starts are then equilibria already, and they
+    are every unsaturated equilibrium of a brute force of 256 starts. The placed starts
+    (``every``) look for the saturated ones too, without a guarantee."""
     plane.control(True)
     try:
-        found = equilibria.find(plane, Weather(0.8, 180.0, 15.0, 200.0), 4)
-        stable = [e for e in found if e.stable]
-        assert stable
-        x = stable[0].x
+        brute = equilibria.find(plane, weather, 16, scan=0)
+        scanned = equilibria._scanned_starts(plane, equilibria.SCAN)
         p = plane.built.params
-        pose = equilibria._points(plane, x)
-        stern, bow = (pose[p.point_body[k], :2] + _turn(pose[p.point_body[k], 2],
-                                                       p.point_offset[k][:2])
-                      for k in _hawser_points(plane))  # fmt: skip
-        assert abs(float(np.hypot(*(bow - stern))) - 95.0) < 1e-6
+        for x in scanned:
+            g, _ = plane.at_rest(x, jacobian=False)
+            assert np.abs(g).max() < 1e-6 * plane.work.tie_tension.max()
+            pose = equilibria._points(plane, x)
+            stern, bow = (pose[p.point_body[k], :2] + _turn(pose[p.point_body[k], 2],
+                                                           p.point_offset[k][:2])
+                          for k in _hawser_points(plane))  # fmt: skip
+            assert abs(float(np.hypot(*(bow - stern))) - 95.0) < 1e-6
+            assert abs(x[5] - x[2]) < 1e-9
+        some = equilibria.find(plane, weather, 4, every=False)
+        every = equilibria.find(plane, weather)  # 12 headings a body
+        assert sum(e.stable for e in some) >= 1
+        saturated = 0
+        for e in brute:
+            plane.rates(np.concatenate([e.x, np.zeros(6)]))
+            record = plane.work.control[0]
+            held = record[0] == record[2] and record[1] == record[3]
+            saturated += not held
+            if held:
+                assert any(_same(e.x, x) for x in scanned), f"not scanned {np.round(e.x, 2)}"
+                assert any(_same(e.x, f.x) for f in some), f"missed {np.round(e.x, 2)}"
+        for e in some:
+            assert any(_same(e.x, f.x) for f in every)
+        assert len(scanned) >= 4
+        # the yaw moment saturated: not of the scan's kind (the grid may find them, or not)
+        assert (saturated > 0) == (weather.wind_speed == 24.0)
     finally:
         plane.control(False)
 

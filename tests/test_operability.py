@@ -13,7 +13,7 @@ import pytest
 
 import seacable
 from seacable.stability import equilibria
-from seacable.stability.operability import Limits, grid, operability
+from seacable.stability.operability import Limits, clearance_at, grid, operability
 from seacable.stability.plane import Plane, Weather
 
 EXAMPLE = "examples/tandem_offloading_fpso_shuttle.yaml"
@@ -117,3 +117,117 @@ def test_the_operability_command_writes_the_map_and_its_picture(tmp_path):
     run = CliRunner().invoke(main, ["operability", str(root / EXAMPLE), "--current-speed", "1",
                                     "--wind-towards", "0:x:1"])  # fmt: skip
     assert run.exit_code != 0 and "--wind-towards '0:x:1'" in run.output
+
+
+WAVES = "examples/turret_fpso_wave_drift.yaml"
+
+
+def _table(tmp_path, text: str):
+    path = tmp_path / "states.csv"
+    path.write_text(text)
+    return path
+
+
+def test_a_table_of_states_with_waves_maps_each_state_in_its_own_sea(tmp_path):
+    """A user's table (current, wind, waves and each state's share of the time): each state's
+    equilibrium is the one its own weather gives (the FPSO's turret tension, which the waves'
+    drift changes), a state without waves has the case's, and the statuses' shares are
+    weighed by the probabilities."""
+    from pathlib import Path
+
+    from seacable.stability.operability import shares, table
+
+    path = _table(tmp_path, "# a metocean table\n"
+                  "current_speed, current_towards_deg, wind_speed, wind_towards_deg, "
+                  "wave_height, wave_towards_deg, probability\n"
+                  "0.8, 180, 15, 200, 2.5, 150, 4\n"
+                  "0.8, 180, 15, 200, , , 3\n"
+                  "0.8, 180, 15, 200, 4.0, 240, 2\n"
+                  "0.3, 0, 10, 45, 1.0, 300, 1\n")  # fmt: skip
+    states, probability = table(path)
+    assert states[1].wave_height is None and states[2].wave_towards_deg == 240.0
+    np.testing.assert_allclose(probability, [0.4, 0.3, 0.2, 0.1])
+    case = seacable.load_case(Path(__file__).parent.parent / WAVES)
+    found = operability(case, states, None, scheduler=None, probability=probability)
+    assert found["status"].dims == ("state",)
+    np.testing.assert_allclose(found["wave_height"].values, [2.5, 2.5, 4.0, 1.0])
+    np.testing.assert_allclose(found["wave_towards"].values, [150.0, 150.0, 240.0, 300.0],
+                               atol=1e-9)  # fmt: skip
+    plane = Plane.of(case)
+    tensions = []
+    for state, row in zip(states, found["tension"].values, strict=True):
+        stable = [e for e in equilibria.find(plane, state, 12) if e.stable]
+        plane.rates(np.concatenate([stable[0].x, np.zeros(3)]))
+        tensions.append(float(plane.work.tie_tension.max()))
+        assert row == pytest.approx(tensions[-1], rel=1e-9)
+    assert tensions[0] == pytest.approx(tensions[1], rel=1e-12)  # the case's own sea
+    assert abs(tensions[2] - tensions[0]) > 1e-2 * tensions[0]  # the waves act
+    [(label, counts, share)] = shares(found)
+    assert label == "" and sum(counts.values()) == 4
+    assert sum(share.values()) == pytest.approx(1.0)
+    for status, count in counts.items():
+        picked = found["probability"].values[found["status"].values == status]
+        assert len(picked) == count and share[status] == pytest.approx(picked.sum())
+
+
+def test_a_bad_table_of_states_is_refused_in_one_line_naming_its_row(tmp_path):
+    from seacable.errors import CaseError
+    from seacable.stability.operability import table
+
+    header = "current_speed,current_towards_deg,wind_speed,wind_towards_deg"
+    for text, words in [
+        ("current_speed,current_towards_deg,wind_speed\n0.8,180,15\n", "missing ['wind_towards"),
+        (header + ",waves\n0.8,180,15,200,2\n", "unknown ['waves']"),
+        (header + "\n0.8,180,15,200\n0.8,north,15,200\n", "row 3: current_towards_deg 'north'"),
+        (header + "\n-0.8,180,15,200\n", "row 2: current_speed -0.8 is negative"),
+        (header + "\n", "no states"),
+    ]:
+        with pytest.raises(CaseError) as caught:
+            table(_table(tmp_path, text))
+        message = str(caught.value)
+        assert words in message and "\n" not in message, message
+
+
+def test_the_operability_command_maps_a_table_of_states(tmp_path):
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    root = __import__("pathlib").Path(__file__).parent.parent
+    path = _table(tmp_path, "current_speed,current_towards_deg,wind_speed,wind_towards_deg,"
+                  "wave_height,wave_towards_deg,probability\n"
+                  "0.8,180,15,200,2.5,150,0.75\n0.5,90,20,270,4.0,270,0.25\n")  # fmt: skip
+    picture = str(tmp_path / "m.png")
+    run = CliRunner().invoke(main, ["operability", str(root / WAVES), "--states", str(path),
+                                    "--dask", "none", "--plot", picture])  # fmt: skip
+    assert run.exit_code == 0, run.output
+    assert "2 weather states: stable 2 (100.0 % of the time)" in run.output
+    assert (tmp_path / "m.png").stat().st_size > 10_000
+    run = CliRunner().invoke(main, ["operability", str(root / EXAMPLE), "--states", str(path),
+                                    "--dask", "none"])  # fmt: skip
+    assert run.exit_code != 0 and "environment.waves: none" in run.output
+    run = CliRunner().invoke(main, ["operability", str(root / EXAMPLE)])
+    assert run.exit_code != 0 and "--current-speed: missing" in run.output
+
+
+def test_the_controlled_map_keeps_the_shuttle_astern_where_it_is_stable_alongside_too():
+    """With the compensator on, in a strong wind 100 deg off the current, the shuttle is held
+    at 95 m both astern of the FPSO and beside its stern quarter, each stable: the map keeps
+    the one where the ships lie to each other as at their nominal places, whichever way the
+    weather turned them."""
+    case = _example()
+    plane = Plane.of(case)
+    plane.control(True)
+    weather = Weather(0.8, 110.0, 24.0, 10.0)
+    found = [e for e in equilibria.find(plane, weather, 6, every=False) if e.stable]
+    clearances = sorted(clearance_at(plane, e.x) for e in found)
+    assert len(found) >= 2 and 0.0 < clearances[0] < 30.0 < clearances[-1]
+    row = operability(case, [weather], None, Limits(30.0), scheduler=None, control="on")
+    assert row["status"].values.ravel()[0] == "stable"
+    assert row["clearance"].values.ravel()[0] == pytest.approx(clearances[-1], rel=1e-6)
+    # in the FPSO's frame, the shuttle's midship 405 m astern at the nominal places; at the
+    # equilibria, on the FPSO's heading, astern of it or beside its stern quarter
+    assert equilibria.relative(plane, plane.start()[:6])[3] == pytest.approx(-405.0)
+    poses = sorted((equilibria.relative(plane, e.x)[3:] for e in found), key=lambda q: q[0])
+    assert poses[0][0] < -350.0 < -300.0 < poses[-1][0]
+    assert all(abs(q[2]) < 1e-9 for q in poses)

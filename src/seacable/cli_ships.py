@@ -238,13 +238,18 @@ def _angles(text: str, option: str) -> np.ndarray:
 
 @click.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
-@click.option("--current-speed", type=float, required=True, help="[m/s]")
+@click.option("--current-speed", type=float, default=None,
+              help="The grid's current speed [m/s] (or --states).")  # fmt: skip
 @click.option("--current-towards", default="0:360:10", show_default=True,
               help="Current directions [deg]: first:stop:step or a list.")  # fmt: skip
 @click.option("--wind-towards", default="0:360:10", show_default=True,
               help="Wind directions [deg]: first:stop:step or a list.")  # fmt: skip
 @click.option("--ratios", default="10,20,30", show_default=True,
               help="Wind speed over current speed, a list.")  # fmt: skip
+@click.option("--states", type=click.Path(dir_okay=False), default=None,
+              help="A CSV table of weather states instead of the grid: a header of "
+                   "current_speed, current_towards_deg, wind_speed, wind_towards_deg and "
+                   "optionally wave_height, wave_towards_deg, probability.")  # fmt: skip
 @click.option("--clearance", type=float, default=0.0, help="Least clearance of the hulls [m].")
 @click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, float),
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
@@ -262,32 +267,35 @@ def _angles(text: str, option: str) -> np.ndarray:
 )
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the map (.png).")
-def operability(case_file: str, current_speed: float, current_towards: str, wind_towards: str,
-                ratios: str, clearance: float, tension, simulate: float | None,
-                control: str | None, scheduler: str, output: str | None,
-                plot: str | None) -> None:  # fmt: skip
+def operability(case_file: str, current_speed: float | None, current_towards: str,
+                wind_towards: str, ratios: str, states: str | None, clearance: float, tension,
+                simulate: float | None, control: str | None, scheduler: str,
+                output: str | None, plot: str | None) -> None:  # fmt: skip
     """An operability map of the ships of CASE_FILE: for every current and wind direction and
-    wind-to-current speed ratio, stable / limit exceeded / cycling / collision risk."""
-    states, shape = stability_map.grid(current_speed, _angles(current_towards, "--current-towards"),
-                         _angles(wind_towards, "--wind-towards"),
-                         _angles(ratios, "--ratios"))  # fmt: skip
+    wind-to-current speed ratio (or every state of a table, with waves), stable / limit
+    exceeded / cycling / collision risk."""
+    probability = None
+    if states is not None:
+        weathers, probability = stability_map.table(states)
+        shape = None
+    elif current_speed is None:
+        raise CaseError("--current-speed: missing; give the grid's current speed [m/s], or a "
+                        "table of states with --states FILE")  # fmt: skip
+    else:
+        weathers, shape = stability_map.grid(
+            current_speed, _angles(current_towards, "--current-towards"),
+            _angles(wind_towards, "--wind-towards"), _angles(ratios, "--ratios"))  # fmt: skip
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     where = None if scheduler == "none" else scheduler
     case = seacable.load_case(case_file)
-    found = stability_map.operability(case, states, shape, limits, simulate, where,
-                                      control=control)  # fmt: skip
-    for part, label in _controls(found):
-        names, counts = np.unique(part["status"].values, return_counts=True)
-        click.echo(f"{label}{len(states)} weather states: "
-                   + ", ".join(f"{c} {n}" for n, c in zip(names, counts, strict=True)))  # fmt: skip
+    found = stability_map.operability(case, weathers, shape, limits, simulate, where,
+                                      control=control, probability=probability)  # fmt: skip
+    for label, counts, share in stability_map.shares(found):
+        by = "of the time" if probability is not None else "of the states"
+        click.echo(f"{label + ': ' if label else ''}{len(weathers)} weather states: "
+                   + ", ".join(f"{n} {c} ({100 * share[n]:.1f} % {by})"
+                               for n, c in counts.items()))  # fmt: skip
     _write(found, output, "map", plot, viz.plot_operability)
-
-
-def _controls(found: xr.Dataset) -> list[tuple[xr.Dataset, str]]:
-    """A map's parts per control setting, each with its label ("" without the dimension)."""
-    if "control" not in found.dims:
-        return [(found, "")]
-    return [(found.sel(control=c), f"{c}: ") for c in found["control"].values]
 
 
 @click.command()

@@ -1,12 +1,13 @@
 """An operability map: for many weather states (a grid of current and wind directions and
-speeds, or a user's table), is the tandem safe?
+speeds, or a user's table of current, wind and waves: ``table``), is the tandem safe?
 
 Each state gets one status (``STATUSES``):
 
 - ``stable``: a stable equilibrium exists, its hulls' clearance and its ties' tensions within
   the limits (with ``simulate``: and the motion from it stays within them);
-- ``limit exceeded``: the stable equilibrium (one whose hulls do not overlap, the nearest the
-  ships' nominal places) breaks a tension limit or comes closer than the clearance limit;
+- ``limit exceeded``: the stable equilibrium (one whose hulls do not overlap, the ships lying
+  to each other most as at their nominal places: ``equilibria.relative``) breaks a tension
+  limit or comes closer than the clearance limit;
 - ``cycling``: no stable equilibrium: the ships oscillate (fishtailing); with ``simulate`` the
   motion stays within the limits;
 - ``collision risk``: with ``simulate``, the motion brings the hulls closer than the clearance
@@ -22,7 +23,7 @@ apart, by the whole search (scanned starts and ``headings`` per body:
 seacable.stability.equilibria), and classified by their eigenvalues. With ``simulate`` [s] each
 state is also integrated for that long (the fixed-step flow of seacable.stability.orbits) from
 the stable equilibrium pushed off by 1 m and 1 deg, or, without one, from the unstable one
-nearest the nominal places.
+nearest the nominal places (as above).
 
 States run in chunks, in this process (``scheduler=None``) or on Dask: ``"local"`` starts a
 local cluster of one single-threaded worker process per core; any other string is the address
@@ -30,9 +31,10 @@ of a running scheduler. Dask does the scheduling and the transport; a chunk lost
 worker becomes rows of ``failed``.
 """
 
+import csv
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
@@ -42,7 +44,7 @@ from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import equilibria as eq
 from seacable.stability import orbits
-from seacable.stability.plane import Plane, Weather
+from seacable.stability.plane import Plane, Weather, case_waves
 
 CONTROLS = ("uncontrolled", "controlled")
 # the compensators' settings a map runs (``operability``'s ``control``)
@@ -72,13 +74,89 @@ def grid(current_speed: float, current_towards: np.ndarray, wind_towards: np.nda
     return states, coords
 
 
-def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, float]],
+# a user's table of weather states (``table``): its columns by name, the first four required
+COLUMNS = ("current_speed", "current_towards_deg", "wind_speed", "wind_towards_deg",
+           "wave_height", "wave_towards_deg", "probability")  # fmt: skip
+
+
+def table(path) -> tuple[list[Weather], np.ndarray | None]:
+    """The weather states of a CSV file (a metocean table): a header naming its columns
+    (``COLUMNS``, any order: current_speed [m/s], current_towards_deg [deg],
+    wind_speed [m/s], wind_towards_deg [deg]; optionally wave_height Hs [m] and
+    wave_towards_deg [deg], which scale and turn the case's waves (``Weather``; empty: the
+    case's own), and probability, each state's share of the time), then a state a row;
+    lines starting with '#' are comments. Returns the states and the probabilities (None
+    without that column)."""
+    where = f"states file '{path}'"
+    try:
+        with open(path, newline="") as handle:
+            lines = [line for line in handle if line.strip() and not line.lstrip().startswith("#")]
+    except OSError as exc:
+        raise CaseError(f"{where}: {exc.strerror}; give the path of a CSV file") from None
+    reader = csv.DictReader(lines, skipinitialspace=True)
+    names = [n.strip() for n in reader.fieldnames or []]
+    unknown = [n for n in names if n not in COLUMNS]
+    missing = [n for n in COLUMNS[:4] if n not in names]
+    if unknown or missing:
+        raise CaseError(f"{where}: columns {names}: " + (f"unknown {unknown}; " if unknown else "")
+                        + (f"missing {missing}; " if missing else "")
+                        + f"its header names its columns, of {list(COLUMNS)} (the first four "
+                        "required)")  # fmt: skip
+    states, shares = [], []
+    for number, row in enumerate(reader, start=2):
+        values: dict[str, float | None] = {}
+        for name, text in row.items():
+            text = (text or "").strip()
+            if name is None or (text == "" and name in COLUMNS[4:6]):
+                continue
+            try:
+                values[name.strip()] = float(text)
+            except ValueError:
+                raise CaseError(f"{where}, row {number}: {name.strip()} '{text}' is not a "
+                                "number; give a number (wave columns may be empty: the "
+                                "case's waves)") from None  # fmt: skip
+            if not math.isfinite(values[name.strip()] or 0.0):
+                raise CaseError(f"{where}, row {number}: {name.strip()} {text}: give a finite "
+                                "number")  # fmt: skip
+        for name in ("current_speed", "wind_speed", "wave_height", "probability"):
+            if (values.get(name) or 0.0) < 0.0:
+                raise CaseError(f"{where}, row {number}: {name} {values[name]:g} is negative; "
+                                "give a size (the direction is the 'towards' column)")  # fmt: skip
+        shares.append(values.pop("probability", math.nan))
+        states.append(Weather(**values))  # type: ignore[arg-type]
+    if not states:
+        raise CaseError(f"{where}: no states; give a row per state under the header")
+    if "probability" not in names:
+        return states, None
+    probability = np.array(shares)
+    if not probability.sum() > 0.0:
+        raise CaseError(f"{where}: the probabilities sum to {probability.sum():g}; give "
+                        "each state's share of the time (they are scaled to sum to 1)")  # fmt: skip
+    return states, probability / probability.sum()
+
+
+def _fields(weather: Weather) -> tuple[float, ...]:
+    """A state as six floats, plain data for Dask (NaN: the case's waves)."""
+    return (weather.current_speed, weather.current_towards_deg, weather.wind_speed,
+            weather.wind_towards_deg,
+            math.nan if weather.wave_height is None else weather.wave_height,
+            math.nan if weather.wave_towards_deg is None else weather.wave_towards_deg)  # fmt: skip
+
+
+def _weather(state: tuple[float, ...]) -> Weather:
+    """``_fields``'s inverse."""
+    height, towards = state[4], state[5]
+    return Weather(state[0], state[1], state[2], state[3],
+                   None if math.isnan(height) else height,
+                   None if math.isnan(towards) else towards)  # fmt: skip
+
+
+def evaluate(case_data: dict, base_dir, states: list[tuple[float, ...]],
              limits: Limits, simulate: float | None, headings: int,
              controlled: bool | None = None) -> list[dict]:  # fmt: skip
-    """The rows of a chunk of weather states (each (current speed, towards, wind speed,
-    towards)), in order, the equilibria of one seeding the next, with the compensators on or
-    off (``controlled``; None: as the case says). Runs where Dask sends it: plain data in and
-    out."""
+    """The rows of a chunk of weather states (each ``_fields``), in order, the equilibria of
+    one seeding the next, with the compensators on or off (``controlled``; None: as the case
+    says). Runs where Dask sends it: plain data in and out."""
     try:
         case = loader.load_case(case_data)
         assert isinstance(case, SystemCase)
@@ -87,21 +165,23 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, 
             plane.control(controlled)
     except Exception as exc:  # the whole chunk fails the same way
         return [_failed(f"the case: {exc}") for _ in states]
-    nominal = plane.start()[: 3 * len(plane.bodies)]
+    nominal = eq.relative(plane, plane.start()[: 3 * len(plane.bodies)])
     solved: list[tuple[np.ndarray, list[np.ndarray]]] = []  # (weather's place, equilibria)
     rows = []
     for state in states:
         try:
-            Weather(*state).apply(plane.built)
+            _weather(state).apply(plane.built)
             # the equilibria of the nearest state solved, continued; the whole search (scanned
             # and placed starts: seacable.stability.equilibria) when they give no stable one
-            # with the hulls apart
+            # with the hulls apart, first without the compensator's saturated equilibria
             here = _place_of(state)
             near = min(solved, key=lambda s: float(np.abs(s[0] - here).sum()), default=None)
             found = eq.find(plane, None, 0, extra=near[1] if near else [], iterations=30)
-            if not any(e.stable and clearance_at(plane, e.x) > 0.0 for e in found):
+            for every in (False, True) if plane.controlled else (True,):
+                if any(e.stable and clearance_at(plane, e.x) > 0.0 for e in found):
+                    break
                 found = eq.find(plane, None, headings, extra=[e.x for e in found],
-                                iterations=30)  # fmt: skip
+                                iterations=30, every=every)  # fmt: skip
             solved.append((here, [e.x for e in found]))
             rows.append(_classify(plane, found, nominal, limits, simulate))
         except Exception as exc:  # one state's failure is its row
@@ -109,13 +189,14 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, float, float, 
     return rows
 
 
-def _place_of(state: tuple[float, float, float, float]) -> np.ndarray:
-    """A weather state (current speed, towards, wind speed, towards) as a point in which
-    near states are near: the current's velocity [m/s] and the wind's over 30."""
-    cs, ct, ws, wt = state
-    ct, wt = math.radians(ct), math.radians(wt)
+def _place_of(state: tuple[float, ...]) -> np.ndarray:
+    """A weather state (``_fields``) as a point in which near states are near: the current's
+    velocity [m/s], the wind's over 30 and the waves' height over 3 along their direction."""
+    cs, ct, ws, wt, hs, ht = state
+    ct, wt, ht = math.radians(ct), math.radians(wt), math.radians(0.0 if math.isnan(ht) else ht)
+    hs = 0.0 if math.isnan(hs) else hs / 3.0
     return np.array([cs * math.cos(ct), cs * math.sin(ct), ws * math.cos(wt) / 30.0,
-                     ws * math.sin(wt) / 30.0])  # fmt: skip
+                     ws * math.sin(wt) / 30.0, hs * math.cos(ht), hs * math.sin(ht)])  # fmt: skip
 
 
 def _failed(message: str) -> dict:
@@ -152,9 +233,10 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
         row["status"] = "no equilibrium"
         return row
     # one whose hulls do not overlap (without a contact model, overlapping equilibria exist,
-    # the compensator's among them, that no ship reaches), then the nearest the nominal places
+    # the compensator's among them, that no ship reaches), then the ships lying to each other
+    # most as at their nominal places (the weather turns the whole of them)
     apart = [e for e in pool if clearance_at(plane, e.x) > 0.0]
-    best = min(apart or pool, key=lambda e: _distance(e.x, nominal))
+    best = min(apart or pool, key=lambda e: _distance(eq.relative(plane, e.x), nominal))
     state = np.concatenate([best.x, np.zeros(3 * n)])
     plane.rates(state)
     tension = plane.work.tie_tension.copy()
@@ -199,6 +281,8 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
 
 
 def _distance(x: np.ndarray, nominal: np.ndarray) -> float:
+    """How far poses ``x`` are from ``nominal`` (both ``equilibria.relative``'s): metres,
+    and 100 m a radian."""
     d = np.abs(x - nominal)
     d[2::3] = np.abs((d[2::3] + math.pi) % (2 * math.pi) - math.pi) * 100.0
     return float(d.sum())
@@ -207,11 +291,13 @@ def _distance(x: np.ndarray, nominal: np.ndarray) -> float:
 def operability(case: SystemCase | str, states: list[Weather], shape: dict | None = None,
                 limits: Limits = Limits(), simulate: float | None = None,
                 scheduler: str | None = "local", chunk: int = 108,
-                headings: int = 6, control: str | None = None) -> xr.Dataset:  # fmt: skip
+                headings: int = 6, control: str | None = None,
+                probability: np.ndarray | None = None) -> xr.Dataset:  # fmt: skip
     """The map (module docstring) of ``states``; ``shape`` (from ``grid``): their grid's
     coordinates (else a dimension ``state``); ``control``: the compensators (forces.compensator)
     as the case says (None), "off", "on", or "both" (a leading dimension ``control``:
-    uncontrolled, controlled).
+    uncontrolled, controlled); ``probability``: each state's share of the time (``table``),
+    kept with the map (``shares`` weighs the statuses by it).
 
     Returns
     -------
@@ -219,8 +305,9 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
         ``status`` (a string of ``STATUSES``), ``message``, ``equilibria``,
         ``stable_equilibria``, ``growth`` [1/s] (the largest real part at the equilibrium kept),
         ``clearance`` [m], ``tension`` [N] (its largest tie tension), ``surge_force`` [N] and
-        ``yaw_moment`` [N m] (the compensator's there), and the weather's four fields, over
-        the grid or ``state``.
+        ``yaw_moment`` [N m] (the compensator's there), the weather's six fields (a state
+        without waves given has the case's, NaN without any) and ``probability`` when given,
+        over the grid or ``state``.
     """
     if isinstance(case, str):
         case = loader.load_case(case)
@@ -235,8 +322,19 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
                         "one ({model: compensator, point, target, distance})")  # fmt: skip
     data = case.model_dump(by_alias=True, exclude_none=True)
     base = loader.case_base_dir(case)
-    plain = [(w.current_speed, w.current_towards_deg, w.wind_speed, w.wind_towards_deg)
-             for w in states]  # fmt: skip
+    if case.environment.waves:  # the case's own waves, as what they are
+        height, towards = case_waves(case.environment)
+        states = [replace(w, wave_height=height if w.wave_height is None else w.wave_height,
+                          wave_towards_deg=towards if w.wave_towards_deg is None
+                          else w.wave_towards_deg) for w in states]  # fmt: skip
+    plain = [_fields(w) for w in states]
+    if probability is not None and len(probability) != len(plain):
+        raise CaseError(f"probability: {len(probability)} values for {len(plain)} states; give "
+                        "one a state")  # fmt: skip
+    for weather in states:  # what no state can have (no waves to scale): one line, not a map
+        if weather.wave_height is not None or weather.wave_towards_deg is not None:
+            weather.apply(plane.built)
+            break
     chunks = [(plain[i : i + chunk], flag) for flag in CONTROL[control]
               for i in range(0, len(plain), chunk)]  # fmt: skip
     if scheduler is None:
@@ -245,9 +343,9 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
     else:
         rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings)
     if control is None:
-        return _dataset(rows, plain, shape, limits, simulate)
+        return _dataset(rows, plain, shape, limits, simulate, probability)
     parts = [_dataset(rows[k * len(plain) : (k + 1) * len(plain)], plain, shape, limits,
-                      simulate) for k in range(len(CONTROL[control]))]  # fmt: skip
+                      simulate, probability) for k in range(len(CONTROL[control]))]  # fmt: skip
     names = [CONTROLS[int(flag)] for flag in CONTROL[control]]
     return xr.concat(parts, dim="control").assign_coords(control=names)
 
@@ -283,7 +381,7 @@ def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> 
             cluster.close()
 
 
-def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
+def _dataset(rows, plain, shape, limits, simulate, probability) -> xr.Dataset:
     dims: tuple[str, ...] = ("state",)
     coords: dict = {}
     sizes: tuple[int, ...] = (len(rows),)
@@ -295,7 +393,9 @@ def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
     def field(name, dtype=float):
         return np.array([r[name] for r in rows], dtype=dtype).reshape(sizes)
 
-    weather = np.array(plain, dtype=float).reshape(*sizes, 4)
+    weather = np.array(plain, dtype=float).reshape(*sizes, 6)
+    shares = {} if probability is None else {
+        "probability": (dims, np.asarray(probability, float).reshape(sizes))}  # fmt: skip
     return xr.Dataset(
         {
             "status": (dims, field("status", str)),
@@ -311,6 +411,9 @@ def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
             "current_towards": (dims, weather[..., 1], {"units": "deg"}),
             "wind_speed": (dims, weather[..., 2], {"units": "m/s"}),
             "wind_towards": (dims, weather[..., 3], {"units": "deg"}),
+            "wave_height": (dims, weather[..., 4], {"units": "m", "nan": "no waves"}),
+            "wave_towards": (dims, weather[..., 5], {"units": "deg", "nan": "no waves"}),
+            **shares,
         },
         coords=coords,
         attrs={
@@ -320,3 +423,19 @@ def _dataset(rows, plain, shape, limits, simulate) -> xr.Dataset:
             "statuses": ", ".join(STATUSES),
         },  # fmt: skip
     )
+
+
+def shares(found: xr.Dataset) -> list[tuple[str, dict[str, int], dict[str, float]]]:
+    """Per control setting (its label, "" without that dimension): each status's count of
+    states and its share of the time (by ``probability``, else of the states)."""
+    parts = [(found, "")] if "control" not in found.dims else [
+        (found.sel(control=c), str(c)) for c in found["control"].values]  # fmt: skip
+    out = []
+    for part, label in parts:
+        status = part["status"].values.ravel()
+        weight = (part["probability"].values.ravel() if "probability" in part
+                  else np.full(status.size, 1.0 / status.size))  # fmt: skip
+        names = [n for n in STATUSES if np.any(status == n)]
+        out.append((label, {n: int(np.sum(status == n)) for n in names},
+                    {n: float(weight[status == n].sum()) for n in names}))  # fmt: skip
+    return out

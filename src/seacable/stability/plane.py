@@ -418,13 +418,12 @@ class Weather:
         if sea.shape != p.wave.shape:
             raise CaseError("environment.waves: the built system's sea is not the case's; "
                             "build the plane from this case")  # fmt: skip
-        energy = sea[waves.A] ** 2
+        height, mean = case_waves(built.case.environment)
         scale, turn = 1.0, 0.0
         if self.wave_height is not None:
-            scale = self.wave_height / significant_height(built.case.environment)
+            scale = self.wave_height / height
         if self.wave_towards_deg is not None:
-            mean = math.atan2((energy * sea[waves.SIN]).sum(), (energy * sea[waves.COS]).sum())
-            turn = math.radians(self.wave_towards_deg) - mean
+            turn = math.radians(self.wave_towards_deg - mean)
         c, s = math.cos(turn), math.sin(turn)
         p.wave[waves.A] = scale * sea[waves.A]
         p.wave[waves.COS] = c * sea[waves.COS] - s * sea[waves.SIN]
@@ -440,6 +439,16 @@ def significant_height(environment: Environment) -> float:
 
 
 _SEAS: dict[str, np.ndarray] = {}  # case_sea's, by the environment's JSON
+
+
+def case_waves(environment: Environment) -> tuple[float, float]:
+    """The case's waves as ``Weather`` sees them: their significant height Hs [m]
+    (``significant_height``) and their mean direction [deg], towards (the direction of
+    sum a_i^2 (cos b_i, sin b_i) over the realised components)."""
+    sea = case_sea(environment)
+    energy = sea[waves.A] ** 2
+    mean = math.atan2((energy * sea[waves.SIN]).sum(), (energy * sea[waves.COS]).sum())
+    return significant_height(environment), math.degrees(mean)
 
 
 def case_sea(environment: Environment) -> np.ndarray:
@@ -464,5 +473,5 @@ def set_constant(p: kernel.SystemParams, channel: int, value: float) -> None:
     p.tf_build_up[channel, :] = 0.0
 
 
-__all__ = ["Plane", "Weather", "at_rest", "balance", "case_sea", "jacobian", "rates",
+__all__ = ["Plane", "Weather", "at_rest", "balance", "case_sea", "case_waves", "jacobian", "rates",
            "set_constant", "significant_height"]  # fmt: skip
