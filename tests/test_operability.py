@@ -231,3 +231,23 @@ def test_the_controlled_map_keeps_the_shuttle_astern_where_it_is_stable_alongsid
     poses = sorted((equilibria.relative(plane, e.x)[3:] for e in found), key=lambda q: q[0])
     assert poses[0][0] < -350.0 < -300.0 < poses[-1][0]
     assert all(abs(q[2]) < 1e-9 for q in poses)
+
+
+def test_simulations_from_the_nominal_places_turn_with_the_weather():
+    """``start="nominal"``: the shuttle at rest at its nominal place relative to the FPSO,
+    the FPSO at its equilibrium. The turret's restoring is the same in every direction, so
+    the weather turned by 90 deg gives the same motion turned: the same clearance and
+    tension to round-off, and a motion that differs from the one from the equilibrium."""
+    case = _example()
+    limits = Limits(30.0, (("hawser", 3.0e6),))
+    weathers = [Weather(0.8, 150.0, 16.0, 190.0), Weather(0.8, 240.0, 16.0, 280.0)]
+    nominal = operability(case, weathers, None, limits, 600.0, scheduler=None, headings=6,
+                          start="nominal")  # fmt: skip
+    pushed = operability(case, weathers[:1], None, limits, 600.0, scheduler=None, headings=6)
+    clearance, tension = nominal["clearance"].values, nominal["tension"].values
+    assert clearance[0] == pytest.approx(clearance[1], rel=1e-6)
+    assert tension[0] == pytest.approx(tension[1], rel=1e-6)
+    assert abs(clearance[0] - pushed["clearance"].values[0]) > 1.0
+    assert nominal.attrs["simulated_from"] == "nominal"
+    with pytest.raises(seacable.CaseError, match="start 'anywhere'"):
+        operability(case, weathers, None, limits, 600.0, scheduler=None, start="anywhere")

@@ -255,6 +255,11 @@ def _angles(text: str, option: str) -> np.ndarray:
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
 @click.option("--simulate", type=float, default=None,
               help="Also move each state this many seconds from its equilibrium.")  # fmt: skip
+@click.option("--simulate-from", "start", type=click.Choice(["equilibrium", "nominal"]),
+              default="equilibrium", show_default=True,
+              help="Start the motion from the equilibrium pushed by 1 m and 1 deg, or from the "
+                   "ships at rest as at their nominal places around the FPSO's equilibrium "
+                   "pose.")  # fmt: skip
 @click.option("--control", type=click.Choice(["off", "on", "both"]), default=None,
               help="The ships' compensator off, on, or both side by side (default: as the "
                    "case says).")  # fmt: skip
@@ -269,7 +274,7 @@ def _angles(text: str, option: str) -> np.ndarray:
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the map (.png).")
 def operability(case_file: str, current_speed: float | None, current_towards: str,
                 wind_towards: str, ratios: str, states: str | None, clearance: float, tension,
-                simulate: float | None, control: str | None, scheduler: str,
+                simulate: float | None, start: str, control: str | None, scheduler: str,
                 output: str | None, plot: str | None) -> None:  # fmt: skip
     """An operability map of the ships of CASE_FILE: for every current and wind direction and
     wind-to-current speed ratio (or every state of a table, with waves), stable / limit
@@ -289,7 +294,8 @@ def operability(case_file: str, current_speed: float | None, current_towards: st
     where = None if scheduler == "none" else scheduler
     case = seacable.load_case(case_file)
     found = stability_map.operability(case, weathers, shape, limits, simulate, where,
-                                      control=control, probability=probability)  # fmt: skip
+                                      control=control, probability=probability,
+                                      start=start)  # fmt: skip
     for label, counts, share in stability_map.shares(found):
         by = "of the time" if probability is not None else "of the states"
         click.echo(f"{label + ': ' if label else ''}{len(weathers)} weather states: "

@@ -103,6 +103,24 @@ def relative(plane: Plane, x: np.ndarray) -> np.ndarray:
     return out
 
 
+def placed(plane: Plane, x: np.ndarray, poses: np.ndarray) -> np.ndarray:
+    """Positions with each free body that a tie holds to another free body at its pose in
+    ``poses`` (``relative``'s) relative to that body, the others as in ``x``: the ships as
+    at their nominal places, for instance, around the FPSO where the weather turned it."""
+    out = np.asarray(x, dtype=float)[: 3 * len(plane.bodies)].copy()
+    p = plane.built.params
+    free = {int(b) for b in plane.bodies}
+    for j, tie in _tie_order(plane):  # the bodies holding others first
+        if tie is None or int(p.point_body[tie[1]]) not in free:
+            continue
+        parent = _points(plane, out)[int(p.point_body[tie[1]])]
+        c, s = math.cos(parent[2]), math.sin(parent[2])
+        dx, dy, dpsi = poses[3 * j : 3 * j + 3]
+        out[3 * j : 3 * j + 3] = (parent[0] + c * dx - s * dy, parent[1] + s * dx + c * dy,
+                                  float(_wrap(parent[2] + dpsi)))  # fmt: skip
+    return out
+
+
 def _tie_order(plane: Plane) -> list[tuple[int, tuple[int, int, int] | None]]:
     """The free bodies (their index j) in an order their ties allow: each with its tie to a
     body placed before it (its point, the other point, the tie's index), or None (a body not

@@ -22,8 +22,11 @@ in order, so neighbours start each other) and, when those give no stable one wit
 apart, by the whole search (scanned starts and ``headings`` per body:
 seacable.stability.equilibria), and classified by their eigenvalues. With ``simulate`` [s] each
 state is also integrated for that long (the fixed-step flow of seacable.stability.orbits) from
-the stable equilibrium pushed off by 1 m and 1 deg, or, without one, from the unstable one
-nearest the nominal places (as above).
+the equilibrium kept (above: the stable one, or without one the unstable one where the ships
+lie most as at their nominal places) pushed off by 1 m and 1 deg (``start`` "equilibrium"),
+or (``start`` "nominal") from the ships at rest as at their nominal places around the first
+ship where that equilibrium has it (``equilibria.placed``): the shuttle just connected astern
+of the FPSO as it weathervanes, and the motion that follows.
 
 States run in chunks, in this process (``scheduler=None``) or on Dask: ``"local"`` starts a
 local cluster of one single-threaded worker process per core; any other string is the address
@@ -47,6 +50,7 @@ from seacable.stability import orbits
 from seacable.stability.plane import Plane, Weather, case_waves
 
 CONTROLS = ("uncontrolled", "controlled")
+STARTS = ("equilibrium", "nominal")  # where a map's simulations start (``operability``)
 # the compensators' settings a map runs (``operability``'s ``control``)
 CONTROL: dict = {None: (None,), "off": (False,), "on": (True,), "both": (False, True)}
 STATUSES = ("stable", "limit exceeded", "cycling", "collision risk", "no equilibrium", "failed")
@@ -153,7 +157,7 @@ def _weather(state: tuple[float, ...]) -> Weather:
 
 def evaluate(case_data: dict, base_dir, states: list[tuple[float, ...]],
              limits: Limits, simulate: float | None, headings: int,
-             controlled: bool | None = None) -> list[dict]:  # fmt: skip
+             controlled: bool | None = None, start: str = "equilibrium") -> list[dict]:  # fmt: skip
     """The rows of a chunk of weather states (each ``_fields``), in order, the equilibria of
     one seeding the next, with the compensators on or off (``controlled``; None: as the case
     says). Runs where Dask sends it: plain data in and out."""
@@ -183,7 +187,7 @@ def evaluate(case_data: dict, base_dir, states: list[tuple[float, ...]],
                 found = eq.find(plane, None, headings, extra=[e.x for e in found],
                                 iterations=30, every=every)  # fmt: skip
             solved.append((here, [e.x for e in found]))
-            rows.append(_classify(plane, found, nominal, limits, simulate))
+            rows.append(_classify(plane, found, nominal, limits, simulate, start))
         except Exception as exc:  # one state's failure is its row
             rows.append(_failed(f"{type(exc).__name__}: {exc}"))
     return rows
@@ -224,7 +228,7 @@ def _tension_excess(plane: Plane, tension: np.ndarray, limits: Limits) -> tuple[
 
 
 def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
-              simulate: float | None) -> dict:  # fmt: skip
+              simulate: float | None, start: str = "equilibrium") -> dict:  # fmt: skip
     n = len(plane.bodies)
     stable = [e for e in found if e.stable]
     pool = stable or found
@@ -250,18 +254,23 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
     excess, tie = _tension_excess(plane, tension, limits)
     if simulate:
         push = state.copy()
-        push[0 : 3 * n : 3] += 1.0
-        push[2 : 3 * n : 3] += math.radians(1.0)
+        if start == "nominal":
+            push[: 3 * n] = eq.placed(plane, best.x, nominal)
+        else:
+            push[0 : 3 * n : 3] += 1.0
+            push[2 : 3 * n : 3] += math.radians(1.0)
         steps = int(math.ceil(simulate))  # 1 s steps
         _, path = orbits.integrate(plane, push, simulate, steps, record=True)
-        least, peak = math.inf, 0.0
+        least, peak, highest = math.inf, 0.0, row["tension"]
+        ties = list(plane.built.layout.ties)
         for k in range(0, path.shape[0], 5):
             least = min(least, clearance_at(plane, path[k, : 3 * n]))
             plane.rates(path[k])
+            tension = plane.work.tie_tension
+            highest = max(highest, float(tension.max()) if tension.size else 0.0)
             for name, limit in limits.tension:
-                ties = list(plane.built.layout.ties)
-                peak = max(peak, float(plane.work.tie_tension[ties.index(name)]) / limit)
-        row["clearance"], excess = least, max(excess, peak)
+                peak = max(peak, float(tension[ties.index(name)]) / limit)
+        row["clearance"], row["tension"], excess = least, highest, max(excess, peak)
     if row["clearance"] < limits.clearance:
         row["status"] = "collision risk" if (simulate or row["clearance"] == 0.0) else (
             "limit exceeded")  # fmt: skip
@@ -292,19 +301,23 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
                 limits: Limits = Limits(), simulate: float | None = None,
                 scheduler: str | None = "local", chunk: int = 108,
                 headings: int = 6, control: str | None = None,
-                probability: np.ndarray | None = None) -> xr.Dataset:  # fmt: skip
+                probability: np.ndarray | None = None,
+                start: str = "equilibrium") -> xr.Dataset:  # fmt: skip
     """The map (module docstring) of ``states``; ``shape`` (from ``grid``): their grid's
     coordinates (else a dimension ``state``); ``control``: the compensators (forces.compensator)
     as the case says (None), "off", "on", or "both" (a leading dimension ``control``:
     uncontrolled, controlled); ``probability``: each state's share of the time (``table``),
-    kept with the map (``shares`` weighs the statuses by it).
+    kept with the map (``shares`` weighs the statuses by it); ``start``: where the
+    simulations start (``STARTS``; module docstring).
 
     Returns
     -------
     xarray.Dataset
         ``status`` (a string of ``STATUSES``), ``message``, ``equilibria``,
         ``stable_equilibria``, ``growth`` [1/s] (the largest real part at the equilibrium kept),
-        ``clearance`` [m], ``tension`` [N] (its largest tie tension), ``surge_force`` [N] and
+        ``clearance`` [m] and ``tension`` [N] (the largest tie tension; with ``simulate``,
+        the least clearance and the largest tension along the motion too, every 5 s),
+        ``surge_force`` [N] and
         ``yaw_moment`` [N m] (the compensator's there), the weather's six fields (a state
         without waves given has the case's, NaN without any) and ``probability`` when given,
         over the grid or ``state``.
@@ -317,6 +330,8 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
     if control not in CONTROL:
         raise CaseError(f"control '{control}': give one of {list(CONTROL)[1:]} (or none: as "
                         "the case says)")  # fmt: skip
+    if start not in STARTS:
+        raise CaseError(f"start '{start}': give one of {list(STARTS)}")
     if control not in (None, "off") and plane.controlled is None:
         raise CaseError(f"control '{control}': no ship has a 'compensator' force model; add "
                         "one ({model: compensator, point, target, distance})")  # fmt: skip
@@ -339,18 +354,21 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
               for i in range(0, len(plain), chunk)]  # fmt: skip
     if scheduler is None:
         rows = [r for c, flag in chunks
-                for r in evaluate(data, base, c, limits, simulate, headings, flag)]  # fmt: skip
+                for r in evaluate(data, base, c, limits, simulate, headings, flag,
+                                  start)]  # fmt: skip
     else:
-        rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings)
+        rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings, start)
     if control is None:
-        return _dataset(rows, plain, shape, limits, simulate, probability)
+        return _dataset(rows, plain, shape, limits, simulate, probability, start)
     parts = [_dataset(rows[k * len(plain) : (k + 1) * len(plain)], plain, shape, limits,
-                      simulate, probability) for k in range(len(CONTROL[control]))]  # fmt: skip
+                      simulate, probability, start)
+             for k in range(len(CONTROL[control]))]  # fmt: skip
     names = [CONTROLS[int(flag)] for flag in CONTROL[control]]
     return xr.concat(parts, dim="control").assign_coords(control=names)
 
 
-def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> list[dict]:
+def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings,
+             start) -> list[dict]:  # fmt: skip
     try:
         from distributed import Client, LocalCluster
     except ImportError:
@@ -367,7 +385,7 @@ def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> 
         client = Client(scheduler)
     try:
         futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, flag,
-                                 pure=False) for c, flag in chunks]  # fmt: skip
+                                 start, pure=False) for c, flag in chunks]  # fmt: skip
         rows: list[dict] = []
         for (chunk, _), future in zip(chunks, futures, strict=True):
             try:
@@ -381,7 +399,7 @@ def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings) -> 
             cluster.close()
 
 
-def _dataset(rows, plain, shape, limits, simulate, probability) -> xr.Dataset:
+def _dataset(rows, plain, shape, limits, simulate, probability, start) -> xr.Dataset:
     dims: tuple[str, ...] = ("state",)
     coords: dict = {}
     sizes: tuple[int, ...] = (len(rows),)
@@ -420,6 +438,7 @@ def _dataset(rows, plain, shape, limits, simulate, probability) -> xr.Dataset:
             "clearance_limit": limits.clearance,
             "tension_limits": "; ".join(f"{t} {v:g} N" for t, v in limits.tension),
             "simulated": simulate or 0.0,
+            "simulated_from": start if simulate else "",
             "statuses": ", ".join(STATUSES),
         },  # fmt: skip
     )
