@@ -69,6 +69,32 @@ def solve(span: float, rise: float, length: float, w: float, ea: float, seabed: 
     )
 
 
+def horizontal_law(rise: float, length: float, w: float, ea: float, seabed: bool,
+                   count: int = 200) -> np.ndarray:  # fmt: skip
+    """The line's horizontal tension H [N] against the horizontal span [m] between its ends,
+    the upper end ``rise`` [m] above the lower (``count`` rows (span, H), spans increasing):
+    H over a geometric range from 1e-7 to 1e-2 of EA, for each the fairlead's vertical
+    tension V_F that reaches the rise (Brent's method), and the span it gives. Below the
+    first span the line hangs slack (H about 0); beyond the last it stretches as a straight
+    bar would."""
+    from scipy.optimize import brentq  # here: its import is slow (docs/architecture.md)
+
+    if w <= 0:
+        raise CatenaryError(f"the line's apparent weight must be positive (got {w:.4g} N/m)")
+    if rise < 0.0 or rise >= length:
+        raise CatenaryError(f"the rise {rise:.4g} m must lie between 0 and the line's length "
+                            f"{length:.4g} m")  # fmt: skip
+    rows = np.empty((count, 2))
+    for k, h in enumerate(np.geomspace(1e-7 * ea, 1e-2 * ea, count)):
+        high = w * length + h
+        while _ends(h, high, length, w, ea, seabed)[1] < rise:
+            high *= 2.0
+        v_f = brentq(lambda v, h=h: _ends(h, v, length, w, ea, seabed)[1] - rise, 0.0, high,
+                     xtol=1e-12 * high, rtol=1e-14)  # fmt: skip
+        rows[k] = _ends(h, v_f, length, w, ea, seabed)[0], h
+    return rows
+
+
 def profile(s, h, v_f, length, w, ea, seabed):
     """Horizontal distance and rise from the anchor at arc lengths ``s`` (from the anchor)."""
     s = np.asarray(s, dtype=float)

@@ -11,7 +11,9 @@ parameters (``Weather``): a uniform current and a constant wind, without rebuild
 
 What the analyses accept (``Plane.of``, one line naming the body or line otherwise): every
 free body is a rigid body with ``dofs: [surge, sway, yaw]``, level (roll and pitch 0) and
-without force models that carry states; lines are ties (massless) or none. Waves act through
+without force models that carry states; lines are ties (massless), or uniform lumped-mass
+lines, each taken quasi-static: the tie that pulls its ends as its elastic catenary at rest
+does (``quasi_static``; its mass, drag and dynamics left out). Waves act through
 their mean drift only (``wave drift``, constant in time once the sea has risen: the plane
 takes it risen, without the build-up); the first-order wave loads (``diffraction``,
 ``non-linear Froude-Krylov``, ``non-linear hydrostatic`` on the waves' surface) oscillate in
@@ -27,12 +29,13 @@ from numba import njit
 from seacable import packing
 from seacable.case import forces as fm
 from seacable.case.environment import Environment, RegularWave
-from seacable.case.system import RigidBody, SystemCase, Tie
+from seacable.case.system import LumpedMassLine, RigidBody, SystemCase, Tie
 from seacable.errors import CaseError
 from seacable.forces import compensator, kinds
 from seacable.kernels import waves
 from seacable.kernels.jit import JIT
-from seacable.system import kernel
+from seacable.lines import catenary
+from seacable.system import assemble, initial, kernel
 from seacable.system import model as system_model
 from seacable.system.assemble import BuiltSystem
 
@@ -200,10 +203,11 @@ class Plane:
         """The plane view of ``case`` (its own start, not its statics); a CaseError line when
         the case is not one the analyses accept (module docstring)."""
         for line in case.lines:
-            if not isinstance(line, Tie):
+            if not isinstance(line, Tie | LumpedMassLine):
                 raise CaseError(f"lines.{line.name}: the horizontal-plane analyses take ties "
-                                f"(model: tie) between the bodies; '{line.model}' lines run "
-                                "in time simulations only")  # fmt: skip
+                                "(model: tie) and lumped-mass lines (model: lumped_mass, "
+                                f"taken quasi-static) between the bodies; '{line.model}' "
+                                "lines run in time simulations only")  # fmt: skip
         free = []
         for i, body in enumerate(case.bodies):
             where = f"bodies.{body.name}"
@@ -226,7 +230,7 @@ class Plane:
         if not free:
             raise CaseError("bodies: no free body; the horizontal-plane analyses need at least "
                             "one rigid body with dofs: [surge, sway, yaw]")  # fmt: skip
-        built = system_model.build(case, base_dir)
+        built = system_model.build(quasi_static(case, base_dir), base_dir)
         p = built.params
         if p.n_s:
             raise CaseError(
@@ -337,6 +341,46 @@ class Plane:
         jacobian(t, np.asarray(x, dtype=float), self.y, self.q, self.v, self.built.params,
                  self.work, self.ydot, out, self.steps())  # fmt: skip
         return out
+
+
+def quasi_static(case: SystemCase, base_dir=None) -> SystemCase:
+    """``case`` with each lumped-mass line replaced by the tie that pulls its ends as the line
+    at rest does in the horizontal plane: the elastic catenary's horizontal tension H(span)
+    (``lines.catenary.horizontal_law``), between the same points, its unstretched length the
+    height between them and its tension H d / span at the distance d (the same horizontal
+    pull, along the chord). The ends' heights are those the case gives (level ships keep
+    them). The line's mass, drag and dynamics are left out; only uniform lines (one stiffness
+    and weight per length) have the closed form. The case itself when it has no such line."""
+    lumped = [line for line in case.lines if isinstance(line, LumpedMassLine)]
+    if not lumped:
+        return case
+    built = assemble.build(case, base_dir)
+    p = built.params
+    ppos, _ = initial.end_points(built, built.y0)
+    data = case.model_dump(by_alias=True, exclude_none=True)
+    for li, line in enumerate(lumped):
+        where = f"lines.{line.name}"
+        ends = ppos[int(p.line_from[li])], ppos[int(p.line_to[li])]
+        low, high = sorted(ends, key=lambda point: float(point[2]))
+        uniform = initial.uniform_line(p, li, float(low[2]))
+        if uniform is None:
+            raise CaseError(f"{where}.sections: segments of different stiffness or weight; "
+                            "the horizontal-plane analyses take a lumped-mass line as its "
+                            "elastic catenary, which needs a uniform line: give it one line "
+                            "type")  # fmt: skip
+        length, w, ea, seabed = uniform
+        rise = float(high[2] - low[2])
+        try:
+            law = catenary.horizontal_law(rise, length, w, ea, seabed, count=400)
+        except catenary.CatenaryError as exc:
+            raise CaseError(f"{where}: {exc}") from None
+        chord = np.hypot(law[:, 0], rise)
+        pull = law[:, 1] * chord / law[:, 0]  # [N] along the chord
+        table = [[0.0, 0.0]] + np.column_stack([chord - rise, pull]).tolist()
+        tie = {"name": line.name, "model": "tie", "from": line.from_, "to": line.to,
+               "unstretched_length": rise, "tension_table": table}  # fmt: skip
+        data["lines"] = [tie if item["name"] == line.name else item for item in data["lines"]]
+    return SystemCase.model_validate(data)
 
 
 def _refuse_first_order_waves(case: SystemCase, body: RigidBody, where: str) -> None:

@@ -31,25 +31,37 @@ def end_points(built: BuiltSystem, y: np.ndarray):
     return w.ppos.copy(), w.pvel.copy()
 
 
-def _catenary(p, li, start, end, env, where):
+def uniform_line(p, li: int, low_z: float) -> tuple[float, float, float, bool] | None:
+    """Lumped-mass line ``li`` as the elastic catenary takes it: (L [m], w [N/m], EA [N],
+    whether its lower end, at height ``low_z``, lies on the seabed); None when its segments
+    differ in stiffness or weight per length (no closed form)."""
     n, s0 = p.line_n[li], p.line_seg[li]
     lengths = p.seg_length[s0 : s0 + n]
     stiffness = p.seg_stiffness[s0 : s0 + n]
     weight = p.seg_wet_weight[s0 : s0 + n]
     if np.ptp(stiffness) > 0 or np.ptp(weight / lengths) > 1e-9 * abs(weight[0] / lengths[0]):
-        return None  # not uniform: straight, then the static solve
-    low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
+        return None
     total = float(lengths.sum())
-    w = float(weight.sum()) / total
-    on_seabed = p.seabed_z > -1e29 and abs(low[2] - p.seabed_z) < 1e-6
+    on_seabed = bool(p.seabed_z > -1e29 and abs(low_z - p.seabed_z) < 1e-6)
+    return total, float(weight.sum()) / total, float(stiffness[0]), on_seabed
+
+
+def _catenary(p, li, start, end, env, where):
+    n, s0 = p.line_n[li], p.line_seg[li]
+    lengths = p.seg_length[s0 : s0 + n]
+    low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
+    uniform = uniform_line(p, li, float(low[2]))
+    if uniform is None:
+        return None  # not uniform: straight, then the static solve
+    total, w, ea, on_seabed = uniform
     span_vector = high[:2] - low[:2]
     span = float(np.hypot(*span_vector))
     try:
-        h, v_f = catenary.solve(span, float(high[2] - low[2]), total, w, stiffness[0], on_seabed)
+        h, v_f = catenary.solve(span, float(high[2] - low[2]), total, w, ea, on_seabed)
     except catenary.CatenaryError as exc:
         raise CaseError(f"{where}.initial: {exc}") from None
     s_high = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
-    x, z = catenary.profile(total - s_high, h, v_f, total, w, stiffness[0], on_seabed)
+    x, z = catenary.profile(total - s_high, h, v_f, total, w, ea, on_seabed)
     direction = span_vector / span if span > 0 else np.zeros(2)
     nodes = np.empty((n + 1, 3))
     nodes[:, 0] = low[0] + x * direction[0]
