@@ -14,7 +14,7 @@ import pytest
 import yaml
 
 import seacable
-from seacable.stability import cycles
+from seacable.stability import cycles, equilibria
 from seacable.stability.continuation import Continuation
 from seacable.stability.parameters import parameter
 from seacable.stability.plane import Plane
@@ -76,21 +76,27 @@ def test_an_orbit_of_the_branch_returns_to_its_start_under_dopri5(hopf_cycles):
     case, _, found, _ = hopf_cycles
     k = len(found.parameter) - 1
     x0, period = found.x0[k], found.period[k]
+    run, end, yaw = _dopri5(case, x0, found.parameter[k], period, 100)
+    assert np.abs(end - x0[:2]).max() < 1e-2
+    assert abs(math.remainder(yaw - x0[2], 2 * math.pi)) < 1e-4
+    swing = np.ptp(np.asarray(run["bodies/shuttle/position_y"]))
+    assert swing == pytest.approx(found.amplitude[k][1], rel=1e-3)
+
+
+def _dopri5(case, x0: np.ndarray, thrust: float, duration: float, rows: int):
+    """The shuttle's motion from the state ``x0`` at ``thrust`` [N] under the system's own
+    dopri5: the run, and its last place (x, y) and heading [rad]."""
     data = case.model_dump(by_alias=True, exclude_none=True)
     ship = next(b for b in data["bodies"] if b["name"] == "shuttle")
     ship.update(position=[x0[0], x0[1], 0.0], orientation_deg=[0.0, 0.0, math.degrees(x0[2])],
                 velocity=[x0[3], x0[4], 0.0], angular_velocity=[0.0, 0.0, x0[5]])  # fmt: skip
-    ship["external forces"][1]["force_x"] = {"kind": "constant", "value": found.parameter[k]}
-    data["simulation"] = {"duration": period, "output_interval": period / 100,
+    ship["external forces"][1]["force_x"] = {"kind": "constant", "value": thrust}
+    data["simulation"] = {"duration": duration, "output_interval": duration / rows,
                           "integrator": "dopri5", "rtol": 1e-10}  # fmt: skip
     run = seacable.simulate(seacable.load_case(data))
-    end = [float(np.asarray(run[f"bodies/shuttle/{name}"])[-1])
-           for name in ("position_x", "position_y")]  # fmt: skip
-    yaw = math.radians(float(np.asarray(run["bodies/shuttle/yaw"])[-1]))
-    assert np.abs(np.array(end) - x0[:2]).max() < 1e-2
-    assert abs(math.remainder(yaw - x0[2], 2 * math.pi)) < 1e-4
-    swing = np.ptp(np.asarray(run["bodies/shuttle/position_y"]))
-    assert swing == pytest.approx(found.amplitude[k][1], rel=1e-3)
+    end = np.array([float(np.asarray(run[f"bodies/shuttle/{name}"])[-1])
+                    for name in ("position_x", "position_y")])  # fmt: skip
+    return run, end, math.radians(float(np.asarray(run["bodies/shuttle/yaw"])[-1]))
 
 
 @SLOW  # the criticality's simulations: about 110 s of one core
@@ -110,3 +116,51 @@ def test_the_command_line_reports_the_cycles_and_their_kind(tmp_path):
     assert "supercritical by simulation" in out.output
     assert "cycles from the Hopf point 1: 3 orbits" in out.output
     assert (tmp_path / "b.png").stat().st_size > 10_000
+
+
+@SLOW  # seven segments of a 4,000 s orbit, four orbits: about 70 s of one core
+def test_cycles_from_a_hopf_point_on_an_unstable_equilibrium_by_multiple_shooting():
+    """The shuttle's reversed equilibrium (stern to the hawser) is divergent (a real
+    eigenvalue of +0.0033 1/s); at about 67.5 kN of astern thrust a slow pair (period about
+    3,900 s) crosses too. Over one period a disturbance grows by exp(13): single shooting's
+    Newton diverges. Seven segments (``cycles.segments``) each grow by exp(2) at most, and
+    the branch starts: its period tends to 2 pi / omega as the amplitude vanishes, its
+    amplitude grows in proportion to the distance from the Hopf point (the |v| v terms), its
+    cycles lie where the crossing pair is unstable (supercritical, judged by the branch: no
+    simulation can settle beside a divergent equilibrium), each has the multiplier
+    exp(lambda T) of the divergent direction and one at 1, and each segment run by the
+    system's own dopri5 lands on the next one's start."""
+    plane = Plane.of(shuttle_case("short-wing"))
+    par = parameter(plane, THRUST)
+    par.set(plane, -2e5)
+    [reversed_] = [e for e in equilibria.find(plane, None, 12) if not e.stable]
+    branch = Continuation(plane, par).run(reversed_.x, -2e5, 0.0)
+    [hopf] = [s for s in branch.special if s.kind == "hopf"]
+    assert hopf.parameter == pytest.approx(-67538.0, abs=5.0)
+    par.set(plane, hopf.parameter)
+    lam = np.linalg.eigvals(plane.jacobian(np.concatenate([hopf.x, np.zeros(3)])))
+    period = 2 * math.pi / hopf.frequency
+    assert cycles.segments(lam, period) == 7
+    found, kind = cycles.from_hopf(plane, par, hopf.x, hopf.parameter, hopf.frequency,
+                                   (-2e5, 0.0), 4, 1000.0)  # fmt: skip
+    assert len(found.parameter) == 4
+    assert kind.kind == "supercritical" and kind.by == "branch"
+    distance = np.array(found.parameter) - hopf.parameter
+    sway = np.array([a[1] for a in found.amplitude])
+    assert np.all(distance > 0.0) and np.ptp(sway / distance) < 0.15 * (sway / distance).max()
+    # the period, linear in the amplitude here, extrapolated to none: 2 pi / omega
+    slope, zero = np.polyfit(sway, found.period, 1)
+    assert zero == pytest.approx(period, rel=1e-3)
+    growth = math.exp(float(lam.real.max()) * found.period[0])
+    assert not any(found.stable)
+    multipliers = np.sort(np.abs(found.multipliers[0]))
+    assert multipliers[-1] == pytest.approx(growth, rel=0.1)
+    assert np.min(np.abs(found.multipliers[0] - 1.0)) < 1e-3
+    # the first orbit's segments under the system's dopri5
+    starts = found.starts[0]
+    case = shuttle_case("short-wing")
+    for i in (0, 3):
+        x0, x1 = starts[i], starts[(i + 1) % len(starts)]
+        _, end, yaw = _dopri5(case, x0, found.parameter[0], found.period[0] / len(starts), 10)
+        assert np.abs(end - x1[:2]).max() < 1e-2
+        assert abs(math.remainder(yaw - x1[2], 2 * math.pi)) < 1e-4

@@ -124,7 +124,10 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
         headings_text = ", ".join(f"{b} {s['special_heading'].values[j]:.3f} deg"
                                   for j, b in enumerate(found["body"].values))  # fmt: skip
         if "special_criticality" in found and s["special_criticality"].item():
-            extra += f", {s['special_criticality'].item()} by simulation"
+            by = {"branch": "the side its cycles lie on"}.get(
+                s["special_criticality_by"].item(), "simulation"
+            )
+            extra += f", {s['special_criticality'].item()} by {by}"
         if s["special_kind"].item() == "fold of cycles":
             headings_text = "where the limit cycles turn back"
         click.echo(f"{s['special_kind'].item()} at {path} = "

@@ -84,8 +84,8 @@ def continuation(case: SystemCase | str, parameter: str, start: float, end: floa
     equilibrium at ``start`` (``headings`` per body), and with ``switch`` from every branch
     point found, both ways along the other branch. Folds, branch points and Hopf points are
     located (seacable.stability.continuation). With ``cycles`` > 0, from each Hopf point a
-    branch of up to that many periodic orbits, and the point's criticality by simulation
-    (seacable.stability.cycles).
+    branch of up to that many periodic orbits (multiple shooting beside an unstable
+    equilibrium), and the point's criticality by simulation (seacable.stability.cycles).
 
     Returns
     -------
@@ -95,7 +95,9 @@ def continuation(case: SystemCase | str, parameter: str, start: float, end: floa
         point: ``special_kind`` (fold, branch point, hopf), ``special_parameter``,
         ``special_branch``, ``special_frequency`` [rad/s] (Hopf), ``special_heading`` [deg],
         ``special_criticality`` (a Hopf point's, with ``cycles``: supercritical, subcritical,
-        undecided, not judged; else empty), ``special_hysteresis`` (1: a subcritical point's
+        undecided, not judged; else empty), ``special_criticality_by`` ("simulation", or
+        "branch": judged by the side its cycles lie on, where the equilibrium is unstable on
+        both sides and no simulation settles), ``special_hysteresis`` (1: a subcritical point's
         large cycle persists where the equilibrium is stable, 0: not, -1: not judged). With
         ``cycles``, per ``cycle``: ``cycle_special`` (its Hopf point's index),
         ``cycle_parameter``, ``cycle_period`` [s], ``cycle_stable``, ``cycle_multiplier`` (the
@@ -163,12 +165,14 @@ def _with_cycles(ds: xr.Dataset, plane: Plane, found: list) -> xr.Dataset:
     """``ds`` with the cycles' variables (``continuation``'s Returns)."""
     hopf = np.flatnonzero(ds["special_kind"].values == "hopf")
     criticality = np.full(ds.sizes["special"], "", dtype=object)
+    judged_by = np.full(ds.sizes["special"], "", dtype=object)
     hysteresis = np.full(ds.sizes["special"], -1)
     names = ("special", "parameter", "period", "stable", "multiplier", "low", "high",
              "amplitude_y")  # fmt: skip
     rows: dict[str, list] = {k: [] for k in names}
     for index, (cycle, kind) in zip(hopf, found, strict=True):
         criticality[index] = kind.kind
+        judged_by[index] = kind.by
         hysteresis[index] = -1 if kind.hysteresis is None else int(kind.hysteresis)
         for i in range(len(cycle.parameter)):
             m = cycle.multipliers[i]
@@ -188,6 +192,7 @@ def _with_cycles(ds: xr.Dataset, plane: Plane, found: list) -> xr.Dataset:
 
     return ds.assign(
         special_criticality=("special", criticality.astype(str)),
+        special_criticality_by=("special", judged_by.astype(str)),
         special_hysteresis=("special", hysteresis),
         cycle_special=("cycle", np.array(rows["special"], dtype=int)),
         cycle_parameter=("cycle", np.array(rows["parameter"], dtype=float)),

@@ -14,6 +14,16 @@ the first phase condition is normal to Im q (the small orbit's velocity at its s
 Floquet multipliers are M's eigenvalues; an orbit is stable when all but the one at 1 lie
 inside the unit circle. A fold of cycles is where the parameter turns back along the branch.
 
+**Multiple shooting** beside an unstable equilibrium: where another eigenvalue grows by
+exp(Re lambda T) over a period (e^13 at the shuttle's reversed equilibrium), single shooting's
+Newton diverges. The orbit is then cut into m segments (``segments``: each growing by e^2 at
+most), its unknowns every segment's start x_i, T and mu, its residual phi_{T/m}(x_i) -
+x_{i+1} (cyclically) and the phase condition on x_0; the Jacobian has the segments'
+monodromies M_i on its diagonal and -I beside them, the monodromy is M_{m-1} ... M_0. The
+arclength is measured on x_0, T and mu (the other starts follow), so that one segment is
+single shooting, as before. The predictor puts the starts on the small orbit x_H + e Re(q
+exp(2 pi i k / m)).
+
 **Criticality by simulation.** The hull forces' |v| v terms are not smooth enough for the usual
 normal-form coefficient, so the Hopf point's kind is judged from the motion itself: on the
 side where the equilibrium is unstable, at mu_H + delta and mu_H + delta / 4, the motion from
@@ -24,11 +34,13 @@ as sqrt(delta), by three quarters for a |v| v one, as delta); a subcritical poin
 leaves for a distant cycle (or diverges) however close to mu_H. For a subcritical point the
 motion is then started from that distant cycle on the stable side, at mu_H - delta: if it
 keeps cycling there, the equilibrium and the large cycle coexist (hysteresis). A Hopf point
-where a second pair crosses (the equilibrium already unstable on both sides) is not judged.
+where a second pair crosses (the equilibrium already unstable on both sides) no simulation
+can judge; there the branch does (``by`` "branch"): supercritical when its cycles lie on the
+side where the crossing pair is unstable, subcritical on the other.
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -39,10 +51,11 @@ from seacable.stability.plane import Plane
 
 @dataclass
 class CycleBranch:
-    """Periodic orbits along a parameter: at each point the parameter, period [s], start x0,
-    amplitudes (peak to peak of each free body's x, y [m] and heading [rad]) and the least and
-    largest of each along the orbit (``low``, ``high``), Floquet
-    multipliers and stability; the folds of cycles found (parameter values)."""
+    """Periodic orbits along a parameter: at each point the parameter, period [s], start x0
+    (and its segments' starts, ``starts``, with multiple shooting), amplitudes (peak to peak
+    of each free body's x, y [m] and heading [rad]) and the least and largest of each along
+    the orbit (``low``, ``high``), Floquet multipliers and stability; the folds of cycles
+    found (parameter values)."""
 
     parameter: list[float] = field(default_factory=list)
     period: list[float] = field(default_factory=list)
@@ -53,6 +66,7 @@ class CycleBranch:
     multipliers: list[np.ndarray] = field(default_factory=list)
     stable: list[bool] = field(default_factory=list)
     folds: list[float] = field(default_factory=list)
+    starts: list[np.ndarray] = field(default_factory=list)  # each orbit's segments' (m, n)
 
 
 @dataclass
@@ -68,6 +82,7 @@ class Criticality:
     parameters: tuple[float, float]
     amplitudes: tuple[float, float]
     hysteresis: bool | None = None
+    by: str = "simulation"  # or "branch": the side its cycles lie on (``from_hopf``)
 
 
 def _stable(multipliers: np.ndarray) -> bool:
@@ -78,69 +93,87 @@ def _stable(multipliers: np.ndarray) -> bool:
 class CycleContinuation:
     """Pseudo-arclength continuation of ``plane``'s periodic orbits in ``parameter``."""
 
-    def __init__(self, plane: Plane, parameter: Parameter, period: float):
+    def __init__(self, plane: Plane, parameter: Parameter, period: float, segments: int = 1):
         self.plane = plane
         self.parameter = parameter
         self.n = plane.size
         self.scale = orbits._scales(plane)
         self.period = period  # T_H: the period's scale
-        self.steps = 0
+        self.steps = 0  # RK4 steps a period
+        self.segments = segments  # m: multiple shooting's (module docstring)
+        # the arclength's metric: the first start, the period and the parameter
+        self.mask = np.zeros(segments * self.n + 2)
+        self.mask[: self.n] = self.mask[-2:] = 1.0
 
     def _unpack(self, z: np.ndarray) -> tuple[np.ndarray, float, float]:
-        n = self.n
-        return z[:n] * self.scale, z[n] * self.period, z[n + 1] * self.parameter.scale
+        """The segments' starts (m, n), the period and the parameter."""
+        n, m = self.n, self.segments
+        starts = z[: m * n].reshape(m, n) * self.scale
+        return starts, z[m * n] * self.period, z[m * n + 1] * self.parameter.scale
 
     def _residual(self, z: np.ndarray, ref: np.ndarray, normal: np.ndarray, jacobian: bool):
-        """R and its Jacobian ((n + 1) x (n + 2), scaled) at z; the monodromy matrix."""
-        n = self.n
-        x, t, mu = self._unpack(z)
+        """R and its Jacobian ((m n + 1) x (m n + 2), scaled) at z; the monodromy matrix (the
+        product of the segments')."""
+        n, m = self.n, self.segments
+        starts, t, mu = self._unpack(z)
+        steps = -(-self.steps // m)
         self.parameter.set(self.plane, mu)
-        end, _ = orbits.integrate(self.plane, x, t, self.steps)
-        r = np.concatenate([(end - x) / self.scale, [normal @ ((x - ref) / self.scale)]])
+        ends = [orbits.integrate(self.plane, x, t / m, steps)[0] for x in starts]
+        gaps = [(ends[i] - starts[(i + 1) % m]) / self.scale for i in range(m)]
+        r = np.concatenate([*gaps, [normal @ ((starts[0] - ref) / self.scale)]])
         if not jacobian:
             return r, None, None
-        monodromy = orbits._monodromy(self.plane, x, t, self.steps, self.scale)
+        jac = np.zeros((m * n + 1, m * n + 2))
+        monodromy = np.eye(n)
         h = 1e-4 * self.parameter.scale
-        self.parameter.set(self.plane, mu + h)
-        up, _ = orbits.integrate(self.plane, x, t, self.steps)
-        self.parameter.set(self.plane, mu - h)
-        down, _ = orbits.integrate(self.plane, x, t, self.steps)
-        self.parameter.set(self.plane, mu)
-        jac = np.zeros((n + 1, n + 2))
-        jac[:n, :n] = monodromy - np.eye(n)
-        jac[:n, n] = self.plane.rates(end) / self.scale * self.period
-        jac[:n, n + 1] = (up - down) / (2 * h) / self.scale * self.parameter.scale
-        jac[n, :n] = normal
+        for i, x in enumerate(starts):
+            rows = slice(i * n, (i + 1) * n)
+            part = orbits._monodromy(self.plane, x, t / m, steps, self.scale)
+            monodromy = part @ monodromy
+            jac[rows, i * n : (i + 1) * n] = part
+            jac[rows, (i + 1) % m * n : ((i + 1) % m + 1) * n] -= np.eye(n)
+            jac[rows, m * n] = self.plane.rates(ends[i]) / self.scale * self.period / m
+            self.parameter.set(self.plane, mu + h)
+            up, _ = orbits.integrate(self.plane, x, t / m, steps)
+            self.parameter.set(self.plane, mu - h)
+            down, _ = orbits.integrate(self.plane, x, t / m, steps)
+            self.parameter.set(self.plane, mu)
+            jac[rows, m * n + 1] = (up - down) / (2 * h) / self.scale * self.parameter.scale
+        jac[m * n, :n] = normal
         return r, jac, monodromy
 
     def _correct(self, z0, t, ds, ref, normal, iterations=8, tolerance=1e-8):
         """Newton from the predictor: (z, its, monodromy) or (None, its, None)."""
         z = z0 + ds * t
+        along = t * self.mask
         for it in range(iterations):
             try:
                 r, jac, monodromy = self._residual(z, ref, normal, True)
             except FloatingPointError:
                 return None, it, None
-            a = np.vstack([jac, t])
-            rhs = -np.concatenate([r, [t @ (z - z0) - ds]])
+            a = np.vstack([jac, along])
+            rhs = -np.concatenate([r, [along @ (z - z0) - ds]])
             try:
                 dz = np.linalg.solve(a, rhs)
             except np.linalg.LinAlgError:
                 return None, it, None
             z = z + dz
-            if not (np.all(np.isfinite(z)) and z[self.n] > 0.0):
+            if not (np.all(np.isfinite(z)) and z[self.segments * self.n] > 0.0):
                 return None, it, None
             if np.abs(dz).max() < tolerance and np.abs(r).max() < 1e3 * tolerance:
                 return z, it + 1, monodromy
         return None, iterations, None
 
+    def _norm(self, t: np.ndarray) -> np.ndarray:
+        """``t`` of unit length in the arclength's metric (``mask``)."""
+        return t / math.sqrt(float(t @ (t * self.mask)))
+
     def _tangent(self, jac: np.ndarray, previous: np.ndarray) -> np.ndarray:
-        a = np.vstack([jac, previous])
-        rhs = np.zeros(self.n + 2)
+        a = np.vstack([jac, previous * self.mask])
+        rhs = np.zeros(jac.shape[1])
         rhs[-1] = 1.0
-        t = np.linalg.solve(a, rhs)
-        t /= np.linalg.norm(t)
-        return t if t @ previous > 0 else -t
+        t = self._norm(np.linalg.solve(a, rhs))
+        return t if t @ (previous * self.mask) > 0 else -t
 
     def from_hopf(self, x_hopf: np.ndarray, mu_hopf: float, vector: np.ndarray,
                   bounds: tuple[float, float], step: float = 0.5, largest: float = 20.0,
@@ -149,11 +182,13 @@ class CycleContinuation:
         the critical eigenvector, complex) until the parameter leaves ``bounds``, the period
         grows beyond 20 T_H, or ``points`` orbits; steps of ``step`` up to ``largest``
         (scaled arclength: about metres of amplitude)."""
-        n = self.n
+        n, m = self.n, self.segments
         self.steps = orbits._steps(self.plane, x_hopf, self.period)
-        z = np.concatenate([x_hopf / self.scale, [1.0, mu_hopf / self.parameter.scale]])
-        along = np.concatenate([vector.real / self.scale, [0.0, 0.0]])
-        t = along / np.linalg.norm(along)
+        # the small orbit x_H + e Re(q exp(i w t)) at the segments' starts, t = i T_H / m
+        phases = np.exp(2j * math.pi * np.arange(m) / m)
+        z = np.concatenate([np.tile(x_hopf / self.scale, m), [1.0, mu_hopf / self.parameter.scale]])
+        along = np.concatenate([*((vector * c).real / self.scale for c in phases), [0.0, 0.0]])
+        t = self._norm(along)
         normal = -vector.imag / self.scale
         normal /= np.linalg.norm(normal)
         ref = x_hopf.copy()
@@ -166,13 +201,14 @@ class CycleContinuation:
                 if ds < (1e-3 if branch.parameter else 0.1) * step:
                     break
                 continue
-            x, period, mu = self._unpack(z1)
+            starts, period, mu = self._unpack(z1)
+            x = starts[0]
             _, jac, _ = self._residual(z1, ref, normal, True)
             t1 = self._tangent(jac, t)
             points_z.append(z1)
-            if branch.parameter and np.sign(t1[n + 1]) != np.sign(t[n + 1]):
-                branch.folds.append(_vertex(points_z, n + 1) * self.parameter.scale)
-            self._record(branch, x, period, mu, monodromy)
+            if branch.parameter and np.sign(t1[m * n + 1]) != np.sign(t[m * n + 1]):
+                branch.folds.append(_vertex(points_z, m * n + 1) * self.parameter.scale)
+            self._record(branch, starts, period, mu, monodromy)
             z, t = z1, t1
             ref = x.copy()  # the next phase condition: normal to the flow at this start
             normal = self.plane.rates(x) / self.scale
@@ -183,13 +219,17 @@ class CycleContinuation:
                 ds = min(1.5 * ds, largest)
         return branch
 
-    def _record(self, branch, x, period, mu, monodromy) -> None:
-        _, path = orbits.integrate(self.plane, x, period, self.steps, record=True)
+    def _record(self, branch, starts, period, mu, monodromy) -> None:
+        steps = -(-self.steps // self.segments)
+        path = np.vstack([orbits.integrate(self.plane, x, period / self.segments, steps,
+                                           record=True)[1] for x in starts])  # fmt: skip
+        x = starts[0]
         m = 3 * len(self.plane.bodies)
         multipliers = np.linalg.eigvals(monodromy)
         branch.parameter.append(float(mu))
         branch.period.append(float(period))
         branch.x0.append(x.copy())
+        branch.starts.append(np.array(starts))
         branch.amplitude.append(np.ptp(path[:, :m], axis=0))
         branch.low.append(path[:, :m].min(axis=0))
         branch.high.append(path[:, :m].max(axis=0))
@@ -318,14 +358,29 @@ def from_hopf(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf: f
     vector = vectors[:, k] if lam[k].imag > 0 else vectors[:, k].conj()
     period = 2 * math.pi / frequency
     kind = criticality(plane, parameter, state, mu_hopf, vector, period, delta)
-    branch = CycleContinuation(plane, parameter, period).from_hopf(
+    branch = CycleContinuation(plane, parameter, period, segments(lam, period)).from_hopf(
         state, mu_hopf, vector, bounds, points=points
     )
     parameter.set(plane, mu_hopf)
+    if kind.kind == "not judged" and branch.parameter:  # the side its cycles lie on says it
+        side, _ = unstable_side(plane, parameter, state, mu_hopf, delta)
+        beyond = np.sign(np.array(branch.parameter) - mu_hopf) == side
+        if beyond.all() or not beyond.any():
+            kind = replace(kind, kind="supercritical" if beyond.all() else "subcritical",
+                           by="branch")  # fmt: skip
     return branch, kind
 
 
+def segments(eigenvalues: np.ndarray, period: float) -> int:
+    """Multiple shooting's segments for orbits near an equilibrium of ``eigenvalues``: each
+    short enough that its fastest growth, exp(Re lambda T / m), stays below exp(2) (one
+    segment, single shooting, beside a stable equilibrium)."""
+    growth = max(float(np.max(eigenvalues.real)), 0.0) * period
+    return max(1, math.ceil(growth / 2.0))
+
+
 __all__ = [
+    "segments",
     "CycleBranch",
     "CycleContinuation",
     "Criticality",
