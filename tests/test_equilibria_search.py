@@ -86,8 +86,8 @@ def test_the_controlled_scan_finds_every_equilibrium_where_the_compensator_holds
             g, _ = plane.at_rest(x, jacobian=False)
             assert np.abs(g).max() < 1e-6 * plane.work.tie_tension.max()
             pose = equilibria._points(plane, x)
-            stern, bow = (pose[p.point_body[k], :2] + _turn(pose[p.point_body[k], 2],
-                                                           p.point_offset[k][:2])
+            stern, bow = (pose[p.point_body[k], :2]
+                          + equilibria._turn(pose[p.point_body[k], 2], p.point_offset[k])
                           for k in _hawser_points(plane))  # fmt: skip
             assert abs(float(np.hypot(*(bow - stern))) - 95.0) < 1e-6
             assert abs(x[5] - x[2]) < 1e-9
@@ -110,11 +110,6 @@ def test_the_controlled_scan_finds_every_equilibrium_where_the_compensator_holds
         assert (saturated > 0) == (weather.wind_speed == 24.0)
     finally:
         plane.control(False)
-
-
-def _turn(psi: float, offset: np.ndarray) -> np.ndarray:
-    c, s = math.cos(psi), math.sin(psi)
-    return np.array([c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]])
 
 
 def _hawser_points(plane) -> tuple[int, int]:

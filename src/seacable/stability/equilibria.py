@@ -85,6 +85,12 @@ def _points(plane: Plane, x: np.ndarray):
     return pose
 
 
+def _turn(psi: float, vector) -> np.ndarray:
+    """``vector`` (x, y) turned by ``psi`` [rad] about z."""
+    c, s = math.cos(psi), math.sin(psi)
+    return np.array([c * vector[0] - s * vector[1], s * vector[0] + c * vector[1]])
+
+
 def relative(plane: Plane, x: np.ndarray) -> np.ndarray:
     """Each free body's pose (3 per body: x, y [m], psi [rad] in (-pi, pi]) relative to the
     body its tie holds it by (``_tie_order``), in that body's frame; a body held by none, its
@@ -97,9 +103,8 @@ def relative(plane: Plane, x: np.ndarray) -> np.ndarray:
         if tie is None:
             continue
         b, a = int(plane.bodies[j]), int(p.point_body[tie[1]])
-        c, s = math.cos(pose[a, 2]), math.sin(pose[a, 2])
-        dx, dy = pose[b, :2] - pose[a, :2]
-        out[3 * j : 3 * j + 3] = c * dx + s * dy, -s * dx + c * dy, _wrap(pose[b, 2] - pose[a, 2])
+        out[3 * j : 3 * j + 2] = _turn(-pose[a, 2], pose[b, :2] - pose[a, :2])
+        out[3 * j + 2] = _wrap(pose[b, 2] - pose[a, 2])
     return out
 
 
@@ -114,10 +119,8 @@ def placed(plane: Plane, x: np.ndarray, poses: np.ndarray) -> np.ndarray:
         if tie is None or int(p.point_body[tie[1]]) not in free:
             continue
         parent = _points(plane, out)[int(p.point_body[tie[1]])]
-        c, s = math.cos(parent[2]), math.sin(parent[2])
-        dx, dy, dpsi = poses[3 * j : 3 * j + 3]
-        out[3 * j : 3 * j + 3] = (parent[0] + c * dx - s * dy, parent[1] + s * dx + c * dy,
-                                  float(_wrap(parent[2] + dpsi)))  # fmt: skip
+        out[3 * j : 3 * j + 2] = parent[:2] + _turn(parent[2], poses[3 * j : 3 * j + 2])
+        out[3 * j + 2] = _wrap(parent[2] + poses[3 * j + 2])
     return out
 
 
@@ -215,11 +218,8 @@ def _place(plane: Plane, x: np.ndarray, j: int, tie, direction) -> None:
     here, there, _ = tie
     pose = _points(plane, x)
     ab = p.point_body[there]
-    oa, ob = p.point_offset[there], p.point_offset[here]
-    ca, sa = math.cos(pose[ab, 2]), math.sin(pose[ab, 2])
-    anchor = pose[ab, :2] + (ca * oa[0] - sa * oa[1], sa * oa[0] + ca * oa[1])
-    c, s = math.cos(x[3 * j + 2]), math.sin(x[3 * j + 2])
-    x[3 * j : 3 * j + 2] = anchor + direction - (c * ob[0] - s * ob[1], s * ob[0] + c * ob[1])
+    anchor = pose[ab, :2] + _turn(pose[ab, 2], p.point_offset[there])
+    x[3 * j : 3 * j + 2] = anchor + direction - _turn(x[3 * j + 2], p.point_offset[here])
 
 
 def _balanced(plane: Plane, x: np.ndarray, order, held: dict[int, _Held] | None = None,
@@ -251,9 +251,11 @@ def _balanced(plane: Plane, x: np.ndarray, order, held: dict[int, _Held] | None 
     controlled = plane.controlled
     if controlled:  # the bodies' own loads, without the compensators'
         plane.control(False)
-    plane.at_rest(x, jacobian=False)
-    if controlled:
-        plane.control(True)
+    try:
+        plane.at_rest(x, jacobian=False)
+    finally:
+        if controlled:
+            plane.control(True)
     load = {j: plane.work.load[b, :2].copy() for j, b in enumerate(plane.bodies)}  # [N]
     turned: dict[int, float] = {}  # a held body's tie direction theta [rad]
     for j, _tie in order[::-1]:  # each tie carries its body's load and what it holds
