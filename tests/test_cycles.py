@@ -164,3 +164,29 @@ def test_cycles_from_a_hopf_point_on_an_unstable_equilibrium_by_multiple_shootin
         _, end, yaw = _dopri5(case, x0, found.parameter[0], found.period[0] / len(starts), 10)
         assert np.abs(end - x1[:2]).max() < 1e-2
         assert abs(math.remainder(yaw - x1[2], 2 * math.pi)) < 1e-4
+
+
+def test_a_motion_that_has_not_settled_gives_no_verdict():
+    """Near a Hopf point the motion settles slowly (its multiplier near 1): cut off after 30
+    periods, the runs are still growing, and the criticality says "undecided" rather than
+    take an unsettled amplitude for a settled one (which made a subcritical point of the
+    shuttle in wind read supercritical)."""
+    plane = Plane.of(shuttle_case("short-wing"))
+    par = parameter(plane, THRUST)
+    branch = Continuation(plane, par).run(np.array([-240.0, 0.0, 0.0]), -2e5, 0.0)
+    hopf = next(s for s in branch.special if s.kind == "hopf")
+    par.set(plane, hopf.parameter)
+    state = np.concatenate([hopf.x, np.zeros(3)])
+    lam, vectors = np.linalg.eig(plane.jacobian(state))
+    k = int(np.argmin(np.abs(lam.real) + np.abs(np.abs(lam.imag) - hopf.frequency)))
+    period = 2 * math.pi / hopf.frequency
+    vector = vectors[:, k]
+    par.set(plane, hopf.parameter + 1000.0)  # fishtailing, slowly growing
+    scale = cycles.orbits._scales(plane)
+    push = vector.real / np.abs(vector.real / scale).max() * 0.1
+    per = max(400, cycles.orbits._steps(plane, state, period) // 5)
+    amplitude, _, settled = cycles._settled(plane, state + push, period, per, scale, 30)
+    assert not settled and 0.0 < amplitude < 1.0  # still growing towards its cycle (> 1)
+    kind = cycles.criticality(plane, par, state, hopf.parameter, vector, period, 1000.0,
+                              most=30)  # fmt: skip
+    assert kind.kind == "undecided" and kind.by == "simulation"

@@ -28,15 +28,17 @@ exp(2 pi i k / m)).
 normal-form coefficient, so the Hopf point's kind is judged from the motion itself: on the
 side where the equilibrium is unstable, at mu_H + delta and mu_H + delta / 4, the motion from
 the equilibrium pushed along Re q is integrated, 10 periods at a time, until its amplitude
-settles (``_settled``). A supercritical point's cycles shrink to nothing at the Hopf point
+settles (``_settled``; a motion still growing or shrinking after ``most`` periods gives no
+verdict: "undecided"). A supercritical point's cycles shrink to nothing at the Hopf point
 (their amplitude falls by at least 30 % from delta to delta / 4: by half for a smooth field,
 as sqrt(delta), by three quarters for a |v| v one, as delta); a subcritical point's motion
 leaves for a distant cycle (or diverges) however close to mu_H. For a subcritical point the
 motion is then started from that distant cycle on the stable side, at mu_H - delta: if it
 keeps cycling there, the equilibrium and the large cycle coexist (hysteresis). A Hopf point
 where a second pair crosses (the equilibrium already unstable on both sides) no simulation
-can judge; there the branch does (``by`` "branch"): supercritical when its cycles lie on the
-side where the crossing pair is unstable, subcritical on the other.
+can judge, and where the simulations are undecided, the branch does (``by`` "branch"):
+supercritical when its first (smallest) cycle lies on the side where the crossing pair is
+unstable, subcritical on the other.
 """
 
 import math
@@ -268,15 +270,19 @@ def criticality(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf:
         return Criticality("not judged", (math.nan, math.nan), (math.nan, math.nan))
     per = max(400, orbits._steps(plane, start, period) // 5)
     trials = (mu_hopf + side * delta, mu_hopf + side * delta / 4)
-    amplitudes, far = [], None
+    amplitudes, far, settled = [], None, True
     for mu in trials:
         parameter.set(plane, mu)
-        amplitude, state = _settled(plane, _rest(plane, start) + push, period, per, scale, most)
+        amplitude, state, done = _settled(plane, _rest(plane, start) + push, period, per, scale,
+                                          most)  # fmt: skip
         amplitudes.append(amplitude)
+        settled = settled and done
         far = state if far is None else far
     big, small = amplitudes
-    if not math.isfinite(small) or small > 0.85 * big:
+    if not math.isfinite(small) or (settled and small > 0.85 * big):
         kind = "subcritical"
+    elif not settled:  # still growing or shrinking after ``most`` periods: no verdict
+        kind = "undecided"
     elif small < 0.7 * big:
         kind = "supercritical"
     else:
@@ -284,7 +290,7 @@ def criticality(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf:
     hysteresis = None
     if kind == "subcritical" and far is not None and np.all(np.isfinite(far)):
         parameter.set(plane, mu_hopf - side * delta)
-        stays, _ = _settled(plane, far, period, per, scale, most)
+        stays, _, _ = _settled(plane, far, period, per, scale, most)
         hysteresis = bool(math.isfinite(stays) and stays > 0.5 * big)
     parameter.set(plane, mu_hopf)
     return Criticality(kind, trials, (big, small), hysteresis)
@@ -315,22 +321,23 @@ def _rest(plane: Plane, start: np.ndarray) -> np.ndarray:
 
 
 def _settled(plane: Plane, x0: np.ndarray, period: float, per: int, scale: np.ndarray,
-             most: int) -> tuple[float, np.ndarray]:  # fmt: skip
-    """The settled amplitude of the motion from ``x0`` (0 at rest, inf when it diverges) and
-    the last state: the largest scaled peak to peak over runs of 10 periods (``per`` steps a
-    period, at most ``most`` periods). Near a Hopf point the amplitude approaches its limit
-    geometrically and slowly (the multiplier is near 1), so the limit is Aitken's
-    extrapolation of the last three runs, once two in a row agree to 0.2 %."""
+             most: int) -> tuple[float, np.ndarray, bool]:  # fmt: skip
+    """The settled amplitude of the motion from ``x0`` (0 at rest, inf when it diverges), the
+    last state, and whether it settled within ``most`` periods (else the last amplitude): the
+    largest scaled peak to peak over runs of 10 periods (``per`` steps a period). Near a Hopf
+    point the amplitude approaches its limit geometrically and slowly (the multiplier is near
+    1), so the limit is Aitken's extrapolation of the last three runs, once two in a row
+    agree to 0.2 %."""
     x, seen, estimate = x0, [], math.nan
     for _ in range(max(3, most // 10)):
         try:
             x_end, path = orbits.integrate(plane, x, 10 * period, 10 * per, record=True)
         except FloatingPointError:
-            return math.inf, np.full_like(x0, np.nan)
+            return math.inf, np.full_like(x0, np.nan), True
         seen.append(float((np.ptp(path, axis=0) / scale).max()))
         x = x_end
         if seen[-1] < 1e-6:
-            return 0.0, x
+            return 0.0, x, True
         if len(seen) < 3:
             continue
         a0, a1, a2 = seen[-3:]
@@ -338,11 +345,11 @@ def _settled(plane: Plane, x0: np.ndarray, period: float, per: int, scale: np.nd
         ratio = step / before if before != 0.0 else 0.0
         limit = a2 + step * ratio / (1.0 - ratio) if 0.0 <= ratio < 0.95 else math.nan
         if abs(step) < 1e-4 * a2:
-            return a2, x
+            return a2, x, True
         if math.isfinite(limit) and abs(limit - estimate) < 2e-3 * abs(limit):
-            return limit, x
+            return limit, x, True
         estimate = limit
-    return seen[-1], x
+    return seen[-1], x, False
 
 
 def from_hopf(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf: float,
@@ -362,12 +369,12 @@ def from_hopf(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf: f
         state, mu_hopf, vector, bounds, points=points
     )
     parameter.set(plane, mu_hopf)
-    if kind.kind == "not judged" and branch.parameter:  # the side its cycles lie on says it
+    if kind.kind in ("not judged", "undecided") and branch.parameter:  # its cycles' side says
         side, _ = unstable_side(plane, parameter, state, mu_hopf, delta)
-        beyond = np.sign(np.array(branch.parameter) - mu_hopf) == side
-        if beyond.all() or not beyond.any():
-            kind = replace(kind, kind="supercritical" if beyond.all() else "subcritical",
-                           by="branch")  # fmt: skip
+        first = branch.parameter[0] - mu_hopf  # the smallest cycle: the point's own side
+        if abs(first) > 1e-9 * parameter.scale:
+            kind = replace(kind, kind="supercritical" if np.sign(first) == side
+                           else "subcritical", by="branch")  # fmt: skip
     return branch, kind
 
 
