@@ -3,6 +3,7 @@ PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
+DEMO_STAMP := $(VENV)/.installed-demo
 
 .PHONY: demo test test-all lint typecheck bench clean clean-cache
 
@@ -10,11 +11,16 @@ $(VENV)/bin/python:
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 
+# the demo installs what a run needs and nothing else; the tests add their tools and Dask
+$(DEMO_STAMP): pyproject.toml $(VENV)/bin/python
+	$(PY) -m pip install -q -e .
+	touch $(DEMO_STAMP)
+
 $(STAMP): pyproject.toml $(VENV)/bin/python
 	$(PY) -m pip install -q -e ".[test,dask]"
-	touch $(STAMP)
+	touch $(STAMP) $(DEMO_STAMP)
 
-demo: $(STAMP)
+demo: $(DEMO_STAMP)
 	mkdir -p results
 	$(VENV)/bin/seacable run examples/thesis_6_1_sim6_submerged_60_links_forced.yaml -o results/demo.nc
 	$(VENV)/bin/seacable plot results/demo.nc -o results/demo.png --every 1.0
@@ -38,6 +44,7 @@ bench: $(STAMP)
 
 clean-cache:
 	find src -name "*.nbi" -delete; find src -name "*.nbc" -delete
+	$(PY) -c "from seacable.system import variants; import shutil; shutil.rmtree(variants.cache_folder())"
 
 clean:
 	rm -rf $(VENV) results build *.egg-info src/*.egg-info

@@ -48,11 +48,15 @@ CHILD_TIMEOUT = 1800.0  # [s] a run taking longer is reported as failed
 
 
 def family(data: dict) -> str:
-    """The compiled path of a case mapping: its line models, its body kinds, its integrator."""
+    """The compiled path of a case mapping: its line models, its body kinds, its force models,
+    its integrator."""
     integrator = data.get("simulation", {}).get("integrator", "rk4")
     models = sorted({line.get("model", "?") for line in data.get("lines") or []})
     kinds = sorted({body.get("type", "?") for body in data.get("bodies") or []})
-    return f"{'+'.join(models)} lines, bodies {'/'.join(kinds)}, {integrator}"
+    forces = sorted({force.get("model", "?") for body in data.get("bodies") or []
+                     for force in body.get("external forces") or []})  # fmt: skip
+    return (f"{'+'.join(models)} lines, bodies {'/'.join(kinds)}, forces "
+            f"{'/'.join(forces) or 'none'}, {integrator}")  # fmt: skip
 
 
 def families() -> dict[str, list[Path]]:

@@ -45,6 +45,11 @@ TOLERANCE = 1e-6  # [m] Newton's tolerance (the schema's default newton_toleranc
 COEF = implicit_setup.scheme(SCHEME, spectral_radius=0.9)
 
 
+def _rigid(rows):
+    """system_implicit.chunk's last argument: True with rigid lines' Newton rows, else None."""
+    return True if rows.line.shape[0] > 0 else None
+
+
 def _setup(model, n):
     """The case, its system and its state at START (reached by the implicit steps)."""
     c = case(model, n, "rk4", STEP, duration=START)
@@ -58,7 +63,7 @@ def _setup(model, n):
     _, status = system_implicit.chunk(
         0, y, acc, START, round(START / STEP), round(START / STEP), COEF, TOLERANCE, 20, p,
         implicit_setup.frozen(p), w, inc, lay, rows, implicit_setup.carry(system, lay),
-        np.empty((1, len(y))), np.empty(1), _counters(),
+        np.empty((1, len(y))), np.empty(1), _counters(), _rigid(rows),
     )  # fmt: skip
     if status != 0:
         raise RuntimeError(f"the implicit steps to t = {START} s failed (status {status})")
@@ -115,6 +120,7 @@ def measure(c, system, y0, maximal, steps, repeat):
             round(START / (STEP * steps)) * steps, y, a, STEP * steps, steps, steps, coef,
             TOLERANCE, 20, p,
             pj, w, inc, lay, rows, carried, np.empty((1, ny)), np.empty(1), counters,
+            _rigid(rows),
         )  # fmt: skip
         if status != 0:
             raise RuntimeError(f"the implicit steps failed (status {status})")

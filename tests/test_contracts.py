@@ -40,24 +40,29 @@ def _schema_force_models() -> list[str]:
 
 
 def test_every_force_model_in_the_schema_has_a_kind_and_a_branch():
-    """Each ``model:`` of ``external forces`` has a ForceKind, and forces.table evaluates each
-    kind (a kind nobody evaluates would be accepted and silently do nothing)."""
+    """Each ``model:`` of ``external forces`` has a ForceKind, and system.evaluation evaluates
+    each kind, behind its flag where it has one (a kind nobody evaluates would be accepted and
+    silently do nothing)."""
+    from seacable.system import evaluation, variants
+
     names = _schema_force_models()
     assert sorted(kinds.kind_of(name) for name in names) == sorted(kinds.ForceKind)
-    source = inspect.getsource(table.add_all)
+    source = inspect.getsource(evaluation.add_all.py_func)
     branches = {node.id for node in ast.walk(ast.parse(source)) if isinstance(node, ast.Name)}
     for kind in kinds.ForceKind:
-        if kind in table.LAST:  # after every other load: the kernel calls its module
-            assert f"{kind.name.lower()}.apply_all(" in inspect.getsource(kernel.rhs.py_func)
+        if kind in table.LAST:  # after every other load: the evaluation calls its module
+            source = inspect.getsource(evaluation.evaluate.py_func)
+            assert f"{kind.name.lower()}.apply_all(" in source
             continue
-        assert kind.name in branches, f"forces.table.add_all has no branch for {kind.name}"
+        assert kind.name in branches, f"evaluation.add_all has no branch for {kind.name}"
+        flag = variants.FORCE_FLAG[int(kind)]  # None: compiled into every copy
+        assert flag is None or flag in branches, f"{kind.name}'s branch lacks its flag {flag}"
 
 
 def _rigid_line_at_a_moving_state(example: str, seed: int):
     """A system's first rigid line with its workspace filled by one right-hand side at the
     example's start with random segment rates: (params, state, workspace, line index)."""
     from seacable.case.loader import derive_case
-    from seacable.system import kernel
     from seacable.system import rigid as system_rigid
 
     case = seacable.load_case(Path(__file__).parent.parent / "examples" / f"{example}.yaml")
@@ -117,7 +122,6 @@ def _moving(case_data: dict | str, seed: int, spread: float = 0.3):
     random velocities on every state and its lumped lines' interior nodes moved by up to
     ``spread`` [m]: (built, state, rates, workspace) after one right-hand side."""
     from seacable.case.loader import derive_case
-    from seacable.system import kernel
 
     if isinstance(case_data, str):
         case = seacable.load_case(Path(__file__).parent.parent / "examples" / f"{case_data}.yaml")
@@ -202,7 +206,6 @@ def test_a_natural_string_at_its_static_balance_has_no_rates(tangent):
     hangs at the pivot less l + (g / EA)(mu l^2 / 2 + m l) (the trapezoidal rule is exact on a
     linear strain): each in both parametrisations of the tangent."""
     from seacable.case.loader import derive_case
-    from seacable.system import kernel
 
     assert isinstance(natural_string, NaturalStringModel)
     example = Path(__file__).parent.parent / "examples"
@@ -309,7 +312,6 @@ def test_imposed_and_fixed_bodies_move_as_their_derivatives_say(time):
     differences, 1e-7 of the scale: ships turning, a vehicle relative to its ship, a track's
     turning circle); a fixed body stays at rest."""
     from seacable.bodies import kinematics
-    from seacable.system import kernel
 
     assert isinstance(kinematics, BodyKinematics)
     built = system_model.build(seacable.load_case(_kinematic_case()))
@@ -459,8 +461,9 @@ STIFFNESS = [[9e3, 1e3, 0.0, 0.0, 2e2, 0.0], [1e3, 8e3, 0.0, 0.0, 0.0, 0.0],
 
 @njit
 def _energies(y, p, w):
-    """system.energy.energies, which has no Python entry (kernels.jit.inner)."""
-    return energy.energies(y, p, w)
+    """system.energy.energies, which has no Python entry (kernels.jit.inner), with every kind
+    compiled."""
+    return energy.energies(y, p, w, True, True, True, True, True)
 
 
 @pytest.mark.parametrize(
@@ -474,11 +477,10 @@ def test_conservative_force_models_derive_from_their_potential(force, turns):
     rotations about earth axes where the rule is exact), the virtual work F . dx + M . dtheta
     of the model's force and moment about the reference point is minus the change of the
     potential ``system.energy`` reports (central differences, 1e-7 of the force's scale)."""
-    from seacable.forces import table
-    from seacable.system import kernel
+    from seacable.system import evaluation
     from seacable.system.coordinates import rotate
 
-    assert isinstance(table, ForceTable)
+    assert isinstance(evaluation, ForceTable)
     built = system_model.build(seacable.load_case(_lone_box([force])))
     p, y = built.params, built.y0.copy()
     w = kernel.make_work(p)
@@ -513,7 +515,6 @@ def test_conservative_force_models_derive_from_their_potential(force, turns):
 def test_dissipative_force_models_never_do_positive_work(force):
     """ForceTable rule 4: for random twists of a turned box (no current), the power of the
     model's force and moment, F . v + M . omega, is negative."""
-    from seacable.system import kernel
 
     built = system_model.build(seacable.load_case(_lone_box([force])))
     p, y = built.params, built.y0.copy()
@@ -550,7 +551,6 @@ def test_the_control_states_rest_at_their_equilibrium():
     gear's angle (their modules follow the protocol); their rates vanish with the ship at its
     target speed and the rudder on its command, and are U - u and the gear's law off them."""
     from seacable.forces import radiation, rudder, servo, thruster
-    from seacable.system import kernel
 
     for module in (servo, radiation, rudder, thruster):
         assert isinstance(module, StatefulForceModel)
@@ -595,7 +595,6 @@ def test_every_compiled_integrator_honours_its_chunk_contract(name):
     turned NaN it stops at once, ``y`` untouched, and reports the status without raising."""
     from seacable.kernels.status import OK
     from seacable.numerics import integrators
-    from seacable.system import kernel
 
     built = _small_run()
     p, y0 = built.params, built.y0.copy()

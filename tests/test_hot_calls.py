@@ -1,14 +1,15 @@
 """The project rule for hot code (docs/architecture.md, "Calls cost reference counts"): in a
-system's right-hand side only ``system.kernel.rhs`` receives the parameter and work tuples; every
-call it makes passes arrays or small tuples, never ``p`` or ``w`` themselves (numba takes and
-drops a reference to each of the tuples' 124 arrays at every such call, about 1.2 us per
-evaluation; an inlined helper copies them just the same). Read from the source: no compilation."""
+system's right-hand side only ``system.evaluation.evaluate`` receives the parameter and work
+tuples; every call it makes passes arrays or small tuples, never ``p`` or ``w`` themselves
+(numba takes and drops a reference to each of the tuples' 124 arrays at every such call, about
+1.2 us per evaluation; an inlined helper copies them just the same). Read from the source: no
+compilation."""
 
 import ast
 import inspect
 import textwrap
 
-from seacable.system import kernel
+from seacable.system import evaluation, kernel
 
 TUPLES = {"p", "w"}
 
@@ -27,7 +28,12 @@ def _calls_passing_tuples(function) -> list[str]:
 
 
 def test_rhs_passes_no_whole_tuple():
-    assert _calls_passing_tuples(kernel.rhs.py_func) == []
+    """The evaluation passes the tuples to nothing; the trampolines the integrators call pass
+    them to the evaluation alone (and are inlined into their callers)."""
+    assert _calls_passing_tuples(evaluation.evaluate.py_func) == []
+    for trampoline in (kernel.evaluate, kernel.accept):
+        calls = _calls_passing_tuples(trampoline.py_func)
+        assert calls and all(call.startswith("indirect.call") for call in calls), calls
 
 
 def test_the_check_finds_a_call_that_passes_a_tuple():

@@ -14,6 +14,7 @@ from helpers import chain_case, system_data, upgraded
 from seacable import simulation
 from seacable.cli import main
 from seacable.errors import CaseError
+from seacable.kernels import jit
 from seacable.system import model
 from test_reproducible import _lumped_line, _rigid_chain
 
@@ -105,12 +106,13 @@ def test_divergence_advice_names_only_options_the_model_takes():
 
 
 def test_a_slow_compilation_is_announced(caplog, monkeypatch):
-    monkeypatch.setattr(simulation, "COMPILE_NOTICE_SECONDS", 0.0)
+    monkeypatch.setattr(jit, "NOTICE_SECONDS", 0.0)
     case = seacable.load_case(_rigid_chain("rk4", time_step=0.002))
     with caplog.at_level(logging.INFO, logger="seacable"):
         seacable.simulate(case)
-    notices = [r for r in caplog.records if "compiling the kernels" in r.getMessage()]
+    notices = [r for r in caplog.records if "compiling the rk4 integrator" in r.getMessage()]
     assert len(notices) == 1 and notices[0].levelno == logging.INFO
+    assert "first run only" in notices[0].getMessage() and " s)" in notices[0].getMessage()
 
 
 def test_verbose_command_line_shows_seacable_debug_and_no_numba_debug(tmp_path):
@@ -121,7 +123,7 @@ def test_verbose_command_line_shows_seacable_debug_and_no_numba_debug(tmp_path):
         main, ["-v", "run", str(path), "-o", str(tmp_path / "out.nc"), "--no-progress"]
     )
     assert result.exit_code == 0, result.output
-    assert "DEBUG: kernels ready" in result.stderr
+    assert "DEBUG: the rk4 integrator's steps and the outputs ready in" in result.stderr
     assert not numba_log.isEnabledFor(logging.DEBUG)
     assert not numba_log.isEnabledFor(logging.INFO)
     quiet = CliRunner().invoke(main, ["run", str(path), "-o", str(tmp_path / "out.nc"),

@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 import seacable
-from seacable import analysis, bem, cli_ships, meshes, simulation, viz
+from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
 from seacable.case import legacy, loader
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
@@ -115,6 +115,24 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
     except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
     click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+@main.command(name="compile")
+@click.argument("case_files", nargs=-1, type=click.Path(dir_okay=False))
+@click.option("--all", "every", is_flag=True,
+              help="Also every integrator family, the statics and the modes.")  # fmt: skip
+def compile_ahead(case_files: tuple[str, ...], every: bool) -> None:
+    """Compile ahead of time what CASE_FILES need (none given: small systems of the common
+    kinds), so that later runs start at once; cached on disk for every later process."""
+
+    def report(done: int, total: int, label: str, seconds: float | None) -> None:
+        if seconds is None:
+            click.echo(f"[{done + 1}/{total}] {label} ...", err=True)
+        else:
+            click.echo(f"[{done}/{total}] {label}: {seconds:.1f} s", err=True)
+
+    took = ahead.compile_ahead(list(case_files), every, report)
+    click.echo(f"compiled in {took:.1f} s; later runs load it from the cache")
 
 
 @main.command()

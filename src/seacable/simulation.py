@@ -12,6 +12,7 @@ from seacable.case import loader, schema
 from seacable.case.system import SystemCase
 from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
+from seacable.kernels import jit
 from seacable.kernels.status import Status
 from seacable.numerics import implicit_setup, integrators, stability, stiff, system_implicit
 from seacable.numerics.stability import rk4_step
@@ -222,8 +223,10 @@ class _Run:
         y, work, sim = self.y.copy(), np.zeros_like(self.work), self.sim
         if sim.integrator == "rk4":
             integrators.rk4_chunk(0, y, 1.0, 1, 0, self.p, self.w, empty, np.empty(0), work)
-        elif sim.integrator in stiff.STIFF:
+        elif sim.integrator in stiff.STIFF:  # the solvers' steps call these from Python
             system_kernel.rhs(0.0, y, self.p, self.w, np.empty_like(y))
+            system_kernel.project(y, self.p, self.w)
+            system_kernel.after_step(0.0, y, self.p, system_kernel.make_work(self.p))
         elif sim.integrator in IMPLICIT and self.newton is not None:
             if implicit_setup.initial_acceleration(0.0, y, self.p, self.w, self.acc) != Status.OK:
                 self.acc[:] = 0.0
@@ -289,6 +292,7 @@ class _Run:
             first_step, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
             sim.max_newton_iterations, implicit_setup.lagged(self.p),
             implicit_setup.frozen(self.p), self.w, *self.newton, carry, states, times, work,
+            True if self.newton[2].line.shape[0] > 0 else None,
         )  # fmt: skip
 
     def units(self) -> int:
@@ -481,33 +485,12 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
     return Status.OK
 
 
-COMPILE_NOTICE_SECONDS = 1.0  # say that the kernels are compiling when it takes longer
-
-
 def _compile(run: _Run) -> None:
-    """Compile (or load from numba's cache) the run's kernels; a compilation that lasts more
-    than COMPILE_NOTICE_SECONDS is announced at INFO (on the command line's default output)
-    as soon as that time has passed, and its duration logged when it ends."""
-    done = threading.Event()
-
-    def notice():
-        if not done.wait(COMPILE_NOTICE_SECONDS):
-            log.info(
-                "compiling the kernels for this model and integrator (first run only, cached "
-                "afterwards; it can take a minute) ..."
-            )
-
-    watcher = threading.Thread(target=notice, daemon=True)
-    start = _time.perf_counter()
-    watcher.start()
-    try:
+    """Compile (or load from numba's cache) the run's kernels, announced when it lasts
+    (kernels.jit.announced)."""
+    with jit.announced(f"the {run.sim.integrator} integrator's steps and the outputs",
+                       "about 5 to 30 s"):  # fmt: skip
         run.compile()
-    finally:
-        done.set()
-        watcher.join()
-    elapsed = _time.perf_counter() - start
-    level = logging.INFO if elapsed > COMPILE_NOTICE_SECONDS else logging.DEBUG
-    log.log(level, "kernels ready in %.1f s", elapsed)
 
 
 def _progress_bar(progress: bool, total: int, interval: float):

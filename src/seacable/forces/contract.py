@@ -1,6 +1,7 @@
 """The contract of a force model (the ``external forces`` of a body), as Protocols with its
 rules (``tests/test_contracts.py`` checks them, numerically). ``system.kernel`` reaches every
-force model through ``forces.table`` alone (``ForceTable``); a model with states of its own is
+force model through one table (``ForceTable``: ``system.evaluation``'s ``add_all`` and
+``state_rates``, compiled for the kinds a system holds); a model with states of its own is
 also a ``StatefulForceModel``."""
 
 from collections.abc import Callable
@@ -9,7 +10,7 @@ from typing import Any, Protocol, runtime_checkable
 
 @runtime_checkable
 class ForceTable(Protocol):
-    """Every force model of every body from one flat table (``forces.table``): row f acts on
+    """Every force model of every body from one flat table (``system.evaluation``): row f acts on
     body ``body[f]``, its kind ``kind[f]`` (``forces.kinds.ForceKind``), its floats from
     ``data[at[f]:]``, its time-function channels from ``first[f]``, its states from
     ``state[f]`` (-1: none). The rules every force model honours:

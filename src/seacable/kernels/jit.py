@@ -15,6 +15,11 @@ calls in. ``inner`` leaves it out (and the C-callable entry, which nothing here 
 such a function from Python raises ``TypeError`` instead of running code that does not exist.
 """
 
+import logging
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from numba import njit
@@ -41,3 +46,32 @@ def inner(func):
     dispatcher = njit(no_cpython_wrapper=True, no_cfunc_wrapper=True, **JIT)(func)
     dispatcher.__class__ = InnerDispatcher
     return dispatcher
+
+
+NOTICE_SECONDS = 1.0  # a compilation that lasts longer is announced, then its duration logged
+log = logging.getLogger("seacable.compiling")
+
+
+@contextmanager
+def announced(what: str, rough: str) -> Iterator[None]:
+    """Compile (or load from numba's cache) ``what`` inside the block; when that lasts more than
+    ``NOTICE_SECONDS``, say so at INFO (the command line's default output) at that moment, with
+    ``rough`` (a rough duration, "about 20 s"), and log its duration when it ends: nobody waits
+    in silence for a compiler."""
+    done = threading.Event()
+
+    def notice():
+        if not done.wait(NOTICE_SECONDS):
+            log.info("compiling %s (first run only, cached afterwards; %s) ...", what, rough)
+
+    watcher = threading.Thread(target=notice, daemon=True)
+    start = time.perf_counter()
+    watcher.start()
+    try:
+        yield
+    finally:
+        done.set()
+        watcher.join()
+    elapsed = time.perf_counter() - start
+    level = logging.INFO if elapsed > NOTICE_SECONDS else logging.DEBUG
+    log.log(level, "%s ready in %.1f s", what, elapsed)

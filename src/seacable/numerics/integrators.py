@@ -84,7 +84,7 @@ def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, s
                 h = _RK4_NODES[s] * dt
                 for i in range(ny):
                     stage[i] = y[i] + h * k[s - 1, i]
-            status |= kernel.rhs(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
+            status |= kernel.evaluate(t + _RK4_NODES[s] * dt, stage, p, w, k[s])
         work[2] += 4
         for i in range(ny):
             acc[i] = y[i] + dt * (
@@ -96,8 +96,7 @@ def rk4_chunk(first_step, y, output_interval, steps_per_output, n_steps, p, w, s
         if status != OK or not _all_finite(acc):
             work[3] += 1
             return j, (status if status != OK else NON_FINITE)
-        kernel.project(acc, p)
-        kernel.after_step(t + dt, acc, p, w)
+        kernel.accept(t + dt, acc, p, w)
         y[:] = acc
         work[0] += 1
         step += 1
@@ -134,7 +133,7 @@ def _dopri_step(t, y, h, p, w, k, ytmp, ynew):
             ytmp[i] = y[i] + h * acc
         if s == 6:
             ynew[:] = ytmp
-        status |= kernel.rhs(t + _C[s] * h, ytmp, p, w, k[s])
+        status |= kernel.evaluate(t + _C[s] * h, ytmp, p, w, k[s])
     return status
 
 
@@ -160,14 +159,13 @@ def _accept(t, y, ynew, p, w, k, magnitude, work):
     """An accepted step to ``ynew`` (projected) at ``t``: ``y`` and the largest magnitudes
     updated, ``k[0]`` the derivative there (the last stage's, or evaluated again after a
     projection); the evaluation's status."""
-    kernel.project(ynew, p)
-    kernel.after_step(t, ynew, p, w)
+    kernel.accept(t, ynew, p, w)
     y[:] = ynew
     for i in range(magnitude.shape[0]):
         magnitude[i] = max(magnitude[i], abs(y[i]))
     if kernel.projects(p):
         work[2] += 1
-        if kernel.rhs(t, y, p, w, k[0]) != OK:
+        if kernel.evaluate(t, y, p, w, k[0]) != OK:
             work[3] += 1
             return NON_FINITE
     else:
@@ -204,7 +202,7 @@ def dopri5_chunk(
     clock[1] = 0.0
     tried = 0
     if n_outputs > 0 and fsal[0] == 0:
-        status = kernel.rhs(t, y, p, w, k[0])
+        status = kernel.evaluate(t, y, p, w, k[0])
         work[2] += 1
         if status != OK:
             work[3] += 1

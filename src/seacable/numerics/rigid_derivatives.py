@@ -2,11 +2,10 @@
 (``numerics.rigid_newton``, docs/rigid_newton.md, section 3): each planar link's loads by its top
 node's position and velocity, its angle and rate and its joint neighbours' (from
 ``kernels.planar_chain.link_loads``, where they are written once), and a body's force models by
-its position and velocity (``forces.table.add_all``)."""
+its position and velocity (``system.evaluation.body_forces``)."""
 
 import numpy as np
 
-from seacable.forces import table
 from seacable.kernels import chain3d as c3
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.chain3d_loads import segment_loads
@@ -136,7 +135,6 @@ def point_derivatives(t, y, p, w, body, out):
     forward differences; its state and the others' as ``w`` holds them."""
     pos, vel, fraction = w.pos.copy(), w.vel.copy(), w.fraction.copy()
     load0, load1 = np.zeros_like(w.load), np.zeros_like(w.load)
-    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     for case in range(7):
         pos[:, :] = w.pos
         vel[:, :] = w.vel
@@ -149,12 +147,7 @@ def point_derivatives(t, y, p, w, body, out):
         system_kernel._fractions(p.body_kind, p.body_shape, pos, fraction)
         load = load0 if case == 0 else load1
         load[:, :] = 0.0
-        table.add_all(
-            t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
-            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, fraction, w.quat,
-            pos, w.rot, vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v,
-            p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, load,
-        )  # fmt: skip
+        system_kernel.body_forces(t, y, p, w, pos, vel, fraction, load)
         if case > 0:
             first = 0 if case <= 3 else 9
             for c in range(3):

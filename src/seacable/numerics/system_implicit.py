@@ -137,24 +137,29 @@ def _residual(t1, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
     force model's state alike, its rate in place of an acceleration); returns the status."""
     am, af = coef[3], coef[4]
     _state(y0, acc, a1, h, coef, inc, ya, d, p.n_q)
-    status = system_kernel.rhs(t1, ya, p, w, ydot)
+    status = system_kernel.evaluate(t1, ya, p, w, ydot)
     nq = p.n_q
     for i in range(a1.shape[0]):
         res[i] = (1.0 - am) * a1[i] + am * acc[i] - (1.0 - af) * ydot[nq + i] - af * f0[i]
     return status
 
 
-@njit(inline="always", **JIT)
-def _jacobian(t1, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work):
+@inner
+def _jacobian(t1, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work, rigid):
     """Newton's matrix into ``mat``: the rigid lines of ``rows`` in maximal coordinates at the
     residual r0 just evaluated (``rigid_newton.fill``: ``w`` and ``vec[0]`` hold its
     evaluation), then the rest by differences of the residual, colour by colour, with the
-    parameters ``pj`` (``frozen``: the laws' branches of the residual r0)."""
+    parameters ``pj`` (``frozen``: the laws' branches of the residual r0); ``rigid``: as
+    ``chunk``'s."""
     nv = a1.shape[0]
     ya, ydot, d, ap, rp, eps = vec[0], vec[1], vec[2][:nv], vec[3][:nv], vec[4][:nv], vec[5][:nv]
     f0 = vec[9][:nv]
     mat[:] = 0.0
-    if rows.line.shape[0] > 0 and not rigid_newton.fill(t1, ya, h, coef, pj, w, rows, mat):
+    if (
+        rigid is not None
+        and rows.line.shape[0] > 0
+        and not rigid_newton.fill(t1, ya, h, coef, pj, w, rows, mat)
+    ):
         return NON_FINITE
     reach = coef[1] * h * h  # d(end position) / d(a1)
     nq, n_pos = pj.n_q, inc.q_of_v.shape[0]
@@ -284,7 +289,8 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
 
 
 @njit(inline="always", **JIT)
-def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, work, updates):
+def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, work, updates,
+            rigid):  # fmt: skip
     """Newton's matrix factorised for the iterate a1 (its state in ``vec[0]``, its residual
     ``res`` evaluated into ``w``): a kept matrix of this step length, updated fewer than
     UPDATES times in this step (``updates``), has its seabed terms brought to the iterate
@@ -297,7 +303,8 @@ def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, 
             work[6] += 1
             return (OK if bordered.factor(lay, mat, piv) else NON_FINITE), updates + 1
     _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 0.0)
-    status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work)
+    status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work,
+                       rigid)  # fmt: skip
     work[4] += 1
     raw[:] = mat
     if status == OK and not bordered.factor(lay, mat, piv):
@@ -306,9 +313,9 @@ def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, 
     return status, updates
 
 
-@njit(inline="always", **JIT)
+@inner
 def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry, vec, big,
-          work):  # fmt: skip
+          work, rigid):  # fmt: skip
     """One implicit step of length h from (t, y, acc) to t1 (t + h as the next step's start
     computes it); updates y and acc only when it succeeds. A modified Newton iteration on the
     matrix of ``_jacobian``, kept from step to step while it serves: stale when a correction
@@ -332,7 +339,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     b = coef[1]
     f0[:] = 0.0
     if coef[4] != 0.0:  # generalized-alpha: the forces at the step's start, blended in
-        status = system_kernel.rhs(t, y, p, w, ydot)
+        status = system_kernel.evaluate(t, y, p, w, ydot)
         work[2] += 1
         if status != OK:
             work[3] += 1
@@ -351,7 +358,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     for it in range(max_iter):
         if status == OK and (rebuild or fresh[0] == 0.0 or fresh[1] != h):
             status, updates = _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry,
-                                      res, vec, work, updates)  # fmt: skip
+                                      res, vec, work, updates, rigid)  # fmt: skip
             rebuild = False
             previous = math.inf
         if status != OK:
@@ -359,7 +366,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
             fresh[0] = 0.0
             return status
         work[5] += 1
-        if rows.line.shape[0] > 0:
+        if rigid is not None and rows.line.shape[0] > 0:
             rigid_newton.rhs(rows, p, res, big[0])
             bordered.solve(lay, mat, piv, big[0], big[1], big[2])
             da[:] = big[1][:nv]
@@ -376,8 +383,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
         if b * h * h * largest <= tol:
             a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
-            system_kernel.project(ya, p)
-            system_kernel.after_step(t1, ya, p, w)
+            system_kernel.accept(t1, ya, p, w)
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]
@@ -398,7 +404,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
 @njit(**JIT)
 def chunk(
     first_step, y, acc, output_interval, steps_per_output, n_steps, coef, tol, max_iter, p,
-    pj, w, inc, lay, rows, carried, states, times, work,
+    pj, w, inc, lay, rows, carried, states, times, work, rigid,
 ):  # fmt: skip
     """Advance ``n_steps`` implicit steps ``output_interval / steps_per_output`` [s] from global
     step ``first_step`` (which may lie inside an output interval), a row in ``states`` at each
@@ -414,7 +420,10 @@ def chunk(
     equal parts, each retry counted as a rejected step. Returns (outputs reached, status);
     ``work`` gets [accepted, rejected, rhs evaluations, failed evaluations, Jacobian
     evaluations, linear solves, matrix updates] (a Jacobian's residuals count as rhs
-    evaluations; accepted counts substeps; an update: the seabed's terms alone, see _step)."""
+    evaluations; accepted counts substeps; an update: the seabed's terms alone, see _step).
+    ``rigid``: True, or None when ``rows`` holds no rigid line: numba compiles the chunk apart
+    for None and leaves the rigid lines' Newton rows out (a branch on ``rigid is None`` is
+    pruned before typing)."""
     ny = y.shape[0]
     nv = acc.shape[0]
     dt = output_interval / steps_per_output
@@ -437,7 +446,7 @@ def chunk(
             for k in range(parts):
                 t1 = t_next if k + 1 == parts else t + (k + 1) * h
                 status = _step(t + k * h, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc,
-                               lay, rows, carried, vec, big, work)  # fmt: skip
+                               lay, rows, carried, vec, big, work, rigid)  # fmt: skip
                 if status != OK:
                     break
             if status == OK:

@@ -55,7 +55,7 @@ def rates(t, x, y, q, v, p, w, ydot, out):
         y[a + 3], y[a + 4], y[a + 5], y[a + 6] = math.cos(half), 0.0, 0.0, math.sin(half)
         y[b], y[b + 1], y[b + 2] = x[3 * n + 3 * j], x[3 * n + 3 * j + 1], 0.0
         y[b + 3], y[b + 4], y[b + 5] = 0.0, 0.0, x[3 * n + 3 * j + 2]
-    status = kernel.rhs(t, y, p, w, ydot)
+    status = kernel.evaluate(t, y, p, w, ydot)
     for j in range(n):
         b = v[j]
         for k in range(3):

@@ -20,7 +20,7 @@ from seacable.forces import compensator, table
 from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
-from seacable.system import hulls, natural_lines, topology
+from seacable.system import hulls, kernel, natural_lines, topology, variants
 from seacable.system.force_rows import force_row, in_radians, offset
 from seacable.system.kernel import SystemParams
 
@@ -35,7 +35,7 @@ INT_FIELDS = frozenset({
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
-    "body_group", "group_first", "group_member", "compensator",
+    "body_group", "group_first", "group_member", "compensator", "entries",
 })  # fmt: skip
 
 
@@ -273,7 +273,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
     fields["compensator"] = _compensators(case, f, fields, points)
-    params = typed(SystemParams, fields, INT_FIELDS)
+    fields["entries"] = np.zeros(len(kernel.ENTRIES), dtype=np.int64)
+    params = variants.bind(typed(SystemParams, fields, INT_FIELDS))
     y0 = np.zeros(n_q + n_v + n_s)
     y0[:bodies_q] = y_q
     y0[n_q : n_q + bodies_v] = y_v

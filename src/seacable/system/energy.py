@@ -61,7 +61,7 @@ def _tie_energy(elongation, stiffness, table, first, count):
 
 
 @inner
-def _bodies(y, p, w):
+def _bodies(y, p, w, mesh):
     kinetic = gravity = elastic = 0.0
     m6 = np.empty((6, 6))
     bias = np.empty(6)
@@ -91,6 +91,8 @@ def _bodies(y, p, w):
                 _, _, integral = submersion(w.pos[b, 2], p.body_shape[b])
                 gravity -= weight * integral
         elif kind == NON_LINEAR_HYDROSTATIC:
+            if mesh is None:  # no mesh: compiled without the hull's potential
+                continue
             row = p.force_data[p.force_at[f] :]
             gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity,
                                              waves.still(), w.hull)  # fmt: skip
@@ -108,21 +110,27 @@ def _bodies(y, p, w):
 
 
 @inner
-def energies(y, p, w):
-    """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs."""
-    k1, g1, e1 = _lines(y, p, w)
-    k2, g2, e2 = _bodies(y, p, w)
-    k3, g3, e3 = _rigid(y, p, w)
-    for li in range(p.nat_n.shape[0]):  # natural strings
-        k, g, e = natural_string.own(y, p, w, li)
-        k3, g3, e3 = k3 + k, g3 + g, e3 + e
+def energies(y, p, w, lumped, planar, segments, natural, mesh):
+    """(kinetic, gravity potential, elastic) [J] at y, the workspace filled by kernel.rhs.
+    ``lumped``, ``planar``, ``segments``, ``natural``, ``mesh``: True, or None where the system
+    holds none of that kind (compiled apart, the kind left out: ``kernel.present``)."""
+    k1 = g1 = e1 = k3 = g3 = e3 = 0.0
+    if lumped is not None:
+        k1, g1, e1 = _lines(y, p, w)
+    k2, g2, e2 = _bodies(y, p, w, mesh)
+    if planar is not None or segments is not None:
+        k3, g3, e3 = _rigid(y, p, w, planar, segments)
+    if natural is not None:
+        for li in range(p.nat_n.shape[0]):  # natural strings
+            k, g, e = natural_string.own(y, p, w, li)
+            k3, g3, e3 = k3 + k, g3 + g, e3 + e
     return k1 + k2 + k3, g1 + g2 + g3, e1 + e2 + e3
 
 
 @inner
-def _rigid(y, p, w):
+def _rigid(y, p, w, planar, segments):
     """The rigid lines' segments (kernels.chain3d_outputs.segment_energies, kernels.planar_chain
-    .link_energies)."""
+    .link_energies; ``planar``, ``segments``: as ``energies``')."""
     kinetic = gravity = elastic = 0.0
     ref = np.empty(3)
     for li in range(p.rs_n.shape[0]):
@@ -133,13 +141,16 @@ def _rigid(y, p, w):
                       + w.rot[base, c, 2] * p.rs_ref[li, 2])  # fmt: skip
         e = s0 + n
         ws = rigid.workspace(p, w, li)
+        k = g = el = 0.0
         if p.rs_kind[li] == 1:  # planar
+            if planar is None:
+                continue
             k, g, el = link_energies(
                 n, y, p.rs_q[li], p.rs_v[li], p.rs_length[s0:e], p.rs_mass[s0:e],
                 p.rs_inertia[s0:e], p.rs_wet_weight[s0:e], p.rs_buoyancy[s0:e],
                 p.rs_joint_stiffness[s0:e], math.atan2(ref[0], -ref[2]), ws,
             )  # fmt: skip
-        else:
+        elif segments is not None:
             k, g, el = segment_energies(
                 n, p.rs_length[s0:e], p.rs_mass[s0:e], p.rs_wet_weight[s0:e],
                 p.rs_buoyancy[s0:e], p.rs_joint_stiffness[s0:e], ref, ws,

@@ -21,13 +21,12 @@ import numpy as np
 from numba import njit
 
 from seacable.bodies import dynamics, kinematics
-from seacable.forces import compensator, hydrostatic, kinds, radiation, table
+from seacable.forces import compensator, hydrostatic, kinds, radiation
 from seacable.kernels import chain3d as c3
+from seacable.kernels import indirect, memory, surface
 from seacable.kernels import lumped as lk
-from seacable.kernels import memory, natural, surface
 from seacable.kernels.jit import JIT, inner
-from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
-from seacable.lines import lumped_mass, natural_string, tie, tip_joint
+from seacable.lines import lumped_mass, tip_joint
 from seacable.system import rigid
 
 DYNAMIC = kinematics.DYNAMIC
@@ -163,6 +162,9 @@ class SystemParams(NamedTuple):
     tf_count: np.ndarray
     tf_sine: np.ndarray
     tf_build_up: np.ndarray
+    # the addresses of the evaluation's entries compiled for this system's kinds (ENTRIES,
+    # system.variants.bind; 0: not bound), valid in this process only
+    entries: np.ndarray = np.zeros(5, dtype=np.int64)
 
 
 class SystemWork(NamedTuple):
@@ -294,124 +296,96 @@ def _tip_joints(y, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_to, joints, point
                              joints[j, 6], ws)  # fmt: skip
 
 
+def present(p: SystemParams) -> tuple[bool | None, ...]:
+    """(lumped, planar, segments, natural, mesh): True where the system holds lumped-mass lines,
+    planar rigid-link lines, 3D rigid-segment lines, natural strings, a hull mesh; None where it
+    does not. Compiled functions that take them (the outputs, the energies) are compiled apart
+    for each set of None and leave out the code of a kind that is None (numba prunes a branch
+    on ``x is None`` for an argument before typing it)."""
+    mesh = any(int(k) in kinds.MESH for k in p.force_kind)
+    held = (len(p.line_n) > 0, bool(np.any(p.rs_kind == rigid.PLANAR)),
+            bool(np.any(p.rs_kind == rigid.SEGMENTS_3D)), len(p.nat_n) > 0, mesh)  # fmt: skip
+    return tuple(True if h else None for h in held)
+
+
+# The entries of the evaluation compiled for a system's kinds (system.evaluation), whose
+# addresses system.variants.bind writes into ``SystemParams.entries``; the trampolines below
+# call them (kernels.indirect). Those with a Python entry (njit) serve Python callers; compiled
+# callers call the inner ones, so that no Python entry's code is linked into them.
+EVALUATE, BODY_FORCES, PROJECT, AFTER_STEP, START_MEMORY = range(5)
+ENTRIES = ("evaluate", "body_forces", "project", "after_step", "start_memory")
+
+
+@inner
+def _bound(entries):
+    """Refuse parameters no compiled evaluation was bound to (an address 0 would crash)."""
+    if entries[EVALUATE] == 0:
+        raise RuntimeError("seacable: system parameters not bound to a compiled evaluation "
+                           "(system.variants.bind)")  # fmt: skip
+
+
+@njit(inline="always", **JIT)
+def evaluate(t, y, p, w, ydot):
+    """Fill the workspace and ``ydot``; returns a status (kernels.status codes): the
+    evaluation compiled for the kinds this system holds (``system.evaluation``), called through
+    its address so that no caller compiles it in (kernels.indirect). For compiled callers;
+    Python calls ``rhs``. Inlined: the call that passes the tuples is the evaluation's alone."""
+    _bound(p.entries)
+    return indirect.call5(p.entries[EVALUATE], t, y, p, w, ydot)
+
+
 @njit(**JIT)
-def rhs(t, y, p, w, ydot):
-    """Fill the workspace and ``ydot``; returns a status (kernels.status codes). The parameter
-    and work tuples are read here only: every call from here takes the arrays it needs, none
-    the tuples (docs/architecture.md, "Calls cost reference counts")."""
-    status = OK
-    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
-    kinematics.body_states(
-        t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
-        p.body_motion, p.body_track, p.body_parent, tf, w.pos, w.rot, w.vel, w.omega, w.acc,
-        w.quat, w.imposed,
-    )  # fmt: skip
-    if p.rs_n.shape[0] > 0:
-        rigid.nodes_and_loads(
-            y, p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
-            p.rs_tip, p.rs_ref, p.rs_length, p.rs_wet_weight, p.rs_buoyancy, p.rs_drag_normal,
-            p.rs_drag_tangential, p.rs_added, p.rs_inertia, p.rs_joint_stiffness,
-            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, t, p.gravity, p.wave,
-            p.wave_depth, p.wave_stretch, p.point_body, p.point_offset, w.pos, w.rot, w.vel,
-            w.omega, w.ppos, w.pvel, w.parm, w.rs, w.scratch[120:123],
-        )  # fmt: skip
-        _tip_joints(
-            y, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_to, p.rs_tip_joint,
-            p.point_body, w.rot, w.omega, w.rs, w.scratch[120:123],
-        )  # fmt: skip
-    for li in range(p.nat_n.shape[0]):
-        natural_string.carry(
-            y, natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
-                                          p.nat_alpha, p.nat_cartesian, p.gravity, li, 1.0),
-            p.nat_q[li], p.nat_v[li], p.nat_from[li], p.nat_tip[li], p.point_body,
-            p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm, w.nat,
-            w.nat_work,
-        )  # fmt: skip
-    kinematics.point_states(
-        p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
-    )
-    _fractions(p.body_kind, p.body_shape, w.pos, w.fraction)
-    w.load[:, :] = 0.0
-    dynamics.body_masses(
-        p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
-        p.body_coriolis, p.body_shape, w.fraction, w.pos, w.rot, w.vel, w.omega, p.current_z,
-        p.current_u, p.current_v, w.mass, w.bias,
-    )  # fmt: skip
-    if p.tie_from.shape[0] > 0:  # ties (a call with arrays costs even with none to do)
-        tie.forces(
-            w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
-            p.tie_table, p.tie_first, p.tie_count, w.tie_tension, w.tie_force,
-        )  # fmt: skip
-    for k in range(p.tie_from.shape[0]):
-        f = w.tie_force[k]
-        a, b = p.tie_from[k], p.tie_to[k]
-        dynamics.add_force(w.parm[a], f[0], f[1], f[2], w.load[p.point_body[a]])
-        dynamics.add_force(w.parm[b], -f[0], -f[1], -f[2], w.load[p.point_body[b]])
-    # lumped-mass lines
-    if p.line_n.shape[0] > 0 and not _lumped_lines(
-        y, p.line_n, p.line_seg, p.line_node, p.line_q, p.line_v, p.line_from, p.line_to,
-        p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed, p.seg_drag_normal,
-        p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
-        p.node_mass, p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z,
-        p.seabed_friction, p.seabed_slip_speed, p.seabed_band, p.current_z, p.current_u,
-        p.current_v, t, p.gravity, p.wave, p.wave_depth, p.wave_stretch, p.point_body,
-        p.body_kind, w.ppos, w.pvel, w.parm, w.omega, w.line, w.nodes, w.end_mass, w.end_load,
-        w.mass, w.load, ydot,
-    ):  # fmt: skip
-        status = NON_FINITE
-    # force models
-    if not _models_kept(t, y, p.n_q + p.n_v, p.slack_allowed == lk.FROZEN, w.pos, w.quat,
-                        w.vel, w.omega, w.models_key):  # fmt: skip
-        w.models[:, :] = 0.0
-        table.add_all(
-            t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
-            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction,
-            w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u,
-            p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.models,
-        )  # fmt: skip
-    w.load[:, :] += w.models
-    compensator.apply_all(  # after every other load: it cancels them
-        p.compensator, p.force_body, p.force_at, p.force_data, p.point_body, p.body_kind,
-        p.body_free, w.mass, w.bias, w.load, w.acc, w.ppos, w.pvel, w.parm, w.rot, w.omega,
-        w.control,
-    )  # fmt: skip
-    if p.n_s > 0:
-        table.state_rates(t, y, p.force_kind, p.force_body, p.force_at, p.force_first,
-                          p.force_state, p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos,
-                          w.pvel, tf, ydot)  # fmt: skip
-    if p.rs_n.shape[0] > 0:  # for the statics' moment balance of rigid lines
-        w.own_load[:, :] = w.load[:, 0:3]
-    if p.rs_n.shape[0] > 0 and not rigid.backward(
-        p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_v, p.rs_from, p.rs_to,
-        p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.rs_mass, p.rs_inertia,
-        p.stabilization_frequency, p.point_body, p.point_offset, p.body_kind, p.body_pose, y,
-        w.pos, w.rot, w.vel, w.omega, w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias, w.load,
-        w.rs, w.rs_force, w.rs_la, w.scratch,
-    ):  # fmt: skip
-        status = SINGULAR_CLOSURE
-    if not _solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid,
-                         p.body_group, w.load, w.bias, w.mass, w.acc, w.rhs6, ydot):  # fmt: skip
-        status = NON_FINITE
-    if p.group_member.shape[0] > 0 and not rigid.solve_groups(
-        y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_group,
-        p.group_first, p.group_member, p.rs_from, p.rs_to, p.rs_held, p.point_body, w.acc,
-        w.omega, w.parm, w.rs_la, w.rs_force, w.load, w.bias, w.mass, w.group, w.scratch, ydot,
-    ):  # fmt: skip
-        status = SINGULAR_CLOSURE
-    if p.rs_n.shape[0] > 0:
-        rigid.forward(
-            p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
-            p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.point_body, p.body_kind, y, w.omega,
-            w.acc, w.parm, w.rs, w.rs_force, w.rs_la, w.scratch, ydot,
-        )  # fmt: skip
-    for li in range(p.nat_n.shape[0]):
-        params = natural_string.line_params(p.nat_n, p.nat_length, p.nat_mu, p.nat_ea,
-                                            p.nat_alpha, p.nat_cartesian, p.gravity, li,
-                                            p.body_mass[p.nat_tip[li]])  # fmt: skip
-        if natural_string.rates(t, y, params, p.nat_q[li], p.nat_v[li], w.nat, w.nat_work,
-                                w.nat_dot, ydot) != OK:  # fmt: skip
-            status = NON_FINITE
-    return status if _finite(ydot) else NON_FINITE
+def _from_python(entry, t, y, p, w, ydot):
+    """Entry ``entry`` (``ENTRIES``) called from Python: one Python entry for all of them (its
+    unboxing of the two tuples is most of its compilation, about 3 s)."""
+    _bound(p.entries)
+    at = p.entries[entry]
+    if entry == EVALUATE:
+        return indirect.call5(at, t, y, p, w, ydot)
+    if entry == PROJECT:
+        return indirect.call2(at, y, p)
+    return indirect.call4(at, t, y, p, w)  # AFTER_STEP, START_MEMORY
+
+
+def rhs(t: float, y: np.ndarray, p: SystemParams, w: SystemWork, ydot: np.ndarray) -> int:
+    """``evaluate`` for Python callers."""
+    return _from_python(EVALUATE, t, y, p, w, ydot)
+
+
+@njit(inline="always", **JIT)
+def body_forces(t, y, p, w, pos, vel, fraction, load):
+    """Every force model's load into ``load`` (nb, 6), the bodies at ``pos`` moving at ``vel``
+    and submerged by ``fraction`` (``system.evaluation.body_forces``, by its address)."""
+    _bound(p.entries)
+    indirect.call8(p.entries[BODY_FORCES], t, y, p, w, pos, vel, fraction, load)
+
+
+@njit(inline="always", **JIT)
+def accept(t, y, p, w):
+    """An accepted step ending at (t, y): the state projected (unit quaternions, directors and
+    tangents) and the radiation convolutions' histories recorded (``system.evaluation``'s
+    ``project`` and ``after_step``). Every integrator calls it on each accepted step."""
+    _bound(p.entries)
+    indirect.call2(p.entries[PROJECT], y, p)
+    indirect.call4(p.entries[AFTER_STEP], t, y, p, w)
+
+
+def project(y: np.ndarray, p: SystemParams, w: SystemWork) -> None:
+    """The state projected (``system.evaluation.project``), for Python callers (``w``, a
+    workspace of ``p``'s, is not used: the call's types are those of every entry's)."""
+    _from_python(PROJECT, 0.0, y, p, w, y)
+
+
+def after_step(t: float, y: np.ndarray, p: SystemParams, w: SystemWork) -> None:
+    """The histories recorded after an accepted step (``system.evaluation.after_step``), for
+    integrators driven from Python."""
+    _from_python(AFTER_STEP, t, y, p, w, y)
+
+
+def start_memory(t: float, y: np.ndarray, p: SystemParams, w: SystemWork) -> None:
+    """The radiation convolutions' histories at the run's start
+    (``system.evaluation.start_memory``)."""
+    _from_python(START_MEMORY, t, y, p, w, y)
 
 
 @inner
@@ -508,48 +482,6 @@ def _solve_bodies(y, kind, free, body_q, body_v, rigid_body, group, load, bias, 
     return ok
 
 
-@njit(**JIT)
-def after_step(t, y, p, w):
-    """An accepted step ending at (t, y): the radiation convolutions record their body's
-    velocity (kernels.memory). Every integrator calls it where it projects the state."""
-    w.models_key[0] = np.nan  # the histories change: the force models' loads with them
-    for f in range(p.force_kind.shape[0]):
-        if _convolves(p, f):
-            _body_nu(y, p, p.force_body[f], w.memory)
-            memory.record(p.force_data[p.force_at[f] + radiation.MEMORY :], w.memory, t,
-                          w.memory[0:6])  # fmt: skip
-
-
-@njit(**JIT)
-def start_memory(t, y, p, w):
-    """The radiation convolutions' histories at the run's start (at rest before it)."""
-    w.models_key[0] = np.nan
-    for f in range(p.force_kind.shape[0]):
-        if _convolves(p, f):
-            _body_nu(y, p, p.force_body[f], w.memory)
-            memory.start(p.force_data[p.force_at[f] + radiation.MEMORY :], w.memory, t,
-                         w.memory[0:6])  # fmt: skip
-
-
-@njit(inline="always", **JIT)
-def _convolves(p, f):
-    """Force model f is a radiation convolution (forces.radiation), which keeps a history."""
-    return (p.force_kind[f] == kinds.RADIATION_DAMPING
-            and p.force_data[p.force_at[f]] == radiation.CONVOLUTION)  # fmt: skip
-
-
-@inner
-def _body_nu(y, p, b, scratch):
-    """A dynamic rigid body's body-frame velocity (R^T v, R^T w) from the state, into
-    ``scratch[0:6]`` (its rotation in ``scratch[12:21]``)."""
-    q, v = p.body_q[b], p.body_v[b]
-    rot = scratch[12:21].reshape((3, 3))
-    kinematics.rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot)
-    for c in range(3):
-        scratch[c] = rot[0, c] * y[v] + rot[1, c] * y[v + 1] + rot[2, c] * y[v + 2]
-        scratch[3 + c] = rot[0, c] * y[v + 3] + rot[1, c] * y[v + 4] + rot[2, c] * y[v + 5]
-
-
 @njit(inline="always", **JIT)
 def projects(p):
     """True when ``project`` changes the state: some dynamic body has an orientation, or some
@@ -564,21 +496,3 @@ def projects(p):
         if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
             return True
     return False
-
-
-@njit(**JIT)
-def project(y, p):
-    """Every rigid body's quaternion back to unit length, every rigid segment's director too and
-    its rate normal to it (after each accepted step; from Python too: system.relax)."""
-    for li in range(p.rs_n.shape[0]):
-        if p.rs_kind[li] == rigid.SEGMENTS_3D:
-            c3.project_directors(y, p.rs_n[li], p.rs_q[li], p.rs_v[li])
-    for li in range(p.nat_n.shape[0]):
-        if p.nat_cartesian[li] == 1:
-            natural.project_tangents(y, p.nat_n[li], p.nat_q[li], p.nat_v[li])
-    for b in range(p.body_kind.shape[0]):
-        if p.body_kind[b] == DYNAMIC and p.body_rigid[b] == 1:
-            q = p.body_q[b] + 3
-            norm = np.sqrt(y[q] ** 2 + y[q + 1] ** 2 + y[q + 2] ** 2 + y[q + 3] ** 2)
-            for c in range(4):
-                y[q + c] /= norm

@@ -24,42 +24,28 @@ BODY_COLUMNS = 18  # position 3, roll pitch yaw 3 [deg], velocity 3, omega 3, fo
 
 @njit(**JIT)
 def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energy, rigid,
-                  control):  # fmt: skip
+                  control, lumped, planar, segments, natural, mesh):  # fmt: skip
     """Rows of every output time (bodies (m, nb, BODY_COLUMNS), nodes (m, total nodes, 3),
     tension (m, total segments), ends (m, nl, 2, 3): force of the line on its from / to
     point, ties (m, nt, 8): tension, length, from point, to point, energy (m, 3): kinetic,
     gravity potential, elastic (system.energy)); ``rigid`` the rigid lines' (nodes, tension,
-    ends) alike; ``control`` (m, nc, compensator.RECORD) the compensators' (w.control)."""
+    ends) alike; ``control`` (m, nc, compensator.RECORD) the compensators' (w.control).
+    ``lumped``, ``planar``, ``segments``, ``natural``, ``mesh``: True, or None where the system
+    holds no line of that model (no hull mesh): numba compiles the function apart for each set
+    of None and prunes what they leave out before typing it (``kernel.present``)."""
     status = OK
     ydot = np.empty(states.shape[1])
-    a = np.empty(3)
     on_body = np.zeros((p.body_kind.shape[0], 6))
     for j in range(times.shape[0]):
         t, y = times[j], states[j]
-        st = kernel.rhs(t, y, p, w, ydot)
+        st = kernel.evaluate(t, y, p, w, ydot)
         if st != OK and status == OK:
             status = st
         for k in range(p.compensator.shape[0]):
             control[j, k, :] = w.control[k]
         on_body[:, :] = 0.0
-        for li in range(p.line_n.shape[0]):
-            n, c0, s0 = p.line_n[li], p.line_node[li], p.line_seg[li]
-            lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
-                               p.line_to[li], w.line)  # fmt: skip
-            for k in range(n + 1):
-                for c in range(3):
-                    nodes[j, c0 + k, c] = w.line[3 * k + c]
-            for i in range(n):
-                tension[j, s0 + i] = w.nodes[lumped_mass.T_ROW, c0 + i]
-            for end in range(2):
-                point = p.line_from[li] if end == 0 else p.line_to[li]
-                point_acceleration(p, w, point, a)
-                m3 = w.end_mass[li, end]
-                for c in range(3):
-                    inertia = m3[3 * c] * a[0] + m3[3 * c + 1] * a[1] + m3[3 * c + 2] * a[2]
-                    ends[j, li, end, c] = w.end_load[li, end, c] - inertia
-                f = ends[j, li, end]
-                add_force(w.parm[point], f[0], f[1], f[2], on_body[p.point_body[point]])
+        if lumped is not None:
+            _lumped_rows(j, y, p, w, on_body, nodes, tension, ends)
         for k in range(p.tie_from.shape[0]):
             f = w.tie_force[k]
             a_, b_ = p.tie_from[k], p.tie_to[k]
@@ -73,11 +59,41 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
             for c in range(3):
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
-        _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j], rigid[3][j])
-        _string_rows(y, p, w, rigid[4][j])
+        if planar is not None or segments is not None:
+            _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j], rigid[3][j],
+                        planar, segments)  # fmt: skip
+        if natural is not None:
+            _string_rows(y, p, w, rigid[4][j])
         _bodies(y, p, w, on_body, bodies[j])
-        energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(y, p, w)
+        energy[j, 0], energy[j, 1], energy[j, 2] = system_energy.energies(
+            y, p, w, lumped, planar, segments, natural, mesh
+        )
     return status
+
+
+@inner
+def _lumped_rows(j, y, p, w, on_body, nodes, tension, ends):
+    """Row ``j`` of every lumped-mass line: its nodes, tensions and end forces, which it adds
+    to ``on_body``."""
+    a = np.empty(3)
+    for li in range(p.line_n.shape[0]):
+        n, c0, s0 = p.line_n[li], p.line_node[li], p.line_seg[li]
+        lumped_mass.gather(y, n, p.line_q[li], p.line_v[li], w.ppos, w.pvel, p.line_from[li],
+                           p.line_to[li], w.line)  # fmt: skip
+        for k in range(n + 1):
+            for c in range(3):
+                nodes[j, c0 + k, c] = w.line[3 * k + c]
+        for i in range(n):
+            tension[j, s0 + i] = w.nodes[lumped_mass.T_ROW, c0 + i]
+        for end in range(2):
+            point = p.line_from[li] if end == 0 else p.line_to[li]
+            point_acceleration(p, w, point, a)
+            m3 = w.end_mass[li, end]
+            for c in range(3):
+                inertia = m3[3 * c] * a[0] + m3[3 * c + 1] * a[1] + m3[3 * c + 2] * a[2]
+                ends[j, li, end, c] = w.end_load[li, end, c] - inertia
+            f = ends[j, li, end]
+            add_force(w.parm[point], f[0], f[1], f[2], on_body[p.point_body[point]])
 
 
 @njit(inline="always", **JIT)
@@ -125,7 +141,7 @@ def allocate(p, m: int) -> Rows:
 
 def fill(times, states, p, w, rows: Rows) -> int:
     """``rows`` filled at ``times`` and ``states``; the worst kernel status met."""
-    return outputs_chunk(times, states, p, w, *rows)
+    return outputs_chunk(times, states, p, w, *rows, *kernel.present(p))
 
 
 def at(p, y: np.ndarray, time: float = 0.0, w=None) -> Rows:
@@ -146,14 +162,21 @@ def rigid_rows(p, m: int) -> tuple:
             np.empty((m, strings, 5)))  # fmt: skip
 
 
-@njit(inline="always", **JIT)
-def _rigid_rows(p, w, on_body, nodes, tension, ends, error):
+@inner
+def _rigid_rows(p, w, on_body, nodes, tension, ends, error, planar, segments):
     """Every rigid line's nodes, axial forces at its segments' centres, forces on its ends and
-    the distance of a held end from where it is held (on the held axes)."""
+    the distance of a held end from where it is held (on the held axes); ``planar``,
+    ``segments``: as ``outputs_chunk``'s."""
     for li in range(p.rs_n.shape[0]):
         n, c0, s0 = p.rs_n[li], p.rs_node[li], p.rs_seg[li]
         ws = rigid.workspace(p, w, li)
-        _rigid_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n], ends[li])
+        if p.rs_kind[li] == rigid.PLANAR:
+            if planar is not None:
+                _planar_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n],
+                             ends[li])  # fmt: skip
+        elif segments is not None:
+            _segments_line(p, w, li, ws, n, nodes[c0 : c0 + n + 1], tension[s0 : s0 + n],
+                           ends[li])  # fmt: skip
         tip = p.rs_tip[li]
         miss = 0.0
         for c in range(3):
@@ -167,24 +190,29 @@ def _rigid_rows(p, w, on_body, nodes, tension, ends, error):
 
 
 @njit(inline="always", **JIT)
-def _rigid_line(p, w, li, ws, n, nodes, tension, ends):
-    """One rigid line's rows: nodes (n + 1, 3), tension (n), ends (2, 3)."""
+def _planar_line(p, w, li, ws, n, nodes, tension, ends):
+    """One planar rigid line's rows: nodes (n + 1, 3), tension (n), ends (2, 3)."""
     held = p.rs_held[li]
     force = w.rs_force[li]
-    if p.rs_kind[li] == rigid.PLANAR:
-        pinned = held[0] != 0.0 or held[2] != 0.0
-        plane = w.ppos[p.rs_from[li], 1]
-        for k in range(n + 1):
-            nodes[k, 0], nodes[k, 1], nodes[k, 2] = ws[pc._PX, k], plane, ws[pc._PZ, k]
-        ax, az = rigid_links.node_force(ws, np.int64(0), force[0], force[2], pinned)
-        ends[0, 0], ends[0, 1], ends[0, 2] = -ax, 0.0, -az
-        for i in range(n):
-            bx, bz = rigid_links.node_force(ws, i + 1, force[0], force[2], pinned)
-            ex, ez = ws[pc._EX, i], ws[pc._EZ, i]
-            tension[i] = -0.5 * (ex * ax + ez * az + ex * bx + ez * bz)
-            ax, az = bx, bz
-        ends[1, 0], ends[1, 1], ends[1, 2] = ax, 0.0, az
-        return
+    pinned = held[0] != 0.0 or held[2] != 0.0
+    plane = w.ppos[p.rs_from[li], 1]
+    for k in range(n + 1):
+        nodes[k, 0], nodes[k, 1], nodes[k, 2] = ws[pc._PX, k], plane, ws[pc._PZ, k]
+    ax, az = rigid_links.node_force(ws, np.int64(0), force[0], force[2], pinned)
+    ends[0, 0], ends[0, 1], ends[0, 2] = -ax, 0.0, -az
+    for i in range(n):
+        bx, bz = rigid_links.node_force(ws, i + 1, force[0], force[2], pinned)
+        ex, ez = ws[pc._EX, i], ws[pc._EZ, i]
+        tension[i] = -0.5 * (ex * ax + ez * az + ex * bx + ez * bz)
+        ax, az = bx, bz
+    ends[1, 0], ends[1, 1], ends[1, 2] = ax, 0.0, az
+
+
+@njit(inline="always", **JIT)
+def _segments_line(p, w, li, ws, n, nodes, tension, ends):
+    """One 3D rigid-segment line's rows: nodes (n + 1, 3), tension (n), ends (2, 3)."""
+    held = p.rs_held[li]
+    force = w.rs_force[li]
     pinned = held[0] != 0.0 or held[1] != 0.0 or held[2] != 0.0
     for k in range(n + 1):
         for c in range(3):

@@ -113,5 +113,5 @@ def _rk4(time, y, h, p, w, k):
     kernel.rhs(time, y + 0.5 * h * k[1], p, w, k[2])
     kernel.rhs(time, y + h * k[2], p, w, k[3])
     out = y + (h / 6.0) * (k[0] + 2.0 * k[1] + 2.0 * k[2] + k[3])
-    kernel.project(out, p)
+    kernel.project(out, p, w)
     return out

@@ -68,13 +68,16 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
                     length, wet_weight, buoyancy, drag_normal, drag_tangential, added, inertia,
                     joint_stiffness, joint_damping, current_z, current_u, current_v, t, gravity,
                     wave, wave_depth, wave_stretch, point_body, point_offset, pos, rot, vel,
-                    omega, ppos, pvel, parm, work, ref):  # fmt: skip
+                    omega, ppos, pvel, parm, work, ref, planar, segments):  # fmt: skip
     """Every rigid line's nodes and loads, bases first; a carried body's position and velocity
     from its line's last node. The arrays of the parameter and work tuples (``rs_*``,
     ``point_*``, ``current_*``, the waves' (at time ``t``: 3D lines only), the bodies' and
     points' states, ``work`` = ``w.rs``; ``ref``: 3 floats of scratch) come one by one: a call
     that receives the tuples takes and drops a reference to each of their arrays
-    (docs/architecture.md)."""
+    (docs/architecture.md). ``planar`` and ``segments``: True, or None to leave the planar
+    links' or the 3D segments' code out (numba compiles the function apart for a None argument
+    and prunes the branches that test it before typing them: a system's evaluation
+    compiles only the models it holds, system.evaluation)."""
     for j in range(order.shape[0] - 1, -1, -1):
         li = order[j]
         n, s0, ws = _view(rs_n, rs_seg, rs_node, work, li)
@@ -88,18 +91,13 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
                       + rot[base, c, 2] * rs_ref[li, 2])  # fmt: skip
         tip = rs_tip[li]
         if kind[li] == PLANAR:
-            ws[pc._PX, 0], ws[pc._PZ, 0] = ppos[a, 0], ppos[a, 2]
-            ws[pc._VX, 0], ws[pc._VZ, 0] = pvel[a, 0], pvel[a, 2]
-            # the reference turns with the base's pitch: d(angle)/dt = -omega_y
-            pc.link_loads(
-                n, y, rs_q[li], rs_v[li], length[s0:e], wet_weight[s0:e], buoyancy[s0:e],
-                drag_normal[s0:e], drag_tangential[s0:e], joint_stiffness[s0:e],
-                joint_damping[s0:e], planar_reference(rot[base], rs_ref[li]), -omega[base, 1],
-                current_z, current_u, ws,
-            )  # fmt: skip
-            if tip >= 0:
-                pos[tip, 0], pos[tip, 1], pos[tip, 2] = ws[pc._PX, n], ppos[a, 1], ws[pc._PZ, n]
-                vel[tip, 0], vel[tip, 1], vel[tip, 2] = ws[pc._VX, n], 0.0, ws[pc._VZ, n]
+            if planar is not None:
+                _planar_nodes(n, s0, e, y, rs_q[li], rs_v[li], length, wet_weight, buoyancy,
+                              drag_normal, drag_tangential, joint_stiffness, joint_damping,
+                              rs_ref[li], current_z, current_u, a, base, tip, pos, rot, vel,
+                              omega, ppos, pvel, ws)  # fmt: skip
+            continue
+        if segments is None:
             continue
         for c in range(3):
             ws[c3._P + c, 0] = ppos[a, c]
@@ -114,6 +112,25 @@ def nodes_and_loads(y, order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, 
             for c in range(3):
                 pos[tip, c] = ws[c3._P + c, n]
                 vel[tip, c] = ws[c3._V + c, n]
+
+
+@inner
+def _planar_nodes(n, s0, e, y, q, v, length, wet_weight, buoyancy, drag_normal, drag_tangential,
+                  joint_stiffness, joint_damping, rs_ref, current_z, current_u, a, base, tip, pos,
+                  rot, vel, omega, ppos, pvel, ws):  # fmt: skip
+    """A planar line's nodes and loads (``nodes_and_loads``) from its base point ``a`` on body
+    ``base``; its carried body ``tip`` (-1: none) placed at its last node."""
+    ws[pc._PX, 0], ws[pc._PZ, 0] = ppos[a, 0], ppos[a, 2]
+    ws[pc._VX, 0], ws[pc._VZ, 0] = pvel[a, 0], pvel[a, 2]
+    # the reference turns with the base's pitch: d(angle)/dt = -omega_y
+    pc.link_loads(
+        n, y, q, v, length[s0:e], wet_weight[s0:e], buoyancy[s0:e], drag_normal[s0:e],
+        drag_tangential[s0:e], joint_stiffness[s0:e], joint_damping[s0:e],
+        planar_reference(rot[base], rs_ref), -omega[base, 1], current_z, current_u, ws,
+    )  # fmt: skip
+    if tip >= 0:
+        pos[tip, 0], pos[tip, 1], pos[tip, 2] = ws[pc._PX, n], ppos[a, 1], ws[pc._PZ, n]
+        vel[tip, 0], vel[tip, 1], vel[tip, 2] = ws[pc._VX, n], 0.0, ws[pc._VZ, n]
 
 
 @njit(inline="always", **JIT)
@@ -144,14 +161,15 @@ def _tip_target(rs_tip, rs_to, body_pose, body_kind, point_body, point_offset, p
 def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, rs_held, rs_port,
              length, mass, inertia, stabilization_frequency, point_body, point_offset, body_kind,
              body_pose, y, pos, rot, vel, omega, acc, ppos, pvel, parm, body_mass, bias, load,
-             work, rs_force, rs_la, scratch):  # fmt: skip
+             work, rs_force, rs_la, scratch, planar, segments):  # fmt: skip
     """Every rigid line's backward sweep, children first: a carried body's mass and loads start
     its line's sweep; a held tip's force is eliminated (the closures); the base body receives
     the line's articulated inertia ``m9`` and load. A line held on a free body (``rs_port``)
     keeps its tip's force L unknown: its base receives M_0 and -b_0 alone, and ``rs_la`` its
     maps for the bodies' joint solve (``solve_groups``). False when a closure is singular. The
     arrays of the parameter and work tuples come one by one (``work`` = ``w.rs``,
-    ``body_mass`` = ``w.mass``; ``scratch``: 168 floats), as in ``nodes_and_loads``."""
+    ``body_mass`` = ``w.mass``; ``scratch``: 168 floats), as in ``nodes_and_loads`` (and
+    ``planar``, ``segments``)."""
     sweep = scratch[0:60]
     m9, line_load = scratch[60:69], scratch[69:72]
     target, point_acc, zero = scratch[106:115], scratch[115:118], scratch[128:134]
@@ -167,13 +185,16 @@ def backward(order, kind, rs_n, rs_seg, rs_node, rs_v, rs_from, rs_to, rs_tip, r
                         vel, omega, acc, ppos, pvel, parm, li, target, point_acc,
                         zero)  # fmt: skip
         port = rs_port[li] != 0
+        sound = True
         if kind[li] == PLANAR:
+            if planar is None:
+                continue
             sound = _planar_backward(
                 n, length[s0:e], mass[s0:e], inertia[s0:e], y, rs_v[li], ws, rs_tip[li],
                 body_mass, bias, load, rs_held[li], pinned, target, stabilization_frequency, m9,
                 line_load, rs_force[li], rs_la[li], port, rs_la[li], sweep,
             )  # fmt: skip
-        else:
+        elif segments is not None:
             sound = _segments_backward(
                 n, length[s0:e], mass[s0:e], ws, rs_tip[li], body_mass, bias, load,
                 rs_held[li], pinned, target, stabilization_frequency, m9, line_load,
@@ -396,10 +417,11 @@ def _line_rows(li, col, kind, body_group, rs_from, rs_to, rs_held, point_body, a
 @inner
 def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_held, rs_port,
             length, point_body, body_kind, y, omega, acc, parm, work, rs_force, rs_la, scratch,
-            ydot):  # fmt: skip
+            ydot, planar, segments):  # fmt: skip
     """Every rigid line's forward sweep, bases first: node 0's acceleration from its body's,
     the holding force from it, the segments' accelerations; a carried body's acceleration is
-    its line's last node's. The arrays come one by one, as in ``nodes_and_loads``."""
+    its line's last node's. The arrays come one by one, as in ``nodes_and_loads`` (and
+    ``planar``, ``segments``)."""
     a0, held_force = scratch[100:103], scratch[103:106]
     for j in range(order.shape[0] - 1, -1, -1):
         li = order[j]
@@ -416,11 +438,13 @@ def forward(order, kind, rs_n, rs_seg, rs_node, rs_q, rs_v, rs_from, rs_tip, rs_
             rs_force[li, r] = held_force[r]
         tip = rs_tip[li]
         if kind[li] == PLANAR:
+            if planar is None:
+                continue
             rigid_links.forward(n, length[s0 : s0 + n], ws, a0[0], a0[2], held_force[0],
                                 held_force[2], pinned, y, rs_q[li], rs_v[li], ydot)  # fmt: skip
             if tip >= 0:
                 acc[tip, 0], acc[tip, 1], acc[tip, 2] = ws[pc._AX, n], 0.0, ws[pc._AZ, n]
-        else:
+        elif segments is not None:
             rigid_segments.forward(n, length[s0 : s0 + n], ws, a0, held_force, pinned, y,
                                    rs_q[li], rs_v[li], ydot)  # fmt: skip
             if tip >= 0:

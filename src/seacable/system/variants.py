@@ -1,0 +1,219 @@
+"""The evaluation compiled for the kinds of component a system holds (``system.evaluation``).
+
+``features(p)`` names what a system holds: its kinds of line (lumped-mass, 3D rigid segments,
+planar rigid links, natural strings), ties, compensators, force models with states, and the
+force models that have a flag of their own. For each set, ``variant`` writes a copy of the
+template ``system/evaluation.py`` with those flags, under a name made of a digest of the
+template, the flags and the package's compiled sources (so that an edited kernel gives a new
+copy, never a stale cache), in the seacable cache folder (``cache_folder``), imports it and
+compiles its entries (``kernel.ENTRIES``) for the system's types; numba caches them on disk
+beside the copy, shared by every process. ``bind(p)`` gives the parameters the entries'
+addresses (``SystemParams.entries``), through which every caller reaches them
+(``system.kernel``'s trampolines, ``kernels.indirect``).
+"""
+
+import hashlib
+import importlib.util
+import os
+import sys
+import tempfile
+import threading
+from pathlib import Path
+from types import ModuleType
+from typing import Any, NamedTuple
+
+import numba
+import numpy as np
+from numba import types
+
+from seacable.forces import kinds
+from seacable.kernels import jit
+from seacable.system import evaluation, kernel, rigid
+
+PACKAGE = Path(__file__).resolve().parents[1]
+TEMPLATE = Path(evaluation.__file__)
+FLAGS_START, FLAGS_END = "# FLAGS:", "# END FLAGS"
+LINE_FLAGS = ("LUMPED", "SEGMENTS", "PLANAR", "GROUPS", "TIP_JOINTS", "NATURAL", "TIES",
+              "COMPENSATORS", "STATES")  # fmt: skip
+# each force model's flag; None: compiled into every copy (the common, small models: a flag
+# each would give a copy for each of their combinations, and their code is a few seconds in all)
+FORCE_FLAG: dict[int, str | None] = {
+    kinds.GRAVITY: None,
+    kinds.BUOYANCY: None,
+    kinds.DRAG: None,
+    kinds.APPLIED: None,
+    kinds.LINEAR_STIFFNESS: None,
+    kinds.LINEAR_DAMPING: None,
+    kinds.QUADRATIC_DAMPING: None,
+    kinds.SERVO: "F_SERVO",
+    kinds.NON_LINEAR_HYDROSTATIC: "F_MESH",
+    kinds.NON_LINEAR_FROUDE_KRYLOV: "F_MESH",
+    kinds.RADIATION_DAMPING: "F_RADIATION_DAMPING",
+    kinds.DIFFRACTION: "F_DIFFRACTION",
+    kinds.WAVE_DRIFT: "F_WAVE_DRIFT",
+    kinds.THRUSTER: "F_THRUSTER",
+    kinds.RUDDER: "F_RUDDER",
+    kinds.WIND: "F_COEFFICIENTS",
+    kinds.CURRENT: "F_COEFFICIENTS",
+    kinds.SHORT_WING: "F_HULL_CURRENT",
+    kinds.CROSS_FLOW: "F_HULL_CURRENT",
+    kinds.COMPENSATOR: None,  # the compensators: COMPENSATORS
+}
+FORCE_FLAGS = tuple(dict.fromkeys(flag for flag in FORCE_FLAG.values() if flag is not None))
+
+
+class Variant(NamedTuple):
+    """A compiled copy of the evaluation: its module and its entries' addresses
+    (``kernel.ENTRIES``)."""
+
+    module: ModuleType
+    entries: np.ndarray
+
+
+_variants: dict[tuple[str, ...], Variant] = {}
+_lock = threading.Lock()
+_digest: list[str] = []  # the package's compiled sources' digest, computed once a process
+
+
+def features(p: kernel.SystemParams) -> tuple[str, ...]:
+    """The flags of ``system.evaluation`` a system needs: those of the kinds it holds."""
+    held = {
+        "LUMPED": len(p.line_n) > 0,
+        "SEGMENTS": bool(np.any(np.asarray(p.rs_kind) == rigid.SEGMENTS_3D)),
+        "PLANAR": bool(np.any(np.asarray(p.rs_kind) == rigid.PLANAR)),
+        "GROUPS": len(p.group_member) > 0,
+        "TIP_JOINTS": len(p.rs_tip_joint) > 0,
+        "NATURAL": len(p.nat_n) > 0,
+        "TIES": len(p.tie_from) > 0,
+        "COMPENSATORS": len(p.compensator) > 0,
+        "STATES": int(p.n_s) > 0,
+    }
+    present = {FORCE_FLAG[int(k)] for k in np.asarray(p.force_kind)}
+    on = [name for name in LINE_FLAGS if held[name]]
+    return tuple(on + [name for name in FORCE_FLAGS if name in present])
+
+
+def describe(flags: tuple[str, ...]) -> str:
+    """The kinds a copy compiles, for a person ("lumped-mass lines; ties; forces: ...")."""
+    words = {"LUMPED": "lumped-mass lines", "SEGMENTS": "3D rigid-segment lines",
+             "PLANAR": "planar rigid-link lines", "GROUPS": "groups of bodies",
+             "TIP_JOINTS": "joints at lines' ends", "NATURAL": "natural strings",
+             "TIES": "ties", "COMPENSATORS": "compensators",
+             "STATES": "force models' states"}  # fmt: skip
+    parts = [words[f] for f in flags if f in words]
+    forces = [f[2:].lower().replace("_", " ") for f in flags if f.startswith("F_")]
+    parts.append("forces: " + ", ".join(["the common ones", *forces]))
+    return "; ".join(parts)
+
+
+def cache_folder() -> Path:
+    """Where the copies are written: ``SEACABLE_CACHE_DIR``, else ``NUMBA_CACHE_DIR``'s
+    ``seacable`` folder, else the user's cache folder (``XDG_CACHE_HOME`` or ``~/.cache``)
+    ``/seacable``; a temporary folder when none can be written."""
+    given = os.environ.get("SEACABLE_CACHE_DIR")
+    if given:
+        candidates = [Path(given)]
+    else:
+        candidates = []
+        if os.environ.get("NUMBA_CACHE_DIR"):
+            candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / "seacable")
+        home = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+        candidates.append(Path(home) / "seacable")
+    for folder in candidates:
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError:
+            continue
+        if os.access(folder, os.W_OK):
+            return folder
+    return Path(tempfile.mkdtemp(prefix="seacable-cache-"))
+
+
+def sources_digest() -> str:
+    """A digest of every package source that holds compiled code (what a copy of the evaluation
+    compiles in), computed once a process."""
+    if not _digest:
+        digest = hashlib.sha256(numba.__version__.encode())
+        for path in sorted(PACKAGE.rglob("*.py")):
+            text = path.read_bytes()
+            if b"@njit" in text or b"@inner" in text or b"njit(" in text or b"intrinsic" in text:
+                digest.update(path.relative_to(PACKAGE).as_posix().encode())
+                digest.update(text)
+        _digest.append(digest.hexdigest())
+    return _digest[0]
+
+
+def source(flags: tuple[str, ...]) -> str:
+    """The template's text with its flags set: True for ``flags``, False for the others."""
+    text = TEMPLATE.read_text()
+    start = text.index(FLAGS_START)
+    start = text.index("\n", start) + 1
+    end = text.index(FLAGS_END)
+    lines = [f"{name} = {name in flags}\n" for name in LINE_FLAGS + FORCE_FLAGS]
+    return text[:start] + "".join(lines) + text[end:]
+
+
+def _module(flags: tuple[str, ...]) -> ModuleType:
+    """The copy of the evaluation for ``flags``, written once (never rewritten: numba keys its
+    cache by the file's time stamp) and imported."""
+    text = source(flags)
+    digest = hashlib.sha256((sources_digest() + text).encode()).hexdigest()[:20]
+    name = f"seacable_evaluation_{digest}"
+    if name in sys.modules:
+        return sys.modules[name]
+    path = cache_folder() / f"{name}.py"
+    if not path.exists():
+        partial = path.with_name(f".{name}.{os.getpid()}.tmp")
+        partial.write_text(text)
+        os.replace(partial, path)  # whole or absent, whoever writes it at the same time
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _address(dispatcher: Any, signature: tuple) -> int:
+    """The native entry of ``dispatcher`` compiled (or loaded from the cache) for
+    ``signature``."""
+    dispatcher.compile(signature)
+    result = dispatcher.overloads[signature]
+    if types.unliteral(result.signature.return_type) != types.int64:
+        raise TypeError(f"{dispatcher.py_func.__qualname__} must return an int64 status")
+    return int(result.library.get_pointer_to_function(result.fndesc.llvm_func_name))
+
+
+def variant(p: kernel.SystemParams) -> Variant:
+    """The compiled copy of the evaluation for the kinds ``p`` holds (compiled once a process,
+    loaded from numba's cache when another process compiled it)."""
+    flags = features(p)
+    found = _variants.get(flags)
+    if found is not None:
+        return found
+    with _lock:
+        if flags in _variants:
+            return _variants[flags]
+        module = _module(flags)
+        bound = p._replace(entries=np.zeros(len(kernel.ENTRIES), dtype=np.int64))
+        w = kernel.make_work(bound)
+        vector = numba.typeof(np.zeros(1))
+        pt, wt = numba.typeof(bound), numba.typeof(w)
+        table = numba.typeof(w.pos)
+        signatures = {
+            "evaluate": (types.float64, vector, pt, wt, vector),
+            "body_forces": (types.float64, vector, pt, wt, table, table, vector, table),
+            "project": (vector, pt),
+            "after_step": (types.float64, vector, pt, wt),
+            "start_memory": (types.float64, vector, pt, wt),
+        }
+        with jit.announced(f"the evaluation of {describe(flags)}", "about 10 to 40 s"):
+            entries = [_address(getattr(module, name), signatures[name])
+                       for name in kernel.ENTRIES]  # fmt: skip
+        _variants[flags] = Variant(module, np.array(entries, dtype=np.int64))
+        return _variants[flags]
+
+
+def bind(p: kernel.SystemParams) -> kernel.SystemParams:
+    """``p`` with the addresses of the evaluation compiled for its kinds."""
+    return p._replace(entries=variant(p).entries.copy())
