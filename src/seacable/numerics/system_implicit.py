@@ -144,7 +144,7 @@ def _residual(t1, y0, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0):
     return status
 
 
-@inner
+@njit(inline="always", **JIT)
 def _jacobian(t1, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, work, rigid):
     """Newton's matrix into ``mat``: the rigid lines of ``rows`` in maximal coordinates at the
     residual r0 just evaluated (``rigid_newton.fill``: ``w`` and ``vec[0]`` hold its

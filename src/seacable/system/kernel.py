@@ -316,7 +316,7 @@ EVALUATE, BODY_FORCES, PROJECT, AFTER_STEP, START_MEMORY = range(5)
 ENTRIES = ("evaluate", "body_forces", "project", "after_step", "start_memory")
 
 
-@inner
+@njit(inline="always", **JIT)
 def _bound(entries):
     """Refuse parameters no compiled evaluation was bound to (an address 0 would crash)."""
     if entries[EVALUATE] == 0:
