@@ -18,18 +18,9 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
 
-
-def _absolute(node, base: Path):
-    """The case mapping with every relative ``file`` made absolute against ``base``."""
-    if isinstance(node, dict):
-        out = {key: _absolute(value, base) for key, value in node.items()}
-        if isinstance(out.get("file"), str) and not Path(out["file"]).is_absolute():
-            out["file"] = str((base / out["file"]).resolve())
-        return out
-    if isinstance(node, list):
-        return [_absolute(value, base) for value in node]
-    return node
+from compile_time import _absolute_files  # noqa: E402
 
 
 def child(root: Path, repeat: int) -> None:
@@ -46,7 +37,7 @@ def child(root: Path, repeat: int) -> None:
            "allow_unstable_step": True}  # fmt: skip
     thesis = derive_case(base, {"lines": lines, "simulation": sim})
     raw = yaml.safe_load((root / "examples" / "moored_barge_irregular_sea.yaml").read_text())
-    raw = _absolute(raw, root / "examples")
+    raw = _absolute_files(raw, root / "examples")
     raw["simulation"]["duration"] = 60.0
     barge = seacable.load_case(raw)
     best = {"thesis": math.inf, "barge": math.inf}
