@@ -73,6 +73,7 @@ class Variant(NamedTuple):
 _variants: dict[tuple[str, ...], Variant] = {}
 _lock = threading.Lock()
 _digest: list[str] = []  # the package's compiled sources' digest, computed once a process
+_fallback: list[Path] = []  # the cache folder when no user folder can be written
 
 
 def features(p: kernel.SystemParams) -> tuple[str, ...]:
@@ -126,7 +127,9 @@ def cache_folder() -> Path:
             continue
         if os.access(folder, os.W_OK):
             return folder
-    return Path(tempfile.mkdtemp(prefix="seacable-cache-"))
+    if not _fallback:  # one temporary folder a process, not one a call
+        _fallback.append(Path(tempfile.mkdtemp(prefix="seacable-cache-")))
+    return _fallback[0]
 
 
 def sources_digest() -> str:
