@@ -28,7 +28,7 @@ from numba import types
 
 from seacable.forces import kinds
 from seacable.kernels import jit
-from seacable.system import evaluation, kernel, rigid
+from seacable.system import evaluation, kernel
 
 PACKAGE = Path(__file__).resolve().parents[1]
 TEMPLATE = Path(evaluation.__file__)
@@ -78,13 +78,14 @@ _fallback: list[Path] = []  # the cache folder when no user folder can be writte
 
 def features(p: kernel.SystemParams) -> tuple[str, ...]:
     """The flags of ``system.evaluation`` a system needs: those of the kinds it holds."""
+    lumped, planar, segments, natural, _ = kernel.present(p)  # one place for these kinds
     held = {
-        "LUMPED": len(p.line_n) > 0,
-        "SEGMENTS": bool(np.any(np.asarray(p.rs_kind) == rigid.SEGMENTS_3D)),
-        "PLANAR": bool(np.any(np.asarray(p.rs_kind) == rigid.PLANAR)),
+        "LUMPED": lumped is not None,
+        "SEGMENTS": segments is not None,
+        "PLANAR": planar is not None,
         "GROUPS": len(p.group_member) > 0,
         "TIP_JOINTS": len(p.rs_tip_joint) > 0,
-        "NATURAL": len(p.nat_n) > 0,
+        "NATURAL": natural is not None,
         "TIES": len(p.tie_from) > 0,
         "COMPENSATORS": len(p.compensator) > 0,
         "STATES": int(p.n_s) > 0,
