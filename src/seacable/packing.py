@@ -2,6 +2,7 @@
 a body's shape row (kernels.surface), time-function channels, parameter tuples of exact types."""
 
 import math
+import typing
 from typing import Any
 
 import numpy as np
@@ -46,7 +47,7 @@ def typed(cls, fields: dict, int_arrays: frozenset[str] = frozenset()):
     kernels were built for (a float given as an int would trigger a new compilation): the
     arrays named in ``int_arrays`` (and ``tf_count``) int64, the other arrays float64."""
     out: dict[str, Any] = {}
-    for name, annotation in cls.__annotations__.items():
+    for name, annotation in typing.get_type_hints(cls).items():
         value = fields[name]
         if annotation is int:
             out[name] = int(value)

@@ -1,8 +1,6 @@
 """The 3D rigid-segment chain's workspace rows and small shared helpers (numba). The chain's
 kernels (``chain3d`` and the modules named after it) read their rows from here."""
 
-import numpy as np
-
 from seacable.kernels.jit import inner
 
 # workspace rows, each of length n + 1
@@ -36,6 +34,26 @@ N_WORK_ROWS = 85
 
 @inner
 def _current(current_z, current_u, current_v, z):
+    """The current's velocity (east, north) [m/s] at elevation ``z`` [m] from its profile."""
     if current_z.shape[0] == 1:
         return current_u[0], current_v[0]
-    return np.interp(z, current_z, current_u), np.interp(z, current_z, current_v)
+    return profile(z, current_z, current_u), profile(z, current_z, current_v)
+
+
+@inner
+def profile(x, xp, fp):
+    """``np.interp(x, xp, fp)`` for increasing ``xp`` of two points or more: linear between
+    them, the end value beyond them, NaN at a NaN ``x``. Written out: numba's ``np.interp``
+    serves any shapes and types and costs a second of compile time for each caller's types."""
+    last = xp.shape[0] - 1
+    if x != x:
+        return x
+    if x <= xp[0]:
+        return fp[0]
+    if x >= xp[last]:
+        return fp[last]
+    j = 0
+    while xp[j + 1] <= x:  # xp[j] <= x < xp[j + 1]
+        j += 1
+    slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
+    return slope * (x - xp[j]) + fp[j]

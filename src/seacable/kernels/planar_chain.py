@@ -19,9 +19,9 @@ the end node acceleration to be the Baumgarte-stabilised value. Every sweep is O
 
 import math
 
-import numpy as np
 from numba import njit
 
+from seacable.kernels.chain3d_layout import profile
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import (
     segment_potential,
@@ -46,7 +46,7 @@ def _current(current_z, current_u, z):
     """
     if current_z.shape[0] == 1:
         return current_u[0]
-    return np.interp(z, current_z, current_u)
+    return profile(z, current_z, current_u)
 
 
 @inner

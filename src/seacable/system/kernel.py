@@ -23,7 +23,7 @@ from numba import njit
 from seacable.bodies import dynamics, kinematics
 from seacable.forces import compensator, hydrostatic, kinds, radiation
 from seacable.kernels import chain3d as c3
-from seacable.kernels import indirect, memory, surface
+from seacable.kernels import indirect, memory, records, surface
 from seacable.kernels import lumped as lk
 from seacable.kernels.jit import JIT, inner
 from seacable.lines import lumped_mass, tip_joint
@@ -34,7 +34,7 @@ IMPOSED = kinematics.IMPOSED
 TIP = kinematics.TIP
 
 
-class SystemParams(NamedTuple):
+class _ParamsFields(NamedTuple):
     """Flat parameters of a system (SI units); see system.assemble for how each is built."""
 
     n_q: int  # position variables
@@ -167,7 +167,7 @@ class SystemParams(NamedTuple):
     entries: np.ndarray = np.zeros(5, dtype=np.int64)
 
 
-class SystemWork(NamedTuple):
+class _WorkFields(NamedTuple):
     """Scratch arrays of one evaluation (allocated once per run)."""
 
     pos: np.ndarray  # (nb, 3)
@@ -213,6 +213,18 @@ class SystemWork(NamedTuple):
     control: np.ndarray  # (nc, compensator.RECORD) each compensator's force and moment
     models_key: np.ndarray  # (1 + 13 nb + n_s,) what they were evaluated at: the time, every
     # body's pos, quat, vel and omega, the models' states (NaN: none; see _models_kept)
+
+
+@records.register
+class SystemParams(_ParamsFields, records.Unshared):
+    """Flat parameters of a system (SI units; system.assemble builds them): a named tuple in
+    Python, passed by reference to compiled code (kernels.records)."""
+
+
+@records.register
+class SystemWork(_WorkFields, records.Unshared):
+    """Scratch arrays of one evaluation (allocated once per run): a named tuple in Python,
+    passed by reference to compiled code (kernels.records)."""
 
 
 def make_work(p: SystemParams) -> SystemWork:
