@@ -5,6 +5,7 @@ in waves the water's inertia (``segment_loads``), the free surface's share of ea
 
 import math
 
+import numpy as np
 from numba import njit
 
 from seacable.kernels import morison, waves
@@ -74,12 +75,14 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
     ``t`` [s] in the incident waves ``wave`` (kernels.waves' rows, none: (0, 6)): the drag on
     the velocity relative to the water and kernels.morison's inertia at the centre, the wetted
     part under the instantaneous surface (``gravity`` [m/s^2]: the displaced mass from the
-    buoyancy)."""
+    buoyancy; ``wave`` None: compiled without the waves' code)."""
     uniform = cz_.shape[0] == 1  # read once: a call per segment with the current's arrays
     u_uniform, v_uniform = cu_[0], cv_[0]  # takes and drops three references each time
-    waves_on = wave.shape[1] > 0  # without waves, no wave code runs
-    highest = morison.crest(wave) if waves_on else 0.0
-    trig = waves.scratch(wave)  # each phase once per point
+    # ``wave`` None: compiled without the waves' code (a system without waves: kernels'
+    # switches, system.evaluation's WAVES); rows of none: none of it runs
+    waves_on = False if wave is None else wave.shape[1] > 0
+    highest = morison.crest(wave) if wave is not None and waves_on else 0.0
+    trig = np.empty((0, 0)) if wave is None else waves.scratch(wave)  # each phase once
     for i in range(n):
         li = length[i]
         ex, ey, ez = y[e0 + 3 * i], y[e0 + 3 * i + 1], y[e0 + 3 * i + 2]
@@ -100,7 +103,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         rx = w[_V, i] + 0.5 * li * ux - cu
         ry = w[_V + 1, i] + 0.5 * li * uy - cv
         rz = w[_V + 2, i] + 0.5 * li * uz
-        if waves_on:  # wet under the instantaneous surface
+        if wave is not None and waves_on:  # wet under the instantaneous surface
             wet, share = morison.wet_part(
                 wave, t, highest, w[_P, i], w[_P + 1, i], w[_P + 2, i], w[_P, i + 1],
                 w[_P + 1, i + 1], w[_P + 2, i + 1], trig,
@@ -108,7 +111,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
         else:
             wet, share, _ = segment_submersion(w[_P + 2, i], w[_P + 2, i + 1])
         fx = fy = fz = 0.0  # the water's inertia force [N]
-        if waves_on and wet > 0.0:
+        if wave is not None and waves_on and wet > 0.0:
             # the water's velocity and acceleration at the wetted part's centroid
             water, (fx, fy, fz) = morison.at_wetted(
                 wave, t, share, (w[_P, i], w[_P + 1, i], w[_P + 2, i]),
@@ -135,7 +138,7 @@ def segment_loads(n, y, e0, u0, length, wet_weight, buoyancy, drag_normal, drag_
             w[_F, i] = cn * nx + ct * ex
             w[_F + 1, i] = cn * ny + ct * ey
             w[_F + 2, i] = cn * nz + ct * ez - wet_weight[i] + (wet - 1.0) * buoyancy[i]
-        if waves_on and wet > 0.0:
+        if wave is not None and waves_on and wet > 0.0:
             w[_F, i] += fx
             w[_F + 1, i] += fy
             w[_F + 2, i] += fz

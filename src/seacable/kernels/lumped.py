@@ -15,6 +15,7 @@ along the seabed. Every step is O(n): each free node solves its own 3x3 mass mat
 
 import math
 
+import numpy as np
 from numba import njit
 
 from seacable.kernels import chain3d as c3
@@ -71,13 +72,16 @@ def segment_loads(
     ``slack``: LAW no compression, LINEAR linear, FROZEN the recorded active set), its nodes'
     workspace columns ``c0 + k``; at time ``t`` [s] in the incident waves ``wave`` (kernels.waves'
     rows, none: (0, 6); ``wave_depth`` [m], ``wave_stretch``; kernels.morison's loads,
-    ``gravity`` [m/s^2] giving the displaced mass from the buoyancy). Every line model and every
-    line of a system computes its segment loads here."""
+    ``gravity`` [m/s^2] giving the displaced mass from the buoyancy; ``wave`` None: compiled
+    without the waves' code). Every line model and every line of a system computes its segment
+    loads here."""
     v0 = 3 * (n + 1)
-    waves_on = wave.shape[1] > 0  # without waves, no wave code runs
-    highest = morison.crest(wave) if waves_on else 0.0
-    reach = _reach(wave) if slack == LAGGED else 0.0
-    trig = waves.scratch(wave)  # each phase once per point
+    # ``wave`` None: compiled without the waves' code (a system without waves: kernels'
+    # switches, system.evaluation's WAVES); rows of none: none of it runs
+    waves_on = False if wave is None else wave.shape[1] > 0
+    highest = morison.crest(wave) if wave is not None and waves_on else 0.0
+    reach = _reach(wave) if wave is not None and slack == LAGGED else 0.0
+    trig = np.empty((0, 0)) if wave is None else waves.scratch(wave)  # each phase once
     wax = way = waz = 0.0  # the water's inertia force on a segment [N]
     uniform = current_z.shape[0] == 1  # read once: a call per segment with the current's
     u_uniform, v_uniform = current_u[0], current_v[0]  # arrays takes and drops 3 references
@@ -114,7 +118,7 @@ def segment_loads(
         # loads at the segment centre on the relative velocity; drag, added mass and buoyancy of
         # its submerged part (kernels.surface), the buoyancy at that part's centroid
         zc = 0.5 * (y[a + 2] + y[b + 2])
-        if waves_on:  # wet under the instantaneous surface
+        if wave is not None and waves_on:  # wet under the instantaneous surface
             wet, share_a = morison.wet_part(wave, t, highest, y[a], y[a + 1], y[a + 2], y[b],
                                             y[b + 1], y[b + 2], trig)  # fmt: skip
         else:
@@ -126,7 +130,8 @@ def segment_loads(
         rx = 0.5 * (y[v0 + a] + y[v0 + b]) - cu
         ry = 0.5 * (y[v0 + a + 1] + y[v0 + b + 1]) - cv
         rz = 0.5 * (y[v0 + a + 2] + y[v0 + b + 2])
-        if waves_on:  # the water's velocity and acceleration at the wetted part's centroid
+        if wave is not None and waves_on:
+            # the water's velocity and acceleration at the wetted part's centroid
             u, acc = _water(wave, t, slack, wet, share_a, y, a, b, wave_depth, wave_stretch,
                             trig, reach, w, ka)  # fmt: skip
             wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
@@ -159,7 +164,8 @@ def segment_loads(
             w[_F + 2, ka] += buoyancy[s] * (share_a * wet - 0.5)
             w[_F + 2, kb] += buoyancy[s] * ((1.0 - share_a) * wet - 0.5)
             ma *= wet
-        if waves_on and wet > 0.0:  # the water's inertia force at the wetted part's centroid
+        if wave is not None and waves_on and wet > 0.0:
+            # the water's inertia force at the wetted part's centroid
             w[_F, ka] += share_a * wax
             w[_F + 1, ka] += share_a * way
             w[_F + 2, ka] += share_a * waz

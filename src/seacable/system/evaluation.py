@@ -82,6 +82,7 @@ NATURAL = True  # natural-variables strings
 TIES = True  # ties (hawsers)
 COMPENSATORS = True  # the tandem compensators
 STATES = True  # force models with states of their own
+WAVES = True  # waves on the lines (their Morison loads and wetted parts)
 F_SERVO = True
 F_MESH = True  # non-linear hydrostatics and Froude-Krylov on a hull mesh
 F_RADIATION_DAMPING = True
@@ -105,10 +106,11 @@ def evaluate(t, y, p, w, ydot):
     the tuples (docs/architecture.md, "Calls cost reference counts"). A system holding a kind
     this copy does not compile is refused (a ``RuntimeError``), never evaluated without it."""
     if _holds_more(p.line_n, p.rs_kind, p.nat_n, p.tie_from, p.compensator, p.group_member,
-                   p.rs_tip_joint, p.n_s):  # fmt: skip
+                   p.rs_tip_joint, p.n_s, p.wave):  # fmt: skip
         raise RuntimeError("seacable: a system evaluated by a copy compiled without one of its "
                            "kinds (system.variants.bind gives each system its own)")  # fmt: skip
     status = OK
+    sea = p.wave if WAVES else None  # None: the lines' wave code left out
     tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     kinematics.body_states(
         t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
@@ -120,7 +122,7 @@ def evaluate(t, y, p, w, ydot):
             y, p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_q, p.rs_v, p.rs_from,
             p.rs_tip, p.rs_ref, p.rs_length, p.rs_wet_weight, p.rs_buoyancy, p.rs_drag_normal,
             p.rs_drag_tangential, p.rs_added, p.rs_inertia, p.rs_joint_stiffness,
-            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, t, p.gravity, p.wave,
+            p.rs_joint_damping, p.current_z, p.current_u, p.current_v, t, p.gravity, sea,
             p.wave_depth, p.wave_stretch, p.point_body, p.point_offset, w.pos, w.rot, w.vel,
             w.omega, w.ppos, w.pvel, w.parm, w.rs, w.scratch[120:123], WITH_PLANAR,
             WITH_SEGMENTS,
@@ -165,7 +167,7 @@ def evaluate(t, y, p, w, ydot):
         p.seg_drag_tangential, p.seg_wet_weight, p.seg_buoyancy, p.seg_added_mass, p.node_bend,
         p.node_mass, p.node_seabed_stiffness, p.node_seabed_damping, p.seabed_z,
         p.seabed_friction, p.seabed_slip_speed, p.seabed_band, p.current_z, p.current_u,
-        p.current_v, t, p.gravity, p.wave, p.wave_depth, p.wave_stretch, p.point_body,
+        p.current_v, t, p.gravity, sea, p.wave_depth, p.wave_stretch, p.point_body,
         p.body_kind, w.ppos, w.pvel, w.parm, w.omega, w.line, w.nodes, w.end_mass, w.end_load,
         w.mass, w.load, ydot,
     ):  # fmt: skip
@@ -232,9 +234,10 @@ def evaluate(t, y, p, w, ydot):
 
 
 @inner
-def _holds_more(line_n, rs_kind, nat_n, tie_from, compensators, group_member, tip_joints, n_s):
-    """Whether the system holds a kind of line, tie, compensator or stateful force model this
-    copy does not compile (its force models: ``add_all``). The arrays come one by one."""
+def _holds_more(line_n, rs_kind, nat_n, tie_from, compensators, group_member, tip_joints, n_s,
+                wave):  # fmt: skip
+    """Whether the system holds a kind of line, tie, compensator, stateful force model or waves
+    this copy does not compile (its force models: ``add_all``). The arrays come one by one."""
     more = line_n.shape[0] > 0 and not LUMPED
     for li in range(rs_kind.shape[0]):
         planar = rs_kind[li] == rigid.PLANAR
@@ -244,6 +247,7 @@ def _holds_more(line_n, rs_kind, nat_n, tie_from, compensators, group_member, ti
     more = more or (compensators.shape[0] > 0 and not COMPENSATORS)
     more = more or (group_member.shape[0] > 0 and not GROUPS)
     more = more or (tip_joints.shape[0] > 0 and not TIP_JOINTS)
+    more = more or (wave.shape[1] > 0 and not WAVES)
     return more or (n_s > 0 and not STATES)
 
 

@@ -34,7 +34,7 @@ PACKAGE = Path(__file__).resolve().parents[1]
 TEMPLATE = Path(evaluation.__file__)
 FLAGS_START, FLAGS_END = "# FLAGS:", "# END FLAGS"
 LINE_FLAGS = ("LUMPED", "SEGMENTS", "PLANAR", "GROUPS", "TIP_JOINTS", "NATURAL", "TIES",
-              "COMPENSATORS", "STATES")  # fmt: skip
+              "COMPENSATORS", "STATES", "WAVES")  # fmt: skip
 # each force model's flag; None: compiled into every copy (the common, small models: a flag
 # each would give a copy for each of their combinations, and their code is a few seconds in all)
 FORCE_FLAG: dict[int, str | None] = {
@@ -89,6 +89,7 @@ def features(p: kernel.SystemParams) -> tuple[str, ...]:
         "TIES": len(p.tie_from) > 0,
         "COMPENSATORS": len(p.compensator) > 0,
         "STATES": int(p.n_s) > 0,
+        "WAVES": p.wave.shape[1] > 0,
     }
     present = {FORCE_FLAG[int(k)] for k in np.asarray(p.force_kind)}
     on = [name for name in LINE_FLAGS if held[name]]
@@ -101,7 +102,7 @@ def describe(flags: tuple[str, ...]) -> str:
              "PLANAR": "planar rigid-link lines", "GROUPS": "groups of bodies",
              "TIP_JOINTS": "joints at lines' ends", "NATURAL": "natural strings",
              "TIES": "ties", "COMPENSATORS": "compensators",
-             "STATES": "force models' states"}  # fmt: skip
+             "STATES": "force models' states", "WAVES": "waves on the lines"}  # fmt: skip
     parts = [words[f] for f in flags if f in words]
     forces = [f[2:].lower().replace("_", " ") for f in flags if f.startswith("F_")]
     parts.append("forces: " + ", ".join(["the common ones", *forces]))
