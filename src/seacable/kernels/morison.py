@@ -23,7 +23,7 @@ below the surface drawn straight between the elevations at its two ends.
 from numba import njit
 
 from seacable.kernels import waves
-from seacable.kernels.jit import JIT
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.surface import segment_submersion
 
 
@@ -37,7 +37,7 @@ def crest(wave):
     return total
 
 
-@njit(inline="always", **JIT)
+@inner
 def wet_part(wave, t, highest, xa, ya, za, xb, yb, zb, trig):
     """The wetted fraction s of a segment from a to b [m] under the waves' surface at time t
     [s] (``highest``: :func:`crest`), and the share of it carried by end a (kernels.surface's
@@ -59,21 +59,21 @@ def centroid(share, a, b):
             share * a[2] + (1.0 - share) * b[2])  # fmt: skip
 
 
-@njit(inline="always", **JIT)
+@inner
 def water_at(wave, t, c, depth, stretch, trig):
     """The water's velocity (3) [m/s] and acceleration (3) [m/s^2] at the wetted part's
     centroid ``c`` (:func:`centroid`; ``trig``: kernels.waves' scratch)."""
     return waves.kinematics(wave, t, c[0], c[1], c[2], depth, stretch, trig)
 
 
-@njit(inline="always", **JIT)
+@inner
 def water(wave, t, share, a, b, depth, stretch, trig):
     """The water's velocity and acceleration at the wetted part's centroid between points a
     and b (:func:`centroid`, :func:`water_at`)."""
     return water_at(wave, t, centroid(share, a, b), depth, stretch, trig)
 
 
-@njit(inline="always", **JIT)
+@inner
 def at_wetted(wave, t, share, a, b, depth, stretch, displaced, added, tangent, trig):
     """The water's velocity (3) [m/s] at the wetted part's centroid (:func:`water`) and the
     inertia force (3) [N] of its acceleration on the wetted part (displaced and normal added

@@ -38,7 +38,7 @@ Callers allocate one scratch of ``SCRATCH`` rows per table (:func:`scratch`).
 import numpy as np
 from numba import njit
 
-from seacable.kernels.jit import JIT
+from seacable.kernels.jit import JIT, inner
 from seacable.kernels.timefn import smoothstep
 from seacable.kernels.trig import cos_sin, exp_rows
 
@@ -92,7 +92,7 @@ def ramp(wave, t):
     return r, dr
 
 
-@njit(inline="always", **JIT)
+@inner
 def elevation(wave, t, x, y, trig):
     """eta [m] at (x, y) (``trig``: :func:`scratch`)."""
     return ramp(wave, t)[0] * _phases(wave, t, x, y, trig)
@@ -108,7 +108,7 @@ def stretched(z, eta, depth, stretch):
     return min(depth * (z - eta) / (depth + eta), 0.0)
 
 
-@njit(inline="always", **JIT)
+@inner
 def _phases(wave, t, x, y, trig):
     """cos theta_i and sin theta_i at (x, y) into ``trig[0, i]`` and ``trig[1, i]`` (row 2:
     the phases; kernels.trig, a vectorised loop); returns the elevation before the build-up's
@@ -131,7 +131,7 @@ def _phases(wave, t, x, y, trig):
     return (s0 + s1) + (s2 + s3)
 
 
-@njit(inline="always", **JIT)
+@inner
 def _depth_terms(wave, zs, depth, trig):
     """e^{k_j z} and e^{-k_j (z + 2h)} into ``trig[3, j]`` and ``trig[4, j]`` for the m
     distinct wave numbers, at z = ``zs`` <= 0 (below the seabed, on it; the second is 0 in
@@ -150,7 +150,7 @@ def _depth_terms(wave, zs, depth, trig):
     return m
 
 
-@njit(inline="always", **JIT)
+@inner
 def pressure(wave, t, x, y, z, depth, stretch, rho_g, trig):
     """The dynamic pressure [Pa] at (x, y, z); above the free surface, its value there (the
     callers integrate over the wetted part: points on its edges may lie a rounding above).
@@ -174,7 +174,7 @@ def pressure(wave, t, x, y, z, depth, stretch, rho_g, trig):
     return rho_g * r * (s0 + s1)
 
 
-@njit(inline="always", **JIT)
+@inner
 def kinematics(wave, t, x, y, z, depth, stretch, trig):
     """Velocity (3) and acceleration (3) of the water at (x, y, z) [m/s, m/s^2]; above the
     free surface, their values there (the callers weigh by the submerged part). ``trig``:
