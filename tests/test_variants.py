@@ -30,9 +30,9 @@ def _built(name: str):
 
 def test_each_system_gets_the_flags_of_the_kinds_it_holds():
     buoys = variants.features(_built("two_buoys_moored_with_hawser.yaml").params)
-    assert buoys == ("LUMPED", "TIES")  # gravity, buoyancy, drag, applied: in every copy
+    assert buoys == ("LUMPED", "TIES", "F_DRAG", "F_APPLIED")  # gravity, buoyancy: in every copy
     thesis = variants.features(_built("thesis_6_1_sim1_air_12_links.yaml").params)
-    assert thesis == ("PLANAR",)
+    assert thesis == ("PLANAR", "F_STIFFNESS", "F_DAMPING")
     assert "COMPENSATORS" not in thesis and "F_MESH" not in thesis
 
 

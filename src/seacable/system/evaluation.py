@@ -83,6 +83,10 @@ TIES = True  # ties (hawsers)
 COMPENSATORS = True  # the tandem compensators
 STATES = True  # force models with states of their own
 WAVES = True  # waves on the lines (their Morison loads and wetted parts)
+F_DRAG = True  # Morison drag on a body
+F_APPLIED = True  # forces and moments of time
+F_STIFFNESS = True  # linear stiffness
+F_DAMPING = True  # linear and quadratic damping
 F_SERVO = True
 F_MESH = True  # non-linear hydrostatics and Froude-Krylov on a hull mesh
 F_RADIATION_DAMPING = True
@@ -285,14 +289,14 @@ def add_all(
             weight.add_gravity(mass[b], cog[b], rot[b], gravity, rhs[b])
         elif k == BUOYANCY:
             weight.add_buoyancy(volume[b], cob[b], fraction[b], rot[b], gravity, rho, rhs[b])
-        elif k == DRAG:
+        elif F_DRAG and k == DRAG:
             drag.add(row, fraction[b], pos[b], rot[b], vel[b], current_z, current_u, current_v,
                      rhs[b])  # fmt: skip
-        elif k == APPLIED:
+        elif F_APPLIED and k == APPLIED:
             applied.add(row, first[f], t, rot[b], tf, rhs[b])
-        elif k == LINEAR_STIFFNESS:
+        elif F_STIFFNESS and k == LINEAR_STIFFNESS:
             linear.add_stiffness(row, pos[b], quat[b], rhs[b])
-        elif k == LINEAR_DAMPING or k == QUADRATIC_DAMPING:
+        elif F_DAMPING and (k == LINEAR_DAMPING or k == QUADRATIC_DAMPING):
             linear.add_damping(row, pos[b], rot[b], vel[b], omega[b], current_z, current_u,
                                current_v, rhs[b])  # fmt: skip
         elif F_SERVO and k == SERVO:

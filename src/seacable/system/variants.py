@@ -35,16 +35,17 @@ TEMPLATE = Path(evaluation.__file__)
 FLAGS_START, FLAGS_END = "# FLAGS:", "# END FLAGS"
 LINE_FLAGS = ("LUMPED", "SEGMENTS", "PLANAR", "GROUPS", "TIP_JOINTS", "NATURAL", "TIES",
               "COMPENSATORS", "STATES", "WAVES")  # fmt: skip
-# each force model's flag; None: compiled into every copy (the common, small models: a flag
-# each would give a copy for each of their combinations, and their code is a few seconds in all)
+# each force model's flag; None: compiled into every copy (gravity and buoyancy: a fraction of a
+# second; each of the others costs 0.5 to 1.4 s of compiling, and a new combination of them
+# compiles only the copy's own functions, the models' kernels being cached apart)
 FORCE_FLAG: dict[int, str | None] = {
     kinds.GRAVITY: None,
     kinds.BUOYANCY: None,
-    kinds.DRAG: None,
-    kinds.APPLIED: None,
-    kinds.LINEAR_STIFFNESS: None,
-    kinds.LINEAR_DAMPING: None,
-    kinds.QUADRATIC_DAMPING: None,
+    kinds.DRAG: "F_DRAG",
+    kinds.APPLIED: "F_APPLIED",
+    kinds.LINEAR_STIFFNESS: "F_STIFFNESS",
+    kinds.LINEAR_DAMPING: "F_DAMPING",
+    kinds.QUADRATIC_DAMPING: "F_DAMPING",
     kinds.SERVO: "F_SERVO",
     kinds.NON_LINEAR_HYDROSTATIC: "F_MESH",
     kinds.NON_LINEAR_FROUDE_KRYLOV: "F_MESH",
