@@ -44,6 +44,14 @@ def test_a_copy_refuses_a_system_holding_a_kind_it_does_not_compile():
     with pytest.raises(RuntimeError, match="compiled without one of its kinds"):
         kernel.rhs(0.0, y, foreign, kernel.make_work(foreign), np.zeros_like(y))
 
+    # waves given to a system whose copy was compiled without the lines' wave code (WAVES)
+    sea = np.zeros((buoys.params.wave.shape[0], 1))
+    sea[:, 0] = 1.0  # one component's row (the values do not matter: refused before use)
+    wavy = buoys.params._replace(wave=sea)
+    assert "WAVES" not in variants.features(buoys.params) and "WAVES" in variants.features(wavy)
+    with pytest.raises(RuntimeError, match="compiled without one of its kinds"):
+        kernel.rhs(0.0, y, wavy, kernel.make_work(wavy), np.zeros_like(y))
+
 
 def test_unbound_parameters_are_refused_not_called():
     built = _built("two_buoys_moored_with_hawser.yaml")
