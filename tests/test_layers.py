@@ -106,3 +106,22 @@ def test_no_import_inside_functions_except_lazy_optional():
                         else:
                             names = [node.module]
                         assert set(names) <= lazy_ok, f"{path.name}:{func.name} imports {names}"
+
+
+def test_a_run_imports_no_analysis():
+    """``seacable.simulate`` and ``load_case`` import neither the analyses nor SciPy's optimisers
+    (seacable's public names are imported on first use: every command's start pays for what it
+    uses only)."""
+    import subprocess
+    import sys
+
+    heavy = "('seacable.analysis', 'seacable.stability.api', 'seacable.stability.plane', " \
+        "'scipy.optimize', 'seacable.viz')"  # fmt: skip
+    code = ("import sys, seacable; seacable.simulate; seacable.load_case; "
+            f"print(sorted(m for m in {heavy} if m in sys.modules))")  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]", out.stdout
+    import seacable
+
+    assert callable(seacable.statics) and callable(seacable.equilibria)  # still there, lazily
+    assert "continuation" in dir(seacable)
