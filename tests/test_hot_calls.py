@@ -28,9 +28,15 @@ def _calls_passing_tuples(function) -> list[str]:
 
 
 def test_rhs_passes_no_whole_tuple():
-    """The evaluation passes the tuples to nothing; the trampolines the integrators call pass
-    them to the evaluation alone (and are inlined into their callers)."""
-    assert _calls_passing_tuples(evaluation.evaluate.py_func) == []
+    """The evaluation passes the tuples only to its parts, by their addresses (``_part``,
+    inlined); the parts pass them to nothing; the trampolines the integrators call pass them to
+    the evaluation alone (and are inlined into their callers)."""
+    calls = _calls_passing_tuples(evaluation.evaluate.py_func)
+    assert calls and all(call.startswith("_part(") for call in calls), calls
+    calls = _calls_passing_tuples(evaluation._part.py_func)
+    assert calls and all(call.startswith("indirect.call") for call in calls), calls
+    for name in kernel.PARTS:
+        assert _calls_passing_tuples(getattr(evaluation, name).py_func) == [], name
     for trampoline in (kernel.evaluate, kernel.accept):
         calls = _calls_passing_tuples(trampoline.py_func)
         assert calls and all(call.startswith("indirect.call") for call in calls), calls

@@ -19,7 +19,7 @@ a local first (a field read inside the loop is read again at every pass).
 
 from typing import Any, NamedTuple
 
-from numba import njit, types
+from numba import njit, typeof, types
 from numba.core import cgutils
 from numba.experimental import structref
 from numba.extending import NativeValue, box, overload, typeof_impl, unbox
@@ -44,6 +44,7 @@ class RecordHandle(structref.StructRefProxy):
 
 _FIELDS: dict[type, type] = {}  # a registered class -> the named tuple class it extends
 _KEY = "_record"  # where a tuple keeps its handle
+_TYPE_KEY = "_record_type"  # and its type
 
 
 class Unshared:
@@ -65,9 +66,28 @@ def register(cls: type) -> type:
 
     @typeof_impl.register(cls)
     def _typeof(value, context):
-        return handle(value)._type
+        return record_type(value)
 
     return cls
+
+
+def record_type(value: Any) -> Record:
+    """The type compiled code sees for ``value`` (a registered tuple), without building its
+    structure: a function can be compiled for it before (or in another process than) the one
+    that builds it (``system.variants``); kept with the tuple."""
+    kept = value.__dict__.get(_TYPE_KEY)
+    if kept is None:
+        kept = Record(
+            [(name, typeof(field)) for name, field in zip(value._fields, value, strict=True)]
+        )
+        value.__dict__[_TYPE_KEY] = kept
+    return kept
+
+
+def pack_signature(value: Any) -> tuple:
+    """The signature ``_pack`` is compiled for to build ``value``'s structure."""
+    fields: type[NamedTuple] = _FIELDS[type(value)]
+    return (typeof(fields._make(value)),)
 
 
 def _pack_fields(values):  # pragma: no cover - replaced by its overload in compiled code

@@ -65,8 +65,8 @@ from seacable.forces.kinds import (
     WIND,
 )
 from seacable.kernels import chain3d as c3
+from seacable.kernels import indirect, memory, natural
 from seacable.kernels import lumped as lk
-from seacable.kernels import memory, natural
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.lines import natural_string, tie
@@ -98,6 +98,10 @@ F_COEFFICIENTS = True  # wind and current coefficients
 F_HULL_CURRENT = True  # short-wing and cross-flow hull loads
 # END FLAGS
 RIGID = SEGMENTS or PLANAR
+# which of the evaluation's parts (kernel.PARTS) this copy calls, and where their addresses are
+USED = {"_motions": True, "_masses": True, "_lines": LUMPED or TIES, "_models": True,
+        "_backward": RIGID, "_solve": True}  # fmt: skip
+MOTIONS, MASSES, LINES, MODELS, BACKWARD, SOLVE = (len(kernel.ENTRIES) + k for k in range(6))
 # what system.rigid's sweeps take for a model they leave out: None (pruned before typing)
 WITH_PLANAR = True if PLANAR else None
 WITH_SEGMENTS = True if SEGMENTS else None
@@ -105,15 +109,45 @@ WITH_SEGMENTS = True if SEGMENTS else None
 
 @inner
 def evaluate(t, y, p, w, ydot):
-    """Fill the workspace and ``ydot``; returns a status (kernels.status codes). The parameter
-    and work tuples are read here only: every call from here takes the arrays it needs, none
-    the tuples (docs/architecture.md, "Calls cost reference counts"). A system holding a kind
-    this copy does not compile is refused (a ``RuntimeError``), never evaluated without it."""
+    """Fill the workspace and ``ydot``; returns a status (kernels.status codes), the last of its
+    parts' that is not OK. A system holding a kind this copy does not compile is refused (a
+    ``RuntimeError``), never evaluated without it. Its parts (``PARTS``) take the parameter and
+    work tuples, and every call from a part takes the arrays it needs, none the tuples
+    (docs/architecture.md, "Calls cost reference counts"); they are compiled apart, in two
+    processes at once where the machine has two cores (``system.variants``)."""
     if _holds_more(p.line_n, p.rs_kind, p.nat_n, p.tie_from, p.compensator, p.group_member,
                    p.rs_tip_joint, p.n_s, p.wave):  # fmt: skip
         raise RuntimeError("seacable: a system evaluated by a copy compiled without one of its "
                            "kinds (system.variants.bind gives each system its own)")  # fmt: skip
-    status = OK
+    status = _part(MOTIONS, t, y, p, w, ydot)
+    _part(MASSES, t, y, p, w, ydot)
+    if LUMPED or TIES:  # USED
+        status = _worse(status, _part(LINES, t, y, p, w, ydot))
+    _part(MODELS, t, y, p, w, ydot)
+    if RIGID:
+        status = _worse(status, _part(BACKWARD, t, y, p, w, ydot))
+    status = _worse(status, _part(SOLVE, t, y, p, w, ydot))
+    return status if kernel._finite(ydot) else NON_FINITE
+
+
+@njit(inline="always", **JIT)
+def _part(k, t, y, p, w, ydot):
+    """Part ``k`` of the evaluation, called by its address (``kernels.indirect``): its code is
+    not linked into ``evaluate``'s, so that no part is optimised twice and the parts can be
+    compiled in two processes (``system.variants``)."""
+    return indirect.call5(p.entries[k], t, y, p, w, ydot)
+
+
+@njit(inline="always", **JIT)
+def _worse(status, part):
+    """The evaluation's status after a part's: the part's when it is not OK."""
+    return status if part == OK else part
+
+
+@inner
+def _motions(t, y, p, w, ydot):
+    """(1)-(2): every body's pose and twist, the rigid lines' and natural strings' nodes and
+    loads, every point's position and velocity, the bodies' submerged fractions."""
     sea = p.wave if WAVES else None  # None: the lines' wave code left out
     tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     kinematics.body_states(
@@ -149,12 +183,26 @@ def evaluate(t, y, p, w, ydot):
         p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
     )
     kernel._fractions(p.body_kind, p.body_shape, w.pos, w.fraction)
+    return OK
+
+
+@inner
+def _masses(t, y, p, w, ydot):
+    """Every body's mass and velocity terms; the loads cleared."""
     w.load[:, :] = 0.0
     dynamics.body_masses(
         p.body_kind, p.body_rigid, p.body_mass, p.body_cog, p.body_inertia, p.body_added,
         p.body_coriolis, p.body_shape, w.fraction, w.pos, w.rot, w.vel, w.omega, p.current_z,
         p.current_u, p.current_v, w.mass, w.bias,
     )  # fmt: skip
+    return OK
+
+
+@inner
+def _lines(t, y, p, w, ydot):
+    """(3): every tie's force and every lumped-mass line's loads, its interior nodes'
+    accelerations, its end nodes' mass and loads handed to their bodies."""
+    status = OK
     if TIES:
         tie.forces(
             w.ppos, w.pvel, p.tie_from, p.tie_to, p.tie_length, p.tie_stiffness, p.tie_damping,
@@ -165,6 +213,7 @@ def evaluate(t, y, p, w, ydot):
             a, b = p.tie_from[k], p.tie_to[k]
             dynamics.add_force(w.parm[a], f[0], f[1], f[2], w.load[p.point_body[a]])
             dynamics.add_force(w.parm[b], -f[0], -f[1], -f[2], w.load[p.point_body[b]])
+    sea = p.wave if WAVES else None
     if LUMPED and not kernel._lumped_lines(
         y, p.line_n, p.line_seg, p.line_node, p.line_q, p.line_v, p.line_from, p.line_to,
         p.seg_length, p.seg_stiffness, p.seg_damping, p.slack_allowed, p.seg_drag_normal,
@@ -176,7 +225,14 @@ def evaluate(t, y, p, w, ydot):
         w.mass, w.load, ydot,
     ):  # fmt: skip
         status = NON_FINITE
-    # force models
+    return status
+
+
+@inner
+def _models(t, y, p, w, ydot):
+    """(4): every force model's load (kept from the last evaluation where it holds), the
+    compensators' after them all, the models' states' rates."""
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     if not kernel._models_kept(t, y, p.n_q + p.n_v, p.slack_allowed == lk.FROZEN, w.pos,
                                w.quat, w.vel, w.omega, w.models_key):  # fmt: skip
         w.models[:, :] = 0.0
@@ -186,7 +242,9 @@ def evaluate(t, y, p, w, ydot):
             w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u,
             p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.models,
         )  # fmt: skip
-    w.load[:, :] += w.models
+    for b in range(w.load.shape[0]):  # a loop: an array expression compiles slowly
+        for c in range(6):
+            w.load[b, c] += w.models[b, c]
     if COMPENSATORS:
         compensator.apply_all(  # after every other load: it cancels them
             p.compensator, p.force_body, p.force_at, p.force_data, p.point_body, p.body_kind,
@@ -197,16 +255,32 @@ def evaluate(t, y, p, w, ydot):
         state_rates(t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
                     p.force_data, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, tf,
                     ydot)  # fmt: skip
-    if RIGID:
-        w.own_load[:, :] = w.load[:, 0:3]  # for the statics' moment balance of rigid lines
-        if not rigid.backward(
-            p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_v, p.rs_from, p.rs_to,
-            p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.rs_mass, p.rs_inertia,
-            p.stabilization_frequency, p.point_body, p.point_offset, p.body_kind, p.body_pose,
-            y, w.pos, w.rot, w.vel, w.omega, w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias,
-            w.load, w.rs, w.rs_force, w.rs_la, w.scratch, WITH_PLANAR, WITH_SEGMENTS,
-        ):  # fmt: skip
-            status = SINGULAR_CLOSURE
+    return OK
+
+
+@inner
+def _backward(t, y, p, w, ydot):
+    """The rigid lines' backward sweeps: their base bodies' articulated inertias."""
+    for b in range(w.load.shape[0]):  # for the statics' moment balance of rigid lines
+        for c in range(3):
+            w.own_load[b, c] = w.load[b, c]
+    if not rigid.backward(
+        p.rs_order, p.rs_kind, p.rs_n, p.rs_seg, p.rs_node, p.rs_v, p.rs_from, p.rs_to,
+        p.rs_tip, p.rs_held, p.rs_port, p.rs_length, p.rs_mass, p.rs_inertia,
+        p.stabilization_frequency, p.point_body, p.point_offset, p.body_kind, p.body_pose,
+        y, w.pos, w.rot, w.vel, w.omega, w.acc, w.ppos, w.pvel, w.parm, w.mass, w.bias,
+        w.load, w.rs, w.rs_force, w.rs_la, w.scratch, WITH_PLANAR, WITH_SEGMENTS,
+    ):  # fmt: skip
+        return SINGULAR_CLOSURE
+    return OK
+
+
+@inner
+def _solve(t, y, p, w, ydot):
+    """(5): each dynamic body's equation solved on its free degrees of freedom (with the rigid
+    lines held on it, in groups), the rigid lines' forward sweeps, the natural strings'
+    rates."""
+    status = OK
     if not kernel._solve_bodies(y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid,
                                 p.body_group, w.load, w.bias, w.mass, w.acc, w.rhs6,
                                 ydot):  # fmt: skip
@@ -234,7 +308,7 @@ def evaluate(t, y, p, w, ydot):
             if natural_string.rates(t, y, params, p.nat_q[li], p.nat_v[li], w.nat, w.nat_work,
                                     w.nat_dot, ydot) != OK:  # fmt: skip
                 status = NON_FINITE
-    return status if kernel._finite(ydot) else NON_FINITE
+    return status
 
 
 @inner

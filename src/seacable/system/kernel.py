@@ -164,7 +164,7 @@ class _ParamsFields(NamedTuple):
     tf_build_up: np.ndarray
     # the addresses of the evaluation's entries compiled for this system's kinds (ENTRIES,
     # system.variants.bind; 0: not bound), valid in this process only
-    entries: np.ndarray = np.zeros(5, dtype=np.int64)
+    entries: np.ndarray = np.zeros(11, dtype=np.int64)  # ENTRIES, then PARTS
 
 
 class _WorkFields(NamedTuple):
@@ -326,6 +326,9 @@ def present(p: SystemParams) -> tuple[bool | None, ...]:
 # callers call the inner ones, so that no Python entry's code is linked into them.
 EVALUATE, BODY_FORCES, PROJECT, AFTER_STEP, START_MEMORY = range(5)
 ENTRIES = ("evaluate", "body_forces", "project", "after_step", "start_memory")
+# the evaluate entry's parts, each compiled apart and called by its address, which follows the
+# entries' (``SystemParams.entries[len(ENTRIES) + k]``; 0 for a part a copy does not call)
+PARTS = ("_motions", "_masses", "_lines", "_models", "_backward", "_solve")
 
 
 @njit(inline="always", **JIT)
@@ -400,6 +403,27 @@ def start_memory(t: float, y: np.ndarray, p: SystemParams, w: SystemWork) -> Non
     _from_python(START_MEMORY, t, y, p, w, y)
 
 
+@njit(inline="always", **JIT)
+def _key_holds(y, s0, pos, quat, vel, omega, key):
+    """Whether ``key`` holds the bodies' and the models' states to the bit (plain loops and
+    tests: slices' and short circuits' code compiles slowly)."""
+    nb = pos.shape[0]
+    for b in range(nb):
+        o = 1 + 13 * b
+        for c in range(3):
+            if key[o + c] != pos[b, c] or key[o + 7 + c] != vel[b, c]:
+                return False
+            if key[o + 10 + c] != omega[b, c]:
+                return False
+        for c in range(4):
+            if key[o + 3 + c] != quat[b, c]:
+                return False
+    for i in range(y.shape[0] - s0):
+        if key[1 + 13 * nb + i] != y[s0 + i]:
+            return False
+    return True
+
+
 @inner
 def _models_kept(t, y, s0, reuse, pos, quat, vel, omega, key):
     """Whether the force models' loads of the last evaluation that computed them hold here:
@@ -409,26 +433,20 @@ def _models_kept(t, y, s0, reuse, pos, quat, vel, omega, key):
     histories change between steps only, and after_step forgets the key). Otherwise records
     the key of the evaluation about to compute them and returns False."""
     nb = pos.shape[0]
-    same = reuse and key[0] == t
-    for b in range(nb):
-        o = 1 + 13 * b
-        for c in range(3):
-            same = same and key[o + c] == pos[b, c] and key[o + 7 + c] == vel[b, c]
-            same = same and key[o + 10 + c] == omega[b, c]
-        for c in range(4):
-            same = same and key[o + 3 + c] == quat[b, c]
-    for i in range(y.shape[0] - s0):
-        same = same and key[1 + 13 * nb + i] == y[s0 + i]
-    if same:
+    n = y.shape[0] - s0
+    if reuse and key[0] == t and _key_holds(y, s0, pos, quat, vel, omega, key):
         return True
     key[0] = t
     for b in range(nb):
         o = 1 + 13 * b
-        key[o : o + 3] = pos[b]
-        key[o + 3 : o + 7] = quat[b]
-        key[o + 7 : o + 10] = vel[b]
-        key[o + 10 : o + 13] = omega[b]
-    key[1 + 13 * nb :] = y[s0:]
+        for c in range(3):
+            key[o + c] = pos[b, c]
+            key[o + 7 + c] = vel[b, c]
+            key[o + 10 + c] = omega[b, c]
+        for c in range(4):
+            key[o + 3 + c] = quat[b, c]
+    for i in range(n):
+        key[1 + 13 * nb + i] = y[s0 + i]
     return False
 
 

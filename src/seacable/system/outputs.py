@@ -6,7 +6,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, typeof
 
 from seacable.bodies.dynamics import add_force
 from seacable.forces.compensator import RECORD
@@ -141,7 +141,17 @@ def allocate(p, m: int) -> Rows:
 
 def fill(times, states, p, w, rows: Rows) -> int:
     """``rows`` filled at ``times`` and ``states``; the worst kernel status met."""
-    return outputs_chunk(times, states, p, w, *rows, *kernel.present(p))
+    return outputs_chunk(*_arguments(times, states, p, w, rows))
+
+
+def signature(p, w) -> tuple:
+    """The signature ``fill`` compiles ``outputs_chunk`` for (system.variants' jobs)."""
+    states = np.empty((0, int(p.n_q + p.n_v + p.n_s)))
+    return tuple(typeof(a) for a in _arguments(np.empty(0), states, p, w, allocate(p, 0)))
+
+
+def _arguments(times, states, p, w, rows: Rows) -> tuple:
+    return (times, states, p, w, *rows, *kernel.present(p))
 
 
 def at(p, y: np.ndarray, time: float = 0.0, w=None) -> Rows:

@@ -27,8 +27,8 @@ import numpy as np
 from numba import types
 
 from seacable.forces import kinds
-from seacable.kernels import jit
-from seacable.system import evaluation, kernel
+from seacable.kernels import helper, jit, records
+from seacable.system import evaluation, kernel, outputs
 
 PACKAGE = Path(__file__).resolve().parents[1]
 TEMPLATE = Path(evaluation.__file__)
@@ -190,9 +190,47 @@ def _address(dispatcher: Any, signature: tuple) -> int:
     return int(result.library.get_pointer_to_function(result.fndesc.llvm_func_name))
 
 
+def _signatures(p: kernel.SystemParams) -> tuple[kernel.SystemParams, kernel.SystemWork, dict]:
+    """The parameters ``p`` unbound, a workspace of theirs, and the signatures of the copy's
+    entries (``kernel.ENTRIES``) and parts (``evaluation.PARTS``: the evaluate entry's)."""
+    bound = p._replace(entries=np.zeros(len(kernel.ENTRIES) + len(kernel.PARTS), dtype=np.int64))
+    w = kernel.make_work(bound)
+    vector = numba.typeof(np.zeros(1))
+    pt, wt = numba.typeof(bound), numba.typeof(w)  # their types; their records not built
+    table = numba.typeof(w.pos)
+    return (
+        bound,
+        w,
+        {
+            "evaluate": (types.float64, vector, pt, wt, vector),
+            "body_forces": (types.float64, vector, pt, wt, table, table, vector, table),
+            "project": (vector, pt),
+            "after_step": (types.float64, vector, pt, wt),
+            "start_memory": (types.float64, vector, pt, wt),
+        },
+    )
+
+
+def jobs(p: kernel.SystemParams) -> list[helper.Job]:
+    """What a first run of ``p`` compiles before its evaluation's entries, as it needs them:
+    the compiled constructors of its two records, the parts of the evaluation, the outputs.
+    Each is compiled apart and cached on disk, so that two processes can share them
+    (``kernels.helper``); the entries then link them."""
+    bound, w, signatures = _signatures(p)
+    module = _module(features(p))
+    evaluate = signatures["evaluate"]
+    return [
+        (records._pack, records.pack_signature(bound)),
+        (records._pack, records.pack_signature(w)),
+        *((getattr(module, name), evaluate) for name in kernel.PARTS if module.USED[name]),
+        (outputs.outputs_chunk, outputs.signature(bound, w)),
+    ]
+
+
 def variant(p: kernel.SystemParams) -> Variant:
     """The compiled copy of the evaluation for the kinds ``p`` holds (compiled once a process,
-    loaded from numba's cache when another process compiled it)."""
+    loaded from numba's cache when another process compiled it; compiled on two cores when
+    nothing of it is cached: ``jobs``, ``kernels.helper``)."""
     flags = features(p)
     found = _variants.get(flags)
     if found is not None:
@@ -201,22 +239,15 @@ def variant(p: kernel.SystemParams) -> Variant:
         if flags in _variants:
             return _variants[flags]
         module = _module(flags)
-        bound = p._replace(entries=np.zeros(len(kernel.ENTRIES), dtype=np.int64))
-        w = kernel.make_work(bound)
-        vector = numba.typeof(np.zeros(1))
-        pt, wt = numba.typeof(bound), numba.typeof(w)
-        table = numba.typeof(w.pos)
-        signatures = {
-            "evaluate": (types.float64, vector, pt, wt, vector),
-            "body_forces": (types.float64, vector, pt, wt, table, table, vector, table),
-            "project": (vector, pt),
-            "after_step": (types.float64, vector, pt, wt),
-            "start_memory": (types.float64, vector, pt, wt),
-        }
-        with jit.announced(f"the evaluation of {describe(flags)}", "about 10 to 40 s"):
+        bound, _, signatures = _signatures(p)
+        with jit.announced(f"the evaluation of {describe(flags)}", "about 10 to 30 s"):
+            wanted = not helper.cached((module.evaluate, signatures["evaluate"]))
+            helper.compile_all(jobs(bound), (__name__, "jobs", (bound,)), wanted)
+            parts = [_address(getattr(module, name), signatures["evaluate"])
+                     if module.USED[name] else 0 for name in kernel.PARTS]  # fmt: skip
             entries = [_address(getattr(module, name), signatures[name])
                        for name in kernel.ENTRIES]  # fmt: skip
-        _variants[flags] = Variant(module, np.array(entries, dtype=np.int64))
+        _variants[flags] = Variant(module, np.array(entries + parts, dtype=np.int64))
         return _variants[flags]
 
 
