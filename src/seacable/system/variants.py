@@ -211,6 +211,12 @@ def _signatures(p: kernel.SystemParams) -> tuple[kernel.SystemParams, kernel.Sys
     )
 
 
+# the evaluation's parts in the order of the jobs: the longest to compile at the two ends, the
+# shortest where the two processes meet, so that neither waits long for the other's last one
+JOB_ORDER = ("_motions", "_models", "_masses", "_lines", "_solve", "_backward")
+assert sorted(JOB_ORDER) == sorted(kernel.PARTS)
+
+
 def jobs(p: kernel.SystemParams) -> list[helper.Job]:
     """What a first run of ``p`` compiles before its evaluation's entries, as it needs them:
     the compiled constructors of its two records, the parts of the evaluation, the outputs.
@@ -222,7 +228,7 @@ def jobs(p: kernel.SystemParams) -> list[helper.Job]:
     return [
         (records._pack, records.pack_signature(bound)),
         (records._pack, records.pack_signature(w)),
-        *((getattr(module, name), evaluate) for name in kernel.PARTS if module.USED[name]),
+        *((getattr(module, name), evaluate) for name in JOB_ORDER if module.USED[name]),
         (outputs.outputs_chunk, outputs.signature(bound, w)),
     ]
 
