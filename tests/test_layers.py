@@ -21,7 +21,7 @@ LAYER = {
     "case.system": 3, "case.schema": 3, "timefunctions": 3, "meshes": 3, "seastate": 3,
     "hydrodb": 3, "realization": 3, "bem": 4,
     "case.legacy": 10,
-    "case.legacy_sections": 9,
+    "case.legacy_sections": 9, "case.moordyn": 9,
     "case.forces": 2, "case.environment": 2,
     "case.base": 1, "hydrodb_formats": 1,
     "kernels": 0, "errors": 0,

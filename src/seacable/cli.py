@@ -14,7 +14,7 @@ import xarray as xr
 
 import seacable
 from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
-from seacable.case import legacy, loader
+from seacable.case import legacy, loader, moordyn
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
 
@@ -155,6 +155,27 @@ def repeat(results_file: str, output: str, progress: bool) -> None:
         results = seacable.simulate(seacable.load_case(case_file), output=output,
                                     progress=progress)  # fmt: skip
     click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+@main.group(name="import")
+def import_() -> None:
+    """Read another program's input file as a seacable case."""
+
+
+@import_.command(name="moordyn")
+@click.argument("deck", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Case file to write (YAML).")  # fmt: skip
+def import_moordyn(deck: str, output: str) -> None:
+    """Write the MoorDyn input file DECK (v1 or v2: line types, points, lines, options) as a
+    commented seacable case, checked as any case is; what has no equivalent in seacable is
+    refused by its section, row and column. `seacable run DECK` runs a deck as it is."""
+    if Path(output).resolve() == Path(deck).resolve():
+        _fail(f"-o {output}: that is the deck itself; name another file", EXIT_INPUT)
+    case, text = moordyn.convert(deck)
+    loader.load_case(case)  # refused here, before anything is written
+    Path(output).write_text(text)
+    click.echo(f"{len(case['lines'])} lines, {len(case['bodies'])} bodies: case in {output}")
 
 
 @main.command()

@@ -10,6 +10,7 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from seacable import meshes
+from seacable.case import moordyn
 from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, HullMesh, Table, instances
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
@@ -157,8 +158,8 @@ def load_single_cable(source: str | Path | dict) -> Case:
 
 
 def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
-    """The mapping of a case source, its YAML text (None for a dict) and its file (None for a
-    dict or a YAML string)."""
+    """The mapping of a case source, its YAML text (None for a dict; a MoorDyn deck's case
+    written as YAML, case.moordyn) and its file (None for a dict or a YAML string)."""
     file = None
     text = None
     if isinstance(source, dict):
@@ -172,6 +173,9 @@ def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
             file = path.resolve()
         else:
             text = str(source)
+        if moordyn.looks_like_deck(text):  # a MoorDyn input file: its case, and as YAML
+            data, text = moordyn.convert(text, str(path) if file is not None else None)
+            return data, text, file
         data = _parse(text)
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")

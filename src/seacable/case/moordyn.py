@@ -1,0 +1,543 @@
+"""MoorDyn input files (decks) read into a seacable case.
+
+MoorDyn's input file is the open exchange format of mooring models (MoorPy writes it, OpenFAST,
+WEC-Sim and others read it). ``read`` turns a deck into the mapping of a seacable case (what
+``case.loader.load_case`` validates, and reads a deck as) and ``convert`` into a commented YAML
+case as well (``seacable import moordyn``). Both versions of
+the format are read:
+
+- v2 (MoorDyn-C 2, MoorDyn-F in OpenFAST): ``LINE TYPES``, ``POINTS``, ``LINES``, ``OPTIONS``,
+  ``OUTPUTS``;
+- v1: ``LINE DICTIONARY`` (or ``LINE TYPES``), ``NODE PROPERTIES`` (``POINT PROPERTIES``,
+  ``CONNECTION PROPERTIES``), ``LINE PROPERTIES``, ``SOLVER OPTIONS``, ``OUTPUTS``.
+
+A section starts at a line of dashes around its title; a table's first two lines are its column
+names and units; ``!``, ``#`` and ``%`` start a comment (v2). Conventions carried over: z up with
+z = 0 at the still water (both codes), the seabed at z = -WtrDpth, a negative BA a damping ratio
+(``axial_damping_ratio``) and a positive one a damping coefficient BA [N s]
+(``axial_damping_time`` = BA / EA), Cd on d l and CdAx on pi d l (as seacable's), kBot [Pa/m] and
+cBot [Pa s/m] on the segment's d l (seacable's seabed per metre of line: times d).
+
+Each MoorDyn point becomes a body named ``point<ID>``, each line a lumped-mass line named
+``line<ID>`` from its A (anchor) end to its B (fairlead) end: a fixed point a fixed body, a free
+(``Connect``) point a point body with its mass, volume (buoyancy, added mass Ca rho V) and drag
+(CdA), a coupled point (``Coupled``, ``Vessel``) an imposed body held where the deck puts it
+(the motion is the user's to give: its ``x``, ``y``, ``z`` time functions). v1's vessel points
+are fixed in the vessel's frame: they become one imposed body ``vessel`` in v1 decks... held
+still the same way, each point at its deck position.
+
+What has no equivalent in seacable is refused by name (the section, the row and the column),
+never dropped: bodies, rods and failures (not yet read), tangential added mass (CaAx, Cat),
+vortex-induced vibration (Cl), non-linear or viscoelastic EA, wave and current kinematics
+files, points attached to bodies or turbines, v1 point forces. MoorDyn's own settings that
+seacable replaces (the initial-condition solver's: seacable starts from its statics; the output
+and logging switches: seacable writes every output) are noted in the written case.
+"""
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from seacable.errors import CaseError
+
+V2_SECTIONS = {
+    "LINE TYPES": "line_types",
+    "LINE DICTIONARY": "line_types",
+    "POINTS": "points",
+    "POINT PROPERTIES": "points",
+    "NODE PROPERTIES": "points",
+    "CONNECTION PROPERTIES": "points",
+    "POINT LIST": "points",
+    "LINES": "lines",
+    "LINE PROPERTIES": "lines",
+    "LINE LIST": "lines",
+    "OPTIONS": "options",
+    "SOLVER OPTIONS": "options",
+    "OUTPUTS": "outputs",
+    "OUTPUT LIST": "outputs",
+}
+NOT_YET = (
+    "ROD TYPES",
+    "ROD DICTIONARY",
+    "BODIES",
+    "BODY LIST",
+    "BODY PROPERTIES",
+    "RODS",
+    "ROD LIST",
+    "ROD PROPERTIES",
+    "FAILURE",
+    "FAILURE CONDITIONS",
+    "EXTERNAL LOADS",
+    "CONTROL",
+    "CONTROL VARIABLES",
+)
+END_TITLES = ("NEED THIS LINE", "END")
+# options seacable takes, and what each becomes
+DEFAULTS = {
+    "dtm": 0.001,
+    "g": 9.80665,
+    "rhow": 1025.0,
+    "wtrdpth": 0.0,
+    "kbot": 3.0e6,
+    "cbot": 3.0e5,
+}
+ALIASES = {
+    "gravity": "g",
+    "rho": "rhow",
+    "waterdepth": "wtrdpth",
+    "depth": "wtrdpth",
+    "kb": "kbot",
+    "cb": "cbot",
+}
+REPLACED = {  # MoorDyn's settings that seacable replaces, with what replaces them
+    "dtic": "seacable starts from its statics (start: static)",
+    "tmaxic": "seacable starts from its statics (start: static)",
+    "cdscaleic": "seacable starts from its statics (start: static)",
+    "threshic": "seacable starts from its statics (start: static)",
+    "icdfac": "seacable starts from its statics (start: static)",
+    "icthresh": "seacable starts from its statics (start: static)",
+    "ictmax": "seacable starts from its statics (start: static)",
+    "icgendynamic": "seacable starts from its statics (start: static)",
+    "echo": "an output switch of MoorDyn's (seacable writes every output)",
+    "writelog": "an output switch of MoorDyn's (seacable writes every output)",
+    "writeunits": "an output switch of MoorDyn's (seacable writes every output)",
+    "disableoutput": "an output switch of MoorDyn's (seacable writes every output)",
+    "disableouttime": "an output switch of MoorDyn's (seacable writes every output)",
+    "dtout": "simulation.output_interval",
+    "tmax": "simulation.duration",
+}
+ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
+    "wavekin": "wave kinematics (give the waves in the case's environment.waves instead)",
+    "currents": "current kinematics (give the current in the case's environment.current)",
+    "seafloorfile": "a 3D seafloor (seacable's seabed is flat)",
+}
+DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is coupled to decides)
+
+
+@dataclass
+class _Section:
+    title: str
+    line: int  # where its title is (1-based)
+    rows: list[tuple[int, list[str]]] = field(default_factory=list)  # (line, fields)
+
+
+def read(source: str | Path, name: str | None = None) -> dict[str, Any]:
+    """The case mapping of the MoorDyn deck ``source`` (a path, or the deck's text when it
+    holds a newline; ``name``: what messages call it). Raises ``CaseError`` naming the section,
+    row and column of anything with no equivalent (the module's docstring)."""
+    return _Deck(source, name).case()
+
+
+def convert(source: str | Path, name: str | None = None) -> tuple[dict[str, Any], str]:
+    """``read(source)`` and the same case as commented YAML text (what the import did, then
+    the case)."""
+    deck = _Deck(source, name)
+    case = deck.case()
+    return case, deck.commented(case)
+
+
+def looks_like_deck(text: str) -> bool:
+    """Whether ``text`` is a MoorDyn deck: a line of dashes around a MoorDyn section's title."""
+    return any(_title(line) in V2_SECTIONS for line in text.splitlines()[:400])
+
+
+def _title(line: str) -> str | None:
+    match = re.match(r"^\s*-{3,}\s*(.*?)\s*-{3,}\s*$", line)
+    return " ".join(match.group(1).upper().split()) if match else None
+
+
+def _number(text: str, where: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise CaseError(f"{where}: {text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise CaseError(f"{where}: {text!r} is not a finite number")
+    return value
+
+
+class _Deck:
+    def __init__(self, source: str | Path, name: str | None = None):
+        if isinstance(source, Path) or "\n" not in str(source):
+            self.name = str(source)
+            try:
+                text = Path(source).read_text(errors="replace")
+            except OSError as error:
+                raise CaseError(
+                    f"MoorDyn deck {source}: cannot be read ({error.strerror})"
+                ) from None
+        else:
+            self.name, text = name or "the deck", str(source)
+        self.sections: dict[str, _Section] = {}
+        self.notes: list[str] = []
+        self._split(text)
+        self.version = 2 if "POINTS" in {s.title for s in self.sections.values()} else 1
+        if "line_types" in self.sections and self.sections["line_types"].rows:
+            self.version = 2 if len(self.sections["line_types"].rows[0][1]) >= 10 else 1
+
+    def _split(self, text: str) -> None:
+        current: _Section | None = None
+        skip = 0
+        for number, raw in enumerate(text.splitlines(), start=1):
+            title = _title(raw)
+            if title is not None:
+                if title in V2_SECTIONS:
+                    key = V2_SECTIONS[title]
+                    if key in self.sections:
+                        raise CaseError(f"{self.name} line {number}: a second {title} section")
+                    current = self.sections[key] = _Section(title, number)
+                    skip = 0 if key in ("options", "outputs") else 2
+                elif title in NOT_YET:
+                    raise CaseError(
+                        f"{self.name} line {number}: section {title} is not read yet (seacable "
+                        "reads MoorDyn's line types, points, lines, options and outputs); model "
+                        "the bodies and rods in the seacable case instead"
+                    )
+                elif current is not None and any(t in title for t in END_TITLES):
+                    current = None
+                elif current is not None:
+                    raise CaseError(
+                        f"{self.name} line {number}: {title!r} is not a MoorDyn "
+                        f"section; known: {', '.join(V2_SECTIONS)}"
+                    )
+                continue  # before the first section: the deck's free-form heading
+            if current is None:
+                continue
+            fields = re.split(r"[!#%]", raw, maxsplit=1)[0].split()
+            if not fields:
+                continue
+            if skip:
+                skip -= 1  # the table's column names and units
+                continue
+            if current.title == "OUTPUTS" or fields[0].upper() == "END":
+                if fields[0].upper() == "END":
+                    current = None
+                else:
+                    current.rows.append((number, fields))
+                continue
+            current.rows.append((number, fields))
+
+    def _where(self, key: str, line: int, column: str | None = None) -> str:
+        section = self.sections[key].title
+        return f"{self.name} line {line} ({section}{', column ' + column if column else ''})"
+
+    # -- the case --------------------------------------------------------------------------
+    def case(self) -> dict[str, Any]:
+        for key in ("line_types", "points", "lines"):
+            if key not in self.sections or not self.sections[key].rows:
+                raise CaseError(
+                    f"{self.name}: no {key.replace('_', ' ')} (a MoorDyn deck needs "
+                    "line types, points and lines)"
+                )
+        options = self._options()
+        types = self._line_types()
+        bodies, names = self._points(options)
+        lines = self._lines(types, names)
+        environment: dict[str, Any] = {"gravity": options["g"], "water_density": options["rhow"]}
+        if options["wtrdpth"] > 0:
+            environment["water_depth"] = options["wtrdpth"]
+            diameters = sorted({t["diameter"] for t in types.values()})
+            heaviest = max(types.values(), key=lambda t: t["mass_per_length"])["diameter"]
+            environment["seabed"] = {
+                "stiffness": _round(options["kbot"] * heaviest),
+                "damping": _round(options["cbot"] * heaviest),
+                "contact_band": 0.0,
+            }
+            if len(diameters) > 1:
+                self.notes.append(
+                    f"seabed: MoorDyn's kBot and cBot act on each segment's d l; seacable's "
+                    f"seabed is per metre of line for every line: taken with the diameter "
+                    f"{heaviest:g} m of the heaviest line type (the one that lies on the seabed)"
+                )
+        outputs = self.sections.get("outputs")
+        if outputs is not None and outputs.rows:
+            channels = ", ".join(fields[0] for _, fields in outputs.rows)
+            self.notes.append(
+                f"OUTPUTS ({channels}): seacable's results hold every body's "
+                "motion and every line's tensions and end forces"
+            )
+        step = options["dtm"]
+        simulation = {
+            "duration": options.get("tmax", DURATION),
+            "output_interval": options.get("dtout", _interval(step)),
+            "integrator": "rk4",
+            "time_step": step,
+        }
+        if "tmax" not in options:
+            self.notes.append(f"simulation.duration: {DURATION:g} s (a deck carries none)")
+        return {
+            "name": f"MoorDyn deck {Path(self.name).name}",
+            "description": f"imported from the MoorDyn v{self.version} deck {self.name}",
+            "environment": environment,
+            "bodies": bodies,
+            "line_types": list(types.values()),
+            "lines": lines,
+            "start": "static",
+            "simulation": simulation,
+        }
+
+    def _options(self) -> dict[str, float]:
+        options = dict(DEFAULTS)
+        section = self.sections.get("options")
+        for number, fields in section.rows if section else []:
+            if len(fields) < 2:
+                raise CaseError(
+                    f"{self._where('options', number)}: an option is a value then "
+                    f"its name; got {' '.join(fields)!r}"
+                )
+            value, name = fields[0], fields[1]
+            key = ALIASES.get(name.lower(), name.lower())
+            where = self._where("options", number, name)
+            if key in DEFAULTS or key in ("dtout", "tmax"):
+                options[key] = _number(value, where)
+                if key in ("dtm", "dtout", "tmax") and options[key] <= 0:
+                    raise CaseError(f"{where}: {value} must be positive")
+                if key in ("dtout", "tmax"):
+                    self.notes.append(f"{name} {value}: {REPLACED[key]}")
+            elif key in REPLACED:
+                self.notes.append(f"{name} {value}: not used ({REPLACED[key]})")
+            elif key in ZERO_ONLY:
+                if value not in ("0", "0.0", "-"):
+                    raise CaseError(
+                        f"{where}: {value!r}: {ZERO_ONLY[key]} is not read; set it to 0"
+                    )
+            else:
+                raise CaseError(
+                    f"{where}: option {name!r} has no equivalent in seacable; the options read: "
+                    f"{', '.join(['dtM', 'g', 'rhoW', 'WtrDpth', 'kBot', 'cBot', 'dtOut'])} "
+                    "(and MoorDyn's initial-condition and output settings, noted); remove it"
+                )
+        return options
+
+    def _line_types(self) -> dict[str, dict[str, Any]]:
+        v2 = self.version == 2
+        columns = (
+            ["Name", "Diam", "MassDen", "EA", "BA", "EI", "Cd", "Ca", "CdAx", "CaAx"]
+            if v2
+            else ["Name", "Diam", "MassDen", "EA", "BA", "Can", "Cat", "Cdn", "Cdt"]
+        )
+        types: dict[str, dict[str, Any]] = {}
+        for number, fields in self.sections["line_types"].rows:
+            if len(fields) < len(columns) or len(fields) > (13 if v2 else len(columns)):
+                raise CaseError(
+                    f"{self._where('line_types', number)}: {len(fields)} columns; "
+                    f"expected {' '.join(columns)}"
+                )
+            row = dict(zip(columns, fields, strict=False))
+            name = row["Name"]
+
+            def value(column, row=row, number=number):
+                return _number(row[column], self._where("line_types", number, column))
+
+            if not re.fullmatch(r"[-+0-9.eE]+", row["EA"]):
+                raise CaseError(
+                    f"{self._where('line_types', number, 'EA')}: {row['EA']!r}: a "
+                    "non-linear or viscoelastic EA is not read; give one number"
+                )
+            tangential = "CaAx" if v2 else "Cat"
+            if value(tangential) != 0.0:
+                raise CaseError(
+                    f"{self._where('line_types', number, tangential)}: {row[tangential]}: "
+                    "seacable's lumped-mass lines have no tangential added mass; set it to 0 "
+                    "to import the deck (its effect: the line's inertia along itself)"
+                )
+            if v2 and len(fields) > 10 and _number(fields[10], "Cl") != 0.0:
+                raise CaseError(
+                    f"{self._where('line_types', number, 'Cl')}: {fields[10]}: "
+                    "vortex-induced vibration is not modelled; set Cl to 0"
+                )
+            ea, ba = value("EA"), value("BA")
+            line_type: dict[str, Any] = {
+                "name": name,
+                "diameter": value("Diam"),
+                "mass_per_length": value("MassDen"),
+                "axial_stiffness": ea,
+                "drag_coefficient_normal": value("Cd" if v2 else "Cdn"),
+                "drag_coefficient_tangential": value("CdAx" if v2 else "Cdt"),
+                "added_mass_coefficient": value("Ca" if v2 else "Can"),
+            }
+            if ba < 0:
+                line_type["axial_damping_ratio"] = -ba
+            elif ba > 0:
+                line_type["axial_damping_time"] = ba / ea
+            if v2 and value("EI") > 0:
+                line_type["bending_stiffness"] = value("EI")
+            if name in types:
+                raise CaseError(
+                    f"{self._where('line_types', number)}: a second line type named {name!r}"
+                )
+            types[name] = line_type
+        return types
+
+    def _points(self, options) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        v2 = self.version == 2
+        columns = (
+            ["ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"]
+            if v2
+            else ["ID", "Attachment", "X", "Y", "Z", "M", "V", "FX", "FY", "FZ", "CdA", "CA"]
+        )
+        bodies: list[dict[str, Any]] = []
+        names: dict[str, str] = {}
+        vessel: dict[str, list[float]] = {}
+        for number, fields in self.sections["points"].rows:
+            if len(fields) != len(columns):
+                raise CaseError(
+                    f"{self._where('points', number)}: {len(fields)} columns; "
+                    f"expected {' '.join(columns)}"
+                )
+            row = dict(zip(columns, fields, strict=True))
+
+            def value(column, row=row, number=number):
+                return _number(row[column], self._where("points", number, column))
+
+            ident, kind = row["ID"], row["Attachment"].lower()
+            name = f"point{ident}"
+            position = [value("X"), value("Y"), value("Z")]
+            if not v2 and any(value(c) != 0.0 for c in ("FX", "FY", "FZ")):
+                raise CaseError(
+                    f"{self._where('points', number, 'FX')}: a v1 point's steady "
+                    "force is not read (its unit is N in MoorDyn's code, kN in its "
+                    "sample files); give it as an applied force in the case"
+                )
+            if ident in names:
+                raise CaseError(f"{self._where('points', number, 'ID')}: a second point {ident}")
+            if kind in ("fixed", "fix", "anchor"):
+                bodies.append({"name": name, "type": "fixed", "position": position})
+            elif kind in ("coupled", "cpld") or (kind == "vessel" and v2):
+                bodies.append(
+                    {
+                        "name": name,
+                        "type": "imposed",
+                        "x": _const(position[0]),
+                        "y": _const(position[1]),
+                        "z": _const(position[2]),
+                    }
+                )
+            elif kind == "vessel":
+                vessel[name] = position
+                names[ident] = f"vessel.{name}"
+                continue
+            elif kind in ("free", "connect", "con"):
+                bodies.append(
+                    self._free(
+                        name,
+                        position,
+                        value("M"),
+                        value("V"),
+                        value("CdA"),
+                        value("CA"),
+                        options["rhow"],
+                    )
+                )
+            else:
+                raise CaseError(
+                    f"{self._where('points', number, 'Attachment')}: "
+                    f"{row['Attachment']!r}: seacable reads Fixed, Free (Connect), "
+                    "Coupled and Vessel points; a point on a body or turbine is not "
+                    "read yet"
+                )
+            names[ident] = name
+        if vessel:
+            bodies.append({"name": "vessel", "type": "imposed", "points": vessel})
+            self.notes.append(
+                "vessel: the deck's vessel points, held still; give its x, y, z, "
+                "roll_deg, pitch_deg, yaw_deg as time functions to move it"
+            )
+        if any(b["type"] == "imposed" and b["name"] != "vessel" for b in bodies):
+            self.notes.append(
+                "the coupled points are imposed bodies held where the deck puts "
+                "them; give their x, y, z as time functions to move them"
+            )
+        return bodies, names
+
+    @staticmethod
+    def _free(name, position, mass, volume, cda, ca, rho) -> dict[str, Any]:
+        body: dict[str, Any] = {"name": name, "type": "point", "position": position, "mass": mass}
+        forces: list[dict[str, Any]] = [{"model": "gravity"}]
+        if volume > 0:
+            body["volume"] = volume
+            forces.append({"model": "buoyancy"})
+            if ca > 0:
+                body["added_mass"] = ca * rho * volume
+        if cda > 0:
+            forces.append({"model": "drag", "drag_coefficient": 1.0, "area": cda})
+        body["external forces"] = forces
+        return body
+
+    def _lines(self, types, names) -> list[dict[str, Any]]:
+        v2 = self.version == 2
+        columns = (
+            ["ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs", "Outputs"]
+            if v2
+            else ["ID", "LineType", "UnstrLen", "NumSegs", "AttachA", "AttachB", "Outputs"]
+        )
+        lines = []
+        for number, fields in self.sections["lines"].rows:
+            if len(fields) < len(columns) - 1 or len(fields) > len(columns):
+                raise CaseError(
+                    f"{self._where('lines', number)}: {len(fields)} columns; "
+                    f"expected {' '.join(columns)}"
+                )
+            row = dict(zip(columns, fields, strict=False))
+            if row["LineType"] not in types:
+                raise CaseError(
+                    f"{self._where('lines', number, 'LineType')}: "
+                    f"{row['LineType']!r} is not a line type; known: "
+                    f"{', '.join(types)}"
+                )
+            ends = []
+            for column in ("AttachA", "AttachB"):
+                if row[column] not in names:
+                    raise CaseError(
+                        f"{self._where('lines', number, column)}: {row[column]!r} "
+                        "is not a point of the deck (a rod or body end is not read "
+                        "yet)"
+                    )
+                ends.append(names[row[column]])
+            length = _number(row["UnstrLen"], self._where("lines", number, "UnstrLen"))
+            segments = _number(row["NumSegs"], self._where("lines", number, "NumSegs"))
+            if segments != int(segments) or segments < 1:
+                raise CaseError(
+                    f"{self._where('lines', number, 'NumSegs')}: {row['NumSegs']} "
+                    "must be a positive whole number"
+                )
+            lines.append(
+                {
+                    "name": f"line{row['ID']}",
+                    "model": "lumped_mass",
+                    "from": ends[0],
+                    "to": ends[1],
+                    "sections": [
+                        {"type": row["LineType"], "length": length, "segments": int(segments)}
+                    ],
+                }
+            )
+        return lines
+
+    def commented(self, case: dict[str, Any]) -> str:
+        """The case as YAML, headed by what the import did."""
+        head = [
+            f"# seacable case imported from the MoorDyn v{self.version} deck {self.name}",
+            "# (seacable import moordyn). Points are bodies point<ID>, lines line<ID>;",
+            "# z up, z = 0 at the still water, SI units, as in the deck.",
+        ]
+        head += [f"# - {note}" for note in self.notes]
+        body = yaml.safe_dump(case, sort_keys=False, default_flow_style=None, width=100)
+        return "\n".join(head) + "\n" + body
+
+
+def _round(value: float) -> float:
+    return float(f"{value:.12g}")
+
+
+def _const(value: float) -> dict[str, Any]:
+    return {"kind": "constant", "value": value}
+
+
+def _interval(step: float) -> float:
+    """An output interval of about 0.1 s that is a whole number of steps."""
+    return step * max(1, round(0.1 / step))

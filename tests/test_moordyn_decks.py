@@ -1,0 +1,129 @@
+"""MoorDyn decks read as seacable cases (case.moordyn): the statics of a v2 deck against MoorPy
+reading the same deck, of a v1 deck against MoorPy built from the deck's values (MoorPy's reader
+takes v2's column order for v1's line properties), the conversions of the deck's conventions,
+the commented case ``seacable import moordyn`` writes, a deck run as it is, and the refusals
+that name the section, the row and the column."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import seacable
+from seacable.case import moordyn
+from seacable.cli import main
+
+mp = pytest.importorskip("moorpy")
+
+DATA = Path(__file__).parent / "data"
+V2 = DATA / "moordyn_v2_spread.txt"
+V1 = DATA / "moordyn_v1_clump.txt"
+
+
+def _end_tensions(results, lines: int) -> np.ndarray:
+    """(from, to) end-force magnitudes of line1..lineN at the statics' state."""
+    ds = results.dataset
+    out = []
+    for k in range(1, lines + 1):
+        group = ds[f"lines/line{k}"].to_dataset().isel(time=0)
+        out.append([np.linalg.norm([float(group[f"{end}_force_{c}"]) for c in "xyz"])
+                    for end in ("from", "to")])  # fmt: skip
+    return np.array(out)
+
+
+def test_a_v2_deck_statics_match_moorpy_reading_the_same_deck():
+    """Three catenary chains 650 m long in 200 m of water: fairlead tensions within 0.1 % of
+    MoorPy's elastic catenaries, anchor tensions within 0.3 % (40 segments a line, a seabed
+    of finite stiffness against MoorPy's rigid one)."""
+    ms = mp.System(file=str(V2))
+    ms.initialize()
+    ms.solveEquilibrium(tol=1e-6, maxIter=2000)
+    ours = _end_tensions(seacable.statics(seacable.load_case(V2)), 3)  # read by its content
+    theirs = np.array([[line.TA, line.TB] for line in ms.lineList])
+    assert np.abs(ours[:, 1] / theirs[:, 1] - 1).max() < 1e-3, (ours, theirs)
+    assert np.abs(ours[:, 0] / theirs[:, 0] - 1).max() < 3e-3, (ours, theirs)
+
+
+def test_a_v1_deck_statics_match_moorpy():
+    """A chain and a wire joined at a free point (a 400 kg clump of 0.25 m^3), and a plain
+    chain, to two vessel points: end tensions within 0.1 %, the clump within 1 cm."""
+    ms = mp.System(depth=120.0, rho=1025.0, g=9.80665)
+    ms.setLineType(name="chain", lineType={"d_vol": 0.1, "m": 60.0, "EA": 3.0e8})
+    ms.setLineType(name="wire", lineType={"d_vol": 0.05, "m": 12.0, "EA": 2.0e8})
+    for kind, r, m, v in ((1, [-350, 0, -120], 0, 0), (0, [-140, 0, -90], 400.0, 0.25),
+                          (1, [-20, 0, -10], 0, 0), (1, [350, 0, -120], 0, 0),
+                          (1, [20, 0, -10], 0, 0)):  # fmt: skip
+        ms.addPoint(kind, r, m=m, v=v)
+    for length, kind, a, b in ((200.0, "chain", 1, 2), (150.0, "wire", 2, 3),
+                               (360.0, "chain", 4, 5)):  # fmt: skip
+        ms.addLine(length, kind, pointA=a, pointB=b)
+    ms.initialize()
+    ms.solveEquilibrium(tol=1e-6, maxIter=2000)
+    results = seacable.statics(seacable.load_case(V1))
+    ours = _end_tensions(results, 3)
+    theirs = np.array([[line.TA, line.TB] for line in ms.lineList])
+    assert np.abs(ours / theirs - 1).max() < 1e-3, (ours, theirs)
+    clump = results.dataset["bodies/point2"].to_dataset().isel(time=0)
+    position = np.array([float(clump[f"position_{c}"]) for c in "xyz"])
+    assert np.abs(position - ms.pointList[1].r).max() < 0.01, position
+
+
+def test_the_deck_conventions_become_the_case_fields():
+    case = moordyn.read(V2)
+    chain = case["line_types"][0]
+    assert chain["axial_damping_ratio"] == 1.0  # BA -1: a damping ratio
+    assert chain["drag_coefficient_normal"] == 2.4 and chain["drag_coefficient_tangential"] == 0.4
+    assert case["environment"]["seabed"]["stiffness"] == pytest.approx(3.0e6 * 0.137)
+    assert case["environment"]["water_depth"] == 200.0
+    kinds = {body["name"]: body["type"] for body in case["bodies"]}
+    assert kinds["point1"] == "fixed" and kinds["point4"] == "imposed"
+    assert case["simulation"]["time_step"] == 0.002
+    damped = V2.read_text().replace("5.8e8    -1.0", "5.8e8    2.9e7")  # BA [N s]
+    assert moordyn.read(damped)["line_types"][0]["axial_damping_time"] == pytest.approx(0.05)
+    v1 = moordyn.read(V1)
+    clump = next(body for body in v1["bodies"] if body["name"] == "point2")
+    assert clump["type"] == "point" and clump["mass"] == 400.0 and clump["volume"] == 0.25
+    assert clump["added_mass"] == pytest.approx(1025.0 * 0.25)
+    vessel = next(body for body in v1["bodies"] if body["name"] == "vessel")
+    assert vessel["points"] == {"point3": [-20.0, 0.0, -10.0], "point5": [20.0, 0.0, -10.0]}
+    assert v1["lines"][1]["to"] == "vessel.point3"
+
+
+def test_import_writes_a_commented_case_and_a_deck_runs_as_it_is(tmp_path):
+    output = tmp_path / "case.yaml"
+    result = CliRunner().invoke(main, ["import", "moordyn", str(V2), "-o", str(output)])
+    assert result.exit_code == 0, result.output
+    text = output.read_text()
+    assert text.startswith("# seacable case imported from the MoorDyn v2 deck")
+    assert "dtIC 5.0: not used" in text and "OUTPUTS (FairTen1, FairTen2, FairTen3)" in text
+    written, deck = seacable.load_case(output), seacable.load_case(V2)
+    assert written.model_dump(mode="json") == deck.model_dump(mode="json")
+    same = CliRunner().invoke(main, ["import", "moordyn", str(V2), "-o", str(V2)])
+    assert same.exit_code == 2 and "the deck itself" in same.output
+    checked = CliRunner().invoke(main, ["validate", str(V1)])
+    assert checked.exit_code == 0 and "point2 (point)" in checked.output, checked.output
+
+
+REFUSED = [
+    ("chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.0",
+     "chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.5",
+     "line 7 (LINE TYPES, column CaAx): 0.5: seacable's lumped-mass lines have no tangential"),
+    ("---------------------- LINES ---",
+     "---------------------- BODIES ---\n---------------------- LINES ---",
+     "section BODIES is not read yet"),
+    ("0.002    dtM", "1.0      foo       - a setting\n0.002    dtM", "option 'foo' has no"),
+    ("0.002    dtM", "1        WaveKin\n0.002    dtM", "column WaveKin): '1': wave kinematics"),
+    ("4    Coupled", "4    Body1  ", "column Attachment): 'Body1'"),
+    ("1    chain     1        4", "1    chain     1        R1A", "column AttachB): 'R1A'"),
+    ("650.0     40       -\n2", "6x0.0     40       -\n2", "column UnstrLen): '6x0.0' is not"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("old", "new", "message"), REFUSED)
+def test_what_has_no_equivalent_is_refused_by_section_row_and_column(old, new, message):
+    text = V2.read_text()
+    assert old in text
+    with pytest.raises(seacable.CaseError) as error:
+        moordyn.read(text.replace(old, new, 1))
+    assert message in str(error.value)
