@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from seacable.case import loader, schema
-from seacable.case.system import SystemCase
+from seacable.case.system import SystemCase, ignored_inputs
 from seacable.case.units import unit_warnings
 from seacable.errors import CaseError, SimulationDiverged, SimulationInterrupted
 from seacable.kernels import jit
@@ -82,12 +82,14 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     """Everything a run does before its first step, and ``seacable validate`` with it: the
     case's form, the system built (tables read, geometry checked, the statics it starts from
     solved), the step checked against the fastest motion, values that look like the wrong
-    unit (``case.units``). Returns the built system and the warnings, joined (None when there
-    are none). Raises CaseError (or StaticsError)."""
+    unit (``case.units``), inputs that act on nothing (``case.system.ignored_inputs``).
+    Returns the built system and the warnings, joined (None when there are none). Raises
+    CaseError (or StaticsError)."""
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
     sim = case.simulation
-    warnings = [*unit_warnings(case), stability.rounded_step(sim), _dense_warning(sim, system),
+    warnings = [*unit_warnings(case), *ignored_inputs(case), stability.rounded_step(sim),
+                _dense_warning(sim, system),
                 stability.rk4_check(sim, system)]  # fmt: skip
     return system, "; ".join(w for w in warnings if w) or None
 

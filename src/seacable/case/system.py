@@ -518,3 +518,36 @@ class SystemCase(_Model):
                 f"finish ({MOST_SEGMENTS:,}); use fewer, longer segments"
             )
         return self
+
+
+# the force models the waves act through (the lines feel the waves in their own loads)
+WAVE_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov", "diffraction", "wave drift")
+
+
+def ignored_inputs(case: SystemCase) -> list[str]:
+    """One line per part of the environment that acts on nothing a case holds, said where
+    the case is checked (``simulation.prepare``: ``seacable validate`` and every run): waves on
+    a moving body none of whose force models they act through (the lines still feel them),
+    wind without any body's ``wind`` model."""
+    out = []
+    env = case.environment
+    if env.waves:
+        for k, body in enumerate(case.bodies):
+            if not isinstance(body, (PointBody, RigidBody)):
+                continue
+            models = {force.model for force in body.external_forces}
+            if not models & set(WAVE_MODELS):
+                out.append(
+                    f"bodies[{k}] ({body.name}): the waves act on none of its force models "
+                    f"({', '.join(sorted(models)) or 'none'}): only its lines feel them; give "
+                    f"it one of {', '.join(WAVE_MODELS)} (a hull mesh or a hydrodynamic "
+                    "database), or ignore this for a body the waves do not reach"
+                )
+    moving = [body for body in case.bodies if isinstance(body, (PointBody, RigidBody))]
+    winds = [force for body in moving for force in body.external_forces if force.model == "wind"]
+    if env.wind is not None and not winds:
+        out.append(
+            "environment.wind: no moving body has a 'wind' force model, so the wind acts on "
+            "nothing; add one (its coefficients) or remove the wind"
+        )
+    return out
