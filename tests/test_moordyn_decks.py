@@ -79,6 +79,8 @@ def test_the_deck_conventions_become_the_case_fields():
     kinds = {body["name"]: body["type"] for body in case["bodies"]}
     assert kinds["point1"] == "fixed" and kinds["point4"] == "imposed"
     assert case["simulation"]["time_step"] == 0.002
+    along = V2.read_text().replace("0.4    0.0", "0.4    0.5")  # CaAx
+    assert moordyn.read(along)["line_types"][0]["added_mass_coefficient_tangential"] == 0.5
     damped = V2.read_text().replace("5.8e8    -1.0", "5.8e8    2.9e7")  # BA [N s]
     assert moordyn.read(damped)["line_types"][0]["axial_damping_time"] == pytest.approx(0.05)
     v1 = moordyn.read(V1)
@@ -107,8 +109,8 @@ def test_import_writes_a_commented_case_and_a_deck_runs_as_it_is(tmp_path):
 
 REFUSED = [
     ("chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.0",
-     "chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.5",
-     "line 7 (LINE TYPES, column CaAx): 0.5: seacable's lumped-mass lines have no tangential"),
+     "chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.0   0.8",
+     "line 7 (LINE TYPES, column Cl): 0.8: vortex-induced vibration is not modelled"),
     ("---------------------- LINES ---",
      "---------------------- BODIES ---\n---------------------- LINES ---",
      "section BODIES is not read yet"),

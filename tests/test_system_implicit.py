@@ -279,7 +279,7 @@ def test_frozen_laws_keep_the_branches_of_the_last_evaluation():
     n = 2
     y = np.array([0.0, 0, -10.0, 0.9, 0, -10.0, 2.1, 0, -10.02, *np.zeros(9)])  # 1 slack, 1 taut
     args = (np.ones(2), np.full(2, 1e5), np.zeros(2))  # lengths [m], EA [N], alpha [s]
-    loads = (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
+    loads = (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros((2, 2)))
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
     still = (0.0, 9.81, waves.still(), 1e30, 0)  # t, g, no waves, depth, stretching
     seabed = (-10.01, np.full(3, 1e4), np.zeros(3), 0.0, 0.01, 0.0)  # z, k, c, mu, slip, band
@@ -312,7 +312,8 @@ def test_lagged_water_kinematics_are_reused_only_near_where_and_when_they_were_t
     n = 2
     y = np.array([0.0, 0, -10.0, 1.0, 0, -10.5, 2.0, 0, -11.0, *np.zeros(9)])
     args = (np.ones(2), np.full(2, 1e5), np.zeros(2))  # lengths [m], EA [N], alpha [s]
-    loads = (np.full(2, 5.0), np.ones(2), np.zeros(2), np.full(2, 7.0), np.ones(2))
+    added = np.column_stack([np.ones(2), np.zeros(2)])  # normal, along [kg]
+    loads = (np.full(2, 5.0), np.ones(2), np.zeros(2), np.full(2, 7.0), added)
     current = (np.zeros(1), np.zeros(1), np.zeros(1))
     k = 2.0 / 9.81  # deep water, 2 rad/s
     wave = waves.table([[1.5, 2.0, k, 1.0, 0.0, 0.3, 0.0]], waves.DEEP)  # A, W, K, COS, SIN, PHASE

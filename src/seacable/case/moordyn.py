@@ -15,7 +15,8 @@ A section starts at a line of dashes around its title; a table's first two lines
 names and units; ``!``, ``#`` and ``%`` start a comment (v2). Conventions carried over: z up with
 z = 0 at the still water (both codes), the seabed at z = -WtrDpth, a negative BA a damping ratio
 (``axial_damping_ratio``) and a positive one a damping coefficient BA [N s]
-(``axial_damping_time`` = BA / EA), Cd on d l and CdAx on pi d l (as seacable's), kBot [Pa/m] and
+(``axial_damping_time`` = BA / EA), Cd on d l and CdAx on pi d l (as seacable's), Ca and CaAx
+(Can and Cat) the added mass normal to and along the line, kBot [Pa/m] and
 cBot [Pa s/m] on the segment's d l (seacable's seabed per metre of line: times d).
 
 Each MoorDyn point becomes a body named ``point<ID>``, each line a lumped-mass line named
@@ -23,15 +24,15 @@ Each MoorDyn point becomes a body named ``point<ID>``, each line a lumped-mass l
 (``Connect``) point a point body with its mass, volume (buoyancy, added mass Ca rho V) and drag
 (CdA), a coupled point (``Coupled``, ``Vessel``) an imposed body held where the deck puts it
 (the motion is the user's to give: its ``x``, ``y``, ``z`` time functions). v1's vessel points
-are fixed in the vessel's frame: they become one imposed body ``vessel`` in v1 decks... held
-still the same way, each point at its deck position.
+are fixed in the vessel's frame: they become one imposed body ``vessel``, held still the same
+way, each point at its deck position.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
-never dropped: bodies, rods and failures (not yet read), tangential added mass (CaAx, Cat),
-vortex-induced vibration (Cl), non-linear or viscoelastic EA, wave and current kinematics
-files, points attached to bodies or turbines, v1 point forces. MoorDyn's own settings that
-seacable replaces (the initial-condition solver's: seacable starts from its statics; the output
-and logging switches: seacable writes every output) are noted in the written case.
+never dropped: bodies, rods and failures (not yet read), vortex-induced vibration (Cl),
+non-linear or viscoelastic EA, wave and current kinematics files, points attached to bodies or
+turbines, v1 point forces. MoorDyn's own settings that seacable replaces (the initial-condition
+solver's: seacable starts from its statics; the output and logging switches: seacable writes
+every output) are noted in the written case.
 """
 
 import math
@@ -339,12 +340,6 @@ class _Deck:
                     "non-linear or viscoelastic EA is not read; give one number"
                 )
             tangential = "CaAx" if v2 else "Cat"
-            if value(tangential) != 0.0:
-                raise CaseError(
-                    f"{self._where('line_types', number, tangential)}: {row[tangential]}: "
-                    "seacable's lumped-mass lines have no tangential added mass; set it to 0 "
-                    "to import the deck (its effect: the line's inertia along itself)"
-                )
             if v2 and len(fields) > 10 and _number(fields[10], "Cl") != 0.0:
                 raise CaseError(
                     f"{self._where('line_types', number, 'Cl')}: {fields[10]}: "
@@ -360,6 +355,8 @@ class _Deck:
                 "drag_coefficient_tangential": value("CdAx" if v2 else "Cdt"),
                 "added_mass_coefficient": value("Ca" if v2 else "Can"),
             }
+            if value(tangential) > 0:
+                line_type["added_mass_coefficient_tangential"] = value(tangential)
             if ba < 0:
                 line_type["axial_damping_ratio"] = -ba
             elif ba > 0:

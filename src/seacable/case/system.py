@@ -295,6 +295,8 @@ class LineType(_Model):
     drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
     friction_coefficient: NonNeg = 0.0  # Richtmyer f
     added_mass_coefficient: NonNeg = 1.0  # Ca, normal
+    # Ca along the line (MoorDyn's CaAx; lumped-mass lines only)
+    added_mass_coefficient_tangential: NonNeg = 0.0
 
     @model_validator(mode="after")
     def _one_damping(self):

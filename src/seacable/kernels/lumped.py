@@ -4,13 +4,14 @@ system's lumped-mass lines (``lines.lumped_mass``; numba kernels).
 Nodes 0..n carry the mass of half of each adjacent segment; segment i joins node i to node i+1.
 Axial law (Kelvin-Voigt, no compression): N_i = max(0, EA (eps_i + alpha d eps_i / dt)),
 eps_i = |r_{i+1} - r_i| / l_i - 1. Per segment, on the velocity of its centre relative to the
-current: normal drag 0.5 rho Cd_n d l |v_n| v_n, tangential drag, normal added mass
-Ca rho pi d^2/4 l (I - t t^T), apparent weight; each shared half and half by its nodes. In
-incident waves (kernels.morison): the drag on the velocity relative to the current and the
-waves' velocity, the Froude-Krylov and added-mass force of the water's acceleration, the
-wetted part under the instantaneous surface, at its centroid (the lever rule). Seabed
-contact per node below z = -depth: a vertical spring-damper and Coulomb friction (regularised)
-along the seabed. Every step is O(n): each free node solves its own 3x3 mass matrix.
+current: normal drag 0.5 rho Cd_n d l |v_n| v_n, tangential drag, added mass
+rho pi d^2/4 l (Ca (I - t t^T) + Ca_t t t^T) (normal and along the segment), apparent
+weight; each shared half and half by its nodes. In incident waves (kernels.morison): the drag
+on the velocity relative to the current and the waves' velocity, the Froude-Krylov and
+added-mass force of the water's acceleration, the wetted part under the instantaneous
+surface, at its centroid (the lever rule). Seabed contact per node below z = -depth: a
+vertical spring-damper and Coulomb friction (regularised) along the seabed. Every step is
+O(n): each free node solves its own 3x3 mass matrix.
 """
 
 import math
@@ -134,8 +135,9 @@ def segment_loads(
             # the water's velocity and acceleration at the wetted part's centroid
             u, acc = _water(wave, t, slack, wet, share_a, y, a, b, wave_depth, wave_stretch,
                             trig, reach, w, ka)  # fmt: skip
-            wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s],
-                                            acc[0], acc[1], acc[2], tx, ty, tz)  # fmt: skip
+            wax, way, waz = morison.inertia(wet * buoyancy[s] / gravity, wet * added_mass[s, 0],
+                                            wet * added_mass[s, 1], acc[0], acc[1], acc[2], tx,
+                                            ty, tz)  # fmt: skip
             rx -= u[0]
             ry -= u[1]
             rz -= u[2]
@@ -158,12 +160,13 @@ def segment_loads(
         w[_F, kb] += fx - px
         w[_F + 1, kb] += fy - py
         w[_F + 2, kb] += fz - pz
-        ma = 0.5 * added_mass[s]
+        ma, mt = 0.5 * added_mass[s, 0], 0.5 * added_mass[s, 1]  # normal, along the segment
         if wet < 1.0:
             # the buoyancy's shares less the halves in wet_weight, and the submerged added mass
             w[_F + 2, ka] += buoyancy[s] * (share_a * wet - 0.5)
             w[_F + 2, kb] += buoyancy[s] * ((1.0 - share_a) * wet - 0.5)
             ma *= wet
+            mt *= wet
         if wave is not None and waves_on and wet > 0.0:
             # the water's inertia force at the wetted part's centroid
             w[_F, ka] += share_a * wax
@@ -172,8 +175,10 @@ def segment_loads(
             w[_F, kb] += (1.0 - share_a) * wax
             w[_F + 1, kb] += (1.0 - share_a) * way
             w[_F + 2, kb] += (1.0 - share_a) * waz
-        m00, m11, m22 = ma * (1.0 - tx * tx), ma * (1.0 - ty * ty), ma * (1.0 - tz * tz)
-        m01, m02, m12 = -ma * tx * ty, -ma * tx * tz, -ma * ty * tz
+        # ma (I - t t^T) + mt t t^T
+        d = mt - ma
+        m00, m11, m22 = ma + d * tx * tx, ma + d * ty * ty, ma + d * tz * tz
+        m01, m02, m12 = d * tx * ty, d * tx * tz, d * ty * tz
         for k in (ka, kb):
             w[_MA, k] += m00
             w[_MA + 1, k] += m01

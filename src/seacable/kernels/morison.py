@@ -77,20 +77,22 @@ def water(wave, t, share, a, b, depth, stretch, trig):
 def at_wetted(wave, t, share, a, b, depth, stretch, displaced, added, tangent, trig):
     """The water's velocity (3) [m/s] at the wetted part's centroid (:func:`water`) and the
     inertia force (3) [N] of its acceleration on the wetted part (displaced and normal added
-    mass [kg], unit ``tangent``)."""
+    mass [kg], unit ``tangent``; the 3D segments have no added mass along them)."""
     u, acc = water(wave, t, share, a, b, depth, stretch, trig)
-    force = inertia(displaced, added, acc[0], acc[1], acc[2], tangent[0], tangent[1], tangent[2])
+    force = inertia(displaced, added, 0.0, acc[0], acc[1], acc[2], tangent[0], tangent[1],
+                    tangent[2])  # fmt: skip
     return u, force
 
 
 @njit(inline="always", **JIT)
-def inertia(displaced, added, ax, ay, az, tx, ty, tz):
+def inertia(displaced, added, added_along, ax, ay, az, tx, ty, tz):
     """Froude-Krylov and added-mass force [N] of the water's acceleration (ax, ay, az)
-    [m/s^2] on a segment of displaced mass ``displaced`` and normal added mass ``added`` [kg]
-    (both of its wetted part), unit tangent (tx, ty, tz)."""
+    [m/s^2] on a segment of displaced mass ``displaced``, normal added mass ``added`` and
+    added mass along it ``added_along`` [kg] (all of its wetted part), unit tangent
+    (tx, ty, tz)."""
     along = ax * tx + ay * ty + az * tz
     return (
-        displaced * ax + added * (ax - along * tx),
-        displaced * ay + added * (ay - along * ty),
-        displaced * az + added * (az - along * tz),
+        displaced * ax + added * (ax - along * tx) + added_along * along * tx,
+        displaced * ay + added * (ay - along * ty) + added_along * along * ty,
+        displaced * az + added * (az - along * tz) + added_along * along * tz,
     )

@@ -316,7 +316,7 @@ def _sections(case, line, rho, extensible=True):
     env = case.environment
     out: dict[str, list] = {k: [] for k in (
         "length", "mass", "stiffness", "damping", "drag_normal", "drag_tangential",
-        "wet_weight", "buoyancy", "added_mass", "bend", "joint_stiffness",
+        "wet_weight", "buoyancy", "added_mass", "added_mass_tangential", "bend", "joint_stiffness",
         "joint_damping")}  # fmt: skip
     for k, section in enumerate(line.sections):
         where = f"lines ({line.name}).sections[{k}]"
@@ -351,6 +351,8 @@ def _sections(case, line, rho, extensible=True):
         out["wet_weight"].append((mass - rho * area * length) * env.gravity)
         out["buoyancy"].append(rho * area * length * env.gravity)
         out["added_mass"].append(ca * rho * area * length)
+        along = 0.0 if env.in_air else t.added_mass_coefficient_tangential
+        out["added_mass_tangential"].append(along * rho * area * length)
         out["bend"].append(np.full(n, t.bending_stiffness))
         # the section's own joints (NaN: from EI, and the line's damping)
         for key in ("joint_stiffness", "joint_damping"):
@@ -424,6 +426,9 @@ def _lines(case, layout, rho, q_at, v_at) -> dict:
              "added_mass": "seg_added_mass"}  # fmt: skip
     for key, name in names.items():
         fields[name] = cat(segs.get(key, []))
+    # (segments, 2): normal and tangential added mass; one row when there is no segment
+    tangential = cat(segs.get("added_mass_tangential", []))
+    fields["seg_added_mass"] = np.column_stack([fields["seg_added_mass"], tangential])
     fields.update(
         node_mass=cat(nodes["mass"]), node_seabed_stiffness=cat(nodes["k"]),
         node_seabed_damping=cat(nodes["c"]), node_bend=cat(nodes["bend"]),
@@ -507,6 +512,12 @@ def _rigid_lines(case, layout, rho, q_at, v_at, tips, body_free) -> dict:
         if line.continues is not None:
             joined.append((r, line, where))
         mass, added = props["mass"], props["added_mass"]
+        if np.any(props["added_mass_tangential"] > 0):
+            raise CaseError(
+                f"{where}.sections: line type of added_mass_coefficient_tangential > 0; the "
+                f"{line.model} model has no added mass along its segments: set it to 0, or "
+                "use model: lumped_mass"
+            )
         if planar and np.any(added > 0):
             raise CaseError(
                 f"{where}.sections: line type of added_mass_coefficient > 0 in water; the planar "

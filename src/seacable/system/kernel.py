@@ -91,7 +91,7 @@ class _ParamsFields(NamedTuple):
     seg_drag_tangential: np.ndarray  # [N s^2/m^2]
     seg_wet_weight: np.ndarray  # positive down [N]
     seg_buoyancy: np.ndarray  # rho g A li [N]
-    seg_added_mass: np.ndarray  # normal [kg]
+    seg_added_mass: np.ndarray  # (segments, 2) normal and tangential [kg]
     node_mass: np.ndarray  # [kg]
     node_seabed_stiffness: np.ndarray  # [N/m]
     node_seabed_damping: np.ndarray  # [N s/m]
