@@ -122,6 +122,25 @@ REFUSED = [
 ]  # fmt: skip
 
 
+def test_moordyns_other_option_names():
+    """Option names MoorDyn's own decks use: WtrDnsty, FrictionCoefficient (the seabed's
+    Coulomb friction), fileIC and FricDamp at its default (noted)."""
+    text = (
+        V2.read_text()
+        .replace("1025.0   rhoW ", "1020.0   WtrDnsty ")
+        .replace(
+            "0.002    dtM",
+            "0.5      FrictionCoefficient\n200      FricDamp\nx.ic     fileIC\n0.002    dtM",
+        )
+    )
+    case, written = moordyn.convert(text)
+    assert case["environment"]["water_density"] == 1020.0
+    assert case["environment"]["seabed"]["friction_coefficient"] == 0.5
+    assert "FricDamp 200: MoorDyn's default" in written and "fileIC x.ic: not used" in written
+    with pytest.raises(seacable.CaseError, match="column FricDamp\\): 50: MoorDyn's friction"):
+        moordyn.read(text.replace("200      FricDamp", "50       FricDamp"))
+
+
 @pytest.mark.parametrize(("old", "new", "message"), REFUSED)
 def test_what_has_no_equivalent_is_refused_by_section_row_and_column(old, new, message):
     text = V2.read_text()

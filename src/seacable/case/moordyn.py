@@ -85,6 +85,7 @@ DEFAULTS = {
     "wtrdpth": 0.0,
     "kbot": 3.0e6,
     "cbot": 3.0e5,
+    "frictioncoefficient": 0.0,
 }
 ALIASES = {
     "gravity": "g",
@@ -93,6 +94,8 @@ ALIASES = {
     "depth": "wtrdpth",
     "kb": "kbot",
     "cb": "cbot",
+    "wtrdnsty": "rhow",
+    "mu": "frictioncoefficient",
 }
 REPLACED = {  # MoorDyn's settings that seacable replaces, with what replaces them
     "dtic": "seacable starts from its statics (start: static)",
@@ -108,8 +111,19 @@ REPLACED = {  # MoorDyn's settings that seacable replaces, with what replaces th
     "writeunits": "an output switch of MoorDyn's (seacable writes every output)",
     "disableoutput": "an output switch of MoorDyn's (seacable writes every output)",
     "disableouttime": "an output switch of MoorDyn's (seacable writes every output)",
+    "fileic": "seacable starts from its statics (start: static)",
+    "timescheme": "seacable's own integrators (rk4 at dtM in the written case)",
+    "dtwave": "a wave kinematics setting (give the waves in the case's environment.waves)",
     "dtout": "simulation.output_interval",
     "tmax": "simulation.duration",
+}
+AT_DEFAULT = {  # MoorDyn's settings seacable takes at their MoorDyn default only
+    "fricdamp": (
+        200.0,
+        "MoorDyn's friction smoothing (seacable regularises below the seabed's slip_speed)",
+    ),
+    "statdynfricscale": (1.0, "a static friction above the dynamic one"),
+    "inertialf": (0.0, "the coupled bodies' inertial reaction"),
 }
 ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
     "wavekin": "wave kinematics (give the waves in the case's environment.waves instead)",
@@ -248,6 +262,8 @@ class _Deck:
                 "damping": _round(options["cbot"] * heaviest),
                 "contact_band": 0.0,
             }
+            if options["frictioncoefficient"] > 0:  # along and across the line alike
+                environment["seabed"]["friction_coefficient"] = options["frictioncoefficient"]
             if len(diameters) > 1:
                 self.notes.append(
                     f"seabed: MoorDyn's kBot and cBot act on each segment's d l; seacable's "
@@ -301,6 +317,14 @@ class _Deck:
                     self.notes.append(f"{name} {value}: {REPLACED[key]}")
             elif key in REPLACED:
                 self.notes.append(f"{name} {value}: not used ({REPLACED[key]})")
+            elif key in AT_DEFAULT:
+                default, what = AT_DEFAULT[key]
+                if _number(value, where) != default:
+                    raise CaseError(
+                        f"{where}: {value}: {what} is not modelled; remove it or "
+                        f"set MoorDyn's default {default:g}"
+                    )
+                self.notes.append(f"{name} {value}: MoorDyn's default, nothing to carry over")
             elif key in ZERO_ONLY:
                 if value not in ("0", "0.0", "-"):
                     raise CaseError(
@@ -309,7 +333,8 @@ class _Deck:
             else:
                 raise CaseError(
                     f"{where}: option {name!r} has no equivalent in seacable; the options read: "
-                    f"{', '.join(['dtM', 'g', 'rhoW', 'WtrDpth', 'kBot', 'cBot', 'dtOut'])} "
+                    "dtM, g, rhoW (WtrDnsty), WtrDpth, kBot, cBot, FrictionCoefficient, dtOut, "
+                    "TMax "
                     "(and MoorDyn's initial-condition and output settings, noted); remove it"
                 )
         return options
