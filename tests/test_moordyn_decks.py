@@ -4,6 +4,7 @@ takes v2's column order for v1's line properties), the conversions of the deck's
 the commented case ``seacable import moordyn`` writes, a deck run as it is, and the refusals
 that name the section, the row and the column."""
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -105,6 +106,45 @@ def test_import_writes_a_commented_case_and_a_deck_runs_as_it_is(tmp_path):
     assert same.exit_code == 2 and "the deck itself" in same.output
     checked = CliRunner().invoke(main, ["validate", str(V1)])
     assert checked.exit_code == 0 and "point2 (point)" in checked.output, checked.output
+
+
+HANGING = """---------------------- LINE TYPES ----------------------
+Name  Diam  Mass/m   EA     BA    EI  Cd   Ca   CdAx  CaAx
+(-)   (m)   (kg/m)   (N)    (-)   (-) (-)  (-)  (-)   (-)
+rope  0.1   8.0503   1.0e9  -0.1  0   0.0  0.0  0.0   0.0
+---------------------- POINTS ----------------------
+ID  Attachment  X     Y    Z       Mass    Volume  CdA  Ca
+(-) (-)         (m)   (m)  (m)     (kg)    (m^3)   (-)  (-)
+1   Fixed       0.0   0.0  -5.0    0       0       0    0
+2   Free        6.0   0.0  -85.0   2.0e4   0       0    0
+---------------------- LINES ----------------------
+ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  Outputs
+(-) (-)       (-)      (-)      (m)       (-)      (-)
+1   rope      1        2        80.0      10       -
+---------------------- OPTIONS ----------------------
+0.05     cfl
+1025.0   WtrDnsty
+300      WtrDpth
+"""  # a rope as heavy as the water it displaces (1025 pi 0.1^2 / 4 = 8.0503 kg/m)
+
+
+def test_a_neutral_rope_and_the_cfl_number():
+    """A rope of no apparent weight has no hanging catenary: it starts straight and the statics
+    hang the clump below the fixed point, the rope stretched by its weight (MoorDyn's default
+    g); cfl sets the step from the axial wave's transit time
+    over a segment, made a whole fraction of the output interval."""
+    case, written = moordyn.convert(HANGING)
+    transit = 8.0 * math.sqrt(8.0503 / 1.0e9)
+    step = case["simulation"]["time_step"]
+    assert 0.999 * 0.05 * transit < step <= 0.05 * transit
+    assert 0.1 / step == pytest.approx(round(0.1 / step), abs=1e-6)
+    assert "CFL 0.05" in written
+    results = seacable.statics(seacable.load_case(case))
+    clump = results.dataset["bodies/point2"].to_dataset().isel(time=0)
+    position = np.array([float(clump[f"position_{c}"]) for c in "xyz"])
+    stretched = 80.0 * (1.0 + 2.0e4 * 9.80665 / 1.0e9)  # the clump's weight all along it
+    assert np.abs(position[:2]).max() < 1e-6
+    assert position[2] == pytest.approx(-5.0 - stretched, abs=1e-4)
 
 
 REFUSED = [

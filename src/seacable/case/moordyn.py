@@ -96,6 +96,7 @@ ALIASES = {
     "cb": "cbot",
     "wtrdnsty": "rhow",
     "mu": "frictioncoefficient",
+    "tscheme": "timescheme",
 }
 REPLACED = {  # MoorDyn's settings that seacable replaces, with what replaces them
     "dtic": "seacable starts from its statics (start: static)",
@@ -131,6 +132,7 @@ ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
     "seafloorfile": "a 3D seafloor (seacable's seabed is flat)",
 }
 DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is coupled to decides)
+OUTPUT_INTERVAL = 0.1  # [s] unless the deck gives dtOut
 
 
 @dataclass
@@ -278,11 +280,24 @@ class _Deck:
                 "motion and every line's tensions and end forces"
             )
         step = options["dtm"]
+        if "cfl" in options and not any(f[1].lower() == "dtm" for _, f in self._option_rows()):
+            step = _round(options["cfl"] * _transit(types, lines))
+            self.notes.append(
+                f"CFL {options['cfl']:g}: time_step {step:g} s, the CFL number times the axial "
+                "wave's transit time over the shortest segment, sqrt(m / EA) l"
+            )
+        interval = options.get("dtout", OUTPUT_INTERVAL)
+        whole = interval / math.ceil(interval / step * (1 - 1e-12))  # at most the step asked
+        if abs(whole - step) > 1e-12 * step:
+            self.notes.append(
+                f"time_step {_round(whole):g} s: {step:g} s made a whole fraction of the "
+                f"{interval:g} s output interval"
+            )
         simulation = {
             "duration": options.get("tmax", DURATION),
-            "output_interval": options.get("dtout", _interval(step)),
+            "output_interval": interval,
             "integrator": "rk4",
-            "time_step": step,
+            "time_step": _round(whole),
         }
         if "tmax" not in options:
             self.notes.append(f"simulation.duration: {DURATION:g} s (a deck carries none)")
@@ -297,6 +312,10 @@ class _Deck:
             "simulation": simulation,
         }
 
+    def _option_rows(self) -> list[tuple[int, list[str]]]:
+        section = self.sections.get("options")
+        return section.rows if section else []
+
     def _options(self) -> dict[str, float]:
         options = dict(DEFAULTS)
         section = self.sections.get("options")
@@ -309,9 +328,9 @@ class _Deck:
             value, name = fields[0], fields[1]
             key = ALIASES.get(name.lower(), name.lower())
             where = self._where("options", number, name)
-            if key in DEFAULTS or key in ("dtout", "tmax"):
+            if key in DEFAULTS or key in ("dtout", "tmax", "cfl"):
                 options[key] = _number(value, where)
-                if key in ("dtm", "dtout", "tmax") and options[key] <= 0:
+                if key in ("dtm", "dtout", "tmax", "cfl") and options[key] <= 0:
                     raise CaseError(f"{where}: {value} must be positive")
                 if key in ("dtout", "tmax"):
                     self.notes.append(f"{name} {value}: {REPLACED[key]}")
@@ -560,6 +579,12 @@ def _const(value: float) -> dict[str, Any]:
     return {"kind": "constant", "value": value}
 
 
-def _interval(step: float) -> float:
-    """An output interval of about 0.1 s that is a whole number of steps."""
-    return step * max(1, round(0.1 / step))
+def _transit(types: dict[str, dict[str, Any]], lines: list[dict[str, Any]]) -> float:
+    """The shortest time [s] an axial wave takes along a segment of ``lines``."""
+    times = []
+    for line in lines:
+        section = line["sections"][0]
+        kind = types[section["type"]]
+        length = section["length"] / section["segments"]
+        times.append(length * math.sqrt(kind["mass_per_length"] / kind["axial_stiffness"]))
+    return min(times)

@@ -54,6 +54,8 @@ def _catenary(p, li, start, end, env, where):
     if uniform is None:
         return None  # not uniform: straight, then the static solve
     total, w, ea, on_seabed = uniform
+    if not w > 0.0:
+        return None  # neutral or buoyant: no hanging catenary; straight, then the static solve
     span_vector = high[:2] - low[:2]
     span = float(np.hypot(*span_vector))
     try:
