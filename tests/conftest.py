@@ -11,6 +11,7 @@ workers start (``pytest_sessionstart``, ``tests/warm_cache.py``).
 """
 
 import hashlib
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -56,6 +57,11 @@ def _drop_stale_numba_cache() -> None:
 
 
 _drop_stale_numba_cache()
+# the tests run on two busy workers (and tests/warm_cache.py in two processes): a compiling
+# helper process (kernels.helper) would only add its import and what both sides compile twice
+# (the suite from a fresh clone, cold: 587 s with helpers, 530 s without); tests/test_helper.py
+# turns it on for itself
+os.environ.setdefault("SEACABLE_COMPILE_HELPER", "0")
 _WARM: dict[str, float] = {}  # how long tests/warm_cache.py took (wall)
 
 
