@@ -192,7 +192,7 @@ def _address(dispatcher: Any, signature: tuple) -> int:
 
 def _signatures(p: kernel.SystemParams) -> tuple[kernel.SystemParams, kernel.SystemWork, dict]:
     """The parameters ``p`` unbound, a workspace of theirs, and the signatures of the copy's
-    entries (``kernel.ENTRIES``) and parts (``evaluation.PARTS``: the evaluate entry's)."""
+    entries (``kernel.ENTRIES``) and parts (``kernel.PARTS``: the evaluate entry's)."""
     bound = p._replace(entries=np.zeros(len(kernel.ENTRIES) + len(kernel.PARTS), dtype=np.int64))
     w = kernel.make_work(bound)
     vector = numba.typeof(np.zeros(1))
@@ -222,8 +222,10 @@ def jobs(p: kernel.SystemParams) -> list[helper.Job]:
     the compiled constructors of its two records, the parts of the evaluation, the outputs.
     Each is compiled apart and cached on disk, so that two processes can share them
     (``kernels.helper``); the entries then link them."""
-    bound, w, signatures = _signatures(p)
-    module = _module(features(p))
+    return _jobs(_module(features(p)), *_signatures(p))
+
+
+def _jobs(module: ModuleType, bound, w, signatures: dict) -> list[helper.Job]:
     evaluate = signatures["evaluate"]
     return [
         (records._pack, records.pack_signature(bound)),
@@ -245,10 +247,11 @@ def variant(p: kernel.SystemParams) -> Variant:
         if flags in _variants:
             return _variants[flags]
         module = _module(flags)
-        bound, _, signatures = _signatures(p)
+        bound, w, signatures = _signatures(p)
         with jit.announced(f"the evaluation of {describe(flags)}", "about 10 to 30 s"):
             wanted = not helper.cached((module.evaluate, signatures["evaluate"]))
-            helper.compile_all(jobs(bound), (__name__, "jobs", (bound,)), wanted)
+            todo = _jobs(module, bound, w, signatures)  # the helper's: jobs(bound)
+            helper.compile_all(todo, (__name__, "jobs", (bound,)), wanted)
             parts = [_address(getattr(module, name), signatures["evaluate"])
                      if module.USED[name] else 0 for name in kernel.PARTS]  # fmt: skip
             entries = [_address(getattr(module, name), signatures[name])
