@@ -1,0 +1,104 @@
+"""A MoorDyn deck run by MoorDyn itself (PyPI ``moordyn``) and by seacable, same deck, same
+segments: the fairlead forces of the statics within 0.5 % (MoorDyn's dynamic relaxation against
+seacable's Newton statics), and the fairlead tension time series under an imposed surge within
+1 % of its peak (MoorDyn stepped through its coupling interface, seacable's imposed bodies
+moved by the same time functions)."""
+
+import math
+import os
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import seacable
+from seacable.case import moordyn as deck_reader
+
+md = pytest.importorskip("moordyn")
+
+DECK = Path(__file__).parent / "data" / "moordyn_v2_spread.txt"
+COUPLED = ("point4", "point5", "point6")  # the deck's coupled points, one line to each
+SURGE, PERIOD, DURATION, COUPLING_STEP = 5.0, 20.0, 30.0, 0.02
+
+
+@contextmanager
+def _quiet():
+    """MoorDyn's library prints its progress on the process's standard output."""
+    saved = os.dup(1)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    try:
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(devnull)
+        os.close(saved)
+
+
+def _start(case: dict) -> np.ndarray:
+    bodies = {b["name"]: b for b in case["bodies"]}
+    return np.concatenate([[bodies[n][k]["value"] for k in "xyz"] for n in COUPLED])
+
+
+def _surge(x0: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Every coupled point moved along x by SURGE (1 - cos w t): from rest, at rest again."""
+    w = 2 * math.pi / PERIOD
+    x, v = x0.copy(), np.zeros_like(x0)
+    x[0::3] += SURGE * (1 - math.cos(w * t))
+    v[0::3] = SURGE * w * math.sin(w * t)
+    return x, v
+
+
+def _fairlead_forces(dataset, time=slice(None)) -> np.ndarray:
+    """(time, line) magnitude of each line's force on its coupled point."""
+    out = []
+    for k in (1, 2, 3):
+        group = dataset[f"lines/line{k}"].to_dataset().isel(time=time)
+        out.append(np.sqrt(sum(group[f"to_force_{c}"].values ** 2 for c in "xyz")))
+    return np.array(out).T
+
+
+def test_statics_match_moordyn_on_the_same_deck():
+    case = deck_reader.read(DECK)
+    x0 = _start(case)
+    with _quiet():
+        system = md.Create(str(DECK))
+        md.Init(system, x0, np.zeros_like(x0))
+        theirs = np.reshape(md.Step(system, x0, np.zeros_like(x0), 0.0, 0.002), (-1, 3))
+        md.Close(system)
+    ours = _fairlead_forces(seacable.statics(seacable.load_case(DECK)).dataset, 0)
+    share = ours / np.linalg.norm(theirs, axis=1) - 1
+    assert np.abs(share).max() < 5e-3, share
+
+
+def test_fairlead_tensions_under_an_imposed_surge_match_moordyn():
+    case = deck_reader.read(DECK)
+    x0 = _start(case)
+    times, theirs = [0.0], []
+    with _quiet():
+        system = md.Create(str(DECK))
+        md.Init(system, *_surge(x0, 0.0))
+        points = [md.GetPoint(system, k) for k in (4, 5, 6)]
+        theirs.append([np.linalg.norm(md.GetPointForce(p)) for p in points])
+        steps = round(DURATION / COUPLING_STEP)
+        for k in range(steps):
+            t = k * COUPLING_STEP
+            forces = md.Step(system, *_surge(x0, t), t, COUPLING_STEP)
+            times.append((k + 1) * COUPLING_STEP)
+            theirs.append(np.linalg.norm(np.reshape(forces, (-1, 3)), axis=1))
+        md.Close(system)
+    for body in case["bodies"]:
+        if body["name"] in COUPLED:
+            offset = body["x"]["value"] + SURGE
+            body["x"] = {"kind": "sine", "amplitude": SURGE, "period": PERIOD,
+                         "phase": -math.pi / 2, "offset": offset}  # fmt: skip
+    case["simulation"]["duration"] = DURATION
+    results = seacable.simulate(seacable.load_case(case))
+    time = results.dataset["lines/line1"].to_dataset()["time"].values
+    ours = _fairlead_forces(results.dataset)
+    theirs_at = np.array([np.interp(time, times, np.array(theirs)[:, k]) for k in range(3)]).T
+    peak = theirs_at.max(axis=0)
+    assert peak[0] > 1.15 * theirs_at[0, 0]  # the surge loads line 1 by more than 15 %
+    error = np.abs(ours - theirs_at).max(axis=0) / peak
+    assert error.max() < 1e-2, error
