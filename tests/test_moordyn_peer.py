@@ -59,25 +59,34 @@ def _fairlead_forces(dataset, time=slice(None)) -> np.ndarray:
     return np.array(out).T
 
 
-def test_statics_match_moordyn_on_the_same_deck():
-    case = deck_reader.read(DECK)
+def _deck(folder: Path) -> Path:
+    """The deck copied where MoorDyn may write its output files (beside the deck)."""
+    copy = folder / DECK.name
+    copy.write_text(DECK.read_text())
+    return copy
+
+
+def test_statics_match_moordyn_on_the_same_deck(tmp_path):
+    deck = _deck(tmp_path)
+    case = deck_reader.read(deck)
     x0 = _start(case)
     with _quiet():
-        system = md.Create(str(DECK))
+        system = md.Create(str(deck))
         md.Init(system, x0, np.zeros_like(x0))
         theirs = np.reshape(md.Step(system, x0, np.zeros_like(x0), 0.0, 0.002), (-1, 3))
         md.Close(system)
-    ours = _fairlead_forces(seacable.statics(seacable.load_case(DECK)).dataset, 0)
+    ours = _fairlead_forces(seacable.statics(seacable.load_case(deck)).dataset, 0)
     share = ours / np.linalg.norm(theirs, axis=1) - 1
     assert np.abs(share).max() < 5e-3, share
 
 
-def test_fairlead_tensions_under_an_imposed_surge_match_moordyn():
-    case = deck_reader.read(DECK)
+def test_fairlead_tensions_under_an_imposed_surge_match_moordyn(tmp_path):
+    deck = _deck(tmp_path)
+    case = deck_reader.read(deck)
     x0 = _start(case)
     times, theirs = [0.0], []
     with _quiet():
-        system = md.Create(str(DECK))
+        system = md.Create(str(deck))
         md.Init(system, *_surge(x0, 0.0))
         points = [md.GetPoint(system, k) for k in (4, 5, 6)]
         theirs.append([np.linalg.norm(md.GetPointForce(p)) for p in points])
