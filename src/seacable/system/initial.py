@@ -6,6 +6,7 @@ Jacobian whatever the size). Interior velocities go linearly, along the line, fr
 velocity to the other's."""
 
 import logging
+import math
 
 import numpy as np
 from scipy.linalg import solve_banded
@@ -19,6 +20,7 @@ from seacable.lines.lumped_mass import T_ROW
 from seacable.system import kernel
 from seacable.system.assemble import BuiltSystem
 from seacable.system.geometry import MOST_STRAIN
+from seacable.system.pseudo_time import PseudoTime
 
 log = logging.getLogger(__name__)
 
@@ -47,6 +49,17 @@ def uniform_line(p, li: int, low_z: float) -> tuple[float, float, float, bool] |
 
 
 def _catenary(p, li, start, end, env, where):
+    try:
+        return _uniform_nodes(p, li, start, end)
+    except catenary.CatenaryError as exc:
+        raise CaseError(f"{where}.initial: {exc}") from None
+
+
+def _uniform_nodes(p, li, start, end, slack_only: bool = False):
+    """The nodes of lumped line ``li`` from ``start`` to ``end`` on its elastic catenary, or,
+    when it has an end on the seabed and is longer than its span and rise, laid slack on the
+    seabed (``_laid``); None when it is not uniform (``uniform_line``), has no weight in
+    water, or (``slack_only``) is not laid. Raises catenary.CatenaryError."""
     n, s0 = p.line_n[li], p.line_seg[li]
     lengths = p.seg_length[s0 : s0 + n]
     low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
@@ -58,23 +71,95 @@ def _catenary(p, li, start, end, env, where):
         return None  # neutral or buoyant: no hanging catenary; straight, then the static solve
     span_vector = high[:2] - low[:2]
     span = float(np.hypot(*span_vector))
-    try:
-        h, v_f = catenary.solve(span, float(high[2] - low[2]), total, w, ea, on_seabed)
-    except catenary.CatenaryError as exc:
-        raise CaseError(f"{where}.initial: {exc}") from None
-    s_high = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
-    x, z = catenary.profile(total - s_high, h, v_f, total, w, ea, on_seabed)
-    direction = span_vector / span if span > 0 else np.zeros(2)
-    nodes = np.empty((n + 1, 3))
-    nodes[:, 0] = low[0] + x * direction[0]
-    nodes[:, 1] = low[1] + x * direction[1]
-    nodes[:, 2] = low[2] + z
+    rise = float(high[2] - low[2])
+    if on_seabed and total >= span + rise:
+        nodes = _laid(lengths[::-1] if flip else lengths, low, high)
+    elif slack_only:
+        return None
+    else:
+        h, v_f = catenary.solve(span, rise, total, w, ea, on_seabed)
+        # arc length of each node from the low end (lengths run from the line's start)
+        s_low = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
+        x, z = catenary.profile(s_low, h, v_f, total, w, ea, on_seabed)
+        direction = span_vector / span if span > 0 else np.zeros(2)
+        nodes = np.column_stack([low[0] + x * direction[0], low[1] + x * direction[1],
+                                 low[2] + z])  # fmt: skip
     if on_seabed:
         # nodes lying on the seabed start at the penetration that carries their weight
         stiffness_per_length = p.node_seabed_stiffness[p.line_node[li]] / (0.5 * lengths[0])
-        lying = (np.abs(z) < 1e-9) & (np.arange(n + 1) < n)
+        lying = (np.abs(nodes[:, 2] - low[2]) < 1e-9) & (np.arange(n + 1) > 0)
         nodes[lying, 2] -= lk.seabed_resting_depth(w, stiffness_per_length, p.seabed_band)
-    return nodes[::-1] if not flip else nodes
+    return nodes[::-1] if flip else nodes
+
+
+def uniform_shapes(p, y: np.ndarray, time: float = 0.0, slack_only: bool = False):
+    """``y`` with every uniform lumped line's nodes on its closed-form shape between its ends
+    as they are at ``y`` (``_uniform_nodes``: the elastic catenary, or laid slack on the
+    seabed); with ``slack_only``, only the lines laid slack: chain lying slack, whose shape the
+    statics do not determine (any shape that pushes no segment is in balance on a frictionless
+    seabed), and whose nodes, carried along with a moved end, would be pushed (the linear axial
+    law of the static solves would hold a body off with it). The other lines' nodes, and
+    those with no closed form, as they are."""
+    w = kernel.make_work(p)
+    kernel.rhs(time, y, p, w, np.zeros_like(y))
+    out = y.copy()
+    for li in range(len(p.line_n)):
+        start, end = w.ppos[p.line_from[li]], w.ppos[p.line_to[li]]
+        try:
+            nodes = _uniform_nodes(p, li, start, end, slack_only)
+        except catenary.CatenaryError:
+            continue
+        if nodes is not None:
+            out[p.line_q[li] : p.line_q[li] + 3 * (p.line_n[li] - 1)] = nodes[1:-1].ravel()
+    return out
+
+
+def _laid(lengths, low, high):
+    """The nodes (from the lower end ``low``, on the seabed) of a line too long to reach
+    ``high`` as a catenary (longer than its span and rise): it hangs straight down from the
+    upper end, its last hanging segment reaches the seabed towards the lower end, and the rest
+    lies on the seabed as a polygon inscribed in a circular arc from the lower end, bulging to
+    its left: every segment at its unstretched length, the lying ones slack and at rest (the
+    linear axial law of the static solves pushes back on a segment shorter than that)."""
+    n = len(lengths)
+    nodes = np.empty((n + 1, 3))
+    nodes[n], k, depth = high, n, 0.0
+    rise = float(high[2] - low[2])
+    while k > 1 and depth + lengths[k - 1] < rise:
+        depth += lengths[k - 1]
+        k -= 1
+        nodes[k] = high - [0.0, 0.0, depth]
+    horizontal = low[:2] - high[:2]
+    span = float(np.hypot(*horizontal))
+    toward = horizontal / span if span > 0.0 else np.array([-1.0, 0.0])
+    reach = math.sqrt(max(lengths[k - 1] ** 2 - (rise - depth) ** 2, 0.0))
+    foot = high[:2] + min(reach, span) * toward  # the touch-down node
+    nodes[k - 1] = [foot[0], foot[1], low[2]]
+    chord = foot - low[:2]
+    distance = float(np.hypot(*chord))
+    lying = lengths[: k - 1]
+    if k - 1 < 2 or lying.sum() <= distance * (1.0 + 1e-12):
+        s = np.concatenate([[0.0], np.cumsum(lying)]) / max(lying.sum(), 1e-300)
+        nodes[:k, :2] = low[:2] + s[:, None] * chord[None, :]
+        nodes[:k, 2] = low[2]
+        return nodes
+    from scipy.optimize import brentq  # here: its import is slow (docs/architecture.md)
+
+    def angle(radius):  # the arc's angle when each segment is a chord of a circle this wide
+        return 2.0 * np.arcsin(np.minimum(lying / (2.0 * radius), 1.0)).sum()
+
+    smallest = 0.5 * float(lying.max())
+    closed = brentq(lambda r: angle(r) - 2 * math.pi, smallest, 1e3 * lying.sum())
+    radius = brentq(lambda r: 2 * r * math.sin(angle(r) / 2) - distance, closed,
+                    1e9 * lying.sum(), xtol=1e-12 * lying.sum())  # fmt: skip
+    half = np.arcsin(lying / (2.0 * radius))
+    turn = angle(radius) / 2 - (2.0 * np.cumsum(half) - half)  # each chord's heading
+    along = chord / distance if distance > 0.0 else -toward
+    left = np.array([-along[1], along[0]])
+    steps = lying[:, None] * (np.cos(turn)[:, None] * along + np.sin(turn)[:, None] * left)
+    nodes[1:k, :2] = low[:2] + np.cumsum(steps, axis=0)
+    nodes[0, :2], nodes[:k, 2] = low[:2], low[2]
+    return nodes
 
 
 def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
@@ -407,8 +492,13 @@ def _static_lines(linear, y0, iterations, time, newton=None):
     longer = newton(linear, direct, 2 * iterations, time)
     if _settled(linear, longer, time):
         return longer, None
+    # pseudo-transient steps: chain lying slack (a line longer than its span and rise) holds
+    # nothing across it, where Newton's matrix is singular
+    relaxed = _newton_at(linear, y0, 10 * iterations, time, pseudo=True)
+    if _settled(linear, relaxed, time):
+        return relaxed, None
     tried = [(_unbalance(linear, state, time), k, state)
-             for k, state in enumerate((direct, y, longer))]  # fmt: skip
+             for k, state in enumerate((direct, y, longer, relaxed))]  # fmt: skip
     left, _, best = min(tried)
     return best, left
 
@@ -452,7 +542,12 @@ def settle_lines(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0)
     with the axial law ``slack`` (kernels.lumped.segment_loads: 0 linear); Newton with central
     differences."""
     stage = p._replace(slack_allowed=slack)
-    return _newton(stage, y0, iterations, time, central=True)
+    out = _newton(stage, y0, iterations, time, central=True)
+    if _settled(stage, out, time):
+        return out
+    # chain lying slack holds nothing across it: Newton's matrix is singular there
+    relaxed = _newton_at(stage, out, 10 * iterations, time, central=True, pseudo=True)
+    return relaxed if _unbalance(stage, relaxed, time) < _unbalance(stage, out, time) else out
 
 
 def pushed(p, w) -> float:
@@ -485,13 +580,42 @@ def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
     return _newton_at(p, y0, iterations, time, central)
 
 
-def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False):
+def _banded_jacobian(residual, y, index, r, central: bool, half: int) -> np.ndarray:
+    """The lines' interior nodes' block-tridiagonal Jacobian in banded storage, by forward or
+    ``central`` differences in 9 colours of columns (see ``_newton_at``)."""
+    m = len(index)
+    ab = np.zeros((2 * half + 1, m))
+    for colour in range(9):
+        columns = np.arange(colour, m, 9)
+        step = (1e-6 if central else 1e-7) * np.maximum(1.0, np.abs(y[index[columns]]))
+        trial = y.copy()
+        trial[index[columns]] += step
+        if central:
+            dr = residual(trial)
+            trial[index[columns]] -= 2.0 * step
+            dr = 0.5 * (dr - residual(trial))
+        else:
+            dr = residual(trial) - r
+        # each column's rows: its node's and its two neighbours' (9, those inside)
+        rows = 3 * (columns // 3 - 1)[:, None] + np.arange(9)[None, :]
+        cols = np.broadcast_to(columns[:, None], rows.shape)
+        inside = (rows >= 0) & (rows < m)
+        rows, cols = rows[inside], cols[inside]
+        steps = np.broadcast_to(step[:, None], inside.shape)[inside]
+        ab[half + rows - cols, cols] = dr[rows] / steps
+    return ab
+
+
+def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False,
+               pseudo: bool = False):  # fmt: skip
     """The lines' interior nodes in balance by Newton, its block-tridiagonal Jacobian by forward
     differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6; two residuals per
     colour, and a stop once the step is at the positions' rounding: the residual's floor).
     Forward differences err by EA h / (2 l^2) on a taut segment's transverse stiffness T / l
     (17 % for a 2e8 N wire at 9 kN in 1.3 m segments) and Newton then creeps; ``static_lines``
-    keeps them (see there), ``settle_lines`` takes central ones."""
+    keeps them (see there), ``settle_lines`` takes central ones. ``pseudo``: the steps of
+    pseudo-transient continuation (system.pseudo_time), for chain lying slack on the seabed,
+    which holds nothing across it (Newton's matrix is singular there)."""
     index = _interior(p, p.line_q)
     m = len(index)
     if m == 0:
@@ -509,39 +633,36 @@ def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False):
     best, best_norm = y, np.linalg.norm(r)
     scale = float(np.abs(r).max()) + 1e-6
     half = 5  # block-tridiagonal with 3 x 3 blocks: 5 diagonals either side
+    clock: PseudoTime | None = None
     for _ in range(iterations):
         if np.abs(r).max() < max(1e-12 * scale, 1e-10 * p.gravity):
             break
-        ab = np.zeros((2 * half + 1, m))
-        for colour in range(9):
-            columns = np.arange(colour, m, 9)
-            step = (1e-6 if central else 1e-7) * np.maximum(1.0, np.abs(y[index[columns]]))
-            trial = y.copy()
-            trial[index[columns]] += step
-            if central:
-                dr = residual(trial)
-                trial[index[columns]] -= 2.0 * step
-                dr = 0.5 * (dr - residual(trial))
-            else:
-                dr = residual(trial) - r
-            # each column's rows: its node's and its two neighbours' (9, those inside)
-            rows = 3 * (columns // 3 - 1)[:, None] + np.arange(9)[None, :]
-            cols = np.broadcast_to(columns[:, None], rows.shape)
-            inside = (rows >= 0) & (rows < m)
-            rows, cols = rows[inside], cols[inside]
-            steps = np.broadcast_to(step[:, None], inside.shape)[inside]
-            ab[half + rows - cols, cols] = dr[rows] / steps
+        ab = _banded_jacobian(residual, y, index, r, central, half)
         if not np.isfinite(ab).all():
             break  # the lines went where their loads are not finite: keep the best state met
+        if pseudo:
+            if clock is None:  # a step moves a node by a metre at most, at first
+                clock = PseudoTime(r, 1.0, 1e-10 * float(np.abs(ab[half]).max()))
+            ab[half] -= clock.shift
         delta = solve_banded((half, half), ab, -r)
-        # the seabed's contact is not smooth: when no shorter step lowers the residual, the
-        # full step is taken anyway, and the best state met is kept
-        for damping in (1.0, 0.5, 0.25, 0.1, 1.0):
+        damping = 1.0
+        if clock is not None:
             trial = y.copy()
-            trial[index] += damping * delta
+            trial[index] += delta
             rt = residual(trial)
-            if np.linalg.norm(rt) < np.linalg.norm(r):
-                break
+            if not np.all(np.isfinite(rt)) or np.linalg.norm(rt) > np.linalg.norm(r):
+                clock.rejected()
+                continue
+            clock.accepted(float(np.linalg.norm(r)), float(np.linalg.norm(rt)))
+        else:
+            # the seabed's contact is not smooth: when no shorter step lowers the residual,
+            # the full step is taken anyway, and the best state met is kept
+            for damping in (1.0, 0.5, 0.25, 0.1, 1.0):
+                trial = y.copy()
+                trial[index] += damping * delta
+                rt = residual(trial)
+                if np.linalg.norm(rt) < np.linalg.norm(r):
+                    break
         y, r = trial, rt
         if np.linalg.norm(r) < best_norm:
             best, best_norm = y, np.linalg.norm(r)

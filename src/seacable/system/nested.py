@@ -26,7 +26,7 @@ from scipy.sparse.linalg import splu
 
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
-from seacable.system.initial import pushed, settle_lines
+from seacable.system.initial import pushed, settle_lines, uniform_shapes
 
 
 class BodyForces:
@@ -194,35 +194,69 @@ def bodies_newton(
     nodes = coords.kind == 2
 
     def settled(state):
-        out = settle_lines(p, state, slack=0, time=time)
+        out = settle_lines(p, uniform_shapes(p, state, time, slack_only=True), slack=0,
+                           time=time)  # fmt: skip
         r = forces(out)
-        return out, r, forces.body_accelerations(), pushed(p, forces.w)
+        result = out, r, forces.body_accelerations(), pushed(p, forces.w)
+        if np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity and not result[3]:
+            return result
+        # a line lifted from the seabed, or laid on it, in this step: from its closed form
+        out = settle_lines(p, uniform_shapes(p, state, time), slack=0, time=time)
+        r = forces(out)
+        again = out, r, forces.body_accelerations(), pushed(p, forces.w)
+        worse = not np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity or again[3] > result[3]
+        return result if worse else again
 
-    def better(trial, now):
+    def better(trial, now, plateau):
         """Its lines settled (1e-5 g), not pushed harder than now (``initial.pushed``: a step
         that lowers a buoy lays chain on the seabed, straight and pushed, and a pushed chain
-        can hold the buoy off), the bodies' forces lower."""
+        can hold the buoy off), the bodies' forces lower, or no higher on a ``plateau`` (a
+        body on lines lying slack, which do not pull harder until they lift)."""
         r_trial, r_now = trial[1], now[1]
+        lower = np.linalg.norm(r_trial[bodies]) < np.linalg.norm(r_now[bodies]) * (
+            1.0 + 1e-9 if plateau else 1.0)  # fmt: skip
         return (np.all(np.isfinite(r_trial)) and np.abs(r_trial[nodes]).max(initial=0.0)
-                < 1e-5 * p.gravity and trial[3] <= now[3]
-                and np.linalg.norm(r_trial[bodies]) < np.linalg.norm(r_now[bodies]))  # fmt: skip
+                < 1e-5 * p.gravity and trial[3] <= now[3] and lower)  # fmt: skip
 
     y, r, a, compression = settled(y)
     for _ in range(iterations):
         if not np.all(np.isfinite(r)) or np.abs(a).max(initial=0.0) < tolerance:
             break
-        try:
-            step = splu(jacobian(forces, y)).solve(-r)
-        except RuntimeError:
+        step, plateau = _step(jacobian(forces, y), r, bodies, limit)
+        if step is None:
             break
         largest = float(np.max(np.abs(step[bodies]) / limit))
         if largest > 1.0:
             step /= largest
         for fraction in (1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125):
             attempt = settled(apply(y, coords, fraction * step))
-            if better(attempt, (y, r, a, compression)):
+            if better(attempt, (y, r, a, compression), plateau):
                 break
         else:
             break
         y, r, a, compression = attempt
     return None if compression else y
+
+
+def _step(jac: sparse.csc_matrix, r: np.ndarray, bodies: np.ndarray, limit: np.ndarray):
+    """Newton's step; where its matrix is singular or nearly (a step beyond a hundred step
+    limits; a body on lines that all lie slack has no
+    stiffness until they lift: chain lying slack none across itself), the step of the matrix
+    shifted on its diagonal as pseudo-transient continuation shifts it (system.pseudo_time):
+    each body coordinate by its force over its step limit, which moves a free body that far
+    along its force, each node by 1e-9 of the largest node stiffness. With whether it was
+    shifted; None when even that fails."""
+    try:
+        step = splu(jac).solve(-r)
+        if np.all(np.isfinite(step)) and np.all(np.abs(step[bodies]) < 100.0 * limit):
+            return step, False
+    except RuntimeError:
+        pass
+    diagonal = np.abs(jac.diagonal())
+    shift = np.full(len(r), 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
+    shift[bodies] = np.maximum(np.abs(r[bodies]) / limit, 1e-9 * diagonal[bodies])
+    try:
+        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
+    except RuntimeError:
+        return None, True
+    return (step if np.all(np.isfinite(step)) else None), True

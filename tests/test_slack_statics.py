@@ -1,0 +1,101 @@
+"""Statics with lines lying slack on the seabed (longer than their span and rise): the laid
+start shape, a platform pushed off by a steady force until its upwind line lies slack, and a
+platform whose lines all lie slack at the start, against MoorPy's catenaries at the offset
+where they balance the force (surge only in both)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+import seacable
+from seacable.system import initial
+
+mp = pytest.importorskip("moorpy")
+from scipy.optimize import brentq  # noqa: E402
+
+EXAMPLE = Path(__file__).parents[1] / "examples" / "platform_three_catenary_lines.yaml"
+FAIRLEADS = ((20.0, 0.0), (-10.0, 17.3205), (-10.0, -17.3205))
+
+
+def _platform(radius: float, force: float) -> dict:
+    """The example's platform in surge only, anchors at ``radius`` [m], a steady ``force``
+    along x [N]."""
+    case = yaml.safe_load(EXAMPLE.read_text())
+    for k, body in enumerate(case["bodies"][:3]):
+        angle = 2 * np.pi * k / 3
+        body["position"] = [radius * np.cos(angle), radius * np.sin(angle), -200.0]
+    platform = case["bodies"][3]
+    platform["dofs"] = ["surge"]
+    platform["external forces"][-1]["force_x"] = force
+    return case
+
+
+def _moorpy_offset(radius: float, force: float) -> tuple[float, list[float]]:
+    """The surge at which MoorPy's three catenaries pull ``force`` back, and the fairlead
+    tensions there."""
+
+    def pull(x):
+        ms = mp.System(depth=200.0, rho=1025.0, g=9.81)
+        ms.setLineType(name="chain", lineType={"d_vol": 0.137, "m": 126.0, "EA": 5.8e8})
+        for k, (fx, fy) in enumerate(FAIRLEADS):
+            angle = 2 * np.pi * k / 3
+            ms.addPoint(1, [radius * np.cos(angle), radius * np.sin(angle), -200.0])
+            ms.addPoint(1, [fx + x, fy, -15.0])
+            ms.addLine(700.0, "chain", pointA=2 * k + 1, pointB=2 * k + 2)
+        ms.initialize()
+        return -sum(line.fB[0] for line in ms.lineList), [line.TB for line in ms.lineList]
+
+    x = brentq(lambda x: pull(x)[0] - force, 20.0, 300.0, xtol=1e-6)
+    return x, pull(x)[1]
+
+
+def _ours(case: dict) -> tuple[float, np.ndarray]:
+    ds = seacable.statics(seacable.load_case(case)).dataset
+    x = float(ds["bodies/platform"].to_dataset().isel(time=0)["position_x"])
+    tensions = []
+    for k in (1, 2, 3):
+        g = ds[f"lines/line_{k}"].to_dataset().isel(time=0)
+        tensions.append(np.linalg.norm([float(g[f"to_force_{c}"]) for c in "xyz"]))
+    return x, np.array(tensions)
+
+
+def _tensions_agree(ours: np.ndarray, theirs: list[float]) -> None:
+    """The lines that pull (lines 2 and 3) within 0.3 %; the slack line's fairlead holds the
+    weight of the chain hanging straight down, within half a 20 m segment's (the lumped
+    chain's last hanging segment reaches the seabed aslant)."""
+    assert np.abs(ours[1:] / np.array(theirs[1:]) - 1).max() < 3e-3, (ours, theirs)
+    assert abs(ours[0] - theirs[0]) < 0.5 * 20.0 * 1087.9, (ours, theirs)
+
+
+def test_a_line_longer_than_its_span_and_rise_starts_laid_on_the_seabed():
+    """Straight down from the upper end, then a polygon on the seabed whose every segment has
+    its unstretched length (none pushed, none pulled)."""
+    lengths = np.full(35, 20.0)
+    low, high = np.array([480.0, 0.0, -200.0]), np.array([20.0, 0.0, -15.0])
+    nodes = initial._laid(lengths, low, high)
+    assert np.allclose(nodes[0], low) and np.allclose(nodes[-1], high)
+    assert np.allclose(np.linalg.norm(np.diff(nodes, axis=0), axis=1), lengths, rtol=1e-9)
+    on_seabed = np.isclose(nodes[:, 2], -200.0)
+    assert on_seabed[:26].all() and not on_seabed[27:].any()
+    assert np.allclose(nodes[27:, :2], high[:2])  # the hanging part straight down
+    assert np.abs(nodes[:, 1]).max() > 50.0  # the rest bulges aside on the seabed
+
+
+def test_a_platform_pushed_until_its_upwind_line_lies_slack_matches_moorpy():
+    """1 MN on the example's platform: its upwind line, 700 m, ends 600 m from its anchor's
+    foot at 135 m of offset, lying slack; Newton over the bodies reshapes it at each pose."""
+    x, tensions = _ours(_platform(600.0, 1.0e6))
+    x_mp, tensions_mp = _moorpy_offset(600.0, 1.0e6)
+    assert abs(x - x_mp) < 0.05, (x, x_mp)
+    _tensions_agree(tensions, tensions_mp)
+
+
+def test_a_platform_on_lines_that_all_lie_slack_matches_moorpy():
+    """Anchors 480 m out: every 700 m line lies slack at the start, nothing holds the platform
+    in surge until it has gone some 100 m; 100 kN pushes it 204 m."""
+    x, tensions = _ours(_platform(480.0, 1.0e5))
+    x_mp, tensions_mp = _moorpy_offset(480.0, 1.0e5)
+    assert abs(x - x_mp) < 0.35, (x, x_mp)  # 0.28 m at 35 segments a line, 0.06 m at 70
+    _tensions_agree(tensions, tensions_mp)
