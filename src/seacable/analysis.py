@@ -1,6 +1,8 @@
 """Analyses built on a case's dynamics: the natural modes of a system of bodies and lines about
 its static equilibrium, and its statics."""
 
+import tempfile
+
 import numpy as np
 import xarray as xr
 
@@ -8,9 +10,18 @@ from seacable.case import loader
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.kernels.status import Status
-from seacable.results import STATUS_COMPLETE, STATUS_DIVERGED, Results, _Sink, provenance
+from seacable.results import (
+    STATUS_COMPLETE,
+    STATUS_DIVERGED,
+    Results,
+    _Sink,
+    provenance,
+    restore_case,
+)
 from seacable.system import model as system_model
 from seacable.system import statics as system_statics
+from seacable.system import utilisation
+from seacable.system.utilisation import SectionLoad
 
 
 def system_modes(case: SystemCase, count: int = 12) -> xr.Dataset:
@@ -161,3 +172,19 @@ def statics(case: SystemCase, output=None) -> Results:
     if status != Status.OK:
         return sink.finish(STATUS_DIVERGED, "the equilibrium's forces are not finite", {})
     return sink.finish(STATUS_COMPLETE, "static equilibrium", {})
+
+
+def line_utilisation(results: Results, case: SystemCase | None = None) -> list[SectionLoad]:
+    """Each line section's largest tension in ``results`` (over its output times and the
+    section's segments) and its share of the line type's breaking strength (None without
+    one). ``case``: the case the results are of; by default the one they were run from
+    (their ``case`` attribute, with the files it read)."""
+    if case is None:
+        with tempfile.TemporaryDirectory() as folder:
+            case = loader.load_case(restore_case(results.dataset.attrs, folder))
+    tensions = {}
+    for name, node in results.dataset["lines"].children.items():
+        ds = node.to_dataset()
+        if "tension" in ds:
+            tensions[name] = ds["tension"].values
+    return utilisation.section_loads(case, tensions)

@@ -17,6 +17,7 @@ from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
 from seacable.case import legacy, loader, moordyn
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
+from seacable.system import utilisation
 
 # exit codes (README, "Command line"): 0 done; 1 a bug in seacable; 2 the input (case file,
 # output path, no equilibrium, a file that cannot be read or written); 3 the run diverged;
@@ -114,7 +115,15 @@ def run(case_file: str, output: str | None, progress: bool) -> None:
         _fail(f"{exc}\npartial results (status 'diverged'): {output}", EXIT_DIVERGED)
     except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
+    _utilisation(results, case)
     click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+def _utilisation(results, case) -> None:
+    """Each line section with a breaking strength: its largest tension, and what share."""
+    if isinstance(case, SystemCase) and any(t.breaking_strength for t in case.line_types):
+        for row in utilisation.report(analysis.line_utilisation(results, case)):
+            click.echo(row)
 
 
 @main.command(name="compile")
@@ -229,7 +238,8 @@ def statics(case_file: str, output: str | None) -> None:
     """Static equilibrium of the system of CASE_FILE: every body's pose and every line's end
     tensions, printed and written."""
     output = output or str(Path(case_file).with_suffix(".statics.nc"))
-    results = seacable.statics(seacable.load_case(case_file), output=output)
+    case = seacable.load_case(case_file)
+    results = seacable.statics(case, output=output)
     tree = results.dataset
     for name, node in tree["bodies"].children.items():
         ds = node.to_dataset().isel(time=0)
@@ -251,6 +261,7 @@ def statics(case_file: str, output: str | None) -> None:
                        f"{ends[1] / 1e3:.4g} kN (to)")  # fmt: skip
         else:
             click.echo(f"line {name}: tension {ds['tension'].item() / 1e3:.4g} kN")
+    _utilisation(results, case)
     click.echo(f"statics written: {output}")
 
 

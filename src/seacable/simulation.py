@@ -26,6 +26,7 @@ from seacable.results import (
 )
 from seacable.system import kernel as system_kernel
 from seacable.system import model as system_model
+from seacable.system import utilisation
 
 log = logging.getLogger(__name__)
 
@@ -82,15 +83,16 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     """Everything a run does before its first step, and ``seacable validate`` with it: the
     case's form, the system built (tables read, geometry checked, the statics it starts from
     solved), the step checked against the fastest motion, values that look like the wrong
-    unit (``case.units``), inputs that act on nothing (``case.system.ignored_inputs``).
-    Returns the built system and the warnings, joined (None when there are none). Raises
-    CaseError (or StaticsError)."""
+    unit (``case.units``), inputs that act on nothing (``case.system.ignored_inputs``), line
+    sections whose tension at the start exceeds ``utilisation_limit`` of their breaking
+    strength (``system.utilisation``). Returns the built system and the warnings, joined (None
+    when there are none). Raises CaseError (or StaticsError)."""
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
     sim = case.simulation
     warnings = [*unit_warnings(case), *ignored_inputs(case), stability.rounded_step(sim),
-                _dense_warning(sim, system),
-                stability.rk4_check(sim, system)]  # fmt: skip
+                _dense_warning(sim, system), stability.rk4_check(sim, system),
+                *utilisation.start_warnings(case, system.params, system.y0)]  # fmt: skip
     return system, "; ".join(w for w in warnings if w) or None
 
 

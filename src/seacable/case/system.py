@@ -297,6 +297,8 @@ class LineType(_Model):
     added_mass_coefficient: NonNeg = 1.0  # Ca, normal
     # Ca along the line (MoorDyn's CaAx; lumped-mass lines only)
     added_mass_coefficient_tangential: NonNeg = 0.0
+    # minimum breaking load [N]: results give each section's largest tension over it
+    breaking_strength: Pos | None = None
 
     @model_validator(mode="after")
     def _one_damping(self):
@@ -483,6 +485,10 @@ class SystemCase(_Model):
     # included; system.statics), or "as_given", bodies where the case puts them, each lumped
     # line at its static shape between them (a free decay from an offset)
     start: Literal["static", "as_given"] = "static"
+    # the share of a line type's breaking strength that its tension at the start may reach
+    # before validate and every run warn (an intact mooring's static tensions are commonly
+    # kept under a fifth to a third of it)
+    utilisation_limit: Pos = 1.0
     simulation: Simulation
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)

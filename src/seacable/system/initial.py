@@ -550,7 +550,7 @@ def settle_lines(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0)
     return relaxed if _unbalance(stage, relaxed, time) < _unbalance(stage, out, time) else out
 
 
-def pushed(p, w) -> float:
+def pushed(p, w, share: float = 1e-6) -> float:
     """How hard [N] the most compressed segment of the lumped lines is pushed at the last
     evaluation into the workspace ``w`` under the linear axial law (0 when none is, or by no
     more than a strain of 1e-8 or 1e-6 of the largest tension). That law, which the static
@@ -561,7 +561,7 @@ def pushed(p, w) -> float:
     segments = np.concatenate([np.arange(p.line_node[li], p.line_node[li] + p.line_n[li])
                                for li in range(len(p.line_n))])  # fmt: skip
     tension = w.nodes[T_ROW, segments]
-    allowed = max(1e-8 * float(np.max(p.seg_stiffness)), 1e-6 * float(tension.max()))
+    allowed = max(1e-8 * float(np.max(p.seg_stiffness)), share * float(tension.max()))
     compression = -float(tension.min())
     return compression if compression > allowed else 0.0
 

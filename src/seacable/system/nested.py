@@ -28,6 +28,11 @@ from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
 from seacable.system.initial import pushed, settle_lines, uniform_shapes
 
+# how hard a segment may be pushed in the nested Newton's balances, as a share of the largest
+# tension: the linear axial law's push of chain lying slack in many short segments, which a
+# step can leave at tens of newtons where the lines pull tens of kilonewtons
+PUSH = 1e-3
+
 
 class BodyForces:
     """The nested Newton's residual at a state (module docstring); after a call, ``ydot`` holds
@@ -186,7 +191,7 @@ def bodies_newton(
     are below ``tolerance`` [m/s^2, rad/s^2]. Each step is cut to ``limit`` (per body
     coordinate [m, rad]) and halved until the lines settle (from a step of metres their Newton
     can fail) and the bodies' forces drop. Returns the last state, or None when a segment is
-    pushed there (beyond a strain of 1e-8 and 1e-6 of the largest tension): a balance of the
+    pushed there (beyond a strain of 1e-8 and PUSH of the largest tension): a balance of the
     linear law that the physical one does not have."""
     p = p._replace(slack_allowed=0)
     forces = BodyForces(p, coords, time)
@@ -194,16 +199,16 @@ def bodies_newton(
     nodes = coords.kind == 2
 
     def settled(state):
-        out = settle_lines(p, uniform_shapes(p, state, time, slack_only=True), slack=0,
-                           time=time)  # fmt: skip
+        out = settle_lines(p, uniform_shapes(p, state, time), slack=0, time=time)
         r = forces(out)
-        result = out, r, forces.body_accelerations(), pushed(p, forces.w)
+        result = out, r, forces.body_accelerations(), pushed(p, forces.w, PUSH)
         if np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity and not result[3]:
             return result
         # a line lifted from the seabed, or laid on it, in this step: from its closed form
-        out = settle_lines(p, uniform_shapes(p, state, time), slack=0, time=time)
+        out = settle_lines(p, uniform_shapes(p, state, time, slack_only=True), slack=0,
+                           time=time)  # fmt: skip
         r = forces(out)
-        again = out, r, forces.body_accelerations(), pushed(p, forces.w)
+        again = out, r, forces.body_accelerations(), pushed(p, forces.w, PUSH)
         worse = not np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity or again[3] > result[3]
         return result if worse else again
 

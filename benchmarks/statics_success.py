@@ -1,0 +1,107 @@
+"""How often the statics start: a family of random spread moorings, each solved by
+``seacable.statics`` from its case as a user writes it (default settings), the success rate
+printed with every failure's message.
+
+Each mooring (seeded, reproducible): a platform free in surge, sway and yaw (a rigid body; its
+heave, roll and pitch held) in water 50 to 1,000 m deep, on 3 to 8 lines spread around it with
+some scatter, fairleads 10 to 40 m out and 5 to 20 m down, anchors 0.5 to 5 depths beyond; each
+line chain, wire or polyester of its own diameter, its length from nearly taut (2 % of the way
+from the straight distance) to beyond slack (1.2 times span plus rise: a heap on the seabed),
+in segments of 1 to 50 m (log-uniform; at most 200 a line), pushed by a steady horizontal force
+of up to 1.5 times the weight in water of one line's suspended part over the depth, in any
+direction. The target (issue 39): 100 %.
+
+Run: python benchmarks/statics_success.py [--count N] [--seed S]
+Exit status 0 whatever the rate.
+"""
+
+import argparse
+import math
+import time
+
+import numpy as np
+
+import seacable
+
+TYPES = {  # name: (mass per length / d^2 [kg/m^3], EA / d^2 [N/m^2], Cd)
+    "chain": (19.9e3, 85.4e9, 2.4),
+    "wire": (5.0e3, 45.0e9, 1.2),
+    "polyester": (1.1e3, 1.2e9, 1.2),  # in water 295 d^2 kg/m: lighter than chain, not buoyant
+}
+
+
+def mooring(rng: np.random.Generator, k: int) -> dict:
+    depth = float(rng.uniform(50.0, 1000.0))
+    count = int(rng.integers(3, 9))
+    line_types, lines = [], []
+    bodies = []
+    points = {}
+    suspended = 0.0
+    for i in range(count):
+        angle = 2 * math.pi * i / count + float(rng.normal(0.0, 0.15))
+        radius = float(rng.uniform(10.0, 40.0))
+        draft = float(rng.uniform(5.0, 20.0))
+        fair = np.array([radius * math.cos(angle), radius * math.sin(angle), -draft])
+        span = float(rng.uniform(0.5, 5.0)) * depth
+        anchor = fair[:2] + span * np.array([math.cos(angle), math.sin(angle)])
+        rise = depth - draft
+        straight = math.hypot(span, rise)
+        slack = 1.2 * (span + rise)
+        length = straight + float(rng.uniform(0.02, 1.0)) * (slack - straight)
+        kind = str(rng.choice(list(TYPES)))
+        diameter = float(rng.uniform(0.05, 0.15))
+        density, stiffness, cd = TYPES[kind]
+        segment = float(np.exp(rng.uniform(math.log(1.0), math.log(50.0))))
+        segments = int(min(200, max(2, round(length / segment))))
+        name = f"type{i}"
+        line_types.append({"name": name, "diameter": diameter,
+                           "mass_per_length": density * diameter**2,
+                           "axial_stiffness": stiffness * diameter**2,
+                           "drag_coefficient_normal": cd})  # fmt: skip
+        wet = 9.81 * (density * diameter**2 - 1025.0 * math.pi * diameter**2 / 4)
+        suspended = max(suspended, abs(wet) * rise)
+        bodies.append({"name": f"anchor{i}", "type": "fixed",
+                       "position": [float(anchor[0]), float(anchor[1]), -depth]})  # fmt: skip
+        points[f"fairlead{i}"] = [float(v) for v in fair]
+        section = {"type": name, "length": length, "segments": segments}
+        lines.append({"name": f"line{i}", "model": "lumped_mass", "from": f"anchor{i}",
+                      "to": f"platform.fairlead{i}", "sections": [section]})  # fmt: skip
+    heading = float(rng.uniform(0.0, 2 * math.pi))
+    force = float(rng.uniform(0.0, 1.5)) * suspended
+    bodies.append({
+        "name": "platform", "type": "rigid", "position": [0.0, 0.0, 0.0], "mass": 1.0e7,
+        "inertia": [1e10, 1e10, 1e10], "dofs": ["surge", "sway", "yaw"], "points": points,
+        "external forces": [{"model": "applied", "force_x": force * math.cos(heading),
+                             "force_y": force * math.sin(heading)}],
+    })  # fmt: skip
+    return {
+        "name": f"random mooring {k}",
+        "environment": {"water_depth": depth, "seabed": {"stiffness": 3.0e5}},
+        "bodies": bodies, "line_types": line_types, "lines": lines,
+        "simulation": {"duration": 10.0, "output_interval": 1.0},
+    }  # fmt: skip
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--count", type=int, default=200)
+    parser.add_argument("--seed", type=int, default=39)
+    args = parser.parse_args()
+    rng = np.random.default_rng(args.seed)
+    failures = []
+    start = time.perf_counter()
+    for k in range(args.count):
+        case = mooring(rng, k)
+        try:
+            seacable.statics(seacable.load_case(case))
+        except Exception as exc:  # every failure is counted and printed
+            failures.append((k, f"{type(exc).__name__}: {exc}"))
+            print(f"mooring {k}: {failures[-1][1][:300]}", flush=True)
+    took = time.perf_counter() - start
+    done = args.count - len(failures)
+    print(f"statics found for {done} of {args.count} random moorings "
+          f"({100.0 * done / args.count:.1f} %), seed {args.seed}, {took:.0f} s")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()
