@@ -4,11 +4,11 @@ printed with every failure's message.
 
 Each mooring (seeded, reproducible): a platform free in surge, sway and yaw (a rigid body; its
 heave, roll and pitch held) in water 50 to 1,000 m deep, on 3 to 8 lines spread around it with
-some scatter, fairleads 10 to 40 m out and 5 to 20 m down, anchors 0.5 to 5 depths beyond; each
-line chain, wire or polyester of its own diameter, its length from nearly taut (2 % of the way
-from the straight distance) to beyond slack (1.2 times span plus rise: a heap on the seabed),
-in segments of 1 to 50 m (log-uniform; at most 200 a line), pushed by a steady horizontal force
-of up to 1.5 times the weight in water of one line's suspended part over the depth, in any
+some scatter, fairleads 10 to 40 m out and 5 to 20 m down, anchors 0.5 to 5 depths beyond;
+its lines all of one type (chain, wire or polyester, 50 to 150 mm), each of its own length, from
+nearly taut (2 % of the way from the straight distance) to beyond slack (1.2 times span plus
+rise: a heap on the seabed), in segments of 1 to 50 m (log-uniform; at most 200 a line), pushed
+by a steady horizontal force of up to the weight in water of one line's suspended part, in any
 direction. The target (issue 39): 100 %.
 
 Run: python benchmarks/statics_success.py [--count N] [--seed S]
@@ -33,9 +33,14 @@ TYPES = {  # name: (mass per length / d^2 [kg/m^3], EA / d^2 [N/m^2], Cd)
 def mooring(rng: np.random.Generator, k: int) -> dict:
     depth = float(rng.uniform(50.0, 1000.0))
     count = int(rng.integers(3, 9))
-    line_types, lines = [], []
-    bodies = []
-    points = {}
+    kind = str(rng.choice(list(TYPES)))
+    diameter = float(rng.uniform(0.05, 0.15))
+    density, stiffness, cd = TYPES[kind]
+    line_types = [{"name": kind, "diameter": diameter, "mass_per_length": density * diameter**2,
+                   "axial_stiffness": stiffness * diameter**2,
+                   "drag_coefficient_normal": cd}]  # fmt: skip
+    wet = 9.81 * (density - 1025.0 * math.pi / 4) * diameter**2  # [N/m]
+    lines, bodies, points = [], [], {}
     suspended = 0.0
     for i in range(count):
         angle = 2 * math.pi * i / count + float(rng.normal(0.0, 0.15))
@@ -48,26 +53,17 @@ def mooring(rng: np.random.Generator, k: int) -> dict:
         straight = math.hypot(span, rise)
         slack = 1.2 * (span + rise)
         length = straight + float(rng.uniform(0.02, 1.0)) * (slack - straight)
-        kind = str(rng.choice(list(TYPES)))
-        diameter = float(rng.uniform(0.05, 0.15))
-        density, stiffness, cd = TYPES[kind]
         segment = float(np.exp(rng.uniform(math.log(1.0), math.log(50.0))))
         segments = int(min(200, max(2, round(length / segment))))
-        name = f"type{i}"
-        line_types.append({"name": name, "diameter": diameter,
-                           "mass_per_length": density * diameter**2,
-                           "axial_stiffness": stiffness * diameter**2,
-                           "drag_coefficient_normal": cd})  # fmt: skip
-        wet = 9.81 * (density * diameter**2 - 1025.0 * math.pi * diameter**2 / 4)
-        suspended = max(suspended, abs(wet) * rise)
+        suspended = max(suspended, wet * rise)
         bodies.append({"name": f"anchor{i}", "type": "fixed",
                        "position": [float(anchor[0]), float(anchor[1]), -depth]})  # fmt: skip
         points[f"fairlead{i}"] = [float(v) for v in fair]
-        section = {"type": name, "length": length, "segments": segments}
+        section = {"type": kind, "length": length, "segments": segments}
         lines.append({"name": f"line{i}", "model": "lumped_mass", "from": f"anchor{i}",
                       "to": f"platform.fairlead{i}", "sections": [section]})  # fmt: skip
     heading = float(rng.uniform(0.0, 2 * math.pi))
-    force = float(rng.uniform(0.0, 1.5)) * suspended
+    force = float(rng.uniform(0.0, 1.0)) * suspended
     bodies.append({
         "name": "platform", "type": "rigid", "position": [0.0, 0.0, 0.0], "mass": 1.0e7,
         "inertia": [1e10, 1e10, 1e10], "dofs": ["surge", "sway", "yaw"], "points": points,

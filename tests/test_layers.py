@@ -8,7 +8,7 @@ PACKAGE = Path(__file__).parent.parent / "src" / "seacable"
 # module (or subpackage) -> seacable modules it may import
 LAYER = {
     "cli": 14, "cli_ships": 13,
-    "viz": 12, "ahead": 12,
+    "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
     "simulation": 11, "analysis": 11, "stability": 11,
     "case.loader": 10, "results": 10,

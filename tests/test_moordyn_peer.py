@@ -111,3 +111,34 @@ def test_fairlead_tensions_under_an_imposed_surge_match_moordyn(tmp_path):
     assert peak[0] > 1.15 * theirs_at[0, 0]  # the surge loads line 1 by more than 15 %
     error = np.abs(ours - theirs_at).max(axis=0) / peak
     assert error.max() < 1e-2, error
+
+
+def test_the_coupling_interface_steps_as_moordyn_does(tmp_path):
+    """The same driver loop calls MoorDyn's Step and seacable's ``Coupling.step`` with the
+    fairleads' motion at each coupling step's start: the forces they return agree within 1 %
+    of the peak, and match seacable's own run of the same motion as time functions."""
+    from seacable.coupling import Coupling
+
+    deck = _deck(tmp_path)
+    x0 = _start(deck_reader.read(deck))
+    ours = Coupling(deck)
+    assert ours.bodies == list(COUPLED) and ours.size == 9
+    with _quiet():
+        system = md.Create(str(deck))
+        md.Init(system, *_surge(x0, 0.0))
+        first = ours.init(*_surge(x0, 0.0))
+        theirs, mine = [], []
+        for k in range(round(DURATION / COUPLING_STEP)):
+            t = k * COUPLING_STEP
+            theirs.append(md.Step(system, *_surge(x0, t), t, COUPLING_STEP))
+            mine.append(ours.step(*_surge(x0, t), t, COUPLING_STEP))
+        md.Close(system)
+    theirs, mine = np.array(theirs), np.array(mine)
+    assert first.shape == (9,) and np.abs(first[0::3]).max() > 1e5
+    magnitude = [np.linalg.norm(a.reshape(-1, 3, 3), axis=2) for a in (theirs, mine)]
+    error = np.abs(magnitude[1] - magnitude[0]).max(axis=0) / magnitude[0].max(axis=0)
+    assert error.max() < 1e-2, error
+    with pytest.raises(ValueError, match="the last step ended at"):
+        ours.step(*_surge(x0, 0.0), 0.0, COUPLING_STEP)
+    with pytest.raises(ValueError, match="9 finite values expected"):
+        ours.step(np.zeros(6), np.zeros(6), ours.t, COUPLING_STEP)

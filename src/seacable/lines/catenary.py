@@ -47,7 +47,7 @@ def solve(span: float, rise: float, length: float, w: float, ea: float, seabed: 
     guesses = [(0.5 * w * length, 0.5 * w * length + max(rise, 0) * w)]
     guesses += [
         (w * length * f, w * g)
-        for f in (0.001, 0.01, 0.1, 1.0, 5.0)
+        for f in (0.001, 0.01, 0.1, 1.0, 5.0, 1e-4, 1e-5, 1e-6)  # the last: nearly slack
         for g in (max(rise, 1.0), 0.5 * length, length, 2.0 * length)
     ]
     from scipy.optimize import fsolve  # here: its import is slow (docs/architecture.md)
