@@ -99,3 +99,22 @@ def test_a_platform_on_lines_that_all_lie_slack_matches_moorpy():
     x_mp, tensions_mp = _moorpy_offset(480.0, 1.0e5)
     assert abs(x - x_mp) < 0.35, (x, x_mp)  # 0.28 m at 35 segments a line, 0.06 m at 70
     _tensions_agree(tensions, tensions_mp)
+
+
+BUOY = Path(__file__).parents[1] / "examples" / "buoy_three_lines_clump_weight.yaml"
+
+
+@pytest.mark.parametrize("segment", [3.0, 2.0])
+def test_the_three_line_buoy_at_short_segments(segment):
+    """The buoy's statics failed at 3 m and 2 m segments (and converged at 2.5, 4, 5 and 10):
+    now found at both, the buoy within 5 cm of where 10 m segments put it."""
+
+    def buoy(length: float) -> np.ndarray:
+        case = yaml.safe_load(BUOY.read_text())
+        for line in case["lines"]:
+            for section in line["sections"]:
+                section["segments"] = max(1, round(section["length"] / length))
+        ds = seacable.statics(seacable.load_case(case)).dataset["bodies/buoy"].to_dataset()
+        return np.array([float(ds[f"position_{c}"].isel(time=0)) for c in "xyz"])
+
+    assert np.abs(buoy(segment) - buoy(10.0)).max() < 0.05

@@ -72,7 +72,9 @@ def _uniform_nodes(p, li, start, end, slack_only: bool = False):
     span_vector = high[:2] - low[:2]
     span = float(np.hypot(*span_vector))
     rise = float(high[2] - low[2])
-    if on_seabed and total >= span + rise:
+    # slack: longer than span plus rise, its hanging part stretched by its own weight (w h^2 /
+    # 2 EA: 6 cm for 235 m of 80 mm chain, beyond which no catenary with tension joins them)
+    if on_seabed and total + w * rise**2 / (2.0 * ea) >= span + rise:
         nodes = _laid(lengths[::-1] if flip else lengths, low, high)
     elif slack_only:
         return None
@@ -587,7 +589,10 @@ def _banded_jacobian(residual, y, index, r, central: bool, half: int) -> np.ndar
     ab = np.zeros((2 * half + 1, m))
     for colour in range(9):
         columns = np.arange(colour, m, 9)
-        step = (1e-6 if central else 1e-7) * np.maximum(1.0, np.abs(y[index[columns]]))
+        if central:  # in metres (see _newton_at)
+            step = np.full(len(columns), 1e-6)
+        else:
+            step = 1e-7 * np.maximum(1.0, np.abs(y[index[columns]]))
         trial = y.copy()
         trial[index[columns]] += step
         if central:
@@ -609,8 +614,13 @@ def _banded_jacobian(residual, y, index, r, central: bool, half: int) -> np.ndar
 def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False,
                pseudo: bool = False):  # fmt: skip
     """The lines' interior nodes in balance by Newton, its block-tridiagonal Jacobian by forward
-    differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6; two residuals per
-    colour, and a stop once the step is at the positions' rounding: the residual's floor).
+    differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6 m; two residuals per
+    colour, and a stop once the step is at the positions' rounding: the residual's floor). The
+    central steps are in metres, not shares of the coordinates: a node 400 m from the origin
+    moved by 4e-4 m, a share of 1e-6, crossed the seabed's contact of light line (polyester
+    lying on a 3e5 Pa seabed sinks by 0.1 mm) and Newton lost its way
+    (benchmarks/statics_success.py); the forward ones stay shares (with steps of 1e-7 m,
+    ``static_lines`` found the pushed balance of a lumped tow, tests/test_upgrade_gaps.py).
     Forward differences err by EA h / (2 l^2) on a taut segment's transverse stiffness T / l
     (17 % for a 2e8 N wire at 9 kN in 1.3 m segments) and Newton then creeps; ``static_lines``
     keeps them (see there), ``settle_lines`` takes central ones. ``pseudo``: the steps of
