@@ -247,9 +247,9 @@ def _step(jac: sparse.csc_matrix, r: np.ndarray, bodies: np.ndarray, limit: np.n
     """Newton's step; where its matrix is singular or nearly (a step beyond a hundred step
     limits; a body on lines that all lie slack has no
     stiffness until they lift: chain lying slack none across itself), the step of the matrix
-    shifted on its diagonal as pseudo-transient continuation shifts it (system.pseudo_time):
-    each body coordinate by its force over its step limit, which moves a free body that far
-    along its force, each node by 1e-9 of the largest node stiffness. With whether it was
+    shifted on its diagonal as a step of pseudo-transient continuation is (system.pseudo_time):
+    each body coordinate by its force over its step limit, which moves a free body that
+    far along its force, each node by 1e-9 of the largest node stiffness. With whether it was
     shifted; None when even that fails."""
     try:
         step = splu(jac).solve(-r)

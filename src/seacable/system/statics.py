@@ -13,7 +13,6 @@ velocities) about any state; ``mooring_stiffness`` the 6x6 stiffness of a body's
 from dataclasses import replace
 
 import numpy as np
-from scipy.sparse import identity
 from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
@@ -38,7 +37,6 @@ from seacable.system.coordinates import (
 )
 from seacable.system.frequency import fastest_frequency
 from seacable.system.initial import settle_lines, steady_velocities
-from seacable.system.pseudo_time import PseudoTime
 
 
 class StaticsError(SeacableError):
@@ -100,15 +98,6 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     r = residual(followed)
     if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
         return followed
-    # on the linear axial law, smooth where chain lies slack (see initial.pushed), as the
-    # nested Newton's lines are
-    linear = Residual(p._replace(slack_allowed=0), coords, time)
-    pseudo = _pseudo(built, coords, sparsity, linear, y, tolerance * scale)
-    r = residual(pseudo)
-    nodes = np.flatnonzero(coords.kind == 2)
-    r[nodes] = linear(pseudo)[nodes]
-    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-        return pseudo
     relaxed = relax.relax(
         built, y, residual, 1e-3 * scale, fastest_frequency(built, y, time)[0], time
     )
@@ -264,48 +253,6 @@ def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
                 break
         y, r = trial, rt
         if np.all(np.isfinite(r)) and np.linalg.norm(r) < best_norm:
-            best, best_norm = y, float(np.linalg.norm(r))
-    return best
-
-
-def _pseudo(built, coords, sparsity, residual, y, tolerance, iterations: int = 400):
-    """Pseudo-transient continuation (system.pseudo_time) over every coordinate, its first
-    steps as long as ``_step_limit``'s: a body on slack lines lying on the seabed, which hold
-    it in no direction until it has gone far enough to lift them (Newton's matrix singular
-    there), and chain lying slack, which holds nothing across it. The best state met."""
-    structure, colours = sparsity
-    r = residual(y)
-    best, best_norm = y, float(np.linalg.norm(r))
-    if not np.all(np.isfinite(r)):
-        return best
-    limit = _step_limit(built, coords)
-    clock = None
-    for _ in range(iterations):
-        if np.abs(r).max() < tolerance:
-            break
-        jac = fd_jacobian(residual, y, coords, structure, colours, r)
-        if clock is None:
-            diagonal = float(np.abs(jac.diagonal()).max())
-            clock = PseudoTime(r / limit, 1.0, 1e-12 * diagonal)
-        shifted = (jac - clock.shift * identity(jac.shape[0], format="csc")).tocsc()
-        try:
-            step = splu(shifted).solve(-r)
-        except RuntimeError:
-            clock.rejected()
-            continue
-        largest = float(np.max(np.abs(step) / limit))
-        if largest > 1.0:
-            step /= largest
-        trial = apply(y, coords, step)
-        rt = residual(trial)
-        # the path in pseudo-time need not lower the residual at every step (the lines
-        # follow a body moved far): a step is taken back only when it raises it tenfold
-        if not np.all(np.isfinite(rt)) or np.linalg.norm(rt) > 10.0 * np.linalg.norm(r):
-            clock.rejected()
-            continue
-        clock.accepted(float(np.linalg.norm(r)), float(np.linalg.norm(rt)))
-        y, r = trial, rt
-        if np.linalg.norm(r) < best_norm:
             best, best_norm = y, float(np.linalg.norm(r))
     return best
 
