@@ -23,6 +23,7 @@ imposed motions of the case's time functions (waves, current, applied loads) kee
 absolute time.
 """
 
+import logging
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -38,6 +39,8 @@ from seacable.simulation import prepare
 from seacable.system import model as system_model
 from seacable.system.assemble import BuiltSystem
 from seacable.timefunctions import SENTINEL
+
+log = logging.getLogger(__name__)
 
 
 class Coupling:
@@ -113,7 +116,9 @@ class Coupling:
         for name, fields in held:
             k = next(i for i, b in enumerate(case.bodies) if b.name == name)
             case.bodies[k] = case.bodies[k].model_copy(update=fields)
-        system, _ = prepare(case)
+        system, warning = prepare(case)
+        if warning:
+            log.warning(warning)  # as a run says it
         p = system.params
         index = {b.name: i for i, b in enumerate(case.bodies)}
         self.channels = [int(p.body_channel[index[name]]) for name in self.bodies]
