@@ -7,7 +7,7 @@ The residual (``BodyForces``): a body's free degree of freedom its generalized f
 the settled lines the bodies' forces have the Jacobian J_bb - J_bn J_nn^-1 J_nb (the lines'
 stiffness condensed on the bodies, b the bodies' and n the nodes' coordinates): one sparse
 solve of the whole Jacobian gives that Newton step for the bodies and, for the nodes, how they
-follow it to first order, from where ``initial.settle_lines`` starts (a few iterations; carried
+follow it to first order, from where ``line_balance.settle_lines`` starts (a few iterations; carried
 rigidly, a stiff chain's nodes would start metres out of length).
 
 The Jacobian (``jacobian``) by central differences (forward ones give a stiff line's transverse
@@ -26,7 +26,8 @@ from scipy.sparse.linalg import splu
 
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
-from seacable.system.initial import pushed, settle_lines, uniform_shapes
+from seacable.system.initial import uniform_shapes
+from seacable.system.line_balance import pushed, settle_lines
 
 # how hard a segment may be pushed in the nested Newton's balances, as a share of the largest
 # tension: the linear axial law's push of chain lying slack in many short segments, which a
@@ -213,7 +214,7 @@ def bodies_newton(
         return result if worse else again
 
     def better(trial, now, plateau):
-        """Its lines settled (1e-5 g), not pushed harder than now (``initial.pushed``: a step
+        """Its lines settled (1e-5 g), not pushed harder than now (``line_balance.pushed``: a step
         that lowers a buoy lays chain on the seabed, straight and pushed, and a pushed chain
         can hold the buoy off), the bodies' forces lower, or no higher on a ``plateau`` (a
         body on lines lying slack, which do not pull harder until they lift)."""

@@ -28,7 +28,8 @@ from seacable.forces import servo
 from seacable.forces.kinds import SERVO
 from seacable.system import assemble, coordinates, kernel, statics
 from seacable.system.assemble import BuiltSystem
-from seacable.system.initial import initial_state, static_lines
+from seacable.system.initial import initial_state
+from seacable.system.line_balance import static_lines
 
 GAIN_LIMIT = 2.0  # the schema's largest gain a
 TOLERANCE = 1e-13  # of the equilibria: K is a difference of holding forces 1e4 times larger

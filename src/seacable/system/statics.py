@@ -36,7 +36,7 @@ from seacable.system.coordinates import (
     tangents,
 )
 from seacable.system.frequency import fastest_frequency
-from seacable.system.initial import settle_lines, steady_velocities
+from seacable.system.line_balance import settle_lines, steady_velocities
 
 
 class StaticsError(SeacableError):
@@ -60,7 +60,7 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     First Newton over every coordinate at once (sparse Jacobian); when that fails (a stiff
     line's linearised nodes go far astray in a step that moves its ends metres), Newton over
     the free bodies' degrees of freedom (``system.nested``), each lumped line settled at its
-    static shape between its ends for every trial pose (``initial.settle_lines``, the linear
+    static shape between its ends for every trial pose (``line_balance.settle_lines``, the linear
     axial law: chain lying on a frictionless seabed has one shape): it does not lose its way
     in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy; last,
     dynamic relaxation (``system.relax``: the system let move, its kinetic energy taken away,
