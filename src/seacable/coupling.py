@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from seacable.bodies import kinematics
 from seacable.case import loader
 from seacable.case.system import Constant, ImposedBody, SystemCase
 from seacable.errors import CaseError, SimulationDiverged
@@ -129,7 +130,7 @@ class Coupling:
             coefs = np.concatenate([coefs, np.zeros((coefs.shape[0], 1, 4))], axis=1)
         motion = p.body_motion.copy()
         for b, size in zip(self.index, self.sizes, strict=True):
-            motion[b] = 1 if size == 6 else 0  # kinematics.TURNS, MOVES
+            motion[b] = kinematics.TURNS if size == 6 else kinematics.MOVES
         p = p._replace(tf_breaks=np.ascontiguousarray(breaks),
                        tf_coefs=np.ascontiguousarray(coefs), body_motion=motion)  # fmt: skip
         built = replace(system, params=p)

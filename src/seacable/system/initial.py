@@ -26,9 +26,13 @@ log = logging.getLogger(__name__)
 
 def end_points(built: BuiltSystem, y: np.ndarray):
     """Positions and velocities of every point at t = 0."""
-    p = built.params
+    return _points(built.params, y, 0.0)
+
+
+def _points(p, y: np.ndarray, time: float):
+    """Positions and velocities of every point at ``time``."""
     w = kernel.make_work(p)
-    kernel.rhs(0.0, y, p, w, np.zeros_like(y))
+    kernel.rhs(time, y, p, w, np.zeros_like(y))
     return w.ppos.copy(), w.pvel.copy()
 
 
@@ -101,11 +105,10 @@ def uniform_shapes(p, y: np.ndarray, time: float = 0.0, slack_only: bool = False
     seabed), and whose nodes, carried along with a moved end, would be pushed (the linear axial
     law of the static solves would hold a body off with it). The other lines' nodes, and
     those with no closed form, as they are."""
-    w = kernel.make_work(p)
-    kernel.rhs(time, y, p, w, np.zeros_like(y))
+    ppos, _ = _points(p, y, time)
     out = y.copy()
     for li in range(len(p.line_n)):
-        start, end = w.ppos[p.line_from[li]], w.ppos[p.line_to[li]]
+        start, end = ppos[p.line_from[li]], ppos[p.line_to[li]]
         try:
             nodes = _uniform_nodes(p, li, start, end, slack_only)
         except catenary.CatenaryError:
