@@ -152,8 +152,8 @@ REFUSED = [
      "chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.0   0.8",
      "line 7 (LINE TYPES, column Cl): 0.8: vortex-induced vibration is not modelled"),
     ("---------------------- LINES ---",
-     "---------------------- BODIES ---\n---------------------- LINES ---",
-     "section BODIES is not read yet"),
+     "---------------------- RODS ---\n---------------------- LINES ---",
+     "section RODS is not read yet"),
     ("0.002    dtM", "1.0      foo       - a setting\n0.002    dtM", "option 'foo' has no"),
     ("0.002    dtM", "1        WaveKin\n0.002    dtM", "column WaveKin): '1': wave kinematics"),
     ("4    Coupled", "4    Body1  ", "column Attachment): 'Body1'"),
@@ -181,9 +181,64 @@ def test_moordyns_other_option_names():
         moordyn.read(text.replace("200      FricDamp", "50       FricDamp"))
 
 
-@pytest.mark.parametrize(("old", "new", "message"), REFUSED)
-def test_what_has_no_equivalent_is_refused_by_section_row_and_column(old, new, message):
-    text = V2.read_text()
+FREE_BODY = Path(__file__).parent / "data" / "moordyn_v2_free_body.txt"
+BODY_ROW = (
+    "1    Free       0.0   0.0   -60.0  0    0    0    4.0e4   0     2.0e5     80.0    20.0  1.0"
+)
+REFUSED_BODIES = [
+    (BODY_ROW, BODY_ROW.replace("Free ", "CpldPin"), "column Attachment): 'CpldPin'"),
+    (BODY_ROW, BODY_ROW.replace("  0     2.0e5", "  0|1   2.0e5"),
+     "column CG): '0|1': give 1 or 3"),
+    (BODY_ROW, BODY_ROW.replace(" 1.0", " 1|2"), "column Ca): '1|2': give 1 or 3"),
+    ("4    Body1      -3.0      0.0       -2.0    0 ",
+     "4    Body1      -3.0      0.0       -2.0    5 ", "column M): a point on body1 with a mass"),
+    ("4    Body1 ", "4    Body2 ", "column Attachment): 'Body2'"),
+]  # fmt: skip
+
+
+def test_the_bodies_of_a_deck_become_fixed_imposed_and_rigid_bodies():
+    """BODIES: a Free body becomes a rigid body with MoorDyn's body hydrodynamics (one CG value
+    on z, one inertia for the three axes, its buoyancy at its CG, CdA on translations and, as a
+    quadratic damping, on rotations, Ca rho V per axis, fluid inertia), its points the deck's
+    Body1 points in its frame; Fixed and Coupled bodies keep their pose."""
+    case, written = moordyn.convert(FREE_BODY)
+    body = case["bodies"][0]
+    assert body["name"] == "body1" and body["type"] == "rigid"
+    assert body["centre_of_gravity"] == [0.0, 0.0, 0.0] == body["centre_of_buoyancy"]
+    assert body["inertia"] == [2.0e5] * 3 and body["volume"] == 80.0
+    assert body["added_mass"] == [82000.0] * 3 + [0.0] * 3
+    assert body["points"]["point4"] == [-3.0, 0.0, -2.0]
+    models = {force["model"]: force for force in body["external forces"]}
+    assert set(models) == {"gravity", "buoyancy", "fluid inertia", "drag", "quadratic_damping"}
+    assert models["drag"]["area"] == [20.0] * 3
+    assert models["quadratic_damping"]["diagonal"] == [0.0] * 3 + [0.5 * 1025.0 * 20.0] * 3
+    assert case["lines"][0]["to"] == "body1.point4"
+    assert "its buoyancy acts at its CG" in written
+    text = FREE_BODY.read_text()
+    two = text.replace(BODY_ROW, BODY_ROW.replace("  0     2.0e5", "  0|0|1 1|2|3").replace(
+        "20.0  1.0", "4|9   0.5|1|1"))  # fmt: skip
+    body = moordyn.read(two)["bodies"][0]
+    assert body["centre_of_gravity"] == [0.0, 0.0, 1.0] and body["inertia"] == [1.0, 2.0, 3.0]
+    assert body["added_mass"][:3] == [41000.0, 82000.0, 82000.0]
+    models = {force["model"]: force for force in body["external forces"]}
+    assert models["drag"]["area"] == [4.0] * 3
+    assert models["quadratic_damping"]["diagonal"][3:] == [0.5 * 1025.0 * 9.0] * 3
+    for word, kind in (("Fixed", "fixed"), ("Coupled", "imposed")):
+        row = BODY_ROW.replace("Free ", word).replace("0    0    0 ", "0    5    30")
+        body = moordyn.read(text.replace(BODY_ROW, row))["bodies"][0]
+        assert body["type"] == kind and body["points"]["point5"] == [1.5, 2.598, -2.0]
+        if kind == "fixed":
+            assert body["orientation_deg"] == [0.0, 5.0, 30.0]
+        else:
+            assert body["pitch_deg"]["value"] == 5.0 and body["yaw_deg"]["value"] == 30.0
+
+
+@pytest.mark.parametrize(
+    ("deck", "old", "new", "message"),
+    [(V2, *row) for row in REFUSED] + [(FREE_BODY, *row) for row in REFUSED_BODIES],
+)
+def test_what_has_no_equivalent_is_refused_by_section_row_and_column(deck, old, new, message):
+    text = deck.read_text()
     assert old in text
     with pytest.raises(seacable.CaseError) as error:
         moordyn.read(text.replace(old, new, 1))

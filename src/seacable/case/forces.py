@@ -44,12 +44,21 @@ class Buoyancy(_Model):
 
 
 class Drag(_Model):
-    """Quadratic drag on the velocity of the reference point relative to the current, per body
-    axis k: -0.5 rho Cd A_k |v_r| v_r,k (times the submerged fraction of a shaped body)."""
+    """Quadratic drag on the velocity of the reference point relative to the water (the
+    current's and the waves' there), per body axis k: -0.5 rho Cd A_k |v_r| v_r,k (times the
+    submerged fraction of a shaped body)."""
 
     model: Literal["drag"]
     drag_coefficient: NonNeg  # Cd
     area: PerAxis  # A per body axis [m^2]
+
+
+class FluidInertia(_Model):
+    """The water's acceleration on a body without a hull mesh or database, at its reference
+    point (forces.fluid_inertia): Froude-Krylov rho V a on its ``volume`` (or ``shape``) and
+    its ``added_mass`` on a, as Morison's inertia term; with ``drag``, Morison's equation."""
+
+    model: Literal["fluid inertia"]
 
 
 class AppliedForce(_Model):
@@ -463,6 +472,7 @@ ForceModel = Annotated[
     | ShortWing
     | CrossFlow
     | Compensator
-    | WaveDrift,
+    | WaveDrift
+    | FluidInertia,
     Field(discriminator="model"),
 ]

@@ -26,13 +26,16 @@ Each MoorDyn point becomes a body named ``point<ID>``, each line a lumped-mass l
 (the motion is the user's to give: its ``x``, ``y``, ``z`` time functions). v1's vessel points
 are fixed in the vessel's frame: they become one imposed body ``vessel``, held still the same
 way, each point at its deck position.
+Each v2 body becomes a body ``body<ID>`` (``_bodies``: fixed, imposed, or a free rigid body
+with MoorDyn's body hydrodynamics) holding the points the deck attaches to it (``Body<ID>``),
+in its frame.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
-never dropped: bodies, rods and failures (not yet read), vortex-induced vibration (Cl),
-non-linear or viscoelastic EA, wave and current kinematics files, points attached to bodies or
-turbines, v1 point forces. MoorDyn's own settings that seacable replaces (the initial-condition
-solver's: seacable starts from its statics; the output and logging switches: seacable writes
-every output) are noted in the written case.
+never dropped: rods and failures (not yet read), pinned coupled bodies, a body point's own
+mass, volume or drag, vortex-induced vibration (Cl), non-linear or viscoelastic EA, wave and
+current kinematics files, points attached to turbines, v1 point forces. MoorDyn's own settings
+that seacable replaces (the initial-condition solver's: seacable starts from its statics; the
+output and logging switches: seacable writes every output) are noted in the written case.
 """
 
 import math
@@ -60,13 +63,13 @@ V2_SECTIONS = {
     "SOLVER OPTIONS": "options",
     "OUTPUTS": "outputs",
     "OUTPUT LIST": "outputs",
+    "BODIES": "bodies",
+    "BODY LIST": "bodies",
+    "BODY PROPERTIES": "bodies",
 }
 NOT_YET = (
     "ROD TYPES",
     "ROD DICTIONARY",
-    "BODIES",
-    "BODY LIST",
-    "BODY PROPERTIES",
     "RODS",
     "ROD LIST",
     "ROD PROPERTIES",
@@ -211,8 +214,8 @@ class _Deck:
                 elif title in NOT_YET:
                     raise CaseError(
                         f"{self.name} line {number}: section {title} is not read yet (seacable "
-                        "reads MoorDyn's line types, points, lines, options and outputs); model "
-                        "the bodies and rods in the seacable case instead"
+                        "reads MoorDyn's line types, bodies, points, lines, options and "
+                        "outputs); model it in the seacable case instead"
                     )
                 elif current is not None and any(t in title for t in END_TITLES):
                     current = None
@@ -252,7 +255,8 @@ class _Deck:
                 )
         options = self._options()
         types = self._line_types()
-        bodies, names = self._points(options)
+        held = self._bodies(options)
+        bodies, names = self._points(options, held)
         lines = self._lines(types, names)
         environment: dict[str, Any] = {"gravity": options["g"], "water_density": options["rhow"]}
         if options["wtrdpth"] > 0:
@@ -414,7 +418,120 @@ class _Deck:
             types[name] = line_type
         return types
 
-    def _points(self, options) -> tuple[list[dict[str, Any]], dict[str, str]]:
+    def _bodies(self, options) -> dict[str, dict[str, Any]]:
+        """The deck's bodies (v2 BODIES) by their attachment word ``body<ID>``: ``Fixed`` a
+        fixed body, ``Coupled`` (``Vessel``) an imposed body held at the deck's pose, ``Free``
+        a rigid body with MoorDyn's body hydrodynamics (:meth:`_free_body`)."""
+        columns = ["ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I",
+                   "Volume", "CdA", "Ca"]  # fmt: skip
+        section = self.sections.get("bodies")
+        bodies: dict[str, dict[str, Any]] = {}
+        for number, fields in section.rows if section else []:
+            row = self._row("bodies", number, fields, columns)
+
+            def value(column, row=row, number=number):
+                return _number(row[column], self._where("bodies", number, column))
+
+            def values(column, counts, row=row, number=number):
+                parts = row[column].split("|")
+                if len(parts) not in counts:
+                    raise CaseError(
+                        f"{self._where('bodies', number, column)}: {row[column]!r}: give "
+                        f"{' or '.join(map(str, counts))} numbers separated by |"
+                    )
+                return [_number(v, self._where("bodies", number, column)) for v in parts]
+
+            name, kind = f"body{row['ID']}", row["Attachment"].lower()
+            if name in bodies:
+                raise CaseError(f"{self._where('bodies', number, 'ID')}: a second body {row['ID']}")
+            position = [value("X0"), value("Y0"), value("Z0")]
+            angles = [value("r0"), value("p0"), value("y0")]
+            body: dict[str, Any]
+            if kind in ("fixed", "fix", "anchor"):
+                body = {"name": name, "type": "fixed", "position": position}
+                if any(angles):
+                    body["orientation_deg"] = angles
+            elif kind in ("coupled", "cpld", "vessel", "ves"):
+                body = {"name": name, "type": "imposed"}
+                for key, v in zip(("x", "y", "z", "roll_deg", "pitch_deg", "yaw_deg"),
+                                  position + angles, strict=True):  # fmt: skip
+                    body[key] = _const(v)
+                self.notes.append(
+                    f"{name}: a coupled body, held at the deck's pose; give its x, y, z, "
+                    "roll_deg, pitch_deg, yaw_deg as time functions to move it, or step it "
+                    "from Python (seacable.coupling.Coupling)"
+                )
+            elif kind == "free":
+                body = self._free_body(name, position, angles, value, values, options["rhow"])
+            else:
+                raise CaseError(
+                    f"{self._where('bodies', number, 'Attachment')}: {row['Attachment']!r}: "
+                    "seacable reads Fixed, Coupled (Vessel) and Free bodies; a pinned coupled "
+                    "body is not read yet"
+                )
+            body["points"] = {}
+            bodies[name] = body
+        return bodies
+
+    def _free_body(self, name, position, angles, value, values, rho) -> dict[str, Any]:
+        """A free body: a rigid body of the deck's mass, CG, inertia about the CG (one value
+        for the three axes, or three), its buoyancy at its CG (where MoorDyn puts it), drag
+        CdA per body axis on the velocity relative to the water (1, 2, 3 or 6 values as
+        MoorDyn's documentation reads them), added mass Ca rho V per axis, and the waves'
+        acceleration on its volume (``fluid inertia``; none in still water, MoorDyn's)."""
+        mass, volume = value("Mass"), value("Volume")
+        cg = values("CG", (1, 3))
+        cg = [0.0, 0.0, cg[0]] if len(cg) == 1 else cg
+        inertia = values("I", (1, 3))
+        cda = values("CdA", (1, 2, 3, 6))
+        if len(cda) == 6:
+            moving, turning = cda[:3], cda[3:]
+        elif len(cda) == 3:
+            moving = turning = cda
+        else:  # one for all six, or one for the translations and one for the rotations
+            moving, turning = [cda[0]] * 3, [cda[-1]] * 3
+        ca = values("Ca", (1, 3))
+        body: dict[str, Any] = {
+            "name": name, "type": "rigid", "position": position, "orientation_deg": angles,
+            "mass": mass, "centre_of_gravity": cg,
+            "inertia": inertia * 3 if len(inertia) == 1 else inertia,
+        }  # fmt: skip
+        forces: list[dict[str, Any]] = [{"model": "gravity"}]
+        if volume > 0:
+            body["volume"] = volume
+            body["centre_of_buoyancy"] = cg
+            forces += [{"model": "buoyancy"}, {"model": "fluid inertia"}]
+            if any(ca):
+                added = [_round(c * rho * volume) for c in (ca * 3 if len(ca) == 1 else ca)]
+                body["added_mass"] = [*added, 0.0, 0.0, 0.0]
+            self.notes.append(
+                f"{name}: its buoyancy acts at its CG (MoorDyn's body); give "
+                "centre_of_buoyancy where it is elsewhere"
+            )
+        if any(moving):
+            forces.append({"model": "drag", "drag_coefficient": 1.0, "area": moving})
+        if any(turning):
+            diagonal = [0.0] * 3 + [_round(0.5 * rho * c) for c in turning]
+            forces.append({"model": "quadratic_damping", "diagonal": diagonal})
+            self.notes.append(
+                f"{name}: its rotational CdA is a quadratic damping 0.5 rho CdA |w_k| w_k per "
+                "body axis (MoorDyn's acts on the whole |w|: the same about one axis)"
+            )
+        body["external forces"] = forces
+        return body
+
+    def _row(self, key: str, number: int, fields: list[str], columns: list[str],
+             optional: int = 0) -> dict[str, str]:  # fmt: skip
+        """A table row by its column names, their count checked (the last ``optional``
+        columns may be left out)."""
+        if not len(columns) - optional <= len(fields) <= len(columns):
+            raise CaseError(
+                f"{self._where(key, number)}: {len(fields)} columns; expected {' '.join(columns)}"
+            )
+        return dict(zip(columns, fields, strict=False))
+
+    def _points(self, options, held) -> tuple[list[dict[str, Any]], dict[str, str]]:
+
         v2 = self.version == 2
         columns = (
             ["ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"]
@@ -425,12 +542,7 @@ class _Deck:
         names: dict[str, str] = {}
         vessel: dict[str, list[float]] = {}
         for number, fields in self.sections["points"].rows:
-            if len(fields) != len(columns):
-                raise CaseError(
-                    f"{self._where('points', number)}: {len(fields)} columns; "
-                    f"expected {' '.join(columns)}"
-                )
-            row = dict(zip(columns, fields, strict=True))
+            row = self._row("points", number, fields, columns)
 
             def value(column, row=row, number=number):
                 return _number(row[column], self._where("points", number, column))
@@ -462,6 +574,16 @@ class _Deck:
                 vessel[name] = position
                 names[ident] = f"vessel.{name}"
                 continue
+            elif v2 and kind in held:
+                if any(value(c) != 0.0 for c in ("M", "V", "CdA")):
+                    raise CaseError(
+                        f"{self._where('points', number, 'M')}: a point on {kind} with a mass, "
+                        "volume or drag area: seacable's body points carry none; give them "
+                        "to the body (its mass, CG, inertia, volume) and set them to 0 here"
+                    )
+                held[kind]["points"][name] = position
+                names[ident] = f"{kind}.{name}"
+                continue
             elif kind in ("free", "connect", "con"):
                 bodies.append(
                     self._free(
@@ -478,10 +600,11 @@ class _Deck:
                 raise CaseError(
                     f"{self._where('points', number, 'Attachment')}: "
                     f"{row['Attachment']!r}: seacable reads Fixed, Free (Connect), "
-                    "Coupled and Vessel points; a point on a body or turbine is not "
-                    "read yet"
+                    "Coupled and Vessel points and points on the deck's bodies "
+                    f"({', '.join(held) or 'none'}); a point on a turbine is not read"
                 )
             names[ident] = name
+        bodies = list(held.values()) + bodies
         if vessel:
             bodies.append({"name": "vessel", "type": "imposed", "points": vessel})
             self.notes.append(
@@ -506,6 +629,8 @@ class _Deck:
                 body["added_mass"] = ca * rho * volume
         if cda > 0:
             forces.append({"model": "drag", "drag_coefficient": 1.0, "area": cda})
+        if volume > 0:  # the waves' acceleration on it (none in still water: MoorDyn's)
+            forces.append({"model": "fluid inertia"})
         body["external forces"] = forces
         return body
 
@@ -518,12 +643,7 @@ class _Deck:
         )
         lines = []
         for number, fields in self.sections["lines"].rows:
-            if len(fields) < len(columns) - 1 or len(fields) > len(columns):
-                raise CaseError(
-                    f"{self._where('lines', number)}: {len(fields)} columns; "
-                    f"expected {' '.join(columns)}"
-                )
-            row = dict(zip(columns, fields, strict=False))
+            row = self._row("lines", number, fields, columns, optional=1)
             if row["LineType"] not in types:
                 raise CaseError(
                     f"{self._where('lines', number, 'LineType')}: "

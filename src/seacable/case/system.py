@@ -114,6 +114,22 @@ class _Dynamic(_Body):
         needs = [f.model for f in self.external_forces if f.model == "buoyancy"]
         if needs and self.shape is None and not self.volume:
             raise ValueError("force model 'buoyancy' needs the body's 'volume' [m^3] or 'shape'")
+        models = {f.model for f in self.external_forces}
+        if "fluid inertia" in models:
+            added = np.any(np.asarray(getattr(self, "added_mass", 0.0), float)) or any(
+                getattr(self, k, None) is not None for k in ("dynamics", "hydrodynamics")
+            )
+            if self.shape is None and not self.volume and not added:
+                raise ValueError(
+                    "force model 'fluid inertia' acts on the body's 'volume' [m^3] (or "
+                    "'shape') and its 'added_mass' [kg]: give one of them, or remove the model"
+                )
+            twice = sorted(models & {"non-linear Froude-Krylov", "diffraction"})
+            if twice:
+                raise ValueError(
+                    f"force models 'fluid inertia' and '{twice[0]}' both give the waves' "
+                    "Froude-Krylov force; keep one of them"
+                )
         return self
 
     def displaced_volume(self) -> float:
@@ -529,7 +545,8 @@ class SystemCase(_Model):
 
 
 # the force models the waves act through (the lines feel the waves in their own loads)
-WAVE_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov", "diffraction", "wave drift")
+WAVE_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov", "diffraction", "wave drift",
+               "fluid inertia", "drag")  # fmt: skip
 
 
 def ignored_inputs(case: SystemCase) -> list[str]:
@@ -548,8 +565,9 @@ def ignored_inputs(case: SystemCase) -> list[str]:
                 out.append(
                     f"bodies[{k}] ({body.name}): the waves act on none of its force models "
                     f"({', '.join(sorted(models)) or 'none'}): only its lines feel them; give "
-                    f"it one of {', '.join(WAVE_MODELS)} (a hull mesh or a hydrodynamic "
-                    "database), or ignore this for a body the waves do not reach"
+                    f"it one of {', '.join(WAVE_MODELS)} (a hull mesh, a hydrodynamic "
+                    "database, or Morison's fluid inertia and drag at its reference point), "
+                    "or ignore this for a body the waves do not reach"
                 )
     moving = [body for body in case.bodies if isinstance(body, (PointBody, RigidBody))]
     winds = [force for body in moving for force in body.external_forces if force.model == "wind"]

@@ -32,6 +32,7 @@ class ForceKind(IntEnum):
     CROSS_FLOW = 17
     COMPENSATOR = 18
     WAVE_DRIFT = 19
+    FLUID_INERTIA = 20
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -54,6 +55,7 @@ SHORT_WING = int(ForceKind.SHORT_WING)
 CROSS_FLOW = int(ForceKind.CROSS_FLOW)
 COMPENSATOR = int(ForceKind.COMPENSATOR)
 WAVE_DRIFT = int(ForceKind.WAVE_DRIFT)
+FLUID_INERTIA = int(ForceKind.FLUID_INERTIA)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

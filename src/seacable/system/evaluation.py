@@ -31,6 +31,7 @@ from seacable.forces import (
     compensator,
     diffraction,
     drag,
+    fluid_inertia,
     froude_krylov,
     hull_current,
     hydrostatic,
@@ -50,6 +51,7 @@ from seacable.forces.kinds import (
     CURRENT,
     DIFFRACTION,
     DRAG,
+    FLUID_INERTIA,
     GRAVITY,
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
@@ -84,6 +86,7 @@ COMPENSATORS = True  # the tandem compensators
 STATES = True  # force models with states of their own
 WAVES = True  # waves on the lines (their Morison loads and wetted parts)
 F_DRAG = True  # Morison drag on a body
+F_FLUID_INERTIA = True  # Morison's inertia on a body
 F_APPLIED = True  # forces and moments of time
 F_STIFFNESS = True  # linear stiffness
 F_DAMPING = True  # linear and quadratic damping
@@ -238,9 +241,10 @@ def _models(t, y, p, w, ydot):
         w.models[:, :] = 0.0
         add_all(
             t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
-            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction,
-            w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u,
-            p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, tf, w.models,
+            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, p.body_added,
+            w.fraction, w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z,
+            p.current_u, p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory,
+            w.trig, tf, w.models,
         )  # fmt: skip
     for b in range(w.load.shape[0]):  # a loop: an array expression compiles slowly
         for c in range(6):
@@ -337,24 +341,28 @@ def body_forces(t, y, p, w, pos, vel, fraction, load):
     tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     add_all(
         t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state, p.force_data,
-        p.body_mass, p.body_cog, p.body_volume, p.body_cob, fraction, w.quat, pos, w.rot, vel,
-        w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, p.wave, p.wave_depth,
-        p.wave_stretch, w.hull, w.memory, tf, load,
+        p.body_mass, p.body_cog, p.body_volume, p.body_cob, p.body_added, fraction, w.quat, pos,
+        w.rot, vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, p.wave,
+        p.wave_depth, p.wave_stretch, w.hull, w.memory, w.trig, tf, load,
     )  # fmt: skip
     return np.int64(0)
 
 
 @inner
 def add_all(
-    t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos, rot,
-    vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth, wave_stretch,
-    hull, history, tf, rhs,
+    t, y, kind, body, at, first, state, data, mass, cog, volume, cob, added, fraction, quat, pos,
+    rot, vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth,
+    wave_stretch, hull, history, trig, tf, rhs,
 ):  # fmt: skip
     """Add every force model's force and moment to its body's row of ``rhs`` (nb, 6); a model
     with states reads them from ``y`` at ``state[f]``; the mesh models share the workspace
     ``hull`` (kernels.hull.place), the radiation models read their velocity ``history``
-    (kernels.memory; its first floats are a model's scratch). The compensators act later
-    (``evaluate``); a kind this copy does not compile is refused (a ``RuntimeError``)."""
+    (kernels.memory; its first floats are a model's scratch), the models on the waves'
+    kinematics their scratch ``trig`` (kernels.waves.scratch, as wide as the waves). The
+    compensators act later (``evaluate``); a kind this copy does not compile is refused (a
+    ``RuntimeError``)."""
+    if trig.shape[1] < wave.shape[1]:
+        raise RuntimeError("seacable: a workspace made for fewer wave components")
     for f in range(kind.shape[0]):
         b = body[f]
         row = data[at[f] :]
@@ -365,7 +373,10 @@ def add_all(
             weight.add_buoyancy(volume[b], cob[b], fraction[b], rot[b], gravity, rho, rhs[b])
         elif F_DRAG and k == DRAG:
             drag.add(row, fraction[b], pos[b], rot[b], vel[b], current_z, current_u, current_v,
-                     rhs[b])  # fmt: skip
+                     t, wave, wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
+        elif F_FLUID_INERTIA and k == FLUID_INERTIA:
+            fluid_inertia.add(volume[b], cob[b], added[b], fraction[b], pos[b], rot[b], rho, t,
+                              wave, wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
         elif F_APPLIED and k == APPLIED:
             applied.add(row, first[f], t, rot[b], tf, rhs[b])
         elif F_STIFFNESS and k == LINEAR_STIFFNESS:

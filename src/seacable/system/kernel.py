@@ -23,7 +23,7 @@ from numba import njit
 from seacable.bodies import dynamics, kinematics
 from seacable.forces import compensator, hydrostatic, kinds, radiation
 from seacable.kernels import chain3d as c3
-from seacable.kernels import indirect, memory, records, surface
+from seacable.kernels import indirect, memory, records, surface, waves
 from seacable.kernels import lumped as lk
 from seacable.kernels.jit import JIT, inner
 from seacable.lines import lumped_mass, tip_joint
@@ -207,6 +207,7 @@ class _WorkFields(NamedTuple):
     nat_work: np.ndarray  # (9, max n + 1) kernels.natural's workspace
     nat_out: np.ndarray  # (max n + 1, 4) a string's nodes: x, z from the pivot, strain, tension
     hull: np.ndarray  # (largest mesh's vertices, 4) kernels.hull.place's workspace
+    trig: np.ndarray  # (kernels.waves.SCRATCH, wave components) the force models' wave scratch
     memory: np.ndarray  # a force model's scratch, then the radiation models' velocity
     # histories (kernels.memory)
     models: np.ndarray  # (nb, 6) the force models' loads at the last evaluation of them
@@ -250,6 +251,7 @@ def make_work(p: SystemParams) -> SystemWork:
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
         nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
+        trig=np.zeros((waves.SCRATCH, p.wave.shape[1])),
         memory=np.zeros(max(memory.SCRATCH, _memory(p))), models=np.zeros((nb, 6)),
         models_key=np.full(1 + 13 * nb + int(p.n_s), np.nan),
         control=np.zeros((max(1, len(p.compensator)), compensator.RECORD)),

@@ -42,6 +42,7 @@ FORCE_FLAG: dict[int, str | None] = {
     kinds.GRAVITY: None,
     kinds.BUOYANCY: None,
     kinds.DRAG: "F_DRAG",
+    kinds.FLUID_INERTIA: "F_FLUID_INERTIA",
     kinds.APPLIED: "F_APPLIED",
     kinds.LINEAR_STIFFNESS: "F_STIFFNESS",
     kinds.LINEAR_DAMPING: "F_DAMPING",
