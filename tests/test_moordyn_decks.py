@@ -13,7 +13,9 @@ from click.testing import CliRunner
 
 import seacable
 from seacable.case import moordyn
+from seacable.case.environment import Seabed
 from seacable.cli import main
+from seacable.system import model
 
 mp = pytest.importorskip("moorpy")
 
@@ -75,7 +77,7 @@ def test_the_deck_conventions_become_the_case_fields():
     chain = case["line_types"][0]
     assert chain["axial_damping_ratio"] == 1.0  # BA -1: a damping ratio
     assert chain["drag_coefficient_normal"] == 2.4 and chain["drag_coefficient_tangential"] == 0.4
-    assert case["environment"]["seabed"]["stiffness"] == pytest.approx(3.0e6 * 0.137)
+    assert case["environment"]["seabed"]["stiffness_per_area"] == 3.0e6
     assert case["environment"]["water_depth"] == 200.0
     kinds = {body["name"]: body["type"] for body in case["bodies"]}
     assert kinds["point1"] == "fixed" and kinds["point4"] == "imposed"
@@ -194,6 +196,50 @@ REFUSED_BODIES = [
      "4    Body1      -3.0      0.0       -2.0    5 ", "column M): a point on body1 with a mass"),
     ("4    Body1 ", "4    Body2 ", "column Attachment): 'Body2'"),
 ]  # fmt: skip
+
+
+def test_kbot_acts_on_each_line_types_diameter():
+    """MoorDyn's kBot and cBot act on each segment's d l: a deck of two line types of different
+    diameters gives each line's nodes kBot d and cBot d times their half segments (the
+    seabed's per-area form), and a case giving both forms of the stiffness is refused."""
+    text = V2.read_text().replace("2    chain     2        5", "2    wire      2        5").replace(
+        "---------------------- POINTS",
+        "wire      0.09   40.0     6.0e8    -1.0      0    1.2   1.0   0.2    0.0\n"
+        "---------------------- POINTS",
+    )  # fmt: skip
+    built = model.build(seacable.load_case(moordyn.read(text)))
+    p = built.params
+    for li, diameter in ((0, 0.137), (1, 0.09)):
+        n, c0 = int(p.line_n[li]), int(p.line_node[li])
+        half = 0.5 * 650.0 / 40
+        assert p.node_seabed_stiffness[c0] == pytest.approx(3.0e6 * diameter * half)
+        assert p.node_seabed_damping[c0 + 1] == pytest.approx(3.0e5 * diameter * 2 * half)
+        assert n == 40
+    with pytest.raises(ValueError, match="give 'stiffness'.*or 'stiffness_per_area'"):
+        Seabed(stiffness=1.0e5, stiffness_per_area=3.0e6)
+
+
+def test_a_failure_section_becomes_the_cases_failures():
+    """FAILURE (FailureID Point Line(s) FailTime FailTen, 0: none): the lines' ends at the point
+    released at the time or the tension; a rod's end, or neither trigger, refused by name."""
+    table = ("---------------------- FAILURE ----------------------\n"
+             "FailureID  Point    Line(s)   FailTime   FailTen\n"
+             "()           ()       (,)      (s or 0)   (N or 0)\n"
+             "1          4        1          5.0        0\n"
+             "2          P1       1          0          1.2e6\n")  # fmt: skip
+    text = V2.read_text().replace("--------------------------- OUTPUTS", table + "--- OUTPUTS")
+    case = moordyn.read(text)
+    assert case["failures"] == [
+        {"name": "failure1", "at": "point4", "lines": ["line1"], "time": 5.0},
+        {"name": "failure2", "at": "point1", "lines": ["line1"], "tension": 1.2e6},
+    ]
+    assert seacable.load_case(case).failures[1].tension == 1.2e6
+    for row, message in (
+        ("1          R1a      1          5.0        0", "'R1a': a point"),
+        ("1          4        1          0          0", "neither FailTime"),
+    ):
+        with pytest.raises(seacable.CaseError, match=message):
+            moordyn.read(text.replace("1          4        1          5.0        0", row))
 
 
 def test_the_bodies_of_a_deck_become_fixed_imposed_and_rigid_bodies():

@@ -241,6 +241,30 @@ def test_platform_mooring_secant_stiffness_matches_moorpy():
         assert abs(ours[i, i] / expected[i, i] - 1) < 0.005, (i, ours[i, i], expected[i, i])
 
 
+def test_the_mooring_stiffness_is_symmetric_where_the_lines_exert_a_moment():
+    """Under the 100 kN force the platform's lines exert a pitch moment M on it: the moment's
+    own tangent under earth-frame rotations (symmetric=False) is skew by exactly [M x] in its
+    rotation block (the generalized force of the rotation vector is J^T M), while its
+    translation-rotation blocks agree (-dF/dtheta = -dM/dx transposed: mixed derivatives of
+    one potential). The stiffness returned by default, the potential's Hessian, is symmetric
+    to round-off and equals the tangent less [M x] / 2."""
+    case = _platform_case(FORCE, segments=35)
+    built = model.build(case)
+    tangent = statics.mooring_stiffness(built, built.y0, "platform", symmetric=False)
+    hessian = statics.mooring_stiffness(built, built.y0, "platform")
+    b = built.layout.bodies.index("platform")
+    m = statics.line_loads(built, built.y0, at_rest=True)[b][3:]
+    skew = np.array([[0.0, -m[2], m[1]], [m[2], 0.0, -m[0]], [-m[1], m[0], 0.0]])
+    scale = np.sqrt(np.outer(np.abs(np.diag(tangent)), np.abs(np.diag(tangent))))
+    assert abs(m[1]) > 1e4  # a pitch moment of the lines: the two forms differ
+    np.testing.assert_allclose((tangent - tangent.T)[3:, 3:], skew, rtol=0, atol=1e-6 * abs(m[1]))
+    assert np.all(np.abs(tangent[:3, 3:] - tangent[3:, :3].T) <= 1e-6 * scale[:3, 3:])
+    assert np.all(np.abs(hessian - hessian.T) <= 1e-6 * scale)
+    np.testing.assert_allclose(hessian[3:, 3:], tangent[3:, 3:] - skew / 2, rtol=0,
+                               atol=1e-6 * abs(m[1]))  # fmt: skip
+    np.testing.assert_array_equal(hessian[:, :3], tangent[:, :3])
+
+
 def _stiffness_with(heave_stiffness: float | None = None, mass: float | None = None):
     """The platform's lines-only 6x6 (35 segments) held at one pose near its balance (start:
     as_given), with its own waterplane heave stiffness [N/m] or mass [kg] changed."""

@@ -24,9 +24,9 @@ from seacable.results import (
     _Sink,
     provenance,
 )
+from seacable.system import failures, utilisation
 from seacable.system import kernel as system_kernel
 from seacable.system import model as system_model
-from seacable.system import utilisation
 
 log = logging.getLogger(__name__)
 
@@ -514,10 +514,14 @@ def _work(run: _Run) -> dict:
     seen = run.watch.warnings()
     for line in seen:
         log.warning(line)
+    released = failures.report(run.p, run.system.case)
+    if released:
+        log.info("failures: %s", released["failures"])
     return {
         **counters,
         **_tolerance_attrs(run),
         **({"run_warnings": "; ".join(seen)} if seen else {}),
+        **released,
     }
 
 

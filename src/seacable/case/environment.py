@@ -60,13 +60,38 @@ class Seabed(_Model):
     Over the first ``contact_band`` of depth the stiffness (and the share of the damping that
     acts) rises linearly from zero, so that the push is smooth (C1) in the depth and implicit
     steps converge through touchdown; below the band the push is ``stiffness`` (depth -
-    band / 2). 0 gives the plain spring, as MoorDyn's."""
+    band / 2). 0 gives the plain spring, as MoorDyn's. MoorDyn's kBot [Pa/m] and cBot [Pa s/m]
+    act on each segment's d l instead: ``stiffness_per_area`` and ``damping_per_area`` give
+    them so (each line type's diameter times them per metre of line), in place of
+    ``stiffness`` and ``damping``."""
 
     stiffness: Pos = 1.0e5
     damping: NonNeg = 0.0
+    stiffness_per_area: Pos | None = None  # [Pa/m], on the lines' diameters
+    damping_per_area: NonNeg | None = None  # [Pa s/m]
     friction_coefficient: NonNeg = 0.0
     slip_speed: Pos = 0.01  # [m/s]
     contact_band: NonNeg = 0.005  # [m]
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        for per_length, per_area in (("stiffness", "stiffness_per_area"),
+                                     ("damping", "damping_per_area")):  # fmt: skip
+            if per_length in self.model_fields_set and getattr(self, per_area) is not None:
+                raise ValueError(f"give '{per_length}' [per metre of line] or '{per_area}' "
+                                 "[per m^2 of the lines' d l, MoorDyn's], not both")  # fmt: skip
+        return self
+
+    def per_metre(self, diameter: float) -> tuple[float, float]:
+        """Stiffness [N/m per m] and damping [N s/m per m] on a metre of line of ``diameter``
+        [m]."""
+        k = (
+            self.stiffness
+            if self.stiffness_per_area is None
+            else self.stiffness_per_area * diameter
+        )
+        c = self.damping if self.damping_per_area is None else self.damping_per_area * diameter
+        return k, c
 
 
 class RegularWave(_Model):

@@ -17,7 +17,8 @@ z = 0 at the still water (both codes), the seabed at z = -WtrDpth, a negative BA
 (``axial_damping_ratio``) and a positive one a damping coefficient BA [N s]
 (``axial_damping_time`` = BA / EA), Cd on d l and CdAx on pi d l (as seacable's), Ca and CaAx
 (Can and Cat) the added mass normal to and along the line, kBot [Pa/m] and
-cBot [Pa s/m] on the segment's d l (seacable's seabed per metre of line: times d).
+cBot [Pa s/m] on the segment's d l (the seabed's ``stiffness_per_area`` and
+``damping_per_area``).
 
 Each MoorDyn point becomes a body named ``point<ID>``, each line a lumped-mass line named
 ``line<ID>`` from its A (anchor) end to its B (fairlead) end: a fixed point a fixed body, a free
@@ -31,11 +32,12 @@ with MoorDyn's body hydrodynamics) holding the points the deck attaches to it (`
 in its frame.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
-never dropped: rods and failures (not yet read), pinned coupled bodies, a body point's own
-mass, volume or drag, vortex-induced vibration (Cl), non-linear or viscoelastic EA, wave and
-current kinematics files, points attached to turbines, v1 point forces. MoorDyn's own settings
-that seacable replaces (the initial-condition solver's: seacable starts from its statics; the
-output and logging switches: seacable writes every output) are noted in the written case.
+never dropped: rods (not yet read), a failure at a rod's end, pinned coupled bodies, a body
+point's own mass, volume or drag, vortex-induced vibration (Cl), non-linear or viscoelastic EA,
+wave and current kinematics files, points attached to turbines, v1 point forces. MoorDyn's own
+settings that seacable replaces (the initial-condition solver's: seacable starts from its
+statics; the output and logging switches: seacable writes every output) are noted in the
+written case.
 """
 
 import math
@@ -66,6 +68,8 @@ V2_SECTIONS = {
     "BODIES": "bodies",
     "BODY LIST": "bodies",
     "BODY PROPERTIES": "bodies",
+    "FAILURE": "failures",
+    "FAILURE CONDITIONS": "failures",
 }
 NOT_YET = (
     "ROD TYPES",
@@ -73,8 +77,6 @@ NOT_YET = (
     "RODS",
     "ROD LIST",
     "ROD PROPERTIES",
-    "FAILURE",
-    "FAILURE CONDITIONS",
     "EXTERNAL LOADS",
     "CONTROL",
     "CONTROL VARIABLES",
@@ -258,24 +260,17 @@ class _Deck:
         held = self._bodies(options)
         bodies, names = self._points(options, held)
         lines = self._lines(types, names)
+        failures = self._failures(names)
         environment: dict[str, Any] = {"gravity": options["g"], "water_density": options["rhow"]}
         if options["wtrdpth"] > 0:
             environment["water_depth"] = options["wtrdpth"]
-            diameters = sorted({t["diameter"] for t in types.values()})
-            heaviest = max(types.values(), key=lambda t: t["mass_per_length"])["diameter"]
-            environment["seabed"] = {
-                "stiffness": _round(options["kbot"] * heaviest),
-                "damping": _round(options["cbot"] * heaviest),
+            environment["seabed"] = {  # on each segment's d l, as MoorDyn's
+                "stiffness_per_area": options["kbot"],
+                "damping_per_area": options["cbot"],
                 "contact_band": 0.0,
             }
             if options["frictioncoefficient"] > 0:  # along and across the line alike
                 environment["seabed"]["friction_coefficient"] = options["frictioncoefficient"]
-            if len(diameters) > 1:
-                self.notes.append(
-                    f"seabed: MoorDyn's kBot and cBot act on each segment's d l; seacable's "
-                    f"seabed is per metre of line for every line: taken with the diameter "
-                    f"{heaviest:g} m of the heaviest line type (the one that lies on the seabed)"
-                )
         outputs = self.sections.get("outputs")
         if outputs is not None and outputs.rows:
             channels = ", ".join(fields[0] for _, fields in outputs.rows)
@@ -312,6 +307,7 @@ class _Deck:
             "bodies": bodies,
             "line_types": list(types.values()),
             "lines": lines,
+            **({"failures": failures} if failures else {}),
             "start": "static",
             "simulation": simulation,
         }
@@ -678,6 +674,41 @@ class _Deck:
                 }
             )
         return lines
+
+    def _failures(self, names: dict[str, str]) -> list[dict[str, Any]]:
+        """FAILURE (MoorDyn's line failures): the lines' ends at a point released at FailTime
+        or when one's tension there reaches FailTen (0: none), staying joined by a free point
+        (seacable's ``failures``)."""
+        columns = ["FailureID", "Point", "Lines", "FailTime", "FailTen"]
+        section = self.sections.get("failures")
+        out = []
+        for number, fields in section.rows if section else []:
+            row = self._row("failures", number, fields, columns)
+            point = re.fullmatch(r"(?:P|C|POINT|CON)?(\d+)", row["Point"], re.IGNORECASE)
+            if point is None or point.group(1) not in names:
+                raise CaseError(
+                    f"{self._where('failures', number, 'Point')}: {row['Point']!r}: a point "
+                    f"of the deck ({', '.join(names)}); a rod's end is not read"
+                )
+            lines = [f"line{k}" for k in row["Lines"].split(",") if k]
+            time = _number(row["FailTime"], self._where("failures", number, "FailTime"))
+            tension = _number(row["FailTen"], self._where("failures", number, "FailTen"))
+            if time <= 0 and tension <= 0:
+                raise CaseError(
+                    f"{self._where('failures', number, 'FailTime')}: neither FailTime nor "
+                    "FailTen is positive, so the failure never happens; give one of them"
+                )
+            failure: dict[str, Any] = {
+                "name": f"failure{row['FailureID']}",
+                "at": names[point.group(1)],
+                "lines": lines,
+            }
+            if time > 0:
+                failure["time"] = time
+            if tension > 0:
+                failure["tension"] = tension
+            out.append(failure)
+        return out
 
     def commented(self, case: dict[str, Any]) -> str:
         """The case as YAML, headed by what the import did."""

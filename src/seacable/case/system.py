@@ -488,6 +488,27 @@ class Tie(_Model):
 Line = Annotated[LumpedMassLine | RigidLine | NaturalStringLine | Tie, Field(discriminator="model")]
 
 
+class Failure(_Model):
+    """A line failure (MoorDyn's FAILURE, OrcaFlex's release): the ends of ``lines`` at the
+    point ``at`` (``body`` or ``body.point``, as the lines name it) let go at ``time``, or when
+    the tension of one of them there first reaches ``tension``, whichever comes first. The
+    released ends stay joined to one another by a free massless point, a body named after the
+    failure in the results (held where the ends were attached until the release), and the run
+    goes on (system.failures)."""
+
+    name: Name | None = None  # default: failure<k> (k from 1)
+    at: str
+    lines: list[Name] = []  # lumped-mass lines with an end at ``at``; none: every such line
+    time: Pos | None = None  # [s]
+    tension: Pos | None = None  # [N], the tension of a line's end segment at ``at``
+
+    @model_validator(mode="after")
+    def _a_trigger(self):
+        if self.time is None and self.tension is None:
+            raise ValueError("give the failure a 'time' [s], a 'tension' [N] or both")
+        return self
+
+
 class SystemCase(_Model):
     """A complete case: bodies, the lines between them, the environment and the run."""
 
@@ -505,11 +526,66 @@ class SystemCase(_Model):
     # before validate and every run warn (an intact mooring's static tensions are commonly
     # kept under a fifth to a third of it)
     utilisation_limit: Pos = 1.0
+    failures: list[Failure] = []  # line ends released during the run
     simulation: Simulation
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to
     _source_file: str | None = PrivateAttr(default=None)  # the case file it was read from
+
+    @model_validator(mode="after")
+    def _failures(self):
+        taken = {body.name for body in self.bodies}
+        released: dict[tuple[str, str], str] = {}
+        lines = {line.name: line for line in self.lines}
+        for k, failure in enumerate(self.failures):
+            where = f"failures[{k}]"
+            name = failure.name or f"failure{k + 1}"
+            if name in taken:
+                raise ValueError(
+                    f"{where}.name: '{name}' is already a body's or a failure's "
+                    "name (the released ends' point is a body of that name)"
+                )
+            taken.add(name)
+            if failure.at.partition(".")[0] not in {body.name for body in self.bodies}:
+                raise ValueError(
+                    f"{where}.at: '{failure.at}' is not a body or a body's point "
+                    "('body' or 'body.point', as the lines name their ends)"
+                )
+            at_it = [n for n, line in lines.items() if failure.at in (line.from_, line.to)]
+            for line_name in failure.lines or at_it:
+                line = lines.get(line_name)
+                if line is None or line_name not in at_it:
+                    raise ValueError(
+                        f"{where}.lines: '{line_name}' has no end at "
+                        f"'{failure.at}'; the lines there: {at_it or 'none'}"
+                    )
+                if not isinstance(line, LumpedMassLine):
+                    raise ValueError(
+                        f"{where}.lines: '{line_name}' is a {line.model} line; a "
+                        "failure releases lumped_mass lines"
+                    )
+                if line.from_ == line.to:
+                    raise ValueError(
+                        f"{where}.lines: both ends of '{line_name}' are at '{failure.at}'"
+                    )
+                if (line_name, failure.at) in released:
+                    raise ValueError(
+                        f"{where}.lines: the end of '{line_name}' at "
+                        f"'{failure.at}' is already released by "
+                        f"{released[line_name, failure.at]}"
+                    )
+                released[line_name, failure.at] = name
+            if not at_it:
+                raise ValueError(f"{where}.at: no lumped_mass line ends at '{failure.at}'")
+        if self.failures and self.simulation.integrator in ("bdf", "radau", "lsoda", "cvode"):
+            raise ValueError(
+                f"failures: a line's release changes the system during the run, which "
+                f"simulation.integrator {self.simulation.integrator} (a SciPy solver stepping "
+                "on its own) cannot follow; use rk4, dopri5, implicit_euler, theta, newmark or "
+                "generalized_alpha"
+            )
+        return self
 
     @model_validator(mode="after")
     def _unique_names(self):

@@ -159,11 +159,11 @@ def _accept(t, y, ynew, p, w, k, magnitude, work):
     """An accepted step to ``ynew`` (projected) at ``t``: ``y`` and the largest magnitudes
     updated, ``k[0]`` the derivative there (the last stage's, or evaluated again after a
     projection); the evaluation's status."""
-    kernel.accept(t, ynew, p, w)
+    changed = kernel.accept(t, ynew, p, w)  # a line's failure: the last stage is stale
     y[:] = ynew
     for i in range(magnitude.shape[0]):
         magnitude[i] = max(magnitude[i], abs(y[i]))
-    if kernel.projects(p):
+    if kernel.projects(p) or changed != 0:
         work[2] += 1
         if kernel.evaluate(t, y, p, w, k[0]) != OK:
             work[3] += 1

@@ -383,7 +383,8 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
         if b * h * h * largest <= tol:
             a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
-            system_kernel.accept(t1, ya, p, w)
+            if system_kernel.accept(t1, ya, p, w) != 0:  # a line's failure
+                fresh[0] = 0.0  # Newton's matrix is not the new system's
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]

@@ -20,7 +20,7 @@ from seacable.forces import compensator, table
 from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
-from seacable.system import hulls, kernel, natural_lines, topology, variants
+from seacable.system import failures, hulls, kernel, natural_lines, topology, variants
 from seacable.system.force_rows import force_row, in_radians, offset
 from seacable.system.kernel import SystemParams
 
@@ -36,6 +36,7 @@ INT_FIELDS = frozenset({
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
     "body_group", "group_first", "group_member", "compensator", "entries",
+    *failures.INT_FIELDS,
 })  # fmt: skip
 
 
@@ -128,6 +129,9 @@ def _orientation(body) -> tuple[float, float, float, float]:
 
 
 def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
+    """The parameters and start state of ``case``; the built system's case holds a point body
+    per failure (system.failures)."""
+    case = failures.derived(case)
     env = case.environment
     rho = 0.0 if env.in_air else env.water_density
     layout = Layout(bodies=[b.name for b in case.bodies])
@@ -252,6 +256,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     rigid_lines["rs_v"] = rigid_lines["rs_v"] + n_q
     f["state"] = [s + n_q + n_v if s >= 0 else -1 for s in f["state"]]
     ties = _ties(case, layout)
+    released = failures.fields(case, point)  # creates the failures' points
     points = np.array([b for b, _ in layout.points], dtype=np.int64)
     offsets = np.array([offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
     current_z, current_u, current_v = current_arrays(env)
@@ -270,6 +275,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         current_z=current_z, current_u=current_u, current_v=current_v,
         **packing.wave_fields(env, case.simulation.build_up), wind_channel=layout.wind_channel,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
+        **released,
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
     fields["compensator"] = _compensators(case, f, fields, points)
@@ -408,8 +414,19 @@ def _lines(case, layout, rho, q_at, v_at) -> dict:
                             "lumped-mass line's bending has no damper (axial damping damps "
                             "it)")  # fmt: skip
         nodes["mass"].append(mass)
-        nodes["k"].append((seabed.stiffness if seabed else 0.0) * span)
-        nodes["c"].append((seabed.damping if seabed else 0.0) * span)
+        # the seabed's stiffness and damping on each node's half segments, per metre of line
+        # (per its diameter with MoorDyn's per-area form: case.environment.Seabed)
+        types = {t.name: t for t in case.line_types}
+        per_metre = np.array([
+            seabed.per_metre(types[s.type].diameter) if seabed else (0.0, 0.0)
+            for s in line.sections for _ in range(s.segments)
+        ])  # fmt: skip
+        for column, key in enumerate(("k", "c")):
+            share = 0.5 * props["length"] * per_metre[:, column]
+            on_node = np.zeros(n + 1)
+            on_node[:-1] += share
+            on_node[1:] += share
+            nodes[key].append(on_node)
         nodes["bend"].append(bend)
         seg_count += n
         node_count += n + 1

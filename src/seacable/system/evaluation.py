@@ -21,6 +21,8 @@ end nodes' mass and loads handed to their bodies; (4) every force model; (5) eac
 body's 6x6 equation solved on its free degrees of freedom. O(total nodes + bodies).
 """
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -85,6 +87,7 @@ TIES = True  # ties (hawsers)
 COMPENSATORS = True  # the tandem compensators
 STATES = True  # force models with states of their own
 WAVES = True  # waves on the lines (their Morison loads and wetted parts)
+FAILURES = True  # line ends released during the run (system.failures)
 F_DRAG = True  # Morison drag on a body
 F_FLUID_INERTIA = True  # Morison's inertia on a body
 F_APPLIED = True  # forces and moments of time
@@ -119,7 +122,7 @@ def evaluate(t, y, p, w, ydot):
     (docs/architecture.md, "Calls cost reference counts"); they are compiled apart, in two
     processes at once where the machine has two cores (``system.variants``)."""
     if _holds_more(p.line_n, p.rs_kind, p.nat_n, p.tie_from, p.compensator, p.group_member,
-                   p.rs_tip_joint, p.n_s, p.wave):  # fmt: skip
+                   p.rs_tip_joint, p.n_s, p.wave, p.fail_line):  # fmt: skip
         raise RuntimeError("seacable: a system evaluated by a copy compiled without one of its "
                            "kinds (system.variants.bind gives each system its own)")  # fmt: skip
     status = _part(MOTIONS, t, y, p, w, ydot)
@@ -317,7 +320,7 @@ def _solve(t, y, p, w, ydot):
 
 @inner
 def _holds_more(line_n, rs_kind, nat_n, tie_from, compensators, group_member, tip_joints, n_s,
-                wave):  # fmt: skip
+                wave, failures):  # fmt: skip
     """Whether the system holds a kind of line, tie, compensator, stateful force model or waves
     this copy does not compile (its force models: ``add_all``). The arrays come one by one."""
     more = line_n.shape[0] > 0 and not LUMPED
@@ -330,6 +333,7 @@ def _holds_more(line_n, rs_kind, nat_n, tie_from, compensators, group_member, ti
     more = more or (group_member.shape[0] > 0 and not GROUPS)
     more = more or (tip_joints.shape[0] > 0 and not TIP_JOINTS)
     more = more or (wave.shape[1] > 0 and not WAVES)
+    more = more or (failures.shape[0] > 0 and not FAILURES)
     return more or (n_s > 0 and not STATES)
 
 
@@ -460,16 +464,90 @@ def project(y, p):
 @inner
 def after_step(t, y, p, w):
     """An accepted step ending at (t, y): the radiation convolutions record their body's
-    velocity (kernels.memory). Every integrator calls it where it projects the state. Returns
-    0."""
-    return _histories(t, y, p, w, False)
+    velocity (kernels.memory), and the line ends whose failure comes are released in ``y``
+    and the parameters (system.failures). Every integrator calls it where it projects the
+    state. Returns 1 when a release changed the system (the integrator's derivatives at
+    (t, y) are stale), else 0."""
+    _histories(t, y, p, w, False)
+    if FAILURES:
+        return _failures(t, y, p, w)
+    return np.int64(0)
 
 
 @inner
 def start_memory(t, y, p, w):
-    """The radiation convolutions' histories at the run's start (at rest before it). Returns
-    0."""
+    """The radiation convolutions' histories at the run's start (at rest before it), and every
+    line end attached again (system.failures: a built system runs again from intact lines).
+    Returns 0."""
+    if FAILURES:
+        for k in range(p.fail_line.shape[0]):
+            p.fail_state[k] = np.nan
+            for c in range(3):
+                p.body_free[p.fail_body[k], c] = 0.0
+            _attach(p, k, p.fail_orig[k])
     return _histories(t, y, p, w, True)
+
+
+@inner
+def _failures(t, y, p, w):
+    """Release every failure whose time has come or one of whose lines' end segments at its
+    point has reached its tension (the tension of the last evaluation, the step's end or its
+    last stage) after the run's start: its point body takes the position and velocity of the
+    point the ends were attached to at (t, y), its degrees of freedom are freed and the ends
+    moved onto it (system.failures). Returns 1 when it released one, else 0."""
+    changed = np.int64(0)
+    if t <= 0.0:
+        return changed
+    for k in range(p.fail_line.shape[0]):
+        if not math.isnan(p.fail_state[k]):
+            continue
+        li = p.fail_line[k]
+        column = p.line_node[li] + (0 if p.fail_end[k] == 0 else p.line_n[li] - 1)
+        if t >= p.fail_time[k] or w.nodes[lk._T, column] >= p.fail_tension[k]:
+            if changed == 0:
+                _points_at(t, y, p, w)
+            for j in range(p.fail_line.shape[0]):
+                if p.fail_group[j] == p.fail_group[k] and math.isnan(p.fail_state[j]):
+                    _release(t, y, p, w, j)
+            changed = np.int64(1)
+    if changed:
+        w.models_key[0] = np.nan  # the kept force models' loads are not this system's
+    return changed
+
+
+@inner
+def _points_at(t, y, p, w):
+    """Every body's and point's pose and velocity at (t, y) into ``w`` (a release's)."""
+    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
+    kinematics.body_states(
+        t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
+        p.body_motion, p.body_track, p.body_parent, tf, w.pos, w.rot, w.vel, w.omega, w.acc,
+        w.quat, w.imposed,
+    )  # fmt: skip
+    kinematics.point_states(
+        p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
+    )
+
+
+@inner
+def _release(t, y, p, w, k):
+    """Failure row k's end onto its point body, placed and moving as the point it leaves."""
+    b, old = p.fail_body[k], p.fail_orig[k]
+    for c in range(3):
+        y[p.body_q[b] + c] = w.ppos[old, c]
+        y[p.body_v[b] + c] = w.pvel[old, c]
+        p.body_free[b, c] = 1.0
+    _attach(p, k, p.fail_point[k])
+    p.fail_state[k] = t
+
+
+@njit(inline="always", **JIT)
+def _attach(p, k, point):
+    """Failure row k's line end at ``point``."""
+    if p.fail_end[k] == 0:
+        p.line_from[p.fail_line[k]] = point
+    else:
+        p.line_to[p.fail_line[k]] = point
 
 
 @njit(inline="always", **JIT)

@@ -81,8 +81,20 @@ class _ParamsFields(NamedTuple):
     line_node: np.ndarray  # (nl,) int: first node (workspace column, node arrays)
     line_q: np.ndarray  # (nl,) int: first interior position in y
     line_v: np.ndarray  # (nl,) int: first interior velocity in y
-    line_from: np.ndarray  # (nl,) int: point of node 0
+    line_from: np.ndarray  # (nl,) int: point of node 0 (a failure moves it: system.failures)
     line_to: np.ndarray  # (nl,) int: point of node n
+    # line failures, a row per released end (system.failures): the line, its end (0 from,
+    # 1 to), the failure, its point body and point, the point the end was attached to, the
+    # time [s] and tension [N] that release it (inf: none), NaN or the time it was released
+    fail_line: np.ndarray
+    fail_end: np.ndarray
+    fail_group: np.ndarray
+    fail_body: np.ndarray
+    fail_point: np.ndarray
+    fail_orig: np.ndarray
+    fail_time: np.ndarray
+    fail_tension: np.ndarray
+    fail_state: np.ndarray
     seg_length: np.ndarray  # unstretched [m]
     seg_stiffness: np.ndarray  # EA [N]
     seg_damping: np.ndarray  # alpha [s]
@@ -381,10 +393,12 @@ def body_forces(t, y, p, w, pos, vel, fraction, load):
 def accept(t, y, p, w):
     """An accepted step ending at (t, y): the state projected (unit quaternions, directors and
     tangents) and the radiation convolutions' histories recorded (``system.evaluation``'s
-    ``project`` and ``after_step``). Every integrator calls it on each accepted step."""
+    ``project`` and ``after_step``). Every integrator calls it on each accepted step. Returns
+    1 when a line's failure changed the system at (t, y) (system.failures: the derivatives an
+    integrator kept from before are stale), else 0."""
     _bound(p.entries)
     indirect.call2(p.entries[PROJECT], y, p)
-    indirect.call4(p.entries[AFTER_STEP], t, y, p, w)
+    return indirect.call4(p.entries[AFTER_STEP], t, y, p, w)
 
 
 def project(y: np.ndarray, p: SystemParams, w: SystemWork) -> None:

@@ -11,12 +11,21 @@ from scipy import sparse
 from seacable.bodies import kinematics
 from seacable.case import system as sch
 from seacable.forces.kinds import RUDDER, THRUSTER
-from seacable.system import coordinates, geometry, kernel, outputs, servo, statics, topology
+from seacable.system import (
+    coordinates,
+    failures,
+    geometry,
+    kernel,
+    outputs,
+    servo,
+    statics,
+    topology,
+)
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
 from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
-from seacable.system.initial import initial_state
+from seacable.system.initial import end_points, initial_state
 
 log = logging.getLogger("seacable")
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
@@ -30,6 +39,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     every free body at its static equilibrium too (the velocities the case gives are kept)."""
     servo.check_body(case)
     built = _assemble(case, base_dir)
+    case = built.case  # with the failures' point bodies (system.failures)
     if case.start == "static":
         topology.check_held(case)
     y0, params = initial_state(built)
@@ -50,6 +60,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             _replaced_velocities(built, given, steady)
         y0[p.n_q : p.n_q + p.n_v] = steady if steady.any() else given
     built = BuiltSystem(params=p, y0=y0, layout=built.layout, case=case)
+    _place_failures(built, y0)
     servo.check(built, y0)
     _carried_velocities(built)
     geometry.check_start(built, y0)
@@ -101,6 +112,18 @@ def damping_advice(system: BuiltSystem) -> str:
     return " or ".join(advice) if advice else "add damping to the ties (lines[k].damping)"
 
 
+def _place_failures(built: BuiltSystem, y0: np.ndarray) -> None:
+    """Each failure's point body (system.failures) at the point its line ends are attached to
+    at the start ``y0``, in ``y0``."""
+    p = built.params
+    if not len(p.fail_line):
+        return
+    ppos, _ = end_points(built, y0)
+    for k in range(len(p.fail_line)):
+        at = int(p.body_q[p.fail_body[k]])
+        y0[at : at + 3] = ppos[p.fail_orig[k]]
+
+
 def refresh_interval(case: sch.SystemCase) -> float | None:
     """How often [s] the run must call :func:`refresh` (None: never)."""
     return servo.refresh_interval(case)
@@ -109,7 +132,7 @@ def refresh_interval(case: sch.SystemCase) -> float | None:
 def refresh(case: sch.SystemCase, p: kernel.SystemParams, time: float, y: np.ndarray):
     """Parameters for the next stretch of the run: the servos' K about the current target."""
     built = _assemble(case, case._base_dir)
-    built = BuiltSystem(params=p, y0=built.y0, layout=built.layout, case=case)
+    built = BuiltSystem(params=p, y0=built.y0, layout=built.layout, case=built.case)
     return servo.refresh(built, p, time, y)
 
 
@@ -343,7 +366,7 @@ def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
     m = len(times)
     filled = outputs.allocate(p, m)
     kept = w.nodes.copy()
-    status = outputs.fill(times, states, p, w, filled)
+    status = failures.fill(times, states, p, w, filled)
     w.nodes[:] = kept
     bodies, nodes, tension, ends, ties, energy, rigid, control = filled
     out: dict = {"time": times}

@@ -391,13 +391,20 @@ def line_loads(built: BuiltSystem, y: np.ndarray, at_rest: bool = False,
 
 def mooring_stiffness(
     built: BuiltSystem, y: np.ndarray, body: str, translation: float = 1e-2,
-    rotation: float = 1e-4, span: float | None = None,
+    rotation: float = 1e-4, span: float | None = None, symmetric: bool = True,
 ) -> np.ndarray:  # fmt: skip
     """The 6x6 stiffness of the lines and ties on ``body`` about the state ``y`` (a static
-    equilibrium): K[i, j] = -dF_i/dx_j [N/m, N/rad; N m/m, N m/rad], F the force and the moment
-    about the body's reference point of its lines and ties at rest (``line_loads(...,
-    at_rest=True)``, earth frame), x the reference point's position and the rotation vector
-    (earth frame). The body's pose is moved by +-``translation`` [m] and +-``rotation`` [rad]
+    equilibrium) [N/m, N/rad; N m/m, N m/rad]: the Hessian of the lines' and ties' potential
+    energy in the coordinates x (the reference point's position, earth frame) and theta (the
+    rotation vector of R R_y^T, earth frame) at theta = 0, symmetric. With F the force and M
+    the moment about the reference point of the lines and ties at rest (``line_loads(...,
+    at_rest=True)``, earth frame): K[:, x] = -d(F, M)/dx, K[x, theta] = -dF/dtheta (equal to
+    -dM/dx transposed), and K[theta, theta] = -dM/dtheta - [M x] / 2: the moment's own tangent
+    under a rotation is not symmetric where the lines exert a moment M on the body (the
+    generalized force of theta is J(theta)^T M, J the rotation's Jacobian, whose derivative
+    adds half the skew matrix of M); ``symmetric=False`` returns that tangent, -d(F, M)/d(x,
+    theta), instead. The two are equal at a pose where the lines exert no moment. The body's
+    pose is moved by +-``translation`` [m] and +-``rotation`` [rad]
     in turn, every line's interior nodes re-solved at rest with every body held (the other
     bodies do not follow: their own stiffness is not included), and the loads differenced
     (central differences). The body's own force models (hydrostatics, weight) are not in K;
@@ -446,6 +453,10 @@ def mooring_stiffness(
                 moved = _settle(built, moved, body)
             loads.append(line_loads(built, moved, at_rest=True)[b])
         stiffness[:, j] = -(loads[0] - loads[1]) / (2.0 * h)
+    if symmetric:
+        m = line_loads(built, _settle(built, y, body), at_rest=True)[b][3:]
+        stiffness[3:, 3:] -= 0.5 * np.array([[0.0, -m[2], m[1]], [m[2], 0.0, -m[0]],
+                                             [-m[1], m[0], 0.0]])  # fmt: skip
     return stiffness
 
 

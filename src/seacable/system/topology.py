@@ -34,8 +34,8 @@ def groups(case: sch.SystemCase) -> list[list[str]]:
 
 
 def _holds(body) -> bool:
-    if isinstance(body, sch.FixedBody | sch.ImposedBody):
-        return True
+    if isinstance(body, sch.FixedBody | sch.ImposedBody) or not getattr(body, "dofs", True):
+        return True  # held in space (a body without a free degree of freedom too)
     return any(isinstance(f, LinearStiffness) for f in body.external_forces)
 
 

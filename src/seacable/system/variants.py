@@ -34,7 +34,7 @@ PACKAGE = Path(__file__).resolve().parents[1]
 TEMPLATE = Path(evaluation.__file__)
 FLAGS_START, FLAGS_END = "# FLAGS:", "# END FLAGS"
 LINE_FLAGS = ("LUMPED", "SEGMENTS", "PLANAR", "GROUPS", "TIP_JOINTS", "NATURAL", "TIES",
-              "COMPENSATORS", "STATES", "WAVES")  # fmt: skip
+              "COMPENSATORS", "STATES", "WAVES", "FAILURES")  # fmt: skip
 # each force model's flag; None: compiled into every copy (gravity and buoyancy: a fraction of a
 # second; each of the others costs 0.5 to 1.4 s of compiling, and a new combination of them
 # compiles only the copy's own functions, the models' kernels being cached apart)
@@ -92,6 +92,7 @@ def features(p: kernel.SystemParams) -> tuple[str, ...]:
         "COMPENSATORS": len(p.compensator) > 0,
         "STATES": int(p.n_s) > 0,
         "WAVES": p.wave.shape[1] > 0,
+        "FAILURES": len(p.fail_line) > 0,
     }
     present = {FORCE_FLAG[int(k)] for k in np.asarray(p.force_kind)}
     on = [name for name in LINE_FLAGS if held[name]]
@@ -104,7 +105,8 @@ def describe(flags: tuple[str, ...]) -> str:
              "PLANAR": "planar rigid-link lines", "GROUPS": "groups of bodies",
              "TIP_JOINTS": "joints at lines' ends", "NATURAL": "natural strings",
              "TIES": "ties", "COMPENSATORS": "compensators",
-             "STATES": "force models' states", "WAVES": "waves on the lines"}  # fmt: skip
+             "STATES": "force models' states", "WAVES": "waves on the lines",
+             "FAILURES": "line failures"}  # fmt: skip
     parts = [words[f] for f in flags if f in words]
     forces = [f[2:].lower().replace("_", " ") for f in flags if f.startswith("F_")]
     parts.append("forces: " + ", ".join(["the common ones", *forces]))
