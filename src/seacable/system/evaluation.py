@@ -504,8 +504,8 @@ def _failures(t, y, p, w):
         li = p.fail_line[k]
         column = p.line_node[li] + (0 if p.fail_end[k] == 0 else p.line_n[li] - 1)
         if t >= p.fail_time[k] or w.nodes[lk._T, column] >= p.fail_tension[k]:
-            if changed == 0:
-                _points_at(t, y, p, w)
+            if changed == 0:  # every point at (t, y) (the motions part writes no rate)
+                _part(MOTIONS, t, y, p, w, w.rhs6)
             for j in range(p.fail_line.shape[0]):
                 if p.fail_group[j] == p.fail_group[k] and math.isnan(p.fail_state[j]):
                     _release(t, y, p, w, j)
@@ -513,20 +513,6 @@ def _failures(t, y, p, w):
     if changed:
         w.models_key[0] = np.nan  # the kept force models' loads are not this system's
     return changed
-
-
-@inner
-def _points_at(t, y, p, w):
-    """Every body's and point's pose and velocity at (t, y) into ``w`` (a release's)."""
-    tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
-    kinematics.body_states(
-        t, y, p.body_kind, p.body_q, p.body_v, p.body_rigid, p.body_pose, p.body_channel,
-        p.body_motion, p.body_track, p.body_parent, tf, w.pos, w.rot, w.vel, w.omega, w.acc,
-        w.quat, w.imposed,
-    )  # fmt: skip
-    kinematics.point_states(
-        p.point_body, p.point_offset, w.pos, w.rot, w.vel, w.omega, w.ppos, w.pvel, w.parm
-    )
 
 
 @inner
