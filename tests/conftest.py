@@ -26,7 +26,7 @@ STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
 PYTHON_ONLY = (
     "cli.py", "cli_ships.py", "viz/", "results.py", "simulation.py", "analysis.py",
     "case/loader.py", "case/moordyn.py", "coupling.py", "system/utilisation.py",
-    "system/pseudo_time.py", "system/failures.py",
+    "system/pseudo_time.py", "system/failures.py", "system/closed_form.py",
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",
     "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",
     "stability/two_parameter.py", "stability/compare.py", "stability/datasets.py",

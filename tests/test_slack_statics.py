@@ -118,3 +118,23 @@ def test_the_three_line_buoy_at_short_segments(segment):
         return np.array([float(ds[f"position_{c}"].isel(time=0)) for c in "xyz"])
 
     assert np.abs(buoy(segment) - buoy(10.0)).max() < 0.05
+
+
+@pytest.mark.parametrize(("radius", "force"), [(600.0, 1.0e6), (480.0, 1.0e5)])
+def test_the_bodies_balance_on_the_closed_forms_is_moorpys(radius, force):
+    """system.closed_form, the statics' first guess: the platform's balance on its lines'
+    closed forms (elastic catenaries with seabed contact, or laid slack) is MoorPy's balance of
+    the same continuous catenaries, within 1 mm, from the upright start (135 m and 204 m
+    away; the second with every line lying slack there, nothing holding the platform)."""
+    from seacable.system import closed_form, model, statics
+    from seacable.system.coordinates import coordinates
+
+    built = model.build(seacable.load_case({**_platform(radius, force), "start": "as_given"}))
+    p = statics.still_water(built).params
+    coords = coordinates(p)
+    bodies = np.flatnonzero(coords.kind <= 1)
+    limit = statics._step_limit(built, coords, shortest=True)[bodies]
+    found = closed_form.pose(p, coords, built.y0, limit)
+    assert found is not None
+    x = found[int(p.body_q[built.layout.bodies.index("platform")])]
+    assert abs(x - _moorpy_offset(radius, force)[0]) < 1e-3, x

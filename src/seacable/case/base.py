@@ -197,11 +197,15 @@ LARGEST_TABLE = 50_000_000  # bytes of a table file
 
 class Table(_Model):
     """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
-    clamped cubic spline; held constant outside the table. ``file`` is relative to the case."""
+    clamped cubic spline; held constant outside the table. ``file`` is relative to the case.
+    With ``column``, the file's first line names its columns (time first) and the values are
+    that column's: one table of a vessel's six motions (time, x, y, z, roll_deg, pitch_deg,
+    yaw_deg) moves an imposed body through six channels that name their column."""
 
     kind: Literal["table"]
     file: str
     interpolation: Literal["linear", "cubic"] = "linear"
+    column: str | None = None  # the value's column, by the name in the first line
 
     def path(self, base_dir=None) -> Path:
         path = Path(self.file)
@@ -232,11 +236,20 @@ class Table(_Model):
     def load(self, base_dir=None):
         path = self.path(base_dir)
         rows = []
+        at, header = 1, self.column is not None  # the value's column; a header to read
         for row in csv.reader(io.StringIO(self.text(base_dir))):
             if not row or row[0].strip().startswith("#"):
                 continue
+            if header:
+                header = False
+                names = [name.strip() for name in row]
+                if self.column not in names[1:]:
+                    raise ValueError(f"table file '{path}' has no column '{self.column}' in its "
+                                     f"first line; its columns: {', '.join(names)}")  # fmt: skip
+                at = names.index(self.column)
+                continue
             try:
-                rows.append((float(row[0]), float(row[1])))
+                rows.append((float(row[0]), float(row[at])))
             except (ValueError, IndexError):
                 if rows:  # a header is allowed only on the first line
                     raise ValueError(f"table file '{path}': bad row {row!r}") from None

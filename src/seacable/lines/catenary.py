@@ -37,14 +37,17 @@ def _ends(h, v_f, length, w, ea, seabed):
     return x, z
 
 
-def solve(span: float, rise: float, length: float, w: float, ea: float, seabed: bool):
-    """Tensions (H, V_F) [N] of the line reaching ``span`` horizontally and ``rise`` up [m]."""
+def solve(span: float, rise: float, length: float, w: float, ea: float, seabed: bool,
+          guess: tuple[float, float] | None = None):  # fmt: skip
+    """Tensions (H, V_F) [N] of the line reaching ``span`` horizontally and ``rise`` up [m]
+    (``guess``: tried first, a nearby solution's)."""
     if w <= 0:
         raise CatenaryError(f"the line's apparent weight must be positive (got {w:.4g} N/m)")
     if math.hypot(span, rise) >= length * 2:
         raise CatenaryError("the ends are more than twice the line's length apart")
     # slack lines have small H (a few metres of line weight), taut ones large: try a wide grid
-    guesses = [(0.5 * w * length, 0.5 * w * length + max(rise, 0) * w)]
+    guesses = [] if guess is None else [guess]
+    guesses += [(0.5 * w * length, 0.5 * w * length + max(rise, 0) * w)]
     guesses += [
         (w * length * f, w * g)
         for f in (0.001, 0.01, 0.1, 1.0, 5.0, 1e-4, 1e-5, 1e-6)  # the last: nearly slack

@@ -13,12 +13,13 @@ velocities) about any state; ``mooring_stiffness`` the 6x6 stiffness of a body's
 from dataclasses import replace
 
 import numpy as np
+from scipy import sparse
 from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
 from seacable.kernels import surface, waves
-from seacable.system import kernel, natural_lines, nested, outputs, relax, rigid
+from seacable.system import closed_form, kernel, natural_lines, nested, outputs, relax, rigid
 from seacable.system.assemble import BuiltSystem
 from seacable.system.coordinates import (
     STRAIN,
@@ -36,6 +37,7 @@ from seacable.system.coordinates import (
     tangents,
 )
 from seacable.system.frequency import fastest_frequency
+from seacable.system.initial import uniform_shapes
 from seacable.system.line_balance import settle_lines, steady_velocities
 
 
@@ -62,10 +64,13 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     the free bodies' degrees of freedom (``system.nested``), each lumped line settled at its
     static shape between its ends for every trial pose (``line_balance.settle_lines``, the linear
     axial law: chain lying on a frictionless seabed has one shape): it does not lose its way
-    in the kinks of the seabed's contact or of the free surface. Then Newton's homotopy; last,
-    dynamic relaxation (``system.relax``: the system let move, its kinetic energy taken away,
-    until it rests near a balance Newton then finds). Raises StaticsError naming the body or
-    line that stays out of balance. In still water: the waves' mean position."""
+    in the kinks of the seabed's contact or of the free surface. Then both again from the
+    bodies' balance on the lines' closed-form catenaries (``system.closed_form``: a start near
+    the balance when the bodies must travel far, a platform whose lines lie slack); then
+    Newton's homotopy; last, dynamic relaxation (``system.relax``: the system let move, its
+    kinetic energy taken away, until it rests near a balance Newton then finds), from the start
+    and from the closed forms' balance. Raises StaticsError naming the body or line that stays
+    out of balance. In still water: the waves' mean position."""
     built = still_water(built)
     p = built.params
     coords = coordinates(p)
@@ -80,40 +85,95 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     scale = float(np.abs(residual(y)).max()) + 1.0
     structure = pattern(p, coords)
     sparsity = (structure, colour(structure))  # which increments move which residuals
+    stages = _Stages(built, coords, sparsity, residual, iterations, tolerance * scale,
+                     1e-6 * scale, time)  # fmt: skip
     direct = _direct(built, coords, sparsity, residual, y, iterations, tolerance * scale)
-    r = residual(direct)
-    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+    if stages.balanced(direct):
         return direct
-    bodies = np.flatnonzero(coords.kind <= 1)
-    if (bodies.size or len(p.line_n)) and not len(p.rs_n) and not len(p.nat_n):
-        limit = _step_limit(built, coords, shortest=True)[bodies]
-        settled = nested.bodies_newton(p, coords, y, limit, iterations, tolerance * scale, time)
-        if settled is not None:
-            r = residual(settled)
-            nodes = np.flatnonzero(coords.kind == 2)
-            r[nodes] = Residual(p._replace(slack_allowed=0), coords, time)(settled)[nodes]
-            if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
-                return settled
+    if (settled := stages.nested_from(y)) is not None:
+        return settled
+    # the bodies' balance on the lines' closed forms (MoorPy's model; the lines' current and
+    # ties as they act): a start near the balance when the bodies must travel far
+    guess = closed_form.pose(p, coords, y, stages.limit, time)
+    if guess is not None:
+        guess = uniform_shapes(p, guess, time)
+        direct = _direct(built, coords, sparsity, residual, guess, iterations, tolerance * scale)
+        if stages.balanced(direct):
+            return direct
+        if (settled := stages.nested_from(guess)) is not None:
+            return settled
     followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale, 1e-6 * scale)
-    r = residual(followed)
-    if np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6 * scale:
+    if stages.balanced(followed):
         return followed
-    relaxed = relax.relax(
-        built, y, residual, 1e-3 * scale, fastest_frequency(built, y, time)[0], time
-    )
-    if relaxed.rested:
-        polished = _direct(built, coords, sparsity, residual, relaxed.state, iterations,
-                           tolerance * scale)  # fmt: skip
-        rp = residual(polished)
-        if np.all(np.isfinite(rp)) and np.abs(rp).max() < 1e-6 * scale:
-            return polished
-    elif relaxed.state is not None:  # it ran away: blame what went farthest, as it was at y
+    found, relaxed = stages.relaxed_from(y, scale)
+    if found is None and guess is not None:
+        found, _ = stages.relaxed_from(guess, scale)
+    if found is not None:
+        return found
+    if not relaxed.rested and relaxed.state is not None:
+        # it ran away: blame what went farthest, as it was at y
         moved = np.zeros(len(coords.kind))
         body = coords.kind == 0
         moved[body] = np.abs(relaxed.state[coords.q[body]] - y[coords.q[body]])
         if moved.max() > 0.0:
             raise StaticsError(_blame(built, coords, residual(y), int(np.argmax(moved))))
+    r = residual(followed)
     raise StaticsError(_blame(built, coords, r))
+
+
+class _Stages:
+    """The statics' attempts after Newton from the start (``equilibrium``), sharing its
+    residual, tolerance (``enough``: the largest residual accepted) and step limits."""
+
+    def __init__(self, built, coords, sparsity, residual, iterations, tolerance, enough, time):
+        self.built, self.coords, self.sparsity, self.residual = built, coords, sparsity, residual
+        self.iterations, self.tolerance, self.enough, self.time = (
+            iterations,
+            tolerance,
+            enough,
+            time,
+        )
+        p = built.params
+        self.bodies = np.flatnonzero(coords.kind <= 1)
+        self.limit = _step_limit(built, coords, shortest=True)[self.bodies]
+        self.nests = bool(
+            (self.bodies.size or len(p.line_n)) and not len(p.rs_n) and not len(p.nat_n)
+        )
+
+    def balanced(self, state: np.ndarray) -> bool:
+        r = self.residual(state)
+        return bool(np.all(np.isfinite(r)) and np.abs(r).max() < self.enough)
+
+    def nested_from(self, state: np.ndarray) -> np.ndarray | None:
+        """Newton over the bodies with the lines settled (system.nested), from ``state``; None
+        when it does not reach the tolerance (the nodes' residual of the linear axial law)."""
+        if not self.nests:
+            return None
+        p, coords = self.built.params, self.coords
+        settled = nested.bodies_newton(p, coords, state, self.limit, self.iterations,
+                                       self.tolerance, self.time)  # fmt: skip
+        if settled is None:
+            return None
+        r = self.residual(settled)
+        nodes = np.flatnonzero(coords.kind == 2)
+        r[nodes] = Residual(p._replace(slack_allowed=0), coords, self.time)(settled)[nodes]
+        return settled if np.all(np.isfinite(r)) and np.abs(r).max() < self.enough else None
+
+    def relaxed_from(self, state: np.ndarray, scale: float):
+        """The dynamic relaxation from ``state`` (``system.relax``), polished by Newton over
+        every coordinate or, where that stalls on a soft mode, over the bodies: (the balance
+        or None, the relaxation's end)."""
+        built, time = self.built, self.time
+        relaxed = relax.relax(built, state, self.residual, 1e-3 * scale,
+                              fastest_frequency(built, state, time)[0], time)  # fmt: skip
+        if relaxed.rested and relaxed.state is not None:
+            polished = _direct(built, self.coords, self.sparsity, self.residual, relaxed.state,
+                               self.iterations, self.tolerance)  # fmt: skip
+            if self.balanced(polished):
+                return polished, relaxed
+            if (settled := self.nested_from(relaxed.state)) is not None:
+                return settled, relaxed
+        return None, relaxed
 
 
 def _hang(p: kernel.SystemParams, y: np.ndarray, free: np.ndarray, time: float = 0.0,
@@ -227,6 +287,27 @@ def _homotopy(built, coords, sparsity, residual, y, tolerance, enough, smallest:
     return y
 
 
+def _newton_step(jac, r: np.ndarray, limit: np.ndarray) -> np.ndarray | None:
+    """Newton's step; where the matrix is singular or nearly (a step beyond a hundred step
+    limits: chain lying slack on a frictionless seabed holds nothing across it), the step of
+    the matrix shifted on its diagonal by each residual over its step limit (pseudo-transient
+    continuation, as ``system.nested``'s: a coordinate nothing holds moves along its force,
+    the others nearly as Newton's). None when even that fails."""
+    try:
+        step = splu(jac).solve(-r)
+        if np.all(np.isfinite(step)) and np.all(np.abs(step) < 100.0 * limit):
+            return step
+    except RuntimeError:
+        pass
+    diagonal = np.abs(jac.diagonal())
+    shift = np.maximum(np.abs(r) / limit, 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
+    try:
+        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
+    except RuntimeError:
+        return None
+    return step if np.all(np.isfinite(step)) else None
+
+
 def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
     """Newton over every coordinate; the best state met."""
     structure, colours = sparsity
@@ -237,9 +318,8 @@ def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
         if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
             break
         jac = fd_jacobian(residual, y, coords, structure, colours, r)
-        try:
-            step = splu(jac).solve(-r)
-        except RuntimeError:
+        step = _newton_step(jac, r, limit)
+        if step is None:
             break
         largest = float(np.max(np.abs(step) / limit))
         if largest > 1.0:
