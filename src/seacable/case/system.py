@@ -494,7 +494,9 @@ class Failure(_Model):
     the tension of one of them there first reaches ``tension``, whichever comes first. The
     released ends stay joined to one another by a free massless point, a body named after the
     failure in the results (held where the ends were attached until the release), and the run
-    goes on (system.failures)."""
+    goes on (system.failures). The release comes at the end of the first integration step that
+    reaches the time or the tension (within one step: the fixed step of rk4 and the implicit
+    schemes, dopri5's adaptive one); the results' attributes give the time it came."""
 
     name: Name | None = None  # default: failure<k> (k from 1)
     at: str

@@ -110,14 +110,17 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
         found, _ = stages.relaxed_from(guess, scale)
     if found is not None:
         return found
+    r = residual(followed)
     if not relaxed.rested and relaxed.state is not None:
-        # it ran away: blame what went farthest, as it was at y
+        # it ran away: blame what went farthest, as it was at y, unless it was in balance there
+        # (the lines' nodes out of balance on the seabed let it drift): then the worst residual
         moved = np.zeros(len(coords.kind))
         body = coords.kind == 0
         moved[body] = np.abs(relaxed.state[coords.q[body]] - y[coords.q[body]])
-        if moved.max() > 0.0:
-            raise StaticsError(_blame(built, coords, residual(y), int(np.argmax(moved))))
-    r = residual(followed)
+        start = residual(y)
+        mover = int(np.argmax(moved))
+        if moved.max() > 0.0 and not abs(start[mover]) < stages.enough:
+            raise StaticsError(_blame(built, coords, start, mover))
     raise StaticsError(_blame(built, coords, r))
 
 
