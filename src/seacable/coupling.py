@@ -32,7 +32,8 @@ import numpy as np
 
 from seacable.bodies import kinematics
 from seacable.case import loader
-from seacable.case.system import Constant, ImposedBody, SystemCase
+from seacable.case.base import Constant
+from seacable.case.system import ImposedBody, SystemCase
 from seacable.errors import CaseError, SimulationDiverged
 from seacable.kernels.status import Status
 from seacable.numerics import integrators

@@ -29,7 +29,7 @@ are fixed in the vessel's frame: they become one imposed body ``vessel``, held s
 way, each point at its deck position.
 Each v2 body becomes a body ``body<ID>`` (``_bodies``: fixed, imposed, or a free rigid body
 with MoorDyn's body hydrodynamics) holding the points the deck attaches to it (``Body<ID>``),
-in its frame.
+in its frame. The bodies, points and failures are read in ``case.moordyn_tables``.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
 never dropped: rods (not yet read), a failure at a rod's end, pinned coupled bodies, a body
@@ -42,12 +42,12 @@ written case.
 
 import math
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import yaml
 
+from seacable.case.moordyn_tables import Section, Tables, rounded, to_number
 from seacable.errors import CaseError
 
 V2_SECTIONS = {
@@ -140,13 +140,6 @@ DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is couple
 OUTPUT_INTERVAL = 0.1  # [s] unless the deck gives dtOut
 
 
-@dataclass
-class _Section:
-    title: str
-    line: int  # where its title is (1-based)
-    rows: list[tuple[int, list[str]]] = field(default_factory=list)  # (line, fields)
-
-
 def read(source: str | Path, name: str | None = None) -> dict[str, Any]:
     """The case mapping of the MoorDyn deck ``source`` (a path, or the deck's text when it
     holds a newline; ``name``: what messages call it). Raises ``CaseError`` naming the section,
@@ -172,17 +165,7 @@ def _title(line: str) -> str | None:
     return " ".join(match.group(1).upper().split()) if match else None
 
 
-def _number(text: str, where: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise CaseError(f"{where}: {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise CaseError(f"{where}: {text!r} is not a finite number")
-    return value
-
-
-class _Deck:
+class _Deck(Tables):
     def __init__(self, source: str | Path, name: str | None = None):
         if isinstance(source, Path) or "\n" not in str(source):
             self.name = str(source)
@@ -194,7 +177,7 @@ class _Deck:
                 ) from None
         else:
             self.name, text = name or "the deck", str(source)
-        self.sections: dict[str, _Section] = {}
+        self.sections: dict[str, Section] = {}
         self.notes: list[str] = []
         self._split(text)
         self.version = 2 if "POINTS" in {s.title for s in self.sections.values()} else 1
@@ -202,7 +185,7 @@ class _Deck:
             self.version = 2 if len(self.sections["line_types"].rows[0][1]) >= 10 else 1
 
     def _split(self, text: str) -> None:
-        current: _Section | None = None
+        current: Section | None = None
         skip = 0
         for number, raw in enumerate(text.splitlines(), start=1):
             title = _title(raw)
@@ -211,7 +194,7 @@ class _Deck:
                     key = V2_SECTIONS[title]
                     if key in self.sections:
                         raise CaseError(f"{self.name} line {number}: a second {title} section")
-                    current = self.sections[key] = _Section(title, number)
+                    current = self.sections[key] = Section(title, number)
                     skip = 0 if key in ("options", "outputs") else 2
                 elif title in NOT_YET:
                     raise CaseError(
@@ -242,10 +225,6 @@ class _Deck:
                     current.rows.append((number, fields))
                 continue
             current.rows.append((number, fields))
-
-    def _where(self, key: str, line: int, column: str | None = None) -> str:
-        section = self.sections[key].title
-        return f"{self.name} line {line} ({section}{', column ' + column if column else ''})"
 
     # -- the case --------------------------------------------------------------------------
     def case(self) -> dict[str, Any]:
@@ -280,7 +259,7 @@ class _Deck:
             )
         step = options["dtm"]
         if "cfl" in options and not any(f[1].lower() == "dtm" for _, f in self._option_rows()):
-            step = _round(options["cfl"] * _transit(types, lines))
+            step = rounded(options["cfl"] * _transit(types, lines))
             self.notes.append(
                 f"CFL {options['cfl']:g}: time_step {step:g} s, the CFL number times the axial "
                 "wave's transit time over the shortest segment, sqrt(m / EA) l"
@@ -289,14 +268,14 @@ class _Deck:
         whole = interval / math.ceil(interval / step * (1 - 1e-12))  # at most the step asked
         if abs(whole - step) > 1e-12 * step:
             self.notes.append(
-                f"time_step {_round(whole):g} s: {step:g} s made a whole fraction of the "
+                f"time_step {rounded(whole):g} s: {step:g} s made a whole fraction of the "
                 f"{interval:g} s output interval"
             )
         simulation = {
             "duration": options.get("tmax", DURATION),
             "output_interval": interval,
             "integrator": "rk4",
-            "time_step": _round(whole),
+            "time_step": rounded(whole),
         }
         if "tmax" not in options:
             self.notes.append(f"simulation.duration: {DURATION:g} s (a deck carries none)")
@@ -329,7 +308,7 @@ class _Deck:
             key = ALIASES.get(name.lower(), name.lower())
             where = self._where("options", number, name)
             if key in DEFAULTS or key in ("dtout", "tmax", "cfl"):
-                options[key] = _number(value, where)
+                options[key] = to_number(value, where)
                 if key in ("dtm", "dtout", "tmax", "cfl") and options[key] <= 0:
                     raise CaseError(f"{where}: {value} must be positive")
                 if key in ("dtout", "tmax"):
@@ -338,7 +317,7 @@ class _Deck:
                 self.notes.append(f"{name} {value}: not used ({REPLACED[key]})")
             elif key in AT_DEFAULT:
                 default, what = AT_DEFAULT[key]
-                if _number(value, where) != default:
+                if to_number(value, where) != default:
                     raise CaseError(
                         f"{where}: {value}: {what} is not modelled; remove it or "
                         f"set MoorDyn's default {default:g}"
@@ -376,7 +355,7 @@ class _Deck:
             name = row["Name"]
 
             def value(column, row=row, number=number):
-                return _number(row[column], self._where("line_types", number, column))
+                return to_number(row[column], self._where("line_types", number, column))
 
             if not re.fullmatch(r"[-+0-9.eE]+", row["EA"]):
                 raise CaseError(
@@ -384,7 +363,7 @@ class _Deck:
                     "non-linear or viscoelastic EA is not read; give one number"
                 )
             tangential = "CaAx" if v2 else "Cat"
-            if v2 and len(fields) > 10 and _number(fields[10], "Cl") != 0.0:
+            if v2 and len(fields) > 10 and to_number(fields[10], "Cl") != 0.0:
                 raise CaseError(
                     f"{self._where('line_types', number, 'Cl')}: {fields[10]}: "
                     "vortex-induced vibration is not modelled; set Cl to 0"
@@ -414,222 +393,6 @@ class _Deck:
             types[name] = line_type
         return types
 
-    def _bodies(self, options) -> dict[str, dict[str, Any]]:
-        """The deck's bodies (v2 BODIES) by their attachment word ``body<ID>``: ``Fixed`` a
-        fixed body, ``Coupled`` (``Vessel``) an imposed body held at the deck's pose, ``Free``
-        a rigid body with MoorDyn's body hydrodynamics (:meth:`_free_body`)."""
-        columns = ["ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I",
-                   "Volume", "CdA", "Ca"]  # fmt: skip
-        section = self.sections.get("bodies")
-        bodies: dict[str, dict[str, Any]] = {}
-        for number, fields in section.rows if section else []:
-            row = self._row("bodies", number, fields, columns)
-
-            def value(column, row=row, number=number):
-                return _number(row[column], self._where("bodies", number, column))
-
-            def values(column, counts, row=row, number=number):
-                parts = row[column].split("|")
-                if len(parts) not in counts:
-                    raise CaseError(
-                        f"{self._where('bodies', number, column)}: {row[column]!r}: give "
-                        f"{' or '.join(map(str, counts))} numbers separated by |"
-                    )
-                return [_number(v, self._where("bodies", number, column)) for v in parts]
-
-            name, kind = f"body{row['ID']}", row["Attachment"].lower()
-            if name in bodies:
-                raise CaseError(f"{self._where('bodies', number, 'ID')}: a second body {row['ID']}")
-            position = [value("X0"), value("Y0"), value("Z0")]
-            angles = [value("r0"), value("p0"), value("y0")]
-            body: dict[str, Any]
-            if kind in ("fixed", "fix", "anchor"):
-                body = {"name": name, "type": "fixed", "position": position}
-                if any(angles):
-                    body["orientation_deg"] = angles
-            elif kind in ("coupled", "cpld", "vessel", "ves"):
-                body = {"name": name, "type": "imposed"}
-                for key, v in zip(("x", "y", "z", "roll_deg", "pitch_deg", "yaw_deg"),
-                                  position + angles, strict=True):  # fmt: skip
-                    body[key] = _const(v)
-                self.notes.append(
-                    f"{name}: a coupled body, held at the deck's pose; give its x, y, z, "
-                    "roll_deg, pitch_deg, yaw_deg as time functions to move it, or step it "
-                    "from Python (seacable.coupling.Coupling)"
-                )
-            elif kind == "free":
-                body = self._free_body(name, position, angles, value, values, options["rhow"])
-            else:
-                raise CaseError(
-                    f"{self._where('bodies', number, 'Attachment')}: {row['Attachment']!r}: "
-                    "seacable reads Fixed, Coupled (Vessel) and Free bodies; a pinned coupled "
-                    "body is not read yet"
-                )
-            body["points"] = {}
-            bodies[name] = body
-        return bodies
-
-    def _free_body(self, name, position, angles, value, values, rho) -> dict[str, Any]:
-        """A free body: a rigid body of the deck's mass, CG, inertia about the CG (one value
-        for the three axes, or three), its buoyancy at its CG (where MoorDyn puts it), drag
-        CdA per body axis on the velocity relative to the water (1, 2, 3 or 6 values as
-        MoorDyn's documentation reads them), added mass Ca rho V per axis, and the waves'
-        acceleration on its volume (``fluid inertia``; none in still water, MoorDyn's)."""
-        mass, volume = value("Mass"), value("Volume")
-        cg = values("CG", (1, 3))
-        cg = [0.0, 0.0, cg[0]] if len(cg) == 1 else cg
-        inertia = values("I", (1, 3))
-        cda = values("CdA", (1, 2, 3, 6))
-        if len(cda) == 6:
-            moving, turning = cda[:3], cda[3:]
-        elif len(cda) == 3:
-            moving = turning = cda
-        else:  # one for all six, or one for the translations and one for the rotations
-            moving, turning = [cda[0]] * 3, [cda[-1]] * 3
-        ca = values("Ca", (1, 3))
-        body: dict[str, Any] = {
-            "name": name, "type": "rigid", "position": position, "orientation_deg": angles,
-            "mass": mass, "centre_of_gravity": cg,
-            "inertia": inertia * 3 if len(inertia) == 1 else inertia,
-        }  # fmt: skip
-        forces: list[dict[str, Any]] = [{"model": "gravity"}]
-        if volume > 0:
-            body["volume"] = volume
-            body["centre_of_buoyancy"] = cg
-            forces += [{"model": "buoyancy"}, {"model": "fluid inertia"}]
-            if any(ca):
-                added = [_round(c * rho * volume) for c in (ca * 3 if len(ca) == 1 else ca)]
-                body["added_mass"] = [*added, 0.0, 0.0, 0.0]
-            self.notes.append(
-                f"{name}: its buoyancy acts at its CG (MoorDyn's body); give "
-                "centre_of_buoyancy where it is elsewhere"
-            )
-        if any(moving):
-            forces.append({"model": "drag", "drag_coefficient": 1.0, "area": moving})
-        if any(turning):
-            diagonal = [0.0] * 3 + [_round(0.5 * rho * c) for c in turning]
-            forces.append({"model": "quadratic_damping", "diagonal": diagonal})
-            self.notes.append(
-                f"{name}: its rotational CdA is a quadratic damping 0.5 rho CdA |w_k| w_k per "
-                "body axis (MoorDyn's acts on the whole |w|: the same about one axis)"
-            )
-        body["external forces"] = forces
-        return body
-
-    def _row(self, key: str, number: int, fields: list[str], columns: list[str],
-             optional: int = 0) -> dict[str, str]:  # fmt: skip
-        """A table row by its column names, their count checked (the last ``optional``
-        columns may be left out)."""
-        if not len(columns) - optional <= len(fields) <= len(columns):
-            raise CaseError(
-                f"{self._where(key, number)}: {len(fields)} columns; expected {' '.join(columns)}"
-            )
-        return dict(zip(columns, fields, strict=False))
-
-    def _points(self, options, held) -> tuple[list[dict[str, Any]], dict[str, str]]:
-
-        v2 = self.version == 2
-        columns = (
-            ["ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"]
-            if v2
-            else ["ID", "Attachment", "X", "Y", "Z", "M", "V", "FX", "FY", "FZ", "CdA", "CA"]
-        )
-        bodies: list[dict[str, Any]] = []
-        names: dict[str, str] = {}
-        vessel: dict[str, list[float]] = {}
-        for number, fields in self.sections["points"].rows:
-            row = self._row("points", number, fields, columns)
-
-            def value(column, row=row, number=number):
-                return _number(row[column], self._where("points", number, column))
-
-            ident, kind = row["ID"], row["Attachment"].lower()
-            name = f"point{ident}"
-            position = [value("X"), value("Y"), value("Z")]
-            if not v2 and any(value(c) != 0.0 for c in ("FX", "FY", "FZ")):
-                raise CaseError(
-                    f"{self._where('points', number, 'FX')}: a v1 point's steady "
-                    "force is not read (its unit is N in MoorDyn's code, kN in its "
-                    "sample files); give it as an applied force in the case"
-                )
-            if ident in names:
-                raise CaseError(f"{self._where('points', number, 'ID')}: a second point {ident}")
-            if kind in ("fixed", "fix", "anchor"):
-                bodies.append({"name": name, "type": "fixed", "position": position})
-            elif kind in ("coupled", "cpld") or (kind == "vessel" and v2):
-                bodies.append(
-                    {
-                        "name": name,
-                        "type": "imposed",
-                        "x": _const(position[0]),
-                        "y": _const(position[1]),
-                        "z": _const(position[2]),
-                    }
-                )
-            elif kind == "vessel":
-                vessel[name] = position
-                names[ident] = f"vessel.{name}"
-                continue
-            elif v2 and kind in held:
-                if any(value(c) != 0.0 for c in ("M", "V", "CdA")):
-                    raise CaseError(
-                        f"{self._where('points', number, 'M')}: a point on {kind} with a mass, "
-                        "volume or drag area: seacable's body points carry none; give them "
-                        "to the body (its mass, CG, inertia, volume) and set them to 0 here"
-                    )
-                held[kind]["points"][name] = position
-                names[ident] = f"{kind}.{name}"
-                continue
-            elif kind in ("free", "connect", "con"):
-                bodies.append(
-                    self._free(
-                        name,
-                        position,
-                        value("M"),
-                        value("V"),
-                        value("CdA"),
-                        value("CA"),
-                        options["rhow"],
-                    )
-                )
-            else:
-                raise CaseError(
-                    f"{self._where('points', number, 'Attachment')}: "
-                    f"{row['Attachment']!r}: seacable reads Fixed, Free (Connect), "
-                    "Coupled and Vessel points and points on the deck's bodies "
-                    f"({', '.join(held) or 'none'}); a point on a turbine is not read"
-                )
-            names[ident] = name
-        bodies = list(held.values()) + bodies
-        if vessel:
-            bodies.append({"name": "vessel", "type": "imposed", "points": vessel})
-            self.notes.append(
-                "vessel: the deck's vessel points, held still; give its x, y, z, "
-                "roll_deg, pitch_deg, yaw_deg as time functions to move it"
-            )
-        if any(b["type"] == "imposed" and b["name"] != "vessel" for b in bodies):
-            self.notes.append(
-                "the coupled points are imposed bodies held where the deck puts "
-                "them; give their x, y, z as time functions to move them"
-            )
-        return bodies, names
-
-    @staticmethod
-    def _free(name, position, mass, volume, cda, ca, rho) -> dict[str, Any]:
-        body: dict[str, Any] = {"name": name, "type": "point", "position": position, "mass": mass}
-        forces: list[dict[str, Any]] = [{"model": "gravity"}]
-        if volume > 0:
-            body["volume"] = volume
-            forces.append({"model": "buoyancy"})
-            if ca > 0:
-                body["added_mass"] = ca * rho * volume
-        if cda > 0:
-            forces.append({"model": "drag", "drag_coefficient": 1.0, "area": cda})
-        if volume > 0:  # the waves' acceleration on it (none in still water: MoorDyn's)
-            forces.append({"model": "fluid inertia"})
-        body["external forces"] = forces
-        return body
-
     def _lines(self, types, names) -> list[dict[str, Any]]:
         v2 = self.version == 2
         columns = (
@@ -655,8 +418,8 @@ class _Deck:
                         "yet)"
                     )
                 ends.append(names[row[column]])
-            length = _number(row["UnstrLen"], self._where("lines", number, "UnstrLen"))
-            segments = _number(row["NumSegs"], self._where("lines", number, "NumSegs"))
+            length = to_number(row["UnstrLen"], self._where("lines", number, "UnstrLen"))
+            segments = to_number(row["NumSegs"], self._where("lines", number, "NumSegs"))
             if segments != int(segments) or segments < 1:
                 raise CaseError(
                     f"{self._where('lines', number, 'NumSegs')}: {row['NumSegs']} "
@@ -675,41 +438,6 @@ class _Deck:
             )
         return lines
 
-    def _failures(self, names: dict[str, str]) -> list[dict[str, Any]]:
-        """FAILURE (MoorDyn's line failures): the lines' ends at a point released at FailTime
-        or when one's tension there reaches FailTen (0: none), staying joined by a free point
-        (seacable's ``failures``)."""
-        columns = ["FailureID", "Point", "Lines", "FailTime", "FailTen"]
-        section = self.sections.get("failures")
-        out = []
-        for number, fields in section.rows if section else []:
-            row = self._row("failures", number, fields, columns)
-            point = re.fullmatch(r"(?:P|C|POINT|CON)?(\d+)", row["Point"], re.IGNORECASE)
-            if point is None or point.group(1) not in names:
-                raise CaseError(
-                    f"{self._where('failures', number, 'Point')}: {row['Point']!r}: a point "
-                    f"of the deck ({', '.join(names)}); a rod's end is not read"
-                )
-            lines = [f"line{k}" for k in row["Lines"].split(",") if k]
-            time = _number(row["FailTime"], self._where("failures", number, "FailTime"))
-            tension = _number(row["FailTen"], self._where("failures", number, "FailTen"))
-            if time <= 0 and tension <= 0:
-                raise CaseError(
-                    f"{self._where('failures', number, 'FailTime')}: neither FailTime nor "
-                    "FailTen is positive, so the failure never happens; give one of them"
-                )
-            failure: dict[str, Any] = {
-                "name": f"failure{row['FailureID']}",
-                "at": names[point.group(1)],
-                "lines": lines,
-            }
-            if time > 0:
-                failure["time"] = time
-            if tension > 0:
-                failure["tension"] = tension
-            out.append(failure)
-        return out
-
     def commented(self, case: dict[str, Any]) -> str:
         """The case as YAML, headed by what the import did."""
         head = [
@@ -720,14 +448,6 @@ class _Deck:
         head += [f"# - {note}" for note in self.notes]
         body = yaml.safe_dump(case, sort_keys=False, default_flow_style=None, width=100)
         return "\n".join(head) + "\n" + body
-
-
-def _round(value: float) -> float:
-    return float(f"{value:.12g}")
-
-
-def _const(value: float) -> dict[str, Any]:
-    return {"kind": "constant", "value": value}
 
 
 def _transit(types: dict[str, dict[str, Any]], lines: list[dict[str, Any]]) -> float:

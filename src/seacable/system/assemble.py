@@ -13,7 +13,8 @@ from seacable import packing
 from seacable import timefunctions as tfn
 from seacable.bodies import dynamics, kinematics
 from seacable.case import system as sch
-from seacable.case.base import AccelerationPhase, AccelerationProfile
+from seacable.case.base import AccelerationPhase, AccelerationProfile, Constant
+from seacable.case.forces import ORIGIN
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
 from seacable.forces import compensator, table
@@ -112,11 +113,11 @@ def _point(case: sch.SystemCase, layout: Layout, ref: str, where: str) -> int:
         )
     b = names.index(body_name)
     body = case.bodies[b]
-    point_name = point_name or sch.ORIGIN
-    if point_name != sch.ORIGIN and point_name not in body.points:
+    point_name = point_name or ORIGIN
+    if point_name != ORIGIN and point_name not in body.points:
         raise CaseError(
             f"{where}: body '{body_name}' has no point '{point_name}'; its points are "
-            f"{[sch.ORIGIN, *body.points]}"
+            f"{[ORIGIN, *body.points]}"
         )
     layout.point_index[ref] = len(layout.points)
     layout.points.append((b, point_name))
@@ -181,7 +182,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 channels.append(
                     in_radians(channel(getattr(body, angle), base_dir, f"{where}.{angle}"))
                 )
-                if getattr(body, angle) != sch.Constant(value=0.0):
+                if getattr(body, angle) != Constant(value=0.0):
                     arrays["body_motion"][b] = kinematics.TURNS
             arrays["body_parent"][b] = _parent(case, body, where)
             if body.track is not None:

@@ -9,6 +9,7 @@ its plane (``planar_ends``)."""
 import numpy as np
 
 from seacable.case import system as sch
+from seacable.case.base import Constant
 from seacable.case.forces import LinearStiffness
 from seacable.errors import CaseError
 
@@ -177,7 +178,7 @@ def planar_ends(case, line, where: str, tip: int) -> None:
         out_of_plane = ""
         if isinstance(body, sch.ImposedBody):
             keys = ("y", "roll_deg", "yaw_deg")
-            still = {k: isinstance(getattr(body, k), sch.Constant) for k in keys}
+            still = {k: isinstance(getattr(body, k), Constant) for k in keys}
             moving = [k for k, constant in still.items() if not constant]
             moving += [k for k in ("roll_deg", "yaw_deg") if still[k] and getattr(body, k).value]
             if moving:

@@ -1,0 +1,291 @@
+"""The case-file schema of a system's bodies: fixed, imposed (time functions, a ship's track),
+point and 6-DOF rigid bodies with their named points and their force models (``case.forces``),
+and the ship-simulator document's dynamics block. ``case.system`` holds the lines and the case.
+
+Conventions (docs/conventions.md): SI units, the earth frame z up with z = 0 at the still-water
+surface, angles in degrees in the case file (keys end in ``_deg``). A body's pose is its
+reference point's position and its orientation (roll, pitch, yaw: rotations about the earth's x,
+y and z axes, applied in that order: R = Rz(yaw) Ry(pitch) Rx(roll)); its points and its centre of
+gravity are given in the body frame, relative to the reference point.
+"""
+
+from typing import Annotated, Literal
+
+import numpy as np
+from pydantic import Field, field_validator, model_validator
+
+from seacable.case.base import (
+    Constant,
+    HullMesh,
+    HydroDatabase,
+    NonNeg,
+    PerAxis,
+    Shape,
+    ShipTravel,
+    TimeFunction,
+    _Model,
+)
+from seacable.case.forces import DATABASE_MODELS, MESH_MODELS, ORIGIN, ForceModel, Matrix6, Vector
+
+Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
+DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
+
+
+# ---- bodies -------------------------------------------------------------------------------------
+class _Body(_Model):
+    name: Name
+    points: dict[Name, Vector] = {}  # attachment points in the body frame [m]
+
+    @field_validator("points")
+    @classmethod
+    def _no_origin(cls, points):
+        if ORIGIN in points:
+            raise ValueError(f"'{ORIGIN}' is every body's reference point; choose another name")
+        return points
+
+
+class FixedBody(_Body):
+    """Held at rest: an anchor, a pin, a fixed platform."""
+
+    type: Literal["fixed"]
+    position: Vector  # [m]
+    orientation_deg: Vector = (0.0, 0.0, 0.0)  # roll, pitch, yaw [deg]
+
+
+class Track(ShipTravel):
+    """A towing ship's track in the horizontal plane: from ``start`` [x, y] (m) along the
+    heading ``heading_deg`` (from +x towards +y), then, from ``turn.start_time``, a turning
+    circle tangent to it. The ship travels a constant ``speed`` [m/s] or the ``distance`` [m]
+    given as a time function (an acceleration_profile gives speed changes with exact
+    accelerations). The track is exempt from the case's build-up: a tow starts in its steady
+    state."""
+
+    start: tuple[float, float] = (0.0, 0.0)  # [m]
+    heading_deg: float = 0.0
+
+
+class ImposedBody(_Body):
+    """Moves as its time functions say, whatever the lines pull: a vessel's or a crane's
+    motion, a vehicle's trajectory. Position of the reference point [m] and orientation angles
+    [deg] (roll, pitch, yaw) as functions of time. Or a ship on a ``track``: x, y and the yaw
+    follow the track (the yaw along its heading; ``yaw_deg`` is then an offset from it, a crab
+    angle), z, roll and pitch their time functions. With ``relative_to`` (another imposed body,
+    itself not relative), x, y, z are offsets in earth axes from that body's reference point: a
+    vehicle's trajectory relative to its ship."""
+
+    type: Literal["imposed"]
+    x: TimeFunction = Constant(value=0.0)  # [m]
+    y: TimeFunction = Constant(value=0.0)  # [m]
+    z: TimeFunction = Constant(value=0.0)  # [m]
+    roll_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    pitch_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    yaw_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    track: Track | None = None
+    relative_to: Name | None = None
+
+    @model_validator(mode="after")
+    def _track_or_xy(self):
+        if self.track is not None:
+            given = [k for k in ("x", "y") if getattr(self, k) != Constant(value=0.0)]
+            if given:
+                raise ValueError(
+                    f"{given} and 'track' both place the body in the horizontal plane; give "
+                    "the start of the track as track.start [x, y] and leave out x and y"
+                )
+        return self
+
+
+class _Dynamic(_Body):
+    position: Vector  # initial position of the reference point [m]
+    velocity: Vector = (0.0, 0.0, 0.0)  # initial [m/s]
+    mass: NonNeg  # [kg]
+    volume: NonNeg = 0.0  # displaced volume when wholly submerged [m^3]
+    shape: Shape | None = None  # instead of volume: the volume the free surface cuts
+    external_forces: list[ForceModel] = Field(default=[], alias="external forces")
+
+    @model_validator(mode="after")
+    def _volume_or_shape(self):
+        if self.shape is not None and self.volume:
+            raise ValueError("give 'volume' [m^3] or 'shape', not both")
+        needs = [f.model for f in self.external_forces if f.model == "buoyancy"]
+        if needs and self.shape is None and not self.volume:
+            raise ValueError("force model 'buoyancy' needs the body's 'volume' [m^3] or 'shape'")
+        models = {f.model for f in self.external_forces}
+        if "fluid inertia" in models:
+            added = np.any(np.asarray(getattr(self, "added_mass", 0.0), float)) or any(
+                getattr(self, k, None) is not None for k in ("dynamics", "hydrodynamics")
+            )
+            if self.shape is None and not self.volume and not added:
+                raise ValueError(
+                    "force model 'fluid inertia' acts on the body's 'volume' [m^3] (or "
+                    "'shape') and its 'added_mass' [kg]: give one of them, or remove the model"
+                )
+            twice = sorted(models & {"non-linear Froude-Krylov", "diffraction"})
+            if twice:
+                raise ValueError(
+                    f"force models 'fluid inertia' and '{twice[0]}' both give the waves' "
+                    "Froude-Krylov force; keep one of them"
+                )
+        return self
+
+    def displaced_volume(self) -> float:
+        """Volume wholly submerged [m^3]."""
+        return self.shape.volume() if self.shape is not None else self.volume
+
+
+class PointBody(_Dynamic):
+    """Three translational degrees of freedom: a buoy, a clump weight, a towed fish, the
+    connection between line sections. Its points are all its reference point."""
+
+    type: Literal["point"]
+    added_mass: PerAxis = 0.0  # per earth axis x, y, z [kg] (scaled by a shape's submergence)
+    dofs: list[Literal["surge", "sway", "heave"]] = ["surge", "sway", "heave"]
+
+    @field_validator("points")
+    @classmethod
+    def _at_origin(cls, points):
+        off = {k: v for k, v in points.items() if any(v)}
+        if off:
+            raise ValueError(
+                f"a point body's points are its reference point; got {off}: use type 'rigid'"
+            )
+        return points
+
+
+Row6 = tuple[float, float, float, float, float, float]
+DOCUMENT_ADDED_MASS = "added mass matrix at the center of buoyancy projected in the body frame"
+
+
+class DocumentMatrix(_Model):
+    """A 6x6 matrix as the ship-simulator document writes it: ``frame`` (the body's own name)
+    and ``row 1`` ... ``row 6``, in its body frame (x forward, y to starboard, z down) [kg,
+    kg m, kg m^2]."""
+
+    frame: Name
+    row_1: Row6 = Field(alias="row 1")
+    row_2: Row6 = Field(alias="row 2")
+    row_3: Row6 = Field(alias="row 3")
+    row_4: Row6 = Field(alias="row 4")
+    row_5: Row6 = Field(alias="row 5")
+    row_6: Row6 = Field(alias="row 6")
+
+    def rows(self) -> np.ndarray:
+        return np.array([self.row_1, self.row_2, self.row_3, self.row_4, self.row_5,
+                         self.row_6], dtype=float)  # fmt: skip
+
+
+class DocumentDynamics(_Model):
+    """The ship-simulator document's ``dynamics`` block of a body, read as written: the
+    infinite-frequency added mass at the centre of buoyancy, in the document's body frame
+    (z down, y to starboard), turned into seacable's once (docs/conventions.md, "Vessels") and
+    moved to the reference point."""
+
+    added_mass: DocumentMatrix = Field(
+        alias="added mass matrix at the center of buoyancy projected in the body frame"
+    )
+
+
+class RigidBody(_Dynamic):
+    """Six degrees of freedom (or those of ``dofs``: a heaving buoy is ``[heave]``, a ship in
+    the horizontal plane ``[surge, sway, yaw]``; the others are held at their initial values).
+    surge, sway, heave move the reference point along the earth's x, y, z; roll, pitch, yaw turn
+    the body about the earth's x, y, z axes through the reference point."""
+
+    type: Literal["rigid"]
+    orientation_deg: Vector = (0.0, 0.0, 0.0)  # initial roll, pitch, yaw [deg]
+    angular_velocity: Vector = (0.0, 0.0, 0.0)  # initial, earth frame [rad/s]
+    centre_of_gravity: Vector = (0.0, 0.0, 0.0)  # body frame [m]
+    inertia: Vector | tuple[Vector, Vector, Vector] = (0.0, 0.0, 0.0)  # about the CoG,
+    # body frame [kg m^2]: the diagonal, or the 3x3 matrix
+    added_mass: Matrix6 | tuple[float, float, float, float, float, float] = (0.0,) * 6
+    # body frame [kg, kg m, kg m^2]: 6x6, or its diagonal; at ``added_mass_point`` (body frame,
+    # default the reference point), moved to the reference point (packing.transported)
+    added_mass_point: Vector | None = None
+    # the added mass's velocity terms (bodies.dynamics): "rigid_body", the ship-simulator
+    # document's body-frame equation with the Coriolis matrix of the rigid-body mass only, or
+    # "exact", Kirchhoff's (the fluid's impulse turns with the body too)
+    coriolis: Literal["rigid_body", "exact"] = "rigid_body"
+    centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
+    dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    mesh: HullMesh | None = None  # the hull, for the mesh force models
+    hydrodynamics: HydroDatabase | None = None  # for radiation damping and diffraction
+    # the ship-simulator document's block (its added mass at the centre of buoyancy, z down)
+    dynamics: DocumentDynamics | None = None
+
+    @model_validator(mode="after")
+    def _document_dynamics(self):
+        if self.dynamics is None:
+            return self
+        frame = self.dynamics.added_mass.frame
+        if frame != self.name:
+            raise ValueError(
+                f"dynamics.{DOCUMENT_ADDED_MASS}.frame: '{frame}' is not this body; the matrix "
+                f"is projected in the body's own frame: write frame: {self.name}"
+            )
+        given = [k for k in ("added_mass", "added_mass_point") if k in self.model_fields_set]
+        if given:
+            raise ValueError(
+                f"'{given[0]}' and the document's 'dynamics' block both give the added mass; "
+                "keep one of them"
+            )
+        if "centre_of_buoyancy" not in self.model_fields_set and self.mesh is None:
+            raise ValueError(
+                "the document's added mass is at the centre of buoyancy: give "
+                "'centre_of_buoyancy' [m, body frame, z up] or the hull's 'mesh'"
+            )
+        return self
+
+    @field_validator("dofs")
+    @classmethod
+    def _unique(cls, dofs):
+        if len(set(dofs)) != len(dofs):
+            raise ValueError(f"dofs lists a degree of freedom twice: {dofs}")
+        return dofs
+
+    @model_validator(mode="after")
+    def _mesh_models(self):
+        needs = [f.model for f in self.external_forces if f.model in MESH_MODELS]
+        if needs and self.mesh is None:
+            raise ValueError(
+                f"force model '{needs[0]}' needs the body's hull: give 'mesh' "
+                "(file: hull.stl, and its placement)"
+            )
+        needs = [f.model for f in self.external_forces if f.model in DATABASE_MODELS]
+        if needs and self.hydrodynamics is None:
+            raise ValueError(
+                f"force model '{needs[0]}' needs the body's hydrodynamic database: give "
+                "'hydrodynamics' (file: hull.nc, from seacable hydrodb)"
+            )
+        _one_incident_pressure(self.external_forces)
+        both = {"buoyancy", "non-linear hydrostatic"} <= {f.model for f in self.external_forces}
+        if both:
+            raise ValueError(
+                "'buoyancy' and 'non-linear hydrostatic' both give the body its buoyancy; "
+                "keep one of them"
+            )
+        return self
+
+
+def _one_incident_pressure(forces) -> None:
+    """The incident wave's pressure counted once: a database's linear Froude-Krylov force
+    (``diffraction`` with ``froude_krylov``) holds its rho g eta at the waterline and its
+    dynamic part, as the mesh models clipped at the wave elevation do."""
+    linear = [f for f in forces if f.model == "diffraction" and f.froude_krylov]
+    if not linear:
+        return
+    for f in forces:
+        if f.model == "non-linear Froude-Krylov":
+            raise ValueError(
+                "'diffraction' with froude_krylov: true and 'non-linear Froude-Krylov' both "
+                "give the incident wave's pressure; keep one of them"
+            )
+        if f.model == "non-linear hydrostatic" and f.free_surface == "waves":
+            raise ValueError(
+                "'non-linear hydrostatic' clipped at the wave elevation and 'diffraction' with "
+                "froude_krylov: true both count the incident wave's rho g eta; give the "
+                "hydrostatics free_surface: still"
+            )
+
+
+Body = Annotated[FixedBody | ImposedBody | PointBody | RigidBody, Field(discriminator="type")]
