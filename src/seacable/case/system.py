@@ -1,12 +1,7 @@
-"""The case-file schema of a system of bodies and lines: named bodies with named points, the
-force models acting on each body (their schemas in ``case.forces``), named line types, and lines
-between body points.
-
-Conventions (docs/conventions.md): SI units, the earth frame z up with z = 0 at the still-water
-surface, angles in degrees in the case file (keys end in ``_deg``). A body's pose is its
-reference point's position and its orientation (roll, pitch, yaw: rotations about the earth's x,
-y and z axes, applied in that order: R = Rz(yaw) Ry(pitch) Rx(roll)); its points and its centre of
-gravity are given in the body frame, relative to the reference point.
+"""The case-file schema of a system of bodies and lines: its bodies (``case.bodies``, re-exported
+here), named line types, lines between body points, line failures, and the case with its
+environment and run. Conventions (docs/conventions.md) as ``case.bodies`` states them: SI
+units, z up with z = 0 at the still-water surface, angles in degrees.
 """
 
 from typing import Annotated, Literal

@@ -18,12 +18,12 @@ travels before they hold it.
 """
 
 import numpy as np
-from scipy.linalg import LinAlgError, solve
 
 from seacable.lines import catenary
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, apply
 from seacable.system.initial import uniform_line
+from seacable.system.pseudo_time import shifted_step
 
 
 def applies(p: kernel.SystemParams, coords: Coordinates) -> bool:
@@ -124,7 +124,7 @@ def pose(p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, limit: np.n
             if moved[0] is None or moved[1] is None:
                 return None
             jac[:, j] = (moved[0] - moved[1]) / (2.0 * h)
-        step = _step(jac, r, limit)
+        step = shifted_step(jac, r, limit)
         if step is None:
             return None
         largest = float(np.max(np.abs(step) / limit))
@@ -141,20 +141,3 @@ def pose(p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, limit: np.n
         else:
             return None
     return None
-
-
-def _step(jac: np.ndarray, r: np.ndarray, limit: np.ndarray) -> np.ndarray | None:
-    """Newton's step, or, where the matrix is singular or the step beyond a hundred limits,
-    the step of the matrix shifted on its diagonal by each force over its limit."""
-    try:
-        step = solve(jac, -r)
-        if np.all(np.isfinite(step)) and np.all(np.abs(step) < 100.0 * limit):
-            return step
-    except (LinAlgError, ValueError):
-        pass
-    shift = np.maximum(np.abs(r) / limit, 1e-9 * np.abs(np.diag(jac)).max(initial=1e-300))
-    try:
-        step = solve(jac - np.diag(shift), -r)
-    except (LinAlgError, ValueError):
-        return None
-    return step if np.all(np.isfinite(step)) else None

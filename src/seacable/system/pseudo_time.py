@@ -12,6 +12,8 @@ balance nears, down to ``floor``; a step that raises the residual is taken back 
 raised tenfold."""
 
 import numpy as np
+from scipy import sparse
+from scipy.sparse.linalg import splu
 
 
 class PseudoTime:
@@ -27,3 +29,25 @@ class PseudoTime:
 
     def rejected(self) -> None:
         self.shift *= 10.0
+
+
+def shifted_step(jac, r: np.ndarray, limit: np.ndarray) -> np.ndarray | None:
+    """Newton's step of J dx = -r (J sparse or dense); where J is singular or nearly (a step
+    beyond a hundred of each coordinate's ``limit``), one step of the shifted matrix with
+    sigma per coordinate its residual over its limit (at least 1e-9 of J's largest diagonal
+    entry): a coordinate nothing holds moves along its force, the others nearly as Newton's.
+    None when even that fails."""
+    jac = sparse.csc_matrix(jac)
+    try:
+        step = splu(jac).solve(-r)
+        if np.all(np.isfinite(step)) and np.all(np.abs(step) < 100.0 * limit):
+            return step
+    except RuntimeError:
+        pass
+    diagonal = np.abs(jac.diagonal())
+    shift = np.maximum(np.abs(r) / limit, 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
+    try:
+        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
+    except RuntimeError:
+        return None
+    return step if np.all(np.isfinite(step)) else None

@@ -13,8 +13,6 @@ velocities) about any state; ``mooring_stiffness`` the 6x6 stiffness of a body's
 from dataclasses import replace
 
 import numpy as np
-from scipy import sparse
-from scipy.sparse.linalg import splu
 
 from seacable.bodies import kinematics
 from seacable.errors import SeacableError
@@ -39,6 +37,7 @@ from seacable.system.coordinates import (
 from seacable.system.frequency import fastest_frequency
 from seacable.system.initial import uniform_shapes
 from seacable.system.line_balance import settle_lines, steady_velocities
+from seacable.system.pseudo_time import shifted_step
 
 
 class StaticsError(SeacableError):
@@ -290,27 +289,6 @@ def _homotopy(built, coords, sparsity, residual, y, tolerance, enough, smallest:
     return y
 
 
-def _newton_step(jac, r: np.ndarray, limit: np.ndarray) -> np.ndarray | None:
-    """Newton's step; where the matrix is singular or nearly (a step beyond a hundred step
-    limits: chain lying slack on a frictionless seabed holds nothing across it), the step of
-    the matrix shifted on its diagonal by each residual over its step limit (pseudo-transient
-    continuation, as ``system.nested``'s: a coordinate nothing holds moves along its force,
-    the others nearly as Newton's). None when even that fails."""
-    try:
-        step = splu(jac).solve(-r)
-        if np.all(np.isfinite(step)) and np.all(np.abs(step) < 100.0 * limit):
-            return step
-    except RuntimeError:
-        pass
-    diagonal = np.abs(jac.diagonal())
-    shift = np.maximum(np.abs(r) / limit, 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
-    try:
-        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
-    except RuntimeError:
-        return None
-    return step if np.all(np.isfinite(step)) else None
-
-
 def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
     """Newton over every coordinate; the best state met."""
     structure, colours = sparsity
@@ -321,7 +299,7 @@ def _direct(built, coords, sparsity, residual, y, iterations, tolerance):
         if not np.all(np.isfinite(r)) or np.abs(r).max() < tolerance:
             break
         jac = fd_jacobian(residual, y, coords, structure, colours, r)
-        step = _newton_step(jac, r, limit)
+        step = shifted_step(jac, r, limit)  # shifted where nothing holds a coordinate
         if step is None:
             break
         largest = float(np.max(np.abs(step) / limit))
