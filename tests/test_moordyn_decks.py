@@ -154,12 +154,13 @@ REFUSED = [
      "chain     0.137  126.0    5.8e8    -1.0      0    2.4   1.0   0.4    0.0   0.8",
      "line 7 (LINE TYPES, column Cl): 0.8: vortex-induced vibration is not modelled"),
     ("---------------------- LINES ---",
-     "---------------------- RODS ---\n---------------------- LINES ---",
-     "section RODS is not read yet"),
+     "---------------------- EXTERNAL LOADS ---\n---------------------- LINES ---",
+     "section EXTERNAL LOADS is not read yet"),
     ("0.002    dtM", "1.0      foo       - a setting\n0.002    dtM", "option 'foo' has no"),
     ("0.002    dtM", "1        WaveKin\n0.002    dtM", "column WaveKin): '1': wave kinematics"),
     ("4    Coupled", "4    Body1  ", "column Attachment): 'Body1'"),
-    ("1    chain     1        4", "1    chain     1        R1A", "column AttachB): 'R1A'"),
+    ("1    chain     1        4", "1    chain     1        R1A",
+     "column AttachB): 'R1A' is not a point or rod end of the deck"),
     ("650.0     40       -\n2", "6x0.0     40       -\n2", "column UnstrLen): '6x0.0' is not"),
 ]  # fmt: skip
 
@@ -289,3 +290,75 @@ def test_what_has_no_equivalent_is_refused_by_section_row_and_column(deck, old, 
     with pytest.raises(seacable.CaseError) as error:
         moordyn.read(text.replace(old, new, 1))
     assert message in str(error.value)
+
+
+SPAR = DATA / "moordyn_v2_spar_rods.txt"
+COLUMN_ROW = "1    column    Body1      0     0    -40    0     0     10   10 "
+
+
+def test_the_rods_of_a_deck_become_rod_models_and_bodies():
+    """RODS: a rod on a free body is a ``rod`` force model of that body (ROD TYPES' diameter
+    and coefficients, the deck's segments), its mass (Mass/m times its length) joined to the
+    body's mass, centre of gravity and inertia about it (a solid cylinder's, parallel axes),
+    its ends points R<ID>A and R<ID>B for the lines; a Free rod is a rigid body at its end A,
+    a Fixed rod a fixed body."""
+    case = moordyn.read(SPAR)
+    body = case["bodies"][0]
+    column, plate = [f for f in body["external forces"] if f["model"] == "rod"]
+    assert column == {"model": "rod", "end_a": [0.0, 0.0, -40.0], "end_b": [0.0, 0.0, 10.0],
+                      "diameter": 8.0, "segments": 10, "drag_coefficient": 0.8,
+                      "added_mass_coefficient": 1.0, "end_drag_coefficient": 0.6,
+                      "end_added_mass_coefficient": 0.6}  # fmt: skip
+    assert plate["diameter"] == 14.0 and plate["segments"] == 1
+    masses = (1.78e6, 1.0e4 * 50, 2.0e4 * 2)
+    centres = (-36.0, -15.0, -41.0)
+    total = sum(masses)
+    cg = sum(m * z for m, z in zip(masses, centres, strict=True)) / total
+    assert body["mass"] == pytest.approx(total, rel=1e-12)
+    assert body["centre_of_gravity"] == pytest.approx([0.0, 0.0, cg], abs=1e-9)
+    own = (5.0e8, 1.0e4 * 50 * (50**2 / 12 + 8**2 / 16), 2.0e4 * 2 * (2**2 / 12 + 14**2 / 16))
+    pitch = sum(i + m * (z - cg) ** 2 for i, m, z in zip(own, masses, centres, strict=True))
+    roll_axis = 5.0e8 + 1.0e4 * 50 * 8**2 / 8 + 2.0e4 * 2 * 14**2 / 8
+    assert body["inertia"] == pytest.approx([pitch, pitch, roll_axis], rel=1e-10)
+    text = SPAR.read_text().replace("1    chain     1        4 ", "1    chain     1        R1A")
+    rows = (
+        "3    column    Free       50    0    -80    50    0    -70    4          -\n"
+        "4    plate     Fixed      60    0    -150   60    0    -148   1          -\n"
+    )
+    text = text.replace("---------------------- POINTS", rows + "---------------------- POINTS")
+    text = text.replace("2    chain     2        5 ", "2    chain     R3B      5 ")
+    text = text.replace("3    chain     3        6 ", "3    chain     R4b      6 ")
+    case = moordyn.read(text)
+    lines = {line["name"]: line for line in case["lines"]}
+    assert lines["line1"]["to"] == "body1.rod1_a"
+    assert lines["line2"]["from"] == "rod3.b" and lines["line3"]["from"] == "rod4.b"
+    bodies = {b["name"]: b for b in case["bodies"]}
+    free, fixed = bodies["rod3"], bodies["rod4"]
+    assert free["type"] == "rigid" and free["position"] == [50.0, 0.0, -80.0]
+    assert free["mass"] == pytest.approx(1.0e5) and free["centre_of_gravity"] == [0, 0, 5.0]
+    assert free["points"]["b"] == [0.0, 0.0, 10.0]
+    assert [f["model"] for f in free["external forces"]] == ["gravity", "rod"]
+    assert fixed["type"] == "fixed" and fixed["points"]["b"] == [0.0, 0.0, 2.0]
+    seacable.load_case(case)  # a valid case
+
+
+REFUSED_RODS = [
+    (COLUMN_ROW, COLUMN_ROW.replace("Body1 ", "Pinned"), "column Attachment): 'Pinned'"),
+    (COLUMN_ROW, COLUMN_ROW.replace("Body1     ", "Body1Pinned"),
+     "column Attachment): 'Body1Pinned'"),
+    (COLUMN_ROW, COLUMN_ROW.replace("column", "colum "), "column RodType): 'colum' is not a"),
+    (COLUMN_ROW, COLUMN_ROW.replace("  10   10 ", "  10    0 "),
+     "column NumSegs): a rod of length 50 m in 0 segments"),
+    (COLUMN_ROW, COLUMN_ROW.replace("0     0     10 ", "0     0    -40 "),
+     "column NumSegs): a rod of length 0 m"),
+    ("1    Free       0.0", "1    Coupled    0.0", "'Body1' is a coupled body: a rod's loads"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("old", "new", "message"), REFUSED_RODS)
+def test_rods_without_an_equivalent_are_refused_by_row_and_column(old, new, message):
+    text = SPAR.read_text()
+    assert old in text
+    with pytest.raises(seacable.CaseError) as error:
+        moordyn.read(text.replace(old, new, 1))
+    assert message in str(error.value) and "(RODS, column" in str(error.value)

@@ -61,6 +61,33 @@ class FluidInertia(_Model):
     model: Literal["fluid inertia"]
 
 
+class Rod(_Model):
+    """A slender cylinder fixed to a rigid body, from ``end_a`` to ``end_b`` (body frame [m]):
+    a spar, a column, a pontoon, a brace (MoorDyn's rod on a body). Its loads on the part under
+    the instantaneous surface, cut into ``segments``: buoyancy, normal drag and Morison's
+    inertia (Froude-Krylov and the normal added mass) per segment, axial drag and added mass
+    at each wetted end, the waterplane's moment when it crosses the surface (forces.rod). Its
+    added mass joins the body's; its mass is the body's (give the body's ``mass`` and
+    ``inertia`` with its rods)."""
+
+    model: Literal["rod"]
+    end_a: Vector  # [m], body frame
+    end_b: Vector  # [m], body frame
+    diameter: Pos  # [m]
+    segments: Annotated[int, Field(ge=1, le=1000)] = 10
+    drag_coefficient: NonNeg = 0.0  # normal Cd (on the diameter)
+    added_mass_coefficient: NonNeg = 0.0  # normal Ca (of the displaced volume)
+    end_drag_coefficient: NonNeg = 0.0  # axial CdEnd (on the section's area), per wetted end
+    end_added_mass_coefficient: NonNeg = 0.0  # axial CaEnd (of pi d^3 / 12), per wetted end
+
+    @model_validator(mode="after")
+    def _length(self):
+        if self.end_a == self.end_b:
+            raise ValueError(f"end_a and end_b are the same point {list(self.end_a)}: a rod "
+                             "needs a length; give two distinct ends [m]")  # fmt: skip
+        return self
+
+
 class AppliedForce(_Model):
     """A force and a moment given as time functions at a point of the body (its reference
     point by default), in the earth frame or, with ``frame: body``, in the body frame (turning
@@ -473,6 +500,7 @@ ForceModel = Annotated[
     | CrossFlow
     | Compensator
     | WaveDrift
-    | FluidInertia,
+    | FluidInertia
+    | Rod,
     Field(discriminator="model"),
 ]

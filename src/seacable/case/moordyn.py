@@ -70,13 +70,13 @@ V2_SECTIONS = {
     "BODY PROPERTIES": "bodies",
     "FAILURE": "failures",
     "FAILURE CONDITIONS": "failures",
+    "ROD TYPES": "rod_types",
+    "ROD DICTIONARY": "rod_types",
+    "RODS": "rods",
+    "ROD LIST": "rods",
+    "ROD PROPERTIES": "rods",
 }
 NOT_YET = (
-    "ROD TYPES",
-    "ROD DICTIONARY",
-    "RODS",
-    "ROD LIST",
-    "ROD PROPERTIES",
     "EXTERNAL LOADS",
     "CONTROL",
     "CONTROL VARIABLES",
@@ -180,7 +180,8 @@ class _Deck(Tables):
         self.sections: dict[str, Section] = {}
         self.notes: list[str] = []
         self._split(text)
-        self.version = 2 if "POINTS" in {s.title for s in self.sections.values()} else 1
+        titles = {s.title for s in self.sections.values()}
+        self.version = 2 if titles & {"POINTS", "RODS", "ROD TYPES", "BODIES", "OPTIONS"} else 1
         if "line_types" in self.sections and self.sections["line_types"].rows:
             self.version = 2 if len(self.sections["line_types"].rows[0][1]) >= 10 else 1
 
@@ -199,8 +200,8 @@ class _Deck(Tables):
                 elif title in NOT_YET:
                     raise CaseError(
                         f"{self.name} line {number}: section {title} is not read yet (seacable "
-                        "reads MoorDyn's line types, bodies, points, lines, options and "
-                        "outputs); model it in the seacable case instead"
+                        "reads MoorDyn's line types, rod types, bodies, rods, points, lines, "
+                        "failures, options and outputs); model it in the seacable case instead"
                     )
                 elif current is not None and any(t in title for t in END_TITLES):
                     current = None
@@ -228,16 +229,19 @@ class _Deck(Tables):
 
     # -- the case --------------------------------------------------------------------------
     def case(self) -> dict[str, Any]:
-        for key in ("line_types", "points", "lines"):
-            if key not in self.sections or not self.sections[key].rows:
-                raise CaseError(
-                    f"{self.name}: no {key.replace('_', ' ')} (a MoorDyn deck needs "
-                    "line types, points and lines)"
-                )
+        if not any(self._rows(k) for k in ("lines", "rods", "bodies")):
+            raise CaseError(f"{self.name}: no lines, rods or bodies (a MoorDyn deck needs "
+                            "one of them)")  # fmt: skip
+        if self._rows("lines") and not self._rows("line_types"):
+            raise CaseError(f"{self.name}: lines and no line types (a MoorDyn deck's lines "
+                            "need their LINE TYPES)")  # fmt: skip
         options = self._options()
         types = self._line_types()
         held = self._bodies(options)
+        rods, ends = self._rods(options, held)
         bodies, names = self._points(options, held)
+        bodies += rods
+        names.update(ends)
         lines = self._lines(types, names)
         failures = self._failures(names)
         environment: dict[str, Any] = {"gravity": options["g"], "water_density": options["rhow"]}
@@ -292,13 +296,11 @@ class _Deck(Tables):
         }
 
     def _option_rows(self) -> list[tuple[int, list[str]]]:
-        section = self.sections.get("options")
-        return section.rows if section else []
+        return self._rows("options")
 
     def _options(self) -> dict[str, float]:
         options = dict(DEFAULTS)
-        section = self.sections.get("options")
-        for number, fields in section.rows if section else []:
+        for number, fields in self._rows("options"):
             if len(fields) < 2:
                 raise CaseError(
                     f"{self._where('options', number)}: an option is a value then "
@@ -345,7 +347,7 @@ class _Deck(Tables):
             else ["Name", "Diam", "MassDen", "EA", "BA", "Can", "Cat", "Cdn", "Cdt"]
         )
         types: dict[str, dict[str, Any]] = {}
-        for number, fields in self.sections["line_types"].rows:
+        for number, fields in self._rows("line_types"):
             if len(fields) < len(columns) or len(fields) > (13 if v2 else len(columns)):
                 raise CaseError(
                     f"{self._where('line_types', number)}: {len(fields)} columns; "
@@ -401,7 +403,7 @@ class _Deck(Tables):
             else ["ID", "LineType", "UnstrLen", "NumSegs", "AttachA", "AttachB", "Outputs"]
         )
         lines = []
-        for number, fields in self.sections["lines"].rows:
+        for number, fields in self._rows("lines"):
             row = self._row("lines", number, fields, columns, optional=1)
             if row["LineType"] not in types:
                 raise CaseError(
@@ -411,13 +413,13 @@ class _Deck(Tables):
                 )
             ends = []
             for column in ("AttachA", "AttachB"):
-                if row[column] not in names:
+                if row[column].upper() not in names:
                     raise CaseError(
                         f"{self._where('lines', number, column)}: {row[column]!r} "
-                        "is not a point of the deck (a rod or body end is not read "
-                        "yet)"
+                        "is not a point or rod end of the deck (a point's ID, or R<ID>A, "
+                        "R<ID>B)"
                     )
-                ends.append(names[row[column]])
+                ends.append(names[row[column].upper()])
             length = to_number(row["UnstrLen"], self._where("lines", number, "UnstrLen"))
             segments = to_number(row["NumSegs"], self._where("lines", number, "NumSegs"))
             if segments != int(segments) or segments < 1:

@@ -3,13 +3,17 @@ names (``_row``, its count checked), where it is (``_where``: the deck's line, s
 column, which every refusal names), its numbers; and the tables that become seacable bodies and
 failures: v2 BODIES (fixed, imposed, or free rigid bodies with MoorDyn's body hydrodynamics),
 POINTS / NODE PROPERTIES (fixed bodies, point bodies, coupled points as imposed bodies, points
-on the deck's bodies or v1's vessel) and FAILURE (the case's ``failures``).
+on the deck's bodies or v1's vessel), ROD TYPES and RODS (``rod`` force models on the deck's
+bodies, free rods as rigid bodies, fixed rods as fixed bodies) and FAILURE (the case's
+``failures``).
 """
 
 import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
 
 from seacable.errors import CaseError
 
@@ -48,6 +52,11 @@ class Tables:
     sections: dict[str, "Section"]
     notes: list[str]
 
+    def _rows(self, key: str) -> list[tuple[int, list[str]]]:
+        """A section's rows, none where the deck has no such section."""
+        section = self.sections.get(key)
+        return section.rows if section else []
+
     def _where(self, key: str, line: int, column: str | None = None) -> str:
         section = self.sections[key].title
         return f"{self.name} line {line} ({section}{', column ' + column if column else ''})"
@@ -58,9 +67,8 @@ class Tables:
         a rigid body with MoorDyn's body hydrodynamics (:meth:`_free_body`)."""
         columns = ["ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I",
                    "Volume", "CdA", "Ca"]  # fmt: skip
-        section = self.sections.get("bodies")
         bodies: dict[str, dict[str, Any]] = {}
-        for number, fields in section.rows if section else []:
+        for number, fields in self._rows("bodies"):
             row = self._row("bodies", number, fields, columns)
 
             def value(column, row=row, number=number):
@@ -154,6 +162,105 @@ class Tables:
         body["external forces"] = forces
         return body
 
+    def _rod_types(self) -> dict[str, dict[str, float]]:
+        columns = ["TypeName", "Diam", "Mass/m", "Cd", "Ca", "CdEnd", "CaEnd"]
+        types: dict[str, dict[str, float]] = {}
+        for number, fields in self._rows("rod_types"):
+            row = self._row("rod_types", number, fields, columns)
+            if row["TypeName"] in types:
+                raise CaseError(f"{self._where('rod_types', number, 'TypeName')}: a second "
+                                f"rod type named {row['TypeName']!r}")  # fmt: skip
+            types[row["TypeName"]] = {
+                c: to_number(row[c], self._where("rod_types", number, c)) for c in columns[1:]
+            }
+        return types
+
+    def _rods(self, options, held) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        """RODS: a rod on a body (``Body<ID>``) becomes a ``rod`` force model of that body, its
+        mass, centre and inertia joined to the body's; a ``Free`` rod a rigid body ``rod<ID>``
+        (reference point at end A, the rod's mass and inertia, gravity and the rod's loads); a
+        ``Fixed`` rod a fixed body. Its ends are points ``a`` and ``b`` for the lines (R<ID>A,
+        R<ID>B). Pinned and coupled rods are refused by name."""
+        columns = ["ID", "RodType", "Attachment", "Xa", "Ya", "Za", "Xb", "Yb", "Zb", "NumSegs",
+                   "RodOutputs"]  # fmt: skip
+        types = self._rod_types()
+        bodies: list[dict[str, Any]] = []
+        ends: dict[str, str] = {}
+        for number, fields in self._rows("rods"):
+            row = self._row("rods", number, fields, columns, optional=1)
+
+            def where(column, number=number):
+                return self._where("rods", number, column)
+
+            a = [to_number(row[c], where(c)) for c in ("Xa", "Ya", "Za")]
+            b = [to_number(row[c], where(c)) for c in ("Xb", "Yb", "Zb")]
+            segments = to_number(row["NumSegs"], where("NumSegs"))
+            kind, name = row["Attachment"].lower(), f"rod{row['ID']}"
+            if row["RodType"] not in types:
+                raise CaseError(f"{where('RodType')}: {row['RodType']!r} is not a rod type; "
+                                f"known: {', '.join(types) or 'none'}")  # fmt: skip
+            if a == b or segments < 1 or segments != int(segments):
+                raise CaseError(
+                    f"{where('NumSegs')}: a rod of length {math.dist(a, b):g} m in "
+                    f"{row['NumSegs']} segments: seacable reads rods of a positive length in "
+                    "whole segments (a zero-length rod as a joint is not read); give a point "
+                    "instead"
+                )
+            if f"R{row['ID']}A".upper() in ends:
+                raise CaseError(f"{where('ID')}: a second rod {row['ID']}")
+            kind_of = types[row["RodType"]]
+            model = {
+                "model": "rod", "end_a": a, "end_b": b, "diameter": kind_of["Diam"],
+                "segments": int(segments), "drag_coefficient": kind_of["Cd"],
+                "added_mass_coefficient": kind_of["Ca"],
+                "end_drag_coefficient": kind_of["CdEnd"],
+                "end_added_mass_coefficient": kind_of["CaEnd"],
+            }  # fmt: skip
+            mass = kind_of["Mass/m"] * math.dist(a, b)
+            if kind in held and held[kind]["type"] == "rigid":
+                host = held[kind]
+                host["external forces"].append(model)
+                _join_mass(host, mass, a, b, kind_of["Diam"])
+                host["points"][f"{name}_a"], host["points"][f"{name}_b"] = [*a], [*b]
+                ref = f"{kind}.{name}_"
+            elif kind in ("free",):
+                axis = [q - p for p, q in zip(a, b, strict=True)]
+                body = {"name": name, "type": "rigid", "position": a, "mass": 0.0,
+                        "centre_of_gravity": [0.0, 0.0, 0.0], "inertia": [0.0, 0.0, 0.0],
+                        "external forces": [{"model": "gravity"},
+                                            {**model, "end_a": [0.0, 0.0, 0.0], "end_b": axis}],
+                        "points": {"a": [0.0, 0.0, 0.0], "b": [*axis]}}  # fmt: skip
+                _join_mass(body, mass, [0.0, 0.0, 0.0], axis, kind_of["Diam"])
+                bodies.append(body)
+                ref = f"{name}."
+            elif kind in ("fixed", "fix", "anchor") or (kind in held):
+                if kind in held:  # on a fixed body: its loads go to the ground
+                    host = held[kind]
+                    if host["type"] != "fixed":
+                        raise CaseError(
+                            f"{where('Attachment')}: {row['Attachment']!r} is a coupled body: "
+                            "a rod's loads on it would be the coupling's, which seacable does "
+                            "not compute for rods; make the body Free, or model the rod's "
+                            "loads in the coupled solver"
+                        )
+                    host["points"][f"{name}_a"], host["points"][f"{name}_b"] = [*a], [*b]
+                    ref = f"{kind}.{name}_"
+                else:
+                    axis = [q - p for p, q in zip(a, b, strict=True)]
+                    bodies.append({"name": name, "type": "fixed", "position": a,
+                                   "points": {"a": [0.0, 0.0, 0.0], "b": [*axis]}})  # fmt: skip
+                    ref = f"{name}."
+                self.notes.append(f"{name}: a fixed rod; its own loads go to the ground")
+            else:
+                raise CaseError(
+                    f"{where('Attachment')}: {row['Attachment']!r}: seacable reads rods on the "
+                    f"deck's bodies ({', '.join(held) or 'none'}), Free and Fixed rods; a "
+                    "pinned or coupled rod is not read yet"
+                )
+            ends[f"R{row['ID']}A".upper()] = ref + "a"
+            ends[f"R{row['ID']}B".upper()] = ref + "b"
+        return bodies, ends
+
     def _row(self, key: str, number: int, fields: list[str], columns: list[str],
              optional: int = 0) -> dict[str, str]:  # fmt: skip
         """A table row by its column names, their count checked (the last ``optional``
@@ -175,7 +282,7 @@ class Tables:
         bodies: list[dict[str, Any]] = []
         names: dict[str, str] = {}
         vessel: dict[str, list[float]] = {}
-        for number, fields in self.sections["points"].rows:
+        for number, fields in self._rows("points"):
             row = self._row("points", number, fields, columns)
 
             def value(column, row=row, number=number):
@@ -273,9 +380,8 @@ class Tables:
         or when one's tension there reaches FailTen (0: none), staying joined by a free point
         (seacable's ``failures``)."""
         columns = ["FailureID", "Point", "Lines", "FailTime", "FailTen"]
-        section = self.sections.get("failures")
         out = []
-        for number, fields in section.rows if section else []:
+        for number, fields in self._rows("failures"):
             row = self._row("failures", number, fields, columns)
             point = re.fullmatch(r"(?:P|C|POINT|CON)?(\d+)", row["Point"], re.IGNORECASE)
             if point is None or point.group(1) not in names:
@@ -302,3 +408,36 @@ class Tables:
                 failure["tension"] = tension
             out.append(failure)
         return out
+
+
+def _join_mass(body: dict[str, Any], mass: float, a, b, diameter: float) -> None:
+    """Join a rod's mass [kg] (uniform from a to b, body frame [m], a solid cylinder of
+    ``diameter``) to a rigid body's ``mass``, ``centre_of_gravity`` and ``inertia`` (about the
+    joint centre of gravity; 3 values when diagonal, else 3x3)."""
+    if mass <= 0.0:
+        return
+    m0 = float(body["mass"])
+    c0 = np.array(body.get("centre_of_gravity", [0.0, 0.0, 0.0]), float)
+    i0 = np.array(body.get("inertia", [0.0, 0.0, 0.0]), float)
+    i0 = np.diag(i0) if i0.ndim == 1 else i0
+    a, b = np.array(a, float), np.array(b, float)
+    c1 = 0.5 * (a + b)
+    length = float(np.linalg.norm(b - a))
+    t = (b - a) / length
+    across = mass * (length**2 / 12.0 + diameter**2 / 16.0)
+    i1 = across * (np.eye(3) - np.outer(t, t)) + mass * diameter**2 / 8.0 * np.outer(t, t)
+    total = m0 + mass
+    centre = (m0 * c0 + mass * c1) / total
+
+    def moved(inertia, m, c):  # parallel axes to the joint centre
+        d = c - centre
+        return inertia + m * (d @ d * np.eye(3) - np.outer(d, d))
+
+    inertia = moved(i0, m0, c0) + moved(i1, mass, c1)
+    inertia = np.where(np.abs(inertia) < 1e-12 * np.abs(inertia).max(), 0.0, inertia)
+    body["mass"] = rounded(total)
+    body["centre_of_gravity"] = [rounded(v) for v in centre]
+    if np.count_nonzero(inertia - np.diag(np.diag(inertia))):
+        body["inertia"] = [[rounded(v) for v in r] for r in inertia]
+    else:
+        body["inertia"] = [rounded(v) for v in np.diag(inertia)]

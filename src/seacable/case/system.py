@@ -363,7 +363,7 @@ class SystemCase(_Model):
 
 # the force models the waves act through (the lines feel the waves in their own loads)
 WAVE_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov", "diffraction", "wave drift",
-               "fluid inertia", "drag")  # fmt: skip
+               "fluid inertia", "drag", "rod")  # fmt: skip
 
 
 def ignored_inputs(case: SystemCase) -> list[str]:

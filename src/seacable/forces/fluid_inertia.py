@@ -11,8 +11,9 @@ acceleration a [m/s^2] there (kernels.waves, with the environment's stretching) 
 
 f is the body's submerged fraction (1 for a plain volume). A neutrally buoyant body
 (m = rho V) with this model and no drag is carried by the water: its acceleration is the
-water's. The row is empty: the model reads the body's volume, centre of buoyancy and added
-mass. Nothing in still water (statics) or in air.
+water's. The row is the body's own added mass A (36 floats, row by row; without its rods',
+which load their own part: forces.rod); the model reads the body's volume and centre of
+buoyancy. Nothing in still water (statics) or in air.
 """
 
 from seacable.bodies.dynamics import add_force
@@ -22,7 +23,7 @@ from seacable.kernels.jit import inner
 
 
 @inner
-def add(volume, cob, added, fraction, pos, rot, rho, t, wave, depth, stretch, trig, rhs):
+def add(volume, cob, row, fraction, pos, rot, rho, t, wave, depth, stretch, trig, rhs):
     if wave.shape[1] == 0:
         return
     _, acc = waves.kinematics(wave, t, pos[0], pos[1], pos[2], depth, stretch, trig)
@@ -35,14 +36,12 @@ def add(volume, cob, added, fraction, pos, rot, rho, t, wave, depth, stretch, tr
         rot[0, 1] * acc[0] + rot[1, 1] * acc[1] + rot[2, 1] * acc[2],
         rot[0, 2] * acc[0] + rot[1, 2] * acc[1] + rot[2, 2] * acc[2],
     )
-    for half in range(2):
-        f = (
-            fraction * (added[3 * half, 0] * ab[0] + added[3 * half, 1] * ab[1]
-                        + added[3 * half, 2] * ab[2]),
-            fraction * (added[3 * half + 1, 0] * ab[0] + added[3 * half + 1, 1] * ab[1]
-                        + added[3 * half + 1, 2] * ab[2]),
-            fraction * (added[3 * half + 2, 0] * ab[0] + added[3 * half + 2, 1] * ab[1]
-                        + added[3 * half + 2, 2] * ab[2]),
-        )  # fmt: skip
+    for half in range(2):  # the force, then the moment, of A [a_b; 0]
+        f0 = f1 = f2 = 0.0
+        for c in range(3):
+            f0 += row[6 * (3 * half) + c] * ab[c]
+            f1 += row[6 * (3 * half + 1) + c] * ab[c]
+            f2 += row[6 * (3 * half + 2) + c] * ab[c]
+        f = (fraction * f0, fraction * f1, fraction * f2)
         for q in range(3):
             rhs[3 * half + q] += rot[q, 0] * f[0] + rot[q, 1] * f[1] + rot[q, 2] * f[2]

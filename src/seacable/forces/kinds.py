@@ -33,6 +33,7 @@ class ForceKind(IntEnum):
     COMPENSATOR = 18
     WAVE_DRIFT = 19
     FLUID_INERTIA = 20
+    ROD = 21
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -56,6 +57,7 @@ CROSS_FLOW = int(ForceKind.CROSS_FLOW)
 COMPENSATOR = int(ForceKind.COMPENSATOR)
 WAVE_DRIFT = int(ForceKind.WAVE_DRIFT)
 FLUID_INERTIA = int(ForceKind.FLUID_INERTIA)
+ROD = int(ForceKind.ROD)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

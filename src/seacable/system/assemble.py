@@ -12,6 +12,7 @@ import numpy as np
 from seacable import packing
 from seacable import timefunctions as tfn
 from seacable.bodies import dynamics, kinematics
+from seacable.case import forces as fm
 from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile, Constant
 from seacable.case.forces import ORIGIN
@@ -22,7 +23,7 @@ from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import failures, hulls, kernel, natural_lines, topology, variants
-from seacable.system.force_rows import force_row, in_radians, offset
+from seacable.system.force_rows import force_row, in_radians, offset, rods_added_mass
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
@@ -228,17 +229,10 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 y_q += list(body.position)
                 y_v += velocity
                 q_at, v_at = q_at + 3, v_at + 3
-        for k, spec in enumerate(body.external_forces):
-            f["kind"].append(kind_of(spec.model))
-            f["body"].append(b)
-            f["at"].append(len(data))
-            f["first"].append(len(channels))
-            row = force_row(case, layout, spec, body, rho, base_dir, channels,
-                            f"{where}.external forces[{k}]", point)  # fmt: skip
-            data += row
-            states = table.state_count(f["kind"][-1], row)  # its states follow the others'
-            f["state"].append(n_s if states else -1)
-            n_s += states
+        row_of = partial(force_row, case, layout, body=body, rho=rho, base_dir=base_dir,
+                         channels=channels, point=point)  # fmt: skip
+        n_s = _force_table(body, b, row_of, arrays["body_added"][b], f, data, n_s, where)
+        arrays["body_added"][b] += rods_added_mass(body, rho, where)
     hulls.memory_offsets(f["kind"], f["at"], data)
     bodies_q, bodies_v = q_at, v_at
     lines = _lines(case, layout, rho, q_at, v_at)
@@ -288,6 +282,26 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
+
+
+def _force_table(body, b: int, row_of, own_added, f: dict, data: list, n_s: int,
+                 where: str) -> int:  # fmt: skip
+    """Body ``b``'s force models into the table ``f`` and the floats ``data`` (``row_of``:
+    force_row for this body); ``fluid inertia`` takes the body's own added mass
+    ``own_added`` (its rods' apart: they load their own part). Returns the states' count."""
+    for k, spec in enumerate(body.external_forces):
+        f["kind"].append(kind_of(spec.model))
+        f["body"].append(b)
+        f["at"].append(len(data))
+        f["first"].append(len(row_of.keywords["channels"]))
+        row = row_of(spec=spec, where=f"{where}.external forces[{k}]")
+        if isinstance(spec, fm.FluidInertia):
+            row = [*np.asarray(own_added).ravel()]
+        data += row
+        states = table.state_count(f["kind"][-1], row)  # its states follow the others'
+        f["state"].append(n_s if states else -1)
+        n_s += states
+    return n_s
 
 
 def _compensators(case, f: dict, fields: dict, points: np.ndarray) -> list[int]:

@@ -1,7 +1,7 @@
 """Compiled energies of a system at a state (after ``kernel.rhs`` filled the workspace):
 kinetic (bodies with their added mass, every line node with its own and its added mass),
 the potential of gravity and buoyancy (line segments as ``kernels.lumped`` counts them, each
-body's ``gravity`` and ``buoyancy`` force models, the free surface through
+body's ``gravity``, ``buoyancy`` and ``rod`` force models, the free surface through
 ``kernels.surface``), and elastic (axial strain, seabed springs, bending, ties, linear
 stiffness). Without damping, drag or applied forces their sum is constant: the test of the
 coupling between bodies and lines (tests/test_system.py)."""
@@ -12,8 +12,14 @@ import numpy as np
 
 from seacable.bodies import dynamics, kinematics
 from seacable.bodies.kinematics import turn
-from seacable.forces import hydrostatic, linear
-from seacable.forces.kinds import BUOYANCY, GRAVITY, LINEAR_STIFFNESS, NON_LINEAR_HYDROSTATIC
+from seacable.forces import hydrostatic, linear, rod
+from seacable.forces.kinds import (
+    BUOYANCY,
+    GRAVITY,
+    LINEAR_STIFFNESS,
+    NON_LINEAR_HYDROSTATIC,
+    ROD,
+)
 from seacable.kernels import waves
 from seacable.kernels.chain3d_outputs import segment_energies
 from seacable.kernels.jit import inner
@@ -99,6 +105,9 @@ def _bodies(y, p, w, mesh):
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]
             elastic += linear.stiffness_energy(row, w.pos[b], w.quat[b])
+        elif kind == ROD:
+            row = p.force_data[p.force_at[f] :]
+            gravity += rod.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity)
     for k in range(p.tie_from.shape[0]):
         a, c = p.tie_from[k], p.tie_to[k]
         d = 0.0

@@ -39,6 +39,7 @@ from seacable.forces import (
     hydrostatic,
     linear,
     radiation,
+    rod,
     rudder,
     servo,
     thruster,
@@ -61,6 +62,7 @@ from seacable.forces.kinds import (
     NON_LINEAR_HYDROSTATIC,
     QUADRATIC_DAMPING,
     RADIATION_DAMPING,
+    ROD,
     RUDDER,
     SERVO,
     SHORT_WING,
@@ -90,6 +92,7 @@ WAVES = True  # waves on the lines (their Morison loads and wetted parts)
 FAILURES = True  # line ends released during the run (system.failures)
 F_DRAG = True  # Morison drag on a body
 F_FLUID_INERTIA = True  # Morison's inertia on a body
+F_ROD = True  # rods fixed to a body
 F_APPLIED = True  # forces and moments of time
 F_STIFFNESS = True  # linear stiffness
 F_DAMPING = True  # linear and quadratic damping
@@ -244,10 +247,10 @@ def _models(t, y, p, w, ydot):
         w.models[:, :] = 0.0
         add_all(
             t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state,
-            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, p.body_added,
-            w.fraction, w.quat, w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z,
-            p.current_u, p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory,
-            w.trig, tf, w.models,
+            p.force_data, p.body_mass, p.body_cog, p.body_volume, p.body_cob, w.fraction, w.quat,
+            w.pos, w.rot, w.vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u,
+            p.current_v, p.wave, p.wave_depth, p.wave_stretch, w.hull, w.memory, w.trig, tf,
+            w.models,
         )  # fmt: skip
     for b in range(w.load.shape[0]):  # a loop: an array expression compiles slowly
         for c in range(6):
@@ -345,7 +348,7 @@ def body_forces(t, y, p, w, pos, vel, fraction, load):
     tf = (p.tf_breaks, p.tf_coefs, p.tf_count, p.tf_sine, p.tf_build_up)
     add_all(
         t, y, p.force_kind, p.force_body, p.force_at, p.force_first, p.force_state, p.force_data,
-        p.body_mass, p.body_cog, p.body_volume, p.body_cob, p.body_added, fraction, w.quat, pos,
+        p.body_mass, p.body_cog, p.body_volume, p.body_cob, fraction, w.quat, pos,
         w.rot, vel, w.omega, p.gravity, p.rho, p.current_z, p.current_u, p.current_v, p.wave,
         p.wave_depth, p.wave_stretch, w.hull, w.memory, w.trig, tf, load,
     )  # fmt: skip
@@ -354,7 +357,7 @@ def body_forces(t, y, p, w, pos, vel, fraction, load):
 
 @inner
 def add_all(
-    t, y, kind, body, at, first, state, data, mass, cog, volume, cob, added, fraction, quat, pos,
+    t, y, kind, body, at, first, state, data, mass, cog, volume, cob, fraction, quat, pos,
     rot, vel, omega, gravity, rho, current_z, current_u, current_v, wave, wave_depth,
     wave_stretch, hull, history, trig, tf, rhs,
 ):  # fmt: skip
@@ -379,8 +382,11 @@ def add_all(
             drag.add(row, fraction[b], pos[b], rot[b], vel[b], current_z, current_u, current_v,
                      t, wave, wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
         elif F_FLUID_INERTIA and k == FLUID_INERTIA:
-            fluid_inertia.add(volume[b], cob[b], added[b], fraction[b], pos[b], rot[b], rho, t,
-                              wave, wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
+            fluid_inertia.add(volume[b], cob[b], row, fraction[b], pos[b], rot[b], rho, t, wave,
+                              wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
+        elif F_ROD and k == ROD:
+            rod.add(row, pos[b], rot[b], vel[b], omega[b], rho, gravity, current_z, current_u,
+                    current_v, t, wave, wave_depth, wave_stretch, trig, rhs[b])  # fmt: skip
         elif F_APPLIED and k == APPLIED:
             applied.add(row, first[f], t, rot[b], tf, rhs[b])
         elif F_STIFFNESS and k == LINEAR_STIFFNESS:

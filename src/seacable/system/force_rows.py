@@ -5,6 +5,8 @@ SystemParams (system.assemble lays them out)."""
 import math
 from typing import Any
 
+import numpy as np
+
 from seacable import timefunctions as tfn
 from seacable.bodies import kinematics
 from seacable.case import forces as fm
@@ -19,6 +21,7 @@ from seacable.forces import (
     hull_current,
     hydrostatic,
     linear,
+    rod,
     rudder,
     servo,
     thruster,
@@ -47,8 +50,8 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
     """A force model's row of floats (its ``pack``), its time functions appended to
     ``channels``; ``point(ref, where)`` is the index of the point ``body`` or ``body.point``
     (system.assemble's, created on first use)."""
-    if isinstance(spec, fm.Drag):
-        return drag.pack(spec, rho)
+    if isinstance(spec, fm.Drag | fm.Rod):
+        return _morison_row(spec, body, rho, where)
     if isinstance(spec, fm.AppliedForce):
         point(f"{body.name}.{spec.point}" if spec.point != fm.ORIGIN else body.name, where)
         for name in applied.CHANNELS:
@@ -94,6 +97,32 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
     if isinstance(spec, fm.WaveDrift):
         return _wave_drift_row(case, spec, body, base_dir, where)
     return []  # gravity, buoyancy: the body's own fields
+
+
+def _morison_row(spec, body, rho: float, where: str) -> list[float]:
+    """The row of a body's drag or of a rod fixed to it."""
+    if isinstance(spec, fm.Drag):
+        return drag.pack(spec, rho)
+    if not isinstance(body, RigidBody):
+        raise CaseError(f"{where}: a rod turns with its body: give it to a 'rigid' body "
+                        f"(this one is '{body.type}')")  # fmt: skip
+    return rod.pack(spec)
+
+
+def rods_added_mass(body, rho: float, where: str) -> np.ndarray:
+    """The added mass (6x6, body frame, at the reference point) of a rigid body's rods on their
+    parts under the still water at its start pose (forces.rod.added_mass); zeros without
+    rods or water."""
+    total = np.zeros((6, 6))
+    specs = [s for s in getattr(body, "external_forces", []) if isinstance(s, fm.Rod)]
+    if not specs or rho == 0.0:
+        return total
+    roll, pitch, yaw = (math.radians(a) for a in body.orientation_deg)
+    rot = np.empty((3, 3))
+    kinematics.rotation(*kinematics.euler_quaternion(roll, pitch, yaw), rot)
+    for spec in specs:
+        total += rod.added_mass(rod.pack(spec), rho, np.asarray(body.position, float), rot)
+    return total
 
 
 def _compensator_row(spec, body, where: str, point) -> list[float]:

@@ -28,6 +28,7 @@ from seacable.forces.kinds import DIFFRACTION, MESH, RADIATION_DAMPING
 from seacable.kernels import surface
 from seacable.system import kernel, outputs
 from seacable.system.assemble import BuiltSystem
+from seacable.system.force_rows import rods_added_mass
 
 log = logging.getLogger("seacable")
 HULL_MODELS = (*MESH, RADIATION_DAMPING, DIFFRACTION)  # a floating hull's models
@@ -94,7 +95,7 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
     if p.rho <= 0.0:  # in air: no water to be above
         return
     for b, body in enumerate(built.case.bodies):
-        if not _point_volume(p, b):
+        if not _point_volume(p, b, body):
             continue
         z = float(w.pos[b, 2] + w.rot[b, 2] @ p.body_cob[b])  # the centre of buoyancy's
         volume = float(p.body_volume[b])
@@ -108,14 +109,17 @@ def _above_water(built: BuiltSystem, w: kernel.SystemWork) -> None:
             )
 
 
-def _point_volume(p, b: int) -> bool:
-    """Body ``b`` is dynamic, without a shape, a hull mesh or a hydrodynamic database, and has a
-    volume or an added mass: both counted wholly submerged wherever it is (a hull's added mass
-    is the floating vessel's)."""
+def _point_volume(p, b: int, body) -> bool:
+    """Body ``b`` (``body`` in the case) is dynamic, without a shape, a hull mesh or a
+    hydrodynamic database, and has a volume or an added mass of its own (its rods' follow their
+    wetted parts): both counted wholly submerged wherever it is (a hull's added mass is the
+    floating vessel's)."""
+    if p.rho <= 0.0 or p.body_kind[b] != kinematics.DYNAMIC:
+        return False
+    own = p.body_added[b] - rods_added_mass(body, float(p.rho), "")
     return bool(
-        p.rho > 0.0 and p.body_kind[b] == kinematics.DYNAMIC
-        and p.body_shape[b, 0] == surface.POINT
-        and (p.body_volume[b] > 0.0 or np.any(p.body_added[b] != 0.0))
+        p.body_shape[b, 0] == surface.POINT
+        and (p.body_volume[b] > 0.0 or np.any(np.abs(own) > 1e-9 * np.abs(p.body_added[b]).max()))
         and not np.any((p.force_body == b) & np.isin(p.force_kind, HULL_MODELS))
     )  # fmt: skip
 
@@ -169,7 +173,7 @@ class Watch:
             group = f"bodies/{body.name}"
             if p.body_kind[b] != kinematics.FIXED:
                 self.below.append((f"{group}/position_z", f"body '{body.name}'"))
-            if _point_volume(p, b):
+            if _point_volume(p, b, body):
                 self.afloat.append((group, np.asarray(p.body_cob[b]), f"body '{body.name}'"))
         free = list(built.layout.rigid) + list(built.layout.natural)
         if p.seabed_z < NO_SEABED:

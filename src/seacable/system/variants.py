@@ -43,6 +43,7 @@ FORCE_FLAG: dict[int, str | None] = {
     kinds.BUOYANCY: None,
     kinds.DRAG: "F_DRAG",
     kinds.FLUID_INERTIA: "F_FLUID_INERTIA",
+    kinds.ROD: "F_ROD",
     kinds.APPLIED: "F_APPLIED",
     kinds.LINEAR_STIFFNESS: "F_STIFFNESS",
     kinds.LINEAR_DAMPING: "F_DAMPING",
