@@ -85,6 +85,32 @@ def _towed(failures, duration=4.0):
     }  # fmt: skip
 
 
+def test_a_released_chain_end_comes_to_rest_on_the_seabed():
+    """A chain from an anchor to a fairlead 30 m up, released at its fairlead at 1 s: its
+    free end falls and comes to rest on the seabed, held by its end node's contact at the
+    depth the lying nodes rest at (1.8 mm, to 1e-6 m), and the run says nothing of a body
+    below the seabed."""
+    chain = {"name": "chain", "diameter": 0.08, "mass_per_length": 40.0,
+             "axial_stiffness": 1.0e8, "axial_damping_ratio": 0.5,
+             "drag_coefficient_normal": 1.2}  # fmt: skip
+    case = seacable.load_case({
+        "environment": {"water_depth": 50.0, "seabed": {"stiffness": 1.0e6, "damping": 1.0e4}},
+        "bodies": [{"name": "anchor", "type": "fixed", "position": [-60.0, 0.0, -50.0]},
+                   {"name": "fairlead", "type": "fixed", "position": [0.0, 0.0, -20.0]}],
+        "line_types": [chain],
+        "lines": [{"name": "chain", "model": "lumped_mass", "from": "anchor", "to": "fairlead",
+                   "sections": [{"type": "chain", "length": 80.0, "segments": 16}]}],
+        "failures": [{"at": "fairlead", "lines": ["chain"], "time": 1.0}],
+        "simulation": {"duration": 40.0, "output_interval": 1.0, "integrator": "dopri5"},
+    })  # fmt: skip
+    ds = seacable.simulate(case).dataset
+    end = ds["bodies/failure1"].to_dataset()["position_z"].values
+    lying = ds["lines/chain"].to_dataset()["node_z"].values[-1, -4:-1]  # its last nodes
+    assert end[0] == pytest.approx(-20.0) and -50.01 < end.min()
+    assert np.abs(lying - end[-1]).max() < 1e-6, (lying, end[-1])
+    assert "run_warnings" not in ds.attrs, ds.attrs.get("run_warnings")
+
+
 def test_a_tension_threshold_releases_the_line_where_the_intact_one_crosses_it():
     """The tug pulls the sagging rope taut: the intact run's tension at the tug first reaches
     20 kN at some step; with a failure at 20 kN the rope is released at that same step, its

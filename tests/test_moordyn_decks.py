@@ -362,3 +362,32 @@ def test_rods_without_an_equivalent_are_refused_by_row_and_column(old, new, mess
     with pytest.raises(seacable.CaseError) as error:
         moordyn.read(text.replace(old, new, 1))
     assert message in str(error.value) and "(RODS, column" in str(error.value)
+
+
+WAVE_DECK = DATA / "moordyn_v2_waves" / "lines.txt"
+
+
+def test_wave_components_beside_a_deck_become_airy_waves(tmp_path):
+    """WaveKin 7: each row of wave_frequencies.txt (omega, then the complex amplitude A) but the
+    first (omega 0) is an Airy wave towards +x of height 2 |A|, period 2 pi / omega and phase
+    90 deg - arg A (MoorDyn's |A| sin(omega t - k x + arg A)), with Wheeler's stretching; the
+    file's faults are refused by its name and line, and a deck given as text cannot have it."""
+    case, written = moordyn.convert(WAVE_DECK)
+    environment = case["environment"]
+    assert environment["wave_stretching"] == "wheeler"
+    first = environment["waves"][0]
+    assert first["height"] == pytest.approx(2.0) and first["period"] == pytest.approx(4 * math.pi)
+    assert first["phase_deg"] == pytest.approx(90.0 - math.degrees(math.atan2(0.6, 0.8)))
+    assert len(environment["waves"]) == 3 and "WaveKin 7: 3 wave components" in written
+    with pytest.raises(seacable.CaseError, match="read the deck from its file"):
+        moordyn.read(WAVE_DECK.read_text())
+    deck = tmp_path / "lines.txt"
+    deck.write_text(WAVE_DECK.read_text())
+    with pytest.raises(seacable.CaseError, match="wave_frequencies.txt: cannot be read"):
+        moordyn.read(deck)
+    (tmp_path / "wave_frequencies.txt").write_text("0 0 0\n0.5 0.1\n")
+    with pytest.raises(seacable.CaseError, match="wave_frequencies.txt line 2: '0.5 0.1': give"):
+        moordyn.read(deck)
+    (tmp_path / "wave_frequencies.txt").write_text("0.3 0 0\n0.5 0.1 0\n")
+    with pytest.raises(seacable.CaseError, match="line 1: omega 0.3: the frequencies start at 0"):
+        moordyn.read(deck)

@@ -83,6 +83,40 @@ def test_a_line_longer_than_its_span_and_rise_starts_laid_on_the_seabed():
     assert np.abs(nodes[:, 1]).max() > 50.0  # the rest bulges aside on the seabed
 
 
+@pytest.mark.parametrize("length", [200.0, 400.0])
+def test_a_line_hanging_between_two_buoys_starts_with_its_middle_on_the_seabed(length):
+    """Ends 40 m and 25 m above the seabed, 120 m apart: the free catenary would dip below
+    the seabed, so each arm hangs as a catenary tangent to the seabed where it touches down
+    (the same horizontal tension: the arms' heights and slopes agree with it) and the middle
+    lies on it; a line longer than its span and both heights lies slack in an arc. Every node
+    at or above the seabed, every segment at most its length (a chord of the curve), the
+    lying ones exactly."""
+    lengths = np.full(40, length / 40)
+    start, end = np.array([-60.0, 0.0, -60.0]), np.array([60.0, 0.0, -75.0])
+    nodes = initial._touching_down(lengths, start, end, 1000.0, -100.0)
+    assert np.allclose(nodes[0], start) and np.allclose(nodes[-1], end)
+    gaps = np.linalg.norm(np.diff(nodes, axis=0), axis=1)
+    assert np.all(gaps <= lengths * (1 + 1e-12)) and np.all(gaps > 0.99 * lengths)
+    lying = np.isclose(nodes[:, 2], -100.0)
+    assert lying.sum() >= 5 and nodes[:, 2].min() > -100.0 - 1e-9
+    both = lying[:-1] & lying[1:]
+    assert np.allclose(gaps[both], lengths[both], rtol=1e-9)
+    if length > 120.0 + 40.0 + 25.0:
+        assert np.abs(nodes[:, 1]).max() > 10.0  # slack: the laid part bulges aside
+    else:  # taut: both arms are catenaries z = a (cosh(x / a) - 1) from their feet, one a
+        hanging = ~lying
+        heights = nodes[hanging, 2] + 100.0
+        beyond = np.abs(nodes[hanging, 0] - np.where(nodes[hanging, 0] < 0, start[0], end[0]))
+
+        def offset(a, h, top):  # horizontal distance from the end at height top down to h
+            return a * (np.arccosh(1 + top / a) - np.arccosh(1 + h / a))
+
+        tops = np.where(nodes[hanging, 0] < 0, 40.0, 25.0)
+        a = brentq(lambda a: offset(a, heights[2], tops[2]) - beyond[2], 1.0, 1e6)
+        assert np.abs(offset(a, heights, tops) - beyond).max() < 1e-6 * 120.0
+        assert np.abs(nodes[:, 1]).max() < 1e-9
+
+
 def test_a_platform_pushed_until_its_upwind_line_lies_slack_matches_moorpy():
     """1 MN on the example's platform: its upwind line, 700 m, ends 600 m from its anchor's
     foot at 135 m of offset, lying slack; Newton over the bodies reshapes it at each pose."""

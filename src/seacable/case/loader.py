@@ -174,7 +174,11 @@ def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
         else:
             text = str(source)
         if moordyn.looks_like_deck(text):  # a MoorDyn input file: its case, and as YAML
-            data, text = moordyn.convert(text, str(path) if file is not None else None)
+            data, text = moordyn.convert(
+                text,
+                str(path) if file is not None else None,
+                file.parent if file is not None else None,
+            )
             return data, text, file
         data = _parse(text)
     if not isinstance(data, dict):

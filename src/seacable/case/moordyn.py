@@ -132,7 +132,8 @@ AT_DEFAULT = {  # MoorDyn's settings seacable takes at their MoorDyn default onl
     "inertialf": (0.0, "the coupled bodies' inertial reaction"),
 }
 ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
-    "wavekin": "wave kinematics (give the waves in the case's environment.waves instead)",
+    "wavekin": "wave kinematics other than 7 (wave components in wave_frequencies.txt beside "
+    "the deck); give the waves in the case's environment.waves instead",
     "currents": "current kinematics (give the current in the case's environment.current)",
     "seafloorfile": "a 3D seafloor (seacable's seabed is flat)",
 }
@@ -140,17 +141,20 @@ DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is couple
 OUTPUT_INTERVAL = 0.1  # [s] unless the deck gives dtOut
 
 
-def read(source: str | Path, name: str | None = None) -> dict[str, Any]:
+def read(source: str | Path, name: str | None = None,
+         folder: Path | None = None) -> dict[str, Any]:  # fmt: skip
     """The case mapping of the MoorDyn deck ``source`` (a path, or the deck's text when it
-    holds a newline; ``name``: what messages call it). Raises ``CaseError`` naming the section,
-    row and column of anything with no equivalent (the module's docstring)."""
-    return _Deck(source, name).case()
+    holds a newline; ``name``: what messages call it; ``folder``: where its side files are,
+    by default the deck's). Raises ``CaseError`` naming the section, row and column of
+    anything with no equivalent (the module's docstring)."""
+    return _Deck(source, name, folder).case()
 
 
-def convert(source: str | Path, name: str | None = None) -> tuple[dict[str, Any], str]:
+def convert(source: str | Path, name: str | None = None,
+            folder: Path | None = None) -> tuple[dict[str, Any], str]:  # fmt: skip
     """``read(source)`` and the same case as commented YAML text (what the import did, then
     the case)."""
-    deck = _Deck(source, name)
+    deck = _Deck(source, name, folder)
     case = deck.case()
     return case, deck.commented(case)
 
@@ -166,9 +170,12 @@ def _title(line: str) -> str | None:
 
 
 class _Deck(Tables):
-    def __init__(self, source: str | Path, name: str | None = None):
+    def __init__(self, source: str | Path, name: str | None = None,
+                 folder: Path | None = None):  # fmt: skip
+        self.folder = folder  # where the deck's side files are
         if isinstance(source, Path) or "\n" not in str(source):
             self.name = str(source)
+            self.folder = folder or Path(source).parent
             try:
                 text = Path(source).read_text(errors="replace")
             except OSError as error:
@@ -254,6 +261,9 @@ class _Deck(Tables):
             }
             if options["frictioncoefficient"] > 0:  # along and across the line alike
                 environment["seabed"]["friction_coefficient"] = options["frictioncoefficient"]
+        if options.get("wavekin") == 7.0:
+            environment["waves"] = self._wave_components(options)
+            environment["wave_stretching"] = "wheeler"
         outputs = self.sections.get("outputs")
         if outputs is not None and outputs.rows:
             channels = ", ".join(fields[0] for _, fields in outputs.rows)
@@ -295,6 +305,49 @@ class _Deck(Tables):
             "simulation": simulation,
         }
 
+    def _wave_components(self, options) -> list[dict[str, Any]]:
+        """WaveKin 7: the wave components of ``wave_frequencies.txt`` beside the deck (rows of
+        omega [rad/s], then the real and imaginary parts of the complex amplitude A [m], the
+        first at omega 0), each an Airy wave towards +x: MoorDyn's eta = |A| sin(omega t - k x
+        + arg A) is seacable's H/2 cos(k x - omega t + phase) with H = 2 |A| and phase =
+        90 deg - arg A; kinematics stretched as MoorDyn's (Wheeler)."""
+        where = f"{self.name} (OPTIONS, WaveKin 7)"
+        if self.folder is None:
+            raise CaseError(f"{where}: the wave components are read from wave_frequencies.txt "
+                            "beside the deck; read the deck from its file")  # fmt: skip
+        if options["wtrdpth"] <= 0:
+            raise CaseError(f"{where}: waves need the water depth; give WtrDpth")
+        path = self.folder / "wave_frequencies.txt"
+        try:
+            text = path.read_text(errors="replace")
+        except OSError as error:
+            raise CaseError(f"{where}: {path}: cannot be read ({error.strerror})") from None
+        waves = []
+        for number, raw in enumerate(text.splitlines(), start=1):
+            fields = raw.split()
+            if not fields:
+                continue
+            at = f"{path} line {number}"
+            if len(fields) != 3:
+                raise CaseError(f"{at}: {raw.strip()!r}: give omega [rad/s], then the real and "
+                                "imaginary parts of the amplitude [m]")  # fmt: skip
+            omega, real, imaginary = (to_number(v, at) for v in fields)
+            if omega < 0 or (number == 1 and omega != 0):
+                raise CaseError(f"{at}: omega {omega:g}: the frequencies start at 0 rad/s "
+                                "(MoorDyn's first row) and are not negative")  # fmt: skip
+            amplitude = math.hypot(real, imaginary)
+            if omega == 0 or amplitude == 0:
+                continue
+            phase = 90.0 - math.degrees(math.atan2(imaginary, real))
+            waves.append({"kind": "airy", "height": rounded(2 * amplitude),
+                          "period": rounded(2 * math.pi / omega),
+                          "phase_deg": rounded(phase), "direction_deg": 0.0})  # fmt: skip
+        if not waves:
+            raise CaseError(f"{path}: no wave component with a frequency and an amplitude")
+        self.notes.append(f"WaveKin 7: {len(waves)} wave components from {path.name}, towards "
+                          "+x, Wheeler's stretching as MoorDyn's")  # fmt: skip
+        return waves
+
     def _option_rows(self) -> list[tuple[int, list[str]]]:
         return self._rows("options")
 
@@ -325,6 +378,8 @@ class _Deck(Tables):
                         f"set MoorDyn's default {default:g}"
                     )
                 self.notes.append(f"{name} {value}: MoorDyn's default, nothing to carry over")
+            elif key == "wavekin" and value == "7":
+                options["wavekin"] = 7.0
             elif key in ZERO_ONLY:
                 if value not in ("0", "0.0", "-"):
                     raise CaseError(

@@ -156,9 +156,27 @@ def _stretched(built: BuiltSystem, row: outputs.Rows) -> None:
         log.warning(f"{implied}; check its length, EA and what it carries")
 
 
+def _resting_on_line_ends(p) -> set[int]:
+    """The bodies at an end of a lumped line whose end node has seabed contact: the seabed holds
+    them through it (a released line end, a clump weight on chain), at the depth that contact
+    carries them, as it holds the line's nodes."""
+    if p.seabed_z < NO_SEABED:
+        return set()
+    ends = [(int(p.line_from[li]), li, 0) for li in range(len(p.line_n))]
+    ends += [(int(p.line_to[li]), li, 1) for li in range(len(p.line_n))]
+    # a failure's point body takes the released ends
+    ends += [(int(p.fail_point[k]), int(p.fail_line[k]), int(p.fail_end[k]))
+             for k in range(len(p.fail_line))]  # fmt: skip
+    return {
+        int(p.point_body[point]) for point, li, end in ends
+        if p.node_seabed_stiffness[int(p.line_node[li]) + end * int(p.line_n[li])] > 0.0
+    }  # fmt: skip
+
+
 class Watch:
-    """What the start checks refuse, met during a run: a body or a contact-free node that
-    goes below the seabed, a body without a shape whose centre of buoyancy rises above the
+    """What the start checks refuse, met during a run: a body (but one the seabed holds through
+    a line's end node: ``_resting_on_line_ends``) or a contact-free node that goes below the
+    seabed, a body without a shape whose centre of buoyancy rises above the
     water (its volume still counted submerged). Fed every chunk of output rows (``see``); says
     when each first happened (``warnings``). The run goes on: the rows up to then are sound."""
 
@@ -169,9 +187,10 @@ class Watch:
         self.first: dict[str, float] = {}
         self.below: list[tuple[str, str]] = []  # (variable, what)
         self.afloat: list[tuple[str, np.ndarray, str]] = []  # (group, cob, what)
+        resting = _resting_on_line_ends(p)
         for b, body in enumerate(case.bodies):
             group = f"bodies/{body.name}"
-            if p.body_kind[b] != kinematics.FIXED:
+            if p.body_kind[b] != kinematics.FIXED and b not in resting:
                 self.below.append((f"{group}/position_z", f"body '{body.name}'"))
             if _point_volume(p, b, body):
                 self.afloat.append((group, np.asarray(p.body_cob[b]), f"body '{body.name}'"))

@@ -81,18 +81,27 @@ def _uniform_nodes(p, li, start, end, slack_only: bool = False):
         nodes = _laid(lengths[::-1] if flip else lengths, low, high)
     elif slack_only:
         return None
+    elif not on_seabed and _dips(p, total, w, low, high, span):
+        nodes = _touching_down(lengths[::-1] if flip else lengths, low, high, w, p.seabed_z)
     else:
-        h, v_f = catenary.solve(span, rise, total, w, ea, on_seabed)
+        # ends one above the other, the line longer than the rise and nothing under it: it
+        # hangs folded, a U without span; started as the U of a span of a thousandth of it
+        folded = not on_seabed and span < 1e-3 * total and rise < total
+        h, v_f = catenary.solve(max(span, 1e-3 * total) if folded else span, rise, total, w,
+                                ea, on_seabed)  # fmt: skip
         # arc length of each node from the low end (lengths run from the line's start)
         s_low = np.concatenate([[0.0], np.cumsum(lengths[::-1] if flip else lengths)])
         x, z = catenary.profile(s_low, h, v_f, total, w, ea, on_seabed)
-        direction = span_vector / span if span > 0 else np.zeros(2)
+        direction = span_vector / span if span > 0 else np.array([1.0, 0.0])
+        if folded:  # sheared to the ends' true span
+            x = x - (x[-1] - span) * s_low / s_low[-1]
         nodes = np.column_stack([low[0] + x * direction[0], low[1] + x * direction[1],
                                  low[2] + z])  # fmt: skip
-    if on_seabed:
+    if p.seabed_z > -1e29:
         # nodes lying on the seabed start at the penetration that carries their weight
         stiffness_per_length = p.node_seabed_stiffness[p.line_node[li]] / (0.5 * lengths[0])
-        lying = (np.abs(nodes[:, 2] - low[2]) < 1e-9) & (np.arange(n + 1) > 0)
+        lying = np.abs(nodes[:, 2] - (low[2] if on_seabed else p.seabed_z)) < 1e-9
+        lying[0] = lying[-1] = False
         nodes[lying, 2] -= lk.seabed_resting_depth(w, stiffness_per_length, p.seabed_band)
     return nodes[::-1] if flip else nodes
 
@@ -118,6 +127,25 @@ def uniform_shapes(p, y: np.ndarray, time: float = 0.0, slack_only: bool = False
     return out
 
 
+def _dips(p, total, w, low, high, span) -> bool:
+    """A line hanging between ends above the seabed whose inextensible catenary would reach
+    below it: its middle lies on the seabed (``_touching_down``)."""
+    if p.seabed_z < -1e29 or min(low[2], high[2]) <= p.seabed_z:
+        return False
+    rise = float(high[2] - low[2])
+    if total <= math.hypot(span, rise) * (1.0 + 1e-9):
+        return False
+    try:
+        h, v_f = catenary.solve(max(span, 1e-3 * total), rise, total, w, math.inf, False)
+    except catenary.CatenaryError:
+        return True
+    v_a = v_f - w * total
+    if v_a >= 0.0 or v_f <= 0.0:
+        return False  # the lowest point is an end
+    sag = h / w * (math.sqrt(1.0 + (v_a / h) ** 2) - 1.0)  # below the lower end
+    return float(low[2]) - sag < p.seabed_z
+
+
 def _laid(lengths, low, high):
     """The nodes (from the lower end ``low``, on the seabed) of a line too long to reach
     ``high`` as a catenary (longer than its span and rise): it hangs straight down from the
@@ -126,27 +154,44 @@ def _laid(lengths, low, high):
     its left: every segment at its unstretched length, the lying ones slack and at rest (the
     linear axial law of the static solves pushes back on a segment shorter than that)."""
     n = len(lengths)
-    nodes = np.empty((n + 1, 3))
-    nodes[n], k, depth = high, n, 0.0
-    rise = float(high[2] - low[2])
-    while k > 1 and depth + lengths[k - 1] < rise:
-        depth += lengths[k - 1]
-        k -= 1
-        nodes[k] = high - [0.0, 0.0, depth]
     horizontal = low[:2] - high[:2]
     span = float(np.hypot(*horizontal))
     toward = horizontal / span if span > 0.0 else np.array([-1.0, 0.0])
-    reach = math.sqrt(max(lengths[k - 1] ** 2 - (rise - depth) ** 2, 0.0))
-    foot = high[:2] + min(reach, span) * toward  # the touch-down node
-    nodes[k - 1] = [foot[0], foot[1], low[2]]
-    chord = foot - low[:2]
+    hanging = _drop(lengths[::-1], high, float(low[2]), toward, span)
+    k = n + 1 - len(hanging)  # the foot's node
+    nodes = np.empty((n + 1, 3))
+    nodes[k:] = hanging[::-1]
+    nodes[: k + 1, :2] = _lying(lengths[:k], low[:2], hanging[-1, :2], toward)
+    nodes[: k + 1, 2] = low[2]
+    return nodes
+
+
+def _drop(lengths, top, floor, toward, farthest):
+    """The points (from ``top`` down) of segments ``lengths`` (from the top) hanging straight
+    down from ``top`` while they stay above the seabed at ``floor`` [m], then the next one
+    reaching it aslant towards ``toward`` (at most ``farthest`` [m] off): its foot last."""
+    points, depth, k = [np.asarray(top, float)], 0.0, 0
+    rise = float(top[2] - floor)
+    while k < len(lengths) - 1 and depth + lengths[k] < rise:
+        depth += lengths[k]
+        k += 1
+        points.append(top - [0.0, 0.0, depth])
+    reach = math.sqrt(max(lengths[k] ** 2 - (rise - depth) ** 2, 0.0))
+    foot = top[:2] + min(reach, farthest) * toward
+    points.append(np.array([foot[0], foot[1], floor]))
+    return np.array(points)
+
+
+def _lying(lying, start, end, toward):
+    """The horizontal positions (len(lying) + 1, 2) of a chain of segments ``lying`` [m] on
+    the seabed from ``start`` to ``end``: straight when they reach no farther, else a polygon
+    inscribed in a circular arc bulging to its left, each segment at its length (``toward``:
+    the heading where the two points coincide)."""
+    chord = end - start
     distance = float(np.hypot(*chord))
-    lying = lengths[: k - 1]
-    if k - 1 < 2 or lying.sum() <= distance * (1.0 + 1e-12):
-        s = np.concatenate([[0.0], np.cumsum(lying)]) / max(lying.sum(), 1e-300)
-        nodes[:k, :2] = low[:2] + s[:, None] * chord[None, :]
-        nodes[:k, 2] = low[2]
-        return nodes
+    s = np.concatenate([[0.0], np.cumsum(lying)])
+    if len(lying) < 2 or lying.sum() <= distance * (1.0 + 1e-12):
+        return start + (s / max(lying.sum(), 1e-300))[:, None] * chord[None, :]
     from scipy.optimize import brentq  # here: its import is slow (docs/architecture.md)
 
     def angle(radius):  # the arc's angle when each segment is a chord of a circle this wide
@@ -158,11 +203,71 @@ def _laid(lengths, low, high):
                     1e9 * lying.sum(), xtol=1e-12 * lying.sum())  # fmt: skip
     half = np.arcsin(lying / (2.0 * radius))
     turn = angle(radius) / 2 - (2.0 * np.cumsum(half) - half)  # each chord's heading
-    along = chord / distance if distance > 0.0 else -toward
+    along = chord / distance if distance > 0.0 else toward
     left = np.array([-along[1], along[0]])
     steps = lying[:, None] * (np.cos(turn)[:, None] * along + np.sin(turn)[:, None] * left)
-    nodes[1:k, :2] = low[:2] + np.cumsum(steps, axis=0)
-    nodes[0, :2], nodes[:k, 2] = low[:2], low[2]
+    return start + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
+
+
+def _touching_down(lengths, start, end, w, seabed_z):
+    """The nodes of a line hanging from ``start`` to ``end`` (both above the seabed at
+    ``seabed_z``) whose middle lies on the seabed: two inextensible catenaries, each tangent to
+    the seabed where it touches down, the part between laid straight (the horizontal tension
+    H [N] that makes the span: arm i of height h_i rises over (H/w) acosh(1 + w h_i / H) along
+    sqrt(h_i^2 + 2 h_i H / w) of line), or, when the line is longer than its span and both
+    heights, hanging straight down from both ends (``_drop``) and lying slack in an arc
+    between the two feet."""
+    from scipy.optimize import brentq  # here: its import is slow (docs/architecture.md)
+
+    heights = (float(start[2] - seabed_z), float(end[2] - seabed_z))
+    total = float(lengths.sum())
+    horizontal = end[:2] - start[:2]
+    span = float(np.hypot(*horizontal))
+    toward = horizontal / span if span > 0.0 else np.array([1.0, 0.0])
+
+    def arms(h):  # each arm's horizontal reach and length
+        return (
+            [h / w * math.acosh(1.0 + w * z / h) for z in heights],
+            [math.sqrt(z * z + 2.0 * z * h / w) for z in heights],
+        )
+
+    def gap(h):
+        reach, arc = arms(h)
+        return sum(reach) + total - sum(arc) - span
+
+    tension = 0.0
+    if total - sum(heights) < span:
+        high = w * total
+        while gap(high) < 0.0:
+            high *= 2.0
+        tension = brentq(gap, 1e-12 * high, high, xtol=1e-12 * high)
+    if tension == 0.0:  # slack: both ends hang straight down, the rest lies in an arc
+        first = _drop(lengths, start, seabed_z, toward, 0.5 * span)
+        last = _drop(lengths[::-1], end, seabed_z, -toward, 0.5 * span)
+        nodes = np.empty((len(lengths) + 1, 3))
+        a, b = len(first) - 1, len(lengths) + 1 - len(last)  # the feet's nodes
+        nodes[: a + 1], nodes[b:] = first, last[::-1]
+        nodes[a : b + 1, :2] = _lying(lengths[a:b], first[-1, :2], last[-1, :2], toward)
+        nodes[a : b + 1, 2] = seabed_z
+        return nodes
+    reach, arc = arms(tension)
+    s = np.concatenate([[0.0], np.cumsum(lengths)])
+    nodes = np.empty((len(s), 3))
+    feet = (start[:2] + reach[0] * toward, end[:2] - reach[1] * toward)
+    for from_end, near in ((s, 0), (total - s, 1)):
+        on = from_end <= arc[near]
+        sigma = arc[near] - from_end[on]  # arc length from the foot up the arm
+        x = tension / w * np.arcsinh(w * sigma / tension)
+        z = tension / w * (np.sqrt(1.0 + (w * sigma / tension) ** 2) - 1.0)
+        side = -toward if near == 0 else toward
+        nodes[on, :2] = feet[near] + x[:, None] * side[None, :]
+        nodes[on, 2] = seabed_z + z
+    lying = (s > arc[0]) & (total - s > arc[1])
+    if lying.any():
+        inner = s[lying]
+        pieces = np.diff(np.concatenate([[arc[0]], inner, [total - arc[1]]]))
+        nodes[lying, :2] = _lying(pieces, feet[0], feet[1], toward)[1:-1]
+        nodes[lying, 2] = seabed_z
     return nodes
 
 
