@@ -60,15 +60,19 @@ def _fairlead_forces(dataset, time=slice(None)) -> np.ndarray:
     return np.array(out).T
 
 
-def _deck(folder: Path) -> Path:
+def _deck(folder: Path, source: Path = DECK) -> Path:
     """The deck copied where MoorDyn may write its output files (beside the deck)."""
-    copy = folder / DECK.name
-    copy.write_text(DECK.read_text())
+    copy = folder / source.name
+    copy.write_text(source.read_text())
     return copy
 
 
-def test_statics_match_moordyn_on_the_same_deck(tmp_path):
-    deck = _deck(tmp_path)
+OC3 = Path(__file__).parent / "data" / "moordyn_v2_oc3_hywind.txt"  # as MoorDyn's example
+
+
+@pytest.mark.parametrize("source", [DECK, OC3], ids=["spread", "oc3"])
+def test_statics_match_moordyn_on_the_same_deck(tmp_path, source):
+    deck = _deck(tmp_path, source)
     case = deck_reader.read(deck)
     x0 = _start(case)
     with _quiet():
@@ -81,8 +85,9 @@ def test_statics_match_moordyn_on_the_same_deck(tmp_path):
     assert np.abs(share).max() < 5e-3, share
 
 
-def test_fairlead_tensions_under_an_imposed_surge_match_moordyn(tmp_path):
-    deck = _deck(tmp_path)
+@pytest.mark.parametrize("source", [DECK, OC3], ids=["spread", "oc3"])
+def test_fairlead_tensions_under_an_imposed_surge_match_moordyn(tmp_path, source):
+    deck = _deck(tmp_path, source)
     case = deck_reader.read(deck)
     x0 = _start(case)
     times, theirs = [0.0], []
