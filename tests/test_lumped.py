@@ -542,3 +542,37 @@ def test_a_lumped_line_at_given_angles_must_reach_its_end_point():
     with pytest.raises(seacable.CaseError, match=r"lines \(cable\)\.initial: the given angles "
                        r"end the line at .* \(0\.5 m apart; allowed 1 mm\)"):  # fmt: skip
         seacable.simulate(seacable.load_case(system))
+
+
+def test_a_line_of_one_segment_is_a_spring_between_its_ends():
+    """A one-segment rope (MoorDyn's decks use them) holding a 100 kg clump in air: the clump
+    hangs at the stretch of its weight and the end node's half of the rope, W / (EA / L), to
+    1e-9 m, and bounces at 2 pi sqrt(m / (EA / L)) with m the clump and that half (1e-3)."""
+    rope = {"name": "rope", "diameter": 0.02, "mass_per_length": 1.0, "axial_stiffness": 1.0e5}
+
+    def case(start, duration):
+        return seacable.load_case({
+            "environment": {"in_air": True, "gravity": 9.81},
+            "bodies": [{"name": "top", "type": "fixed", "position": [0.0, 0.0, 0.0]},
+                       {"name": "clump", "type": "point", "position": [0.0, 0.0, -10.2],
+                        "mass": 100.0, "external forces": [{"model": "gravity"}]}],
+            "line_types": [rope],
+            "lines": [{"name": "rope", "model": "lumped_mass", "from": "top", "to": "clump",
+                       "sections": [{"type": "rope", "length": 10.0, "segments": 1}]}],
+            "start": start,
+            "simulation": {"duration": duration, "output_interval": 0.001,
+                           "integrator": "rk4", "time_step": 0.0005},
+        })  # fmt: skip
+
+    stiffness, mass = 1.0e5 / 10.0, 105.0
+    rest = -10.0 - mass * 9.81 / stiffness
+    ds = seacable.statics(case("static", 1.0)).dataset
+    assert float(ds["bodies/clump"].to_dataset().isel(time=0)["position_z"]) == pytest.approx(
+        rest, abs=1e-9
+    )
+    run = seacable.simulate(case("as_given", 3.0)).dataset["bodies/clump"].to_dataset()
+    z, t = run["position_z"].values - rest, run["time"].values
+    up = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
+    crossings = t[up] - z[up] * (t[up + 1] - t[up]) / (z[up + 1] - z[up])
+    period = np.diff(crossings).mean()
+    assert period == pytest.approx(2 * math.pi * math.sqrt(mass / stiffness), rel=1e-3)

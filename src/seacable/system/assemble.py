@@ -403,8 +403,6 @@ def _lines(case, layout, rho, q_at, v_at) -> dict:
         layout.lines.append(line.name)
         props = _sections(case, line, rho)
         n = len(props["length"])
-        if n < 2:
-            raise CaseError(f"{where}.sections: a lumped-mass line needs at least 2 segments")
         out["line_n"].append(n)
         out["line_seg"].append(seg_count)
         out["line_node"].append(node_count)
