@@ -379,7 +379,7 @@ def test_wave_components_beside_a_deck_become_airy_waves(tmp_path):
     assert first["height"] == pytest.approx(2.0) and first["period"] == pytest.approx(4 * math.pi)
     assert first["phase_deg"] == pytest.approx(90.0 - math.degrees(math.atan2(0.6, 0.8)))
     assert len(environment["waves"]) == 3 and "WaveKin 7: 3 wave components" in written
-    with pytest.raises(seacable.CaseError, match="read the deck from its file"):
+    with pytest.raises(seacable.CaseError, match="beside the deck; read the deck from its file"):
         moordyn.read(WAVE_DECK.read_text())
     deck = tmp_path / "lines.txt"
     deck.write_text(WAVE_DECK.read_text())
@@ -391,3 +391,25 @@ def test_wave_components_beside_a_deck_become_airy_waves(tmp_path):
     (tmp_path / "wave_frequencies.txt").write_text("0.3 0 0\n0.5 0.1 0\n")
     with pytest.raises(seacable.CaseError, match="line 1: omega 0.3: the frequencies start at 0"):
         moordyn.read(deck)
+
+
+def test_a_steady_current_profile_beside_a_deck_becomes_the_cases_current(tmp_path):
+    """Currents 1 (or 3): current_profile.txt's rows after its three heading lines (z, ux, uy,
+    uz) are the case's current profile of speeds towards their one direction; a current that
+    turns with depth, a vertical one, or fewer than two rows is refused by the file's line."""
+    case = moordyn.read(DATA / "moordyn_v2_current" / "lines.txt")
+    current = case["environment"]["current"]
+    assert current["direction_deg"] == pytest.approx(30.0)
+    assert current["profile"][0] == [-51.0, 0.0] and current["profile"][-1] == [0.0, 1.2]
+    deck = tmp_path / "lines.txt"
+    deck.write_text((DATA / "moordyn_v2_current" / "lines.txt").read_text())
+    head = "title\ncomment\nz ux uy uz\n"
+    for rows, message in (
+        ("-50 0.5 0 0\n0 0 0.5 0\n", "line 5: the current turns with depth (90 deg here, 0 deg"),
+        ("-50 0.5 0 0\n0 1 0 0.1\n", "line 5: uz 0.1 m/s: a vertical current is not modelled"),
+        ("-50 0.5 0 0\n", "a current profile needs at least 2 rows"),
+    ):
+        (tmp_path / "current_profile.txt").write_text(head + rows)
+        with pytest.raises(seacable.CaseError) as error:
+            moordyn.read(deck)
+        assert message in str(error.value)

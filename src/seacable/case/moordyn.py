@@ -134,7 +134,8 @@ AT_DEFAULT = {  # MoorDyn's settings seacable takes at their MoorDyn default onl
 ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
     "wavekin": "wave kinematics other than 7 (wave components in wave_frequencies.txt beside "
     "the deck); give the waves in the case's environment.waves instead",
-    "currents": "current kinematics (give the current in the case's environment.current)",
+    "currents": "current kinematics other than a steady profile (1 or 3, current_profile.txt "
+    "beside the deck); give the current in the case's environment.current",
     "seafloorfile": "a 3D seafloor (seacable's seabed is flat)",
 }
 DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is coupled to decides)
@@ -264,6 +265,8 @@ class _Deck(Tables):
         if options.get("wavekin") == 7.0:
             environment["waves"] = self._wave_components(options)
             environment["wave_stretching"] = "wheeler"
+        if options.get("currents") == 1.0:
+            environment["current"] = self._current_profile()
         outputs = self.sections.get("outputs")
         if outputs is not None and outputs.rows:
             channels = ", ".join(fields[0] for _, fields in outputs.rows)
@@ -311,19 +314,12 @@ class _Deck(Tables):
         first at omega 0), each an Airy wave towards +x: MoorDyn's eta = |A| sin(omega t - k x
         + arg A) is seacable's H/2 cos(k x - omega t + phase) with H = 2 |A| and phase =
         90 deg - arg A; kinematics stretched as MoorDyn's (Wheeler)."""
-        where = f"{self.name} (OPTIONS, WaveKin 7)"
-        if self.folder is None:
-            raise CaseError(f"{where}: the wave components are read from wave_frequencies.txt "
-                            "beside the deck; read the deck from its file")  # fmt: skip
         if options["wtrdpth"] <= 0:
-            raise CaseError(f"{where}: waves need the water depth; give WtrDpth")
-        path = self.folder / "wave_frequencies.txt"
-        try:
-            text = path.read_text(errors="replace")
-        except OSError as error:
-            raise CaseError(f"{where}: {path}: cannot be read ({error.strerror})") from None
+            raise CaseError(f"{self.name} (OPTIONS, WaveKin 7): waves need the water depth; "
+                            "give WtrDpth")  # fmt: skip
+        path, lines = self._side_file("wave_frequencies.txt", "WaveKin 7")
         waves = []
-        for number, raw in enumerate(text.splitlines(), start=1):
+        for number, raw in enumerate(lines, start=1):
             fields = raw.split()
             if not fields:
                 continue
@@ -347,6 +343,53 @@ class _Deck(Tables):
         self.notes.append(f"WaveKin 7: {len(waves)} wave components from {path.name}, towards "
                           "+x, Wheeler's stretching as MoorDyn's")  # fmt: skip
         return waves
+
+    def _side_file(self, name: str, option: str) -> tuple[Path, list[str]]:
+        """A side file of the deck (``option`` needs it) and its lines."""
+        where = f"{self.name} (OPTIONS, {option})"
+        if self.folder is None:
+            raise CaseError(f"{where}: it is read from {name} beside the deck; read the deck "
+                            "from its file")  # fmt: skip
+        path = self.folder / name
+        try:
+            return path, path.read_text(errors="replace").splitlines()
+        except OSError as error:
+            raise CaseError(f"{where}: {path}: cannot be read ({error.strerror})") from None
+
+    def _current_profile(self) -> dict[str, Any]:
+        """Currents 1 or 3: the steady profile of ``current_profile.txt`` beside the deck (three
+        heading lines, then rows of z [m], ux, uy and uz [m/s]; uy and uz may be left out), as
+        the case's current ``profile`` towards one direction (MoorDyn interpolates it in z as
+        seacable does, and holds the end values beyond)."""
+        path, lines = self._side_file("current_profile.txt", "Currents")
+        rows = []
+        for number, raw in enumerate(lines[3:], start=4):
+            fields = raw.split()
+            if not fields:
+                continue
+            at = f"{path} line {number}"
+            if not 2 <= len(fields) <= 4:
+                raise CaseError(f"{at}: {raw.strip()!r}: give z [m], then ux, uy, uz [m/s]")
+            z, ux, uy, uz = (*(to_number(v, at) for v in fields), 0.0, 0.0)[:4]
+            if uz != 0.0:
+                raise CaseError(f"{at}: uz {uz:g} m/s: a vertical current is not modelled; "
+                                "set it to 0")  # fmt: skip
+            rows.append((number, z, ux, uy))
+        if len(rows) < 2:
+            raise CaseError(f"{path}: a current profile needs at least 2 rows after its three "
+                            "heading lines")  # fmt: skip
+        flowing = [(math.atan2(uy, ux), n) for n, _, ux, uy in rows if math.hypot(ux, uy) > 0]
+        heading = flowing[0][0] if flowing else 0.0
+        for angle, number in flowing:
+            if abs(math.remainder(angle - heading, 2 * math.pi)) > 1e-9:
+                raise CaseError(
+                    f"{path} line {number}: the current turns with depth ({math.degrees(angle):g}"
+                    f" deg here, {math.degrees(heading):g} deg above); seacable's profile has "
+                    "one direction: give the rows one direction"
+                )
+        profile = [[rounded(z), rounded(math.hypot(ux, uy))] for _, z, ux, uy in rows]
+        self.notes.append(f"Currents: the steady profile of {path.name}, {len(rows)} rows")
+        return {"profile": profile, "direction_deg": rounded(math.degrees(heading))}
 
     def _option_rows(self) -> list[tuple[int, list[str]]]:
         return self._rows("options")
@@ -380,6 +423,8 @@ class _Deck(Tables):
                 self.notes.append(f"{name} {value}: MoorDyn's default, nothing to carry over")
             elif key == "wavekin" and value == "7":
                 options["wavekin"] = 7.0
+            elif key == "currents" and value in ("1", "3"):
+                options["currents"] = 1.0
             elif key in ZERO_ONLY:
                 if value not in ("0", "0.0", "-"):
                     raise CaseError(
