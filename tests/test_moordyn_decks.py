@@ -343,7 +343,7 @@ def test_the_rods_of_a_deck_become_rod_models_and_bodies():
 
 
 REFUSED_RODS = [
-    (COLUMN_ROW, COLUMN_ROW.replace("Body1 ", "Pinned"), "column Attachment): 'Pinned'"),
+    (COLUMN_ROW, COLUMN_ROW.replace("Body1 ", "Coupled"), "column Attachment): 'Coupled'"),
     (COLUMN_ROW, COLUMN_ROW.replace("Body1     ", "Body1Pinned"),
      "column Attachment): 'Body1Pinned'"),
     (COLUMN_ROW, COLUMN_ROW.replace("column", "colum "), "column RodType): 'colum' is not a"),

@@ -178,9 +178,10 @@ class Tables:
     def _rods(self, options, held) -> tuple[list[dict[str, Any]], dict[str, str]]:
         """RODS: a rod on a body (``Body<ID>``) becomes a ``rod`` force model of that body, its
         mass, centre and inertia joined to the body's; a ``Free`` rod a rigid body ``rod<ID>``
-        (reference point at end A, the rod's mass and inertia, gravity and the rod's loads); a
-        ``Fixed`` rod a fixed body. Its ends are points ``a`` and ``b`` for the lines (R<ID>A,
-        R<ID>B). Pinned and coupled rods are refused by name."""
+        (reference point at end A, the rod's mass and inertia, gravity and the rod's loads), a
+        ``Pinned`` one the same turning about its end A held still; a ``Fixed`` rod a fixed
+        body. Its ends are points ``a`` and ``b`` for the lines (R<ID>A, R<ID>B). Rods pinned
+        to a body and coupled rods are refused by name."""
         columns = ["ID", "RodType", "Attachment", "Xa", "Ya", "Za", "Xb", "Yb", "Zb", "NumSegs",
                    "RodOutputs"]  # fmt: skip
         types = self._rod_types()
@@ -223,7 +224,7 @@ class Tables:
                 _join_mass(host, mass, a, b, kind_of["Diam"])
                 host["points"][f"{name}_a"], host["points"][f"{name}_b"] = [*a], [*b]
                 ref = f"{kind}.{name}_"
-            elif kind in ("free",):
+            elif kind in ("free", "pinned", "pin"):
                 axis = [q - p for p, q in zip(a, b, strict=True)]
                 body = {"name": name, "type": "rigid", "position": a, "mass": 0.0,
                         "centre_of_gravity": [0.0, 0.0, 0.0], "inertia": [0.0, 0.0, 0.0],
@@ -231,6 +232,8 @@ class Tables:
                                             {**model, "end_a": [0.0, 0.0, 0.0], "end_b": axis}],
                         "points": {"a": [0.0, 0.0, 0.0], "b": [*axis]}}  # fmt: skip
                 _join_mass(body, mass, [0.0, 0.0, 0.0], axis, kind_of["Diam"])
+                if kind != "free":  # pinned at end A to the ground: it turns about it
+                    body["dofs"] = ["roll", "pitch", "yaw"]
                 bodies.append(body)
                 ref = f"{name}."
             elif kind in ("fixed", "fix", "anchor") or (kind in held):
@@ -254,8 +257,8 @@ class Tables:
             else:
                 raise CaseError(
                     f"{where('Attachment')}: {row['Attachment']!r}: seacable reads rods on the "
-                    f"deck's bodies ({', '.join(held) or 'none'}), Free and Fixed rods; a "
-                    "pinned or coupled rod is not read yet"
+                    f"deck's bodies ({', '.join(held) or 'none'}), Free, Pinned and Fixed rods; "
+                    "a rod pinned to a body or a coupled rod is not read yet"
                 )
             ends[f"R{row['ID']}A".upper()] = ref + "a"
             ends[f"R{row['ID']}B".upper()] = ref + "b"
