@@ -202,3 +202,28 @@ def test_rods_join_the_bodys_added_mass_and_are_checked():
         model.build(seacable.load_case({
             "bodies": [point], "lines": [], "start": "as_given",
             "simulation": {"duration": 1.0, "output_interval": 0.1}}))  # fmt: skip
+
+
+def test_a_rods_added_mass_is_taken_where_the_statics_puts_its_body():
+    """A free column given 3 m below its balance (a 33 m draft), free in heave only (its
+    waterplane holds it): the statics raise it until its buoyancy carries its mass (a 30 m
+    draft), and its rod's normal added mass is then Ca rho A times that draft (to 1e-9), not
+    the 33 m under the water at its start pose."""
+    d, draft = 6.0, 30.0
+    area = math.pi * d * d / 4
+    forces = [
+        {"model": "gravity"},
+        _rod((0, 0, -33.0), (0, 0, 10), d, 43, added_mass_coefficient=1.0),
+    ]
+    case = seacable.load_case({
+        "environment": {"water_density": RHO, "gravity": G},
+        "bodies": [{"name": "spar", "type": "rigid", "position": [0.0, 0.0, 0.0],
+                    "mass": RHO * area * draft, "inertia": [1e9, 1e9, 1e8],
+                    "dofs": ["heave"], "external forces": forces}],
+        "lines": [], "simulation": {"duration": 1.0, "output_interval": 0.1},
+    })  # fmt: skip
+    built = model.build(case)
+    q = int(built.params.body_q[0])
+    assert built.y0[q + 2] == pytest.approx(3.0, abs=1e-9)
+    added = np.asarray(built.params.body_added[0])
+    assert added[0, 0] == pytest.approx(RHO * area * draft, rel=1e-9)

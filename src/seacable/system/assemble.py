@@ -232,7 +232,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         row_of = partial(force_row, case, layout, body=body, rho=rho, base_dir=base_dir,
                          channels=channels, point=point)  # fmt: skip
         n_s = _force_table(body, b, row_of, arrays["body_added"][b], f, data, n_s, where)
-        arrays["body_added"][b] += rods_added_mass(body, rho, where)
+        arrays["body_added"][b] += rods_added_mass(body, rho)
     hulls.memory_offsets(f["kind"], f["at"], data)
     bodies_q, bodies_v = q_at, v_at
     lines = _lines(case, layout, rho, q_at, v_at)

@@ -109,20 +109,38 @@ def _morison_row(spec, body, rho: float, where: str) -> list[float]:
     return rod.pack(spec)
 
 
-def rods_added_mass(body, rho: float, where: str) -> np.ndarray:
+def rods_added_mass(body, rho: float, pose=None) -> np.ndarray:
     """The added mass (6x6, body frame, at the reference point) of a rigid body's rods on their
-    parts under the still water at its start pose (forces.rod.added_mass); zeros without
-    rods or water."""
+    parts under the still water (forces.rod.added_mass) with the body at ``pose`` (its
+    position [m] and unit quaternion; by default its start pose); zeros without rods or
+    water."""
     total = np.zeros((6, 6))
     specs = [s for s in getattr(body, "external_forces", []) if isinstance(s, fm.Rod)]
     if not specs or rho == 0.0:
         return total
-    roll, pitch, yaw = (math.radians(a) for a in body.orientation_deg)
+    if pose is None:
+        roll, pitch, yaw = (math.radians(a) for a in body.orientation_deg)
+        pose = (body.position, kinematics.euler_quaternion(roll, pitch, yaw))
     rot = np.empty((3, 3))
-    kinematics.rotation(*kinematics.euler_quaternion(roll, pitch, yaw), rot)
+    kinematics.rotation(*(float(c) for c in pose[1]), rot)
     for spec in specs:
-        total += rod.added_mass(rod.pack(spec), rho, np.asarray(body.position, float), rot)
+        total += rod.added_mass(rod.pack(spec), rho, np.asarray(pose[0], float), rot)
     return total
+
+
+def rods_at_rest(built, y: np.ndarray) -> None:
+    """The rods' part of each rigid body's added mass taken again with the bodies at ``y`` (the
+    statics' balance) instead of their start poses: the parts under the still water there."""
+    p = built.params
+    for b, body in enumerate(built.case.bodies):
+        q = int(p.body_q[b])
+        if q < 0 or not p.body_rigid[b]:
+            continue
+        start = rods_added_mass(body, float(p.rho))
+        if start.any():
+            p.body_added[b] += (
+                rods_added_mass(body, float(p.rho), (y[q : q + 3], y[q + 3 : q + 7])) - start
+            )
 
 
 def _compensator_row(spec, body, where: str, point) -> list[float]:

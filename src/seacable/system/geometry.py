@@ -28,7 +28,6 @@ from seacable.forces.kinds import DIFFRACTION, MESH, RADIATION_DAMPING
 from seacable.kernels import surface
 from seacable.system import kernel, outputs
 from seacable.system.assemble import BuiltSystem
-from seacable.system.force_rows import rods_added_mass
 
 log = logging.getLogger("seacable")
 HULL_MODELS = (*MESH, RADIATION_DAMPING, DIFFRACTION)  # a floating hull's models
@@ -116,10 +115,10 @@ def _point_volume(p, b: int, body) -> bool:
     floating vessel's)."""
     if p.rho <= 0.0 or p.body_kind[b] != kinematics.DYNAMIC:
         return False
-    own = p.body_added[b] - rods_added_mass(body, float(p.rho), "")
+    own = np.any(np.asarray(getattr(body, "added_mass", 0.0), float) != 0.0)
     return bool(
         p.body_shape[b, 0] == surface.POINT
-        and (p.body_volume[b] > 0.0 or np.any(np.abs(own) > 1e-9 * np.abs(p.body_added[b]).max()))
+        and (p.body_volume[b] > 0.0 or own)
         and not np.any((p.force_body == b) & np.isin(p.force_kind, HULL_MODELS))
     )  # fmt: skip
 

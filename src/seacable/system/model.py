@@ -24,6 +24,7 @@ from seacable.system import (
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 from seacable.system.assemble import build as _assemble
+from seacable.system.force_rows import rods_at_rest
 from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
 from seacable.system.initial import end_points, initial_state
 
@@ -55,6 +56,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     elif case.start == "static":
         given = y0[p.n_q : p.n_q + p.n_v].copy()
         y0 = statics.equilibrium(built, y0)
+        rods_at_rest(built, y0)
         steady = statics.steady_velocities(p, y0)  # a tow keeps its steady motion
         if steady.any():
             _replaced_velocities(built, given, steady)

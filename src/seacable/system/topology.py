@@ -34,9 +34,20 @@ def groups(case: sch.SystemCase) -> list[list[str]]:
     return list(out.values())
 
 
+# a floating body free in these only may be held by its waterplane alone
+WATERPLANE_DOFS = {"heave", "roll", "pitch"}
+WATERPLANE_MODELS = ("rod", "non-linear hydrostatic")  # the buoyancy of what the surface cuts
+
+
 def _holds(body) -> bool:
     if isinstance(body, sch.FixedBody | sch.ImposedBody) or not getattr(body, "dofs", True):
         return True  # held in space (a body without a free degree of freedom too)
+    models = {f.model for f in body.external_forces}
+    cut = bool(models & set(WATERPLANE_MODELS)) or (
+        getattr(body, "shape", None) is not None and "buoyancy" in models
+    )
+    if cut and set(body.dofs) <= WATERPLANE_DOFS:
+        return True  # held by its waterplane
     return any(isinstance(f, LinearStiffness) for f in body.external_forces)
 
 
@@ -47,7 +58,8 @@ def check_held(case: sch.SystemCase) -> None:
         if not any(_holds(by_name[name]) for name in group):
             raise CaseError(
                 f"bodies {group}: a group that nothing holds (no fixed or imposed body among "
-                "them and no linear_stiffness), so it has no static equilibrium; join it to a "
+                "them, no linear_stiffness, no floating body free in heave, roll and pitch "
+                "only), so it has no static equilibrium; join it to a "
                 "fixed body with a line or a tie, give one of them a linear_stiffness, or use "
                 "start: as_given to let it drift"
             )
