@@ -11,8 +11,9 @@ rise: a heap on the seabed), in segments of 1 to 50 m (log-uniform; at most 200 
 by a steady horizontal force of up to the weight in water of one line's suspended part, in any
 direction. The target (issue 39): 100 %.
 
-Run: python benchmarks/statics_success.py [--count N] [--seed S]
-Exit status 0 whatever the rate.
+Run: python benchmarks/statics_success.py [--count N] [--seed S] [--only K,...]
+(``--only``: those moorings of the family alone, each with its time). Exit status 0 whatever
+the rate.
 """
 
 import argparse
@@ -82,21 +83,30 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--count", type=int, default=200)
     parser.add_argument("--seed", type=int, default=39)
+    parser.add_argument("--only", type=str, default="", help="moorings K,... of the family")
     args = parser.parse_args()
+    only = {int(k) for k in args.only.split(",")} if args.only else None
     rng = np.random.default_rng(args.seed)
     failures = []
+    tried = 0
     start = time.perf_counter()
-    for k in range(args.count):
-        case = mooring(rng, k)
+    for k in range(max(only) + 1 if only else args.count):
+        case = mooring(rng, k)  # drawn in turn: the family is the same whatever is run
+        if only is not None and k not in only:
+            continue
+        tried += 1
+        began = time.perf_counter()
         try:
             seacable.statics(seacable.load_case(case))
         except Exception as exc:  # every failure is counted and printed
             failures.append((k, f"{type(exc).__name__}: {exc}"))
             print(f"mooring {k}: {failures[-1][1][:300]}", flush=True)
+        if only is not None:
+            print(f"mooring {k}: {time.perf_counter() - began:.1f} s", flush=True)
     took = time.perf_counter() - start
-    done = args.count - len(failures)
-    print(f"statics found for {done} of {args.count} random moorings "
-          f"({100.0 * done / args.count:.1f} %), seed {args.seed}, {took:.0f} s")  # fmt: skip
+    done = tried - len(failures)
+    print(f"statics found for {done} of {tried} random moorings "
+          f"({100.0 * done / tried:.1f} %), seed {args.seed}, {took:.0f} s")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -78,7 +78,8 @@ def _uniform_nodes(p, li, start, end, slack_only: bool = False):
     # slack: longer than span plus rise, its hanging part stretched by its own weight (w h^2 /
     # 2 EA: 6 cm for 235 m of 80 mm chain, beyond which no catenary with tension joins them)
     if on_seabed and total + w * rise**2 / (2.0 * ea) >= span + rise:
-        nodes = _laid(lengths[::-1] if flip else lengths, low, high)
+        ordered = lengths[::-1] if flip else lengths
+        nodes = _stretched(_laid(ordered, low, high), ordered, w, ea, float(low[2]))
     elif slack_only:
         return None
     elif not on_seabed and _dips(p, total, w, low, high, span):
@@ -163,6 +164,22 @@ def _laid(lengths, low, high):
     nodes[k:] = hanging[::-1]
     nodes[: k + 1, :2] = _lying(lengths[:k], low[:2], hanging[-1, :2], toward)
     nodes[: k + 1, 2] = low[2]
+    return nodes
+
+
+def _stretched(nodes, lengths, w, ea, floor):
+    """A laid line's nodes (from its end on the seabed at ``floor`` [m]) with its hanging part
+    lowered by its stretch under its own weight: above the touchdown at arc length s_t, the
+    tension w (s - s_t) stretches the line above each node by w / EA ((L^2 - s^2) / 2 -
+    s_t (L - s)), never below the seabed."""
+    s = np.concatenate([[0.0], np.cumsum(lengths)])
+    hanging = nodes[:, 2] > floor + 1e-9
+    if not hanging.any() or hanging.all():
+        return nodes
+    touchdown, total = float(s[~hanging].max()), float(s[-1])
+    above = s[hanging]
+    stretch = w / ea * (0.5 * (total**2 - above**2) - touchdown * (total - above))
+    nodes[hanging, 2] -= np.minimum(stretch, nodes[hanging, 2] - floor)
     return nodes
 
 
@@ -302,7 +319,7 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
     if lumped and any(line.initial == "catenary" for line in lumped):
         kept = [(p.line_q[li], p.line_v[li], 3 * (p.line_n[li] - 1))
                 for li, line in enumerate(lumped) if line.initial != "catenary"]  # fmt: skip
-        settled = static_lines(p, y)
+        settled = static_lines(p, y, warn=case.start != "static")
         for q, v, size in kept:  # straight lines and given angles stay as they are
             settled[q : q + size] = y[q : q + size]
             settled[v : v + size] = y[v : v + size]

@@ -19,10 +19,11 @@ from seacable.system.pseudo_time import PseudoTime
 log = logging.getLogger(__name__)
 
 
-def _interior(p, at):
+def _interior(p, at, lines=None):
     """State indices of every interior node position (``at`` = p.line_q) or velocity
-    (p.line_v), in line order."""
-    parts = [np.arange(at[li], at[li] + 3 * (p.line_n[li] - 1)) for li in range(len(p.line_n))]
+    (p.line_v), in line order (of the ``lines`` given, by default all)."""
+    lines = range(len(p.line_n)) if lines is None else lines
+    parts = [np.arange(at[li], at[li] + 3 * (p.line_n[li] - 1)) for li in lines]
     return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
 
 
@@ -68,14 +69,16 @@ def _holding(p: kernel.SystemParams) -> np.ndarray:
     return np.union1d(bodies, tips[tips >= 0])
 
 
-def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
+def static_lines(p, y0, iterations: int = 30, time: float = 0.0,
+                 warn: bool = True) -> np.ndarray:  # fmt: skip
     """Every line's interior nodes at rest in balance (in a tow's steady motion:
     ``steady_velocities``), bodies held where they are at ``time`` [s]: Newton on the nodes'
     accelerations from ``y0`` (a catenary start is near the balance), else with EA raised in
     steps of ten from a thousandth of its value (a nearly inextensible line makes Newton's steps
     erratic from a straight start), each stage from the last one's result, else the first
     Newton continued. When none settles (every node's acceleration below 1e-6 g), the one
-    nearest the balance, with a warning: a run or a statics starts from it. Forward differences
+    nearest the balance, with a warning (``warn``: a run starts from it; a statics, which
+    goes on to the balance, says nothing). Forward differences
     here (``_newton``): with central ones, Newton converges from the catenary start of a lumped
     servo tow (tests/test_upgrade_gaps.py, lumped_servo_tow) to a balance of the linear law
     with segments pushed at 1.9 kN, where the forward one stays near the taut towed shape that
@@ -89,7 +92,7 @@ def static_lines(p, y0, iterations: int = 30, time: float = 0.0) -> np.ndarray:
         if _settled(linear, continued, time) and not _pushes(linear, continued, time):
             return continued
     best, left = _static_lines(linear, y0, iterations, time, _newton)
-    if left is not None:
+    if left is not None and warn:
         log.warning(
             "the lines' initial static shapes are out of balance by %.3g m/s^2 at some node "
             "(Newton from the catenary start and from EA stages both stopped short)",
@@ -129,9 +132,9 @@ def _static_lines(linear, y0, iterations, time, newton=None):
     return best, left
 
 
-def _unbalance(p, y, time: float = 0.0) -> float:
-    """The largest interior node's acceleration at rest [m/s^2]."""
-    index = _interior(p, p.line_v)
+def _unbalance(p, y, time: float = 0.0, lines=None) -> float:
+    """The largest interior node's acceleration at rest [m/s^2] (of ``lines``, default all)."""
+    index = _interior(p, p.line_v, lines)
     if not len(index):
         return 0.0
     ydot = np.zeros_like(y)
@@ -171,6 +174,28 @@ def settle_lines(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0)
     return _newton(stage, y0, iterations, time, central=True)
 
 
+def settle_each(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0,
+                tolerance: float = 1e-6) -> np.ndarray:  # fmt: skip
+    """``settle_lines`` line by line (a line whose Newton stalls does not hold back the
+    others' line search), each line that Newton leaves above ``tolerance`` g (as
+    ``static_lines``: each node's force off by that share of its weight; a hanging part
+    at zero tension, chain lying slack: Newton's matrix singular across it) continued by
+    pseudo-transient steps (system.pseudo_time); its nodes as they were when those do not get
+    nearer the balance either."""
+    stage = p._replace(slack_allowed=slack)
+    y = y0.copy()
+    allowed = tolerance * p.gravity
+    for li in range(len(p.line_n)):
+        y = _newton(stage, y, iterations, time, central=True, lines=[li])
+        left = _unbalance(stage, y, time, [li])
+        if not left < allowed:
+            relaxed = _newton_at(stage, y, 10 * iterations, time, pseudo=True, lines=[li])
+            relaxed = _newton_at(stage, relaxed, iterations, time, central=True, lines=[li])
+            if _unbalance(stage, relaxed, time, [li]) < left:
+                y = relaxed
+    return y
+
+
 def pushed(p, w, share: float = 1e-6) -> float:
     """How hard [N] the most compressed segment of the lumped lines is pushed at the last
     evaluation into the workspace ``w`` under the linear axial law (0 when none is, or by no
@@ -187,7 +212,7 @@ def pushed(p, w, share: float = 1e-6) -> float:
     return compression if compression > allowed else 0.0
 
 
-def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
+def _newton(p, y0, iterations, time: float = 0.0, central: bool = False, lines=None):
     """``_newton_at``; with a seabed contact band (kernels.lumped.seabed_spring), first with
     the plain spring and then from its balance with the band: the band's soft foot makes
     Newton's long first steps wander where the plain spring's did not (two moored buoys'
@@ -197,8 +222,8 @@ def _newton(p, y0, iterations, time: float = 0.0, central: bool = False):
     catenary start, whose first Newton fails, folded into a zigzag of the linear law on the
     band, at 63 MN)."""
     if p.seabed_band > 0.0:
-        y0 = _newton_at(p._replace(seabed_band=0.0), y0, iterations, time, central)
-    return _newton_at(p, y0, iterations, time, central)
+        y0 = _newton_at(p._replace(seabed_band=0.0), y0, iterations, time, central, lines=lines)
+    return _newton_at(p, y0, iterations, time, central, lines=lines)
 
 
 def _banded_jacobian(residual, y, index, r, central: bool, half: int) -> np.ndarray:
@@ -231,7 +256,7 @@ def _banded_jacobian(residual, y, index, r, central: bool, half: int) -> np.ndar
 
 
 def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False,
-               pseudo: bool = False):  # fmt: skip
+               pseudo: bool = False, lines=None):  # fmt: skip
     """The lines' interior nodes in balance by Newton, its block-tridiagonal Jacobian by forward
     differences (steps 1e-7 of each coordinate) or ``central`` ones (1e-6 m; two residuals per
     colour, and a stop once the step is at the positions' rounding: the residual's floor). The
@@ -244,14 +269,15 @@ def _newton_at(p, y0, iterations, time: float = 0.0, central: bool = False,
     (17 % for a 2e8 N wire at 9 kN in 1.3 m segments) and Newton then creeps; ``static_lines``
     keeps them (see there), ``settle_lines`` takes central ones. ``pseudo``: the steps of
     pseudo-transient continuation (system.pseudo_time), for chain lying slack on the seabed,
-    which holds nothing across it (Newton's matrix is singular there)."""
-    index = _interior(p, p.line_q)
+    which holds nothing across it (Newton's matrix is singular there). ``lines``: the lines
+    solved (default all), the others held as they are."""
+    index = _interior(p, p.line_q, lines)
     m = len(index)
     if m == 0:
         return y0.copy()
     w = kernel.make_work(p)
     ydot = np.zeros_like(y0)
-    velocity = _interior(p, p.line_v)  # the accelerations sit at the velocities' offsets
+    velocity = _interior(p, p.line_v, lines)  # the accelerations sit at the velocities' offsets
 
     def residual(y):
         kernel.rhs(time, y, p, w, ydot)

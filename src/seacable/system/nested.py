@@ -27,7 +27,7 @@ from scipy.sparse.linalg import splu
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
 from seacable.system.initial import uniform_shapes
-from seacable.system.line_balance import pushed, settle_lines
+from seacable.system.line_balance import pushed, settle_each, settle_lines
 
 # how hard a segment may be pushed in the nested Newton's balances, as a share of the largest
 # tension: the linear axial law's push of chain lying slack in many short segments, which a
@@ -185,33 +185,42 @@ def _groups(rows_of, near, keys) -> list[list[int]]:
 
 def bodies_newton(
     p: kernel.SystemParams, coords: Coordinates, y: np.ndarray, limit: np.ndarray,
-    iterations: int, tolerance: float, time: float = 0.0,
+    iterations: int, tolerance: float, time: float = 0.0, law: int = 0,
 ) -> np.ndarray | None:  # fmt: skip
     """Newton over the bodies' degrees of freedom, the lines settled at each trial pose
-    (``settle_lines``, the linear axial law; module docstring), until the bodies' accelerations
+    (``settle_lines``, the axial ``law``: by default the linear one; module docstring; with
+    the physical one, kernels.lumped LAW, chain laid slack bends at its touchdown where the
+    linear law pushes a segment), until the bodies' accelerations
     are below ``tolerance`` [m/s^2, rad/s^2]. Each step is cut to ``limit`` (per body
     coordinate [m, rad]) and halved until the lines settle (from a step of metres their Newton
     can fail) and the bodies' forces drop. Returns the last state, or None when a segment is
     pushed there (beyond a strain of 1e-8 and PUSH of the largest tension): a balance of the
     linear law that the physical one does not have."""
-    p = p._replace(slack_allowed=0)
+    p = p._replace(slack_allowed=law)
     forces = BodyForces(p, coords, time)
     bodies = forces.bodies
     nodes = coords.kind == 2
 
     def settled(state):
-        out = settle_lines(p, uniform_shapes(p, state, time), slack=0, time=time)
-        r = forces(out)
-        result = out, r, forces.body_accelerations(), pushed(p, forces.w, PUSH)
-        if np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity and not result[3]:
-            return result
-        # a line lifted from the seabed, or laid on it, in this step: from its closed form
-        out = settle_lines(p, uniform_shapes(p, state, time, slack_only=True), slack=0,
-                           time=time)  # fmt: skip
-        r = forces(out)
-        again = out, r, forces.body_accelerations(), pushed(p, forces.w, PUSH)
-        worse = not np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity or again[3] > result[3]
-        return result if worse else again
+        """The lines settled at ``state``'s pose: from its nodes (carried along by the step
+        to first order), else line by line from there and from the closed forms'
+        shapes (a line lifted from the seabed, or laid on it, in this step); the first
+        that settles (1e-5 g) unpushed, else the least pushed."""
+        tried: list = []
+        for attempt in range(3):
+            if attempt == 0:
+                out = settle_lines(p, uniform_shapes(p, state, time, slack_only=True),
+                                   slack=0, time=time)  # fmt: skip
+            else:
+                start = tried[0][0] if attempt == 1 else uniform_shapes(p, state, time)
+                out = settle_each(p, start, slack=law, time=time)
+            r = forces(out)
+            result = out, r, forces.body_accelerations(), pushed(p, forces.w, PUSH)
+            if np.abs(r[nodes]).max(initial=0.0) < 1e-5 * p.gravity and not result[3]:
+                return result
+            tried.append(result)
+        return min(tried, key=lambda t: (not np.abs(t[1][nodes]).max(initial=0.0)
+                                         < 1e-5 * p.gravity, t[3]))  # fmt: skip
 
     def better(trial, now, plateau):
         """Its lines settled (1e-5 g), not pushed harder than now (``line_balance.pushed``: a step

@@ -36,7 +36,7 @@ from seacable.system.coordinates import (
 )
 from seacable.system.frequency import fastest_frequency
 from seacable.system.initial import uniform_shapes
-from seacable.system.line_balance import settle_lines, steady_velocities
+from seacable.system.line_balance import settle_each, settle_lines, steady_velocities
 from seacable.system.pseudo_time import shifted_step
 
 
@@ -89,18 +89,20 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     direct = _direct(built, coords, sparsity, residual, y, iterations, tolerance * scale)
     if stages.balanced(direct):
         return direct
-    if (settled := stages.nested_from(y)) is not None:
-        return settled
     # the bodies' balance on the lines' closed forms (MoorPy's model; the lines' current and
-    # ties as they act): a start near the balance when the bodies must travel far
+    # ties as they act), the lumped lines settled on their shapes there: a start near the
+    # balance when the bodies must travel far, tried before the nested Newton from the start,
+    # which follows the bodies there in steps of the shortest line's tenth
     guess = closed_form.pose(p, coords, y, stages.limit, time)
     if guess is not None:
-        guess = uniform_shapes(p, guess, time)
+        guess = settle_each(p, uniform_shapes(p, guess, time), time=time)
         direct = _direct(built, coords, sparsity, residual, guess, iterations, tolerance * scale)
         if stages.balanced(direct):
             return direct
         if (settled := stages.nested_from(guess)) is not None:
             return settled
+    if (settled := stages.nested_from(y)) is not None:
+        return settled
     followed = _homotopy(built, coords, sparsity, residual, y, tolerance * scale, 1e-6 * scale)
     if stages.balanced(followed):
         return followed
@@ -147,19 +149,28 @@ class _Stages:
         return bool(np.all(np.isfinite(r)) and np.abs(r).max() < self.enough)
 
     def nested_from(self, state: np.ndarray) -> np.ndarray | None:
-        """Newton over the bodies with the lines settled (system.nested), from ``state``; None
-        when it does not reach the tolerance (the nodes' residual of the linear axial law)."""
+        """Newton over the bodies with the lines settled (system.nested), from ``state``: with
+        the linear axial law, its balance judged by the nodes' residual of that law; else with
+        the physical law (chain laid slack bends at its touchdown, where the linear law pushes
+        a segment), from the linear law's last state, judged by the statics' residual. None
+        when neither reaches the tolerance."""
         if not self.nests:
             return None
         p, coords = self.built.params, self.coords
+        nodes = np.flatnonzero(coords.kind == 2)
         settled = nested.bodies_newton(p, coords, state, self.limit, self.iterations,
                                        self.tolerance, self.time)  # fmt: skip
-        if settled is None:
+        if settled is not None:
+            r = self.residual(settled)
+            r[nodes] = Residual(p._replace(slack_allowed=0), coords, self.time)(settled)[nodes]
+            if np.all(np.isfinite(r)) and np.abs(r).max() < self.enough:
+                return settled
+        if not p.slack_allowed:
             return None
-        r = self.residual(settled)
-        nodes = np.flatnonzero(coords.kind == 2)
-        r[nodes] = Residual(p._replace(slack_allowed=0), coords, self.time)(settled)[nodes]
-        return settled if np.all(np.isfinite(r)) and np.abs(r).max() < self.enough else None
+        settled = nested.bodies_newton(p, coords, state if settled is None else settled,
+                                       self.limit, self.iterations, self.tolerance, self.time,
+                                       law=int(p.slack_allowed))  # fmt: skip
+        return settled if settled is not None and self.balanced(settled) else None
 
     def relaxed_from(self, state: np.ndarray, scale: float):
         """The dynamic relaxation from ``state`` (``system.relax``), polished by Newton over

@@ -1,0 +1,60 @@
+"""The statics of random spread moorings (benchmarks/statics_success.py) whose platform must
+travel hundreds of metres before its lines hold it: found from the lines' closed forms, each
+lumped line settled by itself on its closed-form shape (system.initial.uniform_shapes,
+line_balance.settle_each)."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+import seacable
+from seacable.system import closed_form, model, natural_lines, statics
+from seacable.system.coordinates import Residual, coordinates
+from seacable.system.initial import uniform_shapes
+from seacable.system.line_balance import settle_each
+
+BENCHMARK = Path(__file__).resolve().parents[1] / "benchmarks" / "statics_success.py"
+
+
+def _mooring(seed: int, k: int) -> dict:
+    spec = importlib.util.spec_from_file_location("statics_success", BENCHMARK)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    rng = np.random.default_rng(seed)
+    for i in range(k + 1):
+        case = module.mooring(rng, i)
+    return case
+
+
+def _built(case: dict):
+    loaded = seacable.load_case(case)
+    built = model.build(loaded.model_copy(update={"start": "as_given"}))
+    return statics.still_water(built)
+
+
+def test_far_travelling_platform_balanced():
+    """Seed 39, mooring 1: four wire lines, two laid slack; the platform travels 470 m. Its
+    balance: every coordinate's acceleration below 1e-6 m/s^2 (the platform's force off by
+    10 N of its 1e7 kg, the nodes' by 1e-7 of their weight)."""
+    built = _built(_mooring(39, 1))
+    found = statics.equilibrium(built, built.y0)
+    p = built.params
+    r = Residual(p, coordinates(p))(found)
+    assert np.all(np.isfinite(r)) and np.abs(r).max() < 1e-6
+    assert abs(found[p.body_q[-1]]) > 100.0  # it did travel (surge)
+
+
+def test_closed_form_shapes_settle_each_line():
+    """At the closed forms' pose, every lumped line settles by itself from its closed-form
+    shape to 1e-6 g under the linear axial law."""
+    built = _built(_mooring(39, 1))
+    p = built.params
+    coords = coordinates(p)
+    y = natural_lines.hanging(p, built.y0.copy())
+    limit = statics._step_limit(built, coords, shortest=True)[np.flatnonzero(coords.kind <= 1)]
+    pose = closed_form.pose(p, coords, y, limit)
+    assert pose is not None
+    settled = settle_each(p, uniform_shapes(p, pose))
+    r = Residual(p._replace(slack_allowed=0), coordinates(p))(settled)
+    assert np.abs(r[coords.kind == 2]).max() < 1e-6 * p.gravity
