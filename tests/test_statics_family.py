@@ -7,6 +7,7 @@ import importlib.util
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import seacable
 from seacable.system import closed_form, model, natural_lines, statics
@@ -58,3 +59,22 @@ def test_closed_form_shapes_settle_each_line():
     settled = settle_each(p, uniform_shapes(p, pose))
     r = Residual(p._replace(slack_allowed=0), coordinates(p))(settled)
     assert np.abs(r[coords.kind == 2]).max() < 1e-6 * p.gravity
+
+
+def test_a_lumped_tow_balances_whatever_its_towed_bodys_first_guess():
+    """Jacquot and Marichal's tow as a lumped-mass line (benchmarks' ``--family shapes``): its
+    towed body given 300 m ahead of the ship and 200 m down, or hanging 500 m below it, the
+    statics find one balance (the body 470.3 m astern and 164.7 m down: 1e-6 m apart), and
+    the first guess ahead of the ship is found only from the bodies hung below their tow
+    points (``towed_from``; it failed before)."""
+    spec = importlib.util.spec_from_file_location("statics_success", BENCHMARK)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    found = []
+    for guess in ([0.0, 0.0, -500.0], [300.0, 0.0, -200.0]):
+        ds = seacable.statics(seacable.load_case(module._tow(guess))).dataset
+        body = ds["bodies/end"].to_dataset().isel(time=0)
+        found.append([float(body[f"position_{c}"]) for c in "xyz"])
+    assert np.abs(np.subtract(*found)).max() < 1e-6, found
+    assert found[0][0] == pytest.approx(-470.28, abs=0.01)
+    assert found[0][2] == pytest.approx(-164.66, abs=0.01)

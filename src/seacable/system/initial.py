@@ -107,6 +107,37 @@ def _uniform_nodes(p, li, start, end, slack_only: bool = False):
     return nodes[::-1] if flip else nodes
 
 
+def towed_hanging(p, y: np.ndarray, time: float = 0.0) -> np.ndarray | None:
+    """``y`` with every free point body at the end of a lumped line from a fixed or imposed
+    body hung straight below that end by the line's length (above the seabed), the line's
+    nodes evenly between them: a tow's start from which its balance is reached whatever its
+    towed bodies' first guess. None when there is no such body."""
+    ppos, _ = _points(p, y, time)
+    out = y.copy()
+    moved = False
+    for li in range(len(p.line_n)):
+        ends = (int(p.line_from[li]), int(p.line_to[li]))
+        bodies = [int(p.point_body[e]) for e in ends]
+        free = [k for k in (0, 1) if p.body_kind[bodies[k]] == kinematics.DYNAMIC
+                and not p.body_rigid[bodies[k]] and p.body_q[bodies[k]] >= 0]  # fmt: skip
+        held = [k for k in (0, 1) if p.body_kind[bodies[k]] <= kinematics.IMPOSED]
+        if len(free) != 1 or len(held) != 1:
+            continue
+        n, s0 = int(p.line_n[li]), int(p.line_seg[li])
+        lengths = p.seg_length[s0 : s0 + n]
+        top = ppos[ends[held[0]]]
+        bottom = top - [0.0, 0.0, float(lengths.sum())]
+        bottom[2] = max(bottom[2], p.seabed_z + 1e-3 * float(lengths.sum()))
+        q = int(p.body_q[bodies[free[0]]])
+        out[q : q + 3] = bottom
+        s = np.concatenate([[0.0], np.cumsum(lengths if held[0] == 0 else lengths[::-1])])
+        nodes = top + (s / s[-1])[:, None] * (bottom - top)[None, :]
+        nodes = nodes if held[0] == 0 else nodes[::-1]
+        out[p.line_q[li] : p.line_q[li] + 3 * (n - 1)] = nodes[1:-1].ravel()
+        moved = True
+    return out if moved else None
+
+
 def uniform_shapes(p, y: np.ndarray, time: float = 0.0, slack_only: bool = False):
     """``y`` with every uniform lumped line's nodes on its closed-form shape between its ends
     as they are at ``y`` (``_uniform_nodes``: the elastic catenary, or laid slack on the

@@ -35,7 +35,7 @@ from seacable.system.coordinates import (
     tangents,
 )
 from seacable.system.frequency import fastest_frequency
-from seacable.system.initial import uniform_shapes
+from seacable.system.initial import towed_hanging, uniform_shapes
 from seacable.system.line_balance import settle_each, settle_lines, steady_velocities
 from seacable.system.pseudo_time import shifted_step
 
@@ -68,8 +68,10 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     the balance when the bodies must travel far, a platform whose lines lie slack); then
     Newton's homotopy; last, dynamic relaxation (``system.relax``: the system let move, its
     kinetic energy taken away, until it rests near a balance Newton then finds), from the start
-    and from the closed forms' balance. Raises StaticsError naming the body or line that stays
-    out of balance. In still water: the waves' mean position."""
+    and from the closed forms' balance; a tow, which the relaxation does not move, from its
+    towed bodies hung below their tow points (``initial.towed_hanging``). Raises StaticsError
+    naming the body or line that stays out of balance. In still water: the waves' mean
+    position."""
     built = still_water(built)
     p = built.params
     coords = coordinates(p)
@@ -109,6 +111,8 @@ def equilibrium(built: BuiltSystem, y0: np.ndarray, iterations: int = 60,
     found, relaxed = stages.relaxed_from(y, scale)
     if found is None and guess is not None:
         found, _ = stages.relaxed_from(guess, scale)
+    if found is None and np.any(y[p.n_q : p.n_q + p.n_v]):
+        found = stages.towed_from(y)
     if found is not None:
         return found
     r = residual(followed)
@@ -171,6 +175,19 @@ class _Stages:
                                        self.limit, self.iterations, self.tolerance, self.time,
                                        law=int(p.slack_allowed))  # fmt: skip
         return settled if settled is not None and self.balanced(settled) else None
+
+    def towed_from(self, state: np.ndarray) -> np.ndarray | None:
+        """A tow's balance from its towed bodies hung below their tow points
+        (``initial.towed_hanging``: the relaxation does not move a tow), by Newton over every
+        coordinate, else over the bodies; None when neither finds it."""
+        hung = towed_hanging(self.built.params, state, self.time)
+        if hung is None:
+            return None
+        direct = _direct(self.built, self.coords, self.sparsity, self.residual, hung,
+                         self.iterations, self.tolerance)  # fmt: skip
+        if self.balanced(direct):
+            return direct
+        return self.nested_from(hung)
 
     def relaxed_from(self, state: np.ndarray, scale: float):
         """The dynamic relaxation from ``state`` (``system.relax``), polished by Newton over
