@@ -71,7 +71,10 @@ def added_mass(row, rho: float, position, rot) -> np.ndarray:
     tb = axis / length
     normal = np.eye(3) - np.outer(tb, tb)
     area = math.pi * d * d / 4.0
-    z_of = lambda r: position[2] + (rot @ r)[2]  # noqa: E731
+
+    def z_of(r):  # a body-frame point's elevation [m]
+        return position[2] + (rot @ r)[2]
+
     total = np.zeros((6, 6))
     for i in range(n):
         p0, p1 = a_b + axis * (i / n), a_b + axis * ((i + 1) / n)
