@@ -12,18 +12,22 @@ import numpy as np
 from seacable import packing
 from seacable import timefunctions as tfn
 from seacable.bodies import dynamics, kinematics
-from seacable.case import forces as fm
 from seacable.case import system as sch
 from seacable.case.base import AccelerationPhase, AccelerationProfile, Constant
 from seacable.case.forces import ORIGIN
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
-from seacable.forces import compensator, table
-from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.kernels import surface
 from seacable.packing import channel, current_arrays, shape_row, transported, typed
 from seacable.system import failures, hulls, kernel, natural_lines, topology, variants
-from seacable.system.force_rows import force_row, in_radians, offset, rods_added_mass
+from seacable.system.force_rows import (
+    compensator_rows,
+    force_row,
+    force_table,
+    in_radians,
+    offset,
+    rods_added_mass,
+)
 from seacable.system.kernel import SystemParams
 
 KIND = {"fixed": kinematics.FIXED, "imposed": kinematics.IMPOSED}
@@ -231,7 +235,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
                 q_at, v_at = q_at + 3, v_at + 3
         row_of = partial(force_row, case, layout, body=body, rho=rho, base_dir=base_dir,
                          channels=channels, point=point)  # fmt: skip
-        n_s = _force_table(body, b, row_of, arrays["body_added"][b], f, data, n_s, where)
+        n_s = force_table(body, b, row_of, arrays["body_added"][b], f, data, n_s, where)
         arrays["body_added"][b] += rods_added_mass(body, rho)
     hulls.memory_offsets(f["kind"], f["at"], data)
     bodies_q, bodies_v = q_at, v_at
@@ -273,7 +277,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         **released,
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
-    fields["compensator"] = _compensators(case, f, fields, points)
+    fields["compensator"] = compensator_rows(case, f, fields, points)
     fields["entries"] = np.zeros(len(kernel.ENTRIES), dtype=np.int64)
     params = variants.bind(typed(SystemParams, fields, INT_FIELDS))
     y0 = np.zeros(n_q + n_v + n_s)
@@ -282,53 +286,6 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     y0[first_string : first_string + len(string_q)] = string_q
     built = BuiltSystem(params=params, y0=y0, layout=layout, case=case)
     return built
-
-
-def _force_table(body, b: int, row_of, own_added, f: dict, data: list, n_s: int,
-                 where: str) -> int:  # fmt: skip
-    """Body ``b``'s force models into the table ``f`` and the floats ``data`` (``row_of``:
-    force_row for this body); ``fluid inertia`` takes the body's own added mass
-    ``own_added`` (its rods' apart: they load their own part). Returns the states' count."""
-    for k, spec in enumerate(body.external_forces):
-        f["kind"].append(kind_of(spec.model))
-        f["body"].append(b)
-        f["at"].append(len(data))
-        f["first"].append(len(row_of.keywords["channels"]))
-        row = row_of(spec=spec, where=f"{where}.external forces[{k}]")
-        if isinstance(spec, fm.FluidInertia):
-            row = [*np.asarray(own_added).ravel()]
-        data += row
-        states = table.state_count(f["kind"][-1], row)  # its states follow the others'
-        f["state"].append(n_s if states else -1)
-        n_s += states
-    return n_s
-
-
-def _compensators(case, f: dict, fields: dict, points: np.ndarray) -> list[int]:
-    """The force rows of the compensators (forces.compensator), refused where their loads would
-    not be complete when they act (a rigid line's end, a group) or would depend on each other."""
-    rows = [i for i, k in enumerate(f["kind"]) if k == COMPENSATOR]
-    controlled = {int(f["body"][i]) for i in rows}
-    rigid_ends = {int(points[k]) for k in (*fields["rs_from"], *fields["rs_to"])}
-    data = fields["force_data"]
-    for i in rows:
-        b = int(f["body"][i])
-        target = int(points[int(data[f["at"][i] + compensator.TARGET])])
-        where = f"bodies ({case.bodies[b].name}).external forces (compensator)"
-        for c in (b, target):
-            if c in rigid_ends or fields["body_group"][c][0] >= 0:
-                raise CaseError(f"{where}: body '{case.bodies[c].name}' carries a rigid line or "
-                                "is part of a group; the compensator needs ships moved by their "
-                                "own loads and ties or lumped lines")  # fmt: skip
-        if sum(1 for j in rows if f["body"][j] == b) > 1:
-            raise CaseError(f"{where}: a second compensator on the same ship; give one")
-        if target == b:
-            raise CaseError(f"{where}: the target point is on the ship itself; give a point "
-                            "of the other body ('body.point')")  # fmt: skip
-        if target in controlled:
-            raise CaseError(f"{where}: its target body '{case.bodies[target].name}' has a "
-                            "compensator too; give one ship of a pair the compensator")  # fmt: skip
-    return rows
 
 
 def _sections(case, line, rho, extensible=True):

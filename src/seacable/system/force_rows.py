@@ -24,9 +24,11 @@ from seacable.forces import (
     rod,
     rudder,
     servo,
+    table,
     thruster,
     wave_drift,
 )
+from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.packing import channel, transported
 from seacable.system import hulls
 
@@ -231,3 +233,50 @@ def _wave_drift_row(case, spec, body, base_dir, where: str) -> list[float]:
     except ValueError as exc:
         raise CaseError(f"{where}: {exc}") from None
     return wave_drift.pack(_body_point(body, spec.point, where), omegas, per)
+
+
+def force_table(body, b: int, row_of, own_added, f: dict, data: list, n_s: int,
+                 where: str) -> int:  # fmt: skip
+    """Body ``b``'s force models into the table ``f`` and the floats ``data`` (``row_of``:
+    force_row for this body); ``fluid inertia`` takes the body's own added mass
+    ``own_added`` (its rods' apart: they load their own part). Returns the states' count."""
+    for k, spec in enumerate(body.external_forces):
+        f["kind"].append(kind_of(spec.model))
+        f["body"].append(b)
+        f["at"].append(len(data))
+        f["first"].append(len(row_of.keywords["channels"]))
+        row = row_of(spec=spec, where=f"{where}.external forces[{k}]")
+        if isinstance(spec, fm.FluidInertia):
+            row = [*np.asarray(own_added).ravel()]
+        data += row
+        states = table.state_count(f["kind"][-1], row)  # its states follow the others'
+        f["state"].append(n_s if states else -1)
+        n_s += states
+    return n_s
+
+
+def compensator_rows(case, f: dict, fields: dict, points: np.ndarray) -> list[int]:
+    """The force rows of the compensators (forces.compensator), refused where their loads would
+    not be complete when they act (a rigid line's end, a group) or would depend on each other."""
+    rows = [i for i, k in enumerate(f["kind"]) if k == COMPENSATOR]
+    controlled = {int(f["body"][i]) for i in rows}
+    rigid_ends = {int(points[k]) for k in (*fields["rs_from"], *fields["rs_to"])}
+    data = fields["force_data"]
+    for i in rows:
+        b = int(f["body"][i])
+        target = int(points[int(data[f["at"][i] + compensator.TARGET])])
+        where = f"bodies ({case.bodies[b].name}).external forces (compensator)"
+        for c in (b, target):
+            if c in rigid_ends or fields["body_group"][c][0] >= 0:
+                raise CaseError(f"{where}: body '{case.bodies[c].name}' carries a rigid line or "
+                                "is part of a group; the compensator needs ships moved by their "
+                                "own loads and ties or lumped lines")  # fmt: skip
+        if sum(1 for j in rows if f["body"][j] == b) > 1:
+            raise CaseError(f"{where}: a second compensator on the same ship; give one")
+        if target == b:
+            raise CaseError(f"{where}: the target point is on the ship itself; give a point "
+                            "of the other body ('body.point')")  # fmt: skip
+        if target in controlled:
+            raise CaseError(f"{where}: its target body '{case.bodies[target].name}' has a "
+                            "compensator too; give one ship of a pair the compensator")  # fmt: skip
+    return rows
