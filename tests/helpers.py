@@ -1,6 +1,8 @@
 """Small builders of cases for the tests."""
 
 import copy
+import os
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -109,3 +111,17 @@ def dense_jacobian(system, t: float, spread: float, seed: int) -> np.ndarray:
         kernel.rhs(t, bumped, p, w, ydot)
         jac[:, j] = (ydot - base) / step
     return jac
+
+
+@contextmanager
+def quiet_stdout():
+    """MoorDyn's library prints its progress on the process's standard output: silenced."""
+    saved = os.dup(1)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    try:
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(devnull)
+        os.close(saved)

@@ -189,7 +189,7 @@ BODY_ROW = (
     "1    Free       0.0   0.0   -60.0  0    0    0    4.0e4   0     2.0e5     80.0    20.0  1.0"
 )
 REFUSED_BODIES = [
-    (BODY_ROW, BODY_ROW.replace("Free ", "CpldPin"), "column Attachment): 'CpldPin'"),
+    (BODY_ROW, BODY_ROW.replace("Free ", "Turbine"), "column Attachment): 'Turbine'"),
     (BODY_ROW, BODY_ROW.replace("  0     2.0e5", "  0|1   2.0e5"),
      "column CG): '0|1': give 1 or 3"),
     (BODY_ROW, BODY_ROW.replace(" 1.0", " 1|2"), "column Ca): '1|2': give 1 or 3"),
@@ -344,8 +344,8 @@ def test_the_rods_of_a_deck_become_rod_models_and_bodies():
 
 REFUSED_RODS = [
     (COLUMN_ROW, COLUMN_ROW.replace("Body1 ", "Coupled"), "column Attachment): 'Coupled'"),
-    (COLUMN_ROW, COLUMN_ROW.replace("Body1     ", "Body1Pinned"),
-     "column Attachment): 'Body1Pinned'"),
+    (COLUMN_ROW, COLUMN_ROW.replace("Body1     ", "Body2Pinned"),
+     "column Attachment): 'Body2Pinned'"),
     (COLUMN_ROW, COLUMN_ROW.replace("column", "colum "), "column RodType): 'colum' is not a"),
     (COLUMN_ROW, COLUMN_ROW.replace("  10   10 ", "  10    0 "),
      "column NumSegs): a rod of length 50 m in 0 segments"),

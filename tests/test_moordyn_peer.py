@@ -6,14 +6,13 @@ moved by the same time functions); decks with a free body, with rods on a spar a
 free rod."""
 
 import math
-import os
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import seacable
+from helpers import quiet_stdout
 from seacable.case import moordyn as deck_reader
 
 md = pytest.importorskip("moordyn")
@@ -21,20 +20,6 @@ md = pytest.importorskip("moordyn")
 DECK = Path(__file__).parent / "data" / "moordyn_v2_spread.txt"
 COUPLED = ("point4", "point5", "point6")  # the deck's coupled points, one line to each
 SURGE, PERIOD, DURATION, COUPLING_STEP = 5.0, 20.0, 30.0, 0.02
-
-
-@contextmanager
-def _quiet():
-    """MoorDyn's library prints its progress on the process's standard output."""
-    saved = os.dup(1)
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, 1)
-    try:
-        yield
-    finally:
-        os.dup2(saved, 1)
-        os.close(devnull)
-        os.close(saved)
 
 
 def _start(case: dict) -> np.ndarray:
@@ -75,7 +60,7 @@ def test_statics_match_moordyn_on_the_same_deck(tmp_path, source):
     deck = _deck(tmp_path, source)
     case = deck_reader.read(deck)
     x0 = _start(case)
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, x0, np.zeros_like(x0))
         theirs = np.reshape(md.Step(system, x0, np.zeros_like(x0), 0.0, 0.002), (-1, 3))
@@ -91,7 +76,7 @@ def test_fairlead_tensions_under_an_imposed_surge_match_moordyn(tmp_path, source
     case = deck_reader.read(deck)
     x0 = _start(case)
     times, theirs = [0.0], []
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, *_surge(x0, 0.0))
         points = [md.GetPoint(system, k) for k in (4, 5, 6)]
@@ -129,7 +114,7 @@ def test_the_coupling_interface_steps_as_moordyn_does(tmp_path):
     x0 = _start(deck_reader.read(deck))
     ours = Coupling(deck)
     assert ours.bodies == list(COUPLED) and ours.size == 9
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, *_surge(x0, 0.0))
         first = ours.init(*_surge(x0, 0.0))
@@ -186,7 +171,7 @@ def test_a_free_body_settles_in_moordyn_where_seacable_statics_puts_it(tmp_path)
     deck = tmp_path / FREE_BODY.name
     deck.write_text(FREE_BODY.read_text())
     heights, tension = [], 0.0
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, np.zeros(0), np.zeros(0))
         body, point = md.GetBody(system, 1), md.GetPoint(system, 4)
@@ -225,7 +210,7 @@ def test_moordyn_holds_the_spar_with_rods_where_seacable_statics_puts_it(tmp_pat
     pose, ours = _spar_statics()
     deck = tmp_path / SPAR.name
     deck.write_text(SPAR.read_text().replace(SPAR_ROW, SPAR_ROW.replace("Free   ", "Coupled")))
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, pose, np.zeros(6))
         load = np.array(md.Step(system, pose, np.zeros(6), 0.0, 0.001))
@@ -254,7 +239,7 @@ def test_a_spar_with_rods_decays_as_in_moordyn(tmp_path):
         "600.0    TmaxIC", "0.0      TmaxIC"))  # fmt: skip
     duration, step = 30.0, 0.1
     rows = []
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, np.zeros(0), np.zeros(0))
         body, point = md.GetBody(system, 1), md.GetPoint(system, 4)
@@ -297,7 +282,7 @@ def test_a_free_rod_hung_from_two_ropes_settles_in_moordyn_where_seacable_static
     deck = tmp_path / HANGING.name
     deck.write_text(HANGING.read_text())
     heights, tensions = [], []
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, np.zeros(0), np.zeros(0))
         rod = md.GetRod(system, 1)
@@ -335,7 +320,7 @@ def test_a_line_in_moordyns_wave_components_pulls_as_in_moordyn(tmp_path):
     fairlead, duration, step = np.array([0.0, 0.0, -5.0]), 60.0, 0.05
     built = model.build(seacable.load_case(deck))
     times, theirs = [], []
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, fairlead, np.zeros(3))
         kinematics = md.GetWaves(system)
@@ -375,7 +360,7 @@ def test_a_line_in_moordyns_current_profile_settles_where_seacable_statics_puts_
     shutil.copytree(CURRENT, folder)
     deck = folder / "lines.txt"
     fairlead = np.array([0.0, 0.0, -5.0])
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, fairlead, np.zeros(3))
         for k in range(200):
@@ -403,7 +388,7 @@ def test_a_pinned_rod_swings_as_its_closed_form_and_as_in_moordyn(tmp_path):
     deck.write_text(PINNED.read_text())
     duration, step = 3.0, 0.002
     tips = []
-    with _quiet():
+    with quiet_stdout():
         system = md.Create(str(deck))
         md.Init(system, np.zeros(0), np.zeros(0))
         rod = md.GetRod(system, 1)

@@ -12,9 +12,11 @@ as such): by default every imposed body that follows no track and no other body.
 values (x, y, z [m]) when all its points are its reference point (a coupled point), else 6
 (x, y, z [m], roll, pitch, yaw [rad]: R = Rz(yaw) Ry(pitch) Rx(roll), docs/conventions.md), in
 the order of the case's bodies; ``v`` their rates. Over a step the bodies move from ``x`` with
-the velocity ``v`` (MoorDyn's coupled kinematics), and the forces returned are the lines' and
-ties' force on each body at the step's end (and their moment about its reference point, for
-6 values) [N, N m], earth axes, as the results' ``line_force`` and ``line_moment``.
+the velocity ``v`` and the acceleration a = (v - v_last) / dt (as MoorDyn's coupled kinematics
+take it; the position x + v t + a t^2 / 2, exact for a steady acceleration, where MoorDyn's
+stays x + v t), and the forces returned are the lines', ties' and joints' force on each body at
+the step's end (and their moment about its reference point, for 6 values) [N, N m], earth
+axes, as the results' ``line_force`` and ``line_moment``.
 
 The case's own compiled fixed-step integrator (rk4, ``simulation.time_step``) runs each step
 in steps of at most that size, a whole number of them per coupling step; the coupling step
@@ -141,13 +143,15 @@ class Coupling:
         system_model.start_memory(built, self.w, 0.0, self.y)
         self.t, self.dt, self.steps = 0.0, None, 0
         self.work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
-        self._move(x, v, 0.0)
+        self.v = v.copy()
+        self._move(x, v, np.zeros_like(v), 0.0)
         return self._forces()
 
-    def _move(self, x: np.ndarray, v: np.ndarray, t: float) -> None:
-        """The coupled channels: x until t, then x + v (t' - t)."""
+    def _move(self, x: np.ndarray, v: np.ndarray, a: np.ndarray, t: float) -> None:
+        """The coupled channels: x until t, then x + v (t' - t) + a (t' - t)^2 / 2."""
         p = self.p
-        for channel, x6, v6 in zip(self.channels, self._six(x), self._six(v), strict=True):
+        for channel, x6, v6, a6 in zip(self.channels, self._six(x), self._six(v), self._six(a),
+                                       strict=True):  # fmt: skip
             for c in range(6):
                 k = channel + c
                 p.tf_breaks[k, :] = np.inf
@@ -155,6 +159,7 @@ class Coupling:
                 p.tf_breaks[k, 0], p.tf_coefs[k, 0, 0] = SENTINEL, x6[c]
                 p.tf_breaks[k, 1] = t
                 p.tf_coefs[k, 1, 0], p.tf_coefs[k, 1, 1] = x6[c], v6[c]
+                p.tf_coefs[k, 1, 2] = 0.5 * a6[c]
                 p.tf_count[k] = 2
                 p.tf_sine[k, :] = 0.0
                 p.tf_build_up[k, :] = 0.0
@@ -176,7 +181,8 @@ class Coupling:
             raise ValueError(f"dt: {dt}; this coupling steps by {self.dt} s at every call")
         if abs(t - self.t) > 1e-9 * max(1.0, self.dt):
             raise ValueError(f"t: {t}; the last step ended at {self.t} s: start there")
-        self._move(x, v, self.steps * self.dt)
+        self._move(x, v, (v - self.v) / self.dt, self.steps * self.dt)
+        self.v = v.copy()
         states, times = np.empty((1, len(self.y))), np.empty(1)
         done, status = integrators.rk4_chunk(
             self.steps * self.per, self.y, self.dt, self.per, self.per, self.p, self.w,

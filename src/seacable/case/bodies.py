@@ -208,6 +208,11 @@ class RigidBody(_Dynamic):
     coriolis: Literal["rigid_body", "exact"] = "rigid_body"
     centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    # a spherical joint: the reference point held at another body's point ("body.point", or
+    # "body" for its reference point), the body turning freely about it (``dofs``: its
+    # rotations, all three by default); the joint's force acts on both bodies (in their
+    # results' line_force and line_moment, with the lines' and ties')
+    pinned_to: str | None = None
     mesh: HullMesh | None = None  # the hull, for the mesh force models
     hydrodynamics: HydroDatabase | None = None  # for radiation damping and diffraction
     # the ship-simulator document's block (its added mass at the centre of buoyancy, z down)
@@ -242,6 +247,25 @@ class RigidBody(_Dynamic):
         if len(set(dofs)) != len(dofs):
             raise ValueError(f"dofs lists a degree of freedom twice: {dofs}")
         return dofs
+
+    @model_validator(mode="after")
+    def _pinned_rotations(self):
+        if self.pinned_to is None:
+            return self
+        if "dofs" not in self.model_fields_set:  # frozen: the default set once, here
+            object.__setattr__(self, "dofs", ["roll", "pitch", "yaw"])
+        moved = [d for d in self.dofs if d in DOF_NAMES[:3]]
+        if moved:
+            raise ValueError(
+                f"dofs {moved}: a body pinned to '{self.pinned_to}' moves with that point; its "
+                "dofs are its rotations (roll, pitch, yaw): remove the translations"
+            )
+        if self.velocity != (0.0, 0.0, 0.0):
+            raise ValueError(
+                f"velocity {list(self.velocity)}: a body pinned to '{self.pinned_to}' starts "
+                "with that point's velocity; leave the velocity out"
+            )
+        return self
 
     @model_validator(mode="after")
     def _mesh_models(self):

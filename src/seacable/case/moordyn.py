@@ -6,8 +6,9 @@ WEC-Sim and others read it). ``read`` turns a deck into the mapping of a seacabl
 case as well (``seacable import moordyn``). Both versions of
 the format are read:
 
-- v2 (MoorDyn-C 2, MoorDyn-F in OpenFAST): ``LINE TYPES``, ``POINTS``, ``LINES``, ``OPTIONS``,
-  ``OUTPUTS``;
+- v2 (MoorDyn-C 2, MoorDyn-F in OpenFAST): ``LINE TYPES``, ``ROD TYPES``, ``BODIES``,
+  ``RODS`` (a rod pinned to a body or coupled pinned: a rigid body ``pinned_to`` it),
+  ``POINTS``, ``LINES``, ``FAILURE``, ``OPTIONS``, ``OUTPUTS``;
 - v1: ``LINE DICTIONARY`` (or ``LINE TYPES``), ``NODE PROPERTIES`` (``POINT PROPERTIES``,
   ``CONNECTION PROPERTIES``), ``LINE PROPERTIES``, ``SOLVER OPTIONS``, ``OUTPUTS``.
 
@@ -32,9 +33,11 @@ with MoorDyn's body hydrodynamics) holding the points the deck attaches to it (`
 in its frame. The bodies, points and failures are read in ``case.moordyn_tables``.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
-never dropped: rods (not yet read), a failure at a rod's end, pinned coupled bodies, a body
-point's own mass, volume or drag, vortex-induced vibration (Cl), non-linear or viscoelastic EA,
-wave and current kinematics files, points attached to turbines, v1 point forces. MoorDyn's own
+never dropped: coupled rods and rods fixed to coupled bodies, a failure at a rod's end, a
+body point's own mass, volume or drag, vortex-induced vibration
+(Cl), non-linear or viscoelastic EA, wave and current kinematics other than WaveKin 7's wave
+components and Currents 1 and 3's profile, points attached to turbines, v1 point forces.
+MoorDyn's own
 settings that seacable replaces (the initial-condition solver's: seacable starts from its
 statics; the output and logging switches: seacable writes every output) are noted in the
 written case.
@@ -253,6 +256,9 @@ class _Deck(Tables):
         lines = self._lines(types, names)
         failures = self._failures(names)
         environment: dict[str, Any] = {"gravity": options["g"], "water_density": options["rhow"]}
+        if options["rhow"] == 0.0:  # MoorDyn's vacuum
+            environment = {"gravity": options["g"], "in_air": True}
+            self.notes.append("water density 0: in_air (no buoyancy, drag or added mass)")
         if options["wtrdpth"] > 0:
             environment["water_depth"] = options["wtrdpth"]
             environment["seabed"] = {  # on each segment's d l, as MoorDyn's

@@ -4,8 +4,8 @@ column, which every refusal names), its numbers; and the tables that become seac
 failures: v2 BODIES (fixed, imposed, or free rigid bodies with MoorDyn's body hydrodynamics),
 POINTS / NODE PROPERTIES (fixed bodies, point bodies, coupled points as imposed bodies, points
 on the deck's bodies or v1's vessel), ROD TYPES and RODS (``rod`` force models on the deck's
-bodies, free rods as rigid bodies, fixed rods as fixed bodies) and FAILURE (the case's
-``failures``).
+bodies, free rods as rigid bodies, pinned ones as rigid bodies ``pinned_to`` a body or a
+coupled point, fixed rods as fixed bodies) and FAILURE (the case's ``failures``).
 """
 
 import math
@@ -39,6 +39,9 @@ def rounded(value: float) -> float:
     return float(f"{value:.12g}")
 
 
+COUPLED_PINNED = ("coupledpinned", "cpldpin", "vesselpinned", "vespin")  # MoorDyn's words
+
+
 def constant(value: float) -> dict[str, Any]:
     return {"kind": "constant", "value": value}
 
@@ -64,7 +67,8 @@ class Tables:
     def _bodies(self, options) -> dict[str, dict[str, Any]]:
         """The deck's bodies (v2 BODIES) by their attachment word ``body<ID>``: ``Fixed`` a
         fixed body, ``Coupled`` (``Vessel``) an imposed body held at the deck's pose, ``Free``
-        a rigid body with MoorDyn's body hydrodynamics (:meth:`_free_body`)."""
+        a rigid body with MoorDyn's body hydrodynamics (:meth:`_free_body`), ``CoupledPinned``
+        the same pinned to an imposed body ``body<ID>_pin`` at its reference point."""
         columns = ["ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I",
                    "Volume", "CdA", "Ca"]  # fmt: skip
         bodies: dict[str, dict[str, Any]] = {}
@@ -103,13 +107,16 @@ class Tables:
                     "roll_deg, pitch_deg, yaw_deg as time functions to move it, or step it "
                     "from Python (seacable.coupling.Coupling)"
                 )
-            elif kind == "free":
+            elif kind in ("free", *COUPLED_PINNED):
                 body = self._free_body(name, position, angles, value, values, options["rhow"])
+                if kind in COUPLED_PINNED:  # its reference point coupled, turning freely
+                    bodies[f"{name}_pin"] = _pin(name, position, self.notes)
+                    body["pinned_to"] = f"{name}_pin"
             else:
                 raise CaseError(
                     f"{self._where('bodies', number, 'Attachment')}: {row['Attachment']!r}: "
-                    "seacable reads Fixed, Coupled (Vessel) and Free bodies; a pinned coupled "
-                    "body is not read yet"
+                    "seacable reads Fixed, Coupled (Vessel), CoupledPinned (VesselPinned) and "
+                    "Free bodies"
                 )
             body["points"] = {}
             bodies[name] = body
@@ -180,8 +187,9 @@ class Tables:
         mass, centre and inertia joined to the body's; a ``Free`` rod a rigid body ``rod<ID>``
         (reference point at end A, the rod's mass and inertia, gravity and the rod's loads), a
         ``Pinned`` one the same turning about its end A held still; a ``Fixed`` rod a fixed
-        body. Its ends are points ``a`` and ``b`` for the lines (R<ID>A, R<ID>B). Rods pinned
-        to a body and coupled rods are refused by name."""
+        body, a ``Body<ID>Pinned`` one the same pinned at its end A to that body's point
+        (``pinned_to``). Its ends are points ``a`` and ``b`` for the lines (R<ID>A, R<ID>B).
+        Coupled rods are refused by name."""
         columns = ["ID", "RodType", "Attachment", "Xa", "Ya", "Za", "Xb", "Yb", "Zb", "NumSegs",
                    "RodOutputs"]  # fmt: skip
         types = self._rod_types()
@@ -224,7 +232,7 @@ class Tables:
                 _join_mass(host, mass, a, b, kind_of["Diam"])
                 host["points"][f"{name}_a"], host["points"][f"{name}_b"] = [*a], [*b]
                 ref = f"{kind}.{name}_"
-            elif kind in ("free", "pinned", "pin"):
+            elif kind in ("free", "pinned", "pin", *COUPLED_PINNED) or _pinned_on(kind, held):
                 axis = [q - p for p, q in zip(a, b, strict=True)]
                 body = {"name": name, "type": "rigid", "position": a, "mass": 0.0,
                         "centre_of_gravity": [0.0, 0.0, 0.0], "inertia": [0.0, 0.0, 0.0],
@@ -232,7 +240,15 @@ class Tables:
                                             {**model, "end_a": [0.0, 0.0, 0.0], "end_b": axis}],
                         "points": {"a": [0.0, 0.0, 0.0], "b": [*axis]}}  # fmt: skip
                 _join_mass(body, mass, [0.0, 0.0, 0.0], axis, kind_of["Diam"])
-                if kind != "free":  # pinned at end A to the ground: it turns about it
+                if _pinned_on(kind, held):  # pinned at end A to a body: it turns about it
+                    host = held[_pinned_on(kind, held)]
+                    host["points"][f"{name}_pin"] = [*a]
+                    body["pinned_to"] = f"{host['name']}.{name}_pin"
+                    body["position"], body["orientation_deg"] = _on_body(host, a)
+                elif kind in COUPLED_PINNED:  # end A coupled, turning freely
+                    bodies.append(_pin(name, a, self.notes))
+                    body["pinned_to"] = f"{name}_pin"
+                elif kind != "free":  # pinned at end A to the ground: it turns about it
                     body["dofs"] = ["roll", "pitch", "yaw"]
                 bodies.append(body)
                 ref = f"{name}."
@@ -257,8 +273,9 @@ class Tables:
             else:
                 raise CaseError(
                     f"{where('Attachment')}: {row['Attachment']!r}: seacable reads rods on the "
-                    f"deck's bodies ({', '.join(held) or 'none'}), Free, Pinned and Fixed rods; "
-                    "a rod pinned to a body or a coupled rod is not read yet"
+                    f"deck's bodies ({', '.join(b for b in held if '_' not in b) or 'none'}, "
+                    "or pinned to them: Body<ID>Pinned), Free, Pinned, CoupledPinned and Fixed "
+                    "rods; a Coupled rod (its loads would be the coupling's) is not read"
                 )
             ends[f"R{row['ID']}A".upper()] = ref + "a"
             ends[f"R{row['ID']}B".upper()] = ref + "b"
@@ -411,6 +428,43 @@ class Tables:
                 failure["tension"] = tension
             out.append(failure)
         return out
+
+
+def _pinned_on(kind: str, held: dict[str, dict[str, Any]]) -> str:
+    """The body a rod attachment ``Body<ID>Pinned`` (or ``Body<ID>Pin``) names, when it is one
+    of the deck's; else ''."""
+    found = re.fullmatch(r"(body\d+)(pinned|pin)", kind)
+    return found.group(1) if found and found.group(1) in held else ""
+
+
+def _pin(name: str, position, notes: list[str]) -> dict[str, Any]:
+    """The imposed body ``<name>_pin`` that a coupled pinned body or rod (MoorDyn's
+    CoupledPinned) turns about, held at ``position`` [m]."""
+    notes.append(
+        f"{name}: a coupled pinned {'rod' if name.startswith('rod') else 'body'}: it turns "
+        f"freely about the imposed body {name}_pin, held at the deck's position; give its x, "
+        "y, z as time functions to move it, or step it from Python (seacable.coupling.Coupling)"
+    )
+    return {"name": f"{name}_pin", "type": "imposed", "points": {},
+            **{k: constant(v) for k, v in zip("xyz", position, strict=True)}}  # fmt: skip
+
+
+def _on_body(host: dict[str, Any], a) -> tuple[list[float], list[float]]:
+    """The earth position of the point ``a`` (body frame) of a deck body at its initial pose,
+    and the body's orientation angles [deg] (a rod pinned to it starts turned as it is)."""
+    if host["type"] == "imposed":
+        keys = ("x", "y", "z", "roll_deg", "pitch_deg", "yaw_deg")
+        pose = [host[k]["value"] for k in keys]
+        position, angles = pose[:3], pose[3:]
+    else:
+        position, angles = host["position"], host.get("orientation_deg", [0.0, 0.0, 0.0])
+    roll, pitch, yaw = np.radians(angles)
+    rx = np.array([[1, 0, 0], [0, np.cos(roll), -np.sin(roll)], [0, np.sin(roll), np.cos(roll)]])
+    ry = np.array([[np.cos(pitch), 0, np.sin(pitch)], [0, 1, 0],
+                   [-np.sin(pitch), 0, np.cos(pitch)]])  # fmt: skip
+    rz = np.array([[np.cos(yaw), -np.sin(yaw), 0], [np.sin(yaw), np.cos(yaw), 0], [0, 0, 1]])
+    at = np.array(position, float) + rz @ ry @ rx @ np.array(a, float)
+    return [rounded(v) for v in at], [float(v) for v in angles]
 
 
 def _join_mass(body: dict[str, Any], mass: float, a, b, diameter: float) -> None:

@@ -41,7 +41,7 @@ INT_FIELDS = frozenset({
     "tie_to", "tie_first", "tie_count",
     "rs_n", "rs_seg", "rs_node", "rs_q", "rs_v", "rs_from", "rs_to", "rs_tip", "rs_order",
     "rs_kind", "rs_port", "nat_n", "nat_q", "nat_v", "nat_from", "nat_tip", "nat_cartesian",
-    "body_group", "group_first", "group_member", "compensator", "entries",
+    "body_group", "group_first", "group_member", "joint", "compensator", "entries",
     *failures.INT_FIELDS,
 })  # fmt: skip
 
@@ -203,6 +203,8 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         arrays["body_mass"][b] = body.mass
         arrays["body_volume"][b] = body.displaced_volume()
         free = [1.0 if name in body.dofs else 0.0 for name in sch.DOF_NAMES]
+        if getattr(body, "pinned_to", None) is not None:  # its joint moves it
+            free[:3] = [1.0, 1.0, 1.0]
         arrays["body_free"][b] = free
         velocity = [v * free[c] for c, v in enumerate(body.velocity)]
         if isinstance(body, sch.RigidBody):
@@ -256,6 +258,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
     f["state"] = [s + n_q + n_v if s >= 0 else -1 for s in f["state"]]
     ties = _ties(case, layout)
     released = failures.fields(case, point)  # creates the failures' points
+    joint = topology.joint_points(case, tips, point)  # and the joints'
     points = np.array([b for b, _ in layout.points], dtype=np.int64)
     offsets = np.array([offset(case.bodies[b], name) for b, name in layout.points]).reshape(-1, 3)
     current_z, current_u, current_v = current_arrays(env)
@@ -274,7 +277,7 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
         current_z=current_z, current_u=current_u, current_v=current_v,
         **packing.wave_fields(env, case.simulation.build_up), wind_channel=layout.wind_channel,
         **tfn.kernel_fields(channels or [tfn.constant(0.0)], case.simulation.build_up),
-        **released,
+        **released, joint=joint,
     )  # fmt: skip
     fields.update(topology.group_arrays(case, tips, nb))
     fields["compensator"] = compensator_rows(case, f, fields, points)

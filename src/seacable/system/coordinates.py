@@ -193,7 +193,28 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
             rows.extend([i] * len(c))
             cols.extend(c)
     data = np.ones(len(rows))
-    return sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
+    out = sparse.csr_matrix((data, (rows, cols)), shape=(n, n))
+    return _solved_together(p, body_cols, out)
+
+
+def _solved_together(p, body_cols: dict[int, list[int]], out: sparse.csr_matrix):
+    """``out`` with the rows of the bodies solved together (a group of ``rigid.solve_groups``:
+    joints, rigid lines held on free bodies) each holding every column that any of them
+    holds: a load on one of them accelerates them all."""
+    groups: dict[int, list[int]] = {}
+    for b, cols in body_cols.items():
+        if p.body_group[b, 0] >= 0:
+            groups.setdefault(int(p.body_group[b, 0]), []).extend(cols)
+    rows, cols = [], []
+    for members in groups.values():
+        union = np.unique(out[members].indices)
+        for i in members:
+            rows.extend([i] * len(union))
+            cols.extend(union.tolist())
+    if not rows:
+        return out
+    extra = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=out.shape)
+    return ((out + extra) != 0).astype(float).tocsr()
 
 
 def _lumped_links(li: int, n_int: int, node_index: dict, ends_cols: list) -> list:

@@ -298,9 +298,9 @@ def _solve(t, y, p, w, ydot):
     if GROUPS:
         if not rigid.solve_groups(
             y, p.body_kind, p.body_free, p.body_q, p.body_v, p.body_rigid, p.body_group,
-            p.group_first, p.group_member, p.rs_from, p.rs_to, p.rs_held, p.point_body, w.acc,
-            w.omega, w.parm, w.rs_la, w.rs_force, w.load, w.bias, w.mass, w.group, w.scratch,
-            ydot,
+            p.group_first, p.group_member, p.joint, p.rs_from, p.rs_to, p.rs_held,
+            p.point_body, w.acc, w.omega, w.parm, w.ppos, w.pvel, p.stabilization_frequency,
+            w.rs_la, w.rs_force, w.load, w.bias, w.mass, w.group, w.scratch, ydot,
         ):  # fmt: skip
             status = SINGULAR_CLOSURE
     if RIGID:

@@ -326,6 +326,8 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
     y = built.y0.copy()
     if len(p.rs_n):
         y, p = _rigid_initial(built, y)
+    if len(p.joint):
+        _pinned(p, y, case)
     ppos, pvel = end_points(BuiltSystem(p, y, built.layout, case), y)
     lumped = [line for line in case.lines if isinstance(line, sch.LumpedMassLine)]
     for li, line in enumerate(lumped):
@@ -356,6 +358,27 @@ def initial_state(built: BuiltSystem) -> tuple[np.ndarray, kernel.SystemParams]:
             settled[v : v + size] = y[v : v + size]
         y = settled
     return y, p
+
+
+def _pinned(p, y: np.ndarray, case) -> None:
+    """Each body pinned to another's point (``p.joint``) at that point at t = 0, with its
+    velocity, into ``y`` (bodies pinned to pinned bodies after them); refuses a case that puts
+    it more than 1 mm away."""
+    for _ in range(len(p.joint)):
+        ppos, pvel = _points(p, y, 0.0)
+        for pc, pp in p.joint:
+            b = int(p.point_body[pc])
+            gap = float(np.linalg.norm(ppos[pp] - y[p.body_q[b] : p.body_q[b] + 3]))
+            if gap > 1e-3:
+                body = case.bodies[b]
+                raise CaseError(
+                    f"bodies[{b}] ({body.name}).position {list(body.position)} is "
+                    f"{gap:.6g} m from '{body.pinned_to}' at the start "
+                    f"{np.round(ppos[pp], 9).tolist()}: a pinned body's reference point starts "
+                    "at the point it is pinned to; give that position"
+                )
+            y[p.body_q[b] : p.body_q[b] + 3] = ppos[pp]
+            y[p.body_v[b] : p.body_v[b] + 3] = pvel[pp]
 
 
 def _directors(line, n: int, where: str) -> tuple[np.ndarray, np.ndarray]:

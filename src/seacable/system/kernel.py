@@ -67,6 +67,8 @@ class _ParamsFields(NamedTuple):
     group_first: np.ndarray  # (groups + 1, 2) int: a group's first body, first line in
     # group_member
     group_member: np.ndarray  # int: the groups' bodies, then their lines (rigid-line numbers)
+    # and joints (-1 - j)
+    joint: np.ndarray  # (nj, 2) int: a joint's points, on the pinned body, on the other
     point_body: np.ndarray  # (np,) int
     point_offset: np.ndarray  # (np, 3) body frame [m]
     force_kind: np.ndarray  # (nf,) int: forces.kinds
@@ -258,7 +260,7 @@ def make_work(p: SystemParams) -> SystemWork:
         line=np.zeros(6 * (nmax + 1)), end_mass=np.zeros((nl, 2, 9)),
         end_load=np.zeros((nl, 2, 3)), tie_tension=np.zeros(nt), tie_force=np.zeros((nt, 3)),
         rhs6=np.zeros(6), quat=np.zeros((nb, 4)), rs=np.zeros(c3.N_WORK_ROWS * rs_nodes),
-        rs_force=np.zeros((max(nr, 1), 3)), rs_la=np.zeros((max(nr, 1), 30)),
+        rs_force=np.zeros((max(nr + len(p.joint), 1), 3)), rs_la=np.zeros((max(nr, 1), 30)),
         group=np.zeros((g + 2, g)),
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),

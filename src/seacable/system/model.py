@@ -166,12 +166,14 @@ def _body_variables(body, controls) -> dict:
         for c in AXES:
             out[f"angular_velocity_{c}"] = (("time",), "rad/s", f"angular velocity, {c}")
     for c in AXES:
-        out[f"line_force_{c}"] = (("time",), "N", f"force of the lines and ties on the body, {c}")
+        out[f"line_force_{c}"] = (
+            ("time",), "N", f"force of the lines, ties and joints on the body, {c}",
+        )  # fmt: skip
     if not isinstance(body, sch.PointBody):
         for c in AXES:
             out[f"line_moment_{c}"] = (
                 ("time",), "N m",
-                f"moment of the lines and ties about the reference point, {c}",
+                f"moment of the lines, ties and joints about the reference point, {c}",
             )  # fmt: skip
     return out | _control_variables(body, controls)
 

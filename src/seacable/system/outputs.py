@@ -59,6 +59,7 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
             for c in range(3):
                 ties[j, k, 2 + c] = w.ppos[a_, c]
                 ties[j, k, 5 + c] = w.ppos[b_, c]
+        _joint_loads(p, w, on_body)
         if planar is not None or segments is not None:
             _rigid_rows(p, w, on_body, rigid[0][j], rigid[1][j], rigid[2][j], rigid[3][j],
                         planar, segments)  # fmt: skip
@@ -69,6 +70,18 @@ def outputs_chunk(times, states, p, w, bodies, nodes, tension, ends, ties, energ
             y, p, w, lumped, planar, segments, natural, mesh
         )
     return status
+
+
+@inner
+def _joint_loads(p, w, on_body):
+    """Each joint's force on its two bodies, at their points (``rigid.solve_groups``: the force
+    on the body it pins to, in the last rows of ``w.rs_force``)."""
+    last = w.rs_force.shape[0]
+    for k in range(p.joint.shape[0]):
+        f = w.rs_force[last - 1 - k]
+        pc, pp = p.joint[k, 0], p.joint[k, 1]
+        add_force(w.parm[pc], -f[0], -f[1], -f[2], on_body[p.point_body[pc]])
+        add_force(w.parm[pp], f[0], f[1], f[2], on_body[p.point_body[pp]])
 
 
 @inner

@@ -332,18 +332,21 @@ def _planar_backward(n, length, mass, inertia, y, v, ws, tip, body_mass, bias, l
 
 @inner
 def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_group, group_first,
-                 group_member, rs_from, rs_to, rs_held, point_body, acc, omega, parm, rs_la,
-                 rs_force, load, bias, mass, big, scratch, ydot):  # fmt: skip
-    """The accelerations of each group of free bodies that rigid lines held on them join, with
-    those lines' holding forces L (the KKT form, docs/rigid_segment_lines.md section 5): each
-    body's 6x6 equations with L's action on it (+Phi_a^T S_0 L at its base point, -Phi_P^T L
-    at the held point), each line's closure A_L L + G A_0 - a_P = r on its held axes (L_k = 0
-    on a free one; the maps in ``rs_la``, ``backward``), a held degree of freedom's row
-    a_i = 0; Gaussian elimination with partial pivoting (``big``'s last two rows: right-hand
-    side and solution). The rates into ``ydot``, L into ``rs_force``. False when a group's
-    system is singular."""
+                 group_member, joint, rs_from, rs_to, rs_held, point_body, acc, omega, parm,
+                 ppos, pvel, frequency, rs_la, rs_force, load, bias, mass, big, scratch,
+                 ydot):  # fmt: skip
+    """The accelerations of each group of free bodies that rigid lines held on them or joints
+    join, with those lines' holding forces L (the KKT form, docs/rigid_segment_lines.md section
+    5): each body's 6x6 equations with L's action on it (+Phi_a^T S_0 L at its base point,
+    -Phi_P^T L at the held point), each line's closure A_L L + G A_0 - a_P = r on its held axes
+    (L_k = 0 on a free one; the maps in ``rs_la``, ``backward``), each joint's (``_joint_rows``),
+    a held degree of freedom's row a_i = 0; Gaussian elimination with partial pivoting
+    (``big``'s last two rows: right-hand side and solution). The rates into ``ydot``, L into
+    ``rs_force`` (a joint's force on the body it pins to in its last rows: joint j at -1 - j).
+    False when a group's system is singular."""
     ok = True
     unit, zero, a0 = scratch[143:152], scratch[152:158], scratch[158:161]
+    a1 = scratch[161:164]
     unit[:] = 0.0
     unit[0] = unit[4] = unit[8] = 1.0
     zero[:] = 0.0
@@ -363,6 +366,11 @@ def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_group, group_fi
                     a[6 * s + i, 6 * s + j] = mass[b, i, j]
         for j in range(lines):
             li = group_member[lines_at + line0 + j]
+            if li < 0:
+                _joint_rows(joint[-1 - li], 6 * bodies + 3 * j, kind, body_group, point_body,
+                            acc, omega, parm, ppos, pvel, frequency, a, rhs, unit, zero, a0,
+                            a1)  # fmt: skip
+                continue
             _line_rows(li, 6 * bodies + 3 * j, kind, body_group, rs_from, rs_to, rs_held,
                        point_body, acc, omega, parm, rs_la[li], a, rhs, unit, zero,
                        a0)  # fmt: skip
@@ -380,9 +388,39 @@ def solve_groups(y, kind, free, body_q, body_v, rigid_body, body_group, group_fi
             dynamics.body_rates(y, body_q[b], body_v[b], rigid_body[b], acc[b], ydot)
         for j in range(lines):
             li = group_member[lines_at + line0 + j]
+            at = li if li >= 0 else rs_force.shape[0] + li  # a joint's after the lines'
             for r in range(3):
-                rs_force[li, r] = out[6 * bodies + 3 * j + r]
+                rs_force[at, r] = out[6 * bodies + 3 * j + r]
     return ok
+
+
+@njit(inline="always", **JIT)
+def _joint_rows(points, col, kind, body_group, point_body, acc, omega, parm, ppos, pvel,
+                frequency, a, rhs, unit, zero, a0, a1):  # fmt: skip
+    """A joint's part of its group's system (``solve_groups``): its force L, on the other body
+    at its point ``points[1]`` (that body's rows when it is free; -Phi^T L in the matrix, as a
+    held line's) and -L on the pinned body at ``points[0]``, and its closure: the two points'
+    accelerations equal,
+    Phi_c a_c - Phi_p a_p = w_p x (w_p x r_p) - w_c x (w_c x r_c) (all of the other point's
+    acceleration on a fixed or imposed body) - 2 f (v_c - v_p) - f^2 (x_c - x_p), the last
+    terms (Baumgarte's, ``frequency`` f) holding the points together against the
+    integration's drift. The matrix stays symmetric."""
+    pc, pp = points[0], points[1]
+    child, other = point_body[pc], point_body[pp]
+    free_other = kind[other] == kinematics.DYNAMIC
+    kinematics.point_acceleration(kind[other], zero if free_other else acc[other], parm[pp],
+                                  omega[other], a0)  # fmt: skip
+    kinematics.point_acceleration(kinematics.DYNAMIC, zero, parm[pc], omega[child], a1)
+    sc = 6 * body_group[child, 1]
+    dynamics.add_phi_t(unit, parm[pc], 1.0, a[sc : sc + 6, col : col + 3])
+    dynamics.add_m_phi(unit, parm[pc], 1.0, a[col : col + 3, sc : sc + 6])
+    if free_other:
+        so = 6 * body_group[other, 1]
+        dynamics.add_phi_t(unit, parm[pp], -1.0, a[so : so + 6, col : col + 3])
+        dynamics.add_m_phi(unit, parm[pp], -1.0, a[col : col + 3, so : so + 6])
+    for r in range(3):
+        rhs[col + r] = (a0[r] - a1[r] - 2.0 * frequency * (pvel[pc, r] - pvel[pp, r])
+                        - frequency * frequency * (ppos[pc, r] - ppos[pp, r]))  # fmt: skip
 
 
 @njit(inline="always", **JIT)

@@ -24,8 +24,11 @@ def groups(case: sch.SystemCase) -> list[list[str]]:
             name = parent[name]
         return name
 
-    for line in case.lines:
-        a, b = line.from_.partition(".")[0], line.to.partition(".")[0]
+    edges = [(line.from_, line.to) for line in case.lines]
+    edges += [(body.name, body.pinned_to) for body in case.bodies
+              if isinstance(body, sch.RigidBody) and body.pinned_to is not None]  # fmt: skip
+    for ref_a, ref_b in edges:
+        a, b = ref_a.partition(".")[0], ref_b.partition(".")[0]
         if a in parent and b in parent:
             parent[root(a)] = root(b)
     out: dict[str, list[str]] = {}
@@ -139,10 +142,47 @@ def ports(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[int, int, in
     return out
 
 
+def joints(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[int, int, str]]:
+    """(pinned body, the body it is pinned to, that body's point) of every rigid body pinned
+    to another's point (``pinned_to``: a spherical joint whose force is an unknown of its
+    group's solve)."""
+    names = [b.name for b in case.bodies]
+    out = []
+    for c, body in enumerate(case.bodies):
+        ref = getattr(body, "pinned_to", None)
+        if ref is None:
+            continue
+        where = f"bodies[{c}] ({body.name}).pinned_to"
+        name = ref.partition(".")[0]
+        if name not in names or name == body.name:
+            raise CaseError(f"{where}: '{ref}' names no other body; bodies are {names} (write "
+                            "'body' or 'body.point')")  # fmt: skip
+        if names.index(name) in tips:
+            raise CaseError(
+                f"{where}: body '{name}' is carried at a rigid line's tip; pin to a rigid body, "
+                "a fixed or an imposed one"
+            )
+        out.append((c, names.index(name), ref))
+    return out
+
+
+def joint_points(case: sch.SystemCase, tips: dict[int, int], point) -> np.ndarray:
+    """(nj, 2) the points of each joint (``joints``): the pinned body's reference point, the
+    other body's point; ``point(ref, where)`` is the index of the point ``body`` or
+    ``body.point`` (system.assemble's, created on first use)."""
+    rows = []
+    for c, _, ref in joints(case, tips):
+        where = f"bodies[{c}] ({case.bodies[c].name}).pinned_to"
+        rows.append([point(case.bodies[c].name, where), point(ref, where)])
+    return np.array(rows, dtype=np.int64).reshape(-1, 2)
+
+
 def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[int], list[int]]]:
     """The groups of free bodies whose accelerations rigid lines held at their ends (``ports``)
-    couple, with those lines: (bodies in ascending order, rigid-line numbers). A line joins its
-    end body to a free base; its holding force is an unknown of its group's solve."""
+    or joints (``joints``) couple, with those lines and joints: (bodies in ascending order,
+    rigid-line numbers r and joints j as -1 - j). A line joins its end body to a free base, a
+    joint its pinned body to the body it is pinned to (when free); the holding forces are
+    unknowns of the group's solve."""
     free = [isinstance(b, sch.PointBody | sch.RigidBody) for b in case.bodies]
     parent: dict[int, int] = {}
 
@@ -151,7 +191,8 @@ def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[i
             b = parent[b]
         return b
 
-    found = ports(case, tips)
+    found = [(r, a, b) for r, a, b in ports(case, tips)]
+    found += [(-1 - j, a, c) for j, (c, a, _) in enumerate(joints(case, tips))]
     for _, a, b in found:
         root(b)
         if free[a] and a not in tips:
@@ -165,8 +206,8 @@ def port_groups(case: sch.SystemCase, tips: dict[int, int]) -> list[tuple[list[i
 
 
 def group_arrays(case: sch.SystemCase, tips: dict[int, int], nb: int) -> dict[str, np.ndarray]:
-    """The groups of free bodies that rigid lines held on them join, and those lines (system
-    kernel's ``body_group``, ``group_first``, ``group_member``)."""
+    """The groups of free bodies that rigid lines held on them or joints join, and those lines
+    and joints (system kernel's ``body_group``, ``group_first``, ``group_member``)."""
     group = -np.ones((nb, 2), dtype=np.int64)
     first, bodies_in, lines_in = [[0, 0]], [], []
     for g, (bodies, held) in enumerate(port_groups(case, tips)):
