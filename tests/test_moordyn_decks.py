@@ -342,6 +342,19 @@ def test_the_rods_of_a_deck_become_rod_models_and_bodies():
     seacable.load_case(case)  # a valid case
 
 
+def test_a_line_with_bending_stiffness_at_a_rods_end_is_refused():
+    """MoorDyn clamps a line with EI > 0 at a rod's end along the rod's axis (a cantilever,
+    its own BeamCantilevered test); seacable's line ends turn freely: refused by row and
+    column, not read as a hinge."""
+    text = SPAR.read_text().replace("1    chain     1        4 ", "1    chain     1        R1A")
+    assert moordyn.read(text)["lines"][0]["to"] == "body1.rod1_a"  # without EI: read
+    stiff = text.replace("-1.0      0    2.4", "-1.0      1e4  2.4")
+    assert stiff != text
+    with pytest.raises(seacable.CaseError, match=r"\(LINES, column AttachB\): 'R1A': a line "
+                       "with bending stiffness"):  # fmt: skip
+        moordyn.read(stiff)
+
+
 REFUSED_RODS = [
     (COLUMN_ROW, COLUMN_ROW.replace("Body1 ", "Coupled"), "column Attachment): 'Coupled'"),
     (COLUMN_ROW, COLUMN_ROW.replace("Body1     ", "Body2Pinned"),

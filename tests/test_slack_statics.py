@@ -83,6 +83,46 @@ def test_a_line_longer_than_its_span_and_rise_starts_laid_on_the_seabed():
     assert np.abs(nodes[:, 1]).max() > 50.0  # the rest bulges aside on the seabed
 
 
+def test_a_laid_line_hangs_stretched_by_the_line_below_and_pushes_no_segment():
+    """With its weight in water and EA, a laid line's hanging segments start stretched by the
+    weight of the hanging line below each (to 1e-12), and the foot's segment, which takes up
+    what the drop leaves, is at least its unstretched length: no segment pushed (the hanging
+    part's stretch used to shorten it)."""
+    lengths = np.full(40, 10.0)
+    w, ea = 1.0e3, 1.0e8  # a stretch of 1e-5 per 1 m of line below
+    low, high = np.array([150.0, 0.0, -200.0]), np.array([0.0, 0.0, -15.0])
+    nodes = initial._laid(lengths, low, high, w, ea)
+    assert np.allclose(nodes[0], low) and np.allclose(nodes[-1], high)
+    segments = np.linalg.norm(np.diff(nodes, axis=0), axis=1)
+    hanging = np.flatnonzero(nodes[1:, 2] > -200.0 + 1e-9)  # segments whose upper node hangs
+    foot = hanging[0]
+    assert segments[foot] >= lengths[foot] * (1 - 1e-12)
+    upper = hanging[1:]
+    below = (upper - foot - 0.5) * 10.0  # hanging line under each segment's middle
+    expected = 10.0 * (1.0 + w * (below + 10.0) / ea)  # the foot's segment below too
+    assert np.allclose(segments[upper], expected, rtol=1e-12), segments[upper] - expected
+    assert np.allclose(segments[:foot], lengths[:foot], rtol=1e-9)  # lying: unstretched
+
+
+def test_a_line_a_little_short_of_its_span_and_rise_lies_slack_where_its_segments_fit():
+    """561.3 m of polyester in 22 segments from an anchor 243.6 m off and 320.9 m below the
+    fairlead: 3.2 m short of its span and rise, its catenary has H = 151 N and a touchdown
+    bent within 0.5 m, which its 25.5 m segments cut: they lie slack (every lying segment at
+    its length, none pushed), as the statics then find it (seed 39, mooring 127, failed
+    before). 20 segments of 25.5 m, 10 m short of 240 m and 280 m: they cannot (None)."""
+    lengths = np.full(22, 561.3208085 / 22)
+    low, high = np.array([0.0, 0.0, -337.436]), np.array([243.599, 0.0, -16.545])
+    nodes = initial._laid(lengths, low, high, 297.5, 3.253e8)
+    assert nodes is not None
+    segments = np.linalg.norm(np.diff(nodes, axis=0), axis=1)
+    assert np.all(segments >= lengths * (1 - 1e-12))
+    lying = np.isclose(nodes[1:, 2], -337.436) & np.isclose(nodes[:-1, 2], -337.436)
+    assert lying.sum() >= 8 and np.allclose(segments[lying], lengths[lying], rtol=1e-9)
+    short = np.full(20, 25.5)
+    assert initial._laid(short, np.array([0.0, 0.0, -300.0]), np.array([240.0, 0.0, -20.0]),
+                         297.5, 3.253e8) is None  # fmt: skip
+
+
 @pytest.mark.parametrize("length", [200.0, 400.0])
 def test_a_line_hanging_between_two_buoys_starts_with_its_middle_on_the_seabed(length):
     """Ends 40 m and 25 m above the seabed, 120 m apart: the free catenary would dip below

@@ -33,14 +33,13 @@ with MoorDyn's body hydrodynamics) holding the points the deck attaches to it (`
 in its frame. The bodies, points and failures are read in ``case.moordyn_tables``.
 
 What has no equivalent in seacable is refused by name (the section, the row and the column),
-never dropped: coupled rods and rods fixed to coupled bodies, a failure at a rod's end, a
-body point's own mass, volume or drag, vortex-induced vibration
-(Cl), non-linear or viscoelastic EA, wave and current kinematics other than WaveKin 7's wave
-components and Currents 1 and 3's profile, points attached to turbines, v1 point forces.
-MoorDyn's own
-settings that seacable replaces (the initial-condition solver's: seacable starts from its
-statics; the output and logging switches: seacable writes every output) are noted in the
-written case.
+never dropped: coupled rods and rods fixed to coupled bodies, a failure at a rod's end, a line
+with bending stiffness at a rod's end (MoorDyn clamps it there), a body point's own mass,
+volume or drag, vortex-induced vibration (Cl), non-linear or viscoelastic EA, wave and current
+kinematics other than WaveKin 7's wave components and Currents 1 and 3's profile, points
+attached to turbines, v1 point forces. MoorDyn's own settings that seacable replaces (the
+initial-condition solver's: seacable starts from its statics; the output and logging switches:
+seacable writes every output) are noted in the written case.
 """
 
 import math
@@ -526,6 +525,14 @@ class _Deck(Tables):
                         "R<ID>B)"
                     )
                 ends.append(names[row[column].upper()])
+                clamped = re.fullmatch(r"R\d+[AB]", row[column].upper())
+                if clamped and types[row["LineType"]].get("bending_stiffness"):
+                    raise CaseError(
+                        f"{self._where('lines', number, column)}: {row[column]!r}: a line with "
+                        "bending stiffness (EI > 0) at a rod's end, which MoorDyn clamps along "
+                        "the rod's axis (a cantilever); seacable's line ends turn freely, so "
+                        "it is not read: give the line type EI 0 to hinge it there"
+                    )
             length = to_number(row["UnstrLen"], self._where("lines", number, "UnstrLen"))
             segments = to_number(row["NumSegs"], self._where("lines", number, "NumSegs"))
             if segments != int(segments) or segments < 1:

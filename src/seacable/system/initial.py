@@ -60,9 +60,10 @@ def _catenary(p, li, start, end, env, where):
 
 def _uniform_nodes(p, li, start, end, slack_only: bool = False):
     """The nodes of lumped line ``li`` from ``start`` to ``end`` on its elastic catenary, or,
-    when it has an end on the seabed and is longer than its span and rise, laid slack on the
-    seabed (``_laid``); None when it is not uniform (``uniform_line``), has no weight in
-    water, or (``slack_only``) is not laid. Raises catenary.CatenaryError."""
+    when it has an end on the seabed and is longer than its span and rise (or shorter by less
+    than a segment, where its segments can lie so), laid slack on the seabed (``_laid``); None
+    when it is not uniform (``uniform_line``), has no weight in water, or (``slack_only``) is
+    not laid. Raises catenary.CatenaryError."""
     n, s0 = p.line_n[li], p.line_seg[li]
     lengths = p.seg_length[s0 : s0 + n]
     low, high, flip = (start, end, False) if start[2] <= end[2] else (end, start, True)
@@ -77,12 +78,16 @@ def _uniform_nodes(p, li, start, end, slack_only: bool = False):
     rise = float(high[2] - low[2])
     # slack: longer than span plus rise, its hanging part stretched by its own weight (w h^2 /
     # 2 EA: 6 cm for 235 m of 80 mm chain, beyond which no catenary with tension joins them)
-    if on_seabed and total + w * rise**2 / (2.0 * ea) >= span + rise:
-        ordered = lengths[::-1] if flip else lengths
-        nodes = _stretched(_laid(ordered, low, high), ordered, w, ea, float(low[2]))
+    # nearly so, by less than a segment: its segments may still lie slack, the one that cuts
+    # the catenary's touchdown shorter than its arc (``_laid``'s heap where it fits)
+    gap = span + rise - total - w * rise**2 / (2.0 * ea)
+    ordered = lengths[::-1] if flip else lengths
+    laid = _laid(ordered, low, high, w, ea) if on_seabed and gap < lengths.max() else None
+    if laid is not None:
+        nodes = laid
     elif slack_only:
         return None
-    elif not on_seabed and _dips(p, total, w, low, high, span):
+    elif not on_seabed and dips(p, total, w, low, high, span):
         nodes = _touching_down(lengths[::-1] if flip else lengths, low, high, w, p.seabed_z)
     else:
         # ends one above the other, the line longer than the rise and nothing under it: it
@@ -159,9 +164,9 @@ def uniform_shapes(p, y: np.ndarray, time: float = 0.0, slack_only: bool = False
     return out
 
 
-def _dips(p, total, w, low, high, span) -> bool:
+def dips(p, total, w, low, high, span) -> bool:
     """A line hanging between ends above the seabed whose inextensible catenary would reach
-    below it: its middle lies on the seabed (``_touching_down``)."""
+    below it: its middle lies on the seabed (``_touching_down``, ``touchdown``)."""
     if p.seabed_z < -1e29 or min(low[2], high[2]) <= p.seabed_z:
         return False
     rise = float(high[2] - low[2])
@@ -178,39 +183,42 @@ def _dips(p, total, w, low, high, span) -> bool:
     return float(low[2]) - sag < p.seabed_z
 
 
-def _laid(lengths, low, high):
+def _laid(lengths, low, high, w: float = 0.0, ea: float = math.inf):
     """The nodes (from the lower end ``low``, on the seabed) of a line too long to reach
     ``high`` as a catenary (longer than its span and rise): it hangs straight down from the
     upper end, its last hanging segment reaches the seabed towards the lower end, and the rest
     lies on the seabed as a polygon inscribed in a circular arc from the lower end, bulging to
-    its left: every segment at its unstretched length, the lying ones slack and at rest (the
-    linear axial law of the static solves pushes back on a segment shorter than that)."""
+    its left: the lying segments at their unstretched length, slack and at rest (the linear
+    axial law of the static solves pushes back on a segment shorter than that), the hanging
+    ones stretched by the weight in water ``w`` [N/m] of the line below them (EA ``ea``): the
+    foot's segment, which takes up what the drop leaves, is then never pushed either. None
+    when the lying part cannot reach the foot without being stretched (a line shorter than
+    its span and rise by more than its segments cut off its touchdown)."""
     n = len(lengths)
     horizontal = low[:2] - high[:2]
     span = float(np.hypot(*horizontal))
     toward = horizontal / span if span > 0.0 else np.array([-1.0, 0.0])
-    hanging = _drop(lengths[::-1], high, float(low[2]), toward, span)
+    unstretched = lengths[::-1].astype(float)
+    hanging = _drop(unstretched, high, float(low[2]), toward, span)
+    if w > 0.0 and math.isfinite(ea):
+        # as many hanging as the stretch of that many lets hang (stretched, fewer hang): from
+        # the unstretched count down, the first count that holds, else that count's drop
+        tried = []
+        for m in range(len(hanging) - 1, 0, -1):
+            below = np.cumsum(unstretched[:m][::-1])[::-1] - 0.5 * unstretched[:m]
+            from_top = unstretched.copy()
+            from_top[:m] *= 1.0 + w * below / ea
+            tried.append(_drop(from_top, high, float(low[2]), toward, span))
+            if len(tried[-1]) - 1 == m:
+                break
+        hanging = tried[-1] if len(tried[-1]) - 1 == m else tried[0]
     k = n + 1 - len(hanging)  # the foot's node
+    if lengths[:k].sum() < float(np.hypot(*(hanging[-1, :2] - low[:2]))) * (1.0 - 1e-12):
+        return None  # the lying part cannot reach the foot slack
     nodes = np.empty((n + 1, 3))
     nodes[k:] = hanging[::-1]
     nodes[: k + 1, :2] = _lying(lengths[:k], low[:2], hanging[-1, :2], toward)
     nodes[: k + 1, 2] = low[2]
-    return nodes
-
-
-def _stretched(nodes, lengths, w, ea, floor):
-    """A laid line's nodes (from its end on the seabed at ``floor`` [m]) with its hanging part
-    lowered by its stretch under its own weight: above the touchdown at arc length s_t, the
-    tension w (s - s_t) stretches the line above each node by w / EA ((L^2 - s^2) / 2 -
-    s_t (L - s)), never below the seabed."""
-    s = np.concatenate([[0.0], np.cumsum(lengths)])
-    hanging = nodes[:, 2] > floor + 1e-9
-    if not hanging.any() or hanging.all():
-        return nodes
-    touchdown, total = float(s[~hanging].max()), float(s[-1])
-    above = s[hanging]
-    stretch = w / ea * (0.5 * (total**2 - above**2) - touchdown * (total - above))
-    nodes[hanging, 2] -= np.minimum(stretch, nodes[hanging, 2] - floor)
     return nodes
 
 
@@ -257,23 +265,15 @@ def _lying(lying, start, end, toward):
     return start + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
 
 
-def _touching_down(lengths, start, end, w, seabed_z):
-    """The nodes of a line hanging from ``start`` to ``end`` (both above the seabed at
-    ``seabed_z``) whose middle lies on the seabed: two inextensible catenaries, each tangent to
-    the seabed where it touches down, the part between laid straight (the horizontal tension
-    H [N] that makes the span: arm i of height h_i rises over (H/w) acosh(1 + w h_i / H) along
-    sqrt(h_i^2 + 2 h_i H / w) of line), or, when the line is longer than its span and both
-    heights, hanging straight down from both ends (``_drop``) and lying slack in an arc
-    between the two feet."""
+def touchdown(total: float, heights, span: float, w: float):
+    """(H [N], each arm's horizontal reach [m], each arm's length [m]) of an inextensible line
+    of length ``total`` and weight ``w`` [N/m] whose middle lies on the seabed between ends
+    ``heights`` above it, ``span`` apart (``_touching_down``): arm i of height h_i rises over
+    (H/w) acosh(1 + w h_i / H) along sqrt(h_i^2 + 2 h_i H / w) of line; H = 0, the arms
+    hanging straight down, when the line is longer than its span and both heights."""
     from scipy.optimize import brentq  # here: its import is slow (docs/architecture.md)
 
-    heights = (float(start[2] - seabed_z), float(end[2] - seabed_z))
-    total = float(lengths.sum())
-    horizontal = end[:2] - start[:2]
-    span = float(np.hypot(*horizontal))
-    toward = horizontal / span if span > 0.0 else np.array([1.0, 0.0])
-
-    def arms(h):  # each arm's horizontal reach and length
+    def arms(h):
         return (
             [h / w * math.acosh(1.0 + w * z / h) for z in heights],
             [math.sqrt(z * z + 2.0 * z * h / w) for z in heights],
@@ -283,12 +283,30 @@ def _touching_down(lengths, start, end, w, seabed_z):
         reach, arc = arms(h)
         return sum(reach) + total - sum(arc) - span
 
-    tension = 0.0
-    if total - sum(heights) < span:
-        high = w * total
-        while gap(high) < 0.0:
-            high *= 2.0
-        tension = brentq(gap, 1e-12 * high, high, xtol=1e-12 * high)
+    if total - sum(heights) >= span:
+        return 0.0, [0.0, 0.0], [float(z) for z in heights]
+    high = w * total
+    while gap(high) < 0.0:
+        high *= 2.0
+    tension = brentq(gap, 1e-12 * high, high, xtol=1e-12 * high)
+    reach, arc = arms(tension)
+    return tension, reach, arc
+
+
+def _touching_down(lengths, start, end, w, seabed_z):
+    """The nodes of a line hanging from ``start`` to ``end`` (both above the seabed at
+    ``seabed_z``) whose middle lies on the seabed: two inextensible catenaries, each tangent to
+    the seabed where it touches down, the part between laid straight (the horizontal tension
+    H [N] that makes the span: arm i of height h_i rises over (H/w) acosh(1 + w h_i / H) along
+    sqrt(h_i^2 + 2 h_i H / w) of line), or, when the line is longer than its span and both
+    heights, hanging straight down from both ends (``_drop``) and lying slack in an arc
+    between the two feet."""
+    heights = (float(start[2] - seabed_z), float(end[2] - seabed_z))
+    total = float(lengths.sum())
+    horizontal = end[:2] - start[:2]
+    span = float(np.hypot(*horizontal))
+    toward = horizontal / span if span > 0.0 else np.array([1.0, 0.0])
+    tension, reach, arc = touchdown(total, heights, span, w)
     if tension == 0.0:  # slack: both ends hang straight down, the rest lies in an arc
         first = _drop(lengths, start, seabed_z, toward, 0.5 * span)
         last = _drop(lengths[::-1], end, seabed_z, -toward, 0.5 * span)
@@ -298,7 +316,6 @@ def _touching_down(lengths, start, end, w, seabed_z):
         nodes[a : b + 1, :2] = _lying(lengths[a:b], first[-1, :2], last[-1, :2], toward)
         nodes[a : b + 1, 2] = seabed_z
         return nodes
-    reach, arc = arms(tension)
     s = np.concatenate([[0.0], np.cumsum(lengths)])
     nodes = np.empty((len(s), 3))
     feet = (start[:2] + reach[0] * toward, end[:2] - reach[1] * toward)

@@ -180,19 +180,26 @@ def settle_each(p, y0, iterations: int = 30, slack: int = 0, time: float = 0.0,
     others' line search), each line that Newton leaves above ``tolerance`` g (as
     ``static_lines``: each node's force off by that share of its weight; a hanging part
     at zero tension, chain lying slack: Newton's matrix singular across it) continued by
-    pseudo-transient steps (system.pseudo_time); its nodes as they were when those do not get
-    nearer the balance either."""
+    pseudo-transient steps (system.pseudo_time), from where Newton stopped and, when that does
+    not reach it, from the line's start; its nodes as they were when those do not get nearer
+    the balance either."""
     stage = p._replace(slack_allowed=slack)
     y = y0.copy()
     allowed = tolerance * p.gravity
     for li in range(len(p.line_n)):
-        y = _newton(stage, y, iterations, time, central=True, lines=[li])
+        start = y
+        y = _newton(stage, start, iterations, time, central=True, lines=[li])
         left = _unbalance(stage, y, time, [li])
-        if not left < allowed:
-            relaxed = _newton_at(stage, y, 10 * iterations, time, pseudo=True, lines=[li])
+        # from where Newton stopped, else from the line's start: Newton's long steps may
+        # fold the line where the pseudo-time steps stall (a nearly slack line whose
+        # touchdown bends within a segment)
+        for origin in (y, start):
+            if left < allowed:
+                break
+            relaxed = _newton_at(stage, origin, 10 * iterations, time, pseudo=True, lines=[li])
             relaxed = _newton_at(stage, relaxed, iterations, time, central=True, lines=[li])
-            if _unbalance(stage, relaxed, time, [li]) < left:
-                y = relaxed
+            if (unbalance := _unbalance(stage, relaxed, time, [li])) < left:
+                y, left = relaxed, unbalance
     return y
 
 

@@ -22,12 +22,12 @@ then the bodies, in groups that share no line end, tie or short line (each axis 
 
 import numpy as np
 from scipy import sparse
-from scipy.sparse.linalg import splu
 
 from seacable.system import kernel
 from seacable.system.coordinates import Coordinates, accelerations, apply
 from seacable.system.initial import uniform_shapes
 from seacable.system.line_balance import pushed, settle_each, settle_lines
+from seacable.system.pseudo_time import sparse_solve
 
 # how hard a segment may be pushed in the nested Newton's balances, as a share of the largest
 # tension: the linear axial law's push of chain lying slack in many short segments, which a
@@ -261,17 +261,10 @@ def _step(jac: sparse.csc_matrix, r: np.ndarray, bodies: np.ndarray, limit: np.n
     each body coordinate by its force over its step limit, which moves a free body that
     far along its force, each node by 1e-9 of the largest node stiffness. With whether it was
     shifted; None when even that fails."""
-    try:
-        step = splu(jac).solve(-r)
-        if np.all(np.isfinite(step)) and np.all(np.abs(step[bodies]) < 100.0 * limit):
-            return step, False
-    except RuntimeError:
-        pass
+    step = sparse_solve(jac, -r)
+    if step is not None and np.all(np.abs(step[bodies]) < 100.0 * limit):
+        return step, False
     diagonal = np.abs(jac.diagonal())
     shift = np.full(len(r), 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
     shift[bodies] = np.maximum(np.abs(r[bodies]) / limit, 1e-9 * diagonal[bodies])
-    try:
-        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
-    except RuntimeError:
-        return None, True
-    return (step if np.all(np.isfinite(step)) else None), True
+    return sparse_solve(jac - sparse.diags(shift), -r), True

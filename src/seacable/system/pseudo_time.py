@@ -11,6 +11,12 @@ evolution relaxation: sigma times |r_new| / |r_old|), so the steps become Newton
 balance nears, down to ``floor``; a step that raises the residual is taken back and sigma
 raised tenfold."""
 
+import ctypes
+import os
+import sys
+import tempfile
+from contextlib import contextmanager
+
 import numpy as np
 from scipy import sparse
 from scipy.sparse.linalg import splu
@@ -31,23 +37,64 @@ class PseudoTime:
         self.shift *= 10.0
 
 
-def shifted_step(jac, r: np.ndarray, limit: np.ndarray) -> np.ndarray | None:
+@contextmanager
+def _held_blas_errors():
+    """SuperLU's BLAS, on a nearly singular matrix, reports an argument it was wrongly given
+    ("** On entry to DGEMV parameter number 2 had an illegal value", OpenBLAS's xerbla, by
+    C's printf on the process's standard output), where a user reads it as a fault; the
+    solve then fails or gives a step the caller checks. Such lines are held back, anything
+    else written to the standard output or error meanwhile passed on."""
+    libc = ctypes.CDLL(None)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = {fd: os.dup(fd) for fd in (1, 2)}
+    with tempfile.TemporaryFile() as held:
+        for fd in saved:
+            os.dup2(held.fileno(), fd)
+        try:
+            yield
+        finally:
+            libc.fflush(None)  # C's buffered output, before the streams are given back
+            for fd, copy in saved.items():
+                os.dup2(copy, fd)
+                os.close(copy)
+            held.seek(0)
+            text = held.read().decode(errors="replace")
+            kept = [line for line in text.splitlines()
+                    if not ("On entry to" in line and "illegal value" in line)]  # fmt: skip
+            if kept:
+                sys.stderr.write("\n".join(kept) + "\n")
+
+
+def sparse_solve(matrix, rhs: np.ndarray) -> np.ndarray | None:
+    """The solution of ``matrix`` x = ``rhs`` (sparse LU, SuperLU), None when the matrix is
+    singular or the solution not finite."""
+    try:
+        with _held_blas_errors():
+            x = splu(sparse.csc_matrix(matrix)).solve(rhs)
+    except RuntimeError:
+        return None
+    return x if np.all(np.isfinite(x)) else None
+
+
+def shifted_step(jac, r: np.ndarray, limit: np.ndarray,
+                 along: bool = False) -> np.ndarray | None:  # fmt: skip
     """Newton's step of J dx = -r (J sparse or dense); where J is singular or nearly (a step
     beyond a hundred of each coordinate's ``limit``), one step of the shifted matrix with
     sigma per coordinate its residual over its limit (at least 1e-9 of J's largest diagonal
-    entry): a coordinate nothing holds moves along its force, the others nearly as Newton's.
-    None when even that fails."""
+    entry, or of the largest such ratio where J is zero): a coordinate nothing holds moves along
+    its force, the others nearly as Newton's. ``along``: one sigma for all, the largest of
+    those, so that a step where J is zero follows the force (scaled by the limits), none
+    beyond its limit. None when even that fails."""
     jac = sparse.csc_matrix(jac)
-    try:
-        step = splu(jac).solve(-r)
-        if np.all(np.isfinite(step)) and np.all(np.abs(step) < 100.0 * limit):
-            return step
-    except RuntimeError:
-        pass
+    step = sparse_solve(jac, -r)
+    if step is not None and np.all(np.abs(step) < 100.0 * limit):
+        return step
     diagonal = np.abs(jac.diagonal())
-    shift = np.maximum(np.abs(r) / limit, 1e-9 * max(float(diagonal.max(initial=0.0)), 1e-300))
-    try:
-        step = splu((jac - sparse.diags(shift)).tocsc()).solve(-r)
-    except RuntimeError:
-        return None
-    return step if np.all(np.isfinite(step)) else None
+    pull = np.abs(r) / limit
+    # at least 1e-9 of J's largest diagonal entry, or of the largest pull where J is nothing
+    # (lines that all lie slack): a coordinate neither holds nor pulls then stays put
+    least = max(float(diagonal.max(initial=0.0)), float(pull.max(initial=0.0)), 1e-300)
+    shift = np.maximum(np.full_like(pull, pull.max(initial=0.0)) if along else pull,
+                       1e-9 * least)  # fmt: skip
+    return sparse_solve(jac - sparse.diags(shift), -r)
