@@ -70,7 +70,10 @@ def _lagrange(duration: float, step: float) -> np.ndarray:
     return out.y[:2]
 
 
-@pytest.mark.parametrize("integrator", ["rk4", "dopri5"])
+@pytest.mark.parametrize(
+    "integrator",
+    ["rk4", pytest.param("dopri5", marks=pytest.mark.slow)],  # its own compile
+)
 def test_a_pendulum_on_a_free_cart_swings_as_lagranges_equations(integrator):
     """The joint's force moves the cart (surge only) as the bar swings: over 20 s (8.5
     periods of 10 deg) the bar's angle within 1e-4 deg of Lagrange's equations integrated

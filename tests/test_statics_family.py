@@ -49,7 +49,12 @@ def test_far_travelling_platform_balanced():
 
 @pytest.mark.parametrize(
     ("k", "travel"),
-    [(3, 210.0), (31, 1100.0), (42, 1230.0), (127, 61.0)],
+    [
+        pytest.param(3, 210.0, marks=pytest.mark.slow),
+        (31, 1100.0),
+        pytest.param(42, 1230.0, marks=pytest.mark.slow),
+        (127, 61.0),
+    ],  # fmt: skip
 )
 def test_platforms_on_lines_lying_slack_balance(k, travel):
     """Seed 39, moorings 3, 31 and 42, which failed: mooring 3's longest line lies in a heap
