@@ -12,6 +12,7 @@ balance nears, down to ``floor``; a step that raises the residual is taken back 
 raised tenfold."""
 
 import ctypes
+import functools
 import os
 import sys
 import tempfile
@@ -37,6 +38,12 @@ class PseudoTime:
         self.shift *= 10.0
 
 
+@functools.cache
+def _libc() -> ctypes.CDLL:
+    """The C library (its ``fflush``), loaded once: the solves run at every Newton step."""
+    return ctypes.CDLL(None)
+
+
 @contextmanager
 def _held_blas_errors():
     """SuperLU's BLAS, on a nearly singular matrix, reports an argument it was wrongly given
@@ -44,7 +51,7 @@ def _held_blas_errors():
     C's printf on the process's standard output), where a user reads it as a fault; the
     solve then fails or gives a step the caller checks. Such lines are held back, anything
     else written to the standard output or error meanwhile passed on."""
-    libc = ctypes.CDLL(None)
+    libc = _libc()
     sys.stdout.flush()
     sys.stderr.flush()
     saved = {fd: os.dup(fd) for fd in (1, 2)}
