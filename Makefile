@@ -4,8 +4,9 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 DEMO_STAMP := $(VENV)/.installed-demo
+DOCS_STAMP := $(VENV)/.installed-docs
 
-.PHONY: demo test test-all lint typecheck bench clean clean-cache
+.PHONY: demo test test-all docs lint typecheck bench clean clean-cache
 
 $(VENV)/bin/python:
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +21,10 @@ $(STAMP): pyproject.toml $(VENV)/bin/python
 	$(PY) -m pip install -q -e ".[test,dask]"
 	touch $(STAMP) $(DEMO_STAMP)
 
+$(DOCS_STAMP): pyproject.toml $(VENV)/bin/python
+	$(PY) -m pip install -q -e ".[docs]"
+	touch $(DOCS_STAMP)
+
 demo: $(DEMO_STAMP)
 	mkdir -p results
 	$(VENV)/bin/seacable run examples/thesis_6_1_sim6_submerged_60_links_forced.yaml -o results/demo.nc
@@ -27,8 +32,8 @@ demo: $(DEMO_STAMP)
 	@echo "demo: results/demo.nc and results/demo.png written"
 
 lint: $(STAMP)
-	$(VENV)/bin/ruff format --check src tests benchmarks
-	$(VENV)/bin/ruff check src tests benchmarks
+	$(VENV)/bin/ruff format --check src tests benchmarks docs
+	$(VENV)/bin/ruff check src tests benchmarks docs
 
 typecheck: $(STAMP)
 	$(VENV)/bin/mypy src
@@ -39,6 +44,11 @@ test: lint typecheck
 test-all: lint typecheck
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -n auto --dist loadfile
 
+# the documentation site, warnings as errors: docs/_build/html/index.html
+docs: $(DOCS_STAMP)
+	$(PY) -m sphinx -b html -W --keep-going -q docs docs/_build/html
+	@echo "docs: docs/_build/html/index.html written"
+
 bench: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/thesis_timings.py
 
@@ -47,4 +57,4 @@ clean-cache:
 	$(PY) -c "from seacable.system import variants; import shutil; shutil.rmtree(variants.cache_folder())"
 
 clean:
-	rm -rf $(VENV) results build *.egg-info src/*.egg-info
+	rm -rf $(VENV) results build docs/_build *.egg-info src/*.egg-info

@@ -25,7 +25,8 @@ STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
 # constants it reads) below them; a change in them leaves the cache valid
 PYTHON_ONLY = (
     "cli.py", "cli_ships.py", "viz/", "results.py", "simulation.py", "analysis.py",
-    "case/loader.py", "case/moordyn.py", "case/moordyn_tables.py", "coupling.py",
+    "case/loader.py", "case/reference.py", "case/moordyn.py", "case/moordyn_tables.py",
+    "coupling.py",
     "system/utilisation.py",
     "system/pseudo_time.py", "system/failures.py", "system/closed_form.py",
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",

@@ -322,7 +322,7 @@ def test_a_utf8_file_with_a_byte_order_mark_reads(tmp_path):
 
 
 def test_a_long_offending_value_is_quoted_shortened():
-    with pytest.raises(CaseError, match=r"\.\.\. \(\d+ characters\)\)$"):
+    with pytest.raises(CaseError, match=r"\.\.\. \(\d+ characters\)\) \(reference: \S+\)$"):
         _load(lambda d: d["lines"][0]["sections"][0].update(segments=list(range(1000))))
 
 

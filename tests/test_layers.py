@@ -11,7 +11,7 @@ LAYER = {
     "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
     "simulation": 11, "analysis": 11, "stability": 11,
-    "case.loader": 10, "results": 10,
+    "case.loader": 10, "results": 10, "case.reference": 9.5,
     "numerics": 8,
     "system": 7,
     "lines": 6, "forces": 6,
@@ -24,6 +24,7 @@ LAYER = {
     "case.legacy": 10,
     "case.legacy_sections": 9, "case.moordyn": 9, "case.moordyn_tables": 8.5,
     "case.forces": 2, "case.environment": 2,
+    "case.ship_forces": 1.5,
     "case.base": 1, "hydrodb_formats": 1,
     "kernels": 0, "errors": 0,
 }  # fmt: skip

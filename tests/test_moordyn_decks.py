@@ -184,7 +184,7 @@ def test_moordyns_other_option_names():
         moordyn.read(text.replace("200      FricDamp", "50       FricDamp"))
 
 
-FREE_BODY = Path(__file__).parent / "data" / "moordyn_v2_free_body.txt"
+FREE_BODY = Path(__file__).parent.parent / "examples" / "moordyn" / "buoy_three_chains.txt"
 BODY_ROW = (
     "1    Free       0.0   0.0   -60.0  0    0    0    4.0e4   0     2.0e5     80.0    20.0  1.0"
 )

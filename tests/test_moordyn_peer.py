@@ -135,7 +135,7 @@ def test_the_coupling_interface_steps_as_moordyn_does(tmp_path):
         ours.step(np.zeros(6), np.zeros(6), ours.t, COUPLING_STEP)
 
 
-FREE_BODY = Path(__file__).parent / "data" / "moordyn_v2_free_body.txt"
+FREE_BODY = Path(__file__).parent.parent / "examples" / "moordyn" / "buoy_three_chains.txt"
 
 
 def _free_body_statics():

@@ -101,15 +101,29 @@ def _configure_logging(verbose: bool) -> None:
     package.setLevel(logging.DEBUG if verbose else logging.INFO)
 
 
+_SET = click.option(
+    "--set", "settings", multiple=True, metavar="PATH=VALUE",
+    help="Change one key of the case for this command, as the file nests it "
+    "(simulation.duration=10, bodies.buoy.mass=2e5, environment.waves[0].significant_height=4); "
+    "repeatable.",
+)  # fmt: skip
+
+
+def _case(case_file: str, settings: tuple[str, ...]):
+    """The case of CASE_FILE with the command line's ``--set`` changes."""
+    return loader.with_settings(seacable.load_case(case_file), settings)
+
+
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--progress/--no-progress", default=True, help="Progress bar on long runs.")
-def run(case_file: str, output: str | None, progress: bool) -> None:
+@_SET
+def run(case_file: str, output: str | None, progress: bool, settings: tuple[str, ...]) -> None:
     """Run CASE_FILE and write its results (default: CASE_FILE with .nc)."""
     output = output or str(Path(case_file).with_suffix(".nc"))
     try:
-        case = seacable.load_case(case_file)
+        case = _case(case_file, settings)
         results = seacable.simulate(case, output=output, progress=progress)
     except seacable.SimulationDiverged as exc:
         _fail(f"{exc}\npartial results (status 'diverged'): {output}", EXIT_DIVERGED)
@@ -203,11 +217,12 @@ def upgrade(case_file: str, output: str | None) -> None:
 
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
-def validate(case_file: str) -> None:
+@_SET
+def validate(case_file: str, settings: tuple[str, ...]) -> None:
     """Check CASE_FILE as a run does before its first step (the system built, its tables read,
     its geometry checked, the statics it starts from solved, the step checked), without
     running it."""
-    case = seacable.load_case(case_file)
+    case = _case(case_file, settings)
     if isinstance(case, SystemCase):
         _, warning = simulation.prepare(case)  # all a run checks before its first step
         kinds = ", ".join(f"{b.name} ({b.type})" for b in case.bodies)

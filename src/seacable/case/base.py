@@ -34,6 +34,8 @@ Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
 Point = tuple[float, float] | tuple[float, float, float]  # [x, z] (y = 0) or [x, y, z], m
 PerAxis = NonNeg | tuple[NonNeg, NonNeg, NonNeg]  # one value, or one per global axis x, y, z
+Vector = tuple[float, float, float]
+ORIGIN = "origin"  # the point every body has: its reference point
 
 
 def instances(value, kind: type, where: str = ""):
@@ -69,7 +71,9 @@ class _Model(BaseModel):
     number, and numbers beyond LARGEST_NUMBER; true/false (yes/no, on/off in YAML) refused
     where a number or a name is expected (pydantic would read true as 1)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+    model_config = ConfigDict(
+        extra="forbid", frozen=True, allow_inf_nan=False, use_attribute_docstrings=True
+    )
 
     @model_validator(mode="before")
     @classmethod
@@ -126,6 +130,7 @@ class Constant(_Model):
 
     kind: Literal["constant"] = "constant"
     value: float
+    """[key's unit] The function's value at every time."""
 
 
 class Sine(_Model):
@@ -134,10 +139,15 @@ class Sine(_Model):
 
     kind: Literal["sine"]
     amplitude: float
+    """[key's unit] Amplitude of the oscillation about ``offset``."""
     period: Pos | None = None
+    """[s] Period of the oscillation, 2 pi / angular_frequency."""
     angular_frequency: Pos | None = None
+    """[rad/s] Angular frequency omega of the oscillation."""
     phase: float = 0.0
+    """[rad] Phase of the sine at t = 0."""
     offset: float = 0.0
+    """[key's unit] Mean value the function oscillates about."""
 
     @model_validator(mode="after")
     def _one_frequency(self):
@@ -154,9 +164,13 @@ class Ramp(_Model):
 
     kind: Literal["ramp"]
     start_time: float
+    """[s] Time the ramp starts from ``start_value``."""
     end_time: float
+    """[s] Time the ramp reaches ``end_value``."""
     start_value: float = 0.0
+    """[key's unit] Value up to ``start_time``."""
     end_value: float
+    """[key's unit] Value from ``end_time`` on."""
 
     @model_validator(mode="after")
     def _ordered(self):
@@ -168,8 +182,12 @@ class Ramp(_Model):
 
 
 class AccelerationPhase(_Model):
-    duration: Pos  # [s]
-    acceleration: float  # [m/s^2] (or the unit of the quantity per s^2)
+    """One phase of an acceleration profile: a constant acceleration for a duration."""
+
+    duration: Pos
+    """[s] Length of the phase; the next phase starts when it ends."""
+    acceleration: float
+    """[m/s^2] Constant acceleration over the phase (for another quantity, its unit per s^2)."""
 
 
 class AccelerationProfile(_Model):
@@ -177,10 +195,14 @@ class AccelerationProfile(_Model):
     acceleration exactly. After the last phase the acceleration is zero."""
 
     kind: Literal["acceleration_profile"]
-    initial_position: float = 0.0  # [m]
-    initial_velocity: float = 0.0  # [m/s]
-    start_time: float = 0.0  # [s]
+    initial_position: float = 0.0
+    """[m] Value at ``start_time`` (for another quantity, in its unit)."""
+    initial_velocity: float = 0.0
+    """[m/s] Rate of change at ``start_time``, held before it (for another quantity, its unit/s)."""
+    start_time: float = 0.0
+    """[s] Time the first phase starts."""
     phases: list[AccelerationPhase] = Field(min_length=1)
+    """The phases of constant acceleration, one after the other from ``start_time``."""
 
 
 class Turn(_Model):
@@ -188,8 +210,11 @@ class Turn(_Model):
     turning to the ``side`` given (left: towards +y when heading along +x)."""
 
     start_time: NonNeg
+    """[s] Time the ship leaves its straight track and starts to turn."""
     radius: Pos
+    """[m] Radius of the turning circle, tangent to the straight track."""
     side: Literal["left", "right"] = "left"
+    """Side the ship turns to: left turns towards +y when heading along +x."""
 
 
 LARGEST_TABLE = 50_000_000  # bytes of a table file
@@ -197,15 +222,18 @@ LARGEST_TABLE = 50_000_000  # bytes of a table file
 
 class Table(_Model):
     """Values from a CSV file with two columns (time [s], value), interpolated linearly or by a
-    clamped cubic spline; held constant outside the table. ``file`` is relative to the case.
+    clamped cubic spline; held constant outside the table.
     With ``column``, the file's first line names its columns (time first) and the values are
     that column's: one table of a vessel's six motions (time, x, y, z, roll_deg, pitch_deg,
     yaw_deg) moves an imposed body through six channels that name their column."""
 
     kind: Literal["table"]
     file: str
+    """Path of the CSV file, relative to the case file's directory (or absolute)."""
     interpolation: Literal["linear", "cubic"] = "linear"
-    column: str | None = None  # the value's column, by the name in the first line
+    """Interpolation between rows: linear, or a clamped cubic spline (zero slope at both ends)."""
+    column: str | None = None
+    """Name of the value's column in the file's first line. Omitted: the second column."""
 
     def path(self, base_dir=None) -> Path:
         path = Path(self.file)
@@ -287,9 +315,12 @@ class ShipTravel(_Model):
     ``distance`` [m] as a time function (an acceleration_profile gives speed changes with
     exact accelerations), exactly one; then optionally a turning circle (``turn``)."""
 
-    speed: float | None = None  # [m/s]
-    distance: TimeFunction | None = None  # [m]
+    speed: float | None = None
+    """[m/s] Constant speed of the ship along its track."""
+    distance: TimeFunction | None = None
+    """[m] Distance travelled along the track as a function of time."""
     turn: Turn | None = None
+    """Turning circle the ship follows from ``turn.start_time``. Omitted: a straight track."""
 
     @model_validator(mode="after")
     def _one_law(self):
@@ -303,7 +334,8 @@ class Sphere(_Model):
     """A sphere of ``radius`` [m] centred on the body's position."""
 
     kind: Literal["sphere"]
-    radius: Pos  # [m]
+    radius: Pos
+    """[m] Radius of the sphere; its centre is the body's position."""
 
     def volume(self) -> float:
         return 4.0 / 3.0 * math.pi * self.radius**3
@@ -313,21 +345,23 @@ class VerticalCylinder(_Model):
     """A vertical cylinder of ``radius`` and ``height`` [m] centred on the body's position."""
 
     kind: Literal["vertical_cylinder"]
-    radius: Pos  # [m]
-    height: Pos  # [m]
+    radius: Pos
+    """[m] Radius of the cylinder."""
+    height: Pos
+    """[m] Height of the cylinder, half above and half below the body's position."""
 
     def volume(self) -> float:
         return math.pi * self.radius**2 * self.height
 
 
 class VolumeTable(_Model):
-    """Any hull: ``submerged_volume`` pairs [elevation z of the body's position (m, negative
-    below the surface), submerged volume (m^3)], z ascending, the volume not increasing, from
-    the whole volume (wholly submerged, at the first z and below) to 0 (clear of the water, at
-    the last z and above); linearly interpolated."""
+    """Any hull: its submerged volume tabulated against the elevation of the body's position,
+    linearly interpolated."""
 
     kind: Literal["table"]
     submerged_volume: list[tuple[float, NonNeg]] = Field(min_length=2)
+    """[m, m^3] Pairs [z of the body's position, submerged volume], z ascending, from the whole
+    volume (the first z and below) down to 0 (clear of the water, the last z and above)."""
 
     @model_validator(mode="after")
     def _monotone(self):
@@ -354,14 +388,18 @@ class HydroDatabase(_Model):
     ``seacable hydrodb`` writes it), WAMIT's ``.1`` (``.3``, ``.hst`` beside it; dimensional
     with the environment's water density and gravity and WAMIT's ULEN ``length_scale`` [m]) or
     an HDB file (Diodore, AQUA+; its phases in ``phase_unit``). Its frame is the body frame
-    moved by ``position`` (its origin in the body frame [m]); its matrices and forces are moved
+    moved by ``position``; its matrices and forces are moved
     from its reference point (Capytaine's rotation centre, WAMIT's body origin, the HDB's
     unstated point: its origin) to the body's reference point (seacable.hydrodb)."""
 
     file: str
-    position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # [m], body frame
-    length_scale: Pos = 1.0  # [m] WAMIT's ULEN, for a WAMIT database
-    phase_unit: Literal["rad", "deg"] = "rad"  # an HDB file's phases
+    """Path of the database file, relative to the case file's directory (or absolute)."""
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """[m] Origin of the database's frame in the body frame (its axes are the body's)."""
+    length_scale: Pos = 1.0
+    """[m] WAMIT's ULEN, that makes a WAMIT database dimensional; ignored for other formats."""
+    phase_unit: Literal["rad", "deg"] = "rad"
+    """Unit of the phases in an HDB file; ignored for other formats."""
 
     def path(self, base_dir=None) -> Path:
         path = Path(self.file)
@@ -371,21 +409,24 @@ class HydroDatabase(_Model):
 
 
 class HullMesh(_Model):
-    """A body's hull as a triangle mesh file (``file`` relative to the case): STL (ASCII or
-    binary), Wavefront OBJ or WAMIT GDF (``format``, by default from the suffix). The mesh's
-    coordinates [m] times ``scale`` are placed in the body frame at ``position`` (the mesh's
-    origin) turned by ``orientation_deg`` (roll, pitch, yaw); ``axes: z_down`` reads a mesh
-    written in a body frame with z down and y to starboard (the ship-simulator document's and
-    NED's), turning it half a turn about x: (x, y, z) -> (x, -y, -z). Its winding is made
-    consistent and outward; a mesh not closed below the waterline at the body's start is
-    refused."""
+    """A body's hull as a triangle mesh file (STL, ASCII or binary; OBJ; GDF) placed in the body
+    frame: its coordinates times ``scale``, turned half a turn about x for ``axes: z_down`` (the
+    ship-simulator document's and NED's frame), then by ``orientation_deg``, its origin moved to
+    ``position``. Its winding is made consistent and outward; a mesh not closed below the
+    waterline at the body's start is refused."""
 
     file: str
+    """Path of the mesh file, relative to the case file's directory (or absolute)."""
     format: Literal["stl", "obj", "gdf"] | None = None
+    """File format: STL, Wavefront OBJ or WAMIT GDF. Omitted: from the file's suffix."""
     scale: Pos = 1.0
-    position: tuple[float, float, float] = (0.0, 0.0, 0.0)  # [m], body frame
+    """[-] Factor the mesh's coordinates are multiplied by to give metres."""
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """[m] Position of the mesh's origin in the body frame."""
     orientation_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """[deg] Roll, pitch, yaw turning the mesh in the body frame (Rz Ry Rx, as a body's)."""
     axes: Literal["z_up", "z_down"] = "z_up"
+    """Mesh frame: z_up as seacable's; z_down (z down, y to starboard) is turned (x, -y, -z)."""
 
     def path(self, base_dir=None) -> Path:
         path = Path(self.file)
@@ -401,55 +442,67 @@ MOST_STEPS = 1e10  # fixed steps of one run: at a microsecond a step, about thre
 
 
 class Simulation(_Model):
-    duration: Pos  # [s]
-    output_interval: Pos  # [s]
-    # rk4, dopri5: compiled explicit; implicit_euler, theta, newmark, generalized_alpha:
-    # compiled fixed-step implicit (models with a node-block Newton matrix); bdf, radau, lsoda
-    # (SciPy) and cvode (SUNDIALS): adaptive stiff, with structured finite-difference Jacobians
+    """How long a run lasts, how often it writes its results and how it integrates in time."""
+
+    duration: Pos
+    """[s] Simulated time, from t = 0; a whole number of output intervals."""
+    output_interval: Pos
+    """[s] Time between two rows of the results."""
     integrator: Literal[
         "rk4", "dopri5", "implicit_euler", "theta", "newmark", "generalized_alpha",
         "bdf", "radau", "lsoda", "cvode",
     ] = "rk4"  # fmt: skip
-    # fixed step [s] of rk4 and the implicit schemes (default: output_interval / ceil(...) <=
-    # 0.01 s)
+    """Time integrator: rk4 (fixed step) and dopri5 (adaptive) explicit; implicit_euler, theta,
+    newmark, generalized_alpha implicit, fixed step; bdf, radau, lsoda (SciPy) and cvode
+    (SUNDIALS) adaptive, for stiff systems."""
     time_step: Pos | None = None
-    theta: float = Field(0.5, ge=0.5, le=1.0)  # theta-method weight (1/2: trapezoidal, 1: Euler)
-    newmark_gamma: float = Field(0.5, ge=0.5, le=1.0)  # Newmark gamma
-    newmark_beta: float = Field(0.25, gt=0.0, le=0.5)  # Newmark beta
-    # generalized-alpha rho_infinity: how much of the highest frequencies survives a step. 0.5
-    # damps axial ringing enough that a slack segment snapping taut does not feed energy back
+    """[s] Fixed step of rk4 and the implicit schemes; it must divide ``output_interval``.
+    Omitted: the longest step of at most 0.01 s that divides it."""
+    theta: float = Field(0.5, ge=0.5, le=1.0)
+    """[-] Weight of the theta method: 1/2 the trapezoidal rule, 1 implicit Euler."""
+    newmark_gamma: float = Field(0.5, ge=0.5, le=1.0)
+    """[-] Newmark's gamma: 1/2 adds no numerical damping, more damps the high frequencies."""
+    newmark_beta: float = Field(0.25, gt=0.0, le=0.5)
+    """[-] Newmark's beta; at least (gamma + 1/2)^2 / 4, 1/4 with gamma 1/2 the average
+    acceleration rule."""
+    spectral_radius: float = Field(0.5, ge=0.0, le=1.0)
+    """[-] Generalized-alpha's rho_infinity: the share of the highest frequencies that survives
+    a step (1: no damping, 0: damped in one step)."""
+    # 0.5 damps axial ringing enough that a slack segment snapping taut does not feed energy back
     # (a rising body on a line of EA 1e8 N at 5 ms steps: with 0.8 or Newmark's 1 the energy
     # grew 25 to 30 times; with 0.5 or less it decays, as in rk4)
-    spectral_radius: float = Field(0.5, ge=0.0, le=1.0)
-    # implicit schemes: Newton stops when its last correction of every node position is below
-    # this fraction of the shortest segment (a strain)
     newton_tolerance: Pos = 1e-9
+    """[-] Newton's stop in an implicit step: every node's last correction below this fraction of
+    the shortest segment."""
     max_newton_iterations: int = Field(10, ge=1, le=100)
-    rtol: Pos = 1e-6  # adaptive integrators' relative tolerance
-    # adaptive integrators' absolute tolerance, in each state's own unit (one value for every
-    # state). Default (None): rtol alone sets the accuracy: dopri5 measures each state's error
-    # against rtol times the largest magnitude that state has reached (so small angles and
-    # rates are followed to rtol of their own amplitude), with a floor of 1e-3 rtol times the
-    # state's scale (system.model.state_scale: angles 1 rad, coordinates the cable's length
-    # L, rates those times sqrt(g / L), forces the cable's weight); bdf, radau, lsoda and cvode
-    # take a fixed tolerance, rtol times the larger of the state's start value and that floor.
-    # The results' attribute solver_tolerance_governing says which tolerance governed
+    """[-] Most Newton iterations of one implicit step; the run stops with an error beyond."""
+    rtol: Pos = 1e-6
+    """[-] Relative tolerance of the adaptive integrators."""
     atol: Pos | None = None
-    max_step: Pos | None = None  # adaptive integrators' largest step [s]
-    initial_step: Pos = 1e-3  # adaptive integrators' first step [s]
-    constraint_stabilization_frequency: Pos = 10.0  # pinned end, Baumgarte [rad/s]
-    # build-up period T [s] (0: none), as OrcaFlex's: every imposed motion (imposed top and
-    # bottom positions), applied force (floating-structure top force, body and end forces) and
-    # trajectory target f(t) is replaced by f(0) + r(t/T) (f(t) - f(0)), r(s) = s^3 (10 - 15 s
-    # + 6 s^2) up to T and 1 after, so it starts from its value at t = 0 at rest, with zero
-    # acceleration, and equals its own time function from T on (no sudden start against a line
-    # started still). A towing ship's speed or distance is not ramped: its initial towed shape
-    # is already the steady state at that speed. One to two periods of the motion is usual.
+    """[state's unit] Absolute tolerance of the adaptive integrators, one value for every state.
+    Omitted: rtol alone sets the accuracy, against each state's magnitude and scale."""
+    # dopri5 measures each state's error against rtol times the largest magnitude that state has
+    # reached (small angles and rates are followed to rtol of their own amplitude), with a floor
+    # of 1e-3 rtol times the state's scale (system.model.state_scale: angles 1 rad, coordinates
+    # the cable's length L, rates those times sqrt(g / L), forces the cable's weight); bdf,
+    # radau, lsoda and cvode take rtol times the larger of the state's start value and that
+    # floor. The results' attribute solver_tolerance_governing says which tolerance governed
+    max_step: Pos | None = None
+    """[s] Longest step of the adaptive integrators. Omitted: ``output_interval``."""
+    initial_step: Pos = 1e-3
+    """[s] First step the adaptive integrators try."""
+    constraint_stabilization_frequency: Pos = 10.0
+    """[rad/s] Baumgarte frequency that pulls a pinned end or a joint back onto its constraint."""
     build_up: NonNeg = 0.0
-    # rk4 at a time_step beyond its stability limit about the start state (the eigenvalues of
-    # the linearised system, numerics.stability) is refused, naming the limit; true runs it
-    # anyway, with a warning (to show an instability, or when the start is not representative)
+    """[s] Build-up period: imposed motions, applied forces, trajectory targets and waves rise
+    smoothly from their value at t = 0 to their own from this time on (0: none). A ship's track
+    and the wind are not ramped; one to two periods of the motion is usual."""
+    # as OrcaFlex's: f(t) is replaced by f(0) + r(t/T) (f(t) - f(0)), r(s) = s^3 (10 - 15 s
+    # + 6 s^2) up to T and 1 after: it starts at rest, with zero acceleration. A towing ship's
+    # initial towed shape is already the steady state at its speed
     allow_unstable_step: bool = False
+    """Run rk4 at a ``time_step`` beyond its stability limit about the start, with a warning
+    (false: such a step is refused, naming the limit)."""
 
     @field_validator("time_step")
     @classmethod

@@ -15,6 +15,7 @@ import numpy as np
 from pydantic import Field, field_validator, model_validator
 
 from seacable.case.base import (
+    ORIGIN,
     Constant,
     HullMesh,
     HydroDatabase,
@@ -23,9 +24,10 @@ from seacable.case.base import (
     Shape,
     ShipTravel,
     TimeFunction,
+    Vector,
     _Model,
 )
-from seacable.case.forces import DATABASE_MODELS, MESH_MODELS, ORIGIN, ForceModel, Matrix6, Vector
+from seacable.case.forces import DATABASE_MODELS, MESH_MODELS, ForceModel, Matrix6
 
 Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -34,8 +36,13 @@ Dof = Literal["surge", "sway", "heave", "roll", "pitch", "yaw"]
 
 # ---- bodies -------------------------------------------------------------------------------------
 class _Body(_Model):
+    """What every body has: a name and named points."""
+
     name: Name
-    points: dict[Name, Vector] = {}  # attachment points in the body frame [m]
+    """Name of the body, by which lines, ties and other bodies refer to it."""
+    points: dict[Name, Vector] = {}
+    """[m] Named points in the body frame, from the reference point, for lines to attach to;
+    every body also has ``origin``, its reference point."""
 
     @field_validator("points")
     @classmethod
@@ -49,8 +56,11 @@ class FixedBody(_Body):
     """Held at rest: an anchor, a pin, a fixed platform."""
 
     type: Literal["fixed"]
-    position: Vector  # [m]
-    orientation_deg: Vector = (0.0, 0.0, 0.0)  # roll, pitch, yaw [deg]
+    """Body kind: held at rest."""
+    position: Vector
+    """[m] Position of the reference point in the earth frame."""
+    orientation_deg: Vector = (0.0, 0.0, 0.0)
+    """[deg] Roll, pitch, yaw: rotations about the earth's x, y, z axes, applied in that order."""
 
 
 class Track(ShipTravel):
@@ -61,8 +71,10 @@ class Track(ShipTravel):
     accelerations). The track is exempt from the case's build-up: a tow starts in its steady
     state."""
 
-    start: tuple[float, float] = (0.0, 0.0)  # [m]
+    start: tuple[float, float] = (0.0, 0.0)
+    """[m] Point [x, y] of the track at distance 0, in the earth frame."""
     heading_deg: float = 0.0
+    """[deg] Heading of the track's straight part, from +x towards +y."""
 
 
 class ImposedBody(_Body):
@@ -75,14 +87,25 @@ class ImposedBody(_Body):
     vehicle's trajectory relative to its ship."""
 
     type: Literal["imposed"]
-    x: TimeFunction = Constant(value=0.0)  # [m]
-    y: TimeFunction = Constant(value=0.0)  # [m]
-    z: TimeFunction = Constant(value=0.0)  # [m]
-    roll_deg: TimeFunction = Constant(value=0.0)  # [deg]
-    pitch_deg: TimeFunction = Constant(value=0.0)  # [deg]
-    yaw_deg: TimeFunction = Constant(value=0.0)  # [deg]
+    """Body kind: moved by its time functions or its track."""
+    x: TimeFunction = Constant(value=0.0)
+    """[m] x of the reference point in the earth frame (with ``relative_to``, an offset)."""
+    y: TimeFunction = Constant(value=0.0)
+    """[m] y of the reference point in the earth frame (with ``relative_to``, an offset)."""
+    z: TimeFunction = Constant(value=0.0)
+    """[m] z of the reference point in the earth frame (with ``relative_to``, an offset)."""
+    roll_deg: TimeFunction = Constant(value=0.0)
+    """[deg] Roll: rotation about the earth's x axis, applied first."""
+    pitch_deg: TimeFunction = Constant(value=0.0)
+    """[deg] Pitch: rotation about the earth's y axis, applied after the roll."""
+    yaw_deg: TimeFunction = Constant(value=0.0)
+    """[deg] Yaw: rotation about the earth's z axis, applied last; on a ``track``, an offset from
+    the track's heading (a crab angle)."""
     track: Track | None = None
+    """A ship's track that x, y and the yaw follow, instead of the time functions x and y."""
     relative_to: Name | None = None
+    """Imposed body (itself not relative) whose reference point x, y, z are offsets from, in
+    earth axes; the angles stay absolute."""
 
     @model_validator(mode="after")
     def _track_or_xy(self):
@@ -97,12 +120,21 @@ class ImposedBody(_Body):
 
 
 class _Dynamic(_Body):
-    position: Vector  # initial position of the reference point [m]
-    velocity: Vector = (0.0, 0.0, 0.0)  # initial [m/s]
-    mass: NonNeg  # [kg]
-    volume: NonNeg = 0.0  # displaced volume when wholly submerged [m^3]
-    shape: Shape | None = None  # instead of volume: the volume the free surface cuts
+    """What every moving body has: its initial state, mass, volume and force models."""
+
+    position: Vector
+    """[m] Initial position of the reference point in the earth frame."""
+    velocity: Vector = (0.0, 0.0, 0.0)
+    """[m/s] Initial velocity of the reference point in the earth frame."""
+    mass: NonNeg
+    """[kg] Mass of the body."""
+    volume: NonNeg = 0.0
+    """[m^3] Displaced volume when wholly submerged, for buoyancy and fluid inertia."""
+    shape: Shape | None = None
+    """Shape whose part below the free surface gives the displaced volume; instead of
+    ``volume``."""
     external_forces: list[ForceModel] = Field(default=[], alias="external forces")
+    """Force models acting on the body, besides its lines, ties and joints."""
 
     @model_validator(mode="after")
     def _volume_or_shape(self):
@@ -139,8 +171,12 @@ class PointBody(_Dynamic):
     connection between line sections. Its points are all its reference point."""
 
     type: Literal["point"]
-    added_mass: PerAxis = 0.0  # per earth axis x, y, z [kg] (scaled by a shape's submergence)
+    """Body kind: free in translation only."""
+    added_mass: PerAxis = 0.0
+    """[kg] Added mass, one for all or one per earth axis x, y, z (scaled by a shape's
+    submergence)."""
     dofs: list[Literal["surge", "sway", "heave"]] = ["surge", "sway", "heave"]
+    """Translations along the earth's x, y, z that move; the others keep their initial values."""
 
     @field_validator("points")
     @classmethod
@@ -163,12 +199,19 @@ class DocumentMatrix(_Model):
     kg m, kg m^2]."""
 
     frame: Name
+    """Frame the matrix is projected in: the body's own name."""
     row_1: Row6 = Field(alias="row 1")
+    """[kg; kg m] Surge row: the first three entries in kg, the last three in kg m."""
     row_2: Row6 = Field(alias="row 2")
+    """[kg; kg m] Sway row: the first three entries in kg, the last three in kg m."""
     row_3: Row6 = Field(alias="row 3")
+    """[kg; kg m] Heave row: the first three entries in kg, the last three in kg m."""
     row_4: Row6 = Field(alias="row 4")
+    """[kg m; kg m^2] Roll row: the first three entries in kg m, the last three in kg m^2."""
     row_5: Row6 = Field(alias="row 5")
+    """[kg m; kg m^2] Pitch row: the first three entries in kg m, the last three in kg m^2."""
     row_6: Row6 = Field(alias="row 6")
+    """[kg m; kg m^2] Yaw row: the first three entries in kg m, the last three in kg m^2."""
 
     def rows(self) -> np.ndarray:
         return np.array([self.row_1, self.row_2, self.row_3, self.row_4, self.row_5,
@@ -184,6 +227,7 @@ class DocumentDynamics(_Model):
     added_mass: DocumentMatrix = Field(
         alias="added mass matrix at the center of buoyancy projected in the body frame"
     )
+    """Infinite-frequency added mass at the centre of buoyancy, in the document's body frame."""
 
 
 class RigidBody(_Dynamic):
@@ -193,30 +237,42 @@ class RigidBody(_Dynamic):
     the body about the earth's x, y, z axes through the reference point."""
 
     type: Literal["rigid"]
-    orientation_deg: Vector = (0.0, 0.0, 0.0)  # initial roll, pitch, yaw [deg]
-    angular_velocity: Vector = (0.0, 0.0, 0.0)  # initial, earth frame [rad/s]
-    centre_of_gravity: Vector = (0.0, 0.0, 0.0)  # body frame [m]
-    inertia: Vector | tuple[Vector, Vector, Vector] = (0.0, 0.0, 0.0)  # about the CoG,
-    # body frame [kg m^2]: the diagonal, or the 3x3 matrix
+    """Body kind: free in translation and rotation."""
+    orientation_deg: Vector = (0.0, 0.0, 0.0)
+    """[deg] Initial roll, pitch, yaw: rotations about the earth's x, y, z axes, in that order."""
+    angular_velocity: Vector = (0.0, 0.0, 0.0)
+    """[rad/s] Initial angular velocity in the earth frame."""
+    centre_of_gravity: Vector = (0.0, 0.0, 0.0)
+    """[m] Centre of gravity in the body frame, from the reference point."""
+    inertia: Vector | tuple[Vector, Vector, Vector] = (0.0, 0.0, 0.0)
+    """[kg m^2] Inertia about the centre of gravity in the body frame: the diagonal or the 3x3
+    matrix."""
     added_mass: Matrix6 | tuple[float, float, float, float, float, float] = (0.0,) * 6
-    # body frame [kg, kg m, kg m^2]: 6x6, or its diagonal; at ``added_mass_point`` (body frame,
-    # default the reference point), moved to the reference point (packing.transported)
+    """[kg, kg m, kg m^2] Added mass in the body frame at ``added_mass_point``: the 6x6 matrix or
+    its diagonal; moved to the reference point."""
     added_mass_point: Vector | None = None
-    # the added mass's velocity terms (bodies.dynamics): "rigid_body", the ship-simulator
-    # document's body-frame equation with the Coriolis matrix of the rigid-body mass only, or
-    # "exact", Kirchhoff's (the fluid's impulse turns with the body too)
+    """[m] Point, in the body frame, the added mass is given at. Omitted: the reference point."""
     coriolis: Literal["rigid_body", "exact"] = "rigid_body"
-    centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)  # body frame [m]
+    """The added mass's velocity terms: ``rigid_body``, the ship-simulator document's body-frame
+    equation with the Coriolis matrix of the rigid-body mass only; ``exact``, Kirchhoff's (the
+    fluid's impulse turns with the body too)."""
+    centre_of_buoyancy: Vector = (0.0, 0.0, 0.0)
+    """[m] Centre of buoyancy in the body frame, where buoyancy and fluid inertia act and the
+    document's added mass is given."""
     dofs: list[Dof] = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
-    # a spherical joint: the reference point held at another body's point ("body.point", or
-    # "body" for its reference point), the body turning freely about it (``dofs``: its
-    # rotations, all three by default); the joint's force acts on both bodies (in their
-    # results' line_force and line_moment, with the lines' and ties')
+    """Degrees of freedom that move; the others keep their initial values. With ``pinned_to``:
+    rotations only, all three by default."""
     pinned_to: str | None = None
-    mesh: HullMesh | None = None  # the hull, for the mesh force models
-    hydrodynamics: HydroDatabase | None = None  # for radiation damping and diffraction
-    # the ship-simulator document's block (its added mass at the centre of buoyancy, z down)
+    """A spherical joint: the reference point held at another body's point (``body.point``, or
+    ``body`` for its reference point), the body turning freely about it. The joint's force
+    acts on both bodies (in their results' line_force and line_moment)."""
+    mesh: HullMesh | None = None
+    """The hull, for the mesh force models."""
+    hydrodynamics: HydroDatabase | None = None
+    """Hydrodynamic database, for radiation damping and diffraction."""
     dynamics: DocumentDynamics | None = None
+    """The ship-simulator document's ``dynamics`` block, its added mass (at the centre of
+    buoyancy, z down) instead of ``added_mass``."""
 
     @model_validator(mode="after")
     def _document_dynamics(self):

@@ -21,8 +21,12 @@ class Current(_Model):
     speed (m/s)] pairs, linearly interpolated and held constant beyond the end points."""
 
     velocity: float | None = None
+    """[m/s] Speed of a current uniform over the depth."""
     profile: list[tuple[float, float]] | None = None
+    """[m, m/s] Pairs [elevation z (negative below the surface), speed] of a current that varies
+    with depth."""
     direction_deg: float = 0.0
+    """[deg] Direction the current flows towards, from +x towards +y."""
 
     @model_validator(mode="after")
     def _one(self):
@@ -48,9 +52,12 @@ class Wind(_Model):
     exempt from the build-up as the current is. It acts through the bodies' ``wind`` force
     models, at ``air_density`` [kg/m^3]."""
 
-    speed: TimeFunction  # [m/s]
-    direction_deg: TimeFunction = Constant(value=0.0)  # [deg], the direction it blows towards
-    air_density: Pos = 1.225  # [kg/m^3]
+    speed: TimeFunction
+    """[m/s] Wind speed."""
+    direction_deg: TimeFunction = Constant(value=0.0)
+    """[deg] Direction the wind blows towards, from +x towards +y."""
+    air_density: Pos = 1.225
+    """[kg/m^3] Density of the air the wind force models use."""
 
 
 class Seabed(_Model):
@@ -66,12 +73,19 @@ class Seabed(_Model):
     ``stiffness`` and ``damping``."""
 
     stiffness: Pos = 1.0e5
+    """[N/m^2] Vertical stiffness while a node is below the seabed, per metre of line."""
     damping: NonNeg = 0.0
-    stiffness_per_area: Pos | None = None  # [Pa/m], on the lines' diameters
-    damping_per_area: NonNeg | None = None  # [Pa s/m]
+    """[N s/m^2] Vertical damping while a node is below the seabed, per metre of line."""
+    stiffness_per_area: Pos | None = None
+    """[Pa/m] MoorDyn's kBot, per m^2 of d l (diameter times length); replaces ``stiffness``."""
+    damping_per_area: NonNeg | None = None
+    """[Pa s/m] MoorDyn's cBot, per m^2 of d l (diameter times length); replaces ``damping``."""
     friction_coefficient: NonNeg = 0.0
-    slip_speed: Pos = 0.01  # [m/s]
-    contact_band: NonNeg = 0.005  # [m]
+    """[-] Coulomb friction coefficient of a node sliding along the seabed (0: no friction)."""
+    slip_speed: Pos = 0.01
+    """[m/s] Regularising speed: the friction is mu N v / sqrt(v^2 + slip_speed^2)."""
+    contact_band: NonNeg = 0.005
+    """[m] Depth below the seabed over which the stiffness rises from zero (0: a plain spring)."""
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -99,10 +113,14 @@ class RegularWave(_Model):
     dispersion relation at the water depth (seastate.wave_number)."""
 
     kind: Literal["airy"]
-    height: Pos  # crest to trough [m]
-    period: Pos  # [s]
-    direction_deg: float = 0.0  # the direction it travels towards, from +x towards +y
+    height: Pos
+    """[m] Wave height H, crest to trough."""
+    period: Pos
+    """[s] Wave period T."""
+    direction_deg: float = 0.0
+    """[deg] Direction b the wave travels towards, from +x towards +y."""
     phase_deg: float = 0.0
+    """[deg] Phase of the elevation at the origin at t = 0 (0: a crest there)."""
 
 
 class WaveSpectrum(_Model):
@@ -113,15 +131,24 @@ class WaveSpectrum(_Model):
     from ``seed``."""
 
     kind: Literal["jonswap", "pierson_moskowitz"]
-    significant_height: Pos  # Hs [m]
-    peak_period: Pos  # Tp [s]
-    gamma: Annotated[float, Field(ge=1.0, le=20.0)] | None = None  # JONSWAP's (3.3 by default)
-    direction_deg: float = 0.0  # the mean direction the waves travel towards
-    spreading_exponent: NonNeg = 0.0  # s of cos^2s
+    significant_height: Pos
+    """[m] Significant wave height Hs."""
+    peak_period: Pos
+    """[s] Peak period Tp of the spectrum."""
+    gamma: Annotated[float, Field(ge=1.0, le=20.0)] | None = None
+    """[-] JONSWAP's peak enhancement factor. Omitted: 3.3 (jonswap only)."""
+    direction_deg: float = 0.0
+    """[deg] Mean direction the waves travel towards, from +x towards +y."""
+    spreading_exponent: NonNeg = 0.0
+    """[-] s of the spreading cos^2s: larger is narrower (about 2 wind sea, 10 or more swell)."""
     directions: Annotated[int, Field(ge=1, le=101)] = 1
+    """[-] Number of directions: equal sectors of the whole circle centred on the mean one."""
     frequencies: Annotated[int, Field(ge=1, le=5000)] = 200
-    frequency_range: tuple[Pos, Pos] = (0.5, 3.0)  # [low, high] times 2 pi / Tp
+    """[-] Number of frequency bands of equal width, one component drawn in each."""
+    frequency_range: tuple[Pos, Pos] = (0.5, 3.0)
+    """[-] Lowest and highest frequency of the bands, as multiples of the peak 2 pi / Tp."""
     seed: Annotated[int, Field(ge=0)] = 0
+    """[-] Seed of the random frequencies and phases: the same seed gives the same sea."""
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -144,17 +171,27 @@ Wave = Annotated[RegularWave | WaveSpectrum, Field(discriminator="kind")]
 
 
 class Environment(_Model):
-    gravity: Pos = 9.81  # [m/s^2]
-    water_density: Pos = 1025.0  # [kg/m^3]
-    water_depth: Pos | None = None  # [m]; seabed at z = -water_depth (None: deep water)
+    """Gravity, the water and its depth, the current, the wind, the seabed and the waves."""
+
+    gravity: Pos = 9.81
+    """[m/s^2] Acceleration of gravity, along -z."""
+    water_density: Pos = 1025.0
+    """[kg/m^3] Density of the water."""
+    water_depth: Pos | None = None
+    """[m] Depth of the flat seabed, at z = -water_depth. Omitted: deep water, no seabed."""
     current: Current | None = None
-    wind: Wind | None = None  # for the bodies' ``wind`` force models
-    in_air: bool = False  # true: no buoyancy, no drag, no added mass
-    seabed: Seabed | None = None  # contact at z = -water_depth (lumped-mass cables)
-    waves: list[Wave] = []  # superposed (kernels.waves)
-    # the wave kinematics above the mean surface, under a crest: "wheeler" (the water column
-    # stretched to the surface) or "vertical" (held at their value at z = 0)
+    """Current of the water. Omitted: still water."""
+    wind: Wind | None = None
+    """Wind for the bodies' ``wind`` force models. Omitted: no wind."""
+    in_air: bool = False
+    """Whether the system is in air: no buoyancy, drag, added mass or current, and no waves."""
+    seabed: Seabed | None = None
+    """Contact of lumped-mass lines with the seabed at z = -water_depth. Omitted: no contact."""
+    waves: list[Wave] = []
+    """Incident waves, regular and irregular, superposed."""
     wave_stretching: Literal["wheeler", "vertical"] = "wheeler"
+    """Wave kinematics above z = 0 under a crest: wheeler stretches the water column up to the
+    surface, vertical holds them at their value at z = 0."""
 
     @model_validator(mode="after")
     def _waves_in_water(self):

@@ -10,7 +10,7 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from seacable import meshes
-from seacable.case import moordyn
+from seacable.case import moordyn, reference
 from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, HullMesh, Table, instances
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
@@ -219,6 +219,73 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
     return derived
 
 
+def with_settings(case: SystemCase, settings: list[str] | tuple[str, ...]) -> SystemCase:
+    """``case`` with each ``PATH=VALUE`` of ``settings`` set, validated as a case file is (the
+    command line's ``--set``). PATH is written as the file nests its keys: ``simulation.duration``,
+    ``environment.waves[0].significant_height``, ``bodies.buoy.mass`` (a list's item by its
+    index or by its ``name``); a key the file leaves out may be given. VALUE is read as YAML
+    (``10``, ``rk4``, ``[0, 0, -80]``, ``null`` to remove the key).
+
+    Raises
+    ------
+    CaseError
+        A setting not written PATH=VALUE, a path that leads nowhere, or the case it gives
+        refused (one line per problem, as for a file).
+    """
+    if not settings:
+        return case
+    data = _parse(case_text(case))
+    for setting in settings:
+        path, sep, value = setting.partition("=")
+        if not sep or not path.strip():
+            raise CaseError(
+                f"--set {setting!r}: write PATH=VALUE, e.g. --set simulation.duration=10"
+            )
+        _set(data, path.strip(), _parse(value) if value.strip() else None, setting)
+    derived = load_case(data)
+    derived._base_dir, derived._source_file = case._base_dir, case._source_file
+    return derived
+
+
+_STEP = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
+
+
+def _set(data: dict, path: str, value: Any, setting: str) -> None:
+    """Set the key at ``path`` of the case's mapping ``data`` (``with_settings``)."""
+    steps = [(name.strip(), index) for name, index in _STEP.findall(path)]
+    here: Any = data
+    done = ""
+    for k, (name, index) in enumerate(steps):
+        last = k == len(steps) - 1
+        if isinstance(here, list):
+            names = [item.get("name") for item in here if isinstance(item, dict)]
+            at = int(index) if index else (names.index(name) if name in names else None)
+            if at is None or not 0 <= at < len(here):
+                raise CaseError(
+                    f"--set {setting!r}: {done or 'the case'} has no item "
+                    f"{index or repr(name)}; its items: 0 to {len(here) - 1}"
+                    + (f" or by name: {', '.join(map(str, names))}" if any(names) else "")
+                )
+            key: Any = at
+        elif isinstance(here, dict) and not index:
+            if name not in here and not last:
+                raise CaseError(
+                    f"--set {setting!r}: {done or 'the case'} has no key '{name}'; its keys: "
+                    f"{', '.join(map(str, here))}"
+                )
+            key = name
+        else:
+            raise CaseError(f"--set {setting!r}: {done or 'the case'} is not a list or mapping")
+        if last:
+            if value is None and isinstance(here, dict):
+                here.pop(key, None)
+            else:
+                here[key] = value
+        else:
+            here = here[key]
+        done += f"[{key}]" if isinstance(key, int) else (f".{key}" if done else key)
+
+
 def _merged(data: dict, changes: dict) -> dict:
     out = dict(data)
     for key, value in changes.items():
@@ -307,44 +374,61 @@ def format_errors(exc: ValidationError, root: Any = Case) -> str:
     errors = _relevant(exc.errors())
     lines = [f"invalid case ({len(errors)} problem{'s' * (len(errors) > 1)}):"]
     for error in errors:
-        path, model = _walk(error["loc"], root)
-        where = path or "(top level)"
-        if error["type"] == "extra_forbidden":
-            key = error["loc"][-1]
-            parent_path, parent = _walk(error["loc"][:-1], root)
-            valid = ", ".join(parent.model_fields) if parent is not None else "?"
-            lines.append(
-                f"- {parent_path or '(top level)'}: unknown key '{key}'. Valid keys: {valid}. "
-                "Check the spelling or remove it"
-            )
-            continue
-        message = error["msg"].removeprefix("Value error, ")
-        if error["type"] == "missing":
-            lines.append(f"- {where}: required key is missing")
-            continue
-        value = error.get("input")
-        if error["type"] in (BOOLEAN_ERROR, MAGNITUDE_ERROR):  # by the model holding the key
-            where = f"{path}.{error['ctx']['key']}" if path else str(error["ctx"]["key"])
-            value = error["ctx"]["value"]
-        shown = _shortened(repr(value)) if not isinstance(value, dict) else "{...}"
-        if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
-            ctx = error.get("ctx", {})
-            key = ctx.get("discriminator", "'type'").strip("'")
-            allowed = ctx.get("expected_tags") or ", ".join(
-                repr(t) for t in _tag_values(_annotation_at(error["loc"], root))
-            )
-            if "tag" in ctx:
-                lines.append(
-                    f"- {where}.{key}: value {ctx['tag']!r} is not allowed; allowed: {allowed}"
-                )
-            else:
-                lines.append(f"- {where}.{key}: required key is missing; allowed: {allowed}")
-            continue
-        if isinstance(value, dict):  # a check of a whole mapping: its message names the keys
-            lines.append(f"- {message}" if where == "(top level)" else f"- {where}: {message}")
-            continue
-        lines.append(f"- {where}: {message} (got {shown})")
+        lines.append(_error_line(error, root) + _reference(error, root))
     return "\n".join(lines)
+
+
+def _reference(error: dict, root: Any) -> str:
+    """Where the reference documents the key an error names (the system schema's keys)."""
+    if root is not SystemCase:
+        return ""
+    loc = tuple(error["loc"])
+    if error["type"] in (BOOLEAN_ERROR, MAGNITUDE_ERROR):
+        loc = (*loc, error["ctx"]["key"])
+    while error["type"].startswith("union_tag") and loc and isinstance(loc[-1], int):
+        loc = loc[:-1]  # a part of unknown kind: the key that lists the parts
+    _, parent = _walk(loc[:-1], root) if loc else ("", None)
+    key = loc[-1] if loc else None
+    if parent is not None and error["type"] != "extra_forbidden":
+        names = {field.alias or name: name for name, field in parent.model_fields.items()}
+        if key in names:
+            return f" (reference: {reference.link(parent, str(key))})"
+    _, model = _walk(loc if error["type"] != "extra_forbidden" else loc[:-1], root)
+    return f" (reference: {reference.link(model)})" if model is not None else ""
+
+
+def _error_line(error: dict, root: Any) -> str:
+    """One problem of a case as one line."""
+    path, _ = _walk(error["loc"], root)
+    where = path or "(top level)"
+    if error["type"] == "extra_forbidden":
+        key = error["loc"][-1]
+        parent_path, parent = _walk(error["loc"][:-1], root)
+        valid = ", ".join(parent.model_fields) if parent is not None else "?"
+        return (
+            f"- {parent_path or '(top level)'}: unknown key '{key}'. Valid keys: {valid}. "
+            "Check the spelling or remove it"
+        )
+    message = error["msg"].removeprefix("Value error, ")
+    if error["type"] == "missing":
+        return f"- {where}: required key is missing"
+    value = error.get("input")
+    if error["type"] in (BOOLEAN_ERROR, MAGNITUDE_ERROR):  # by the model holding the key
+        where = f"{path}.{error['ctx']['key']}" if path else str(error["ctx"]["key"])
+        value = error["ctx"]["value"]
+    shown = _shortened(repr(value)) if not isinstance(value, dict) else "{...}"
+    if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
+        ctx = error.get("ctx", {})
+        key = ctx.get("discriminator", "'type'").strip("'")
+        allowed = ctx.get("expected_tags") or ", ".join(
+            repr(t) for t in _tag_values(_annotation_at(error["loc"], root))
+        )
+        if "tag" in ctx:
+            return f"- {where}.{key}: value {ctx['tag']!r} is not allowed; allowed: {allowed}"
+        return f"- {where}.{key}: required key is missing; allowed: {allowed}"
+    if isinstance(value, dict):  # a check of a whole mapping: its message names the keys
+        return f"- {message}" if where == "(top level)" else f"- {where}: {message}"
+    return f"- {where}: {message} (got {shown})"
 
 
 def _shortened(text: str, size: int = 80) -> str:

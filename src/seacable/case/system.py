@@ -13,6 +13,7 @@ from seacable.case.base import (
     NonNeg,
     Pos,
     Simulation,
+    Vector,
     _Model,
 )
 from seacable.case.bodies import (  # noqa: F401 (the case's bodies, as ``sch.`` reaches them)
@@ -30,7 +31,6 @@ from seacable.case.bodies import (  # noqa: F401 (the case's bodies, as ``sch.``
     Track,
 )
 from seacable.case.environment import Environment
-from seacable.case.forces import Vector
 
 
 # ---- line types and lines -----------------------------------------------------------------------
@@ -38,22 +38,33 @@ class LineType(_Model):
     """Properties of a cable, rope or chain, per unit length."""
 
     name: Name
-    diameter: Pos  # hydrodynamic and buoyancy diameter [m]
-    mass_per_length: Pos  # [kg/m]
-    axial_stiffness: Pos | None = None  # EA [N] (extensible models)
-    # axial damping, at most one of: alpha [s] in N = EA (eps + alpha d eps/dt), or zeta, the
-    # fraction of each segment's critical damping (MoorDyn's negative BA)
-    axial_damping_time: NonNeg | None = None  # [s]
-    axial_damping_ratio: NonNeg | None = None  # [-]
-    bending_stiffness: NonNeg = 0.0  # EI [N m^2]
-    drag_coefficient_normal: NonNeg = 1.2  # Cd on the projected area d l
-    drag_coefficient_tangential: NonNeg = 0.0  # Cd on the wetted area pi d l
-    friction_coefficient: NonNeg = 0.0  # Richtmyer f
-    added_mass_coefficient: NonNeg = 1.0  # Ca, normal
-    # Ca along the line (MoorDyn's CaAx; lumped-mass lines only)
+    """Name of the line type, by which sections refer to it."""
+    diameter: Pos
+    """[m] Hydrodynamic and buoyancy diameter d."""
+    mass_per_length: Pos
+    """[kg/m] Mass per unit unstretched length, in air (the buoyancy comes from ``diameter``)."""
+    axial_stiffness: Pos | None = None
+    """[N] Axial stiffness EA, needed by the extensible lines (lumped-mass, natural-string)."""
+    axial_damping_time: NonNeg | None = None
+    """[s] Axial damping time alpha in N = EA (eps + alpha d eps/dt); or axial_damping_ratio."""
+    axial_damping_ratio: NonNeg | None = None
+    """[-] Axial damping as the fraction of each segment's critical damping (MoorDyn's negative
+    BA); or axial_damping_time."""
+    bending_stiffness: NonNeg = 0.0
+    """[N m^2] Bending stiffness EI."""
+    drag_coefficient_normal: NonNeg = 1.2
+    """[-] Drag coefficient Cd across the line, on the projected area d l."""
+    drag_coefficient_tangential: NonNeg = 0.0
+    """[-] Drag coefficient Cd along the line, on the wetted area pi d l."""
+    friction_coefficient: NonNeg = 0.0
+    """[-] Richtmyer's friction factor f: a tangential drag f Cd_normal on d l, added to the
+    tangential drag."""
+    added_mass_coefficient: NonNeg = 1.0
+    """[-] Added mass coefficient Ca across the line, on its displaced volume (none in air)."""
     added_mass_coefficient_tangential: NonNeg = 0.0
-    # minimum breaking load [N]: results give each section's largest tension over it
+    """[-] Added mass coefficient Ca along the line (MoorDyn's CaAx); lumped-mass lines only."""
     breaking_strength: Pos | None = None
+    """[N] Minimum breaking load; results give each section's largest tension over it."""
 
     @model_validator(mode="after")
     def _one_damping(self):
@@ -81,10 +92,16 @@ class Section(_Model):
     [N m s/rad] when given, instead of the line's."""
 
     type: Name
-    length: Pos  # unstretched [m]
+    """Name of the section's line type (``line_types``)."""
+    length: Pos
+    """[m] Unstretched length of the section."""
     segments: int = Field(ge=1, le=100_000)
-    joint_stiffness: NonNeg | None = None  # [N m/rad]
-    joint_damping: NonNeg | None = None  # [N m s/rad] (rigid lines)
+    """[-] Number of equal segments of the section."""
+    joint_stiffness: NonNeg | None = None
+    """[N m/rad] Spring of the joint at the start of each segment. Omitted: from the line
+    type's EI."""
+    joint_damping: NonNeg | None = None
+    """[N m s/rad] Damper of each such joint (rigid lines). Omitted: the line's joint_damping."""
 
 
 class LineAngles(_Model):
@@ -96,8 +113,11 @@ class LineAngles(_Model):
     line's ``to`` point) within 1 mm of it."""
 
     angles_deg: list[float] | None = None
+    """[deg] Each segment's angle from the downward vertical, one per segment, from ``from``."""
     arc_deg: tuple[float, float] | None = None
+    """[deg] The first and the last segment's angles, varying linearly between them."""
     azimuth_deg: float = 0.0
+    """[deg] Direction of the line's vertical plane, from +x towards +y (3D lines)."""
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -123,12 +143,17 @@ class LumpedMassLine(_Model):
     their mass and the line's force."""
 
     name: Name
+    """Name of the line."""
     model: Literal["lumped_mass"]
     from_: str = Field(alias="from")
+    """The point the line starts at: ``body`` or ``body.point``."""
     to: str
+    """The point the line ends at: ``body`` or ``body.point``."""
     sections: list[Section] = Field(min_length=1)
-    # its static shape between its ends (with the seabed), a straight line, or given angles
+    """The line's sections, from ``from`` to ``to``."""
     initial: Literal["catenary", "straight"] | LineAngles = "catenary"
+    """Initial shape: ``catenary``, its static shape between its ends (with the seabed);
+    ``straight``, a straight line; or the segments' angles."""
 
 
 class RigidLine(_Model):
@@ -150,27 +175,34 @@ class RigidLine(_Model):
     docs/rigid_segment_lines.md)."""
 
     name: Name
+    """Name of the line."""
     model: Literal["rigid_segments_3d", "rigid_links"]
     from_: str = Field(alias="from")
+    """The point the line starts at: ``body`` or ``body.point``."""
     to: str
+    """The point body the line carries at its end, or the point its end is held on."""
     sections: list[Section] = Field(min_length=1)
-    # initial shape: the inextensible catenary between the ends (hanging in the vertical plane
-    # through them; a body carried at the tip moves to the line's end), a straight line from
-    # ``from`` towards ``to`` with the whole length, or the segments' angles (LineAngles)
+    """The line's sections, from ``from`` to ``to``."""
     initial: Literal["catenary", "straight"] | LineAngles = "catenary"
-    joint_damping: NonNeg = 0.0  # [N m s/rad], every joint
-    # direction the first joint's spring is unloaded at, in the frame of ``from``'s body
-    # (unit vector); by default the first segment's initial direction
+    """Initial shape: ``catenary``, the inextensible catenary hanging in the vertical plane
+    through the ends (a body carried at the tip moves to the line's end); ``straight``, from
+    ``from`` towards ``to`` with the whole length; or the segments' angles."""
+    joint_damping: NonNeg = 0.0
+    """[N m s/rad] Damper of every joint a section gives none."""
     base_reference: Vector | None = None
-    # a joint at an end held on ``to`` (a star's top joint), between the last segment and the
-    # body ``to`` is a point of: spring [N m/rad] and damper [N m s/rad], unloaded along
-    # ``tip_reference`` (in that body's frame; by default the last segment's initial direction)
+    """[-] Direction, in the frame of ``from``'s body, the first joint's spring is unloaded at
+    (normalised). Omitted: the first segment's initial direction."""
     tip_joint_stiffness: NonNeg = 0.0
+    """[N m/rad] Spring of the joint between the last segment and the body ``to`` is held on
+    (a star's top joint)."""
     tip_joint_damping: NonNeg = 0.0
+    """[N m s/rad] Damper of the joint between the last segment and the body ``to`` is held on."""
     tip_reference: Vector | None = None
-    # the rigid line this one continues through the point body between them (that line
-    # carries ``from``): the first joint joins that line's last segment, not ``base_reference``
+    """[-] Direction, in the frame of ``to``'s body, the tip joint is unloaded at (normalised).
+    Omitted: the last segment's initial direction."""
     continues: Name | None = None
+    """The rigid line this one continues through the point body between them (that line
+    carries ``from``): the first joint joins that line's last segment, not ``base_reference``."""
 
 
 class NaturalStringLine(_Model):
@@ -184,12 +216,19 @@ class NaturalStringLine(_Model):
     (each node between two segments at their mean angle)."""
 
     name: Name
+    """Name of the line."""
     model: Literal["natural_string"]
     from_: str = Field(alias="from")
+    """The point of a fixed body the string hangs from: ``body.point`` or ``body``."""
     to: str
+    """The point body the string carries as its end mass."""
     sections: list[Section] = Field(min_length=1, max_length=1)
+    """The string's one section."""
     tangent: Literal["angle", "cartesian"] = "angle"
+    """The tangent's variables: ``angle``, its angle from the downward vertical; ``cartesian``,
+    its components, kept of unit length."""
     initial: LineAngles
+    """Initial angles of the segments; the string starts unstretched, at rest."""
 
 
 class Tie(_Model):
@@ -198,13 +237,21 @@ class Tie(_Model):
     table of (elongation [m], tension [N]) pairs; none in compression (slack)."""
 
     name: Name
+    """Name of the tie."""
     model: Literal["tie"]
     from_: str = Field(alias="from")
+    """One end's point: ``body`` or ``body.point``."""
     to: str
-    unstretched_length: NonNeg  # L0 [m]
-    stiffness: Pos | None = None  # k [N/m]
+    """The other end's point: ``body`` or ``body.point``."""
+    unstretched_length: NonNeg
+    """[m] Unstretched length L0."""
+    stiffness: Pos | None = None
+    """[N/m] Stiffness k: tension k (d - L0) when stretched; or ``tension_table``."""
     tension_table: list[tuple[NonNeg, NonNeg]] | None = Field(default=None, min_length=2)
-    damping: NonNeg = 0.0  # c [N s/m], while taut
+    """[m, N] (elongation, tension) pairs from [0, 0], linear between and beyond them; or
+    ``stiffness``."""
+    damping: NonNeg = 0.0
+    """[N s/m] Damping c on the rate of stretching, while taut."""
 
     @model_validator(mode="after")
     def _one_law(self):
@@ -237,11 +284,17 @@ class Failure(_Model):
     reaches the time or the tension (within one step: the fixed step of rk4 and the implicit
     schemes, dopri5's adaptive one); the results' attributes give the time it came."""
 
-    name: Name | None = None  # default: failure<k> (k from 1)
+    name: Name | None = None
+    """Name of the failure and of the free point joining the released ends. Omitted:
+    failure<k>, k counting the failures from 1."""
     at: str
-    lines: list[Name] = []  # lumped-mass lines with an end at ``at``; none: every such line
-    time: Pos | None = None  # [s]
-    tension: Pos | None = None  # [N], the tension of a line's end segment at ``at``
+    """The point the line ends let go at: ``body`` or ``body.point``, as the lines name it."""
+    lines: list[Name] = []
+    """Lumped-mass lines whose ends at ``at`` let go. Empty: every such line ending there."""
+    time: Pos | None = None
+    """[s] Time of the release."""
+    tension: Pos | None = None
+    """[N] End-segment tension at ``at`` that releases the ends when a line first reaches it."""
 
     @model_validator(mode="after")
     def _a_trigger(self):
@@ -254,21 +307,29 @@ class SystemCase(_Model):
     """A complete case: bodies, the lines between them, the environment and the run."""
 
     name: str = "case"
+    """Name of the case."""
     description: str = ""
+    """Free text describing the case."""
     environment: Environment = Environment()
+    """The water, seabed, current, waves and wind."""
     bodies: list[Body] = Field(min_length=1)
+    """The bodies, which the lines join."""
     line_types: list[LineType] = []
-    lines: list[Line] = []  # none: bodies alone (a vessel in free decay)
-    # how the run starts: "static", every free body and line at rest in balance (steady current
-    # included; system.statics), or "as_given", bodies where the case puts them, each lumped
-    # line at its static shape between them (a free decay from an offset)
+    """The line types the lines' sections name."""
+    lines: list[Line] = []
+    """The lines and ties between the bodies' points. Empty: bodies alone (a vessel in free
+    decay)."""
     start: Literal["static", "as_given"] = "static"
-    # the share of a line type's breaking strength that its tension at the start may reach
-    # before validate and every run warn (an intact mooring's static tensions are commonly
-    # kept under a fifth to a third of it)
+    """How the run starts: ``static``, every free body and line at rest in balance (steady
+    current included; system.statics); ``as_given``, the bodies where the case puts them,
+    each lumped-mass line in its static shape between them (a free decay from an offset)."""
     utilisation_limit: Pos = 1.0
-    failures: list[Failure] = []  # line ends released during the run
+    """[-] Share of a line type's breaking strength its tension at the start may reach before
+    validate and every run warn (intact moorings commonly keep under 1/5 to 1/3)."""
+    failures: list[Failure] = []
+    """Line ends released during the run."""
     simulation: Simulation
+    """The run: its duration, output interval and integrator."""
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to

@@ -21,6 +21,7 @@ import math
 from dataclasses import replace
 
 from seacable.case import forces as fm
+from seacable.case import ship_forces as sf
 from seacable.errors import CaseError
 from seacable.forces import applied, compensator
 from seacable.stability.continuation import Parameter
@@ -135,7 +136,7 @@ def _load(plane: Plane, path: str, parts: list[str], b: int) -> Parameter:
         raise _refuse(path, f"body '{parts[1]}' has {len(models)} force models, counted "
                       f"from 0; '{parts[3]}' is none of them") from None  # fmt: skip
     rows = [f for f in range(p.force_body.shape[0]) if p.force_body[f] == b]
-    if isinstance(spec, fm.Compensator) and parts[4] in SETTINGS:
+    if isinstance(spec, sf.Compensator) and parts[4] in SETTINGS:
         at = int(p.force_at[rows[k]]) + SETTINGS[parts[4]]
         unit = math.pi / 180.0 if parts[4] == "heading_deg" else 1.0  # the row's in radians
 

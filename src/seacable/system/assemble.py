@@ -13,8 +13,7 @@ from seacable import packing
 from seacable import timefunctions as tfn
 from seacable.bodies import dynamics, kinematics
 from seacable.case import system as sch
-from seacable.case.base import AccelerationPhase, AccelerationProfile, Constant
-from seacable.case.forces import ORIGIN
+from seacable.case.base import ORIGIN, AccelerationPhase, AccelerationProfile, Constant
 from seacable.case.schema import VolumeTable, per_axis
 from seacable.errors import CaseError
 from seacable.kernels import surface

@@ -10,6 +10,7 @@ import numpy as np
 from seacable import timefunctions as tfn
 from seacable.bodies import kinematics
 from seacable.case import forces as fm
+from seacable.case import ship_forces as sf
 from seacable.case.base import Constant
 from seacable.case.system import RigidBody
 from seacable.errors import CaseError
@@ -59,9 +60,9 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         for name in applied.CHANNELS:
             channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
         return applied.pack(offset(body, spec.point), spec.frame == "body")
-    if isinstance(spec, fm.Thruster | fm.Rudder | fm.WindLoad | fm.CurrentLoad):
+    if isinstance(spec, sf.Thruster | sf.Rudder | sf.WindLoad | sf.CurrentLoad):
         return _vessel_row(case, layout, spec, body, base_dir, channels, where)
-    if isinstance(spec, fm.ShortWing | fm.CrossFlow):
+    if isinstance(spec, sf.ShortWing | sf.CrossFlow):
         if not isinstance(body, RigidBody):
             raise CaseError(f"{where}: model '{spec.model}' acts on a ship: a 'rigid' body "
                             f"(this one is '{body.type}')")  # fmt: skip
@@ -94,9 +95,9 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         sim = case.simulation
         step = spec.step or sim.time_step or min(0.01, sim.output_interval)
         return servo.pack(spec.gain, spec.rate_gain, step, target)
-    if isinstance(spec, fm.Compensator):
+    if isinstance(spec, sf.Compensator):
         return _compensator_row(spec, body, where, point)
-    if isinstance(spec, fm.WaveDrift):
+    if isinstance(spec, sf.WaveDrift):
         return _wave_drift_row(case, spec, body, base_dir, where)
     return []  # gravity, buoyancy: the body's own fields
 
@@ -180,7 +181,7 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
     if not isinstance(body, RigidBody):
         raise CaseError(f"{where}: model '{spec.model}' acts on a vessel: a 'rigid' body (this "
                         f"one is '{body.type}')")  # fmt: skip
-    if isinstance(spec, fm.Thruster):
+    if isinstance(spec, sf.Thruster):
         law = spec.thrust if spec.controller is None else spec.controller.target
         channels.append(channel(law, base_dir, f"{where}.thrust"))
         feed = Constant(value=0.0) if spec.controller is None else spec.controller.feedforward
@@ -191,7 +192,7 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
                              spec.controller.gain if spec.controller else 0.0,
                              spec.max_thrust,
                              spec.controller.integral_gain if spec.controller else 0.0)  # fmt: skip
-    if isinstance(spec, fm.Rudder):
+    if isinstance(spec, sf.Rudder):
         pilot = spec.autopilot
         law = spec.angle_deg if pilot is None else pilot.heading_deg
         channels.append(in_radians(channel(law, base_dir, f"{where}.angle_deg")))
@@ -203,14 +204,14 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
             (gear.max_rate_deg_s, gear.time_constant) if (gear := spec.steering_gear) else None,
         )  # fmt: skip
     wind = case.environment.wind
-    if isinstance(spec, fm.WindLoad) and wind is None:
+    if isinstance(spec, sf.WindLoad) and wind is None:
         raise CaseError(f"{where}: model 'wind' needs environment.wind ({{speed [m/s], "
                         "direction_deg}}); add it, or remove the wind model")  # fmt: skip
     try:
         table = coefficients.table_rows(spec, base_dir)
     except ValueError as exc:
         raise CaseError(f"{where}: {exc}") from None
-    is_wind = isinstance(spec, fm.WindLoad)
+    is_wind = isinstance(spec, sf.WindLoad)
     return coefficients.pack(
         spec.point, (spec.transverse_area, spec.lateral_area), spec.length,
         wind.air_density if is_wind and wind else 0.0,

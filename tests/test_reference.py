@@ -1,0 +1,81 @@
+"""The case file's reference, generated from the schema (docs/reference/case_file.rst): every
+key documented with its unit, every entry an error line links to present."""
+
+import copy
+import re
+
+import pytest
+from tests.test_case_errors import CHAIN
+
+import seacable
+from seacable import CaseError
+from seacable.case import reference
+from seacable.case.system import SystemCase
+
+PAGE = reference.case_file_rst()
+LABELS = set(re.findall(r"^\.\. _([a-z0-9-]+):$", PAGE, flags=re.M))
+
+
+def _entries():
+    for model in reference.parts(SystemCase):
+        for key in reference.keys(model):
+            yield model, key
+
+
+def test_every_part_has_a_docstring_and_every_key_a_meaning():
+    missing = [m.__name__ for m in reference.parts(SystemCase) if not (m.__doc__ or "").strip()]
+    missing += [f"{m.__name__}.{k.name}" for m, k in _entries() if not k.meaning]
+    assert not missing, f"{len(missing)} without a docstring: {missing}"
+
+
+def test_every_number_has_its_unit():
+    """A key that holds numbers says their unit ([-] for a pure number); one that holds none
+    says none."""
+    numeric = re.compile(r"\b(number|integer)s?\b")
+    wrong = [f"{m.__name__}.{k.name} ({k.type})" for m, k in _entries()
+             if bool(numeric.search(k.type)) != bool(k.unit)]  # fmt: skip
+    assert not wrong, f"{len(wrong)} keys: {wrong}"
+
+
+def test_every_part_and_key_has_its_entry_once():
+    anchors = [reference.anchor(m) for m in reference.parts(SystemCase)]
+    anchors += [k.anchor for _, k in _entries()]
+    assert len(anchors) == len(set(anchors))
+    assert set(anchors) <= LABELS
+    for model in reference.parts(SystemCase):  # placed once, in one group
+        assert sum(model in group for _, group in reference.sections()) == 1
+
+
+def test_entry_shows_type_unit_limits_and_default():
+    text = PAGE.split(".. _case-linetype-diameter:")[1].split(".. _")[0]
+    assert "``diameter``" in text and "number" in text and "[m]" in text and "> 0" in text
+    text = PAGE.split(".. _case-simulation-integrator:")[1].split(".. _")[0]
+    assert "one of ``rk4``" in text and 'default "' in text
+
+
+def _bad(mutate):
+    data = copy.deepcopy(CHAIN)
+    mutate(data)
+    with pytest.raises(CaseError) as caught:
+        seacable.load_case(data)
+    return str(caught.value)
+
+
+@pytest.mark.parametrize(
+    ("mutate", "fragment"),
+    [
+        (lambda d: d["line_types"][0].update(diameter=-1.0), "case-linetype-diameter"),
+        (lambda d: d["line_types"][0].update(colour="red"), "case-linetype"),
+        (lambda d: d["bodies"][1].update(mass=True), "case-pointbody-mass"),
+        (lambda d: d["bodies"][1].update(type="wobbly"), "case-systemcase-bodies"),
+        (lambda d: d["simulation"].pop("duration"), "case-simulation-duration"),
+        (lambda d: d["lines"][0]["sections"][0].update(segments=0), "case-section-segments"),
+    ],
+)
+def test_error_lines_link_to_their_entries(mutate, fragment):
+    message = _bad(mutate)
+    links = re.findall(r"\(reference: (\S+)\)", message)
+    assert links, message
+    assert all(link.startswith(reference.DOCS_URL + reference.PAGE + ".html#") for link in links)
+    assert {link.split("#")[1] for link in links} <= LABELS
+    assert fragment in {link.split("#")[1] for link in links}, message
