@@ -1,8 +1,8 @@
 """Sphinx configuration of seacable's documentation (``make docs``; warnings are errors).
 
-The case-file reference and the gallery are generated here, from the schema
-(``seacable.case.reference``) and from the examples with their pictures (docs/gallery.py), so
-they cannot drift from the code."""
+The case-file reference, the output variables and the gallery are generated here, from the
+schema (``seacable.case.reference``), the results' declarations (docs/outputs.py) and the
+examples with their pictures (docs/gallery.py), so they cannot drift from the code."""
 
 import sys
 from pathlib import Path
@@ -11,6 +11,7 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
 import gallery  # noqa: E402 (docs/gallery.py)
+import outputs  # noqa: E402 (docs/outputs.py)
 
 import seacable  # noqa: E402
 from seacable.case import reference  # noqa: E402
@@ -28,7 +29,7 @@ extensions = [
     "sphinx.ext.viewcode",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "README.md", "pictures.py", "gallery.py"]
+exclude_patterns = ["_build", "README.md", "pictures.py", "gallery.py", "outputs.py"]
 myst_enable_extensions = ["dollarmath", "deflist"]
 myst_heading_anchors = 3
 nitpicky = False
@@ -49,6 +50,7 @@ def _generate(app) -> None:
     pages = {
         HERE / "reference" / "case_file.rst": reference.case_file_rst(),
         HERE / "gallery.md": gallery.gallery_md(),
+        HERE / "reference" / "outputs.md": outputs.outputs_md(),
     }
     for target, text in pages.items():
         if not target.exists() or target.read_text() != text:

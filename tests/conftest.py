@@ -27,7 +27,7 @@ PYTHON_ONLY = (
     "cli.py", "cli_ships.py", "viz/", "results.py", "simulation.py", "analysis.py",
     "case/loader.py", "case/reference.py", "case/moordyn.py", "case/moordyn_tables.py",
     "coupling.py",
-    "system/utilisation.py",
+    "system/utilisation.py", "system/variables.py",
     "system/pseudo_time.py", "system/failures.py", "system/closed_form.py",
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",
     "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",

@@ -79,3 +79,33 @@ def test_error_lines_link_to_their_entries(mutate, fragment):
     assert all(link.startswith(reference.DOCS_URL + reference.PAGE + ".html#") for link in links)
     assert {link.split("#")[1] for link in links} <= LABELS
     assert fragment in {link.split("#")[1] for link in links}, message
+
+
+def test_every_variable_a_run_writes_is_in_the_catalogue_of_outputs():
+    """docs/reference/outputs.md lists seacable.system.variables.catalogue(): the variables of
+    built systems (a rigid-link chain, the same as a lumped-mass line, a tie) are all there,
+    with the same dimensions, unit and meaning."""
+    from seacable.system import model, variables
+
+    listed = {(name, spec) for _, _, found in variables.catalogue() for name, spec in found.items()}
+    lumped = copy.deepcopy(CHAIN)
+    lumped["line_types"][0]["axial_stiffness"] = 1e6
+    lumped["lines"][0] = {
+        "name": "cable",
+        "model": "lumped_mass",
+        "from": "top",
+        "to": "end",
+        "sections": [{"type": "chain", "segments": 5, "length": 10.0}],
+    }
+    tie = copy.deepcopy(lumped)
+    tie["lines"][0] = {"name": "cable", "model": "tie", "from": "top", "to": "end",
+                       "unstretched_length": 10.0, "stiffness": 1e5}  # fmt: skip
+    for data in (CHAIN, lumped, tie):
+        built = model.build(seacable.load_case(data))
+        written = model.variables(built)
+        coords = model.coords(built)
+        missing = [path for path, spec in written.items()
+                   if (path.rsplit("/", 1)[-1], spec) not in listed]  # fmt: skip
+        missing += [path for path, (dim, _, unit, text) in coords.items()
+                    if (path.rsplit("/", 1)[-1], ((dim,), unit, text)) not in listed]  # fmt: skip
+        assert not missing, missing

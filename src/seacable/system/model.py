@@ -10,7 +10,7 @@ from scipy import sparse
 
 from seacable.bodies import kinematics
 from seacable.case import system as sch
-from seacable.forces.kinds import RUDDER, THRUSTER
+from seacable.forces.kinds import RUDDER
 from seacable.system import (
     coordinates,
     failures,
@@ -27,12 +27,21 @@ from seacable.system.assemble import build as _assemble
 from seacable.system.force_rows import rods_at_rest
 from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
 from seacable.system.initial import end_points, initial_state
+from seacable.system.variables import (  # noqa: F401 (the contract's)
+    AXES,
+    BODY_NAMES,
+    COMPENSATOR_VARIABLES,
+    ENERGY_VARIABLES,
+    controls,
+    coords,
+    sizes,
+    variables,
+)
 
 log = logging.getLogger("seacable")
 RATE_WHAT = ("component", "speed", "m/s", 1)  # what ``rates`` measures (divergence messages)
 DAMPING_ADVICE = "add axial damping (line_types[k].axial_damping_ratio, e.g. 0.8)"
 JOINT_ADVICE = "add joint damping (lines[k].joint_damping [N m s/rad])"
-AXES = "xyz"
 
 
 def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
@@ -152,210 +161,12 @@ def after_step(system: BuiltSystem, w: kernel.SystemWork, t: float, y: np.ndarra
     kernel.after_step(t, y, system.params, w)
 
 
-def _body_variables(body, controls) -> dict:
-    out = {}
-    for c in AXES:
-        out[f"position_{c}"] = (("time",), "m", f"position of the reference point, {c}")
-    if not isinstance(body, sch.PointBody):
-        for angle in ("roll", "pitch", "yaw"):
-            out[angle] = (("time",), "degree", f"{angle} (R = Rz(yaw) Ry(pitch) Rx(roll))")
-    if not isinstance(body, sch.FixedBody):
-        for c in AXES:
-            out[f"velocity_{c}"] = (("time",), "m/s", f"velocity of the reference point, {c}")
-    if isinstance(body, sch.RigidBody | sch.ImposedBody):
-        for c in AXES:
-            out[f"angular_velocity_{c}"] = (("time",), "rad/s", f"angular velocity, {c}")
-    for c in AXES:
-        out[f"line_force_{c}"] = (
-            ("time",), "N", f"force of the lines, ties and joints on the body, {c}",
-        )  # fmt: skip
-    if not isinstance(body, sch.PointBody):
-        for c in AXES:
-            out[f"line_moment_{c}"] = (
-                ("time",), "N m",
-                f"moment of the lines, ties and joints about the reference point, {c}",
-            )  # fmt: skip
-    return out | _control_variables(body, controls)
-
-
-def _control_variables(body, controls) -> dict:
-    """A body's servo's, controllers' and compensator's variables."""
-    out = {}
-    if any(spec.model == "servo" for spec in getattr(body, "external_forces", [])):
-        for c in AXES:
-            out[f"servo_force_{c}"] = (("time",), "N", f"force the servo applies to the body, {c}")
-        for c in AXES:
-            out[f"target_{c}"] = (("time",), "m", f"the servo's target point, {c}")
-        out["tracking_error"] = (("time",), "m", "distance of the body from its target")
-    for _, name, kind in controls:
-        out[name] = (("time",), *CONTROL_STATES[kind][1:])
-    if any(spec.model == "compensator" for spec in getattr(body, "external_forces", [])):
-        for name, unit, text in COMPENSATOR_VARIABLES:
-            out[name] = (("time",), unit, text)
-    return out
-
-
-# the compensator's record (forces.compensator.RECORD), in its order
-COMPENSATOR_VARIABLES = (
-    ("compensator_surge_force", "N", "the compensator's surge force, as applied (saturated)"),
-    ("compensator_yaw_moment", "N m", "the compensator's yaw moment, as applied (saturated)"),
-    ("compensator_surge_demand", "N", "the surge force the compensator's law demands"),
-    ("compensator_yaw_demand", "N m", "the yaw moment the compensator's law demands"),
-)
-
-
-# a force model's control state in the results: its variable's name, unit, description
-CONTROL_STATES = {
-    RUDDER: ("rudder_angle", "degree", "the rudder's angle (its steering gear's state)"),
-    THRUSTER: ("speed_integral", "m", "the speed controller's integral of (target - u)"),
-}
-
-
-def _controls(system: BuiltSystem, b: int) -> list[tuple[int, str, int]]:
-    """(state, variable, kind) of each of body b's force models with a control state (a
-    rudder's steering gear, a speed controller's integral: forces.table.state_count), in the
-    body's order; the second of a kind is named with ``_2``, and so on."""
-    p = system.params
-    out: list[tuple[int, str, int]] = []
-    seen: dict[int, int] = {}
-    for f in np.flatnonzero(p.force_body == b):
-        kind = int(p.force_kind[f])
-        if kind in CONTROL_STATES and p.force_state[f] >= 0:
-            seen[kind] = seen.get(kind, 0) + 1
-            base = CONTROL_STATES[kind][0]
-            out.append((int(p.force_state[f]), base if seen[kind] == 1 else f"{base}_{seen[kind]}",
-                        kind))  # fmt: skip
-    return out
-
-
 def _control_rows(system: BuiltSystem, states, out: dict) -> None:
     """Each rudder's steering-gear angle [deg] and speed controller's integral [m]."""
     for b, body in enumerate(system.case.bodies):
-        for s, name, kind in _controls(system, b):
+        for s, name, kind in controls(system, b):
             values = states[:, s]
             out[f"bodies/{body.name}/{name}"] = np.degrees(values) if kind == RUDDER else values
-
-
-def _line_variables(tension: str) -> dict:
-    out: dict[str, tuple[tuple[str, ...], str, str]] = {
-        f"node_{c}": (("time", "node"), "m", f"node position, {c}") for c in AXES
-    }
-    out["tension"] = (("time", "segment"), "N", tension)
-    for end in ("from", "to"):
-        for c in AXES:
-            out[f"{end}_force_{c}"] = (
-                ("time",), "N", f"force of the line on its '{end}' point, {c}",
-            )  # fmt: skip
-    return out
-
-
-def _rigid_variables(system: BuiltSystem, li: int) -> dict:
-    p = system.params
-    out = _line_variables(RIGID_TENSION)
-    if p.rs_kind[li] == rigid_kind.PLANAR:
-        out["angle"] = (("time", "segment"), "rad",
-                        "link angle from the downward vertical, positive towards +x")  # fmt: skip
-        out["angular_velocity"] = (("time", "segment"), "rad/s", "link angular velocity")
-    else:
-        for c in AXES:
-            out[f"direction_{c}"] = (
-                ("time", "segment"),
-                "1",
-                f"unit vector along the segment, {c}",
-            )
-        out["angular_rate"] = (("time", "segment"), "rad/s", "rate of turn of the segment")
-    if p.rs_held[li].any():
-        out["constraint_error"] = (("time",), "m", "distance of the held end from where it is held")
-    return out
-
-
-LUMPED_TENSION = "axial tension of the segment (no compression)"
-RIGID_TENSION = "axial force at the segment's centre (positive pulling, negative compressed)"
-TIE_VARIABLES = {
-    "tension": (("time",), "N", "tension of the tie (zero when slack)"),
-    "distance": (("time",), "m", "distance between the tie's points"),
-    **{f"{end}_{c}": (("time",), "m", f"position of the '{end}' point, {c}")
-       for end in ("from", "to") for c in AXES},
-}  # fmt: skip
-
-
-ENERGY_VARIABLES = {
-    "kinetic_energy": (("time",), "J", "kinetic energy of bodies and line nodes (added mass in)"),
-    "gravity_potential_energy": (("time",), "J", "potential of gravity and buoyancy"),
-    "elastic_energy": (("time",), "J", "axial, bending, seabed, tie and linear-spring energy"),
-    "total_energy": (("time",), "J", "kinetic + gravity potential + elastic energy"),
-}
-
-
-def variables(system: BuiltSystem) -> dict:
-    """Every output variable, its name prefixed by its group (the energies at the top)."""
-    out: dict[str, tuple] = dict(ENERGY_VARIABLES)
-    for b, body in enumerate(system.case.bodies):
-        for name, spec in _body_variables(body, _controls(system, b)).items():
-            out[f"bodies/{body.name}/{name}"] = spec
-    for line in system.layout.lines:
-        for name, spec in _line_variables(LUMPED_TENSION).items():
-            out[f"lines/{line}/{name}"] = spec
-    for li, line in enumerate(system.layout.rigid):
-        for name, spec in _rigid_variables(system, li).items():
-            out[f"lines/{line}/{name}"] = spec
-    for line in system.layout.ties:
-        for name, spec in TIE_VARIABLES.items():
-            out[f"lines/{line}/{name}"] = spec
-    for line in system.layout.natural:
-        for name, spec in STRING_VARIABLES.items():
-            out[f"lines/{line}/{name}"] = spec
-    return out
-
-
-STRING_VARIABLES = {
-    **{f"node_{c}": (("time", "node"), "m", f"node position, {c} (trapezoidal integral of the "
-                                            "tangent from the pivot)") for c in AXES},
-    "strain": (("time", "node"), "1", "axial strain at the node"),
-    "tension": (("time", "node"), "N", "axial tension at the node (no compression)"),
-}  # fmt: skip
-
-
-def sizes(system: BuiltSystem) -> dict:
-    p = system.params
-    out = {}
-    for li, line in enumerate(system.layout.lines):
-        out[f"lines/{line}/segment"] = int(p.line_n[li])
-        out[f"lines/{line}/node"] = int(p.line_n[li]) + 1
-    for li, line in enumerate(system.layout.rigid):
-        out[f"lines/{line}/segment"] = int(p.rs_n[li])
-        out[f"lines/{line}/node"] = int(p.rs_n[li]) + 1
-    for li, line in enumerate(system.layout.natural):
-        out[f"lines/{line}/node"] = int(p.nat_n[li]) + 1
-    return out
-
-
-def coords(system: BuiltSystem) -> dict:
-    p = system.params
-    out = {}
-    for li, line in enumerate(system.layout.lines):
-        n, s0 = int(p.line_n[li]), int(p.line_seg[li])
-        arc = np.concatenate([[0.0], np.cumsum(p.seg_length[s0 : s0 + n])])
-        out[f"lines/{line}/arc_length"] = (
-            "node", arc, "m", "unstretched arc length from the 'from' end",
-        )  # fmt: skip
-    for li, line in enumerate(system.layout.rigid):
-        n, s0 = int(p.rs_n[li]), int(p.rs_seg[li])
-        arc = np.concatenate([[0.0], np.cumsum(p.rs_length[s0 : s0 + n])])
-        out[f"lines/{line}/arc_length"] = ("node", arc, "m", "arc length from the 'from' end")
-    for li, line in enumerate(system.layout.natural):
-        arc = np.linspace(0.0, float(p.nat_length[li]), int(p.nat_n[li]) + 1)
-        out[f"lines/{line}/arc_length"] = (
-            "node", arc, "m", "unstretched arc length from the pivot",
-        )  # fmt: skip
-    return out
-
-
-BODY_NAMES = (
-    *(f"position_{c}" for c in AXES), "roll", "pitch", "yaw",
-    *(f"velocity_{c}" for c in AXES), *(f"angular_velocity_{c}" for c in AXES),
-    *(f"line_force_{c}" for c in AXES), *(f"line_moment_{c}" for c in AXES),
-)  # fmt: skip
 
 
 def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:
@@ -521,8 +332,8 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     acceleration depends on the positions and velocities of the coordinates
     ``coordinates.pattern`` couples it to."""
     p = system.params
-    coords = coordinates.coordinates(p)
-    coupled = coordinates.pattern(p, coords).tocoo()
+    coords_ = coordinates.coordinates(p)
+    coupled = coordinates.pattern(p, coords_).tocoo()
     n = p.n_q + p.n_v + p.n_s
     rows: list[int] = []
     cols: list[int] = []
@@ -530,16 +341,16 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     size = {1: 4, 3: 3}  # a quaternion, a director (and its rate)
 
     def positions(i: int) -> range:
-        return range(coords.q[i], coords.q[i] + size.get(int(coords.kind[i]), 1))
+        return range(coords_.q[i], coords_.q[i] + size.get(int(coords_.kind[i]), 1))
 
     def velocities(i: int) -> range:
-        return range(coords.v[i], coords.v[i] + (3 if coords.kind[i] == 3 else 1))
+        return range(coords_.v[i], coords_.v[i] + (3 if coords_.kind[i] == 3 else 1))
 
-    for i in range(len(coords.kind)):
+    for i in range(len(coords_.kind)):
         for k in positions(i):  # dq/dt from v (a quaternion: from omega and itself)
             rows.extend([k] * len(velocities(i)))
             cols.extend(velocities(i))
-            if coords.kind[i] in size:
+            if coords_.kind[i] in size:
                 rows.extend([k] * len(positions(i)))
                 cols.extend(positions(i))
     for i, j in zip(coupled.row, coupled.col, strict=True):
