@@ -1,8 +1,9 @@
 """Sphinx configuration of seacable's documentation (``make docs``; warnings are errors).
 
-The case-file reference, the output variables and the gallery are generated here, from the
-schema (``seacable.case.reference``), the results' declarations (docs/outputs.py) and the
-examples with their pictures (docs/gallery.py), so they cannot drift from the code."""
+The case-file reference, the output variables, the command line and the gallery are generated
+here, from the schema (``seacable.case.reference``), the results' declarations
+(docs/outputs.py), the commands (docs/cli.py) and the examples with their pictures
+(docs/gallery.py), so they cannot drift from the code."""
 
 import sys
 from pathlib import Path
@@ -10,6 +11,7 @@ from pathlib import Path
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
+import cli  # noqa: E402 (docs/cli.py)
 import gallery  # noqa: E402 (docs/gallery.py)
 import outputs  # noqa: E402 (docs/outputs.py)
 
@@ -29,7 +31,7 @@ extensions = [
     "sphinx.ext.viewcode",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "README.md", "pictures.py", "gallery.py", "outputs.py"]
+exclude_patterns = ["_build", "README.md", "pictures.py", "gallery.py", "outputs.py", "cli.py"]
 myst_enable_extensions = ["dollarmath", "deflist"]
 myst_heading_anchors = 3
 nitpicky = False
@@ -51,6 +53,7 @@ def _generate(app) -> None:
         HERE / "reference" / "case_file.rst": reference.case_file_rst(),
         HERE / "gallery.md": gallery.gallery_md(),
         HERE / "reference" / "outputs.md": outputs.outputs_md(),
+        HERE / "reference" / "cli.md": cli.cli_md(),
     }
     for target, text in pages.items():
         if not target.exists() or target.read_text() != text:

@@ -2,7 +2,7 @@
 ``seacable plot`` into docs/images/<example>.png, as a user would (OPTIONS: the plot's options
 where its defaults do not suit), then shrink it to WIDTH pixels and 128 colours.
 
-usage: .venv/bin/python docs/pictures.py [EXAMPLE ...]     (every example by default)
+usage: .venv/bin/python docs/pictures.py [NAME ...]     (every picture by default)
 
 docs/images/manifest.json keeps, for each picture, the SHA-256 of the example's text and the
 commands that drew it: tests/test_docs.py fails when an example changes and its picture was not
@@ -22,11 +22,45 @@ MANIFEST = IMAGES / "manifest.json"
 SEACABLE = [sys.executable, "-m", "seacable.cli"]
 PICTURES = sorted(p.stem for p in (ROOT / "examples").glob("*.yaml"))
 OPTIONS = {"spread_mooring_in_waves": ["--every", "20"]}  # example -> its plot's options
+# pictures the tutorials show beyond the gallery's: name -> (the case, in examples/; the
+# commands that draw it, the case written CASE, the picture PICTURE and a results file RESULTS)
+OTHERS = {
+    "tandem_operability_map": ("tandem_offloading_fpso_shuttle.yaml", [[
+        "operability", "CASE", "--current-speed", "0.8", "--control", "both",
+        "--clearance", "30", "--tension-limit", "hawser", "3e6", "--dask", "none",
+        "--plot", "PICTURE", "-o", "RESULTS",
+    ]]),
+    "moordyn_buoy_three_chains": ("moordyn/buoy_three_chains.txt", [
+        ["run", "CASE", "-o", "RESULTS", "--no-progress", "--set", "start=as_given"],
+        ["plot", "RESULTS", "-o", "PICTURE"],
+    ]),
+}  # fmt: skip
 WIDTH = 1200  # pixels: the pages show it at most this wide
 
 
 def digest(example: str) -> str:
     return hashlib.sha256((ROOT / "examples" / f"{example}.yaml").read_bytes()).hexdigest()
+
+
+def draw_other(name: str) -> dict:
+    """One of OTHERS, drawn by its commands."""
+    example, commands = OTHERS[name]
+    picture = IMAGES / f"{name}.png"
+    with tempfile.TemporaryDirectory() as folder:
+        given = {"CASE": str(ROOT / "examples" / example), "PICTURE": str(picture),
+                 "RESULTS": f"{folder}/results.nc"}  # fmt: skip
+        for words in commands:
+            subprocess.run([*SEACABLE, *(given.get(w, w) for w in words)], check=True, cwd=ROOT)
+    shrink(picture)
+    shown = {"CASE": f"examples/{example}", "PICTURE": f"docs/images/{name}.png",
+             "RESULTS": "results.nc"}  # fmt: skip
+    return {
+        "example": example,
+        "example_sha256": hashlib.sha256((ROOT / "examples" / example).read_bytes()).hexdigest(),
+        "commands": [
+            " ".join(["seacable", *(shown.get(w, w) for w in words)]) for words in commands
+        ],  # fmt: skip
+    }
 
 
 def draw(example: str) -> dict:
@@ -66,14 +100,14 @@ def shrink(picture: Path) -> None:
 
 
 def main(names: list[str]) -> None:
-    unknown = sorted(set(names) - set(PICTURES))
+    unknown = sorted(set(names) - set(PICTURES) - set(OTHERS))
     if unknown:
-        sys.exit(f"no picture of {unknown}; the pictures: {', '.join(PICTURES)}")
+        sys.exit(f"no picture of {unknown}; the pictures: {', '.join([*PICTURES, *OTHERS])}")
     manifest = json.loads(MANIFEST.read_text()) if MANIFEST.exists() else {}
-    for name in names or list(PICTURES):
-        manifest[name] = draw(name)
-        print(f"docs/images/{name}.png drawn")
-    MANIFEST.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+    for name in names or [*PICTURES, *OTHERS]:
+        manifest[name] = draw_other(name) if name in OTHERS else draw(name)
+        MANIFEST.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+        print(f"docs/images/{name}.png drawn", flush=True)
 
 
 if __name__ == "__main__":

@@ -35,6 +35,7 @@ GENERATED = {"gallery.md"}  # written by docs/conf.py from the examples: no code
 PAGES = [
     ROOT / "README.md",
     *sorted(p for p in (ROOT / "docs").glob("*.md") if p.name not in GENERATED),
+    *sorted((ROOT / "docs" / "tutorials").glob("*.md")),
 ]
 FENCE = re.compile(r"^```([^\n`]*)\n(.*?)^```\s*$", re.S | re.M)
 EXIT = re.compile(r"#\s*exits with code (\d+)")
@@ -112,23 +113,30 @@ def _run_page(page: Path, tmp_path: Path, short: bool) -> None:
         os.chdir(here)
 
 
-@pytest.mark.parametrize("page", _pages_with_code(), ids=lambda p: p.name)
+@pytest.mark.parametrize("page", _pages_with_code(), ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_the_code_blocks_run(page, tmp_path):
     _run_page(page, tmp_path, short=True)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("page", _pages_with_code(), ids=lambda p: p.name)
+@pytest.mark.parametrize("page", _pages_with_code(), ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_the_code_blocks_run_in_full(page, tmp_path):
     _run_page(page, tmp_path, short=False)
 
 
 def test_the_pictures_were_drawn_from_the_examples_as_they_are():
+    """The gallery (docs/gallery.py) shows every example with its picture."""
     manifest = json.loads((ROOT / "docs" / "images" / "manifest.json").read_text())
+    examples = {p.stem for p in (ROOT / "examples").glob("*.yaml")}
+    assert examples <= set(manifest), (
+        f"no picture of {sorted(examples - set(manifest))}: draw them with "
+        ".venv/bin/python docs/pictures.py NAME ..."
+    )
     for name, entry in manifest.items():
-        text = (ROOT / "examples" / f"{name}.yaml").read_bytes()
+        example = entry.get("example", f"{name}.yaml")  # a tutorial's picture names its case
+        text = (ROOT / "examples" / example).read_bytes()
         assert hashlib.sha256(text).hexdigest() == entry["example_sha256"], (
-            f"examples/{name}.yaml changed: draw its picture again with "
+            f"examples/{example} changed: draw its picture again with "
             f".venv/bin/python docs/pictures.py {name}"
         )
         assert (ROOT / "docs" / "images" / f"{name}.png").stat().st_size > 20_000

@@ -1,5 +1,6 @@
 """Every example case runs (shortened to keep the suite fast) and ``seacable plot`` draws it."""
 
+import logging
 from pathlib import Path
 
 import numpy as np
@@ -18,12 +19,19 @@ def test_there_are_examples():
     assert len(EXAMPLES) >= 16
 
 
+def _warnings(caplog) -> list[str]:
+    return [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING]
+
+
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
-def test_example_runs_and_plots(path, tmp_path):
+def test_example_runs_and_plots(path, tmp_path, caplog):
+    """Each example runs clean (no warning: an example shows what it means to), and draws."""
     case = derive_case(seacable.load_case(path), {"simulation": {"duration": 1.0}})
     output = tmp_path / "results.nc"
-    results = seacable.simulate(case, output=output)
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        results = seacable.simulate(case, output=output)
     assert results.status == "complete"
+    assert not _warnings(caplog)
     data = results.dataset
     if isinstance(data, xr.DataTree):  # a system: every line's tensions
         tensions = [node["tension"].values for node in data["lines"].children.values()]
@@ -40,9 +48,11 @@ def test_example_runs_and_plots(path, tmp_path):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
-def test_example_runs_in_full(path):
-    results = seacable.simulate(seacable.load_case(path))
+def test_example_runs_in_full(path, caplog):
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        results = seacable.simulate(seacable.load_case(path))
     assert results.status == "complete"
+    assert not _warnings(caplog)
 
 
 def test_the_case_file_in_the_docs_builds():

@@ -70,6 +70,7 @@ def _bad(mutate):
         (lambda d: d["bodies"][1].update(type="wobbly"), "case-systemcase-bodies"),
         (lambda d: d["simulation"].pop("duration"), "case-simulation-duration"),
         (lambda d: d["lines"][0]["sections"][0].update(segments=0), "case-section-segments"),
+        (lambda d: d["bodies"][1]["external forces"][0].update(colour=1), "case-gravity"),
     ],
 )
 def test_error_lines_link_to_their_entries(mutate, fragment):
@@ -79,6 +80,7 @@ def test_error_lines_link_to_their_entries(mutate, fragment):
     assert all(link.startswith(reference.DOCS_URL + reference.PAGE + ".html#") for link in links)
     assert {link.split("#")[1] for link in links} <= LABELS
     assert fragment in {link.split("#")[1] for link in links}, message
+    assert "Valid keys: ?" not in message  # a key with a space (external forces) is walked
 
 
 def test_every_variable_a_run_writes_is_in_the_catalogue_of_outputs():
@@ -109,3 +111,23 @@ def test_every_variable_a_run_writes_is_in_the_catalogue_of_outputs():
         missing += [path for path, (dim, _, unit, text) in coords.items()
                     if (path.rsplit("/", 1)[-1], ((dim,), unit, text)) not in listed]  # fmt: skip
         assert not missing, missing
+
+
+def test_an_error_found_after_the_schema_links_to_the_key_it_names(tmp_path):
+    """A check of the built system (a lumped-mass line on a line type without EA) names the
+    key in its own words; the command line adds the address of its entry."""
+    import yaml
+    from click.testing import CliRunner
+
+    from seacable.cli import main
+
+    data = copy.deepcopy(CHAIN)
+    data["lines"][0] = {"name": "cable", "model": "lumped_mass", "from": "top", "to": "end",
+                        "sections": [{"type": "chain", "segments": 5, "length": 10.0}]}  # fmt: skip
+    case = tmp_path / "case.yaml"
+    case.write_text(yaml.safe_dump(data))
+    outcome = CliRunner().invoke(main, ["validate", str(case)])
+    assert outcome.exit_code == 2
+    assert "has no axial_stiffness" in outcome.output
+    assert outcome.output.strip().endswith(f"(reference: {reference.DOCS_URL}{reference.PAGE}"
+                                           ".html#case-section-type)")  # fmt: skip

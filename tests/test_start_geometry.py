@@ -155,3 +155,23 @@ def test_a_body_without_a_shape_that_rises_above_the_water_is_said(caplog):
         results = seacable.simulate(_buoys(point_volume, "as_given"))
     assert "body 'buoy_a' above the water from t = " in results.dataset.attrs["run_warnings"]
     assert "its volume still counts as wholly submerged: give it a shape" in caplog.text
+
+
+def test_mirrored_lines_start_in_mirrored_shapes_with_no_segment_pushed(caplog):
+    """The turret FPSO's chains 2 and 3 mirror each other about the x axis. Their start shapes
+    (``start: as_given``: each line settled between its ends) were not mirrored: the EA stages
+    of ``line_balance`` had put chain 3 in a balance of the linear axial law with its segments
+    zigzagging, 21 to 29 m of 25 m, at 208 MN; such a balance, which pushes segments, is no
+    longer taken."""
+    import numpy as np
+
+    from seacable.system import model
+
+    case = load_case("examples/turret_fpso_catenary_mooring.yaml")
+    with caplog.at_level(logging.WARNING, logger="seacable"):
+        built = model.build(case)
+    assert not [r for r in caplog.records if r.levelno >= logging.WARNING]
+    rows, _ = model.rows(np.array([0.0]), built.y0[None, :], built, model.workspace(built))
+    chain_2, chain_3 = (rows[f"lines/{name}/tension"][0] for name in ("chain_2", "chain_3"))
+    np.testing.assert_allclose(chain_3, chain_2, rtol=1e-6)
+    assert chain_3.max() < 1e6  # [N] a fairlead tension of hundreds of kN

@@ -14,7 +14,7 @@ import xarray as xr
 
 import seacable
 from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
-from seacable.case import legacy, loader, moordyn
+from seacable.case import legacy, loader, moordyn, reference
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
 from seacable.system import utilisation
@@ -29,6 +29,15 @@ REPORT = "https://github.com/seacable/seacable/issues"
 def _fail(message: str, code: int = 1) -> NoReturn:
     click.echo(f"error: {message}", err=True)
     sys.exit(code)
+
+
+def _linked(message: str) -> str:
+    """A case's error with the address of the key it names in the reference (once)."""
+    case = cli_ships.LOADED.get("case")
+    link = reference.link_for(message, case) if case is not None else None
+    return (
+        message if link is None or "(reference: " in message else f"{message} (reference: {link})"
+    )
 
 
 class _Boundary(click.Group):
@@ -47,6 +56,8 @@ class _Boundary(click.Group):
             _fail("interrupted", 130)
         except seacable.SimulationDiverged as exc:
             _fail(str(exc), EXIT_DIVERGED)
+        except seacable.CaseError as exc:
+            _fail(_linked(str(exc)), EXIT_INPUT)
         except seacable.SeacableError as exc:
             _fail(str(exc), EXIT_INPUT)
         except OSError as exc:  # a file that cannot be read or written
@@ -109,9 +120,7 @@ _SET = click.option(
 )  # fmt: skip
 
 
-def _case(case_file: str, settings: tuple[str, ...]):
-    """The case of CASE_FILE with the command line's ``--set`` changes."""
-    return loader.with_settings(seacable.load_case(case_file), settings)
+_case = cli_ships.load  # the case of CASE_FILE with the command line's --set changes
 
 
 @main.command()
@@ -175,7 +184,7 @@ def repeat(results_file: str, output: str, progress: bool) -> None:
             case_file = restore_case(attrs, folder)
         except ValueError as exc:
             _fail(f"{results_file}: {exc}", EXIT_INPUT)
-        results = seacable.simulate(seacable.load_case(case_file), output=output,
+        results = seacable.simulate(_case(case_file), output=output,
                                     progress=progress)  # fmt: skip
     click.echo(f"{results.status}: {results.message}; results in {output}")
 
@@ -249,11 +258,12 @@ def validate(case_file: str, settings: tuple[str, ...]) -> None:
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="NetCDF file to write (default: CASE_FILE with .statics.nc).")  # fmt: skip
-def statics(case_file: str, output: str | None) -> None:
+@_SET
+def statics(case_file: str, output: str | None, settings: tuple[str, ...]) -> None:
     """Static equilibrium of the system of CASE_FILE: every body's pose and every line's end
     tensions, printed and written."""
     output = output or str(Path(case_file).with_suffix(".statics.nc"))
-    case = seacable.load_case(case_file)
+    case = _case(case_file, settings)
     results = seacable.statics(case, output=output)
     tree = results.dataset
     for name, node in tree["bodies"].children.items():
@@ -283,10 +293,11 @@ def statics(case_file: str, output: str | None) -> None:
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("--count", type=int, default=12, show_default=True, help="Slowest modes shown.")
-def modes(case_file: str, count: int) -> None:
+@_SET
+def modes(case_file: str, count: int, settings: tuple[str, ...]) -> None:
     """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
     ratio and the coordinate each mode moves most."""
-    found = analysis.system_modes(seacable.load_case(case_file), count=count)
+    found = analysis.system_modes(_case(case_file, settings), count=count)
     click.echo("mode  period [s]  damping ratio  moves most")
     for k in range(found.sizes["mode"]):
         click.echo(

@@ -5,6 +5,7 @@ error boundary as seacable's exceptions."""
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import click
 import numpy as np
@@ -12,11 +13,22 @@ import xarray as xr
 
 import seacable
 from seacable import viz
+from seacable.case import loader
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import operability as stability_map
 from seacable.stability.api import weather_of
 from seacable.stability.plane import significant_height
+
+LOADED: dict[str, SystemCase] = {}  # the case a command works on: its errors link to its keys
+
+
+def load(case_file: str | Path, settings: tuple[str, ...] = ()) -> SystemCase:
+    """The case of CASE_FILE with the command line's ``--set`` changes, kept in ``LOADED``
+    for the command line's error boundary (``cli``: an error naming a key links to it)."""
+    case = loader.with_settings(seacable.load_case(case_file), settings)
+    LOADED["case"] = case
+    return case
 
 
 def _weather(case, current, wind, waves) -> seacable.Weather:
@@ -61,7 +73,7 @@ def _weather_options(command):
 def equilibria(case_file: str, current, wind, waves, headings: int, output: str | None) -> None:
     """Every equilibrium of the ships of CASE_FILE in the horizontal plane (surge, sway, yaw)
     for a current and a wind, and its stability from the linearised system's eigenvalues."""
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     weather = _weather(case, current, wind, waves)
     found = seacable.equilibria(case, weather, headings=headings)
     sea = ""
@@ -112,7 +124,7 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
     folds, branch points and Hopf points (pseudo-arclength continuation); with --cycles, the
     branches of limit cycles born at the Hopf points and whether each is super- or
     subcritical, by simulation."""
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     found = seacable.continuation(case, path, start, end, _weather(case, current, wind, waves),
                                   headings=headings, cycles=cycles)  # fmt: skip
     branches = np.unique(found["branch"].values)
@@ -164,7 +176,7 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
     """Curves of folds and Hopf points of the ships of CASE_FILE in two parameters: those a
     continuation in the first finds with the second at --second-from, followed as both
     change."""
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     found = seacable.curves(case, path, start, end, second, second_start, second_end,
                             _weather(case, current, wind, waves), headings=headings)  # fmt: skip
     click.echo(f"{found.sizes['curve']} curves")
@@ -193,7 +205,7 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
     """The limit cycle (fishtailing) the ships of CASE_FILE settle on from their oscillatory
     unstable equilibrium: period, amplitudes, hawser tensions, the hulls' least clearance and
     its Floquet multipliers (shooting)."""
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     found = seacable.periodic_orbit(case, _weather(case, current, wind, waves), path, value, settle,
                                     headings=headings)  # fmt: skip
     state = "stable" if bool(found["stable"]) else "unstable"
@@ -295,7 +307,7 @@ def operability(case_file: str, current_speed: float | None, current_towards: st
             _angles(wind_towards, "--wind-towards"), _angles(ratios, "--ratios"))  # fmt: skip
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     where = None if scheduler == "none" else scheduler
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     found = stability_map.operability(case, weathers, shape, limits, simulate, where,
                                       control=control, probability=probability,
                                       start=start)  # fmt: skip
@@ -320,7 +332,7 @@ def compare(case_file: str, current, wind, waves, headings: int, duration: float
             clearance: float, tension, output: str | None, plot: str | None) -> None:  # fmt: skip
     """The ships of CASE_FILE in one weather without and with their compensator, side by side:
     is it safe, with and without control? (distance, tension, thrust, clearance)."""
-    case = seacable.load_case(case_file)
+    case = load(case_file)
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     found = seacable.compare(case, _weather(case, current, wind, waves), duration, limits=limits)
     for control in found["control"].values:

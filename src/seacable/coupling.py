@@ -1,6 +1,6 @@
 """Stepping a case from another program, as MoorDyn's coupling interface does: a floating-body
 solver (or OpenFAST, WEC-Sim, a Python loop) gives the motion of the case's coupled bodies at
-each of its steps and takes back the forces the lines put on them.
+each of its steps and takes back the forces the lines put on them::
 
     coupling = Coupling("lines.txt")                # a case, or a MoorDyn deck
     forces = coupling.init(x0)                      # the statics, the coupled bodies at x0

@@ -27,7 +27,7 @@ NUMBERS = [
     ("bodies[6].position", ["bodies", 6, "position", 2], False),
     ("bodies[6].shape.radius", ["bodies", 6, "shape", "radius"], True),
     ("bodies[6].added_mass", ["bodies", 6, "added_mass", 0], False),
-    ("bodies[6].external forces[2].drag.drag_coefficient",
+    ("bodies[6].external forces[2].drag_coefficient",
      ["bodies", 6, "external forces", 2, "drag_coefficient"], False),
     ("line_types[0].diameter", ["line_types", 0, "diameter"], True),
     ("line_types[0].mass_per_length", ["line_types", 0, "mass_per_length"], True),

@@ -259,6 +259,7 @@ def _set(data: dict, path: str, value: Any, setting: str) -> None:
         last = k == len(steps) - 1
         if isinstance(here, list):
             names = [item.get("name") for item in here if isinstance(item, dict)]
+            index = index or (name if name.isdigit() else "")  # ``forces.2`` as ``forces[2]``
             at = int(index) if index else (names.index(name) if name in names else None)
             if at is None or not 0 <= at < len(here):
                 raise CaseError(
@@ -404,7 +405,7 @@ def _error_line(error: dict, root: Any) -> str:
     if error["type"] == "extra_forbidden":
         key = error["loc"][-1]
         parent_path, parent = _walk(error["loc"][:-1], root)
-        valid = ", ".join(parent.model_fields) if parent is not None else "?"
+        valid = ", ".join(_keys(parent)) if parent is not None else "?"
         return (
             f"- {parent_path or '(top level)'}: unknown key '{key}'. Valid keys: {valid}. "
             "Check the spelling or remove it"
@@ -453,19 +454,21 @@ def _walk(loc, root: Any = Case) -> tuple[str, type[BaseModel] | None]:
             continue
         text += ("." if text else "") + str(item)
         model = _as_model(annotation)
-        if model is not None and item in model.model_fields:
-            annotation = model.model_fields[item].annotation
-        else:
-            annotation = None
+        field = _keys(model).get(item) if model is not None else None
+        annotation = field.annotation if field is not None else None
     return text, _as_model(annotation)
 
 
 def _annotation_at(loc, root: Any = Case):
     """Annotation of the field at ``loc`` (for listing the allowed tags of a union)."""
     parent_path, parent = _walk(loc[:-1], root)
-    if parent is None or loc[-1] not in parent.model_fields:
-        return None
-    return parent.model_fields[loc[-1]].annotation
+    field = _keys(parent).get(loc[-1]) if parent is not None else None
+    return None if field is None else field.annotation
+
+
+def _keys(model: type[BaseModel]) -> dict:
+    """A model's fields by the key the file writes (``external forces``, ``from``)."""
+    return {field.alias or name: field for name, field in model.model_fields.items()}
 
 
 def _members(annotation) -> list:

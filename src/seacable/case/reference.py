@@ -54,6 +54,38 @@ def link(model: Part, key: str | None = None) -> str:
     return f"{DOCS_URL}{PAGE}.html#{anchor(model, key)}"
 
 
+_STEP = re.compile(r"^([A-Za-z_ ]+?)(?:\[(\d+)\])?(?: \(([^)]*)\))?$")
+
+
+def link_for(message: str, case: BaseModel) -> str | None:
+    """The address of the entry of the key a message starts with (``bodies[4] (buoy).mass:``,
+    ``lines (cable).sections[0].type:``, as the checks after the schema's name them), found
+    in ``case``, the case it is about; the entry of the part it names when the key is not
+    one; None when the message names none."""
+    head = message.split(":", 1)[0] if ":" in message else ""
+    here: Any = case
+    model, key = None, None
+    for token in head.split(".") if head else []:
+        found = _STEP.match(token.strip())
+        if found is None or not isinstance(here, BaseModel):
+            break
+        name, index, label = found.groups()
+        fields = {f.alias or n: n for n, f in type(here).model_fields.items()}
+        if name not in fields:
+            break
+        model, key = type(here), name
+        value = getattr(here, fields[name])
+        if index is not None and isinstance(value, list) and int(index) < len(value):
+            value = value[int(index)]
+        elif label is not None and isinstance(value, list):
+            value = next((v for v in value if getattr(v, "name", None) == label), None)
+        if isinstance(value, BaseModel):
+            here, model, key = value, type(value), None
+        elif index is not None or label is not None:
+            break
+    return None if model is None else link(model, key)
+
+
 def unit_and_meaning(description: str | None) -> tuple[str, str]:
     """A field docstring's unit (without brackets; "" when it has none) and its meaning."""
     text = " ".join((description or "").split())
