@@ -39,7 +39,6 @@ suppress_warnings = ["myst.xref_missing"]
 
 html_theme = "furo"
 html_title = f"seacable {release}"
-html_static_path = ["_static"]
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
@@ -57,6 +56,7 @@ def _generate(app) -> None:
     }
     for target, text in pages.items():
         if not target.exists() or target.read_text() != text:
+            target.parent.mkdir(parents=True, exist_ok=True)  # reference/: generated pages only
             target.write_text(text)
 
 

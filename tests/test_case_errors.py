@@ -394,3 +394,9 @@ def test_the_tension_a_stretched_lines_ends_imply_is_reported(caplog):
         prepare(seacable.load_case(data))
     assert "lines (rope): its most stretched segment (" in caplog.text
     assert "starts at a strain of 10 %, a tension of 1e+06 N (EA 1e+07 N)" in caplog.text
+
+
+def test_a_seabed_without_a_water_depth_is_refused():
+    """A seabed lies at z = -water_depth: without a depth it touched nothing, silently."""
+    with pytest.raises(CaseError, match=r"environment: seabed: .* no water_depth is given"):
+        _load(lambda d: d["environment"].update(in_air=False, seabed={"stiffness": 1e5}))

@@ -197,4 +197,9 @@ class Environment(_Model):
     def _waves_in_water(self):
         if self.waves and self.in_air:
             raise ValueError("waves need water: remove 'waves' or set in_air: false")
+        if self.seabed is not None and self.water_depth is None:  # it would touch nothing
+            raise ValueError(
+                "seabed: a seabed lies at z = -water_depth, and no water_depth is given; give "
+                "environment.water_depth [m], or remove seabed (deep water)"
+            )
         return self
