@@ -400,3 +400,32 @@ def test_a_seabed_without_a_water_depth_is_refused():
     """A seabed lies at z = -water_depth: without a depth it touched nothing, silently."""
     with pytest.raises(CaseError, match=r"environment: seabed: .* no water_depth is given"):
         _load(lambda d: d["environment"].update(in_air=False, seabed={"stiffness": 1e5}))
+
+
+def test_settings_change_one_key_as_the_file_nests_it():
+    """The command line's ``--set PATH=VALUE`` (``loader.with_settings``): a key, a list's
+    item by index (``[1]`` or ``.1.``) or by name, a value read as YAML; a path that leads
+    nowhere, a value that is not YAML or a setting without ``=`` refused in one line."""
+    from seacable.case.loader import with_settings
+
+    case = _load(lambda d: None)
+    changed = with_settings(case, ("simulation.duration=2", "bodies.end.mass=2.5",
+                                   "lines[0].sections.0.segments=7",
+                                   "bodies[1].position=[0, 0, -12]"))  # fmt: skip
+    assert changed.simulation.duration == 2.0 and changed.bodies[1].mass == 2.5
+    assert changed.lines[0].sections[0].segments == 7
+    assert changed.bodies[1].position == (0.0, 0.0, -12.0)
+    with pytest.raises(CaseError, match=r"simulation\.output_interval: required key is missing"):
+        with_settings(case, ("simulation.output_interval=",))  # an empty value removes the key
+    for setting, match in (
+        (
+            "bodies.boat.mass=1",
+            r"bodies has no item 'boat'; its items: 0 to 1 or by name: top, end",
+        ),
+        ("simulation.lenght.x=1", r"simulation has no key 'lenght'; its keys: .*duration"),
+        ("simulation.duration=[1, ", r"the value is not YAML"),
+        ("simulation.duration", r"write PATH=VALUE"),
+        ("simulation.duration=-1", r"simulation\.duration: Input should be greater than 0"),
+    ):
+        with pytest.raises(CaseError, match=match):
+            with_settings(case, (setting,))

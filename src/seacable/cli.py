@@ -46,6 +46,7 @@ class _Boundary(click.Group):
     traceback)."""
 
     def invoke(self, ctx: click.Context):
+        cli_ships.LOADED.clear()  # a case of an earlier call (in one process) is not this one's
         try:
             return super().invoke(ctx)
         except (click.exceptions.Exit, click.ClickException, SystemExit):

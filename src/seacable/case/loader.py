@@ -241,7 +241,15 @@ def with_settings(case: SystemCase, settings: list[str] | tuple[str, ...]) -> Sy
             raise CaseError(
                 f"--set {setting!r}: write PATH=VALUE, e.g. --set simulation.duration=10"
             )
-        _set(data, path.strip(), _parse(value) if value.strip() else None, setting)
+        try:
+            parsed = _parse(value) if value.strip() else None
+        except CaseError as exc:
+            detail = " ".join(str(exc).partition(": ")[2].split())
+            raise CaseError(
+                f"--set {setting!r}: the value is not YAML ({detail}); write a number, a word, "
+                "or a list or mapping in brackets ([0, 0, -80], {kind: sine, ...})"
+            ) from None
+        _set(data, path.strip(), parsed, setting)
     derived = load_case(data)
     derived._base_dir, derived._source_file = case._base_dir, case._source_file
     return derived

@@ -3,7 +3,9 @@ the file is, with its type, unit, default, limits and meaning (the field's docst
 starts with its unit in brackets: ``"[m] Radius of the sphere."``).
 
 ``case_file_rst()`` writes the page the documentation builds (docs/conf.py);
-``link(model, key)`` is the address of a key's entry, which the loader's error lines give.
+``link(model, key)`` is the address of a key's entry, which the loader's error lines give, and
+``link_for(message, case)`` the entry of the key a later check's message names (the command
+line adds it).
 """
 
 import inspect
@@ -131,8 +133,9 @@ def parts(model: Part = SystemCase) -> list[Part]:
 
 
 def sections() -> list[tuple[str, list[Part]]]:
-    """The parts grouped by the top-level key they are reached from, as the file is laid out;
-    a part reached from two of them (time functions) in the last group, "shared parts"."""
+    """The parts grouped by the top-level key they are reached from, as the file is laid out
+    (a body's force models in a group of their own); the parts reached from two of them in the
+    last group, "time functions" when they are those."""
     root = SystemCase
     reached: dict[Part, set[str]] = {}
     order: list[tuple[str, list[Part]]] = []
@@ -310,7 +313,7 @@ def case_file_rst() -> str:
         label = "case-group-" + re.sub(r"[^a-z0-9]+", "-", group)
         out += [f".. _{label}:", "", group.capitalize(), "-" * len(group), ""]
         for model in models:
-            out += _part_rst(model, headed=_name(model.__name__) != _name(group) != "toplevel")
+            out += _part_rst(model, headed=_name(model.__name__) != _name(group))
     return "\n".join(out) + "\n"
 
 
