@@ -10,7 +10,7 @@ LAYER = {
     "cli": 14, "cli_ships": 13,
     "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
-    "simulation": 11, "analysis": 11, "stability": 11,
+    "simulation": 11, "analysis": 11, "stability": 11, "stats": 11,
     "case.loader": 10, "results": 10, "case.reference": 9.5,
     "numerics": 8,
     "system": 7,

@@ -14,6 +14,7 @@ import xarray as xr
 
 import seacable
 from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
+from seacable import stats as stats_module
 from seacable.case import legacy, loader, moordyn, reference
 from seacable.case.system import SystemCase
 from seacable.results import restore_case
@@ -358,6 +359,35 @@ def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
             EXIT_INPUT,
         )
     return results.dataset
+
+
+@main.command(name="stats")
+@click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
+@click.option(
+    "--storm",
+    type=click.FloatRange(min=0.0, min_open=True),
+    default=10800.0,
+    show_default=True,
+    help="Duration [s] of the storm whose most probable largest value is given.",
+)
+def statistics(results_file: str, storm: float) -> None:
+    """Statistics of RESULTS_FILE: each line's tension at its ends and each moving body's
+    motions, their largest, least, mean and standard deviation, zero-up-crossing period Tz
+    and most probable largest value over a storm (a Rayleigh law of the peaks: seacable.stats).
+    """
+    tree = _tree(seacable.Results.open(results_file), results_file)
+    time = np.asarray(tree["time"].values, dtype=float)
+    click.echo(f"{'':44s} {'unit':>6s} {'largest':>10s} {'least':>10s} {'mean':>10s} "
+               f"{'std':>10s} {'Tz [s]':>8s} {f'MPM {storm:g} s':>12s}")  # fmt: skip
+    for name, unit, values in stats_module.series(tree):
+        scale, shown = (1e3, "kN") if unit == "N" else (1.0, unit)
+        s = stats_module.summary(time, values / scale, storm=storm)
+        click.echo(f"{name:44s} {shown:>6s} {s.largest:10.4g} {s.least:10.4g} {s.mean:10.4g} "
+                   f"{s.std:10.4g} {s.tz:8.3g} {s.mpm:12.4g}")  # fmt: skip
+    click.echo(
+        f"{len(time)} rows over {time[-1] - time[0]:g} s; MPM: mean + std "
+        f"sqrt(2 ln({storm:g} s / Tz)), NaN where the run holds under two up-crossings"
+    )
 
 
 @main.command()

@@ -1,0 +1,119 @@
+"""Statistics engineers read from a run's time series (``seacable stats``): largest, least, mean,
+standard deviation, the zero-up-crossing period and the most probable largest value over a
+storm from a Rayleigh distribution of the peaks; rainflow cycles (ASTM E1049-85, by the
+``rainflow`` package) and the fatigue damage they do on a T-N curve N R^m = K.
+
+The most probable largest value (Rayleigh): a narrow-band Gaussian process of standard
+deviation sigma has Rayleigh-distributed peaks above its mean, one per zero-up-crossing period
+Tz; of the N = D / Tz peaks of a storm of duration D, the most probable largest lies
+sigma sqrt(2 ln N) above the mean (the mode of the largest of N Rayleigh variables, for large
+N; ``tests/test_stats.py`` checks it against that largest's exact distribution). The most
+probable maximum of a 3-hour storm is what mooring design checks commonly take. A
+broad-banded or non-Gaussian response (a snatching line) needs a fit to its own peaks (not
+done yet).
+"""
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import rainflow  # type: ignore[import-untyped]
+
+
+@dataclass(frozen=True)
+class Summary:
+    """What a time series says at first reading. ``tz`` [s] is NaN when the series crosses
+    its mean upwards fewer than twice; ``mpm`` [the series' unit] is NaN without a storm
+    duration or a ``tz``."""
+
+    largest: float
+    least: float
+    mean: float
+    std: float
+    tz: float
+    up_crossings: int
+    mpm: float
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def up_crossing_times(t, x, level: float) -> np.ndarray:
+    """The times [s] at which ``x`` crosses ``level`` upwards, linearly interpolated between
+    samples (a sample exactly at the level counts once, where the series leaves it upwards)."""
+    t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float) - level
+    at = np.flatnonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))
+    share = -x[at] / (x[at + 1] - x[at])
+    return t[at] + share * (t[at + 1] - t[at])
+
+
+def zero_up_crossing_period(t, x) -> tuple[float, int]:
+    """The mean time [s] between the up-crossings of the series' mean, and their count (NaN
+    below two crossings): Rice's 2 pi sqrt(m0 / m2) for a Gaussian process."""
+    times = up_crossing_times(t, x, float(np.mean(x)))
+    if len(times) < 2:
+        return math.nan, len(times)
+    return float((times[-1] - times[0]) / (len(times) - 1)), len(times)
+
+
+def rayleigh_mpm(mean: float, std: float, tz: float, duration: float) -> float:
+    """The most probable largest value over ``duration`` [s] of a narrow-band Gaussian process
+    (module docstring): mean + std sqrt(2 ln(duration / tz)); NaN when the storm holds fewer
+    than two periods or tz is unknown."""
+    if not (math.isfinite(tz) and tz > 0.0 and duration >= 2.0 * tz):
+        return math.nan
+    return mean + std * math.sqrt(2.0 * math.log(duration / tz))
+
+
+def summary(t, x, storm: float | None = None) -> Summary:
+    """``x`` over the times ``t``; ``storm`` [s]: the duration of the storm whose most
+    probable largest value is estimated (``rayleigh_mpm``)."""
+    x = np.asarray(x, dtype=float)
+    tz, count = zero_up_crossing_period(t, x)
+    mean, std = float(np.mean(x)), float(np.std(x))
+    return Summary(
+        largest=float(np.max(x)), least=float(np.min(x)), mean=mean, std=std, tz=tz,
+        up_crossings=count,
+        mpm=rayleigh_mpm(mean, std, tz, storm) if storm is not None else math.nan,
+    )  # fmt: skip
+
+
+def cycles(x) -> np.ndarray:
+    """Rainflow cycles of a series (ASTM E1049-85, the ``rainflow`` package): rows of (range,
+    mean, count), count 0.5 for a half cycle."""
+    found = [(r, m, c) for r, m, c, _, _ in rainflow.extract_cycles(np.asarray(x, dtype=float))]
+    return np.array(found, dtype=float).reshape(-1, 3)
+
+
+def damage(x, k: float, m: float, reference: float = 1.0) -> float:
+    """Miner's fatigue damage of the series' rainflow cycles on the T-N curve N R^m = k, R the
+    cycle's range over ``reference`` (a line's breaking strength for API RP 2SK's curves, 1 for
+    a curve in the series' own unit): the sum of count / N(R)."""
+    if not (k > 0.0 and m > 0.0 and reference > 0.0):
+        raise ValueError(f"a T-N curve needs k > 0, m > 0 and a reference > 0 (got k={k:g}, "
+                         f"m={m:g}, reference={reference:g})")  # fmt: skip
+    found = cycles(x)
+    ranges = found[:, 0] / reference
+    return float(np.sum(found[:, 2] * ranges**m / k))
+
+
+def series(tree) -> list[tuple[str, str, np.ndarray]]:
+    """What ``seacable stats`` reads first in a system's results (an xarray DataTree): each
+    line's tension at its two ends (its first and last segment or node; a tie's one tension)
+    and each moving body's position and angles, as (name, unit, values over time)."""
+    out: list[tuple[str, str, np.ndarray]] = []
+    for name, node in tree["lines"].children.items() if "lines" in tree.children else []:
+        tension = node["tension"]
+        unit = str(tension.attrs.get("units", ""))
+        if tension.ndim == 1:
+            out.append((f"lines/{name} tension", unit, tension.values))
+            continue
+        out.append((f"lines/{name} tension, 'from' end", unit, tension.values[:, 0]))
+        out.append((f"lines/{name} tension, 'to' end", unit, tension.values[:, -1]))
+    for name, node in tree["bodies"].children.items() if "bodies" in tree.children else []:
+        for key in ("position_x", "position_y", "position_z", "roll", "pitch", "yaw"):
+            values = node[key].values if key in node else np.zeros(1)
+            if np.ptp(values) > 1e-6 * max(1.0, float(np.abs(values).max())):  # it moves
+                out.append((f"bodies/{name} {key}", str(node[key].attrs.get("units", "")),
+                            values))  # fmt: skip
+    return out
