@@ -38,13 +38,18 @@ OTHERS = {
 WIDTH = 1200  # pixels: the pages show it at most this wide
 
 
-def digest(example: str) -> str:
-    return hashlib.sha256((ROOT / "examples" / f"{example}.yaml").read_bytes()).hexdigest()
+def recipe(name: str) -> tuple[str, list[list[str]]]:
+    """The case (in examples/) and the commands of a picture: an example's run and plot, or
+    one of OTHERS."""
+    if name in OTHERS:
+        return OTHERS[name]
+    run = ["run", "CASE", "-o", "RESULTS", "--no-progress"]
+    return f"{name}.yaml", [run, ["plot", "RESULTS", "-o", "PICTURE", *OPTIONS.get(name, [])]]
 
 
-def draw_other(name: str) -> dict:
-    """One of OTHERS, drawn by its commands."""
-    example, commands = OTHERS[name]
+def draw(name: str) -> dict:
+    """Draw one picture by its commands, shrink it; its manifest entry."""
+    example, commands = recipe(name)
     picture = IMAGES / f"{name}.png"
     with tempfile.TemporaryDirectory() as folder:
         given = {"CASE": str(ROOT / "examples" / example), "PICTURE": str(picture),
@@ -54,38 +59,13 @@ def draw_other(name: str) -> dict:
     shrink(picture)
     shown = {"CASE": f"examples/{example}", "PICTURE": f"docs/images/{name}.png",
              "RESULTS": "results.nc"}  # fmt: skip
-    return {
-        "example": example,
+    entry = {
         "example_sha256": hashlib.sha256((ROOT / "examples" / example).read_bytes()).hexdigest(),
         "commands": [
             " ".join(["seacable", *(shown.get(w, w) for w in words)]) for words in commands
         ],  # fmt: skip
     }
-
-
-def draw(example: str) -> dict:
-    case = ROOT / "examples" / f"{example}.yaml"
-    picture = IMAGES / f"{example}.png"
-    with tempfile.TemporaryDirectory() as folder:
-        results = Path(folder) / "results.nc"
-        run = [*SEACABLE, "run", str(case), "-o", str(results), "--no-progress"]
-        plot = [*SEACABLE, "plot", str(results), "-o", str(picture), *OPTIONS.get(example, [])]
-        for command in (run, plot):
-            subprocess.run(command, check=True, cwd=ROOT)
-    shrink(picture)
-    return {
-        "example_sha256": digest(example),
-        "commands": [
-            f"seacable run examples/{example}.yaml -o results.nc",
-            " ".join(
-                [
-                    "seacable plot results.nc -o",
-                    f"docs/images/{example}.png",
-                    *OPTIONS.get(example, []),
-                ]
-            ),
-        ],
-    }
+    return entry if example == f"{name}.yaml" else {"example": example, **entry}
 
 
 def shrink(picture: Path) -> None:
@@ -105,7 +85,7 @@ def main(names: list[str]) -> None:
         sys.exit(f"no picture of {unknown}; the pictures: {', '.join([*PICTURES, *OTHERS])}")
     manifest = json.loads(MANIFEST.read_text()) if MANIFEST.exists() else {}
     for name in names or [*PICTURES, *OTHERS]:
-        manifest[name] = draw_other(name) if name in OTHERS else draw(name)
+        manifest[name] = draw(name)
         MANIFEST.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")
         print(f"docs/images/{name}.png drawn", flush=True)
 
