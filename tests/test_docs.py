@@ -5,7 +5,7 @@ read what an earlier one wrote, as a reader would go). ``python`` blocks are exe
 ``bash`` blocks run each ``seacable`` command through the command line (a ``make`` target must
 exist in the Makefile: those are CI's own commands); a command ending ``# exits with code N``
 must exit with N; ``yaml`` blocks that hold a ``simulation`` are loaded as cases. In the default
-suite each ``seacable run`` is shortened to two output intervals (``--set
+suite each ``seacable run`` and ``sweep`` is shortened to two output intervals (``--set
 simulation.duration=...``); the slow suite runs them as written. Blocks without a language are
 output or diagrams, and MyST's ``{directive}`` blocks are Sphinx's.
 
@@ -57,7 +57,7 @@ def test_the_pages_have_their_code_blocks_found():
 
 
 def _seacable(args: list[str], expected: int, short: bool) -> str:
-    if short and args[0] == "run":
+    if short and args[0] in ("run", "sweep"):
         case = seacable.load_case(args[1])
         args = [*args, "--set", f"simulation.duration={2 * case.simulation.output_interval!r}"]
     if args[0] in ("run", "animate"):

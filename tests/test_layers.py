@@ -7,7 +7,9 @@ PACKAGE = Path(__file__).parent.parent / "src" / "seacable"
 
 # module (or subpackage) -> seacable modules it may import
 LAYER = {
-    "cli": 14, "cli_ships": 13,
+    "cli": 14, "cli_sweep": 13.5, "cli_ships": 13,
+    "sweep": 12.5, "sweep_summary": 12.4, "cluster": 10.5,
+    "report": 12.8, "export": 12.8, "fatigue": 11.5,
     "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
     "simulation": 11, "analysis": 11, "stability": 11, "stats": 11,
@@ -23,7 +25,7 @@ LAYER = {
     "hydrodb": 3, "realization": 3, "bem": 4,
     "case.legacy": 10,
     "case.legacy_sections": 9, "case.moordyn": 9, "case.moordyn_tables": 8.5,
-    "case.forces": 2, "case.environment": 2,
+    "case.forces": 2, "case.environment": 2, "case.sweep": 2, "case.fatigue": 2,
     "case.ship_forces": 1.5,
     "case.base": 1, "hydrodb_formats": 1,
     "kernels": 0, "errors": 0,
@@ -92,11 +94,13 @@ def test_no_import_inside_functions_except_lazy_optional():
     lazy_ok |= {"PIL"}  # Pillow, loaded when an animation is written
     lazy_ok |= {"capytaine"}  # the [bem] extra, loaded when a database is computed
     lazy_ok |= {"distributed"}  # the [dask] extra, loaded when a map runs on Dask
+    lazy_ok |= {"plotly.offline"}  # the [report] extra, loaded when a report is written
     lazy_ok |= {"matplotlib.colors", "matplotlib.patches"}  # the operability map's picture
     # SciPy's slow imports, loaded where used (docs/architecture.md, "Compile time"): a run with
     # rk4, dopri5 or the implicit schemes needs none of them
     lazy_ok |= {"scipy", "scipy.integrate", "scipy.interpolate", "scipy.optimize"}
     lazy_ok |= {"scipy.spatial", "scipy.spatial.transform", "scipy.linalg", "scipy.stats"}
+    lazy_ok |= {"scipy.signal"}  # Welch's spectra (seacable.stats)
     for path in PACKAGE.rglob("*.py"):
         tree = ast.parse(path.read_text())
         for func in ast.walk(tree):

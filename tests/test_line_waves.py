@@ -145,7 +145,8 @@ def test_waves_of_zero_height_are_bitwise_still_water(monkeypatch, line_model):
     """A line piercing the surface in a current, a 50 kg weight at its end, in a regular wave
     whose amplitude is then set to zero (the wave code runs: elevations, kinematics, inertia),
     gives bitwise the run without waves evaluated by the same compiled copy (the one with the
-    waves' code, system.variants), and the run by the copy without it to round-off."""
+    waves' code, system.variants), and the run by the copy without it to round-off (carried by
+    the adaptive steps: far below the integrator's tolerance)."""
     from seacable import packing
     from seacable.system import variants
 
@@ -176,8 +177,12 @@ def test_waves_of_zero_height_are_bitwise_still_water(monkeypatch, line_model):
     assert rows and rows[-1] == 1  # the run had its (flat) wave
     for name in still.data_vars:
         np.testing.assert_array_equal(flat_sea[name].values, still[name].values, err_msg=name)
-        np.testing.assert_allclose(own_copy[name].values, still[name].values, rtol=1e-12,
-                                   atol=1e-12, err_msg=name)  # fmt: skip
+        # two compiled copies round differently (LLVM contracts and orders their operations
+        # each its own way), and dopri5's step control carries a difference of one rounding
+        # through 2 s: 4.5e-10 of the kinetic energy of the 3D line with numba 0.68.1 (1e-12
+        # before): far below the integrator's rtol 1e-7, which is what the copies must respect
+        np.testing.assert_allclose(own_copy[name].values, still[name].values, rtol=1e-8,
+                                   atol=1e-10, err_msg=name)  # fmt: skip
     assert np.ptp(still["bodies/b/position_z"].values) > 0.01  # it moves
 
 

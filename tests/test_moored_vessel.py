@@ -83,7 +83,8 @@ def test_the_animation_draws_the_hull_and_the_waves(tmp_path):
     path = tmp_path / "barge.nc"
     seacable.simulate(seacable.load_case(raw), output=path)
     tree = xr.open_datatree(path)
-    hulls, sea = vs._scene(tree)
+    meshes, sea = vs.scene(tree)
+    hulls = {name: mesh.vertices for name, mesh in meshes.items()}
     assert set(hulls) == {"barge"} and sea["wave"].shape[1] == 180
     ds = tree["bodies/barge"].to_dataset()
     h, v = vs._outline(hulls["barge"], ds, 2, "x", "y")

@@ -129,3 +129,39 @@ def test_the_command_reads_a_runs_tensions_and_motions(tmp_path):
     assert float(rows["bodies/end position_x"][1]) == pytest.approx(x.max(), rel=1e-3)
     refused = CliRunner().invoke(main, ["stats", str(output), "--storm", "0"])
     assert refused.exit_code == 2 and "--storm" in refused.output
+
+
+def test_a_gumbel_fit_finds_the_law_it_was_drawn_from():
+    """Maximum likelihood on 2,000 draws of Gumbel(mu 10, beta 2): within 3 % of each (its
+    standard errors are about 1 % and 2 %); and its likelihood equation holds at the fit."""
+    rng = np.random.default_rng(7)
+    x = rng.gumbel(10.0, 2.0, 2000)
+    mu, beta = stats.gumbel_fit(x)
+    assert mu == pytest.approx(10.0, rel=0.03) and beta == pytest.approx(2.0, rel=0.03)
+    w = np.exp(-x / beta)
+    assert x.mean() - beta - (x * w).sum() / w.sum() == pytest.approx(0.0, abs=1e-9)
+    assert math.isnan(stats.gumbel_fit([1.0, 2.0])[0]) and math.isnan(stats.gumbel_fit([3] * 5)[1])
+
+
+def test_the_gumbel_estimate_of_a_storms_largest_from_short_realisations():
+    """Two hundred realisations of 20 minutes of a narrow-band Gaussian response (120 Rayleigh
+    peaks each), each's largest value fitted: the mode of the largest over 3 hours (1,080
+    peaks) lands within 3 % of the exact one, the mode of (1 - exp(-x^2 / 2))^1080 (the
+    estimate's own scatter: about 1.5 % with 200 realisations, 5 % with 30)."""
+    rng = np.random.default_rng(11)
+    peaks = np.sqrt(-2.0 * np.log(rng.random((200, 120))))  # sigma 1
+    found = stats.gumbel_mpm(peaks.max(axis=1), duration=1200.0, storm=10800.0)
+    x = np.linspace(2.0, 6.0, 400_001)
+    density = (1.0 - np.exp(-(x**2) / 2.0)) ** 1079 * x * np.exp(-(x**2) / 2.0)
+    assert found == pytest.approx(x[np.argmax(density)], rel=0.03)
+
+
+def test_a_spectrum_integrates_to_the_variance_and_peaks_at_a_sines_frequency():
+    t = np.arange(0.0, 1200.0, 0.1)
+    rng = np.random.default_rng(3)
+    x = 2.0 * np.sin(2 * np.pi * 0.125 * t) + rng.normal(0.0, 0.5, t.size) + 7.0
+    f, density = stats.spectrum(t, x)
+    assert f[np.argmax(density)] == pytest.approx(0.125, abs=f[1])
+    assert np.trapezoid(density, f) == pytest.approx(np.var(x), rel=0.02)
+    with pytest.raises(ValueError, match="even interval"):
+        stats.spectrum(np.r_[t[:100], t[101:200]], x[:199])

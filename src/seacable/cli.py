@@ -13,7 +13,18 @@ import numpy as np
 import xarray as xr
 
 import seacable
-from seacable import ahead, analysis, bem, cli_ships, meshes, simulation, viz
+from seacable import (
+    ahead,
+    analysis,
+    bem,
+    cli_ships,
+    cli_sweep,
+    export,
+    meshes,
+    report,
+    simulation,
+    viz,
+)
 from seacable import stats as stats_module
 from seacable.case import legacy, loader, moordyn, reference
 from seacable.case.system import SystemCase
@@ -310,6 +321,8 @@ def modes(case_file: str, count: int, settings: tuple[str, ...]) -> None:
 
 for _command in cli_ships.COMMANDS:  # the ships in the horizontal plane (seacable.cli_ships)
     main.add_command(_command)
+for _command in cli_sweep.COMMANDS:  # load cases (seacable.cli_sweep)
+    main.add_command(_command)
 
 
 @main.command()
@@ -391,6 +404,43 @@ def statistics(results_file: str, storm: float) -> None:
                f"a {storm:g} s storm: Rayleigh's mean + std sqrt(2 ln(storm / Tz)), and a "
                "Weibull law fitted to the cycles' peaks (shape 2: Rayleigh's); NaN where the "
                "run holds too few up-crossings or peaks")  # fmt: skip
+
+
+@main.command(name="export")
+@click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("--vtk", is_flag=True, help="VTK files for ParaView (the only format yet).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
+              help="The collection (.pvd; default RESULTS_FILE with .pvd); its files go in a "
+                   "folder beside it (_vtk).")  # fmt: skip
+@click.option("--every", type=float, default=None, help="Seconds between the files written "
+              "(default: every output time).")  # fmt: skip
+def export_files(results_file: str, vtk: bool, output: str | None, every: float | None) -> None:
+    """RESULTS_FILE for ParaView: a VTK file a time, lines as segments with their tension and
+    hulls as their meshes, and a .pvd collection that ParaView opens as a time series."""
+    if not vtk:
+        _fail("export: give the format, --vtk (VTK files for ParaView)", EXIT_INPUT)
+    target = Path(output) if output else Path(results_file).with_suffix(".pvd")
+    results = seacable.Results.open(results_file, lazy=True)
+    try:
+        written = export.write(_tree(results, results_file), target, every)
+    finally:
+        results.close()
+    click.echo(f"{len(written) - 1} VTK files and their collection written: {target}")
+
+
+@main.command(name="report")
+@click.argument("results_file", type=click.Path(exists=True))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
+              help="The page (.html; default RESULTS_FILE with .html).")  # fmt: skip
+@click.option("--storm", type=click.FloatRange(min=0.0, min_open=True), default=10800.0,
+              show_default=True, help="Duration [s] of the storm of the statistics' most "
+              "probable largest values.")  # fmt: skip
+def report_page(results_file: str, output: str | None, storm: float) -> None:
+    """One HTML page of RESULTS_FILE (a run's results or a sweep's summary) that works
+    offline: interactive time series, range graphs, the system in 3D with an animation,
+    statistics tables, the case and its provenance."""
+    target = Path(output) if output else Path(results_file).with_suffix(".html")
+    click.echo(f"report written: {report.write(Path(results_file), target, storm)}")
 
 
 @main.command()

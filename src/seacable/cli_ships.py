@@ -14,6 +14,7 @@ import xarray as xr
 import seacable
 from seacable import viz
 from seacable.case import loader
+from seacable.case.sweep import range_values
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
 from seacable.stability import operability as stability_map
@@ -242,12 +243,14 @@ def _angles(text: str, option: str) -> np.ndarray:
     """Degrees from 'first:stop:step' (stop excluded) or a comma-separated list."""
     try:
         if ":" in text:
-            first, stop, step = (float(v) for v in text.split(":"))
-            return np.arange(first, stop - 1e-9, step)
+            return np.array(range_values(text, option))
         return np.array([float(v) for v in text.split(",")])
-    except ValueError:
+    except ValueError as exc:
         raise CaseError(
-            f"{option} '{text}': give first:stop:step (e.g. 0:360:10) or values separated by commas"
+            str(exc)
+            if ":" in text
+            else f"{option} '{text}': give first:stop:step (e.g. "
+            "0:360:10) or values separated by commas"
         ) from None
 
 

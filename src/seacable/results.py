@@ -174,7 +174,7 @@ class _Sink:
         self.capacity = rows
         self._file = None
         if self.path is not None:
-            _not_being_written(self.path, inputs)
+            check_output(self.path, inputs)
             self._room()
             # made under another name and renamed once its structure is on disk: the file at
             # ``path`` is never one that does not open
@@ -293,7 +293,7 @@ class _Sink:
         return xr.DataTree.from_dict(tree)
 
 
-def _not_being_written(path: Path, inputs=()) -> None:
+def check_output(path: Path, inputs=()) -> None:
     """Refuse an output path that cannot take results: a directory, a file the run reads
     (``inputs``: its case and table files) or one named like a case or table file (a results
     file given the case's name would replace the case), an existing file that is not a

@@ -1,8 +1,9 @@
 """Statistics engineers read from a run's time series (``seacable stats``): largest, least,
 mean, standard deviation, the zero-up-crossing period and the most probable largest value
-over a storm from a Rayleigh distribution of the peaks or a Weibull fit of them; rainflow
-cycles (ASTM E1049-85, by the ``rainflow`` package) and the fatigue damage they do on a T-N
-curve N R^m = K.
+over a storm from a Rayleigh distribution of the peaks or a Weibull fit of them, or from a
+Gumbel law fitted to the largest values of several realisations (a sweep's seeds); spectra
+(Welch's); rainflow cycles (ASTM E1049-85, by the ``rainflow`` package) and the fatigue
+damage they do on a T-N curve N R^m = K.
 
 The most probable largest value (Rayleigh): a narrow-band Gaussian process of standard
 deviation sigma has Rayleigh-distributed peaks above its mean, one per zero-up-crossing period
@@ -12,7 +13,11 @@ N; ``tests/test_stats.py`` checks it against that largest's exact distribution).
 probable maximum of a 3-hour storm is what mooring design checks commonly take. A
 broad-banded or non-Gaussian response (a snatching line) needs a fit to its own peaks: the
 Weibull estimate (``weibull_mpm``) fits the cycles' peaks, and its shape says how far they are
-from Rayleigh's (2); it needs some tens of peaks to mean anything.
+from Rayleigh's (2); it needs some tens of peaks to mean anything. The largest values of
+several realisations of a sea state (seeds) follow a Gumbel law for any parent of exponential
+tail; fitted to them (``gumbel_fit``, maximum likelihood), the mode of the largest over a
+storm N times a realisation's duration is mu + beta ln N (``gumbel_mpm``): the common
+estimate from the maxima of several simulations of one sea state.
 """
 
 import math
@@ -150,3 +155,53 @@ def series(tree) -> list[tuple[str, str, np.ndarray]]:
                 out.append((f"bodies/{name} {key}", str(node[key].attrs.get("units", "")),
                             values))  # fmt: skip
     return out
+
+
+EULER_GAMMA = 0.5772156649015329
+
+
+def gumbel_fit(maxima) -> tuple[float, float]:
+    """The location mu and scale beta of the Gumbel law F(x) = exp(-exp(-(x - mu) / beta))
+    fitted by maximum likelihood to ``maxima`` (each the largest value of one realisation, e.g.
+    of one seed), from the method of moments' start (beta = s sqrt(6) / pi, mu = mean - gamma
+    beta); (NaN, NaN) below three maxima or when they are all equal."""
+    x = np.asarray(maxima, dtype=float)
+    x = x[np.isfinite(x)]
+    if x.size < 3 or np.ptp(x) == 0.0:
+        return math.nan, math.nan
+    beta = float(np.std(x, ddof=1)) * math.sqrt(6.0) / math.pi
+    for _ in range(100):  # the likelihood's equation in beta (Newton's method)
+        shifted = x - x.max()
+        w = np.exp(-shifted / beta)
+        s0, s1, s2 = w.sum(), (x * w).sum(), (x * x * w).sum()
+        g = x.mean() - beta - s1 / s0
+        dg = -1.0 - (s2 * s0 - s1 * s1) / (s0 * s0 * beta * beta)
+        step = g / dg
+        beta = max(beta - step, 0.5 * beta)
+        if abs(step) < 1e-12 * beta:
+            break
+    w = np.exp(-(x - x.max()) / beta)
+    mu = float(x.max() - beta * math.log(w.mean()))
+    return mu, float(beta)
+
+
+def gumbel_mpm(maxima, duration: float, storm: float) -> float:
+    """The most probable largest value over a ``storm`` [s] from the largest values of
+    realisations of ``duration`` [s] each (``gumbel_fit``): the mode of the largest of
+    storm / duration Gumbel variables, mu + beta ln(storm / duration)."""
+    mu, beta = gumbel_fit(maxima)
+    return mu + beta * math.log(storm / duration)
+
+
+def spectrum(t, x, segments: int = 8) -> tuple[np.ndarray, np.ndarray]:
+    """The one-sided power spectral density of a series sampled evenly (frequencies [Hz] and
+    density [unit^2/Hz]) by Welch's method (SciPy's: Hann windows over ``segments`` halves
+    overlapping, the mean removed): it integrates to the series' variance."""
+    from scipy.signal import welch
+
+    t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
+    dt = np.diff(t)
+    if len(t) < 16 or not np.allclose(dt, dt[0], rtol=1e-6):
+        raise ValueError("a spectrum needs at least 16 samples at an even interval")
+    per = max(16, int(2 * len(x) / (segments + 1)))
+    return welch(x, fs=1.0 / dt[0], nperseg=min(per, len(x)), detrend="constant")

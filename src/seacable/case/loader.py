@@ -58,7 +58,7 @@ MOST_VALUES = 1_000_000  # values in a case once its YAML aliases are expanded
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 
 
-def _parse(text: str):
+def parse_yaml(text: str):
     """The YAML text's data (a SafeLoader: never constructs objects), or one CaseError line:
     not YAML, a key given twice, nested too deep, or expanding (through aliases) to more
     values than any case holds."""
@@ -180,7 +180,7 @@ def _read(source: str | Path | dict) -> tuple[dict, str | None, Path | None]:
                 file.parent if file is not None else None,
             )
             return data, text, file
-        data = _parse(text)
+        data = parse_yaml(text)
     if not isinstance(data, dict):
         raise CaseError(f"a case must be a mapping of keys to values; got {type(data).__name__}")
     return data, text, file
@@ -212,7 +212,7 @@ def derive_case(case: Case | SystemCase, changes: dict) -> Case | SystemCase:
     CaseError
         When the derived case is invalid, as for a file.
     """
-    data = _parse(case_text(case))
+    data = parse_yaml(case_text(case))
     merged = _merged(data, changes)
     derived = load_case(merged) if isinstance(case, SystemCase) else load_single_cable(merged)
     derived._base_dir, derived._source_file = case._base_dir, case._source_file
@@ -234,7 +234,7 @@ def with_settings(case: SystemCase, settings: list[str] | tuple[str, ...]) -> Sy
     """
     if not settings:
         return case
-    data = _parse(case_text(case))
+    data = case_data(case)
     for setting in settings:
         path, sep, value = setting.partition("=")
         if not sep or not path.strip():
@@ -242,14 +242,14 @@ def with_settings(case: SystemCase, settings: list[str] | tuple[str, ...]) -> Sy
                 f"--set {setting!r}: write PATH=VALUE, e.g. --set simulation.duration=10"
             )
         try:
-            parsed = _parse(value) if value.strip() else None
+            parsed = parse_yaml(value) if value.strip() else None
         except CaseError as exc:
             detail = " ".join(str(exc).partition(": ")[2].split())
             raise CaseError(
                 f"--set {setting!r}: the value is not YAML ({detail}); write a number, a word, "
                 "or a list or mapping in brackets ([0, 0, -80], {kind: sine, ...})"
             ) from None
-        _set(data, path.strip(), parsed, setting)
+        set_key(data, path.strip(), parsed, f"--set {setting!r}")
     derived = load_case(data)
     derived._base_dir, derived._source_file = case._base_dir, case._source_file
     return derived
@@ -258,8 +258,16 @@ def with_settings(case: SystemCase, settings: list[str] | tuple[str, ...]) -> Sy
 _STEP = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 
 
-def _set(data: dict, path: str, value: Any, setting: str) -> None:
-    """Set the key at ``path`` of the case's mapping ``data`` (``with_settings``)."""
+def case_data(case: Case | SystemCase) -> dict:
+    """The mapping ``case`` was read from (a new copy): what ``set_key`` changes and
+    ``load_case`` validates again."""
+    return parse_yaml(case_text(case))
+
+
+def set_key(data: dict, path: str, value: Any, label: str) -> None:
+    """Set the key at ``path`` (written as ``with_settings`` writes it) of a case's mapping
+    ``data`` to ``value`` (None removes it), in place; a CaseError starting with ``label``
+    (what the user wrote: ``--set 'a.b=1'``) when the path leads nowhere."""
     steps = [(name.strip(), index) for name, index in _STEP.findall(path)]
     here: Any = data
     done = ""
@@ -271,7 +279,7 @@ def _set(data: dict, path: str, value: Any, setting: str) -> None:
             at = int(index) if index else (names.index(name) if name in names else None)
             if at is None or not 0 <= at < len(here):
                 raise CaseError(
-                    f"--set {setting!r}: {done or 'the case'} has no item "
+                    f"{label}: {done or 'the case'} has no item "
                     f"{index or repr(name)}; its items: 0 to {len(here) - 1}"
                     + (f" or by name: {', '.join(map(str, names))}" if any(names) else "")
                 )
@@ -279,12 +287,12 @@ def _set(data: dict, path: str, value: Any, setting: str) -> None:
         elif isinstance(here, dict) and not index:
             if name not in here and not last:
                 raise CaseError(
-                    f"--set {setting!r}: {done or 'the case'} has no key '{name}'; its keys: "
+                    f"{label}: {done or 'the case'} has no key '{name}'; its keys: "
                     f"{', '.join(map(str, here))}"
                 )
             key = name
         else:
-            raise CaseError(f"--set {setting!r}: {done or 'the case'} is not a list or mapping")
+            raise CaseError(f"{label}: {done or 'the case'} is not a list or mapping")
         if last:
             if value is None and isinstance(here, dict):
                 here.pop(key, None)

@@ -31,6 +31,8 @@ from seacable.case.bodies import (  # noqa: F401 (the case's bodies, as ``sch.``
     Track,
 )
 from seacable.case.environment import Environment
+from seacable.case.fatigue import API, Fatigue
+from seacable.case.sweep import Sweep
 
 
 # ---- line types and lines -----------------------------------------------------------------------
@@ -65,12 +67,22 @@ class LineType(_Model):
     """[-] Added mass coefficient Ca along the line (MoorDyn's CaAx); lumped-mass lines only."""
     breaking_strength: Pos | None = None
     """[N] Minimum breaking load; results give each section's largest tension over it."""
+    fatigue: Fatigue | None = None
+    """The line type's fatigue curve: a sweep gives each line's fatigue damage on it (at the
+    line's more loaded end). Omitted: no damage."""
 
     @model_validator(mode="after")
     def _one_damping(self):
         if self.axial_damping_time is not None and self.axial_damping_ratio is not None:
             raise ValueError(
                 "give at most one of 'axial_damping_time' [s] or 'axial_damping_ratio'"
+            )
+        if self.fatigue is not None and self.breaking_strength is None and (
+            self.fatigue.curve in API or (self.fatigue.m is not None and
+                                          self.fatigue.reference is None)):  # fmt: skip
+            raise ValueError(
+                "fatigue: its ranges are taken over the breaking strength; give "
+                "'breaking_strength' [N] (or the own curve's 'reference')"
             )
         return self
 
@@ -330,6 +342,9 @@ class SystemCase(_Model):
     """Line ends released during the run."""
     simulation: Simulation
     """The run: its duration, output interval and integrator."""
+    sweep: Sweep | None = None
+    """Load cases ``seacable sweep`` runs from this case (``seacable run`` runs the case as
+    written). Omitted: a sweep of the command line's ``--vary`` only."""
     _source_text: str | None = PrivateAttr(default=None)  # YAML the case was read from
     _source_dump: dict | None = PrivateAttr(default=None)  # the case as read (text still true?)
     _base_dir: str | None = PrivateAttr(default=None)  # folder relative file names refer to

@@ -36,12 +36,12 @@ worker becomes rows of ``failed``.
 
 import csv
 import math
-import os
 from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
 
+from seacable import cluster
 from seacable.case import loader
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -369,21 +369,7 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
 
 def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings,
              start) -> list[dict]:  # fmt: skip
-    try:
-        from distributed import Client, LocalCluster
-    except ImportError:
-        raise CaseError(
-            "a map on Dask needs dask.distributed: pip install 'seacable[dask]' (or run it in "
-            "this process: scheduler None, --dask none)"
-        ) from None
-    cluster = None
-    if scheduler == "local":
-        cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1,
-                               processes=True, dashboard_address=None)  # fmt: skip
-        client = Client(cluster)
-    else:
-        client = Client(scheduler)
-    try:
+    with cluster.client(scheduler, "a map") as client:
         futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, flag,
                                  start, pure=False) for c, flag in chunks]  # fmt: skip
         rows: list[dict] = []
@@ -393,10 +379,6 @@ def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings,
             except Exception as exc:  # the chunk's worker died, or the task could not run
                 rows.extend(_failed(f"on Dask: {type(exc).__name__}: {exc}") for _ in chunk)
         return rows
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
 
 
 def _dataset(rows, plain, shape, limits, simulate, probability, start) -> xr.Dataset:

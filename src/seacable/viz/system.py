@@ -21,6 +21,7 @@ import yaml
 from seacable import packing
 from seacable.case.loader import load_case
 from seacable.kernels import waves
+from seacable.meshes import Mesh
 from seacable.results import restore_case
 from seacable.system.hulls import body_mesh
 from seacable.viz.common import (
@@ -63,7 +64,7 @@ def _environment(tree: xr.DataTree) -> dict:
     return env if isinstance(env, dict) else {}
 
 
-def _finite_rows(tree: xr.DataTree) -> int:
+def finite_rows(tree: xr.DataTree) -> int:
     """Rows up to the last one whose every line node is finite (a diverged run's last rows may
     hold NaN)."""
     times = _times(tree)
@@ -109,18 +110,49 @@ def _draw_view(ax, tree, rows, a: str, b: str, plt, env: dict) -> None:
         plt.colorbar(sm, ax=ax, label="time [s]")
 
 
+def tension_ranges(tree: xr.DataTree, last: int) -> dict[str, tuple]:
+    """Each line's range graph over the first ``last`` rows: the arc length [m] from its
+    'from' end of the segments' centres (or of the nodes, for a line that gives its tension
+    there), and the least, mean and largest tension [N] there."""
+    out = {}
+    for name, ds in _groups(tree, "lines").items():
+        if "tension" not in ds or ds["tension"].ndim != 2:
+            continue
+        tension = ds["tension"].values[:last]
+        arc = ds["arc_length"].values
+        centres = 0.5 * (arc[1:] + arc[:-1]) if tension.shape[1] == arc.size - 1 else arc
+        out[name] = (centres, tension.min(axis=0), tension.mean(axis=0), tension.max(axis=0))
+    return out
+
+
+def curvature_ranges(tree: xr.DataTree, last: int, names) -> dict[str, tuple]:
+    """The range graph of the curvature of the lines ``names`` over the first ``last`` rows:
+    the arc length [m] of their inner nodes and the least, mean and largest curvature [1/m]
+    there, the angle between the segments each side over their mean length."""
+    out = {}
+    groups = _groups(tree, "lines")
+    for name in names:
+        ds = groups.get(name)
+        if ds is None or "node_x" not in ds or ds["node_x"].shape[1] < 3:
+            continue
+        nodes = np.stack([ds[f"node_{c}"].values[:last] for c in "xyz"], axis=-1)
+        step = np.diff(nodes, axis=1)
+        length = np.linalg.norm(step, axis=-1)
+        unit = step / np.where(length > 0.0, length, 1.0)[..., None]
+        cosine = np.clip((unit[:, 1:] * unit[:, :-1]).sum(axis=-1), -1.0, 1.0)
+        kappa = np.arccos(cosine) / (0.5 * (length[:, 1:] + length[:, :-1]))
+        arc = ds["arc_length"].values[1:-1] if "arc_length" in ds else np.arange(kappa.shape[1])
+        out[name] = (arc, kappa.min(axis=0), kappa.mean(axis=0), kappa.max(axis=0))
+    return out
+
+
 def _draw_range(ax, tree, last: int) -> None:
     """Least, mean and largest tension [kN] along each line over the finite rows (at the
     segments' centres, or at the nodes for a line that gives it there)."""
     drawn = False
-    for name, ds in _groups(tree, "lines").items():
-        if "tension" not in ds or ds["tension"].ndim != 2:
-            continue
-        tension = ds["tension"].values[:last] / 1e3
-        arc = ds["arc_length"].values
-        centres = 0.5 * (arc[1:] + arc[:-1]) if tension.shape[1] == arc.size - 1 else arc
-        (line,) = ax.plot(centres, tension.mean(axis=0), label=f"{name} mean")
-        ax.fill_between(centres, tension.min(axis=0), tension.max(axis=0), alpha=0.25,
+    for name, (centres, least, mean, largest) in tension_ranges(tree, last).items():
+        (line,) = ax.plot(centres, mean / 1e3, label=f"{name} mean")
+        ax.fill_between(centres, least / 1e3, largest / 1e3, alpha=0.25,
                         color=line.get_color(), label=f"{name} least to largest")  # fmt: skip
         drawn = True
     ax.set_xlabel("arc length from the 'from' end [m]")
@@ -177,7 +209,7 @@ def _title(tree: xr.DataTree) -> str:
 def plot_system(tree: xr.DataTree, path, every: float | None = None) -> Path:
     """The picture of a system's results (module docstring)."""
     plt = _pyplot()
-    last = _finite_rows(tree)
+    last = finite_rows(tree)
     times = _times(tree)[:last]
     rows = _snapshot_indices(times, every if every is not None else None)
     if len(rows) > 12:
@@ -201,14 +233,14 @@ def plot_system(tree: xr.DataTree, path, every: float | None = None) -> Path:
 log = logging.getLogger("seacable")
 
 
-def _scene(tree: xr.DataTree) -> tuple[dict[str, np.ndarray], dict]:
-    """The hull vertices (body frame [m]) of each body with a mesh, and the incident waves
+def scene(tree: xr.DataTree) -> tuple[dict[str, Mesh], dict]:
+    """The hull (a Mesh, body frame [m]) of each body with a mesh, and the incident waves
     (``wave``, ``wave_depth``: kernels.waves) of the case the results keep; none of either,
     logged, when that case cannot be rebuilt."""
     try:
         with tempfile.TemporaryDirectory() as folder:
             case = load_case(restore_case(tree.attrs, folder))
-            hulls = {body.name: body_mesh(body, folder, f"bodies[{k}]").vertices
+            hulls = {body.name: body_mesh(body, folder, f"bodies[{k}]")
                      for k, body in enumerate(case.bodies)
                      if getattr(body, "mesh", None) is not None}  # fmt: skip
         return hulls, packing.wave_fields(case.environment, case.simulation.build_up)
@@ -218,18 +250,24 @@ def _scene(tree: xr.DataTree) -> tuple[dict[str, np.ndarray], dict]:
         return {}, {}
 
 
+def placed(vertices: np.ndarray, ds: xr.Dataset, i: int) -> np.ndarray:
+    """A body's ``vertices`` (body frame) at output i: turned by R = Rz(yaw) Ry(pitch) Rx(roll)
+    and moved to the body's position (``ds``: its results)."""
+    from scipy.spatial.transform import Rotation
+
+    angles = [float(ds[name].values[i]) for name in ("roll", "pitch", "yaw")]
+    turn = Rotation.from_euler("xyz", angles, degrees=True).as_matrix()
+    return vertices @ turn.T + [float(ds[f"position_{c}"].values[i]) for c in "xyz"]
+
+
 def _outline(vertices: np.ndarray, ds: xr.Dataset, i: int, a: str, b: str):
     """The outline of a hull (body-frame ``vertices``) in the view (a, b) at output i: the
     convex hull of its vertices turned by R = Rz(yaw) Ry(pitch) Rx(roll) and moved to the
     body's position."""
     from scipy.spatial import ConvexHull
-    from scipy.spatial.transform import Rotation
 
-    angles = [float(ds[name].values[i]) for name in ("roll", "pitch", "yaw")]
-    turn = Rotation.from_euler("xyz", angles, degrees=True).as_matrix()
     axes = ["xyz".index(a), "xyz".index(b)]
-    placed = vertices @ turn.T + [float(ds[f"position_{c}"].values[i]) for c in "xyz"]
-    points = placed[:, axes]
+    points = placed(vertices, ds, i)[:, axes]
     if not np.isfinite(points).all():
         return [], []
     ring = ConvexHull(points).vertices
@@ -273,12 +311,13 @@ def animate_system(
     if path.suffix.lower() != ".gif":
         raise ValueError(f"animation file '{path}': systems are animated to .gif")
     check_frames(fps, speed, every, max_frames)
-    last = _finite_rows(tree)
+    last = finite_rows(tree)
     times = _times(tree)[: max(last, 1)]
     frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     env = _environment(tree)
     lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
-    hulls, sea = _scene(tree)
+    meshes, sea = scene(tree)
+    hulls = {name: mesh.vertices for name, mesh in meshes.items()}
     reach = max((float(np.abs(v).max()) for v in hulls.values()), default=0.0)
     fig, axes = plt.subplots(1, 2, figsize=(14, 6))
     artists: list[tuple] = []
