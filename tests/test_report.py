@@ -79,6 +79,7 @@ def test_a_sweeps_page(made):
     assert [f["id"] for f in figures] == ["utilisation"]
     assert figures[0]["data"][0]["x"] == ["2", "4"]
     assert "Envelope of each line" in page and page.count("<td>complete</td>") == 2
+    assert "<td>seacable_version</td>" in page  # the provenance
 
 
 def test_a_report_replaces_only_a_report(made, tmp_path):
@@ -151,7 +152,7 @@ def test_curvature_along_a_line_bent_on_a_circle():
     np.testing.assert_allclose(least, 2.0 * np.arcsin(0.5 / 20.0), rtol=1e-9)
     np.testing.assert_allclose(largest, 2.0 * np.arcsin(0.5 / 10.0), rtol=1e-9)
     assert largest[0] == pytest.approx(0.1, rel=1e-3)
-    assert report._bending_lines({"case_resolved": (
+    assert vs.bending_lines({"case_resolved": (
         "line_types: [{name: a, bending_stiffness: 1000.0}, {name: b, bending_stiffness: 0.0}]\n"
         "lines: [{name: stiff, sections: [{type: b}, {type: a}]}, "
         "{name: limp, sections: [{type: b}]}]\n")}) == ["stiff"]  # fmt: skip

@@ -337,3 +337,18 @@ def test_the_weather_by_continuations_paths():
         batch.plan(case, [batch.parse_vary("wind.speed=10")])
     with pytest.raises(CaseError, match="the weather takes numbers"):
         batch.plan(case, [batch.parse_vary("waves.height=[high]")])
+
+
+def test_ctrl_c_keeps_the_summary_so_far_and_the_same_sweep_runs_the_rest(tmp_path):
+    todo = batch.plan(_case(), [_vary(HS, [2.0, 4.0])])
+    output = tmp_path / "s.nc"
+
+    def stop(done, total, load, row):
+        raise KeyboardInterrupt  # Ctrl-C as the first run ends
+
+    with pytest.raises(KeyboardInterrupt):
+        batch.execute(todo, output, None, stop)
+    assert xr.open_dataset(output)["status"].values.tolist() == ["complete", "not run"]
+    again, seen = _rows(todo, output)
+    assert [bool(row.get("reused")) for _, row in seen] == [True, False]
+    assert again["status"].values.tolist() == ["complete", "complete"]

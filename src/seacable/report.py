@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-import yaml
 
 from seacable import stats as st
 from seacable import sweep_summary
@@ -222,7 +221,7 @@ def run_page(tree: xr.DataTree, storm: float = 10800.0) -> str:
                 "tension [kN]",
             )
         )
-    bent = vs.curvature_ranges(tree, last, _bending_lines(attrs))
+    bent = vs.curvature_ranges(tree, last, vs.bending_lines(attrs))
     if bent:
         traces = []
         for k, (line, (arc, least, mean, largest)) in enumerate(bent.items()):
@@ -246,29 +245,6 @@ def run_page(tree: xr.DataTree, storm: float = 10800.0) -> str:
         [k, str(v)[:300]] for k, v in attrs.items() if k not in ("case", "case_resolved",
                                                                  "input_files")]))  # fmt: skip
     return _page(name, sections, figures)
-
-
-def _bending_lines(attrs) -> list[str]:
-    """The lines of the results' case with a section whose line type has a bending stiffness."""
-    try:
-        case = yaml.safe_load(str(attrs.get("case_resolved", ""))) or {}
-    except yaml.YAMLError:
-        return []
-    if not isinstance(case, dict):
-        return []
-    stiff = {t.get("name") for t in case.get("line_types", []) or []
-             if isinstance(t, dict) and _positive(t.get("bending_stiffness"))}  # fmt: skip
-    return [str(line.get("name")) for line in case.get("lines", []) or []
-            if isinstance(line, dict)
-            and any(isinstance(p, dict) and p.get("type") in stiff
-                    for p in line.get("sections", []) or [])]  # fmt: skip
-
-
-def _positive(value) -> bool:
-    try:
-        return float(value) > 0.0
-    except (TypeError, ValueError):
-        return False
 
 
 def _statistics(t, series, storm: float) -> str:
@@ -359,6 +335,8 @@ def sweep_page(found: xr.Dataset) -> str:
     sections.append("<h2>Load cases</h2>" + _table(header, table_rows[:2000]))
     sections.append("<h2>The case</h2><pre>" + html.escape(str(found.attrs.get("case", "")))
                     + "</pre>")  # fmt: skip
+    sections.append("<h2>Provenance</h2>" + _table(["attribute", "value"], [
+        [k, str(v)[:300]] for k, v in found.attrs.items() if k != "case"]))  # fmt: skip
     title = f"sweep of {found.attrs.get('case_name', 'a case')}"
     return _page(title, sections, figures)
 

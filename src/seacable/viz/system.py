@@ -125,6 +125,30 @@ def tension_ranges(tree: xr.DataTree, last: int) -> dict[str, tuple]:
     return out
 
 
+def bending_lines(attrs) -> list[str]:
+    """The lines of the results' case (``attrs``: its ``case_resolved``) with a section whose
+    line type has a bending stiffness."""
+    try:
+        case = yaml.safe_load(str(attrs.get("case_resolved", ""))) or {}
+    except yaml.YAMLError:
+        return []
+    if not isinstance(case, dict):
+        return []
+    stiff = {t.get("name") for t in case.get("line_types", []) or []
+             if isinstance(t, dict) and _positive(t.get("bending_stiffness"))}  # fmt: skip
+    return [str(line.get("name")) for line in case.get("lines", []) or []
+            if isinstance(line, dict)
+            and any(isinstance(p, dict) and p.get("type") in stiff
+                    for p in line.get("sections", []) or [])]  # fmt: skip
+
+
+def _positive(value) -> bool:
+    try:
+        return float(value) > 0.0
+    except (TypeError, ValueError):
+        return False
+
+
 def curvature_ranges(tree: xr.DataTree, last: int, names) -> dict[str, tuple]:
     """The range graph of the curvature of the lines ``names`` over the first ``last`` rows:
     the arc length [m] of their inner nodes and the least, mean and largest curvature [1/m]
@@ -150,16 +174,29 @@ def _draw_range(ax, tree, last: int) -> None:
     """Least, mean and largest tension [kN] along each line over the finite rows (at the
     segments' centres, or at the nodes for a line that gives it there)."""
     drawn = False
+    colours = {}
     for name, (centres, least, mean, largest) in tension_ranges(tree, last).items():
         (line,) = ax.plot(centres, mean / 1e3, label=f"{name} mean")
         ax.fill_between(centres, least / 1e3, largest / 1e3, alpha=0.25,
                         color=line.get_color(), label=f"{name} least to largest")  # fmt: skip
+        colours[name] = line.get_color()
         drawn = True
     ax.set_xlabel("arc length from the 'from' end [m]")
     ax.set_ylabel("tension [kN]")
     ax.set_title("tension range along each line")
+    bent = curvature_ranges(tree, last, bending_lines(tree.attrs))
+    if bent:  # the curvature of the lines that bend, on the right
+        right = ax.twinx()
+        for name, (arc, _, mean, largest) in bent.items():
+            right.plot(
+                arc, largest, ":", color=colours.get(name), label=f"{name} largest curvature"
+            )
+            right.plot(arc, mean, "-.", color=colours.get(name), label=f"{name} mean curvature")
+        right.set_ylabel("curvature [1/m]")
+        right.legend(fontsize=7, loc="upper right")
+        ax.set_title("tension and curvature range along each line")
     if drawn:
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left" if bent else "best")
 
 
 def _draw_end_tensions(ax, tree, last: int) -> None:
