@@ -127,6 +127,13 @@ def test_the_command_reads_a_runs_tensions_and_motions(tmp_path):
     tree = seacable.Results.open(output).dataset
     x = tree["bodies/end/position_x"].values
     assert float(rows["bodies/end position_x"][1]) == pytest.approx(x.max(), rel=1e-3)
+    assert "rows from 0 s to" in outcome.output  # no build-up: every row
+    middle = float(tree["time"].values[len(tree["time"]) // 2])
+    late = CliRunner().invoke(main, ["stats", str(output), "--from", f"{middle!r}"])
+    kept = tree["time"].values >= middle
+    late_rows = {line[:44].strip(): line[44:].split() for line in late.output.splitlines()[1:-1]}
+    assert float(late_rows["bodies/end position_x"][2]) == pytest.approx(x[kept].min(), rel=1e-3)
+    assert f"{kept.sum()} rows from {middle:g} s to" in late.output and kept.sum() >= 2
     refused = CliRunner().invoke(main, ["stats", str(output), "--storm", "0"])
     assert refused.exit_code == 2 and "--storm" in refused.output
 

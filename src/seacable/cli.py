@@ -383,27 +383,29 @@ def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
     show_default=True,
     help="Duration [s] of the storm whose most probable largest value is given.",
 )
-def statistics(results_file: str, storm: float) -> None:
+@click.option("--from", "start", type=float, default=None,
+              help="Time [s] the statistics start from (default: the run's build-up, the ramp "
+                   "that starts its waves).")  # fmt: skip
+def statistics(results_file: str, storm: float, start: float | None) -> None:
     """Statistics of RESULTS_FILE: each line's tension at its ends and each moving body's
     motions, their largest, least, mean and standard deviation, zero-up-crossing period Tz
     and most probable largest value over a storm, from a Rayleigh law of the peaks and from a
-    Weibull law fitted to them (seacable.stats)."""
+    Weibull law fitted to them (seacable.stats), from the end of the run's build-up on."""
     tree = _tree(seacable.Results.open(results_file), results_file)
-    time = np.asarray(tree["time"].values, dtype=float)
+    start = stats_module.build_up(tree.attrs) if start is None else start
+    time, rows = stats_module.table(tree["time"].values, stats_module.series(tree), storm, start)
     click.echo(f"{'':44s} {'unit':>6s} {'largest':>10s} {'least':>10s} {'mean':>10s} "
                f"{'std':>10s} {'Tz [s]':>8s} {'MPM Rayl.':>10s} {'MPM Weib.':>10s} "
                f"{'shape':>6s}")  # fmt: skip
-    for name, unit, values in stats_module.series(tree):
-        scale, shown = (1e3, "kN") if unit == "N" else (1.0, unit)
-        s = stats_module.summary(time, values / scale, storm=storm)
-        fitted, shape = stats_module.weibull_mpm(time, values / scale, storm)
+    for name, shown, s, fitted, shape in rows:
         click.echo(f"{name:44s} {shown:>6s} {s.largest:10.4g} {s.least:10.4g} {s.mean:10.4g} "
                    f"{s.std:10.4g} {s.tz:8.3g} {s.mpm:10.4g} {fitted:10.4g} "
                    f"{shape:6.3g}")  # fmt: skip
-    click.echo(f"{len(time)} rows over {time[-1] - time[0]:g} s; the most probable largest of "
-               f"a {storm:g} s storm: Rayleigh's mean + std sqrt(2 ln(storm / Tz)), and a "
-               "Weibull law fitted to the cycles' peaks (shape 2: Rayleigh's); NaN where the "
-               "run holds too few up-crossings or peaks")  # fmt: skip
+    click.echo(f"{len(time)} rows from {time[0]:g} s to {time[-1]:g} s (--from: the build-up "
+               f"left out); the most probable largest of a {storm:g} s storm: Rayleigh's mean "
+               "+ std sqrt(2 ln(storm / Tz)), and a Weibull law fitted to the cycles' peaks "
+               "(shape 2: Rayleigh's); NaN where the run holds too few up-crossings or "
+               "peaks")  # fmt: skip
 
 
 @main.command(name="export")

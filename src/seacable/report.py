@@ -152,7 +152,8 @@ def run_page(tree: xr.DataTree, storm: float = 10800.0) -> str:
     ]
     figures: list[dict] = []
     series = [(n, u, v[:last]) for n, u, v in st.series(tree)] if len(t) > 1 else []
-    sections.append("<h2>Statistics</h2>" + _statistics(t, series, storm))
+    start = st.build_up(attrs)
+    sections.append("<h2>Statistics</h2>" + _statistics(t, series, storm, start))
     keep = _thinned(len(t))
     tensions = [s for s in series if s[1] == "N"]
     traces: list[dict]
@@ -162,10 +163,11 @@ def run_page(tree: xr.DataTree, storm: float = 10800.0) -> str:
                   for n, _, v in tensions]  # fmt: skip
         figures.append(_figure("tensions", "tension at each line's ends", traces, "time [s]",
                                "tension [kN]"))  # fmt: skip
-        if len(t) >= 16:
+        steady = st.steady(t, start)
+        if steady.sum() >= 16:  # the spectra of the run past its build-up
             spectra = []
             for n, _, v in tensions:
-                f, density = st.spectrum(t, v / KN)
+                f, density = st.spectrum(t[steady], v[steady] / KN)
                 spectra.append(
                     {
                         "type": "scatter",
@@ -247,21 +249,17 @@ def run_page(tree: xr.DataTree, storm: float = 10800.0) -> str:
     return _page(name, sections, figures)
 
 
-def _statistics(t, series, storm: float) -> str:
-    rows = []
-    for name, unit, values in series:
-        scale, shown = (KN, "kN") if unit == "N" else (1.0, unit)
-        s = st.summary(t, values / scale, storm=storm)
-        fitted, shape = st.weibull_mpm(t, values / scale, storm)
-        rows.append([name, shown, s.largest, s.least, s.mean, s.std, s.tz, s.mpm, fitted,
-                     shape])  # fmt: skip
+def _statistics(t, series, storm: float, start: float) -> str:
+    kept, rows = st.table(t, series, storm, start)
     if not rows:
         return "<p>No line tension or body motion to summarise.</p>"
-    return (f"<p>The most probable largest of a {storm:g} s storm: Rayleigh's, mean + std "
-            "sqrt(2 ln(storm / Tz)), and a Weibull law fitted to the cycles' peaks (shape 2 is "
-            "Rayleigh's).</p>" + _table(["series", "unit", "largest", "least", "mean", "std",
-                                         "Tz [s]", "MPM Rayleigh", "MPM Weibull", "shape"],
-                                        rows))  # fmt: skip
+    return (f"<p>From {kept[0]:g} s (the build-up left out) to {kept[-1]:g} s. The most "
+            f"probable largest of a {storm:g} s storm: Rayleigh's, mean + std sqrt(2 ln(storm "
+            "/ Tz)), and a Weibull law fitted to the cycles' peaks (shape 2 is Rayleigh's).</p>"
+            + _table(["series", "unit", "largest", "least", "mean", "std", "Tz [s]",
+                      "MPM Rayleigh", "MPM Weibull", "shape"],
+                     [[n, u, s.largest, s.least, s.mean, s.std, s.tz, s.mpm, f, k]
+                      for n, u, s, f, k in rows]))  # fmt: skip
 
 
 def _scene(tree: xr.DataTree, t: np.ndarray, last: int) -> dict | None:

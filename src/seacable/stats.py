@@ -25,6 +25,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 import rainflow  # type: ignore[import-untyped]
+import yaml
 
 
 @dataclass(frozen=True)
@@ -43,6 +44,24 @@ class Summary:
 
     def as_dict(self) -> dict:
         return asdict(self)
+
+
+def steady(t, start: float) -> np.ndarray:
+    """The rows of the times ``t`` from ``start`` [s] on (a run's statistics leave out its
+    build-up, the ramp that starts its waves); every row when fewer than two are left."""
+    t = np.asarray(t, dtype=float)
+    kept = t >= start
+    return kept if kept.sum() >= 2 else np.ones(t.shape, dtype=bool)
+
+
+def build_up(attrs) -> float:
+    """The build-up [s] of the case a run's results keep (their ``case_resolved``; 0 when
+    they keep none)."""
+    try:
+        case = yaml.safe_load(str(attrs.get("case_resolved", ""))) or {}
+        return float(case.get("simulation", {}).get("build_up", 0.0) or 0.0)
+    except (yaml.YAMLError, AttributeError, TypeError, ValueError):
+        return 0.0
 
 
 def up_crossing_times(t, x, level: float) -> np.ndarray:
@@ -205,3 +224,19 @@ def spectrum(t, x, segments: int = 8) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError("a spectrum needs at least 16 samples at an even interval")
     per = max(16, int(2 * len(x) / (segments + 1)))
     return welch(x, fs=1.0 / dt[0], nperseg=min(per, len(x)), detrend="constant")
+
+
+def table(t, found: list[tuple[str, str, np.ndarray]], storm: float,
+          start: float) -> tuple[np.ndarray, list[tuple]]:  # fmt: skip
+    """What ``seacable stats`` and the report give of the series ``found`` (``series``) from
+    ``start`` [s] on (``steady``): the times kept, and per series (name, unit shown: forces in
+    kN, its Summary over a ``storm`` [s], the Weibull estimate and its shape)."""
+    t = np.asarray(t, dtype=float)
+    kept = steady(t, start)
+    rows = []
+    for name, unit, values in found:
+        scale, shown = (1e3, "kN") if unit == "N" else (1.0, unit)
+        x = np.asarray(values, dtype=float)[kept] / scale
+        fitted, shape = weibull_mpm(t[kept], x, storm)
+        rows.append((name, shown, summary(t[kept], x, storm=storm), fitted, shape))
+    return t[kept], rows

@@ -73,8 +73,10 @@ def status_row(status: str, message: str) -> dict:
 
 
 def summarise(results: Results, case: SystemCase, storm: float) -> dict:
-    """A run's summary row: its status and message; per line (``lines``: name -> values) the
-    largest and least tension over the run and the line, and at its more loaded end the mean,
+    """A run's summary row, from the end of its build-up on (``simulation.build_up``: the ramp
+    that starts its waves is left out; stats.steady): its status and message; per line
+    (``lines``: name -> values) the largest and least tension over the run and the line, and
+    at its more loaded end the mean,
     standard deviation and most probable largest of a ``storm`` [s] (Rayleigh's, NaN for a
     run too short to cross its mean twice), the largest tension's share of the sections'
     breaking strengths (NaN without one); per moving body (``bodies``) the largest horizontal
@@ -85,9 +87,12 @@ def summarise(results: Results, case: SystemCase, storm: float) -> dict:
         return row
     tree = results.dataset
     t = np.asarray(tree["time"].values, dtype=float)
+    kept = st.steady(t, case.simulation.build_up)
     lines = tree["lines"].children if "lines" in tree.children else {}
-    tensions = {name: np.asarray(node["tension"].values, float).reshape(len(t), -1)
+    tensions = {name: np.asarray(node["tension"].values, float).reshape(len(t), -1)[kept]
                 for name, node in lines.items() if "tension" in node}  # fmt: skip
+    t = t[kept]
+    row["duration"] = float(t[-1] - t[0])
     shares: dict[str, list[float]] = {}
     for load in utilisation.section_loads(case, tensions):
         if load.utilisation is not None:
@@ -97,7 +102,6 @@ def summarise(results: Results, case: SystemCase, storm: float) -> dict:
         which = int(np.argmax(ends.mean(axis=0)))
         end = ends[:, which]
         s = st.summary(t, end, storm)
-        row["duration"] = float(t[-1] - t[0])
         row["lines"][name] = {
             "tension_max": float(np.max(tension)), "tension_min": float(np.min(tension)),
             "tension_mean": s.mean, "tension_std": s.std, "tension_mpm": s.mpm,
@@ -106,11 +110,12 @@ def summarise(results: Results, case: SystemCase, storm: float) -> dict:
         }  # fmt: skip
     bodies = tree["bodies"].children if "bodies" in tree.children else {}
     for name, node in bodies.items():
-        motion = np.stack([np.asarray(node[k].values, float) if k in node
-                           else np.zeros(len(t)) for k in _BODY_KEYS], axis=1)  # fmt: skip
-        if not np.ptp(motion, axis=0).any():
+        whole = np.stack([np.asarray(node[k].values, float) if k in node
+                          else np.zeros(len(kept)) for k in _BODY_KEYS], axis=1)  # fmt: skip
+        if not np.ptp(whole, axis=0).any():
             continue  # fixed, or held still
-        offset = np.hypot(motion[:, 0] - motion[0, 0], motion[:, 1] - motion[0, 1])
+        motion = whole[kept]  # the offset from where the body starts (t = start)
+        offset = np.hypot(motion[:, 0] - whole[0, 0], motion[:, 1] - whole[0, 1])
         row["bodies"][name] = {
             "offset_max": float(offset.max()), "motion_max": motion.max(axis=0).tolist(),
             "motion_min": motion.min(axis=0).tolist(), "motion_std": motion.std(axis=0).tolist(),
@@ -194,6 +199,8 @@ def dataset(todo: Plan, rows: dict[tuple, dict], runs: str = "") -> xr.Dataset:
         counts="; ".join(f"{n} {int(np.sum(status == n))}" for n in STATUSES
                          if np.any(status == n)),
         motion_units="x, y, z in m; roll, pitch, yaw in deg",
+        statistics_from="each run's build-up on (simulation.build_up); the offsets from where "
+        "each body starts",
     )  # fmt: skip
 
 
