@@ -339,6 +339,8 @@ def test_the_weather_by_continuations_paths():
         assert environment["current"] == {"velocity": 0.5, "direction_deg": 30.0}
     with pytest.raises(CaseError, match="the case has no wind"):
         batch.plan(case, [batch.parse_vary("wind.speed=10")])
+    with pytest.raises(CaseError, match="not a weather path; the weather's are current.speed"):
+        batch.plan(case, [batch.parse_vary("waves.hs=2:8:2")])
     with pytest.raises(CaseError, match="the weather takes numbers"):
         batch.plan(case, [batch.parse_vary("waves.height=[high]")])
 

@@ -188,6 +188,11 @@ def _put(data: dict, path: str, value: Any, label: str) -> None:
     """Set the key at ``path`` of a case's mapping, or the weather by its short path
     (case.sweep.WEATHER)."""
     if path not in WEATHER:
+        if path.partition(".")[0] in ("waves", "current", "wind"):
+            raise CaseError(
+                f"{label}: not a weather path; the weather's are "
+                f"{', '.join(WEATHER)} (or a case key: environment.waves[0]...)"
+            )
         loader.set_key(data, path, value, label)
         return
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
