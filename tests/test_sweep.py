@@ -241,6 +241,11 @@ def test_the_command_line(tmp_path):
     assert xr.open_dataset(output).attrs["storm"] == 600.0
     again = runner.invoke(main, [*args, "--vary", f"{HS}=2,4"])
     assert again.output.count("(ended before, reused)") == 2
+    before = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "s.runs").iterdir()}
+    rerun = runner.invoke(main, [*args, "--vary", f"{HS}=2,4", "--rerun"])
+    assert rerun.exit_code == 0 and "reused" not in rerun.output
+    after = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "s.runs").iterdir()}
+    assert set(after) == set(before) and all(after[n] > before[n] for n in before)
     bad = runner.invoke(main, [*args, "--vary", f"{HS}=4:2:1"])
     assert bad.exit_code == 2 and "the step must be positive" in bad.output
     nothing = runner.invoke(main, args)

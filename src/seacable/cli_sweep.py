@@ -59,11 +59,14 @@ def _envelope(found) -> list[str]:
               help="'local' (a cluster of this machine's cores), 'none' (one run after the "
                    "other in this process) or a scheduler's address (tcp://host:8786; its "
                    "workers must see the case's and the output's folders).")  # fmt: skip
+@click.option("--rerun", is_flag=True,
+              help="Run every load case again, replacing its results, instead of reusing the "
+                   "runs that ended (after a change of seacable, say).")  # fmt: skip
 @click.option("-o", "--output", type=click.Path(), default=None,
               help="The summary (.nc or .zarr; default CASE_FILE with .sweep.nc); the runs "
                    "go in a folder beside it (.runs).")  # fmt: skip
 def sweep(case_file: str, vary: tuple[str, ...], seeds: int | None, load_cases: str | None,
-          storm: float | None, settings: tuple[str, ...], scheduler: str,
+          storm: float | None, settings: tuple[str, ...], scheduler: str, rerun: bool,
           output: str | None) -> None:  # fmt: skip
     """Run the load cases of CASE_FILE (its sweep: block and --vary, --seeds, --load-cases)
     and write their summary: per line its tensions and utilisation, per body its offset and
@@ -81,7 +84,8 @@ def sweep(case_file: str, vary: tuple[str, ...], seeds: int | None, load_cases: 
         sys.stdout.flush()
 
     try:
-        found = batch.execute(todo, target, None if scheduler == "none" else scheduler, report)
+        found = batch.execute(todo, target, None if scheduler == "none" else scheduler, report,
+                              rerun)  # fmt: skip
     except KeyboardInterrupt:
         click.echo(f"error: interrupted; the summary of the runs ended so far: {target}; the "
                    "same command again runs the rest", err=True)  # fmt: skip

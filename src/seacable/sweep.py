@@ -412,12 +412,14 @@ def execute(
     output: Path,
     scheduler: str | None = cluster.LOCAL,
     report: Callable[[int, int, LoadCase, dict], None] | None = None,
+    rerun: bool = False,
 ) -> xr.Dataset:
     """Run the load cases of ``todo`` (on Dask at ``scheduler``, or in this process for None)
-    into ``runs_folder(output)``, reusing the runs a sweep already ended there, and write the
-    summary (``dataset``) to ``output``; ``report(done, total, load case, row)`` as each run
-    ends. Ctrl-C: the summary of the runs ended so far, the others ``not run``, then
-    KeyboardInterrupt."""
+    into ``runs_folder(output)``, reusing the runs a sweep already ended there (``rerun``: none,
+    each run again into its file: their names hash what the runs read, not the software that
+    ran them), and write the summary (``dataset``) to ``output``; ``report(done, total, load
+    case, row)`` as each run ends. Ctrl-C: the summary of the runs ended so far, the others
+    ``not run``, then KeyboardInterrupt."""
     check_summary_output(output, todo.case)
     folder = runs_folder(output)
     folder.mkdir(exist_ok=True)
@@ -436,6 +438,8 @@ def execute(
         known = (
             status_row(REFUSED, load.refused)
             if load.refused
+            else None
+            if rerun
             else _reused(folder, load, todo.case, storm)
         )
         if known is None:
