@@ -96,3 +96,20 @@ def test_a_curve_in_a_case_file_is_checked_as_the_file_is():
     with pytest.raises(CaseError, match=r"line_types\[0\]\.fatigue"):
         loader.with_settings(seacable.load_case(EXAMPLE),
                              ["line_types[0].fatigue={curve: dnv_studless_chain}"])  # fmt: skip
+
+
+def test_a_yearly_damage_is_unknown_where_a_load_case_of_some_share_has_none():
+    """Two load cases, half the year each, of 100 s: the yearly damage is the shares' sum of
+    damage x year / 100 s; a line without damage in a load case of some share (no curve, or a
+    run that did not complete) has neither a yearly damage nor a life (NaN, not infinity), and
+    a load case of no share does not count."""
+    from seacable import sweep_summary
+
+    damage = np.array([[1e-6, np.nan, 0.0], [3e-6, 1e-6, 0.0], [np.nan, np.nan, np.nan]])
+    found = sweep_summary._lives(np.array([0.5, 0.5, 0.0]), damage, np.full(3, 100.0))
+    year = 365.25 * 86400.0
+    annual, life = found["annual_damage"][1], found["fatigue_life"][1]
+    assert annual[0] == pytest.approx(0.5 * 4e-6 * year / 100.0)
+    assert life[0] == pytest.approx(1.0 / annual[0])
+    assert math.isnan(annual[1]) and math.isnan(life[1])
+    assert annual[2] == 0.0 and life[2] == math.inf  # no cycles at all: no fatigue

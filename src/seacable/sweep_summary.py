@@ -262,6 +262,7 @@ def _lives(probability: np.ndarray, damage: np.ndarray, durations: np.ndarray) -
     parts = np.where(weight > 0.0, weight * rate, 0.0)
     annual = parts.reshape(-1, rate.shape[-1]).sum(axis=0)
     life = np.divide(1.0, annual, out=np.full_like(annual, math.inf), where=annual > 0.0)
+    life[np.isnan(annual)] = math.nan  # no damage known: no life either
     return {
         "annual_damage": (("line",), annual, {"units": "1/year", "long_name": "fatigue damage "
                           "a year: the load cases' damages, each for its share of the time"}),
