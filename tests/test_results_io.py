@@ -227,6 +227,41 @@ def test_a_run_refuses_to_write_over_a_file_it_reads_or_one_that_is_not_results(
     assert table.read_text().startswith("time,force") and notes.read_bytes().startswith(b"%PDF")
 
 
+def test_a_run_refuses_to_write_over_its_hydrodynamic_database(tmp_path):
+    """``seacable run ... -o data/barge_hydrodb.nc`` replaced the case's database (issue 42's
+    first example): the databases are among the files a run reads, and a WAMIT database's
+    side files beside its .1 too."""
+    import shutil
+
+    from seacable.case import loader
+
+    examples = Path(__file__).parent.parent / "examples"
+    shutil.copytree(examples / "data", tmp_path / "data")
+    shutil.copy(examples / "moored_barge_irregular_sea.yaml", tmp_path)
+    case = seacable.load_case(tmp_path / "moored_barge_irregular_sea.yaml")
+    database = tmp_path / "data" / "barge_hydrodb.nc"
+    assert database.resolve() in loader.files_read(case)
+    before = database.read_bytes()
+    with pytest.raises(seacable.OutputError, match=r"barge_hydrodb\.nc' is a file this run reads"):
+        seacable.simulate(case, output=database)
+    assert database.read_bytes() == before
+    wamit = case.model_copy(
+        update={
+            "bodies": [
+                b.model_copy(
+                    update={"hydrodynamics": b.hydrodynamics.model_copy(update={"file": "h.1"})}
+                )
+                if getattr(b, "hydrodynamics", None) is not None
+                else b
+                for b in case.bodies
+            ]
+        }
+    )
+    wamit._base_dir = case._base_dir
+    side = {p.name for p in loader.files_read(wamit)}
+    assert {"h.1", "h.3", "h.3sc", "h.3fk", "h.hst"} <= side
+
+
 def test_a_run_whose_table_lies_outside_its_folder_is_repeated(tmp_path):
     """A table given by an absolute path is kept in the results file too; ``seacable repeat``
     puts it beside the case it runs again and gives the same numbers, bit for bit."""

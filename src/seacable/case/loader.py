@@ -11,7 +11,14 @@ from pydantic import BaseModel, ValidationError
 
 from seacable import meshes
 from seacable.case import moordyn, reference
-from seacable.case.base import BOOLEAN_ERROR, MAGNITUDE_ERROR, HullMesh, Table, instances
+from seacable.case.base import (
+    BOOLEAN_ERROR,
+    MAGNITUDE_ERROR,
+    HullMesh,
+    HydroDatabase,
+    Table,
+    instances,
+)
 from seacable.case.schema import Case
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -360,12 +367,18 @@ def _mesh_text(mesh: HullMesh, base_dir) -> str:
 
 
 def files_read(case: Case | SystemCase) -> list[Path]:
-    """Every file a run of ``case`` reads, resolved: its case file, its table files and its
-    mesh files (a results file must replace none of them)."""
+    """Every file a run of ``case`` reads, resolved: its case file, its table files, its mesh
+    files and its hydrodynamic databases (WAMIT's .3, .3sc, .3fk and .hst beside a .1), which
+    a results file must replace none of."""
     files = [Path(case._source_file)] if case._source_file else []
-    for kind in (Table, HullMesh):
+    for kind in (Table, HullMesh, HydroDatabase):
         files += [part.path(case._base_dir).resolve() for _, part in instances(case, kind)]
+    for database in [f for f in files if f.suffix.lower() == ".1"]:
+        files += [database.with_suffix(s) for s in WAMIT_SIDE_FILES]
     return files
+
+
+WAMIT_SIDE_FILES = (".3", ".3sc", ".3fk", ".hst")  # what a WAMIT database reads beside its .1
 
 
 def case_base_dir(case: Case | SystemCase):
