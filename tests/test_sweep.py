@@ -248,6 +248,8 @@ def test_the_command_line(tmp_path):
     assert set(after) == set(before) and all(after[n] > before[n] for n in before)
     bad = runner.invoke(main, [*args, "--vary", f"{HS}=4:2:1"])
     assert bad.exit_code == 2 and "the step must be positive" in bad.output
+    block = runner.invoke(main, ["validate", str(EXAMPLE), "--set", "sweep={seeds: 2}"])
+    assert block.exit_code == 0 and "its sweep: block is for seacable sweep" in block.output
     nothing = runner.invoke(main, args)
     assert nothing.exit_code == 2 and "nothing varies" in nothing.output
     assert math.isfinite(float(xr.open_dataset(output)["tension_max"].max()))

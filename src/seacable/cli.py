@@ -152,7 +152,16 @@ def run(case_file: str, output: str | None, progress: bool, settings: tuple[str,
     except seacable.SimulationInterrupted as exc:  # exit 130 (Ctrl-C) or 143 (SIGTERM)
         _fail(f"{exc}\npartial results (status 'interrupted'): {output}", 128 + exc.signal)
     _utilisation(results, case)
+    _sweep_note(case)
     click.echo(f"{results.status}: {results.message}; results in {output}")
+
+
+def _sweep_note(case) -> None:
+    """A case's ``sweep:`` block is run by ``seacable sweep``, not by ``run``: said, not
+    ignored silently."""
+    if isinstance(case, SystemCase) and case.sweep is not None:
+        click.echo(f"note: its sweep: block is for seacable sweep {case._source_file or 'CASE'}; "
+                   "run and validate take the case as written", err=True)  # fmt: skip
 
 
 def _utilisation(results, case) -> None:
@@ -251,6 +260,7 @@ def validate(case_file: str, settings: tuple[str, ...]) -> None:
         models = ", ".join(f"{line.name} ({line.model})" for line in case.lines)
         if warning:
             click.echo(f"warning: {warning}", err=True)
+        _sweep_note(case)
         click.echo(
             f"ok: case '{case.name}': bodies {kinds}; lines {models}; "
             f"{case.simulation.duration:g} s with {case.simulation.integrator}"
