@@ -24,9 +24,10 @@ STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
 # compiled function of their own, and the layer rule keeps every compiled module (and the
 # constants it reads) below them; a change in them leaves the cache valid
 PYTHON_ONLY = (
-    "cli.py", "cli_ships.py", "cli_sweep.py", "sweep.py", "cluster.py", "case/sweep.py",
+    "cli.py", "cli_ships.py", "cli_sweep.py", "cli_types.py", "sweep.py", "cluster.py",
+    "case/sweep.py",
     "report.py", "export.py", "fatigue.py", "case/fatigue.py", "sweep_summary.py",
-    "viz/", "results.py", "simulation.py", "analysis.py", "stats.py",
+    "viz/", "results.py", "files.py", "simulation.py", "analysis.py", "stats.py",
     "case/loader.py", "case/reference.py", "case/moordyn.py", "case/moordyn_tables.py",
     "coupling.py",
     "system/utilisation.py", "system/variables.py",

@@ -72,6 +72,6 @@ def test_a_moored_barge_for_paraview(tmp_path):
     mine = tmp_path / "mine.pvd"
     mine.write_text("my notes")
     refused = CliRunner().invoke(main, ["export", str(run), "--vtk", "-o", str(mine)])
-    assert refused.exit_code == 2 and "not a VTK collection" in refused.output
+    assert refused.exit_code == 2 and "is not a ParaView collection" in refused.output
     no_format = CliRunner().invoke(main, ["export", str(run)])
     assert no_format.exit_code == 2 and "--vtk" in no_format.output

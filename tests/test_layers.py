@@ -7,7 +7,7 @@ PACKAGE = Path(__file__).parent.parent / "src" / "seacable"
 
 # module (or subpackage) -> seacable modules it may import
 LAYER = {
-    "cli": 14, "cli_sweep": 13.5, "cli_ships": 13,
+    "cli": 14, "cli_sweep": 13.5, "cli_ships": 13, "cli_types": 12.9,
     "sweep": 12.5, "sweep_summary": 12.4, "cluster": 10.5,
     "report": 12.8, "export": 12.8, "fatigue": 11.5,
     "viz": 12, "ahead": 12, "coupling": 12,
@@ -28,7 +28,7 @@ LAYER = {
     "case.forces": 2, "case.environment": 2, "case.sweep": 2, "case.fatigue": 2,
     "case.ship_forces": 1.5,
     "case.base": 1, "hydrodb_formats": 1,
-    "kernels": 0, "errors": 0,
+    "kernels": 0, "errors": 0, "files": 0.5,
 }  # fmt: skip
 SUBPACKAGES_BY_MODULE = {"case"}  # units inside these are their modules
 ALLOWED_UP = {("results", "__init__")}  # results reads the version number only

@@ -105,7 +105,7 @@ def test_import_writes_a_commented_case_and_a_deck_runs_as_it_is(tmp_path):
     written, deck = seacable.load_case(output), seacable.load_case(V2)
     assert written.model_dump(mode="json") == deck.model_dump(mode="json")
     same = CliRunner().invoke(main, ["import", "moordyn", str(V2), "-o", str(V2)])
-    assert same.exit_code == 2 and "the deck itself" in same.output
+    assert same.exit_code == 2 and "is a file this command reads" in same.output
     checked = CliRunner().invoke(main, ["validate", str(V1)])
     assert checked.exit_code == 0 and "point2 (point)" in checked.output, checked.output
 
@@ -396,7 +396,7 @@ def test_wave_components_beside_a_deck_become_airy_waves(tmp_path):
         moordyn.read(WAVE_DECK.read_text())
     deck = tmp_path / "lines.txt"
     deck.write_text(WAVE_DECK.read_text())
-    with pytest.raises(seacable.CaseError, match="wave_frequencies.txt: cannot be read"):
+    with pytest.raises(seacable.CaseError, match="wave_frequencies.txt. does not exist"):
         moordyn.read(deck)
     (tmp_path / "wave_frequencies.txt").write_text("0 0 0\n0.5 0.1\n")
     with pytest.raises(seacable.CaseError, match="wave_frequencies.txt line 2: '0.5 0.1': give"):

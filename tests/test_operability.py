@@ -178,8 +178,8 @@ def test_a_bad_table_of_states_is_refused_in_one_line_naming_its_row(tmp_path):
     for text, words in [
         ("current_speed,current_towards_deg,wind_speed\n0.8,180,15\n", "missing ['wind_towards"),
         (header + ",waves\n0.8,180,15,200,2\n", "unknown ['waves']"),
-        (header + "\n0.8,180,15,200\n0.8,north,15,200\n", "row 3: current_towards_deg 'north'"),
-        (header + "\n-0.8,180,15,200\n", "row 2: current_speed -0.8 is negative"),
+        (header + "\n0.8,180,15,200\n0.8,north,15,200\n", "line 3: current_towards_deg 'north'"),
+        (header + "\n-0.8,180,15,200\n", "line 2: current_speed -0.8 is negative"),
         (header + "\n", "no states"),
     ]:
         with pytest.raises(CaseError) as caught:

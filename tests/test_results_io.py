@@ -189,7 +189,9 @@ def test_an_output_in_a_missing_folder_is_refused(tmp_path):
     """A mistyped folder is named, not created silently."""
     from test_case_errors import CHAIN
 
-    with pytest.raises(seacable.OutputError, match=r"output folder '.*typo' does not exist"):
+    with pytest.raises(
+        seacable.OutputError, match=r"output '.*typo/run.nc': its folder '.*typo' does not exist"
+    ):
         seacable.simulate(seacable.load_case(CHAIN), output=tmp_path / "typo" / "run.nc")
 
 
@@ -217,13 +219,16 @@ def test_a_run_refuses_to_write_over_a_file_it_reads_or_one_that_is_not_results(
     case, table = _chain_with_table(tmp_path, "push.dat")
     loaded = seacable.load_case(case)
     with pytest.raises(
-        seacable.OutputError, match=r"output '.*push\.dat' is a file this run reads"
+        seacable.OutputError, match=r"output '.*push\.dat' is a file this command reads"
     ):
         seacable.simulate(loaded, output=table)
-    notes = tmp_path / "notes.pdf"
+    notes = tmp_path / "notes.nc"
     notes.write_bytes(b"%PDF-1.4 not results")
-    with pytest.raises(seacable.OutputError, match=r"'.*notes\.pdf' exists and is not a results"):
+    with pytest.raises(seacable.OutputError, match=r"'.*notes\.nc' exists and is not a 'seacable "
+                       "simulation results' file"):  # fmt: skip
         seacable.simulate(loaded, output=notes)
+    with pytest.raises(seacable.OutputError, match=r"'\.pdf' is not one of its names"):
+        seacable.simulate(loaded, output=tmp_path / "notes.pdf")
     assert table.read_text().startswith("time,force") and notes.read_bytes().startswith(b"%PDF")
 
 
@@ -242,7 +247,9 @@ def test_a_run_refuses_to_write_over_its_hydrodynamic_database(tmp_path):
     database = tmp_path / "data" / "barge_hydrodb.nc"
     assert database.resolve() in loader.files_read(case)
     before = database.read_bytes()
-    with pytest.raises(seacable.OutputError, match=r"barge_hydrodb\.nc' is a file this run reads"):
+    with pytest.raises(
+        seacable.OutputError, match=r"barge_hydrodb\.nc' is a file this command reads"
+    ):
         seacable.simulate(case, output=database)
     assert database.read_bytes() == before
     wamit = case.model_copy(

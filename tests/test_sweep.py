@@ -215,15 +215,18 @@ def test_a_local_dask_cluster_gives_the_same_numbers_as_this_process(tmp_path):
 def test_a_summary_replaces_nothing_but_a_summary(tmp_path):
     case = _case()
     (tmp_path / "notes.nc").write_text("mine")
-    for name, said in [("notes.nc", "not a results file"), ("s.csv", "NetCDF"),
+    for name, said in [("notes.nc", "is not a 'seacable sweep summary' file"), ("s.csv", "NetCDF"),
                        ("none/s.nc", "does not exist")]:  # fmt: skip
         with pytest.raises(OutputError, match=said):
             batch.check_summary_output(tmp_path / name, case)
     (tmp_path / "mine.zarr").mkdir()
     (tmp_path / "mine.zarr" / "data").write_text("mine")
+    with pytest.raises(OutputError, match="exists and is not a Zarr store"):
+        batch.check_summary_output(tmp_path / "mine.zarr", case)
+    (tmp_path / "mine.zarr" / ".zgroup").write_text("{}")
     with pytest.raises(OutputError, match="exists and is not a sweep's summary"):
         batch.check_summary_output(tmp_path / "mine.zarr", case)
-    with pytest.raises(OutputError, match="Zarr"):
+    with pytest.raises(OutputError, match="is a file this command reads"):
         batch.check_summary_output(EXAMPLE, case)
 
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from seacable.errors import (
     CaseError,
+    InputError,
     OutputError,
     SeacableError,
     SimulationDiverged,
@@ -64,6 +65,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "CaseError",
+    "InputError",
     "OutputError",
     "Results",
     "SeacableError",

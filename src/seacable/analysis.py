@@ -161,7 +161,7 @@ def statics(case: SystemCase, output=None) -> Results:
     attrs.update(loader.record(case))
     sink = _Sink(
         output, system_model.sizes(system), system_model.coords(system),
-        system_model.variables(system), attrs,
+        system_model.variables(system), attrs, inputs=loader.files_read(case),
     )  # fmt: skip
     y0 = system.y0.copy()
     y0[system.params.n_q :] = 0.0

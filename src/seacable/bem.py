@@ -26,13 +26,13 @@ from seacable import hydrodb, meshes
 def compute(mesh: meshes.Mesh, omega, directions_deg=(0.0,), rotation_center=(0.0, 0.0, 0.0),
             rho: float = 1025.0, gravity: float = 9.81, depth: float = math.inf,
             name: str = "hull") -> hydrodb.HydroDB:  # fmt: skip
+    mesh = meshes.checked(mesh)  # a mesh that is no hull is refused before Capytaine loads
     try:
         import capytaine as cpt
     except ImportError:
         raise ImportError(
             "computing a hydrodynamic database needs Capytaine: pip install 'seacable[bem]'"
         ) from None
-    mesh = meshes.checked(mesh)
     omega = np.asarray(omega, dtype=float)
     cmesh = cpt.Mesh(vertices=mesh.vertices, faces=mesh.triangles, name=name)
     cmesh = cmesh.immersed_part()

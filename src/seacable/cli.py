@@ -20,15 +20,17 @@ from seacable import (
     cli_ships,
     cli_sweep,
     export,
+    files,
     meshes,
     report,
     simulation,
     viz,
 )
+from seacable import cli_types as types
 from seacable import stats as stats_module
 from seacable.case import legacy, loader, moordyn, reference
 from seacable.case.system import SystemCase
-from seacable.results import restore_case
+from seacable.results import TITLE, restore_case
 from seacable.system import utilisation
 
 # exit codes (README, "Command line"): 0 done; 1 a bug in seacable; 2 the input (case file,
@@ -61,6 +63,9 @@ class _Boundary(click.Group):
         cli_ships.LOADED.clear()  # a case of an earlier call (in one process) is not this one's
         try:
             return super().invoke(ctx)
+        except click.UsageError as exc:  # an option's or argument's value: one line
+            command = " ".join(filter(None, ["seacable", ctx.invoked_subcommand]))
+            _fail(f"{exc.format_message()} (see {command} --help)", EXIT_INPUT)
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
         except seacable.SimulationInterrupted as exc:
@@ -140,10 +145,14 @@ _case = cli_ships.load  # the case of CASE_FILE with the command line's --set ch
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--progress/--no-progress", default=True, help="Progress bar on long runs.")
+@click.option("--yes", is_flag=True, help="Run a case estimated to take more than about an "
+              "hour (simulation.allow_long_run: true).")  # fmt: skip
 @_SET
-def run(case_file: str, output: str | None, progress: bool, settings: tuple[str, ...]) -> None:
+def run(case_file: str, output: str | None, progress: bool, yes: bool,
+        settings: tuple[str, ...]) -> None:  # fmt: skip
     """Run CASE_FILE and write its results (default: CASE_FILE with .nc)."""
     output = output or str(Path(case_file).with_suffix(".nc"))
+    settings = (*settings, "simulation.allow_long_run=true") if yes else settings
     try:
         case = _case(case_file, settings)
         results = seacable.simulate(case, output=output, progress=progress)
@@ -199,15 +208,16 @@ def repeat(results_file: str, output: str, progress: bool) -> None:
     kept in the file's attributes, written to a temporary folder and run from there (a file
     the case named outside its folder, by an absolute path or '..', is put in that folder and
     the case text pointed at it)."""
+    files.check_output(output, "netcdf", [results_file], title=TITLE)
+    files.self_contained(results_file)
     with h5netcdf.File(results_file, "r") as f:
         attrs = dict(f.attrs)
     with tempfile.TemporaryDirectory() as folder:
         try:
-            case_file = restore_case(attrs, folder)
+            case_file = restore_case(attrs, folder, carried_only=True)
         except ValueError as exc:
             _fail(f"{results_file}: {exc}", EXIT_INPUT)
-        results = seacable.simulate(_case(case_file), output=output,
-                                    progress=progress)  # fmt: skip
+        results = seacable.simulate(_case(case_file), output=output, progress=progress)
     click.echo(f"{results.status}: {results.message}; results in {output}")
 
 
@@ -224,11 +234,10 @@ def import_moordyn(deck: str, output: str) -> None:
     """Write the MoorDyn input file DECK (v1 or v2: line types, points, lines, options) as a
     commented seacable case, checked as any case is; what has no equivalent in seacable is
     refused by its section, row and column. `seacable run DECK` runs a deck as it is."""
-    if Path(output).resolve() == Path(deck).resolve():
-        _fail(f"-o {output}: that is the deck itself; name another file", EXIT_INPUT)
+    files.check_output(output, "case", [deck])
     case, text = moordyn.convert(deck)
     loader.load_case(case)  # refused here, before anything is written
-    Path(output).write_text(text)
+    files.replace_text(output, text)
     click.echo(f"{len(case['lines'])} lines, {len(case['bodies'])} bodies: case in {output}")
 
 
@@ -238,11 +247,14 @@ def import_moordyn(deck: str, output: str) -> None:
 def upgrade(case_file: str, output: str | None) -> None:
     """Write CASE_FILE (the single-cable form, cables: with top and bottom) in the system form
     of bodies and lines (to stdout, or OUTPUT next to it: table files keep their names)."""
-    text = legacy.upgrade_text(loader.load_single_cable(case_file))
+    case = loader.load_single_cable(case_file)
+    if output is not None:
+        files.check_output(output, "case", loader.files_read(case))
+    text = legacy.upgrade_text(case)
     if output is None:
         click.echo(text, nl=False)
         return
-    Path(output).write_text(text)
+    files.replace_text(output, text)
     click.echo(f"system form in {output}")
 
 
@@ -315,7 +327,8 @@ def statics(case_file: str, output: str | None, settings: tuple[str, ...]) -> No
 
 @main.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
-@click.option("--count", type=int, default=12, show_default=True, help="Slowest modes shown.")
+@click.option("--count", type=types.count(1, 10_000), default=12, show_default=True,
+              help="Slowest modes shown.")  # fmt: skip
 @_SET
 def modes(case_file: str, count: int, settings: tuple[str, ...]) -> None:
     """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
@@ -339,28 +352,28 @@ for _command in cli_sweep.COMMANDS:  # load cases (seacable.cli_sweep)
 @click.argument("mesh_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="NetCDF database to write (default: MESH_FILE with .nc).")  # fmt: skip
-@click.option("--omega", nargs=3, type=float, default=(0.1, 3.0, 30), show_default=True,
+@click.option("--omega", nargs=3, type=(types.POSITIVE, types.POSITIVE, types.count(1, 2000)),
+              default=(0.1, 3.0, 30), show_default=True,
               help="Angular frequencies [rad/s]: first, last, count.")  # fmt: skip
 @click.option("--directions", type=str, default="0,45,90,135,180,225,270,315",
               show_default=True, help="Wave directions [deg], comma-separated.")  # fmt: skip
-@click.option("--rotation-center", nargs=3, type=float, default=(0.0, 0.0, 0.0),
+@click.option("--rotation-center", nargs=3, type=types.ANY, default=(0.0, 0.0, 0.0),
               show_default=True, help="The reference point [m] of the six motions.")  # fmt: skip
-@click.option("--depth", type=float, default=math.inf, help="Water depth [m] (default deep).")
-@click.option("--rho", type=float, default=1025.0, show_default=True, help="[kg/m^3]")
+@click.option("--depth", type=types.Number(low=0.0, low_open=True, infinite="deep water"),
+              default=math.inf, help="Water depth [m] (default deep).")  # fmt: skip
+@click.option("--rho", type=types.Number(low=1.0, high=1e5, example="1025"), default=1025.0,
+              show_default=True, help="[kg/m^3]")  # fmt: skip
 def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation_center,
             depth: float, rho: float) -> None:  # fmt: skip
     """Compute the hydrodynamic database of the hull MESH_FILE (placed as floating, z up,
     the waterline at z = 0) with Capytaine: pip install 'seacable[bem]'."""
     first, last, count = omega
-    if not (0.0 < first < last and count >= 2):
-        _fail(f"--omega {first:g} {last:g} {count:g}: give 0 < first < last and a count of at "
-              "least 2, e.g. --omega 0.1 3.0 30", EXIT_INPUT)  # fmt: skip
-    try:
-        angles = [float(a) for a in directions.split(",")]
-    except ValueError:
-        _fail(f"--directions '{directions}': give degrees separated by commas, e.g. 0,90,180",
-              EXIT_INPUT)  # fmt: skip
+    if not (first < last or (first == last and count == 1)):
+        _fail(f"--omega {first:g} {last:g} {count:g}: give first < last (or equal, with a count "
+              "of 1), e.g. --omega 0.1 3.0 30", EXIT_INPUT)  # fmt: skip
+    angles = types.numbers(directions, "--directions")
     output = output or str(Path(mesh_file).with_suffix(".nc"))
+    files.check_output(output, "netcdf", [mesh_file], title=files.HYDRODB)
     try:
         db = bem.compute_file(mesh_file, output, np.linspace(first, last, int(count)),
                               directions_deg=angles, rotation_center=rotation_center,
@@ -388,12 +401,12 @@ def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "--storm",
-    type=click.FloatRange(min=0.0, min_open=True),
+    type=types.DURATION,
     default=10800.0,
     show_default=True,
     help="Duration [s] of the storm whose most probable largest value is given.",
 )
-@click.option("--from", "start", type=float, default=None,
+@click.option("--from", "start", type=types.NONNEGATIVE, default=None,
               help="Time [s] the statistics start from (default: the run's build-up, the ramp "
                    "that starts its waves).")  # fmt: skip
 def statistics(results_file: str, storm: float, start: float | None) -> None:
@@ -424,8 +437,12 @@ def statistics(results_file: str, storm: float, start: float | None) -> None:
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="The collection (.pvd; default RESULTS_FILE with .pvd); its files go in a "
                    "folder beside it (_vtk).")  # fmt: skip
-@click.option("--every", type=float, default=None, help="Seconds between the files written "
-              "(default: every output time).")  # fmt: skip
+@click.option(
+    "--every",
+    type=types.DURATION,
+    default=None,
+    help="Seconds between the files written (default: every output time).",
+)
 def export_files(results_file: str, vtk: bool, output: str | None, every: float | None) -> None:
     """RESULTS_FILE for ParaView: a VTK file a time, lines as segments with their tension and
     hulls as their meshes, and a .pvd collection that ParaView opens as a time series."""
@@ -434,7 +451,7 @@ def export_files(results_file: str, vtk: bool, output: str | None, every: float 
     target = Path(output) if output else Path(results_file).with_suffix(".pvd")
     results = seacable.Results.open(results_file, lazy=True)
     try:
-        written = export.write(_tree(results, results_file), target, every)
+        written = export.write(_tree(results, results_file), target, every, [results_file])
     finally:
         results.close()
     click.echo(f"{len(written) - 1} VTK files and their collection written: {target}")
@@ -444,7 +461,7 @@ def export_files(results_file: str, vtk: bool, output: str | None, every: float 
 @click.argument("results_file", type=click.Path(exists=True))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="The page (.html; default RESULTS_FILE with .html).")  # fmt: skip
-@click.option("--storm", type=click.FloatRange(min=0.0, min_open=True), default=10800.0,
+@click.option("--storm", type=types.DURATION, default=10800.0,
               show_default=True, help="Duration [s] of the storm of the statistics' most "
               "probable largest values.")  # fmt: skip
 def report_page(results_file: str, output: str | None, storm: float) -> None:
@@ -458,10 +475,12 @@ def report_page(results_file: str, output: str | None, storm: float) -> None:
 @main.command()
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Picture (default .png).")
-@click.option("--every", type=float, default=None, help="Seconds between cable snapshots.")
+@click.option("--every", type=types.DURATION, default=None,
+              help="Seconds between cable snapshots.")  # fmt: skip
 def plot(results_file: str, output: str | None, every: float | None) -> None:
     """Draw cable snapshots and time series from RESULTS_FILE."""
     output = output or str(Path(results_file).with_suffix(".png"))
+    files.check_output(output, "picture", [results_file])
     results = seacable.Results.open(results_file)
     viz.plot_results(_tree(results, results_file), output, every=every)
     click.echo(f"picture written: {output}")
@@ -471,11 +490,12 @@ def plot(results_file: str, output: str | None, every: float | None) -> None:
 @click.argument("results_file", type=click.Path(exists=True, dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Animation file (.gif).")  # fmt: skip
-@click.option("--fps", type=int, default=20, help="Frames per second of video.")
-@click.option("--speed", type=float, default=1.0, help="Simulated seconds per second of video.")
-@click.option("--every", type=float, default=None,
+@click.option("--fps", type=types.count(1, 100), default=20, help="Frames per second of video.")
+@click.option("--speed", type=types.POSITIVE, default=1.0,
+              help="Simulated seconds per second of video.")  # fmt: skip
+@click.option("--every", type=types.DURATION, default=None,
               help="Simulated seconds between frames (default: speed / fps).")  # fmt: skip
-@click.option("--max-frames", type=int, default=600, show_default=True,
+@click.option("--max-frames", type=types.count(1, 100_000), default=600, show_default=True,
               help="At most this many frames, spread evenly over the run.")  # fmt: skip
 @click.option("--progress/--no-progress", default=True, help="Progress bar on stderr.")
 def animate(
@@ -488,6 +508,7 @@ def animate(
     progress: bool,
 ) -> None:
     """Animate the cable of RESULTS_FILE, drawing and writing one frame at a time."""
+    files.check_output(output, "animation", [results_file])
     results = seacable.Results.open(results_file, lazy=True)
     try:
         viz.animate_results(

@@ -12,7 +12,8 @@ import numpy as np
 import xarray as xr
 
 import seacable
-from seacable import viz
+from seacable import cli_types as types
+from seacable import cluster, files, viz
 from seacable.case import loader
 from seacable.case.sweep import range_values
 from seacable.case.system import SystemCase
@@ -46,17 +47,17 @@ def _weather(case, current, wind, waves) -> seacable.Weather:
 
 
 WEATHER_OPTIONS = [
-    click.option("--current", nargs=2, type=float, default=None,
+    click.option("--current", nargs=2, type=(types.SPEED, types.ANGLE), default=None,
                  help="Uniform current: speed [m/s] and the direction it goes towards [deg] "
                       "(default: the case's)."),
-    click.option("--wind", nargs=2, type=float, default=None,
+    click.option("--wind", nargs=2, type=(types.SPEED, types.ANGLE), default=None,
                  help="Constant wind: speed [m/s] and the direction it blows towards [deg] "
                       "(default: the case's)."),
-    click.option("--waves", nargs=2, type=float, default=None,
+    click.option("--waves", nargs=2, type=(types.NONNEGATIVE, types.ANGLE), default=None,
                  help="The case's waves scaled to a significant height [m] and turned to a mean "
                       "direction they go towards [deg] (default: the case's; they act through "
                       "the ships' wave drift)."),
-    click.option("--headings", type=int, default=12, show_default=True,
+    click.option("--headings", type=types.count(1, 360), default=12, show_default=True,
                  help="Starting headings per body in the search for equilibria."),
 ]  # fmt: skip
 
@@ -75,6 +76,7 @@ def equilibria(case_file: str, current, wind, waves, headings: int, output: str 
     """Every equilibrium of the ships of CASE_FILE in the horizontal plane (surge, sway, yaw)
     for a current and a wind, and its stability from the linearised system's eigenvalues."""
     case = load(case_file)
+    _check(case, output)
     weather = _weather(case, current, wind, waves)
     found = seacable.equilibria(case, weather, headings=headings)
     sea = ""
@@ -111,12 +113,13 @@ def equilibria(case_file: str, current, wind, waves, headings: int, output: str 
     "lines.<tie>.stiffness, "
     "bodies.<body>.points.<point>.x, bodies.<body>.external forces.<k>.force_x",
 )
-@click.option("--from", "start", type=float, required=True, help="The parameter's first value.")
-@click.option("--to", "end", type=float, required=True, help="Its last value.")
+@click.option("--from", "start", type=types.ANY, required=True,
+              help="The parameter's first value.")  # fmt: skip
+@click.option("--to", "end", type=types.ANY, required=True, help="Its last value.")
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Bifurcation diagram (.png).")
-@click.option("--cycles", type=int, default=0, show_default=True,
+@click.option("--cycles", type=types.count(0, 100), default=0, show_default=True,
               help="Periodic orbits to follow from each Hopf point, and its kind.")  # fmt: skip
 def continuation(case_file: str, path: str, start: float, end: float, current, wind, waves,
                  headings: int, output: str | None, plot: str | None,
@@ -126,6 +129,7 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
     branches of limit cycles born at the Hopf points and whether each is super- or
     subcritical, by simulation."""
     case = load(case_file)
+    _check(case, output, plot)
     found = seacable.continuation(case, path, start, end, _weather(case, current, wind, waves),
                                   headings=headings, cycles=cycles)  # fmt: skip
     branches = np.unique(found["branch"].values)
@@ -162,12 +166,13 @@ def continuation(case_file: str, path: str, start: float, end: float, current, w
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("--parameter", "path", required=True, help="The first parameter (a path, as "
               "for continuation).")  # fmt: skip
-@click.option("--from", "start", type=float, required=True, help="Its first value.")
-@click.option("--to", "end", type=float, required=True, help="Its last value.")
+@click.option("--from", "start", type=types.ANY, required=True, help="Its first value.")
+@click.option("--to", "end", type=types.ANY, required=True, help="Its last value.")
 @click.option("--second", required=True, help="The second parameter (a path).")
-@click.option("--second-from", "second_start", type=float, required=True,
+@click.option("--second-from", "second_start", type=types.ANY, required=True,
               help="Its value where the curves start.")  # fmt: skip
-@click.option("--second-to", "second_end", type=float, required=True, help="Its last value.")
+@click.option("--second-to", "second_end", type=types.ANY, required=True,
+              help="Its last value.")  # fmt: skip
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of the curves (.png).")
@@ -178,6 +183,7 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
     continuation in the first finds with the second at --second-from, followed as both
     change."""
     case = load(case_file)
+    _check(case, output, plot)
     found = seacable.curves(case, path, start, end, second, second_start, second_end,
                             _weather(case, current, wind, waves), headings=headings)  # fmt: skip
     click.echo(f"{found.sizes['curve']} curves")
@@ -194,8 +200,8 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
 @click.option(
     "--parameter", "path", default=None, help="A parameter set first (as continuation's)."
 )
-@click.option("--value", type=float, default=None, help="Its value.")
-@click.option("--settle", type=float, default=None,
+@click.option("--value", type=types.ANY, default=None, help="Its value.")
+@click.option("--settle", type=types.DURATION, default=None,
               help="Seconds of motion before shooting (default 30 periods).")  # fmt: skip
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
@@ -207,6 +213,7 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
     unstable equilibrium: period, amplitudes, hawser tensions, the hulls' least clearance and
     its Floquet multipliers (shooting)."""
     case = load(case_file)
+    _check(case, output, plot)
     found = seacable.periodic_orbit(case, _weather(case, current, wind, waves), path, value, settle,
                                     headings=headings)  # fmt: skip
     state = "stable" if bool(found["stable"]) else "unstable"
@@ -228,35 +235,58 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
     _write(found, output, "limit cycle", plot, viz.plot_orbit)
 
 
+def _title() -> str:
+    """The title of the command's NetCDF output: "seacable equilibria", ..."""
+    return f"seacable {click.get_current_context().info_name}"
+
+
+def _check(case: SystemCase, output: str | None, plot: str | None = None,
+           tension=()) -> None:  # fmt: skip
+    """The command's outputs checked before it computes anything (``files.check_output``),
+    and the ties its ``--tension-limit`` options name."""
+    ties = [line.name for line in case.lines]
+    for name, _ in tension:
+        if name not in ties:
+            raise CaseError(f"--tension-limit {name}: the case has no line of that name; its "
+                            f"lines: {', '.join(ties)}")  # fmt: skip
+    inputs = loader.files_read(case)
+    if output:
+        files.check_output(output, "netcdf", inputs, title=_title())
+    if plot:
+        files.check_output(plot, "picture", inputs, option="--plot")
+
+
 def _write(found: xr.Dataset, output: str | None, what: str, plot: str | None = None,
            draw=None, picture: str = "picture") -> None:  # fmt: skip
     """An analysis's Dataset to ``output`` (NetCDF) and its picture to ``plot`` by ``draw``,
     each said in one line."""
     if output:
-        found.to_netcdf(output)
+        found.attrs["title"] = _title()
+        with files.replacing(output) as aside:
+            found.to_netcdf(aside)
         click.echo(f"{what} written: {output}")
     if plot and draw is not None:
         click.echo(f"{picture} written: {draw(found, plot)}")
 
 
-def _angles(text: str, option: str) -> np.ndarray:
-    """Degrees from 'first:stop:step' (stop excluded) or a comma-separated list."""
+def _angles(text: str, option: str, low: float | None = None) -> np.ndarray:
+    """Numbers (degrees, ratios) from 'first:stop:step' (stop excluded) or a comma-separated
+    list, each at least ``low`` when given."""
+    if ":" not in text:
+        return np.array(types.numbers(text, option, low))
     try:
-        if ":" in text:
-            return np.array(range_values(text, option))
-        return np.array([float(v) for v in text.split(",")])
+        values = np.array(range_values(text, option))
     except ValueError as exc:
-        raise CaseError(
-            str(exc)
-            if ":" in text
-            else f"{option} '{text}': give first:stop:step (e.g. "
-            "0:360:10) or values separated by commas"
-        ) from None
+        raise CaseError(str(exc)) from None
+    if low is not None and values.min() < low:
+        raise CaseError(f"{option} '{text}': every value at least {low:g}")
+    return values
 
 
 @click.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
-@click.option("--current-speed", type=float, default=None,
+@click.option("--current-speed", type=types.Number(low=0.0, low_open=True, example="1.2"),
+              default=None,
               help="The grid's current speed [m/s] (or --states).")  # fmt: skip
 @click.option("--current-towards", default="0:360:10", show_default=True,
               help="Current directions [deg]: first:stop:step or a list.")  # fmt: skip
@@ -268,10 +298,11 @@ def _angles(text: str, option: str) -> np.ndarray:
               help="A CSV table of weather states instead of the grid: a header of "
                    "current_speed, current_towards_deg, wind_speed, wind_towards_deg and "
                    "optionally wave_height, wave_towards_deg, probability.")  # fmt: skip
-@click.option("--clearance", type=float, default=0.0, help="Least clearance of the hulls [m].")
-@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, float),
+@click.option("--clearance", type=types.NONNEGATIVE, default=0.0,
+              help="Least clearance of the hulls [m].")  # fmt: skip
+@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, types.POSITIVE),
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
-@click.option("--simulate", type=float, default=None,
+@click.option("--simulate", type=types.DURATION, default=None,
               help="Also move each state this many seconds from its equilibrium.")  # fmt: skip
 @click.option("--simulate-from", "start", type=click.Choice(["equilibrium", "nominal"]),
               default="equilibrium", show_default=True,
@@ -307,10 +338,12 @@ def operability(case_file: str, current_speed: float | None, current_towards: st
     else:
         weathers, shape = stability_map.grid(
             current_speed, _angles(current_towards, "--current-towards"),
-            _angles(wind_towards, "--wind-towards"), _angles(ratios, "--ratios"))  # fmt: skip
+            _angles(wind_towards, "--wind-towards"), _angles(ratios, "--ratios", 0.0))  # fmt: skip
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     where = None if scheduler == "none" else scheduler
+    cluster.check(where)
     case = load(case_file)
+    _check(case, output, plot, tension)
     found = stability_map.operability(case, weathers, shape, limits, simulate, where,
                                       control=control, probability=probability,
                                       start=start)  # fmt: skip
@@ -325,9 +358,10 @@ def operability(case_file: str, current_speed: float | None, current_towards: st
 @click.command()
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @_weather_options
-@click.option("--duration", type=float, default=None, help="[s] (default: the case's).")
-@click.option("--clearance", type=float, default=0.0, help="Least clearance of the hulls [m].")
-@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, float),
+@click.option("--duration", type=types.DURATION, default=None, help="[s] (default: the case's).")
+@click.option("--clearance", type=types.NONNEGATIVE, default=0.0,
+              help="Least clearance of the hulls [m].")  # fmt: skip
+@click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, types.POSITIVE),
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of both runs (.png).")
@@ -336,6 +370,7 @@ def compare(case_file: str, current, wind, waves, headings: int, duration: float
     """The ships of CASE_FILE in one weather without and with their compensator, side by side:
     is it safe, with and without control? (distance, tension, thrust, clearance)."""
     case = load(case_file)
+    _check(case, output, plot, tension)
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
     found = seacable.compare(case, _weather(case, current, wind, waves), duration, limits=limits)
     for control in found["control"].values:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from seacable import cli_types as types
 from seacable import cluster
 from seacable import sweep as batch
 from seacable.cli_ships import load
@@ -49,7 +50,7 @@ def _envelope(found) -> list[str]:
 @click.option("--load-cases", type=click.Path(dir_okay=False), default=None,
               help="A CSV table of load cases: a header of keys as --set writes them, "
                    "optionally name and probability; one row a load case.")  # fmt: skip
-@click.option("--storm", type=click.FloatRange(min=0.0, min_open=True), default=None,
+@click.option("--storm", type=types.DURATION, default=None,
               help="Duration [s] of the storm whose most probable largest tension the summary "
                    "gives (default: the sweep: block's, else 10800).")  # fmt: skip
 @click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
@@ -71,8 +72,10 @@ def sweep(case_file: str, vary: tuple[str, ...], seeds: int | None, load_cases: 
     """Run the load cases of CASE_FILE (its sweep: block and --vary, --seeds, --load-cases)
     and write their summary: per line its tensions and utilisation, per body its offset and
     motions, each run's status. Run again, it reuses the runs that ended."""
+    where = None if scheduler == "none" else scheduler
+    cluster.check(where)
     case = load(case_file, settings)
-    table = None if load_cases is None else str(Path(load_cases).resolve())
+    table = None if load_cases is None else str(Path(load_cases).absolute())
     todo = batch.plan(case, [batch.parse_vary(v) for v in vary], seeds, table, storm)
     target = Path(output) if output else Path(case_file).with_suffix(".sweep.nc")
     sizes = " x ".join(f"{len(v)} {d}" for d, v in todo.dims.items())
@@ -84,7 +87,7 @@ def sweep(case_file: str, vary: tuple[str, ...], seeds: int | None, load_cases: 
         sys.stdout.flush()
 
     try:
-        found = batch.execute(todo, target, None if scheduler == "none" else scheduler, report,
+        found = batch.execute(todo, target, where, report,
                               rerun)  # fmt: skip
     except KeyboardInterrupt:
         click.echo(f"error: interrupted; the summary of the runs ended so far: {target}; the "

@@ -3,12 +3,22 @@ local one by default or any scheduler given its address. Nothing of scheduling o
 seacable's own: Dask's ``distributed`` does it, from the ``dask`` extra."""
 
 import os
+import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 
 from seacable.errors import CaseError
 
 LOCAL = "local"  # a cluster of this machine's cores, started and stopped with the batch
+
+
+def check(scheduler: str | None) -> None:
+    """Refuse a ``--dask`` value that is not 'local', None ('none') or a scheduler's address."""
+    if scheduler not in (None, LOCAL) and not re.match(
+        r"^(tcp|tls|inproc|ucx|ws|wss)://\S+$", scheduler
+    ):
+        raise CaseError(f"--dask '{scheduler}': give 'local', 'none' or a Dask scheduler's "
+                        "address (tcp://host:8786, or tls:// for an encrypted one)")  # fmt: skip
 
 
 @contextmanager
@@ -24,6 +34,7 @@ def client(scheduler: str, what: str) -> Iterator:
             f"{what} on Dask needs dask.distributed: pip install 'seacable[dask]' (or run it in "
             "this process: --dask none)"
         ) from None
+    check(scheduler)
     cluster = None
     if scheduler == LOCAL:
         cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1,

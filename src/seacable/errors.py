@@ -38,3 +38,8 @@ class SimulationInterrupted(SeacableError, KeyboardInterrupt):
 class HydroDBError(SeacableError, ValueError):
     """A hydrodynamic database that cannot be read or used (seacable.hydrodb): the message
     names the file, what is wrong (the section, the line) and the fix."""
+
+
+class InputError(SeacableError, ValueError):
+    """A file a command reads (results, a database, a table, a mesh) that cannot be used: the
+    message names the file, what is wrong and the fix."""

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from seacable import files
 from seacable.errors import SeacableError
 from seacable.viz import system as vs
 
@@ -25,6 +26,8 @@ def frames(tree: xr.DataTree, every: float | None) -> np.ndarray:
         return np.arange(len(t))
     if not every > 0.0:
         raise SeacableError(f"--every {every:g}: give a positive interval [s]")
+    if float(t[-1] - t[0]) >= every * len(t):  # every row, however short the interval
+        return np.arange(len(t))
     picks = np.searchsorted(t, np.arange(t[0], t[-1] + 1e-9 * every, every))
     return np.unique(np.minimum(picks, len(t) - 1))
 
@@ -93,22 +96,20 @@ def _head(path: Path) -> bytes:
         return f.read(300)
 
 
-def write(tree: xr.DataTree, output: Path, every: float | None = None) -> list[Path]:
+def write(tree: xr.DataTree, output: Path, every: float | None = None,
+          inputs=()) -> list[Path]:  # fmt: skip
     """The run's files: ``output`` (the ``.pvd`` collection) and a folder beside it (``output``
-    without its suffix, ``_vtk``) of one ``.vtu`` a time written; returns the files written."""
-    if output.suffix.lower() != ".pvd":
-        raise SeacableError(f"output '{output}': the VTK export is a ParaView collection; give a "
-                            "name ending in .pvd")  # fmt: skip
+    without its suffix, ``_vtk``) of one ``.vtu`` a time written; returns the files written.
+    ``inputs``: the files read (the results), which no output may be."""
+    files.check_output(output, "collection", inputs)
     picks = frames(tree, every)
     if len(picks) > MOST_FILES:
         raise SeacableError(f"{len(picks):,} output times; export at most {MOST_FILES:,} files: "
                             "give --every SECONDS")  # fmt: skip
     folder = output.with_name(output.stem + "_vtk")
-    if output.exists() and b'<VTKFile type="Collection"' not in _head(output):
-        raise SeacableError(
-            f"output '{output}' exists and is not a VTK collection, which the "
-            "export would replace; remove it or choose another name"
-        )
+    if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+        raise SeacableError(f"the VTK files' folder '{folder}' (beside output '{output}') is a "
+                            "link or a file; remove it or choose another output name")  # fmt: skip
     folder.mkdir(exist_ok=True)
     meshes, _ = vs.scene(tree)
     t = np.asarray(tree["time"].values, dtype=float)
@@ -116,13 +117,14 @@ def write(tree: xr.DataTree, output: Path, every: float | None = None) -> list[P
     written, entries = [], []
     for n, i in enumerate(picks):
         path = folder / f"step_{n:05d}.vtu"
-        path.write_text(vtu(*pieces(tree, int(i), meshes)))
+        files.replace_text(path, vtu(*pieces(tree, int(i), meshes)))
         written.append(path)
         entries.append(f'<DataSet timestep="{t[i]:.9g}" file="{folder.name}/{path.name}"/>')
-    output.write_text(
+    files.replace_text(
+        output,
         '<?xml version="1.0"?>\n<VTKFile type="Collection" version="1.0">\n'
         f"<!-- parts: {_parts(names)} -->\n"
-        "<Collection>\n" + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n"
+        "<Collection>\n" + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n",
     )
     return [output, *written]
 

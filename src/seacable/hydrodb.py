@@ -40,10 +40,11 @@ import numpy as np
 import xarray as xr
 from scipy.special import sici
 
-from seacable import hydrodb_formats
+from seacable import files, hydrodb_formats
 from seacable.errors import HydroDBError
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+TITLE = files.HYDRODB  # the title of a database seacable writes
 CONVENTIONS = {
     "frequency": "angular frequency omega [rad/s]",
     "damping": "B [N s/m, N s, N m s/m, N m s/rad], not B/(rho omega)",
@@ -218,8 +219,73 @@ def read(path: str | Path, rho: float = 1025.0, gravity: float = 9.81,
     read beside it), an HDB file (``.hdb``, Diodore or AQUA+). WAMIT's nondimensional values are
     dimensionalised with ``rho`` [kg/m^3], ``gravity`` [m/s^2] and WAMIT's ULEN,
     ``length_scale`` [m]; ``phase_unit`` ("rad" or "deg") is the HDB file's phases' unit.
-    Every format's conventions are turned into ours (module docstring; hydrodb_formats)."""
-    path = Path(path)
+    Every format's conventions are turned into ours (module docstring; hydrodb_formats); a
+    database no solver writes is refused (``checked``)."""
+    return checked(_read(Path(path), rho, gravity, length_scale, phase_unit), f"hydrodynamic "
+                   f"database '{path}'")  # fmt: skip
+
+
+NEGATIVE = 0.01  # a diagonal below -NEGATIVE times its largest magnitude is no solver's noise
+
+
+def checked(db: HydroDB, where: str) -> HydroDB:
+    """``db``, or HydroDBError naming ``where`` when it is nonsense: frequencies not positive
+    and increasing, values that are not finite numbers, a radiation damping that gives energy
+    to the body (a negative diagonal, beyond a solver's noise: NEGATIVE of its largest), an
+    added mass negative at the highest frequency (or infinite frequency)."""
+    w = np.asarray(db.omega)
+    if w.ndim != 1 or len(w) == 0 or not np.issubdtype(w.dtype, np.number):
+        raise HydroDBError(f"{where}: no frequencies")
+    if not np.all(np.isfinite(w)) or w.min() <= 0.0 or np.any(np.diff(w) <= 0.0):
+        raise HydroDBError(f"{where}: its frequencies ({_listed(w)} rad/s) must be positive, "
+                           "finite and increasing, each once")  # fmt: skip
+    arrays = {
+        "added_mass": db.added_mass,
+        "radiation_damping": db.damping,
+        "diffraction_force": db.diffraction,
+        "Froude_Krylov_force": db.froude_krylov,
+        "excitation_force": db.excitation_total,
+        "added_mass_infinite": db.infinite,
+    }
+    for name, values in arrays.items():
+        if values is None:
+            continue
+        a = np.asarray(values)
+        if not np.issubdtype(a.dtype, np.number):
+            raise HydroDBError(f"{where}: {name} holds {a.dtype} values, not numbers")
+        if not np.all(np.isfinite(a)):
+            k = np.argwhere(~np.isfinite(a))[0]
+            at = f" at {w[k[0]]:.4g} rad/s" if a.ndim == 3 else ""
+            raise HydroDBError(f"{where}: {name} is NaN or infinite{at} (index {k.tolist()}); "
+                               "give the database as its solver wrote it")  # fmt: skip
+    for i, dof in enumerate(DOFS):
+        b = np.asarray(db.damping)[:, i, i]
+        if b.min() < -NEGATIVE * np.abs(b).max():
+            k = int(np.argmin(b))
+            raise HydroDBError(
+                f"{where}: the radiation damping of {dof} is negative at {w[k]:.4g} rad/s "
+                f"({b[k]:.4g}), which would give the body energy; check the database (its "
+                "sign convention, irregular frequencies of the solver)"
+            )
+        for name, matrix in (("at its highest frequency", np.asarray(db.added_mass)[-1]),
+                             ("at infinite frequency", db.infinite)):  # fmt: skip
+            if matrix is None:
+                continue
+            a = np.asarray(matrix)[i, i]
+            if a < -NEGATIVE * np.abs(np.asarray(db.added_mass)[:, i, i]).max():
+                raise HydroDBError(f"{where}: the added mass of {dof} is negative {name} "
+                                   f"({a:.4g}); check the database's signs")  # fmt: skip
+    return db
+
+
+def _listed(values) -> str:
+    shown = ", ".join(f"{v:.4g}" for v in values[:6])
+    return shown + (f", ... ({len(values)} in all)" if len(values) > 6 else "")
+
+
+def _read(path: Path, rho: float, gravity: float, length_scale: float,
+          phase_unit: str) -> HydroDB:  # fmt: skip
+    """A database file as ``read`` reads it, not yet checked."""
     stem = hydrodb_formats.wamit_stem(path)
     suffix = path.suffix.lower()
     if stem is None and not path.exists():
@@ -260,6 +326,8 @@ def read_capytaine(path: str | Path) -> HydroDB:
     wave_direction, influenced_dof) or their sum excitation_force, rotation_center,
     hydrostatic_stiffness when there. Capytaine's frame is z up and its time dependence
     e^{-i w t}: both ours."""
+    files.regular_file(path, "hydrodynamic database", HydroDBError)
+    files.self_contained(path)
     try:
         ds = xr.open_dataset(path)
     except (OSError, ValueError) as exc:
@@ -347,4 +415,6 @@ def write(db: HydroDB, path: str | Path) -> None:
     if db.hydrostatic_stiffness is not None:
         ds["hydrostatic_stiffness"] = (("influenced_dof", "radiating_dof"),
                                        db.hydrostatic_stiffness)  # fmt: skip
-    ds.to_netcdf(path, engine="h5netcdf")
+    ds.attrs["title"] = TITLE
+    with files.replacing(path) as aside:
+        ds.to_netcdf(aside, engine="h5netcdf")

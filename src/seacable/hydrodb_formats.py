@@ -57,6 +57,7 @@ from pathlib import Path
 
 import numpy as np
 
+from seacable import files
 from seacable.errors import HydroDBError
 
 WAMIT_SUFFIXES = (".1", ".3", ".3sc", ".3fk", ".hst")
@@ -65,15 +66,8 @@ _LIMIT = 50_000_000  # [bytes] larger text is not a database
 
 # ---- shared -------------------------------------------------------------------------------------
 def _lines(path: Path) -> list[str]:
-    if path.stat().st_size > _LIMIT:
-        raise HydroDBError(f"hydrodynamic database '{path}' is larger than 50 MB: not a database")
-    try:
-        return path.read_text(encoding="utf-8", errors="strict").splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise HydroDBError(
-            f"hydrodynamic database '{path}' is not readable text ({exc}); give the file as the "
-            "solver wrote it"
-        ) from None
+    return files.read_text(path, "hydrodynamic database", _LIMIT, HydroDBError,
+                           fix="give the file as the solver wrote it").splitlines()  # fmt: skip
 
 
 def _numbers(path: Path, number: int, words: list[str]) -> list[float]:

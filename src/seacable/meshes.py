@@ -19,9 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
+from seacable import files
 from seacable.kernels import hull
 
 LARGEST_MESH = 200_000_000  # bytes of a mesh file
+SMALLEST_HULL, LARGEST_HULL = 0.01, 10_000.0  # [m] a hull's largest extent
 CLOSED_TOLERANCE = 1e-6  # relative disagreement of the three volumes beyond which a mesh is open
 
 
@@ -59,14 +61,7 @@ def read(path: str | Path, fmt: str | None = None) -> Mesh:
             f"mesh file '{path}': format '{fmt}' is not known; use one of {sorted(READERS)} "
             "(give 'format' when the suffix does not say it)"
         )
-    if not path.exists():
-        raise MeshError(f"mesh file '{path}' does not exist")
-    if path.is_dir():
-        raise MeshError(f"mesh file '{path}' is a directory")
-    with path.open("rb") as f:
-        raw = f.read(LARGEST_MESH + 1)
-    if len(raw) > LARGEST_MESH:
-        raise MeshError(f"mesh file '{path}' is larger than {LARGEST_MESH:,} bytes")
+    raw = files.read_bytes(path, "mesh file", LARGEST_MESH, MeshError)
     try:
         vertices, triangles = READERS[fmt](raw)
     except (ValueError, IndexError, struct.error, UnicodeDecodeError) as exc:
@@ -75,6 +70,13 @@ def read(path: str | Path, fmt: str | None = None) -> Mesh:
         raise MeshError(f"mesh file '{path}' holds no triangles")
     if not np.all(np.isfinite(vertices)):
         raise MeshError(f"mesh file '{path}': NaN or infinite coordinates")
+    size = float(np.ptp(vertices[triangles].reshape(-1, 3), axis=0).max())
+    if not SMALLEST_HULL <= size <= LARGEST_HULL:
+        raise MeshError(
+            f"mesh file '{path}': the hull is {size:.3g} m across, not between "
+            f"{SMALLEST_HULL:g} and {LARGEST_HULL:g} m; give its coordinates in metres (a mesh in "
+            "millimetres is 1000 times too large)"
+        )
     return _indexed(vertices, triangles)
 
 
@@ -108,15 +110,24 @@ def _stl_ascii(text: str):
 
 
 def _obj(raw: bytes):
+    """Wavefront OBJ: ``v x y z`` vertices and ``f i j k ...`` faces (indices from 1, negative
+    ones counted back from the last vertex read), fanned into triangles."""
     vertices, faces = [], []
-    for line in raw.decode("utf-8").splitlines():
+    for number, line in enumerate(raw.decode("utf-8").splitlines(), start=1):
         parts = line.split()
         if not parts:
             continue
         if parts[0] == "v":
+            if len(parts) < 4:
+                raise ValueError(f"line {number}: a vertex needs x, y and z")
             vertices.append([float(p) for p in parts[1:4]])
         elif parts[0] == "f":
             ids = [int(p.split("/")[0]) for p in parts[1:]]
+            if len(ids) < 3 or any(i == 0 or abs(i) > len(vertices) for i in ids):
+                raise ValueError(
+                    f"line {number}: face {ids} names a vertex the file has not given (it has "
+                    f"{len(vertices)} so far, counted from 1), or has fewer than 3"
+                )
             ids = [i - 1 if i > 0 else len(vertices) + i for i in ids]
             faces += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
     return np.array(vertices, dtype=float).reshape(-1, 3), np.array(faces, dtype=np.int64)
@@ -291,7 +302,7 @@ def checked(mesh: Mesh, position=(0.0, 0.0, 0.0), rotation=None, level: float = 
     if stat.volume < 0.0:
         mesh = mesh.flipped()
         stat = hydrostatics(mesh, position, rotation, level)
-    if stat.volume > 0.0 and not stat.closed():
+    if np.abs(stat.volumes_xyz).max() > 0.0 and not stat.closed():  # a face missing below
         vx, vy, vz = stat.volumes_xyz
         raise MeshError(
             f"{where}: the hull is not closed below the waterline (its displaced volume is "

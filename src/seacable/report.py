@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from seacable import files, sweep_summary
 from seacable import stats as st
-from seacable import sweep_summary
 from seacable.errors import SeacableError
 from seacable.results import Results
 from seacable.viz import system as vs
@@ -43,7 +43,7 @@ COLOURS = (
     "#bcbd22",
     "#17becf",
 )  # a line's three curves of its range graph in one
-GENERATOR = '<meta name="generator" content="seacable report">'  # a page it may replace
+GENERATOR = files.GENERATOR  # a page it may replace
 
 STYLE = """body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1200px;color:#222}
 table{border-collapse:collapse;font-size:13px;margin:1em 0}td,th{border:1px solid #ccc;
@@ -361,18 +361,12 @@ def _utilisation_figure(used: xr.DataArray, dims: list[str]) -> dict:
 
 def write(source: Path, output: Path, storm: float = 10800.0) -> Path:
     """The page of ``source`` (a run's results or a sweep's summary) written to ``output``."""
-    if output.suffix.lower() not in (".html", ".htm"):
-        raise SeacableError(f"output '{output}': a report is an HTML page; give a name ending "
-                            "in .html")  # fmt: skip
-    if output.exists() and GENERATOR.encode() not in output.read_bytes()[:300]:
-        raise SeacableError(
-            f"output '{output}' exists and is not a seacable report, which "
-            "the report would replace; remove it or choose another name"
-        )
+    files.check_output(output, "page", [source])
     if source.suffix.lower() == ".zarr":
         with xr.open_zarr(source) as found:
             text = sweep_page(found.load())
     else:
+        files.self_contained(source)
         with xr.open_dataset(source, engine="h5netcdf") as root:
             title = root.attrs.get("title")
         if title == sweep_summary.TITLE:
@@ -386,7 +380,4 @@ def write(source: Path, output: Path, storm: float = 10800.0) -> Path:
                     "case as a system (seacable upgrade) and report those"
                 )
             text = run_page(results.dataset, storm)
-    aside = output.with_name(f".{output.name}.writing")
-    aside.write_text(text, encoding="utf-8")
-    aside.replace(output)
-    return output
+    return files.replace_text(output, text)

@@ -8,7 +8,6 @@ runs or if the process died) with its ``status_message``.
 
 import datetime as _dt
 import math
-import os
 import platform
 import shutil
 from pathlib import Path
@@ -21,8 +20,10 @@ import scipy
 import xarray as xr
 import yaml
 
-from seacable.errors import OutputError
+from seacable import files
+from seacable.errors import InputError, OutputError
 
+TITLE = "seacable simulation results"
 STATUS_COMPLETE = "complete"
 STATUS_DIVERGED = "diverged"
 STATUS_INTERRUPTED = "interrupted"
@@ -33,7 +34,7 @@ def provenance(case_text: str, solver: dict) -> dict:
     from seacable import __version__
 
     attrs = {
-        "title": "seacable simulation results",
+        "title": TITLE,
         "seacable_version": __version__,
         "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
         "case": case_text,
@@ -52,15 +53,17 @@ REPEAT = (
 )
 
 
-def restore_case(attrs, folder) -> Path:
+def restore_case(attrs, folder, carried_only: bool = False) -> Path:
     """Write the case a results file was run from (its ``case`` attribute) and the files it
     read (``input_files``) into ``folder``; returns the case file's path. A file the case named
     outside its folder (an absolute path or '..') is put inside, and the case text pointed at
-    it. ValueError when the file holds no case or such a name cannot be put back."""
+    it. ValueError when the file holds no case, such a name cannot be put back, or
+    (``carried_only``: to run it again) the case names a file (a ``file:`` key) the results do
+    not carry: the case written then reads only what the results file holds."""
     if "case" not in attrs:
         raise ValueError("not a seacable results file (no 'case' attribute)")
-    text, files = str(attrs["case"]), yaml.safe_load(str(attrs.get("input_files", "{}")))
-    for k, (name, content) in enumerate((files or {}).items()):
+    text, carried = str(attrs["case"]), yaml.safe_load(str(attrs.get("input_files", "{}")))
+    for k, (name, content) in enumerate((carried or {}).items()):
         kept = name
         if Path(name).is_absolute() or ".." in Path(name).parts:
             kept = f"outside_{k}_{Path(name).name}"
@@ -71,7 +74,23 @@ def restore_case(attrs, folder) -> Path:
         (Path(folder) / kept).parent.mkdir(parents=True, exist_ok=True)
         (Path(folder) / kept).write_text(content)
     (Path(folder) / "case.yaml").write_text(text)
+    own = Path(folder).resolve()
+    for name in _named_files(yaml.safe_load(text)) if carried_only else []:
+        if not (own / name).resolve().is_relative_to(own) or not (own / name).is_file():
+            raise ValueError(f"its case reads '{name}', which the file does not carry "
+                             "(input_files); a results file is run again from what it holds "
+                             "only: run the case file itself")  # fmt: skip
     return Path(folder) / "case.yaml"
+
+
+def _named_files(data) -> list[str]:
+    """The values of every ``file:`` key of a case's data (tables, meshes, databases)."""
+    if isinstance(data, dict):
+        found = [str(v) for k, v in data.items() if k == "file" and isinstance(v, str)]
+        return found + [f for v in data.values() for f in _named_files(v)]
+    if isinstance(data, list):
+        return [f for v in data for f in _named_files(v)]
+    return []
 
 
 def _software() -> str:
@@ -128,10 +147,21 @@ class Results:
     def open(cls, path, lazy: bool = False) -> "Results":
         """Read results written by seacable (complete or not: the rows a run never wrote, NaN
         in the file, are left out). ``lazy`` keeps the file open and reads a variable, or the
-        part of it asked for, only when it is used (long runs)."""
+        part of it asked for, only when it is used (long runs). A file that keeps data in
+        other files is refused (``files.self_contained``)."""
+        files.self_contained(path)
         with h5netcdf.File(path, "r") as f:
             grouped = bool(f.groups)
-            written = int(np.count_nonzero(np.isfinite(f["time"][...]))) if "time" in f else 0
+            time = np.asarray(f["time"][...], dtype=float) if "time" in f else np.zeros(0)
+        written = int(np.count_nonzero(np.isfinite(time)))
+        kept = time[:written]
+        wrong = np.nonzero(~np.isfinite(kept[1:]) | ~(np.diff(kept) > 0.0))[0]
+        if len(wrong):
+            raise InputError(
+                f"results file '{path}': its time at row {wrong[0] + 1} is {kept[wrong[0] + 1]} "
+                f"after {kept[wrong[0]]}, not later; the file is damaged (written by another "
+                "program, or changed): run its case again"
+            )
         opener = xr.open_datatree if grouped else xr.open_dataset
         if lazy:
             return cls(_rows(opener(path, engine="h5netcdf"), written), Path(path))
@@ -176,11 +206,10 @@ class _Sink:
         if self.path is not None:
             check_output(self.path, inputs)
             self._room()
-            # made under another name and renamed once its structure is on disk: the file at
-            # ``path`` is never one that does not open
-            creating = self.path.with_name(f".{self.path.name}.creating")
-            self._file = self._create(creating)
-            os.replace(creating, self.path)
+            # made under another name (in a private folder) and moved in once its structure is
+            # on disk: the file at ``path`` is never one that does not open
+            with files.replacing(self.path) as creating:
+                self._file = self._create(creating)
 
     def _create(self, target: Path):
         f = h5netcdf.File(target, "w")
@@ -294,46 +323,11 @@ class _Sink:
 
 
 def check_output(path: Path, inputs=()) -> None:
-    """Refuse an output path that cannot take results: a directory, a file the run reads
-    (``inputs``: its case and table files) or one named like a case or table file (a results
-    file given the case's name would replace the case), an existing file that is not a
-    results file, a folder that does not exist (a mistyped path is not created silently) or
-    cannot be written, a file another run is writing (HDF5 locks a file it writes: a second
-    writer would replace it under the first, whose rows would be lost)."""
-    if path.is_dir():
-        raise OutputError(f"output '{path}' is a directory; give a file name ending in .nc")
-    for read in inputs:
-        if path.resolve() == Path(read).resolve():
-            raise OutputError(
-                f"output '{path}' is a file this run reads ({read}), which the results would "
-                "replace; give another file name ending in .nc"
-            )
-    if path.suffix.lower() in (".yaml", ".yml", ".csv", ".txt"):
-        raise OutputError(
-            f"output '{path}' looks like a case or table file, which the results would replace; "
-            "give a file name ending in .nc"
-        )
-    if not path.parent.is_dir():
-        raise OutputError(
-            f"output folder '{path.parent}' does not exist; create it (mkdir -p) or choose another"
-        )
-    if not os.access(path.parent, os.W_OK):
-        raise OutputError(f"output folder '{path.parent}' cannot be written; choose another")
-    if not path.exists():
-        return
-    try:
-        with h5py.File(path, "r"):
-            pass
-    except OSError as exc:
-        if "lock" in str(exc).lower():
-            raise OutputError(
-                f"output file '{path}' is being written by another run; wait for it to end or "
-                "choose another output file"
-            ) from None
-        raise OutputError(
-            f"output file '{path}' exists and is not a results file (NetCDF/HDF5), which the "
-            "results would replace; remove it or choose another output file"
-        ) from None
+    """Refuse an output path that cannot take results (``files.check_output``): a link, a
+    directory, a file the run reads (``inputs``: its case, tables, meshes and databases), a
+    name that is not a NetCDF file's, an existing file that is not seacable results, a folder
+    that does not exist or cannot be written, a file another run is writing."""
+    files.check_output(path, "netcdf", inputs, title=TITLE)
 
 
 def _allocated() -> dict:

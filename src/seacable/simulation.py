@@ -90,6 +90,7 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     _check_case(case)
     system = system_model.build(case, loader.case_base_dir(case))
     sim = case.simulation
+    stability.cost_check(sim, len(system.y0))
     warnings = [*unit_warnings(case), *ignored_inputs(case), stability.rounded_step(sim),
                 _dense_warning(sim, system), stability.rk4_check(sim, system),
                 *utilisation.start_warnings(case, system.params, system.y0)]  # fmt: skip

@@ -17,9 +17,7 @@ every run that ended (``complete`` or ``diverged``) and runs the others.
 """
 
 import copy
-import csv
 import hashlib
-import io
 import itertools
 import math
 import time
@@ -30,13 +28,13 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seacable import ahead, cluster, simulation
+from seacable import ahead, cluster, files, simulation
 from seacable.case import loader
 from seacable.case.environment import Environment
 from seacable.case.sweep import WEATHER, Sweep, Variation
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError, OutputError, SeacableError, SimulationDiverged
-from seacable.results import Results, check_output
+from seacable.results import Results
 from seacable.stability.plane import case_waves, significant_height
 from seacable.sweep_summary import (  # noqa: F401 (the summary's names, as seacable.sweep's)
     COMPLETE,
@@ -250,28 +248,27 @@ def _reseed(data: dict, k: int) -> None:
             wave["seed"] = int(wave.get("seed", 0)) + k
 
 
+def _cell(text: str, name: str, number: int, key: str) -> Any:
+    """A load case's value (YAML), or a CaseError naming the table, its line and column."""
+    try:
+        return loader.parse_yaml(text) if text else None
+    except CaseError as exc:
+        detail = " ".join(str(exc).partition(": ")[2].split())
+        raise CaseError(f"sweep.load_cases '{name}' line {number}, {key} {text!r}: not a YAML "
+                        f"value ({detail})") from None  # fmt: skip
+
+
 def _table(name: str, base_dir) -> tuple[list[str], list[dict], np.ndarray | None]:
     """A CSV table of load cases: the row labels, each row's keys and values (read as YAML:
     numbers, words, lists in brackets), and the probability column (None without it)."""
     path = Path(base_dir or ".") / name
     if path.suffix.lower() != ".csv":
         raise CaseError(f"sweep.load_cases '{name}': give a CSV table (.csv)")
-    try:
-        with path.open("rb") as f:
-            raw = f.read(LARGEST_TABLE + 1)
-    except OSError as exc:
-        raise CaseError(f"sweep.load_cases '{name}': cannot be read ({exc.strerror or exc}); "
-                        "give the table's path relative to the case file") from None  # fmt: skip
-    if len(raw) > LARGEST_TABLE:
-        raise CaseError(f"sweep.load_cases '{name}': larger than {LARGEST_TABLE // 10**6} MB; "
-                        "a table of load cases is a few rows a case")  # fmt: skip
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise CaseError(f"sweep.load_cases '{name}': not UTF-8 text (byte {raw[exc.start]:#04x} "
-                        f"at {exc.start}); save it as UTF-8 CSV") from None  # fmt: skip
-    reader = csv.reader(io.StringIO(text))
-    header = [h.strip() for h in next(reader, [])]
+    text = files.read_text(path, "sweep.load_cases: table", LARGEST_TABLE, CaseError,
+                           fix="save it as UTF-8 CSV",
+                           give="give the table's path relative to the case file")  # fmt: skip
+    reader = files.csv_rows(text, f"sweep.load_cases '{name}'", CaseError)
+    header = [h.strip() for h in next(reader, (0, []))[1]]
     keys = [h for h in header if h not in ("name", "probability")]
     if not keys or len(set(header)) != len(header) or "" in header:
         raise CaseError(f"sweep.load_cases '{name}': its header must name each key once (as "
@@ -280,9 +277,7 @@ def _table(name: str, base_dir) -> tuple[list[str], list[dict], np.ndarray | Non
     labels: list[str] = []
     rows: list[dict] = []
     shares: list[float] = []
-    for number, cells in enumerate(reader, start=2):
-        if not any(c.strip() for c in cells):
-            continue
+    for number, cells in reader:
         if len(cells) != len(header):
             raise CaseError(f"sweep.load_cases '{name}' line {number}: {len(cells)} cells "
                             f"for {len(header)} columns")  # fmt: skip
@@ -290,7 +285,7 @@ def _table(name: str, base_dir) -> tuple[list[str], list[dict], np.ndarray | Non
         labels.append(row.pop("name", "") or str(len(labels) + 1))
         if "probability" in row:
             shares.append(_share(row.pop("probability"), name, number))
-        rows.append({k: loader.parse_yaml(v) if v else None for k, v in row.items()})
+        rows.append({k: _cell(v, name, number, k) for k, v in row.items()})
     if not rows:
         raise CaseError(f"sweep.load_cases '{name}': no rows; give one row per load case")
     if len(set(labels)) != len(labels):
@@ -380,23 +375,18 @@ def runs_folder(output: Path) -> Path:
 
 
 def check_summary_output(output: Path, case: SystemCase) -> None:
-    """Refuse a summary path that is not .nc or .zarr, is a file the case reads, or exists
-    and is not a sweep summary (which the summary would replace)."""
-    if output.suffix.lower() not in (".nc", ".zarr"):
-        raise OutputError(f"output '{output}': a sweep's summary is NetCDF (.nc) or Zarr "
-                          "(.zarr); give a name ending so")  # fmt: skip
-    if output.suffix.lower() == ".nc":
-        check_output(output, loader.files_read(case))
-        if output.is_file() and _title(lambda: xr.open_dataset(output, engine="h5netcdf")):
-            return
-    elif output.exists() and _title(lambda: xr.open_zarr(output)):
-        return
-    elif not output.parent.is_dir():
-        raise OutputError(f"output folder '{output.parent}' does not exist; create it "
-                          "(mkdir -p) or choose another")  # fmt: skip
-    if output.exists():
+    """Refuse a summary path that is not NetCDF or Zarr (.zarr), is a link or a file the case
+    reads, or exists and is not a sweep summary (which the summary would replace), or whose
+    runs' folder is a link (``files.check_output``)."""
+    zarr = output.suffix.lower() == ".zarr"
+    files.check_output(output, "zarr" if zarr else "netcdf", loader.files_read(case), TITLE)
+    if zarr and output.exists() and not _title(lambda: xr.open_zarr(output)):
         raise OutputError(f"output '{output}' exists and is not a sweep's summary, which the "
                           "summary would replace; remove it or choose another name")  # fmt: skip
+    folder = runs_folder(output)
+    if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+        raise OutputError(f"the runs' folder '{folder}' (beside output '{output}') is a link or "
+                          "a file; remove it or choose another output name")  # fmt: skip
 
 
 def _title(opener) -> bool:

@@ -5,8 +5,6 @@ load cases' shares of the time and, with three seeds or more, a Gumbel estimate 
 largest tension."""
 
 import math
-import os
-import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -14,7 +12,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from seacable import fatigue
+from seacable import fatigue, files
 from seacable import stats as st
 from seacable.case import loader
 from seacable.case.sweep import Sweep
@@ -143,7 +141,7 @@ def dataset(todo: Plan, rows: dict[tuple, dict], runs: str = "") -> xr.Dataset:
     bodies = [b.name for b in todo.case.bodies if any(b.name in r["bodies"] for r in rows.values())]
     status = np.full(shape, NOT_RUN, dtype=object)
     message = np.full(shape, "", dtype=object)
-    files = np.full(shape, "", dtype=object)
+    run_files = np.full(shape, "", dtype=object)
     seconds = np.full(shape, math.nan)
     durations = np.full(shape, math.nan)  # [s] simulated by each complete run
     per_line = {k: np.full((*shape, len(lines)), math.nan) for k in _LINE_KEYS}
@@ -151,7 +149,7 @@ def dataset(todo: Plan, rows: dict[tuple, dict], runs: str = "") -> xr.Dataset:
     motion = {k: np.full((*shape, len(bodies), len(DOFS)), math.nan) for k in _MOTION_KEYS}
     for index, row in rows.items():
         status[index], message[index] = row["status"], row["message"]
-        files[index], seconds[index] = row.get("file", ""), row.get("seconds", math.nan)
+        run_files[index], seconds[index] = row.get("file", ""), row.get("seconds", math.nan)
         durations[index] = row.get("duration", math.nan)
         for i, name in enumerate(lines):
             for key, values in per_line.items():
@@ -166,7 +164,7 @@ def dataset(todo: Plan, rows: dict[tuple, dict], runs: str = "") -> xr.Dataset:
         "status": (dims, status.astype(str), {"long_name": "the run's status",
                                               "values": ", ".join(STATUSES)}),
         "message": (dims, message.astype(str), {"long_name": "the run's status message"}),
-        "file": (dims, files.astype(str), {"long_name": "the run's results, in the runs folder"}),
+        "file": (dims, run_files.astype(str), {"long_name": "its results, in the runs folder"}),
         "seconds": (dims, seconds, {"units": "s", "long_name": "the run's wall time"}),
         **{key: (line_dims, values, _LINE_KEYS[key]) for key, values in per_line.items()},
         "offset_max": (body_dims, offset, {"units": "m", "long_name":
@@ -301,13 +299,8 @@ def _coordinate(values: list) -> np.ndarray:
 def write(found: xr.Dataset, output: Path) -> None:
     """The summary to ``output`` (NetCDF, or Zarr for .zarr), written aside then moved in: an
     interrupted write leaves the previous summary whole."""
-    aside = output.with_name(f".{output.name}.writing")
-    if output.suffix.lower() == ".zarr":
-        shutil.rmtree(aside, ignore_errors=True)
-        found.to_zarr(aside, mode="w", zarr_format=2)  # its text arrays have a specification
-        if output.exists():
-            shutil.rmtree(output)
-        os.replace(aside, output)
-    else:
-        found.to_netcdf(aside, engine="h5netcdf")
-        os.replace(aside, output)
+    with files.replacing(output) as aside:
+        if output.suffix.lower() == ".zarr":
+            found.to_zarr(aside, mode="w", zarr_format=2)  # its text arrays have a specification
+        else:
+            found.to_netcdf(aside, engine="h5netcdf")

@@ -10,6 +10,7 @@ import copy
 import re
 from pathlib import Path
 
+import corpus_commands
 import yaml
 
 HERE = Path(__file__).resolve().parent
@@ -232,12 +233,17 @@ def _files() -> list:
     ]:  # fmt: skip
         out.append((f"files.{name}", "not a case", expect, content, None))
     for name, output, expect in [
-        ("the_case_itself", "outputs.the_case_itself.yaml", r"is a file this run reads"),
+        ("the_case_itself", "outputs.the_case_itself.yaml", r"is a file this command reads"),
         ("a_folder", "tables", r"'.*tables' is a directory"),
-        ("missing_folder", "no_such_folder/run.nc", r"output folder '.*no_such_folder' does not "
-                                                    r"exist"),
-        ("a_table_it_reads", "tables/push.dat", r"output '.*push\.dat' is a file this run reads"),
-        ("not_results", "tables/notes.pdf", r"'.*notes\.pdf' exists and is not a results file"),
+        ("missing_folder", "no_such_folder/run.nc",
+         r"output '.*no_such_folder/run\.nc': its folder '.*no_such_folder' does not exist"),
+        ("a_table_it_reads", "tables/push.dat",
+         r"output '.*push\.dat' is a file this command reads"),
+        ("not_results", "tables/notes.nc",
+         r"'.*notes\.nc' exists and is not a 'seacable simulation results' file"),
+        ("not_a_results_name", "tables/notes.pdf",
+         r"'.*notes\.pdf': the output is a NetCDF file, and '\.pdf' is not one of its names"),
+        ("a_link", "tables/link.nc", r"output '.*link\.nc' is a link \(to 'push\.dat'\)"),
     ]:  # fmt: skip
         data = copy.deepcopy(BASE)
         _set(data, push, {"kind": "table", "file": "tables/push.dat"})
@@ -254,6 +260,7 @@ TABLES = {  # the corpus's table files (tables/): bad ones, and two good ones th
     "bad_row.csv": b"time,force\n0,0\n1,ten\n",
     "push.dat": b"time,force\n0,0\n1,1000\n",
     "notes.pdf": b"%PDF-1.4 not results\n",
+    "notes.nc": b"%PDF-1.4 not results\n",
 }
 
 
@@ -265,6 +272,9 @@ def main() -> None:
     (tables / "folder.csv" / ".keep").write_text("a table name that is a folder\n")
     for name, content in TABLES.items():
         (tables / name).write_bytes(content)
+    link = tables / "link.nc"  # an output that links to a table: written through, replaced
+    link.unlink(missing_ok=True)
+    link.symlink_to("push.dat")
     expected = {}
     for name, kind, expect, content, output in cases():
         body = content.encode() if isinstance(content, str) else content
@@ -272,6 +282,9 @@ def main() -> None:
         expected[f"{name}.yaml"] = {"kind": kind, "expect": expect}
         if output is not None:
             expected[f"{name}.yaml"]["output"] = output
+    for name, kind, expect, args in corpus_commands.entries():
+        assert name not in expected, name
+        expected[name] = {"kind": kind, "expect": expect, "args": args}
     (HERE / "expected.yaml").write_text(yaml.safe_dump(expected, sort_keys=True, width=200))
     print(f"{len(expected)} bad cases written to {HERE}")
 

@@ -7,8 +7,6 @@ Conventions (see docs/conventions.md): SI units, z up with z = 0 at the still-wa
 angles in the case file in degrees (keys end in ``_deg``), radians everywhere inside.
 """
 
-import csv
-import io
 import math
 import typing
 from pathlib import Path
@@ -24,6 +22,8 @@ from pydantic import (
     model_validator,
 )
 from pydantic_core import PydanticCustomError
+
+from seacable import files
 
 BOOLEAN_ERROR = "boolean_not_number"  # the error type of a true/false where a number is due
 MAGNITUDE_ERROR = "number_too_large"  # the error type of a number beyond LARGEST_NUMBER
@@ -244,30 +244,14 @@ class Table(_Model):
     def text(self, base_dir=None) -> str:
         """The file's text, or a ValueError line: missing, a directory, more than
         LARGEST_TABLE bytes (a device such as /dev/zero is read no further), not UTF-8."""
-        path = self.path(base_dir)
-        if not path.exists():
-            raise ValueError(f"table file '{path}' does not exist")
-        if path.is_dir():
-            raise ValueError(f"table file '{path}' is a directory")
-        with path.open("rb") as f:
-            raw = f.read(LARGEST_TABLE + 1)
-        if len(raw) > LARGEST_TABLE:
-            raise ValueError(f"table file '{path}' is larger than {LARGEST_TABLE:,} bytes")
-        try:
-            return raw.decode("utf-8-sig")
-        except UnicodeDecodeError as exc:
-            raise ValueError(
-                f"table file '{path}' is not UTF-8 text (byte {raw[exc.start]:#04x} at position "
-                f"{exc.start}); save it as UTF-8 CSV"
-            ) from None
+        return files.read_text(self.path(base_dir), "table file", LARGEST_TABLE, ValueError,
+                               fix="save it as UTF-8 CSV")  # fmt: skip
 
     def load(self, base_dir=None):
         path = self.path(base_dir)
         rows = []
         at, header = 1, self.column is not None  # the value's column; a header to read
-        for row in csv.reader(io.StringIO(self.text(base_dir))):
-            if not row or row[0].strip().startswith("#"):
-                continue
+        for _, row in files.csv_rows(self.text(base_dir), f"table file '{path}'", ValueError):
             if header:
                 header = False
                 names = [name.strip() for name in row]
@@ -476,8 +460,9 @@ class Simulation(_Model):
     the shortest segment."""
     max_newton_iterations: int = Field(10, ge=1, le=100)
     """[-] Most Newton iterations of one implicit step; the run stops with an error beyond."""
-    rtol: Pos = 1e-6
-    """[-] Relative tolerance of the adaptive integrators."""
+    rtol: float = Field(1e-6, gt=0.0, le=1e-2)
+    """[-] Relative tolerance of the adaptive integrators (at most 0.01: looser, a run can end
+    far from the motion it integrates)."""
     atol: Pos | None = None
     """[state's unit] Absolute tolerance of the adaptive integrators, one value for every state.
     Omitted: rtol alone sets the accuracy, against each state's magnitude and scale."""
@@ -503,6 +488,10 @@ class Simulation(_Model):
     allow_unstable_step: bool = False
     """Run rk4 at a ``time_step`` beyond its stability limit about the start, with a warning
     (false: such a step is refused, naming the limit)."""
+    allow_long_run: bool = False
+    """Run a case whose estimated work (its steps times its states) exceeds what runs in about
+    an hour (false: such a run is refused before it starts, with the estimate; ``seacable run
+    --yes`` sets it)."""
 
     @field_validator("time_step")
     @classmethod

@@ -324,6 +324,47 @@ class RigidBody(_Dynamic):
         return self
 
     @model_validator(mode="after")
+    def _physical_inertia(self):
+        """A mass that moves, an inertia matrix a body can have (symmetric, positive), an
+        added mass that is not negative (its symmetric part)."""
+        added = np.asarray(self.added_mass, dtype=float)
+        added = np.diag(added) if added.ndim == 1 else added
+        if self.dofs and self.mass <= 0.0 and self.dynamics is None and not np.any(added[:3, :3]):
+            raise ValueError(
+                f"mass {self.mass:g} kg: a rigid body that moves needs a mass (or an added "
+                "mass); give it in kg"
+            )
+        inertia = np.asarray(self.inertia, dtype=float)
+        inertia = np.diag(inertia) if inertia.ndim == 1 else inertia
+        full = np.any(inertia - np.diag(np.diag(inertia)))
+        shown = inertia.tolist() if full else np.diag(inertia).tolist()
+        scale = max(float(np.abs(inertia).max()), 1e-300)
+        if np.abs(inertia - inertia.T).max() > 1e-9 * scale:
+            raise ValueError(
+                f"inertia {shown}: not symmetric, as every inertia matrix is (I_xy = I_yx, ...); "
+                "check its rows (kg m^2, about the centre of gravity, body frame)"
+            )
+        moments = np.linalg.eigvalsh(inertia)
+        if moments[0] < -1e-9 * scale:
+            raise ValueError(
+                f"inertia {shown}: not positive (its principal moments are "
+                f"{', '.join(f'{m:.4g}' for m in moments)} kg m^2), which no body has; check "
+                "the signs (products of inertia are -sum m x y in some conventions)"
+            )
+        # (the largest principal moment above the sum of the two others is no mass
+        # distribution either, but ships' usual radii of gyration, 0.35 B, 0.25 L, 0.26 L,
+        # exceed it by a few per cent: not refused)
+        symmetric = 0.5 * (added + added.T)
+        low = float(np.linalg.eigvalsh(symmetric)[0])
+        if low < -1e-9 * max(float(np.abs(added).max()), 1e-300):
+            raise ValueError(
+                f"added_mass: negative (the least eigenvalue of its symmetric part is "
+                f"{low:.4g}), which would make the body lighter than itself when it "
+                "accelerates; check the signs and the matrix's layout (kg, kg m, kg m^2)"
+            )
+        return self
+
+    @model_validator(mode="after")
     def _mesh_models(self):
         needs = [f.model for f in self.external_forces if f.model in MESH_MODELS]
         if needs and self.mesh is None:

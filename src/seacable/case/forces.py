@@ -285,6 +285,16 @@ class RadiationDamping(_Model):
     tail_power: Annotated[int, Field(ge=2, le=4)] = 3
     """[-] Exponent p of the tail B(w_N) (w_N / w)^p."""
 
+    @model_validator(mode="after")
+    def _samples(self):
+        if self.memory < 2.0 * self.memory_step:
+            raise ValueError(
+                f"memory {self.memory:g} s holds less than two samples of memory_step "
+                f"{self.memory_step:g} s: the memory force would be none; lengthen memory (25 s "
+                "is usual) or shorten memory_step"
+            )
+        return self
+
 
 class Diffraction(_Model):
     """The ship-simulator document's diffraction force: the body's ``hydrodynamics``

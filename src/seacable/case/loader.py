@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from seacable import meshes
+from seacable import files, meshes
 from seacable.case import moordyn, reference
 from seacable.case.base import (
     BOOLEAN_ERROR,
@@ -75,6 +75,12 @@ def parse_yaml(text: str):
         raise CaseError(f"case file is not valid YAML: {_shortened(str(exc), 300)}") from None
     except RecursionError:
         raise CaseError("case file: its lists or mappings are nested too deeply") from None
+    except (ValueError, OverflowError, KeyError, TypeError) as exc:  # a tag's value, a number
+        raise CaseError(
+            f"case file is not valid YAML: a value cannot be read ({type(exc).__name__}: "
+            f"{_shortened(str(exc), 200)}); correct it, or remove its tag (!!float, !!int, "
+            "!!bool, !!timestamp)"
+        ) from None
     _count(data, [0])
     return data
 
@@ -99,19 +105,12 @@ def _count(value, seen: list[int]) -> None:
 def _text(path: Path) -> str:
     """A case file's text, or one CaseError line: a directory, too large, a results file, not
     UTF-8 text."""
-    if path.is_dir():
-        raise CaseError(f"case file '{path}' is a directory; give the path of a .yaml file")
-    with path.open("rb") as f:
-        raw = f.read(LARGEST_CASE + 1)  # never more: a device or a pipe may not end
+    raw = files.read_bytes(path, "case file", LARGEST_CASE, CaseError,
+                           give="give the path of a .yaml file")  # fmt: skip
     if raw.startswith(HDF5_SIGNATURE):
         raise CaseError(
             f"case file '{path}' is a results file (NetCDF/HDF5), not a case; give the .yaml "
             "case file (a results file's case is in its 'case' attribute)"
-        )
-    if len(raw) > LARGEST_CASE:
-        raise CaseError(
-            f"case file '{path}' is larger than {LARGEST_CASE:,} bytes, more than any case "
-            "holds (put tables and meshes in their own files)"
         )
     try:
         return raw.decode("utf-8-sig")
@@ -401,8 +400,12 @@ def _relevant(errors: list) -> list:
 
 
 def format_errors(exc: ValidationError, root: Any = Case) -> str:
+    """A case's problems: one line for one ("field: what is wrong ..."), else a line saying
+    how many, then one line each."""
     errors = _relevant(exc.errors())
-    lines = [f"invalid case ({len(errors)} problem{'s' * (len(errors) > 1)}):"]
+    if len(errors) == 1:
+        return (_error_line(errors[0], root) + _reference(errors[0], root)).removeprefix("- ")
+    lines = [f"invalid case ({len(errors)} problems):"]
     for error in errors:
         lines.append(_error_line(error, root) + _reference(error, root))
     return "\n".join(lines)

@@ -49,6 +49,7 @@ from typing import Any
 
 import yaml
 
+from seacable import files
 from seacable.case.moordyn_tables import Section, Tables, rounded, to_number
 from seacable.errors import CaseError
 
@@ -142,6 +143,7 @@ ZERO_ONLY = {  # options seacable takes at 0 (their MoorDyn default) only
 }
 DURATION = 60.0  # [s] a deck carries no duration (the program MoorDyn is coupled to decides)
 OUTPUT_INTERVAL = 0.1  # [s] unless the deck gives dtOut
+LARGEST_DECK = 50_000_000  # [bytes] a deck, or a side file it reads (wave elevations, currents)
 
 
 def read(source: str | Path, name: str | None = None,
@@ -179,12 +181,8 @@ class _Deck(Tables):
         if isinstance(source, Path) or "\n" not in str(source):
             self.name = str(source)
             self.folder = folder or Path(source).parent
-            try:
-                text = Path(source).read_text(errors="replace")
-            except OSError as error:
-                raise CaseError(
-                    f"MoorDyn deck {source}: cannot be read ({error.strerror})"
-                ) from None
+            raw = files.read_bytes(source, "MoorDyn deck", LARGEST_DECK, CaseError)
+            text = raw.decode(errors="replace")  # a comment's stray byte is no matter
         else:
             self.name, text = name or "the deck", str(source)
         self.sections: dict[str, Section] = {}
@@ -356,10 +354,8 @@ class _Deck(Tables):
             raise CaseError(f"{where}: it is read from {name} beside the deck; read the deck "
                             "from its file")  # fmt: skip
         path = self.folder / name
-        try:
-            return path, path.read_text(errors="replace").splitlines()
-        except OSError as error:
-            raise CaseError(f"{where}: {path}: cannot be read ({error.strerror})") from None
+        raw = files.read_bytes(path, f"{where}: side file", LARGEST_DECK, CaseError)
+        return path, raw.decode(errors="replace").splitlines()
 
     def _current_profile(self) -> dict[str, Any]:
         """Currents 1 or 3: the steady profile of ``current_profile.txt`` beside the deck (three

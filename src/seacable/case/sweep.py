@@ -1,6 +1,7 @@
 """The case file's ``sweep:`` block: the load cases ``seacable sweep`` runs from one case (its
 dimensions, seeds and table of load cases; seacable.sweep runs them)."""
 
+import math
 import re
 from typing import Annotated, Any
 
@@ -27,6 +28,9 @@ def range_values(text: str, where: str) -> list[float]:
     except ValueError:
         raise ValueError(f"{where} '{text}': write first:stop:step (stop excluded, e.g. "
                          "0:360:45) or a list of values ([2, 4, 6])") from None  # fmt: skip
+    if not all(math.isfinite(v) for v in (first, stop, step)):
+        raise ValueError(f"{where} '{text}': give finite numbers (first:stop:step, stop "
+                         "excluded)")  # fmt: skip
     if not step > 0.0 or not stop > first:
         raise ValueError(f"{where} '{text}': the step must be positive and stop beyond first "
                          "(first:stop:step, stop excluded)")  # fmt: skip

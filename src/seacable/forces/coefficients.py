@@ -20,13 +20,12 @@ the wind's first channel (speed, then direction; -1: current), the table's rows 
 (psi [rad] ascending, C_X, C_Y, C_N).
 """
 
-import csv
-import io
 import math
 
 import numpy as np
 from numba import njit
 
+from seacable import files
 from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn, turn_back
 from seacable.case.base import LARGEST_NUMBER, Table
@@ -76,9 +75,7 @@ def csv_rows(file: str, base_dir, widths: tuple[int, ...], names: str) -> np.nda
     text = Table(kind="table", file=file).text(base_dir)
     rows: list[list[float]] = []
     header = False
-    for row in csv.reader(io.StringIO(text)):
-        if not row or row[0].strip().startswith("#"):
-            continue
+    for _, row in files.csv_rows(text, f"coefficients file '{file}'", ValueError):
         try:
             values = [float(v) for v in row]
         except ValueError:

@@ -86,6 +86,28 @@ def rk4_check(sim: Simulation, system: BuiltSystem) -> str | None:
     )
 
 
+WORK_BUDGET = 2e10  # states x steps a run may take without asking: about an hour at 0.2 us
+
+
+def cost_check(sim: Simulation, states: int) -> None:
+    """A run whose work can be estimated before it starts (its fixed steps, or at least
+    ``duration / max_step`` adaptive ones, times its states) and exceeds WORK_BUDGET is refused
+    with the estimate unless the case allows it (``simulation.allow_long_run``)."""
+    fixed = sim.integrator in FIXED_STEP_INTEGRATORS
+    step = rk4_step(sim)[0] if fixed else sim.max_step
+    if step is None or sim.allow_long_run:
+        return
+    steps = sim.duration / step
+    work = steps * states
+    if work > WORK_BUDGET:
+        raise CaseError(
+            f"simulation: about {steps:.3g} steps of {states:,} states ({work:.2g} state-steps, "
+            f"more than the {WORK_BUDGET:.0e} that run in about an hour); lengthen "
+            "simulation.time_step (or max_step), shorten duration, or set "
+            "simulation.allow_long_run: true (seacable run --yes) to run it anyway"
+        )
+
+
 def rk4_factor(z: np.ndarray) -> np.ndarray:
     """The classical Runge-Kutta scheme's amplification R(z) of a mode over a step, z = h lambda."""
     return 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0)))

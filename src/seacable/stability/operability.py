@@ -34,14 +34,13 @@ of a running scheduler. Dask does the scheduling and the transport; a chunk lost
 worker becomes rows of ``failed``.
 """
 
-import csv
 import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
 
-from seacable import cluster
+from seacable import cluster, files
 from seacable.case import loader
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
@@ -69,7 +68,15 @@ def grid(current_speed: float, current_towards: np.ndarray, wind_towards: np.nda
          ratios: np.ndarray) -> tuple[list[Weather], dict]:  # fmt: skip
     """The weather states of a grid: every current direction (towards) [deg] with every wind
     direction [deg] and every ratio of wind speed to current speed; returns the states (current
-    direction slowest, ratio fastest) and the grid's coordinates."""
+    direction slowest, ratio fastest) and the grid's coordinates; a grid of more than
+    MOST_STATES states is refused with its size."""
+    size = len(current_towards) * len(wind_towards) * len(ratios)
+    if size > MOST_STATES:
+        raise CaseError(
+            f"operability grid: {len(current_towards):,} current directions x "
+            f"{len(wind_towards):,} wind directions x {len(ratios):,} ratios = "
+            f"{size:,} states, more than {MOST_STATES:,}; take larger steps"
+        )
     states = [Weather(current_speed, float(c), float(r) * current_speed, float(w))
               for c in current_towards for w in wind_towards for r in ratios]  # fmt: skip
     coords = {"current_towards_deg": np.asarray(current_towards, float),
@@ -79,6 +86,8 @@ def grid(current_speed: float, current_towards: np.ndarray, wind_towards: np.nda
 
 
 # a user's table of weather states (``table``): its columns by name, the first four required
+LARGEST_STATES = 50_000_000  # bytes of a table of weather states
+MOST_STATES = 1_000_000  # weather states of a map (each an equilibrium search, or a run)
 COLUMNS = ("current_speed", "current_towards_deg", "wind_speed", "wind_towards_deg",
            "wave_height", "wave_towards_deg", "probability")  # fmt: skip
 
@@ -92,39 +101,48 @@ def table(path) -> tuple[list[Weather], np.ndarray | None]:
     lines starting with '#' are comments. Returns the states and the probabilities (None
     without that column)."""
     where = f"states file '{path}'"
-    try:
-        with open(path, newline="") as handle:
-            lines = [line for line in handle if line.strip() and not line.lstrip().startswith("#")]
-    except OSError as exc:
-        raise CaseError(f"{where}: {exc.strerror}; give the path of a CSV file") from None
-    reader = csv.DictReader(lines, skipinitialspace=True)
-    names = [n.strip() for n in reader.fieldnames or []]
+    text = files.read_text(
+        path,
+        "states file",
+        LARGEST_STATES,
+        CaseError,
+        fix="save it as UTF-8 CSV",
+        give="give the path of a CSV file",
+    )
+    reader = files.csv_rows(text, where, CaseError)
+    names = [n.strip() for n in next(reader, (0, []))[1]]
     unknown = [n for n in names if n not in COLUMNS]
     missing = [n for n in COLUMNS[:4] if n not in names]
-    if unknown or missing:
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if unknown or missing or twice:
         raise CaseError(f"{where}: columns {names}: " + (f"unknown {unknown}; " if unknown else "")
                         + (f"missing {missing}; " if missing else "")
-                        + f"its header names its columns, of {list(COLUMNS)} (the first four "
-                        "required)")  # fmt: skip
+                        + (f"given twice {twice}; " if twice else "")
+                        + f"its header names its columns once each, of {list(COLUMNS)} (the "
+                        "first four required)")  # fmt: skip
     states, shares = [], []
-    for number, row in enumerate(reader, start=2):
+    for number, cells in reader:
+        if len(cells) != len(names):
+            raise CaseError(f"{where}, line {number}: {len(cells)} cells for {len(names)} "
+                            "columns; give one cell a column (an empty one for the case's "
+                            "waves)")  # fmt: skip
         values: dict[str, float | None] = {}
-        for name, text in row.items():
-            text = (text or "").strip()
-            if name is None or (text == "" and name in COLUMNS[4:6]):
+        for name, text in zip(names, cells, strict=True):
+            text = text.strip()
+            if text == "" and name in COLUMNS[4:6]:
                 continue
             try:
-                values[name.strip()] = float(text)
+                values[name] = float(text)
             except ValueError:
-                raise CaseError(f"{where}, row {number}: {name.strip()} '{text}' is not a "
+                raise CaseError(f"{where}, line {number}: {name} '{text}' is not a "
                                 "number; give a number (wave columns may be empty: the "
                                 "case's waves)") from None  # fmt: skip
-            if not math.isfinite(values[name.strip()] or 0.0):
-                raise CaseError(f"{where}, row {number}: {name.strip()} {text}: give a finite "
+            if not math.isfinite(values[name] or 0.0):
+                raise CaseError(f"{where}, line {number}: {name} {text}: give a finite "
                                 "number")  # fmt: skip
         for name in ("current_speed", "wind_speed", "wave_height", "probability"):
             if (values.get(name) or 0.0) < 0.0:
-                raise CaseError(f"{where}, row {number}: {name} {values[name]:g} is negative; "
+                raise CaseError(f"{where}, line {number}: {name} {values[name]:g} is negative; "
                                 "give a size (the direction is the 'towards' column)")  # fmt: skip
         shares.append(values.pop("probability", math.nan))
         states.append(Weather(**values))  # type: ignore[arg-type]

@@ -98,6 +98,10 @@ def radiation_row(db: hydrodb.HydroDB, spec, where: str) -> list[float]:
     seconds, convolved (kernels.memory's row, its history block's offset set by
     ``memory_offsets``) or fitted by state spaces (``state_space_entries``); a kernel above 1 %
     of its peak at the cut-off is reported."""
+    if len(db.omega) < 2:
+        raise CaseError(f"{where}: the radiation memory is made from the damping over "
+                        f"frequencies, and the database has {len(db.omega)}; give one computed "
+                        "at many (30 or more, to the damping's decay)")  # fmt: skip
     count = int(round(spec.memory / spec.memory_step)) + 1
     times = np.arange(count) * spec.memory_step
     k = db.retardation(times, tail_power(spec))

@@ -8,6 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
+from seacable import files
+
 log = logging.getLogger(__name__)
 
 
@@ -25,7 +27,8 @@ def save(fig, path, tight: bool = False) -> Path:
     it, and return the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100, bbox_inches="tight" if tight else None)
+    with files.replacing(path) as aside:
+        fig.savefig(aside, dpi=100, bbox_inches="tight" if tight else None)
     _pyplot().close(fig)
     return path
 
@@ -61,8 +64,11 @@ def _frame_indices(times: np.ndarray, every: float, max_frames: int) -> np.ndarr
     spread evenly over the run (first and last kept)."""
     if len(times) == 0:
         raise ValueError("the results hold no time step to animate")
-    targets = np.arange(times[0], times[-1] + 1e-9, every)
-    frames = np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+    if float(times[-1] - times[0]) >= every * len(times):  # every row: an interval that short
+        frames = np.arange(len(times))
+    else:
+        targets = np.arange(times[0], times[-1] + 1e-9, every)
+        frames = np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
     if len(frames) > max_frames:
         kept = frames[np.unique(np.linspace(0, len(frames) - 1, max_frames).round().astype(int))]
         span = times[-1] - times[0]

@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from seacable import packing
+from seacable import files, packing
 from seacable.case.loader import load_case
 from seacable.kernels import waves
 from seacable.meshes import Mesh
@@ -32,6 +32,7 @@ from seacable.viz.common import (
     _pyplot,
     _snapshot_indices,
     check_frames,
+    save,
 )
 
 
@@ -260,11 +261,7 @@ def plot_system(tree: xr.DataTree, path, every: float | None = None) -> Path:
     _draw_bodies(axes[1, 1], tree, last, "position")
     _draw_bodies(axes[1, 2], tree, last, "angle")
     fig.suptitle(_title(tree))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 log = logging.getLogger("seacable")
@@ -345,8 +342,7 @@ def animate_system(
     results), at most ``max_frames``; ``progress``: a progress bar."""
     plt = _pyplot()
     path = Path(path)
-    if path.suffix.lower() != ".gif":
-        raise ValueError(f"animation file '{path}': systems are animated to .gif")
+    files.check_output(path, "animation")
     check_frames(fps, speed, every, max_frames)
     last = finite_rows(tree)
     times = _times(tree)[: max(last, 1)]
@@ -389,9 +385,8 @@ def animate_system(
             artists.append((artist, ds, a, b, hulls.get(name) if "roll" in ds else None))
     label = fig.suptitle("")
     title = _title(tree)
-    path.parent.mkdir(parents=True, exist_ok=True)
     writer = _gif_stream(fps)
-    with writer.saving(fig, path, dpi=80):
+    with files.replacing(path) as aside, writer.saving(fig, aside, dpi=80):
         for i in _progress(frames, progress, path.name):
             for artist, ds, a, b, hull in artists:
                 if hull is not None:
