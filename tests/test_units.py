@@ -50,3 +50,35 @@ def test_a_value_in_the_wrong_unit_is_warned_naming_the_field(keys, value, expec
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_no_example_is_warned(path):
     assert unit_warnings(seacable.load_case(path)) == []
+
+
+TURRET = yaml.safe_load(Path("examples/turret_fpso_catenary_mooring.yaml").read_text())
+
+
+@pytest.mark.parametrize(
+    "change, expected",
+    [
+        (lambda rows: [[r[0] * 3.141592653589793 / 180.0, *r[1:]] for r in rows],
+         r"coefficients: its directions run from 0 to 3.14159, within one turn in radians"),
+        (lambda rows: [[r[0], *(1000.0 * c for c in r[1:])] for r in rows],
+         r"coefficients: a coefficient of 850, where OCIMF's are of order one"),
+    ],
+)  # fmt: skip
+def test_wind_coefficients_in_radians_or_scaled_are_warned(tmp_path, change, expected):
+    """Wind directions given in radians, or coefficients a thousand times too large, ran
+    without a word (issue 42); as inline rows and as a CSV file."""
+    import re
+
+    data = copy.deepcopy(TURRET)
+    wind = next(f for b in data["bodies"] for f in b.get("external forces", [])
+                if f.get("model") == "wind")  # fmt: skip
+    rows = change(wind["coefficients"])
+    for given in (rows, "wind.csv"):
+        (tmp_path / "wind.csv").write_text(
+            "psi_deg,C_X,C_Y,C_N\n" + "".join(",".join(map(str, r)) + "\n" for r in rows)
+        )
+        wind["coefficients"] = given
+        case_file = tmp_path / "case.yaml"
+        case_file.write_text(yaml.safe_dump(data, sort_keys=False))
+        said = unit_warnings(seacable.load_case(case_file))
+        assert len(said) == 1 and re.search(expected, said[0]), said

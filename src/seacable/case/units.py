@@ -3,13 +3,18 @@ the field takes (a 20 m line diameter was meant as 20 mm; a phase of 90 in a fie
 was meant in degrees). Warned, not refused: a value can be odd and right."""
 
 import math
+from pathlib import Path
 
-from seacable.case.base import Sine, instances
+from seacable import files
+from seacable.case.base import LARGEST_TABLE, Sine, instances
+from seacable.case.ship_forces import CurrentLoad, WindLoad
 from seacable.case.system import LineType, PointBody, RigidBody, SystemCase
+from seacable.errors import SeacableError
 
 LIGHTEST_BODY = 10.0  # [kg/m^3] a body's mass over its volume below this: tonnes given as kg?
 SOFTEST_LINE = 1e7  # [Pa] EA over the line's area pi d^2 / 4 below this: EA given in kN?
 DEEPEST_SEA = 11000.0  # [m] the deepest ocean
+LARGEST_COEFFICIENT = 20.0  # [-] OCIMF's wind and current coefficients are of order one
 
 
 def unit_warnings(case: SystemCase) -> list[str]:
@@ -27,6 +32,9 @@ def unit_warnings(case: SystemCase) -> list[str]:
                 f"{body.mass / volume:.3g} kg/m^3, lighter than air-filled steel; masses are "
                 f"in kg ({body.mass:g} t would be {1000 * body.mass:g})"
             )
+    for cls in (WindLoad, CurrentLoad):
+        for where, load in instances(case, cls):
+            out += _coefficients(where, load, case._base_dir)
     for where, sine in instances(case, Sine):
         if abs(sine.phase) > 2.0 * math.pi:
             out.append(
@@ -76,5 +84,40 @@ def _line_type(where: str, kind: LineType) -> list[str]:
         out.append(
             f"{where}.mass_per_length: {kind.mass_per_length:g} kg/m is heavier than any chain; "
             "the unit is kg per metre"
+        )
+    return out
+
+
+def _coefficients(where: str, load, base_dir) -> list[str]:
+    """A wind or current load's table whose directions look like radians (all within one
+    turn's radians, over several rows) or whose coefficients look scaled (beyond
+    LARGEST_COEFFICIENT, where OCIMF's are of order one)."""
+    rows = load.coefficients
+    if isinstance(rows, str):
+        path = Path(base_dir or ".") / rows
+        try:
+            text = files.read_text(path, "coefficients file", LARGEST_TABLE)
+            rows = []
+            for _, cells in files.csv_rows(text, f"coefficients file '{path}'"):
+                try:
+                    rows.append([float(c) for c in cells])
+                except ValueError:
+                    continue  # a header line
+        except SeacableError:
+            return []  # the force model refuses the file, naming it
+    if len(rows) < 3 or any(len(row) < 4 for row in rows):
+        return []
+    out = []
+    angles = [row[0] for row in rows]
+    if max(abs(a) for a in angles) <= 2.0 * math.pi + 1e-9 and max(angles) > min(angles):
+        out.append(
+            f"{where}.coefficients: its directions run from {min(angles):g} to {max(angles):g}, "
+            "within one turn in radians; they are in degrees (psi_deg)"
+        )
+    largest = max(abs(c) for row in rows for c in row[1:4])
+    if largest > LARGEST_COEFFICIENT:
+        out.append(
+            f"{where}.coefficients: a coefficient of {largest:g}, where OCIMF's are of order one; "
+            "they are dimensionless (C_X, C_Y, C_N), the force q A C"
         )
     return out
