@@ -2,6 +2,7 @@
 its static equilibrium, and its statics."""
 
 import tempfile
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -15,6 +16,7 @@ from seacable.results import (
     STATUS_DIVERGED,
     Results,
     _Sink,
+    check_output,
     provenance,
     restore_case,
 )
@@ -153,6 +155,8 @@ def statics(case: SystemCase, output=None) -> Results:
             "statics: the case is a single cable (cables:); statics of the whole system need "
             "a case with bodies: and lines:"
         )
+    if output is not None:  # refused before the statics, not after
+        check_output(Path(output), loader.files_read(case))
     derived = loader.derive_case(case, {"start": "static"})
     assert isinstance(derived, SystemCase)  # derive_case keeps the form
     case = derived

@@ -4,6 +4,7 @@ import logging
 import signal
 import threading
 import time as _time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from seacable.results import (
     STATUS_INTERRUPTED,
     Results,
     _Sink,
+    check_output,
     provenance,
 )
 from seacable.system import failures, utilisation
@@ -376,6 +378,9 @@ def simulate(
         Ctrl-C; ``results`` hold everything computed before.
     """
     model = system_model
+    _check_case(case)
+    if output is not None:  # refused before the statics and the compiling, not after
+        check_output(Path(output), loader.files_read(case))
     system, warning = prepare(case)
     sim = case.simulation
     settings = _solver_settings(sim)
