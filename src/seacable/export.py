@@ -14,6 +14,7 @@ import xarray as xr
 from seacable import files
 from seacable.errors import SeacableError
 from seacable.viz import system as vs
+from seacable.viz.common import every_rows
 
 LINE, TRIANGLE = 3, 5  # VTK's cell types
 MOST_FILES = 10_000
@@ -26,10 +27,7 @@ def frames(tree: xr.DataTree, every: float | None) -> np.ndarray:
         return np.arange(len(t))
     if not every > 0.0:
         raise SeacableError(f"--every {every:g}: give a positive interval [s]")
-    if float(t[-1] - t[0]) >= every * len(t):  # every row, however short the interval
-        return np.arange(len(t))
-    picks = np.searchsorted(t, np.arange(t[0], t[-1] + 1e-9 * every, every))
-    return np.unique(np.minimum(picks, len(t) - 1))
+    return every_rows(t, every)
 
 
 def pieces(tree: xr.DataTree, i: int, hulls: dict) -> tuple[np.ndarray, list, list, list]:

@@ -66,11 +66,14 @@ def _case_text(path: Path) -> bool:
     """A YAML case file: a mapping whose top keys include a case's."""
     if path.stat().st_size > 10_000_000:
         return False
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except (yaml.YAMLError, UnicodeDecodeError, ValueError):
+    try:  # its nodes only: aliases are not expanded (a file of nested aliases stays small)
+        root = yaml.compose(path.read_text(encoding="utf-8"), Loader=yaml.SafeLoader)
+    except (yaml.YAMLError, UnicodeDecodeError, ValueError, RecursionError):
         return False
-    return isinstance(data, dict) and bool({"lines", "bodies", "cables"} & set(data))
+    if not isinstance(root, yaml.MappingNode):
+        return False
+    keys = {key.value for key, _ in root.value if isinstance(key, yaml.ScalarNode)}
+    return bool({"lines", "bodies", "cables"} & keys)
 
 
 @dataclass(frozen=True)
@@ -85,7 +88,7 @@ class Kind:
 
 KINDS = {
     "netcdf": Kind("NetCDF file", (".nc", ".nc4", ".h5", ".hdf5"),
-                   lambda path, title: _netcdf_title(path) == title),
+                   lambda path, title: title is not None and _netcdf_title(path) == title),
     "zarr": Kind("Zarr store", (".zarr",), lambda path, title: False),
     "picture": Kind("picture", (".png", ".svg", ".pdf", ".jpg", ".jpeg"),
                     lambda path, title: _picture(path)),
@@ -187,9 +190,7 @@ def replace_text(path, text: str) -> Path:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(aside, 0o666 & ~umask)
+        os.chmod(aside, 0o666 & ~UMASK)
         os.replace(aside, path)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -274,6 +275,8 @@ def read_text(path, what: str, limit: int, error: type[Exception] = InputError,
         ) from None
 
 
+UMASK = os.umask(0o022)  # the process's file-creation mask, read once (os.umask sets it)
+os.umask(UMASK)
 LONGEST_CELL = 1_000_000  # characters of a CSV cell (Python's csv stops at 131,072)
 
 

@@ -182,7 +182,7 @@ def _wamit_excitation(path: Path, periods: list[float], rho: float, gravity: flo
             complex(row[5], -row[6]) * scale)  # fmt: skip
     headings = sorted({h for _, h in values})
     found = sorted({p for p, _ in values}, reverse=True)
-    if not np.allclose(found, periods, rtol=1e-5, atol=0.0) or len(found) != len(periods):
+    if len(found) != len(periods) or not np.allclose(found, periods, rtol=1e-5, atol=0.0):
         raise HydroDBError(
             f"hydrodynamic database '{path}': periods {_short(found)} s, not those of the .1 "
             f"file {_short(periods)} s; give both files of the same WAMIT run"
@@ -233,7 +233,9 @@ def read_wamit(stem: Path, rho: float = 1025.0, gravity: float = 9.81,
         parts[key] = None
         if path.exists():
             headings, parts[key] = _wamit_excitation(path, periods, rho, gravity, length_scale)
-            if directions is not None and not np.allclose(headings, directions):
+            if directions is not None and (
+                len(headings) != len(directions) or not np.allclose(headings, directions)
+            ):
                 raise HydroDBError(
                     f"WAMIT database '{stem}': '{path.name}' has other headings than the other "
                     "excitation files; give one run's files"

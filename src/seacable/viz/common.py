@@ -33,13 +33,22 @@ def save(fig, path, tight: bool = False) -> Path:
     return path
 
 
-def _snapshot_indices(times: np.ndarray, every: float | None) -> np.ndarray:
+def every_rows(times: np.ndarray, every: float) -> np.ndarray:
+    """The output rows one every ``every`` seconds from the first (the row at or just after
+    each multiple); every row when ``every`` is shorter than the rows' own spacing (however
+    short: no list of the multiples is made then)."""
     if len(times) == 0:
         return np.array([], dtype=int)
-    if every is None:
-        every = max((times[-1] - times[0]) / 30.0, 1e-12)
+    if float(times[-1] - times[0]) >= every * len(times):
+        return np.arange(len(times))
     targets = np.arange(times[0], times[-1] + 1e-9, every)
     return np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+
+
+def _snapshot_indices(times: np.ndarray, every: float | None) -> np.ndarray:
+    if every is None and len(times):
+        every = max((times[-1] - times[0]) / 30.0, 1e-12)
+    return every_rows(times, every or 1.0)
 
 
 def _finish(ax, title: str, ylabel: str) -> None:
@@ -64,11 +73,7 @@ def _frame_indices(times: np.ndarray, every: float, max_frames: int) -> np.ndarr
     spread evenly over the run (first and last kept)."""
     if len(times) == 0:
         raise ValueError("the results hold no time step to animate")
-    if float(times[-1] - times[0]) >= every * len(times):  # every row: an interval that short
-        frames = np.arange(len(times))
-    else:
-        targets = np.arange(times[0], times[-1] + 1e-9, every)
-        frames = np.unique(np.searchsorted(times, targets - 1e-9).clip(0, len(times) - 1))
+    frames = every_rows(times, every)
     if len(frames) > max_frames:
         kept = frames[np.unique(np.linspace(0, len(frames) - 1, max_frames).round().astype(int))]
         span = times[-1] - times[0]
