@@ -68,6 +68,7 @@ def compute(mesh: meshes.Mesh, omega, directions_deg=(0.0,), rotation_center=(0.
 
 
 def compute_file(mesh_file: str | Path, output: str | Path, omega, **options) -> hydrodb.HydroDB:
-    db = compute(meshes.read(mesh_file), omega, name=Path(mesh_file).stem, **options)
+    mesh = meshes.checked(meshes.read(mesh_file), where=f"mesh file '{mesh_file}'")
+    db = compute(mesh, omega, name=Path(mesh_file).stem, **options)
     hydrodb.write(db, output)
     return db

@@ -210,8 +210,12 @@ def repeat(results_file: str, output: str, progress: bool) -> None:
     the case text pointed at it)."""
     files.check_output(output, "netcdf", [results_file], title=TITLE)
     files.self_contained(results_file)
-    with h5netcdf.File(results_file, "r") as f:
-        attrs = dict(f.attrs)
+    try:
+        with h5netcdf.File(results_file, "r") as f:
+            attrs = dict(f.attrs)
+    except OSError as exc:
+        _fail(f"{results_file}: not a readable NetCDF/HDF5 file ({exc}); give a results file "
+              "that seacable wrote", EXIT_INPUT)  # fmt: skip
     with tempfile.TemporaryDirectory() as folder:
         try:
             case_file = restore_case(attrs, folder, carried_only=True)
@@ -388,6 +392,11 @@ def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation
 
 def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:
     """The results' tree of groups (a system's), or a clear exit for a file without groups."""
+    title = results.dataset.attrs.get("title") or None  # a file made by hand may have none
+    if title not in (None, TITLE) or "time" not in results.dataset.coords:
+        _fail(f"{results_file}: not seacable's results (its title: {title!r}, a time "
+              f"coordinate: {'time' in results.dataset.coords}); give a file that seacable "
+              "run wrote", EXIT_INPUT)  # fmt: skip
     if not isinstance(results.dataset, xr.DataTree):
         _fail(
             f"{results_file}: results of the single-cable core (retired after commit 4911bc8); "

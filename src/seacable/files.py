@@ -218,8 +218,12 @@ def self_contained(path) -> None:
                 where = item.external[0][0] if item.external else "other files"
                 outside.append(f"'{name}' is stored in {where!r}")
 
-    with h5py.File(path, "r") as f:
-        f.visititems_links(visit)
+    try:
+        with h5py.File(path, "r") as f:
+            f.visititems_links(visit)
+    except OSError as exc:
+        raise InputError(f"'{path}' is not a readable NetCDF/HDF5 file ({exc}); give a file "
+                         "that seacable wrote") from None  # fmt: skip
     if outside:
         raise InputError(
             f"'{path}': {outside[0]}; seacable reads only files that hold their own data "
@@ -278,6 +282,14 @@ def read_text(path, what: str, limit: int, error: type[Exception] = InputError,
 UMASK = os.umask(0o022)  # the process's file-creation mask, read once (os.umask sets it)
 os.umask(UMASK)
 LONGEST_CELL = 1_000_000  # characters of a CSV cell (Python's csv stops at 131,072)
+
+
+def quoted(text: str, most: int = 40) -> str:
+    """``text`` in quotes for a message, cut in the middle when longer than ``most``
+    characters (a cell of a table can hold 200,000)."""
+    if len(text) <= most:
+        return f"'{text}'"
+    return f"'{text[: most // 2]}...{text[-8:]}' ({len(text):,} characters)"
 
 
 def csv_rows(text: str, where: str, error: type[Exception] = InputError):

@@ -122,7 +122,13 @@ def _obj(raw: bytes):
                 raise ValueError(f"line {number}: a vertex needs x, y and z")
             vertices.append([float(p) for p in parts[1:4]])
         elif parts[0] == "f":
-            ids = [int(p.split("/")[0]) for p in parts[1:]]
+            try:
+                ids = [int(p.split("/")[0]) for p in parts[1:]]
+            except ValueError:
+                raise ValueError(
+                    f"line {number}: a face's vertices are whole numbers (from 1): "
+                    f"{' '.join(parts[1:])!r}"
+                ) from None
             if len(ids) < 3 or any(i == 0 or abs(i) > len(vertices) for i in ids):
                 raise ValueError(
                     f"line {number}: face {ids} names a vertex the file has not given (it has "
@@ -141,6 +147,9 @@ def _gdf(raw: bytes):
     isx, isy = (int(float(w)) for w in lines[2].split()[:2])
     count = int(float(lines[3].split()[0]))
     numbers = np.array(" ".join(lines[4:]).split()[: 12 * count], dtype=float)
+    if count < 1 or len(numbers) < 12 * count:
+        raise ValueError(f"{count} panels need {12 * count} coordinates (4 vertices of 3); the "
+                         f"file holds {len(numbers)}")  # fmt: skip
     quads = numbers.reshape(count, 4, 3)
     for flag, axis in ((isx, 0), (isy, 1)):
         if flag:
@@ -297,7 +306,10 @@ def checked(mesh: Mesh, position=(0.0, 0.0, 0.0), rotation=None, level: float = 
             where: str = "mesh") -> Mesh:  # fmt: skip
     """The mesh with a consistent outward winding, or a MeshError naming ``where`` when it is
     not closed below the waterline at this pose."""
-    mesh = consistent(mesh)
+    try:
+        mesh = consistent(mesh)
+    except MeshError as exc:
+        raise MeshError(f"{where}: {str(exc).removeprefix('mesh: ')}") from None
     stat = hydrostatics(mesh, position, rotation, level)
     if stat.volume < 0.0:
         mesh = mesh.flipped()

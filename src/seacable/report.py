@@ -25,6 +25,7 @@ import xarray as xr
 from seacable import files, sweep_summary
 from seacable import stats as st
 from seacable.errors import SeacableError
+from seacable.results import TITLE as RESULTS_TITLE
 from seacable.results import Results
 from seacable.viz import system as vs
 
@@ -367,8 +368,16 @@ def write(source: Path, output: Path, storm: float = 10800.0) -> Path:
             text = sweep_page(found.load())
     else:
         files.self_contained(source)
-        with xr.open_dataset(source, engine="h5netcdf") as root:
-            title = root.attrs.get("title")
+        try:
+            with xr.open_dataset(source, engine="h5netcdf") as root:
+                title = root.attrs.get("title") or None  # a file made by hand may have none
+                timed = "time" in root.coords
+        except (OSError, ValueError) as exc:
+            raise SeacableError(f"{source}: not a readable NetCDF/HDF5 file ({exc}); give a "
+                                "file seacable wrote") from None  # fmt: skip
+        if title not in (None, sweep_summary.TITLE, RESULTS_TITLE) or (title is None and not timed):
+            raise SeacableError(f"{source}: not seacable's results or a sweep's summary (its "
+                                f"title: {title!r}); give a file seacable wrote")  # fmt: skip
         if title == sweep_summary.TITLE:
             with xr.open_dataset(source, engine="h5netcdf") as found:
                 text = sweep_page(found.load())

@@ -150,9 +150,13 @@ class Results:
         part of it asked for, only when it is used (long runs). A file that keeps data in
         other files is refused (``files.self_contained``)."""
         files.self_contained(path)
-        with h5netcdf.File(path, "r") as f:
-            grouped = bool(f.groups)
-            time = np.asarray(f["time"][...], dtype=float) if "time" in f else np.zeros(0)
+        try:
+            with h5netcdf.File(path, "r") as f:
+                grouped = bool(f.groups)
+                time = np.asarray(f["time"][...], dtype=float) if "time" in f else np.zeros(0)
+        except OSError as exc:
+            raise InputError(f"results file '{path}' is not a readable NetCDF/HDF5 file "
+                             f"({exc}); give a file that seacable wrote") from None  # fmt: skip
         written = int(np.count_nonzero(np.isfinite(time)))
         kept = time[:written]
         wrong = np.nonzero(~np.isfinite(kept[1:]) | ~(np.diff(kept) > 0.0))[0]

@@ -254,8 +254,8 @@ def _cell(text: str, name: str, number: int, key: str) -> Any:
         return loader.parse_yaml(text) if text else None
     except CaseError as exc:
         detail = " ".join(str(exc).partition(": ")[2].split())
-        raise CaseError(f"sweep.load_cases '{name}' line {number}, {key} {text!r}: not a YAML "
-                        f"value ({detail})") from None  # fmt: skip
+        raise CaseError(f"sweep.load_cases '{name}' line {number}, {key} {files.quoted(text)}: "
+                        f"not a YAML value ({detail})") from None  # fmt: skip
 
 
 def _table(name: str, base_dir) -> tuple[list[str], list[dict], np.ndarray | None]:
@@ -299,7 +299,8 @@ def _share(text: str, name: str, number: int) -> float:
     except ValueError:
         value = math.nan
     if not 0.0 <= value <= 1.0:
-        raise CaseError(f"sweep.load_cases '{name}' line {number}: probability '{text}' must "
+        shown = files.quoted(text)
+        raise CaseError(f"sweep.load_cases '{name}' line {number}: probability {shown} must "
                         "be a share of the time, from 0 to 1")  # fmt: skip
     return value
 

@@ -267,11 +267,13 @@ STATES = {  # bad tables of weather states (operability --states)
 STATES_EXPECT = {
     "latin1": r"not UTF-8 text \(byte 0xe9", "duplicate_column": r"given twice \['current_speed'\]",
     "unknown_column": r"unknown \['tide'\]", "missing_column": r"missing \['wind_towards_deg'\]",
-    "nan_speed": r"line 3: current_speed nan: give a finite number",
+    "nan_speed": r"line 3: current_speed 'nan': give a finite number",
     "negative_speed": r"line 3: current_speed -1 is negative",
     "text_cell": r"line 3: current_speed 'fast' is not a number",
     "short_row": r"line 3: 2 cells for 4 columns", "long_row": r"line 3: 5 cells for 4 columns",
-    "header_only": r"no states", "empty": r"missing \[", "huge_cell": r"line 4: .*number|line 4",
+    "header_only": r"no states",
+    "empty": r"missing \[",
+    "huge_cell": r"line 4: current_towards_deg '9{20}\.\.\.9{8}' \(200,000 characters\)",
     "nul_byte": r"line 4", "zero_probability": r"the probabilities sum to 0",
     "unclosed_quote": r"line \d+",
     "zero_device": r"is not a regular file", "a_folder": r"is a directory",
@@ -329,17 +331,26 @@ MESHES = {  # bad hull meshes (a case's mesh, and seacable hydrodb's)
     "text_number.stl": b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 x\nvertex 1 0 0\n"
                        b"vertex 0 1 0\nendloop\nendfacet\nendsolid a\n",
     "unknown.msh": BOX_OBJ,
+    "truncated.gdf": b"a box\n1.0 9.81\n0 0\n12\n-1 -0.6 -0.5 1 -0.6 -0.5 1 0.6 -0.5\n",
+    "text.gdf": b"a box\n1.0 9.81\n0 0\ntwelve\n",
     "non_manifold.obj": BOX_OBJ + b"f 1 3 7\n",
 }  # fmt: skip
 MESHES_EXPECT = {
-    "index_out_of_range.obj": r"index 99|out of range|99", "index_zero.obj": r"index 0|zero",
-    "index_text.obj": r"'two'|two", "nan_vertex.obj": r"NaN or infinite coordinates",
-    "huge_vertex.obj": r"1e\+300|beyond", "empty.obj": r"holds no triangles",
+    "index_out_of_range.obj": r"line 21: face \[1, 2, 99\] names a vertex the file has not",
+    "index_zero.obj": r"line 21: face \[0, 1, 2\] names a vertex the file has not given",
+    "index_text.obj": r"line 21: a face's vertices are whole numbers \(from 1\): '1 two 3'",
+    "nan_vertex.obj": r"NaN or infinite coordinates",
+    "huge_vertex.obj": r"the hull is 1e\+300 m across, not between 0\.01 and 10000 m",
+    "empty.obj": r"holds no triangles",
     "no_faces.obj": r"holds no triangles", "open_bottom.obj": r"not closed below the waterline",
-    "tiny.obj": r"tiny|smaller than|1e-06", "garbage.obj": r"not a readable OBJ|not UTF-8",
+    "tiny.obj": r"the hull is 2e-06 m across, not between 0\.01 and 10000 m",
+    "garbage.obj": r"not a readable OBJ|not UTF-8",
     "truncated.stl": r"not a readable STL", "text_number.stl": r"not a readable STL|'x'",
     "unknown.msh": r"format 'msh' is not known",
-    "non_manifold.obj": r"more than two triangles", "zero_device.obj": r"not a regular file",
+    "truncated.gdf": r"not a readable GDF file: 12 panels need 144 coordinates",
+    "text.gdf": r"not a readable GDF",
+    "non_manifold.obj": r"non_manifold\.obj.*: the edge .* more than two triangles",
+    "zero_device.obj": r"not a regular file",
     "missing.obj": r"does not exist",
 }  # fmt: skip
 
@@ -376,6 +387,30 @@ def _databases(box_nc) -> dict:
     assert all(isinstance(v, xr.Dataset) for v in out.values())
     return out
 
+
+def _wamit_negative(text: str) -> str:
+    """box.1 with every damping coefficient's sign turned (WAMIT's fifth column)."""
+    rows = []
+    for line in text.splitlines():
+        words = line.split()
+        if len(words) == 5:
+            words[4] = str(-float(words[4]))
+        rows.append("\t".join(words))
+    return "\n".join(rows) + "\n"
+
+
+OTHER_DATABASES = {  # (WAMIT's and HDB files): name -> (how it is made, what the message says)
+    "negative.1": (lambda data: _wamit_negative((data / "box.1").read_text()),
+                   r"radiation damping of \w+ is negative"),
+    "truncated.1": (lambda data: (data / "box.1").read_text()[:1500],
+                    r"hydrodynamic database|WAMIT|periods"),
+    "garbage.1": (lambda data: "not a wamit file\n" * 3, r"hydrodynamic database|WAMIT"),
+    "garbage.hdb": (lambda data: "[SOFT] nothing\n[PERIODS_NUMBER] x\n",
+                    r"hydrodynamic database|HDB|PERIODS"),
+    "truncated.hdb": (lambda data: (data / "box.hdb").read_text()[:600],
+                      r"hydrodynamic database|HDB"),
+}  # fmt: skip
+WAMIT_SIDES = (".3", ".3sc", ".3fk", ".hst")
 
 DATABASES_EXPECT = {
     "renamed_dimension.nc": r"omega|frequency", "negative_damping.nc": r"damping.*negative",
@@ -478,9 +513,9 @@ RESULTS_ATTACKS = {
     "outside_table.nc": r"reads '/etc/hostname', which the file does not carry",
     "no_case.nc": r"no 'case' attribute",
     "nan_times.nc": r"time|NaN",
-    "not_hdf5.nc": r"cannot use the file|not a|NetCDF",
-    "truncated.nc": r"cannot use the file|truncated|not a",
-    "database.nc": r"not .*results|database",
+    "not_hdf5.nc": r"not_hdf5\.nc.*not a readable NetCDF/HDF5 file",
+    "truncated.nc": r"truncated\.nc.*not a readable NetCDF/HDF5 file",
+    "database.nc": r"not seacable's results( or a sweep's summary)? \(its title|no 'case' attr",
 }
 RESULT_READERS = [
     ("plot", lambda f: ["plot", f, "-o", f"{IN}/x.png"]),
@@ -528,6 +563,15 @@ def _side_files() -> list:
                 f"database.{name}",
                 "databases",
                 DATABASES_EXPECT[name],
+                ["validate", BOX, "--set", f"bodies.box.hydrodynamics.file=databases/{name}"],
+            )
+        )
+    for name, (_, expect) in OTHER_DATABASES.items():
+        out.append(
+            (
+                f"database.{name}",
+                "databases",
+                expect,
                 ["validate", BOX, "--set", f"bodies.box.hydrodynamics.file=databases/{name}"],
             )
         )
@@ -668,6 +712,12 @@ def write_inputs(here, base: dict, push: list) -> None:
         f.create_dataset("added_mass", shape=(100,), dtype="f8",
                          external=[("../secret.bin", 0, 800)])  # fmt: skip
     write("databases/not_netcdf.nc", b"not a database\n")
+    data = repo / "tests/data"
+    for name, (make, _) in OTHER_DATABASES.items():
+        write(f"databases/{name}", make(data))
+        if name.endswith(".1"):
+            for side in WAMIT_SIDES:
+                shutil.copy(data / f"box{side}", folder / "databases" / f"{name[:-2]}{side}")
     link("databases/zero_device.nc", "/dev/zero")
     for name, content in decks(good_deck).items():
         write(f"decks/{name}", content)

@@ -134,12 +134,12 @@ def table(path) -> tuple[list[Weather], np.ndarray | None]:
             try:
                 values[name] = float(text)
             except ValueError:
-                raise CaseError(f"{where}, line {number}: {name} '{text}' is not a "
+                raise CaseError(f"{where}, line {number}: {name} {files.quoted(text)} is not a "
                                 "number; give a number (wave columns may be empty: the "
                                 "case's waves)") from None  # fmt: skip
             if not math.isfinite(values[name] or 0.0):
-                raise CaseError(f"{where}, line {number}: {name} {text}: give a finite "
-                                "number")  # fmt: skip
+                raise CaseError(f"{where}, line {number}: {name} {files.quoted(text)}: give a "
+                                "finite number")  # fmt: skip
         for name in ("current_speed", "wind_speed", "wave_height", "probability"):
             if (values.get(name) or 0.0) < 0.0:
                 raise CaseError(f"{where}, line {number}: {name} {values[name]:g} is negative; "
