@@ -38,10 +38,10 @@ def pieces(tree: xr.DataTree, i: int, hulls: dict) -> tuple[np.ndarray, list, li
     tension: list[float] = []
     part: list[int] = []
     count = 0
-    groups = vs._groups(tree, "lines")
+    groups = vs.result_groups(tree, "lines")
     for k, (_, ds) in enumerate(groups.items()):
-        x, y = vs._shape(ds, i, "x", "y")
-        _, z = vs._shape(ds, i, "x", "z")
+        x, y = vs.projected(ds, i, "x", "y")
+        _, z = vs.projected(ds, i, "x", "z")
         xyz = np.column_stack([x, y, z])
         force = np.atleast_1d(ds["tension"].values[i]) if "tension" in ds else np.zeros(1)
         segments = len(xyz) - 1
@@ -53,7 +53,7 @@ def pieces(tree: xr.DataTree, i: int, hulls: dict) -> tuple[np.ndarray, list, li
         tension += [float(v) for v in force]
         part += [k] * segments
         count += len(xyz)
-    bodies = vs._groups(tree, "bodies")
+    bodies = vs.result_groups(tree, "bodies")
     for k, (name, mesh) in enumerate(hulls.items()):
         if name not in bodies or "roll" not in bodies[name]:
             continue
@@ -111,7 +111,7 @@ def write(tree: xr.DataTree, output: Path, every: float | None = None,
     folder.mkdir(exist_ok=True)
     meshes, _ = vs.scene(tree)
     t = np.asarray(tree["time"].values, dtype=float)
-    names = [*vs._groups(tree, "lines"), *meshes]
+    names = [*vs.result_groups(tree, "lines"), *meshes]
     written, entries = [], []
     for n, i in enumerate(picks):
         path = folder / f"step_{n:05d}.vtu"

@@ -265,7 +265,7 @@ def _statistics(t, series, storm: float, start: float) -> str:
 
 def _scene(tree: xr.DataTree, t: np.ndarray, last: int) -> dict | None:
     """The lines in 3D at FRAMES snapshots: the first drawn, the others as frames."""
-    lines = {n: ds for n, ds in vs._groups(tree, "lines").items()}
+    lines = {n: ds for n, ds in vs.result_groups(tree, "lines").items()}
     if not lines or last < 1:
         return None
     picks = np.unique(np.linspace(0, last - 1, min(last, FRAMES)).astype(int))
@@ -273,8 +273,8 @@ def _scene(tree: xr.DataTree, t: np.ndarray, last: int) -> dict | None:
     def traces(i: int) -> list:
         out = []
         for name, ds in lines.items():
-            x, y = vs._shape(ds, i, "x", "y")
-            _, z = vs._shape(ds, i, "x", "z")
+            x, y = vs.projected(ds, i, "x", "y")
+            _, z = vs.projected(ds, i, "x", "z")
             out.append({"type": "scatter3d", "mode": "lines", "name": name,
                         "x": _numbers(x), "y": _numbers(y), "z": _numbers(z)})  # fmt: skip
         return out

@@ -40,13 +40,15 @@ def _times(tree: xr.DataTree) -> np.ndarray:
     return tree.to_dataset()["time"].values
 
 
-def _groups(tree: xr.DataTree, kind: str) -> dict[str, xr.Dataset]:
+def result_groups(tree: xr.DataTree, kind: str) -> dict[str, xr.Dataset]:
+    """Each group of ``kind`` ("lines" or "bodies") of a run's results, by name (for the
+    pictures, the report and the VTK export alike)."""
     if kind not in tree.children:
         return {}
     return {name: node.to_dataset() for name, node in tree[kind].children.items()}
 
 
-def _shape(ds: xr.Dataset, i: int, a: str, b: str):
+def projected(ds: xr.Dataset, i: int, a: str, b: str):
     """Two coordinates of a line's points at output i: its nodes, or a tie's two ends."""
     if f"node_{a}" in ds:
         return ds[f"node_{a}"].values[i], ds[f"node_{b}"].values[i]
@@ -70,7 +72,7 @@ def finite_rows(tree: xr.DataTree) -> int:
     hold NaN)."""
     times = _times(tree)
     last = len(times)
-    for ds in _groups(tree, "lines").values():
+    for ds in result_groups(tree, "lines").values():
         for name in ("node_x", "node_z", "from_x"):
             if name in ds:
                 finite = np.isfinite(ds[name].values.reshape(len(times), -1)).all(axis=1)
@@ -81,13 +83,13 @@ def finite_rows(tree: xr.DataTree) -> int:
 
 
 def _draw_view(ax, tree, rows, a: str, b: str, plt, env: dict) -> None:
-    lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
+    lines, bodies = result_groups(tree, "lines"), result_groups(tree, "bodies")
     times = _times(tree)
     cmap = plt.get_cmap("viridis")
     for k, i in enumerate(rows):
         color = cmap(k / max(len(rows) - 1, 1))
         for ds in lines.values():
-            h, v = _shape(ds, i, a, b)
+            h, v = projected(ds, i, a, b)
             ax.plot(h, v, "-", color=color, lw=1.0)
     for name, ds in bodies.items():
         h, v = ds[f"position_{a}"].values[rows], ds[f"position_{b}"].values[rows]
@@ -116,7 +118,7 @@ def tension_ranges(tree: xr.DataTree, last: int) -> dict[str, tuple]:
     'from' end of the segments' centres (or of the nodes, for a line that gives its tension
     there), and the least, mean and largest tension [N] there."""
     out = {}
-    for name, ds in _groups(tree, "lines").items():
+    for name, ds in result_groups(tree, "lines").items():
         if "tension" not in ds or ds["tension"].ndim != 2:
             continue
         tension = ds["tension"].values[:last]
@@ -155,7 +157,7 @@ def curvature_ranges(tree: xr.DataTree, last: int, names) -> dict[str, tuple]:
     the arc length [m] of their inner nodes and the least, mean and largest curvature [1/m]
     there, the angle between the segments each side over their mean length."""
     out = {}
-    groups = _groups(tree, "lines")
+    groups = result_groups(tree, "lines")
     for name in names:
         ds = groups.get(name)
         if ds is None or "node_x" not in ds or ds["node_x"].shape[1] < 3:
@@ -202,7 +204,7 @@ def _draw_range(ax, tree, last: int) -> None:
 
 def _draw_end_tensions(ax, tree, last: int) -> None:
     t = _times(tree)[:last]
-    for name, ds in _groups(tree, "lines").items():
+    for name, ds in result_groups(tree, "lines").items():
         for end in ("from", "to"):
             parts = [f"{end}_force_{c}" for c in "xyz"]
             if all(p in ds for p in parts):
@@ -215,7 +217,7 @@ def _draw_end_tensions(ax, tree, last: int) -> None:
 
 def _draw_bodies(ax, tree, last: int, what: str) -> None:
     t = _times(tree)[:last]
-    for name, ds in _groups(tree, "bodies").items():
+    for name, ds in result_groups(tree, "bodies").items():
         if what == "position" and "velocity_x" in ds:  # bodies that move
             for c in "xyz":
                 values = ds[f"position_{c}"].values[:last]
@@ -311,14 +313,14 @@ def _outline(vertices: np.ndarray, ds: xr.Dataset, i: int, a: str, b: str):
 
 def _extent(tree: xr.DataTree, frames, a: str) -> tuple[float, float]:
     low, high = math.inf, -math.inf
-    for ds in _groups(tree, "lines").values():
+    for ds in result_groups(tree, "lines").values():
         for name in (f"node_{a}", f"from_{a}", f"to_{a}"):
             if name in ds:
                 values = ds[name].values[frames]
                 values = values[np.isfinite(values)]
                 if values.size:
                     low, high = min(low, float(values.min())), max(high, float(values.max()))
-    for ds in _groups(tree, "bodies").values():
+    for ds in result_groups(tree, "bodies").values():
         values = ds[f"position_{a}"].values[frames]
         values = values[np.isfinite(values)]
         if values.size:
@@ -348,7 +350,7 @@ def animate_system(
     times = _times(tree)[: max(last, 1)]
     frames = _frame_indices(times, every if every is not None else speed / fps, max_frames)
     env = _environment(tree)
-    lines, bodies = _groups(tree, "lines"), _groups(tree, "bodies")
+    lines, bodies = result_groups(tree, "lines"), result_groups(tree, "bodies")
     meshes, sea = scene(tree)
     hulls = {name: mesh.vertices for name, mesh in meshes.items()}
     reach = max((float(np.abs(v).max()) for v in hulls.values()), default=0.0)
@@ -395,7 +397,7 @@ def animate_system(
                     artist.set_data([ds[f"position_{a}"].values[i]],
                                     [ds[f"position_{b}"].values[i]])  # fmt: skip
                 else:
-                    artist.set_data(*_shape(ds, int(i), a, b))
+                    artist.set_data(*projected(ds, int(i), a, b))
             if surface is not None:
                 eta = [waves.elevation_at(sea["wave"], float(times[i]), x, 0.0) for x in along]
                 surface.set_data(along, eta)
