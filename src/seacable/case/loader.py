@@ -370,11 +370,20 @@ def files_read(case: Case | SystemCase) -> list[Path]:
     files and its hydrodynamic databases (WAMIT's .3, .3sc, .3fk and .hst beside a .1), which
     a results file must replace none of."""
     files = [Path(case._source_file)] if case._source_file else []
+    return files + [path for paths in files_named(case).values() for path in paths]
+
+
+def files_named(case: Case | SystemCase) -> dict[str, list[Path]]:
+    """Each file name the case gives (its ``file:`` keys: tables, meshes, databases) -> the
+    files it reads by that name, resolved (a WAMIT database's .1 and the .3, .3sc, .3fk and
+    .hst beside it, which may not exist)."""
+    named: dict[str, list[Path]] = {}
     for kind in (Table, HullMesh, HydroDatabase):
-        files += [part.path(case._base_dir).resolve() for _, part in instances(case, kind)]
-    for database in [f for f in files if f.suffix.lower() == ".1"]:
-        files += [database.with_suffix(s) for s in WAMIT_SIDE_FILES]
-    return files
+        for _, part in instances(case, kind):
+            path = part.path(case._base_dir).resolve()
+            beside = WAMIT_SIDE_FILES if path.suffix.lower() == ".1" else ()
+            named[part.file] = [path, *(path.with_suffix(s) for s in beside)]
+    return named
 
 
 WAMIT_SIDE_FILES = (".3", ".3sc", ".3fk", ".hst")  # what a WAMIT database reads beside its .1

@@ -35,6 +35,7 @@ worker becomes rows of ``failed``.
 """
 
 import math
+import tempfile
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -173,20 +174,27 @@ def _weather(state: tuple[float, ...]) -> Weather:
                    None if math.isnan(towards) else towards)  # fmt: skip
 
 
-def evaluate(case_data: dict, base_dir, states: list[tuple[float, ...]],
-             limits: Limits, simulate: float | None, headings: int,
-             controlled: bool | None = None, start: str = "equilibrium") -> list[dict]:  # fmt: skip
+def evaluate(packed: dict, states: list[tuple[float, ...]], limits: Limits,
+             simulate: float | None, headings: int, controlled: bool | None = None,
+             start: str = "equilibrium") -> list[dict]:  # fmt: skip
     """The rows of a chunk of weather states (each ``_fields``), in order, the equilibria of
     one seeding the next, with the compensators on or off (``controlled``; None: as the case
-    says). Runs where Dask sends it: plain data in and out."""
-    try:
-        case = loader.load_case(case_data)
-        assert isinstance(case, SystemCase)
-        plane = Plane.of(case, base_dir)
-        if controlled is not None:
-            plane.control(controlled)
-    except Exception as exc:  # the whole chunk fails the same way
-        return [_failed(f"the case: {exc}") for _ in states]
+    says), for the case ``packed`` (``cluster.pack``: its settings and the bytes of the files
+    it reads, built in a private temporary folder). Runs where Dask sends it: plain data in
+    and out."""
+    with tempfile.TemporaryDirectory(prefix="seacable-") as folder:
+        try:
+            case = cluster.unpack(packed, folder)
+            plane = Plane.of(case, folder)
+            if controlled is not None:
+                plane.control(controlled)
+        except Exception as exc:  # the whole chunk fails the same way
+            return [_failed(f"the case: {exc}") for _ in states]
+        return _rows_of(plane, states, limits, simulate, headings, start)
+
+
+def _rows_of(plane: Plane, states, limits, simulate, headings, start) -> list[dict]:
+    """``evaluate``'s rows for the built ``plane``."""
     nominal = eq.relative(plane, plane.start()[: 3 * len(plane.bodies)])
     solved: list[tuple[np.ndarray, list[np.ndarray]]] = []  # (weather's place, equilibria)
     rows = []
@@ -353,8 +361,7 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
     if control not in (None, "off") and plane.controlled is None:
         raise CaseError(f"control '{control}': no ship has a 'compensator' force model; add "
                         "one ({model: compensator, point, target, distance})")  # fmt: skip
-    data = case.model_dump(by_alias=True, exclude_none=True)
-    base = loader.case_base_dir(case)
+    packed = cluster.pack(case)
     if case.environment.waves:  # the case's own waves, as what they are
         height, towards = case_waves(case.environment)
         states = [replace(w, wave_height=height if w.wave_height is None else w.wave_height,
@@ -372,10 +379,9 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
               for i in range(0, len(plain), chunk)]  # fmt: skip
     if scheduler is None:
         rows = [r for c, flag in chunks
-                for r in evaluate(data, base, c, limits, simulate, headings, flag,
-                                  start)]  # fmt: skip
+                for r in evaluate(packed, c, limits, simulate, headings, flag, start)]  # fmt: skip
     else:
-        rows = _on_dask(scheduler, data, base, chunks, limits, simulate, headings, start)
+        rows = _on_dask(scheduler, packed, chunks, limits, simulate, headings, start)
     if control is None:
         return _dataset(rows, plain, shape, limits, simulate, probability, start)
     parts = [_dataset(rows[k * len(plain) : (k + 1) * len(plain)], plain, shape, limits,
@@ -385,11 +391,12 @@ def operability(case: SystemCase | str, states: list[Weather], shape: dict | Non
     return xr.concat(parts, dim="control").assign_coords(control=names)
 
 
-def _on_dask(scheduler: str, data, base, chunks, limits, simulate, headings,
+def _on_dask(scheduler: str, packed, chunks, limits, simulate, headings,
              start) -> list[dict]:  # fmt: skip
     with cluster.client(scheduler, "a map") as client:
-        futures = [client.submit(evaluate, data, base, c, limits, simulate, headings, flag,
-                                 start, pure=False) for c, flag in chunks]  # fmt: skip
+        [case] = client.scatter([packed], broadcast=True)  # sent to each worker once
+        futures = [client.submit(evaluate, case, c, limits, simulate, headings, flag, start,
+                                 pure=False) for c, flag in chunks]  # fmt: skip
         rows: list[dict] = []
         for (chunk, _), future in zip(chunks, futures, strict=True):
             try:
