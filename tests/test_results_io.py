@@ -174,6 +174,8 @@ def test_memory_stays_flat_while_rows_go_to_the_file(tmp_path, monkeypatch):
         return status
 
     monkeypatch.setattr(simulate_module._Run, "advance", measured)
+    # every chunk's rows written at once (a write slowed by tracemalloc holds them otherwise)
+    monkeypatch.setattr(seacable.results, "SLOW_WRITE", float("inf"))
     tracemalloc.start()
     try:
         results = seacable.simulate(case, output=tmp_path / "long.nc", chunk_outputs=500)
@@ -371,3 +373,41 @@ def test_a_results_file_reads_as_xarray_reads_it_in_either_mode(tmp_path):
     np.testing.assert_array_equal(rope[1:3, ::2].values, expected["lines/rope/tension"][1:3, ::2])
     lazy.close()
     assert set(whole["bodies"].children) == {"top", "float", "weight"}
+
+
+def test_rows_held_while_writing_is_slow_all_reach_the_file(tmp_path, monkeypatch):
+    """Where a write takes longer than ``SLOW_WRITE`` (a system of thousands of bodies) the
+    next chunks' rows are held and written together: with every write taken as slow, the file
+    holds every row, equal to those of a run that writes each chunk at once, and a reader
+    mid-run finds a file that opens."""
+    import xarray as xr
+
+    from seacable import results as results_module
+
+    case = upgraded(_swing(duration=2.0))
+    at_once = seacable.simulate(case, output=tmp_path / "at_once.nc", chunk_outputs=2)
+    # a clock that moves a second each time it is read: a write "takes" a second, and the
+    # rows of the next chunks are held until nine more have passed
+    ticks = iter(range(1_000_000))
+    monkeypatch.setattr(results_module, "monotonic", lambda: float(next(ticks)))
+    monkeypatch.setattr(results_module, "SLOW_WRITE", 0.5)
+    seen = []
+    original = simulate_module._Run.advance
+
+    def peek(self, count):
+        status = original(self, count)
+        found = seacable.Results.open(tmp_path / "held.nc")
+        seen.append((found.status, found.dataset.sizes["time"], self.done + 1))
+        return status
+
+    monkeypatch.setattr(simulate_module._Run, "advance", peek)
+    held = seacable.simulate(case, output=tmp_path / "held.nc", chunk_outputs=2)
+    assert {status for status, _, _ in seen} == {"incomplete"}
+    assert any(in_file < done for _, in_file, done in seen)  # some rows were held
+    assert any(in_file == done for _, in_file, done in seen[1:])  # and written later
+    reread = seacable.Results.open(tmp_path / "held.nc").dataset
+    for ds in (reread, held.dataset):
+        assert ds.sizes["time"] == 21
+        xr.testing.assert_equal(
+            ds["lines/cable"].to_dataset(), at_once.dataset["lines/cable"].to_dataset()
+        )

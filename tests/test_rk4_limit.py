@@ -142,3 +142,31 @@ def test_a_step_taken_as_the_divisor_of_the_output_interval_is_reported():
         "simulation.time_step 0.002002 s is taken as 0.002 s, the step that divides "
         "output_interval (0.1 s, 50 per output)" in warnings
     )
+
+
+@pytest.mark.parametrize("segments", [1, 2, 10, 40])
+def test_the_axial_bound_read_off_the_case_lies_below_the_fastest_motion(segments):
+    """``stability.axial_bound`` (what refuses a dopri5 run of 100,000 segments before its
+    300 s of statics) is a lower bound of the fastest motion that the built system's
+    eigenvalues give (Arnoldi, ``system.frequency``): the catenary chain in water (added mass,
+    axial damping, seabed) and the taut rope in air, within a factor 8 (a line of one segment
+    has none); and dopri5's steps on
+    the chain are at least the duration over the step the bound allows."""
+    import yaml
+
+    root = __import__("pathlib").Path(__file__).parent.parent
+    chain = yaml.safe_load((root / MOORING).read_text())
+    for data in (chain, _taut_rope()):
+        data["lines"][0]["sections"][0]["segments"] = segments
+        case = load_case(data)
+        bound = stability.axial_bound(case)
+        if segments == 1:  # no node inside: nothing to bound
+            assert bound is None
+            continue
+        fastest = frequency.fastest_frequency(model.build(case))[0]
+        assert bound is not None and bound.frequency <= fastest < 8.0 * bound.frequency
+    if segments == 40:
+        case = load_case({**chain, "simulation": {**chain["simulation"], "duration": 2.0}})
+        run = seacable.simulate(case)
+        least = 2.0 * stability.axial_bound(case).frequency / stability.DOPRI5_REACH
+        assert run.dataset.attrs["solver_accepted_steps"] >= least

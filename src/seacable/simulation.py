@@ -90,9 +90,12 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     strength (``system.utilisation``). Returns the built system and the warnings, joined (None
     when there are none). Raises CaseError (or StaticsError)."""
     _check_case(case)
-    system = system_model.build(case, loader.case_base_dir(case))
     sim = case.simulation
-    stability.cost_check(sim, len(system.y0))
+    axial = stability.axial_bound(case)
+    if axial is not None:  # before the build and its statics (100,000 segments: 300 s)
+        stability.cost_check(sim, axial.states, axial)
+    system = system_model.build(case, loader.case_base_dir(case))
+    stability.cost_check(sim, len(system.y0), axial)
     warnings = [*unit_warnings(case), *ignored_inputs(case), stability.rounded_step(sim),
                 _dense_warning(sim, system), stability.rk4_check(sim, system),
                 *utilisation.start_warnings(case, system.params, system.y0)]  # fmt: skip

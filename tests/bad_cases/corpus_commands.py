@@ -496,6 +496,8 @@ BOX_SETTINGS = [
      "output_interval: 0.5}", r"about 6e\+08 steps of .* states.*--yes"),
     ("implicit_tiny_step", "simulation={integrator: generalized_alpha, time_step: 1.0e-6, "
      "duration: 600.0, output_interval: 0.5}", r"about 6e\+08 steps.*allow_long_run"),
+    ("dopri5_fine_segments", "lines.line.sections[0]={type: rope, length: 24.0, "
+     "segments: 100000}", r"steps of .* states.*axial motion of line 'line'.*fewer, longer"),
 ]  # fmt: skip
 # crafted or broken results files given to the commands that read them
 RESULTS_ATTACKS = {

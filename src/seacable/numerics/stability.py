@@ -89,23 +89,82 @@ def rk4_check(sim: Simulation, system: BuiltSystem) -> str | None:
 WORK_BUDGET = 2e10  # states x steps a run may take without asking: about an hour at 0.2 us
 
 
-def cost_check(sim: Simulation, states: int) -> None:
+def cost_check(sim: Simulation, states: int, axial: "Axial | None" = None) -> None:
     """A run whose work can be estimated before it starts (its fixed steps, or at least
-    ``duration / max_step`` adaptive ones, times its states) and exceeds WORK_BUDGET is refused
-    with the estimate unless the case allows it (``simulation.allow_long_run``)."""
+    ``duration / max_step`` adaptive ones, or for dopri5 at least the steps its stability
+    allows on the lines' fastest axial motion ``axial``; times its states) and exceeds
+    WORK_BUDGET is refused with the estimate unless the case allows it
+    (``simulation.allow_long_run``)."""
     fixed = sim.integrator in FIXED_STEP_INTEGRATORS
     step = rk4_step(sim)[0] if fixed else sim.max_step
+    bounded = not fixed and sim.integrator == "dopri5" and axial is not None
+    if bounded and axial is not None and (step is None or DOPRI5_REACH / axial.frequency < step):
+        step = DOPRI5_REACH / axial.frequency
+    else:
+        bounded = False
     if step is None or sim.allow_long_run:
         return
     steps = sim.duration / step
     work = steps * states
     if work > WORK_BUDGET:
+        why = fix = ""
+        if bounded and axial is not None:
+            why = (f" (dopri5's steps are at most {DOPRI5_REACH:g} / {axial.frequency:.3g} rad/s, "
+                   f"the fastest axial motion of {axial.where})")  # fmt: skip
+            fix = "use fewer, longer segments, "
         raise CaseError(
             f"simulation: about {steps:.3g} steps of {states:,} states ({work:.2g} state-steps, "
-            f"more than the {WORK_BUDGET:.0e} that run in about an hour); lengthen "
+            f"more than the {WORK_BUDGET:.0e} that run in about an hour){why}; {fix}lengthen "
             "simulation.time_step (or max_step), shorten duration, or set "
             "simulation.allow_long_run: true (seacable run --yes) to run it anyway"
         )
+
+
+# the longest step [s] times |lambda| at which dopri5 is stable (its region reaches 3.3 along
+# the negative real axis, less along the imaginary one)
+DOPRI5_REACH = 3.5
+
+
+class Axial(NamedTuple):
+    """A lower bound of the fastest axial motion of a case's lumped lines [rad/s], where it
+    is, and the lines' interior nodes' states (a lower bound of the system's)."""
+
+    frequency: float
+    where: str
+    states: int
+
+
+def axial_bound(case) -> Axial | None:
+    """``Axial`` from the case alone, before anything is built: an interior node of a lumped
+    line, between segments of length l, axial stiffness EA and mass m a metre (with the whole
+    normal added mass in water: more than it has along the line), has a stiffness of at least
+    k = EA / l along a segment against a mass of m l: by Rayleigh's quotient the system holds
+    a mode at sqrt(EA / (m l^2)) or faster (taut segments: more; 2 sqrt(k / (m l)) for a long
+    straight chain). None without a lumped line of two segments or more."""
+    types = {t.name: t for t in case.line_types}
+    env = case.environment
+    best: Axial | None = None
+    states = 0
+    for line in case.lines:
+        if getattr(line, "model", None) != "lumped_mass":
+            continue
+        interior = sum(section.segments for section in line.sections) - 1
+        states += 6 * interior
+        for k, section in enumerate(line.sections if interior else ()):
+            kind = types.get(section.type)
+            if kind is None or kind.axial_stiffness is None:
+                continue
+            water = 0.0 if env.in_air else env.water_density
+            mass = kind.mass_per_length + water * kind.added_mass_coefficient * (
+                math.pi * kind.diameter**2 / 4.0
+            )
+            length = section.length / section.segments
+            frequency = math.sqrt(kind.axial_stiffness / mass) / length
+            if best is None or frequency > best.frequency:
+                where = (f"line '{line.name}' (sections[{k}]: segments of {length:.3g} m, "
+                         f"EA {kind.axial_stiffness:.3g} N)")  # fmt: skip
+                best = Axial(frequency, where, 0)
+    return None if best is None else best._replace(states=states)
 
 
 def rk4_factor(z: np.ndarray) -> np.ndarray:
