@@ -91,3 +91,17 @@ def test_retardation_gives_back_the_added_mass(hemisphere):
     rebuilt = db.added_mass_from_kernel(t, infinite)[:, 2, 2]
     at = np.isin(ka, list(HULME))
     np.testing.assert_allclose(rebuilt[at], db.added_mass[at, 2, 2], rtol=1e-2)
+
+
+def test_a_mesh_too_fine_for_the_solvers_memory_is_refused_before_capytaine_loads():
+    """Capytaine holds dense matrices of the wetted panels (about 75 N^2 bytes: 3,136 panels
+    of the box barge took 0.75 GB, 7,056 took 3.6 GB): a mesh beyond the 1 GB budget is
+    refused with the estimate and the fix, whether Capytaine is installed or not; the same
+    barge at 1.5 m panels passes that check, and the fine one with --yes."""
+    from seacable.errors import CaseError
+
+    fine = meshes.barge(90.0, 24.0, 12.0, 1.0)
+    with pytest.raises(CaseError, match=r"7,056 panels below the waterline.*3.7 GB.*--yes"):
+        bem.compute(fine, [0.5])
+    bem.check_memory(meshes.barge(90.0, 24.0, 12.0, 1.5))  # 3,136 panels: 0.74 GB
+    bem.check_memory(fine, allow_large=True)

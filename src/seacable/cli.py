@@ -333,11 +333,13 @@ def statics(case_file: str, output: str | None, settings: tuple[str, ...]) -> No
 @click.argument("case_file", type=click.Path(dir_okay=False))
 @click.option("--count", type=types.count(1, 10_000), default=12, show_default=True,
               help="Slowest modes shown.")  # fmt: skip
+@click.option("--yes", is_flag=True, help="Compute the modes of a system estimated to need "
+              "more than 1 GB of memory.")  # fmt: skip
 @_SET
-def modes(case_file: str, count: int, settings: tuple[str, ...]) -> None:
+def modes(case_file: str, count: int, yes: bool, settings: tuple[str, ...]) -> None:
     """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
     ratio and the coordinate each mode moves most."""
-    found = analysis.system_modes(_case(case_file, settings), count=count)
+    found = analysis.system_modes(_case(case_file, settings), count=count, allow_large=yes)
     click.echo("mode  period [s]  damping ratio  moves most")
     for k in range(found.sizes["mode"]):
         click.echo(
@@ -367,8 +369,10 @@ for _command in cli_sweep.COMMANDS:  # load cases (seacable.cli_sweep)
               default=math.inf, help="Water depth [m] (default deep).")  # fmt: skip
 @click.option("--rho", type=types.Number(low=1.0, high=1e5, example="1025"), default=1025.0,
               show_default=True, help="[kg/m^3]")  # fmt: skip
+@click.option("--yes", is_flag=True, help="Solve a mesh estimated to need more than 1 GB of "
+              "memory.")  # fmt: skip
 def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation_center,
-            depth: float, rho: float) -> None:  # fmt: skip
+            depth: float, rho: float, yes: bool) -> None:  # fmt: skip
     """Compute the hydrodynamic database of the hull MESH_FILE (placed as floating, z up,
     the waterline at z = 0) with Capytaine: pip install 'seacable[bem]'."""
     first, last, count = omega
@@ -381,7 +385,7 @@ def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation
     try:
         db = bem.compute_file(mesh_file, output, np.linspace(first, last, int(count)),
                               directions_deg=angles, rotation_center=rotation_center,
-                              depth=depth, rho=rho)  # fmt: skip
+                              depth=depth, rho=rho, allow_large=yes)  # fmt: skip
     except ImportError as exc:
         _fail(str(exc), EXIT_INPUT)
     except meshes.MeshError as exc:

@@ -43,3 +43,17 @@ class HydroDBError(SeacableError, ValueError):
 class InputError(SeacableError, ValueError):
     """A file a command reads (results, a database, a table, a mesh) that cannot be used: the
     message names the file, what is wrong and the fix."""
+
+
+MEMORY_BUDGET = 1e9  # [bytes] a computation estimated to hold more is refused unless allowed
+
+
+def memory_check(what: str, needed: float, fix: str, allowed: bool = False) -> None:
+    """Refuse (CaseError) a computation estimated to hold ``needed`` bytes, beyond
+    MEMORY_BUDGET, unless ``allowed`` (the commands' ``--yes``): ``what`` says what grows and
+    how, ``fix`` what to do."""
+    if needed > MEMORY_BUDGET and not allowed:
+        raise CaseError(
+            f"{what}: about {needed / 1e9:.2g} GB of memory, more than the "
+            f"{MEMORY_BUDGET / 1e9:g} GB budget; {fix}, or give --yes to compute it anyway"
+        )

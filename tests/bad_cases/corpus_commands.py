@@ -98,6 +98,8 @@ OPTIONS = [
     ("modes_count_negative", ["modes", SYSTEM, "--count", "-3"], r"'--count'.*-3"),
     ("modes_count_zero", ["modes", SYSTEM, "--count", "0"], r"'--count'.*0"),
     ("modes_count_text", ["modes", SYSTEM, "--count", "many"], r"'--count'.*'many'"),
+    ("modes_dense_too_large", ["modes", BOX, "--set", "lines.line.sections[0]={type: rope, "
+     "length: 24.0, segments: 2000}"], r"modes: the .* rates .*GB.*fewer segments.*--yes"),
     ("plot_every_negative", ["plot", RESULTS, "--every", "-1", "-o", f"{IN}/x.png"],
      r"'--every'.*-1.*above 0"),
     ("plot_every_nan", ["plot", RESULTS, "--every", "nan", "-o", f"{IN}/x.png"],
