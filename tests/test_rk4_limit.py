@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import seacable
+import seacable.simulation  # seacable.simulation.prepare below (a lazy attribute otherwise)
 from seacable.case.loader import load_case
 from seacable.numerics import stability
 from seacable.system import frequency, model
@@ -170,3 +171,35 @@ def test_the_axial_bound_read_off_the_case_lies_below_the_fastest_motion(segment
         run = seacable.simulate(case)
         least = 2.0 * stability.axial_bound(case).frequency / stability.DOPRI5_REACH
         assert run.dataset.attrs["solver_accepted_steps"] >= least
+
+
+def test_a_step_certainly_beyond_the_limit_of_a_large_system_is_refused_before_its_statics(
+    monkeypatch,
+):
+    """The mooring example's chain in 2,000 segments at rk4's 0.002 s: the lines' axial bound
+    (``stability.axial_bound``: 6,470 rad/s or faster) makes that step unstable whatever the
+    statics find, so the case is refused before the build (which would raise here); the same
+    chain in 40 segments is left to the exact check after the build."""
+    import yaml
+
+    from seacable import simulation
+
+    root = __import__("pathlib").Path(__file__).parent.parent
+    chain = yaml.safe_load((root / MOORING).read_text())
+    chain["lines"][0]["sections"][0]["segments"] = 2000
+    chain["simulation"] = {"duration": 1.0, "output_interval": 0.1, "integrator": "rk4",
+                           "time_step": 0.002}  # fmt: skip
+
+    def not_built(*args, **kwargs):
+        raise AssertionError("built")
+
+    monkeypatch.setattr(simulation.system_model, "build", not_built)
+    with pytest.raises(seacable.CaseError) as info:
+        simulation.prepare(load_case(chain))
+    message = str(info.value)
+    assert message.startswith("simulation.time_step: 0.002 s is beyond rk4's stability limit")
+    assert "line 'chain' (sections[0]: segments of 0.125 m" in message
+    assert "rad/s or faster" in message and "allow_unstable_step: true" in message
+    chain["lines"][0]["sections"][0]["segments"] = 40
+    with pytest.raises(AssertionError, match="built"):
+        simulation.prepare(load_case(chain))

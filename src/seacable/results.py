@@ -172,7 +172,7 @@ class Results:
                 "program, or changed): run its case again"
             )
         if grouped and own:
-            return cls(_rows(_tree(path, lazy), written), Path(path))
+            return cls(_tree(path, lazy, written), Path(path))
         opener = xr.open_datatree if grouped else xr.open_dataset
         if lazy:
             return cls(_rows(opener(path, engine="h5netcdf"), written), Path(path))
@@ -186,14 +186,15 @@ _HIDDEN = frozenset(("REFERENCE_LIST", "CLASS", "DIMENSION_LIST", "NAME", "_Netc
 _DIMENSION_ONLY = b"This is a netCDF dimension but not a netCDF variable"
 
 
-def _tree(path, lazy: bool) -> xr.DataTree:
+def _tree(path, lazy: bool, written: int) -> xr.DataTree:
     """A grouped results file that seacable wrote, as ``xarray.open_datatree`` with h5netcdf
     reads it (the same tree: tests/test_results_io.py), without h5netcdf's dimension lookup:
     it names a variable's dimension through HDF5's name of the object a reference points to,
     which HDF5 finds by searching the file, so that reading grows with the square of the
     variables (a run of 800 anchors, 9,800 variables, read back in 270 s; 3 s here). Here each
     dimension's dataset is known by its object (``h5py``'s ids compare by address). ``lazy``
-    keeps the file open and reads a variable as it is indexed (``Results.close``)."""
+    keeps the file open and reads a variable as it is indexed (``Results.close``); the first
+    ``written`` time rows are kept (``_rows``)."""
     f = h5py.File(path, "r")
     try:
         names, groups = {}, {"/": f}
@@ -220,7 +221,7 @@ def _tree(path, lazy: bool) -> xr.DataTree:
                 data = indexing.LazilyIndexedArray(_Stored(obj)) if lazy else obj[...]
                 variables[name] = xr.Variable(dims, data, _attributes(obj.attrs))
             tree[where] = xr.decode_cf(xr.Dataset(variables, attrs=_attributes(group.attrs)))
-        result = xr.DataTree.from_dict(tree)
+        result = _rows(xr.DataTree.from_dict(tree), written)
     except BaseException:
         f.close()
         raise

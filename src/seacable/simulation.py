@@ -93,6 +93,7 @@ def prepare(case: SystemCase) -> tuple[Any, str | None]:
     sim = case.simulation
     axial = stability.axial_bound(case)
     if axial is not None:  # before the build and its statics (100,000 segments: 300 s)
+        stability.rk4_early_check(sim, axial)
         stability.cost_check(sim, axial.states, axial)
     system = system_model.build(case, loader.case_base_dir(case))
     stability.cost_check(sim, len(system.y0), axial)

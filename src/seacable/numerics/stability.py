@@ -57,6 +57,37 @@ def rounded_step(sim: Simulation) -> str | None:
     )
 
 
+# the largest h |lambda| at which rk4 is stable, whatever the eigenvalue's direction in the
+# left half-plane (2.96, 2.83 on the imaginary axis, 2.79 on the real one), rounded up
+RK4_REACH = 3.0
+
+
+EARLY_STATES = 6_000  # the lines' states (1,000 nodes) from which a step is judged early
+
+
+def rk4_early_check(sim: Simulation, axial: "Axial | None") -> None:
+    """rk4 certainly beyond its stability limit, told from the case before the build and its
+    statics (``axial_bound``: a lower bound of the fastest motion), for a system of at least
+    EARLY_STATES lines' states, whose statics may take a minute (a MoorDyn deck of 1,200
+    segments took 67 s before ``rk4_check`` refused its step): refused unless the case allows
+    it. A smaller system is left to ``rk4_check``, which names the exact limit, the node that
+    moves and a step to take."""
+    if sim.integrator != "rk4" or axial is None or sim.allow_unstable_step:
+        return
+    if axial.states < EARLY_STATES:
+        return
+    dt, _ = rk4_step(sim)
+    if dt * axial.frequency <= RK4_REACH:
+        return
+    raise CaseError(
+        f"simulation.time_step: {dt:.4g} s is beyond rk4's stability limit: the fastest axial "
+        f"motion of {axial.where} is {axial.frequency:.4g} rad/s or faster, which makes rk4 "
+        f"unstable above time_step {RK4_REACH / axial.frequency:.3g} s at most. Use a shorter "
+        "time_step (validate then checks it against the built system), or integrator: dopri5 "
+        "(it adapts its step), or set simulation.allow_unstable_step: true to run anyway"
+    )
+
+
 def rk4_check(sim: Simulation, system: BuiltSystem) -> str | None:
     """rk4 beyond its stability limit about the start: refused (CaseError) unless the case
     allows it (then a warning); within NEAR_LIMIT of it, a warning; else None."""
