@@ -251,3 +251,26 @@ def test_simulations_from_the_nominal_places_turn_with_the_weather():
     assert nominal.attrs["simulated_from"] == "nominal"
     with pytest.raises(seacable.CaseError, match="start 'anywhere'"):
         operability(case, weathers, None, limits, 600.0, scheduler=None, start="anywhere")
+
+
+@pytest.mark.parametrize("currents", [[180.0], [150.0, 180.0]])
+def test_a_map_of_one_current_direction_draws_its_cells(tmp_path, currents):
+    """A grid of one current direction drew an empty map (matplotlib's cells around a single
+    coordinate have no height): each status now fills its cell, one direction or several."""
+    import matplotlib.image
+    import xarray as xr
+
+    from seacable.viz.operability import COLOURS, plot_operability
+
+    statuses = ["stable", "limit exceeded", "cycling"]
+    status = np.array([[[s] for s in statuses]] * len(currents), dtype=object)
+    ds = xr.Dataset({"status": (("current_towards_deg", "wind_towards_deg",
+                                 "wind_current_ratio"), status)},
+                    coords={"current_towards_deg": currents,
+                            "wind_towards_deg": [0.0, 90.0, 180.0],
+                            "wind_current_ratio": [15.0]})  # fmt: skip
+    picture = matplotlib.image.imread(plot_operability(ds, tmp_path / "map.png"))[..., :3]
+    for name in statuses:
+        colour = np.array([int(COLOURS[name][k : k + 2], 16) / 255 for k in (1, 3, 5)])
+        share = np.mean(np.all(np.abs(picture - colour) < 0.02, axis=-1))
+        assert share > 0.05, (name, share)  # each of three cells: a sixth of the picture

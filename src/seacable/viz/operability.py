@@ -43,9 +43,9 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
             ax = axes[row, k]
             status = part["status"].isel(wind_current_ratio=k).values
             codes = np.vectorize(names.index)(status)
-            ax.pcolormesh(ds["wind_towards_deg"].values, ds["current_towards_deg"].values,
-                          codes, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5,
-                          shading="nearest")  # fmt: skip
+            ax.pcolormesh(_edges(ds["wind_towards_deg"].values),
+                          _edges(ds["current_towards_deg"].values), codes, cmap=cmap,
+                          vmin=-0.5, vmax=len(names) - 0.5, shading="flat")  # fmt: skip
             ax.set_xlabel("wind towards [deg]")
             ax.set_ylabel("current towards [deg]")
             ax.set_title(("" if control is None else f"{control}: ")
@@ -53,6 +53,21 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
     fig.legend(handles=[Patch(color=COLOURS[n], label=n) for n in names], loc="lower center",
                ncol=len(names), bbox_to_anchor=(0.5, -0.08))  # fmt: skip
     return save(fig, path, tight=True)
+
+
+SINGLE_WIDTH = 10.0  # [deg] the cell of a grid's only direction
+
+
+def _edges(directions: np.ndarray) -> np.ndarray:
+    """The cells' edges [deg] around a grid's directions: halfway between neighbours, the
+    outer ones as far out as the inner ones; a single direction in a cell SINGLE_WIDTH wide
+    (matplotlib's own cells, "nearest", have no width then: a grid of one current direction
+    drew an empty map)."""
+    values = np.asarray(directions, dtype=float)
+    if values.size == 1:
+        return values[0] + np.array([-0.5, 0.5]) * SINGLE_WIDTH
+    middle = 0.5 * (values[1:] + values[:-1])
+    return np.concatenate([[2 * values[0] - middle[0]], middle, [2 * values[-1] - middle[-1]]])
 
 
 def _plot_states(ds: xr.Dataset, path) -> Path:
