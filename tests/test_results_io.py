@@ -415,3 +415,16 @@ def test_rows_held_while_writing_is_slow_all_reach_the_file(tmp_path, monkeypatc
         xr.testing.assert_equal(
             ds["lines/cable"].to_dataset(), at_once.dataset["lines/cable"].to_dataset()
         )
+
+
+def test_a_changed_results_file_is_refused_as_damaged_not_as_a_bug(tmp_path):
+    """A seacable results file whose dimensions were tampered with (a group's time no longer
+    a dimension scale) is refused in one line naming the file, not an internal error."""
+    import h5py
+
+    path = tmp_path / "changed.nc"
+    seacable.simulate(upgraded(_swing()), output=path)
+    with h5py.File(path, "r+") as f:
+        del f["lines/cable/time"].attrs["CLASS"]
+    with pytest.raises(seacable.InputError, match=r"changed\.nc' cannot be read as seacable's"):
+        seacable.Results.open(path)
