@@ -153,7 +153,8 @@ def test_compare_side_by_side_agrees_with_the_simulation_and_judges_the_limits(t
     from seacable.stability.operability import Limits
 
     case = seacable.load_case(EXAMPLE)
-    found = seacable.compare(case, duration=1200.0, limits=Limits(20.0, (("hawser", 1e6),)))
+    found = seacable.compare(case, duration=1200.0, limits=Limits(20.0, (("hawser", 1e6),)),
+                             start="case")  # fmt: skip
     off, on = found.sel(control="uncontrolled"), found.sel(control="controlled")
     assert off["verdict"].item() == "limit exceeded" and "hawser" in off["message"].item()
     assert on["verdict"].item() == "safe"

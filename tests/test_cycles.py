@@ -185,7 +185,7 @@ def test_a_motion_that_has_not_settled_gives_no_verdict():
     scale = cycles.orbits._scales(plane)
     push = vector.real / np.abs(vector.real / scale).max() * 0.1
     per = max(400, cycles.orbits._steps(plane, state, period) // 5)
-    amplitude, _, settled = cycles._settled(plane, state + push, period, per, scale, 30)
+    amplitude, _, settled = cycles._settled(plane, state + push, period, per, 30)
     assert not settled and 0.0 < amplitude < 1.0  # still growing towards its cycle (> 1)
     kind = cycles.criticality(plane, par, state, hopf.parameter, vector, period, 1000.0,
                               most=30)  # fmt: skip

@@ -274,3 +274,49 @@ def test_a_map_of_one_current_direction_draws_its_cells(tmp_path, currents):
         colour = np.array([int(COLOURS[name][k : k + 2], 16) / 255 for k in (1, 3, 5)])
         share = np.mean(np.all(np.abs(picture - colour) < 0.02, axis=-1))
         assert share > 0.05, (name, share)  # each of three cells: a sixth of the picture
+
+
+def test_a_calm_state_is_stable_not_cycling():
+    """In a calm (no current, wind or waves) nothing damps the ships or holds their heading:
+    the equilibrium's eigenvalues lie on the imaginary axis or left of it (to 1e-8 of their
+    size, the heading a free direction), and no energy comes in to feed a motion; the state is
+    stable, said so in its message, not "cycling" as any state without a stable equilibrium
+    was. A current of 0.1 m/s gives the ordinary stable equilibrium."""
+    case = _example()
+    plane = Plane.of(case)
+    calm = [e for e in equilibria.find(plane, Weather(), 6) if clearance_at(plane, e.x) > 0.0]
+    assert calm and all(not e.stable for e in calm)
+    neutral = [e for e in calm if e.neutral]
+    assert neutral and all(e.kind == "neutral" for e in neutral)
+    lam = neutral[0].eigenvalues
+    size = np.abs(lam).max()
+    assert np.all(lam.real < 1e-8 * size)  # nothing grows ...
+    assert np.sum(np.abs(lam.real) < 1e-8 * size) >= 4  # ... nor decays, in most modes
+    assert np.abs(lam).min() < 1e-6 * size  # the free heading
+    rows = operability(case, [Weather(), Weather(0.1, 180.0)], None, Limits(30.0),
+                       scheduler=None, headings=6)  # fmt: skip
+    assert list(rows["status"].values) == ["stable", "stable"]
+    assert rows["message"].values[0].startswith("calm:") and rows["message"].values[1] == ""
+    assert not Weather(0.1, 180.0).calm(plane.built) and Weather().calm(plane.built)
+
+
+def test_an_equilibrium_the_ships_do_not_reach_does_not_decide_and_compare_agrees():
+    """Controlled, in a 24 m/s wind 120 deg off a 0.8 m/s current, the only stable equilibrium
+    holds the shuttle 4.6 m from the FPSO, but from their nominal places the ships never
+    reach it: the map said "limit exceeded, hulls 4.6 m apart" where ``compare`` found the
+    run safe. The motion from the nominal places (the map's and compare's same start) decides
+    the state now, and both give the same least clearance and tension peak."""
+    from seacable.stability.operability import REACH
+
+    case = _example()
+    weather = Weather(0.8, 180.0, 24.0, 60.0)
+    limits = Limits(30.0)
+    row = operability(case, [weather], None, limits, scheduler=None, control="on", headings=6)
+    row = row.isel(control=0, state=0)
+    assert int(row["reached"]) == 0 and row["status"].item() in ("stable", "cycling")
+    assert "hulls 4.6 m apart) is not reached" in row["message"].item()
+    runs = seacable.compare(case, weather, REACH, every=5.0, limits=limits, headings=6)
+    on = runs.sel(control="controlled")
+    assert on["verdict"].item() == "safe"
+    assert float(on["least_clearance"]) == pytest.approx(float(row["clearance"]), rel=1e-9)
+    assert float(on["peak_tension"].max()) == pytest.approx(float(row["tension"]), rel=1e-9)

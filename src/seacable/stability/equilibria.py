@@ -56,11 +56,21 @@ class Equilibrium:
         return bool(np.all(lam.real < -np.maximum(STABLE * np.abs(lam), 1e-9)))
 
     @property
+    def neutral(self) -> bool:
+        """Not stable, but no eigenvalue grows: every real part within the tolerance of zero
+        (the ships in still water, with nothing to damp them, and free to lie at any
+        heading)."""
+        lam = self.eigenvalues
+        return not self.stable and bool(np.all(lam.real <= np.maximum(STABLE * np.abs(lam), 1e-9)))
+
+    @property
     def kind(self) -> str:
-        """ "stable", or "unstable" with how: "divergent" (a real eigenvalue > 0),
-        "oscillatory" (only complex ones), or both."""
+        """ "stable", "neutral" (``neutral``), or "unstable" with how: "divergent" (a real
+        eigenvalue > 0), "oscillatory" (only complex ones), or both."""
         if self.stable:
             return "stable"
+        if self.neutral:
+            return "neutral"
         lam = self.eigenvalues
         bad = lam[lam.real >= -np.maximum(STABLE * np.abs(lam), 1e-9)]
         real = np.any(np.abs(bad.imag) <= 1e-9 * np.maximum(np.abs(bad), 1e-12))

@@ -4,12 +4,14 @@ speeds, or a user's table of current, wind and waves: ``table``), is the tandem 
 Each state gets one status (``STATUSES``):
 
 - ``stable``: a stable equilibrium exists, its hulls' clearance and its ties' tensions within
-  the limits (with ``simulate``: and the motion from it stays within them);
+  the limits (with ``simulate``: and the motion from it stays within them); in a calm (no
+  current, wind or waves) a neutral one counts (``equilibria.Equilibrium.neutral``: nothing
+  damps the ships or holds their heading, and nothing drives them);
 - ``limit exceeded``: the stable equilibrium (one whose hulls do not overlap, the ships lying
   to each other most as at their nominal places: ``equilibria.relative``) breaks a tension
   limit or comes closer than the clearance limit;
-- ``cycling``: no stable equilibrium: the ships oscillate (fishtailing); with ``simulate`` the
-  motion stays within the limits;
+- ``cycling``: no stable equilibrium: the ships oscillate (fishtailing); the message names
+  the kind of the equilibrium kept; with ``simulate`` the motion stays within the limits;
 - ``collision risk``: with ``simulate``, the motion brings the hulls closer than the clearance
   limit (or every stable equilibrium has overlapping hulls);
 - ``no equilibrium``: the search found none (the ships may drift on, or the search missed
@@ -53,6 +55,9 @@ CONTROLS = ("uncontrolled", "controlled")
 STARTS = ("equilibrium", "nominal")  # where a map's simulations start (``operability``)
 # the compensators' settings a map runs (``operability``'s ``control``)
 CONTROL: dict = {None: (None,), "off": (False,), "on": (True,), "both": (False, True)}
+# [s] how long the motion from the nominal places may take to reach a stable equilibrium that
+# breaks a limit before that equilibrium decides the state: three hours of an offloading
+REACH = 10_800.0
 STATUSES = ("stable", "limit exceeded", "cycling", "collision risk", "no equilibrium", "failed")
 
 
@@ -206,17 +211,55 @@ def _rows_of(plane: Plane, states, limits, simulate, headings, start) -> list[di
             # with the hulls apart, first without the compensator's saturated equilibria
             here = _place_of(state)
             near = min(solved, key=lambda s: float(np.abs(s[0] - here).sum()), default=None)
-            found = eq.find(plane, None, 0, extra=near[1] if near else [], iterations=30)
-            for every in (False, True) if plane.controlled else (True,):
-                if any(e.stable and clearance_at(plane, e.x) > 0.0 for e in found):
-                    break
-                found = eq.find(plane, None, headings, extra=[e.x for e in found],
-                                iterations=30, every=every)  # fmt: skip
+            found = search(plane, headings, near[1] if near else [])
             solved.append((here, [e.x for e in found]))
-            rows.append(_classify(plane, found, nominal, limits, simulate, start))
+            row = _classify(plane, found, nominal, limits, simulate, start,
+                            _weather(state).calm(plane.built))  # fmt: skip
+            rows.append(row)
         except Exception as exc:  # one state's failure is its row
             rows.append(_failed(f"{type(exc).__name__}: {exc}"))
     return rows
+
+
+def search(plane: Plane, headings: int, extra=()) -> list[eq.Equilibrium]:
+    """The equilibria of ``plane`` in the weather applied to it, as the map finds them: from
+    ``extra`` (a neighbour's) and the scan, then, when those give no stable one with the hulls
+    apart, the whole search (scanned and placed starts, ``headings`` per body:
+    seacable.stability.equilibria), first without the compensator's saturated equilibria."""
+    found = eq.find(plane, None, 0, extra=list(extra), iterations=30)
+    for every in (False, True) if plane.controlled else (True,):
+        if any(e.stable and clearance_at(plane, e.x) > 0.0 for e in found):
+            break
+        found = eq.find(plane, None, headings, extra=[e.x for e in found], iterations=30,
+                        every=every)  # fmt: skip
+    return found
+
+
+def kept(plane: Plane, found: list, nominal: np.ndarray,
+         calm: bool = False) -> tuple[eq.Equilibrium | None, list[eq.Equilibrium]]:  # fmt: skip
+    """The equilibrium that stands for a state (None: none found) and the stable ones: a
+    stable one (in a ``calm``, a neutral one too: no energy comes in to move the ships) or,
+    without one, any; of those, one whose hulls do not overlap (without a contact model,
+    overlapping equilibria exist, the compensator's among them, that no ship reaches), then
+    the one where the ships lie to each other most as at their ``nominal`` places
+    (``equilibria.relative``'s: the weather turns the whole of them)."""
+    stable = [e for e in found if e.stable or (calm and e.neutral)]
+    pool = stable or found
+    if not pool:
+        return None, stable
+    apart = [e for e in pool if clearance_at(plane, e.x) > 0.0]
+    best = min(apart or pool, key=lambda e: _distance(eq.relative(plane, e.x), nominal))
+    return best, stable
+
+
+def nominal_start(plane: Plane, best: eq.Equilibrium, nominal: np.ndarray) -> np.ndarray:
+    """The state from which the ships start "from their nominal places": at rest, the first
+    ship as at ``best``, each other at its ``nominal`` pose relative to the ship its tie holds
+    it by (``equilibria.placed``): the shuttle just connected astern of the FPSO as it
+    weathervanes."""
+    state = np.zeros(plane.size)
+    state[: 3 * len(plane.bodies)] = eq.placed(plane, best.x, nominal)
+    return state
 
 
 def _place_of(state: tuple[float, ...]) -> np.ndarray:
@@ -232,7 +275,8 @@ def _place_of(state: tuple[float, ...]) -> np.ndarray:
 def _failed(message: str) -> dict:
     return {"status": "failed", "message": message, "equilibria": 0, "stable_equilibria": 0,
             "growth": math.nan, "clearance": math.nan, "tension": math.nan,
-            "period": math.nan, "surge_force": math.nan, "yaw_moment": math.nan}  # fmt: skip
+            "period": math.nan, "surge_force": math.nan, "yaw_moment": math.nan,
+            "reached": -1}  # fmt: skip
 
 
 def clearance_at(plane: Plane, positions: np.ndarray) -> float:
@@ -254,19 +298,14 @@ def _tension_excess(plane: Plane, tension: np.ndarray, limits: Limits) -> tuple[
 
 
 def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
-              simulate: float | None, start: str = "equilibrium") -> dict:  # fmt: skip
+              simulate: float | None, start: str = "equilibrium",
+              calm: bool = False) -> dict:  # fmt: skip
     n = len(plane.bodies)
-    stable = [e for e in found if e.stable]
-    pool = stable or found
-    if not pool:
+    best, stable = kept(plane, found, nominal, calm)
+    if best is None:
         row = _failed("the search found no equilibrium")
         row["status"] = "no equilibrium"
         return row
-    # one whose hulls do not overlap (without a contact model, overlapping equilibria exist,
-    # the compensator's among them, that no ship reaches), then the ships lying to each other
-    # most as at their nominal places (the weather turns the whole of them)
-    apart = [e for e in pool if clearance_at(plane, e.x) > 0.0]
-    best = min(apart or pool, key=lambda e: _distance(eq.relative(plane, e.x), nominal))
     state = np.concatenate([best.x, np.zeros(3 * n)])
     plane.rates(state)
     tension = plane.work.tie_tension.copy()
@@ -276,27 +315,35 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
     row = {"equilibria": len(found), "stable_equilibria": len(stable), "growth": growth,
            "clearance": clearance, "tension": float(tension.max()) if tension.size else 0.0,
            "period": math.nan, "message": "", "surge_force": float(control[0]),
-           "yaw_moment": float(control[1])}  # fmt: skip
+           "yaw_moment": float(control[1]), "reached": -1}  # fmt: skip
     excess, tie = _tension_excess(plane, tension, limits)
+    saturated = bool(control[0] != control[2] or control[1] != control[3])
+    breaks = clearance < limits.clearance or excess > 1.0 or saturated
+    nominal_run = bool(simulate) and start == "nominal"
+    motion = None
+    if nominal_run or (best.stable and breaks):
+        # the motion from the nominal places: does it reach the equilibrium that breaks a
+        # limit? (not: the motion decides the state, not that equilibrium)
+        duration = float(simulate or 0.0) if nominal_run else REACH
+        motion = _motion(plane, nominal_start(plane, best, nominal), duration, limits)
+        if best.stable and breaks:
+            target = eq.relative(plane, best.x)
+            near = min(_distance(eq.relative(plane, q[: 3 * n]), target) for q in motion[3][::5])
+            row["reached"] = int(near < 5.0)
+            if not row["reached"]:
+                what = (f"hulls {clearance:.1f} m apart" if clearance < limits.clearance
+                        else f"tie {tie} at {excess:.2f} times its tension limit"
+                        if excess > 1.0 else "the compensator over its limits")  # fmt: skip
+                return _unreached(row, motion, limits, what, n, duration)
     if simulate:
-        push = state.copy()
-        if start == "nominal":
-            push[: 3 * n] = eq.placed(plane, best.x, nominal)
-        else:
+        if motion is None:  # from the equilibrium, pushed by 1 m and 1 deg
+            push = state.copy()
             push[0 : 3 * n : 3] += 1.0
             push[2 : 3 * n : 3] += math.radians(1.0)
-        steps = int(math.ceil(simulate))  # 1 s steps
-        _, path = orbits.integrate(plane, push, simulate, steps, record=True)
-        least, peak, highest = math.inf, 0.0, row["tension"]
-        ties = list(plane.built.layout.ties)
-        for k in range(0, path.shape[0], 5):
-            least = min(least, clearance_at(plane, path[k, : 3 * n]))
-            plane.rates(path[k])
-            tension = plane.work.tie_tension
-            highest = max(highest, float(tension.max()) if tension.size else 0.0)
-            for name, limit in limits.tension:
-                peak = max(peak, float(tension[ties.index(name)]) / limit)
-        row["clearance"], row["tension"], excess = least, highest, max(excess, peak)
+            motion = _motion(plane, push, simulate, limits)
+        least, highest, peak, _ = motion
+        row["clearance"], row["tension"] = least, max(highest, row["tension"])
+        excess = max(excess, peak)
     if row["clearance"] < limits.clearance:
         row["status"] = "collision risk" if (simulate or row["clearance"] == 0.0) else (
             "limit exceeded")  # fmt: skip
@@ -310,8 +357,60 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
             f"the compensator needs {control[2] / 1e3:.4g} kN and "
             f"{control[3] / 1e6:.4g} MN m to hold its ship: over its limits"
         )
+    elif stable:
+        row["status"] = "stable"
+        if not best.stable:
+            row["message"] = ("calm: nothing damps the ships or holds their heading; they lie "
+                              "still at any heading")  # fmt: skip
     else:
-        row["status"] = "stable" if stable else "cycling"
+        row["status"] = "cycling"
+        if not row["message"]:
+            row["message"] = f"no stable equilibrium; the one kept: {best.kind}"
+    return row
+
+
+def _motion(plane: Plane, push: np.ndarray, duration: float,
+            limits: Limits) -> tuple[float, float, float, np.ndarray]:  # fmt: skip
+    """The motion from ``push`` for ``duration`` [s] (1 s steps): the hulls' least clearance
+    [m], the highest tension [N], the largest ratio of a tie's tension to its limit (each
+    every 5 s), and the path."""
+    n = len(plane.bodies)
+    _, path = orbits.integrate(plane, push, duration, int(math.ceil(duration)), record=True)
+    least, peak, highest = math.inf, 0.0, 0.0
+    ties = list(plane.built.layout.ties)
+    for k in range(0, path.shape[0], 5):
+        least = min(least, clearance_at(plane, path[k, : 3 * n]))
+        plane.rates(path[k])
+        tension = plane.work.tie_tension
+        highest = max(highest, float(tension.max()) if tension.size else 0.0)
+        for name, limit in limits.tension:
+            peak = max(peak, float(tension[ties.index(name)]) / limit)
+    return least, highest, peak, path
+
+
+def _unreached(row: dict, motion: tuple, limits: Limits, what: str, n: int,
+               duration: float) -> dict:  # fmt: skip
+    """The row of a state whose stable equilibrium breaks a limit (``what``) but is not
+    reached from the nominal places in ``duration`` [s]: the ``motion`` from there
+    (``_motion``'s, ``n`` bodies) decides it."""
+    least, highest, peak, path = motion
+    tail = path[-1000:, : 3 * n]  # the last 1,000 s: at rest within 5 cm, or moving
+    spread = float(np.hypot(tail[:, 0::3] - tail[:, 0::3].mean(axis=0),
+                            tail[:, 1::3] - tail[:, 1::3].mean(axis=0)).max())  # fmt: skip
+    still = spread < 0.05
+    row["clearance"], row["tension"] = least, highest
+    if least < limits.clearance:
+        row["status"] = "collision risk"
+    elif peak > 1.0:
+        row["status"] = "limit exceeded"
+    else:
+        row["status"] = "stable" if still else "cycling"
+    how = "comes to rest" if still else f"keeps moving ({spread:.2g} m about its mean at the end)"
+    row["message"] = (
+        f"the stable equilibrium ({what}) is not reached from the nominal places in "
+        f"{duration:.0f} s: the motion from there {how}, the hulls at least {least:.1f} m "
+        f"apart, the ties' tension up to {highest / 1e3:.4g} kN"
+    )
     return row
 
 
@@ -432,6 +531,14 @@ def _dataset(rows, plain, shape, limits, simulate, probability, start) -> xr.Dat
             "tension": (dims, field("tension"), {"units": "N"}),
             "surge_force": (dims, field("surge_force"), {"units": "N"}),
             "yaw_moment": (dims, field("yaw_moment"), {"units": "N m"}),
+            "reached": (
+                dims,
+                field("reached", np.int8),
+                {
+                    "long_name": "the stable equilibrium that breaks a limit reached from the "
+                    "nominal places (1), not reached (0: the motion decides), not asked (-1)"
+                },
+            ),
             "current_speed": (dims, weather[..., 0], {"units": "m/s"}),
             "current_towards": (dims, weather[..., 1], {"units": "deg"}),
             "wind_speed": (dims, weather[..., 2], {"units": "m/s"}),

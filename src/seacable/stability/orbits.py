@@ -137,10 +137,12 @@ class Orbit:
     converged: bool
     residual: float
     path: np.ndarray
+    message: str = ""  # why shooting did not converge ("" when it did)
 
     @property
     def stable(self) -> bool:
-        """All multipliers but the one nearest 1 inside the unit circle."""
+        """All multipliers but the one nearest 1 inside the unit circle (meaningful only on a
+        converged orbit)."""
         m = self.multipliers
         others = np.delete(m, np.argmin(np.abs(m - 1.0)))
         return bool(np.all(np.abs(others) < 1.0))
@@ -176,7 +178,11 @@ def _scales(plane: Plane) -> np.ndarray:
 def shoot(plane: Plane, x0: np.ndarray, period: float, iterations: int = 20,
           tolerance: float = 1e-9) -> Orbit:  # fmt: skip
     """The periodic orbit through (near) ``x0`` with a period near ``period`` [s] (module
-    docstring); ``tolerance`` on the scaled residual and step."""
+    docstring); ``tolerance`` on the scaled residual and step. Newton's step is damped: halved
+    until it lowers the defect (the scaled residual with the phase condition), keeps the
+    period positive and the flow finite; when no step of 1/1024 of Newton's does, shooting
+    stops, not converged, with the reason in ``message``. A flow that leaves finite values
+    from ``x0`` itself raises FloatingPointError."""
     n = plane.size
     scale = _scales(plane)
     ref = np.asarray(x0, float).copy()
@@ -184,31 +190,49 @@ def shoot(plane: Plane, x0: np.ndarray, period: float, iterations: int = 20,
     normal /= np.linalg.norm(normal)
     x, t = ref.copy(), float(period)
     steps = _steps(plane, ref, t)
-    residual, converged = math.inf, False
-    monodromy = np.eye(n)
-    for _ in range(iterations):
+
+    def defect(x: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
         end, _ = integrate(plane, x, t, steps)
-        r = (end - x) / scale
-        residual = float(np.abs(r).max())
-        monodromy = _monodromy(plane, x, t, steps, scale)
+        return np.concatenate([(end - x) / scale, [normal @ ((x - ref) / scale)]]), end
+
+    r, end = defect(x, t)
+    converged, message = False, f"no convergence in {iterations} Newton iterations"
+    for k in range(iterations):
         a = np.zeros((n + 1, n + 1))
-        a[:n, :n] = monodromy - np.eye(n)
+        a[:n, :n] = _monodromy(plane, x, t, steps, scale) - np.eye(n)
         a[:n, n] = plane.rates(end) / scale
         a[n, :n] = normal
-        rhs = np.concatenate([-r, [-(normal @ ((x - ref) / scale))]])
-        delta = np.linalg.lstsq(a, rhs, rcond=None)[0]
-        x = x + delta[:n] * scale
-        t = t + delta[n]
-        if residual < tolerance and np.abs(delta[:n]).max() < 1e3 * tolerance:
+        delta = np.linalg.lstsq(a, -r, rcond=None)[0]
+        if np.abs(r[:n]).max() < tolerance and np.abs(delta[:n]).max() < 1e3 * tolerance:
+            x, t = x + delta[:n] * scale, t + delta[n]
             converged = True
             break
-        if not (t > 0.0 and np.all(np.isfinite(x))):
+        damping = 1.0
+        while damping >= 1.0 / 1024:
+            trial_x, trial_t = x + damping * delta[:n] * scale, t + damping * delta[n]
+            if trial_t > 0.0:
+                try:
+                    trial_r, trial_end = defect(trial_x, trial_t)
+                except FloatingPointError:  # the step threw the ships out of any motion
+                    trial_r = None
+                if trial_r is not None and np.linalg.norm(trial_r) <= (
+                    1.0 - 1e-4 * damping) * np.linalg.norm(r):  # fmt: skip
+                    break
+            damping /= 2.0
+        else:
+            message = (f"Newton's step stalled after {k} iterations: no step along it lowered "
+                       f"the defect (scaled residual {np.abs(r[:n]).max():.2g})")  # fmt: skip
             break
+        x, t, r, end = trial_x, trial_t, trial_r, trial_end
     end, path = integrate(plane, x, t, steps, record=True)
     residual = float(np.abs((end - x) / scale).max())
-    monodromy = _monodromy(plane, x, t, steps, scale)
-    multipliers = np.linalg.eigvals(monodromy)
-    return Orbit(x, t, multipliers, converged and residual < 10 * tolerance, residual, path)
+    multipliers = np.linalg.eigvals(_monodromy(plane, x, t, steps, scale))
+    converged = converged and residual < 10 * tolerance
+    if converged:
+        message = ""
+    elif message.startswith("no convergence"):
+        message += f" (scaled residual {residual:.2g})"
+    return Orbit(x, t, multipliers, converged, residual, path, message)
 
 
 def _monodromy(plane: Plane, x: np.ndarray, period: float, steps: int,
@@ -227,31 +251,117 @@ def _monodromy(plane: Plane, x: np.ndarray, period: float, steps: int,
     return m
 
 
-def settle(
-    plane: Plane, x0: np.ndarray, duration: float, step: float = 1.0
-) -> tuple[np.ndarray, float]:
-    """Integrate from ``x0`` for ``duration`` [s] (``step`` [s]); return the last state and the
-    period of the motion over the last third (the mean time between upward crossings of the
-    coordinate that moves most; nan when it does not oscillate or comes to rest)."""
-    steps = int(math.ceil(duration / step))
-    _, path = integrate(plane, x0, duration, steps, record=True)
-    tail = path[2 * steps // 3 :]
-    times = np.arange(tail.shape[0]) * (duration / steps)
-    spread = np.ptp(tail, axis=0) / _scales(plane)
-    if spread.max() < 1e-2:  # at rest: under 1 cm and 1e-5 rad (settled on an equilibrium)
-        return path[-1], math.nan
-    k = int(np.argmax(spread))
-    third = tail.shape[0] // 3
-    early, late = np.ptp(tail[:third, k]), np.ptp(tail[-third:, k])
-    if late < 0.9 * early:  # still dying out: coming to rest, not a cycle
-        return path[-1], math.nan
-    signal = tail[:, k] - tail[:, k].mean()
-    up = np.flatnonzero((signal[:-1] < 0.0) & (signal[1:] >= 0.0))
+@dataclass
+class Settled:
+    """Where a motion went (``settle``). ``status``: "cycle" (its amplitude settled), "rest"
+    (it died out), "diverged" (it left finite values), "irregular" (its amplitude stopped
+    growing but neither it nor its period settles: no single periodic orbit), or "unsettled"
+    (still growing or shrinking when the time ran out). ``amplitude``: the largest scaled peak
+    to peak (``_scales``) over the last window of 10 periods, or the limit it approaches
+    (Aitken's extrapolation); 0 at rest, inf diverged. ``periods``: the shortest, mean and
+    longest time between upward crossings of the coordinate that moves most, over the last
+    window (nan: fewer than three)."""
+
+    status: str
+    state: np.ndarray
+    amplitude: float
+    periods: tuple[float, float, float]
+    elapsed: float
+    amplitudes: list[float]
+
+    @property
+    def period(self) -> float:
+        return self.periods[1]
+
+
+def settle(plane: Plane, x0: np.ndarray, period: float, per: int, longest: float,
+           center: np.ndarray | None = None, close: float = 0.0) -> Settled:  # fmt: skip
+    """Integrate from ``x0`` in windows of 10 ``period`` [s] (``per`` steps a period) until
+    the motion's amplitude settles, at most ``longest`` [s] (at least three windows). Near a
+    Hopf point the amplitude approaches its limit geometrically and slowly (the multiplier is
+    near 1): a window's amplitude that changes by under 1e-4 from the one before, or Aitken's
+    limit of the last three that agrees with the previous one to 0.2 %, settles it, once the
+    window's crossings come at regular times (within 1 %: a motion whose period wanders is
+    no periodic orbit, whatever its amplitude does). Amplitudes falling geometrically to
+    nothing (two Aitken limits in a row under 0.1 % of where they started) are a rest. With
+    ``close``, a motion whose geometric approach (a ratio under 0.999 a window) leaves under
+    that fraction of its amplitude to go is settled too (with ``center``, its offset from it
+    scaled to the limit): near enough for shooting to finish.
+
+    With ``center`` (the equilibrium the motion grows from), a slowly growing oscillation is
+    sped up: the amplitude a of a motion near a Hopf point follows da/dt = a (sigma - c a^2)
+    (the normal form), so the last three windows' growth rates give sigma, c and the cycle's
+    amplitude sqrt(sigma / c); the motion's offset from ``center`` is scaled to it (at most
+    tenfold, three times at most), and settles from there."""
+    scale = _scales(plane)
+    seen: list[float] = []
+    x, estimate, elapsed = np.asarray(x0, float), math.nan, 0.0
+    nothing = (math.nan, math.nan, math.nan)
+    periods, since, jumps = nothing, 0, 0
+    while elapsed < longest or len(seen) - since < 3:
+        try:
+            x_end, path = integrate(plane, x, 10 * period, 10 * per, record=True)
+        except FloatingPointError:
+            return Settled("diverged", np.full_like(x, np.nan), math.inf, nothing, elapsed, seen)
+        elapsed += 10 * period
+        moves = np.ptp(path, axis=0) / scale
+        seen.append(float(moves.max()))
+        x = x_end
+        if seen[-1] < 1e-6:
+            return Settled("rest", x, 0.0, nothing, elapsed, seen)
+        periods = _crossing_times(path[:, int(np.argmax(moves))], period / per)
+        regular = not periods[2] - periods[0] > 1e-2 * periods[1]  # nan: no crossings
+        if len(seen) - since < 3:
+            continue
+        a0, a1, a2 = seen[-3:]
+        step, before = a2 - a1, a1 - a0
+        ratio = step / before if before != 0.0 else 0.0
+        limit = a2 + step * ratio / (1.0 - ratio) if 0.0 <= ratio < 0.95 else math.nan
+        if regular and abs(step) < 1e-4 * a2:
+            return Settled("cycle", x, a2, periods, elapsed, seen)
+        if regular and math.isfinite(limit) and abs(limit - estimate) < 2e-3 * abs(limit):
+            return Settled("cycle", x, limit, periods, elapsed, seen)
+        if abs(limit) < 1e-3 * a0 and abs(estimate) < 1e-3 * a0:  # dying out geometrically
+            return Settled("rest", x, 0.0, periods, elapsed, seen)
+        if close and regular and 0.0 <= ratio < 0.999 and abs(step) / (1.0 - ratio) < close * a2:
+            limit = a2 + step * ratio / (1.0 - ratio)
+            if center is not None:  # the offset scaled to the limit's amplitude
+                x = center + (x - center) * (limit / a2)
+            return Settled("cycle", x, limit, periods, elapsed, seen)
+        estimate = limit
+        target = _normal_form_amplitude(a0, a1, a2, 10 * period)
+        if center is not None and regular and jumps < 3 and target > 1.5 * a2:
+            x = center + (x - center) * min(target / a2, 10.0)
+            since, jumps, estimate = len(seen), jumps + 1, math.nan
+    # out of time: still growing or shrinking, or wandering about a level
+    last = np.diff(seen[max(since, len(seen) - 5) :])
+    wanders = len(last) >= 3 and bool(np.any(last > 0) and np.any(last < 0))
+    return Settled("irregular" if wanders else "unsettled", x, seen[-1], periods, elapsed, seen)
+
+
+def _normal_form_amplitude(a0: float, a1: float, a2: float, window: float) -> float:
+    """The limit of amplitudes a0 < a1 < a2 (one a ``window`` [s]) growing as da/dt = a (sigma
+    - c a^2): each window's log growth rate against its mean a^2 gives sigma and c; nan unless
+    both are positive (the growth slowing as the amplitude grows)."""
+    if not 0.0 < a0 < a1 < a2:
+        return math.nan
+    r1, r2 = math.log(a1 / a0) / window, math.log(a2 / a1) / window
+    s1, s2 = 0.5 * (a0 * a0 + a1 * a1), 0.5 * (a1 * a1 + a2 * a2)
+    c = (r1 - r2) / (s2 - s1)
+    sigma = r1 + c * s1
+    return math.sqrt(sigma / c) if c > 0.0 and sigma > 0.0 else math.nan
+
+
+def _crossing_times(signal: np.ndarray, step: float) -> tuple[float, float, float]:
+    """The shortest, mean and longest time between upward crossings of ``signal``'s mean
+    (sampled every ``step`` [s]; linear interpolation); nan with fewer than three."""
+    s = signal - signal.mean()
+    up = np.flatnonzero((s[:-1] < 0.0) & (s[1:] >= 0.0))
     if up.size < 3:
-        return path[-1], math.nan
-    # crossing times by linear interpolation
-    crossings = times[up] - signal[up] / (signal[up + 1] - signal[up]) * (times[1] - times[0])
-    return path[-1], float(np.mean(np.diff(crossings)))
+        return (math.nan, math.nan, math.nan)
+    crossings = (up - s[up] / (s[up + 1] - s[up])) * step
+    gaps = np.diff(crossings)
+    return (float(gaps.min()), float(gaps.mean()), float(gaps.max()))
 
 
 def clearance(outlines: list[np.ndarray]) -> float:

@@ -444,6 +444,12 @@ class Weather:
         set_constant(p, channel, self.wind_speed)
         set_constant(p, channel + 1, math.radians(self.wind_towards_deg))
 
+    def calm(self, built: BuiltSystem) -> bool:
+        """No current, no wind and no waves (of this weather on ``built``'s case): nothing
+        moves water or air past the hulls, so nothing damps or drives the ships."""
+        still_sea = self.wave_height == 0.0 or not np.any(built.params.wave[waves.A])
+        return self.current_speed == 0.0 and self.wind_speed == 0.0 and still_sea
+
     def _waves(self, built: BuiltSystem) -> None:
         """The case's waves, scaled to ``wave_height`` and turned to ``wave_towards_deg``."""
         p = built.params
