@@ -32,6 +32,7 @@ PYTHON_ONLY = (
     "coupling.py",
     "system/utilisation.py", "system/variables.py",
     "system/pseudo_time.py", "system/failures.py", "system/closed_form.py",
+    "forces/bseries.py",  # the B-series' coefficients: read when a row is packed, not compiled
     "stability/api.py", "stability/operability.py", "stability/equilibria.py",
     "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",
     "stability/two_parameter.py", "stability/compare.py", "stability/datasets.py",

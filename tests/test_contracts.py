@@ -550,9 +550,9 @@ def test_the_control_states_rest_at_their_equilibrium():
     """StatefulForceModel rules on the controls: a speed controller's integral and a steering
     gear's angle (their modules follow the protocol); their rates vanish with the ship at its
     target speed and the rudder on its command, and are U - u and the gear's law off them."""
-    from seacable.forces import radiation, rudder, servo, thruster
+    from seacable.forces import fin, propeller, radiation, rudder, servo, thruster
 
-    for module in (servo, radiation, rudder, thruster):
+    for module in (servo, radiation, rudder, thruster, propeller, fin):
         assert isinstance(module, StatefulForceModel)
     controller = {"kind": "surge_speed", "target": 3.0, "gain": 1e5, "integral_gain": 1e4}
     gear = {"max_rate_deg_s": 2.0, "time_constant": 0.5}

@@ -144,6 +144,21 @@ def kernel_fields(functions: list[Piecewise], build_up: float = 0.0) -> dict:
     return dict(zip(names, stack(functions, build_up), strict=True))
 
 
+def lowest(function: Piecewise, end: float, samples: int = 20001) -> tuple[float, float]:
+    """The lowest value of ``function`` over [0, ``end``] [s] and its time: at its breaks
+    there and at ``samples`` even times (a cubic piece's or a sine's dip between two samples
+    can be missed by a little). Without the build-up, which stays between f(0) and f(t)."""
+    breaks = function.breaks
+    times = np.union1d(np.linspace(0.0, end, samples), breaks[(breaks >= 0.0) & (breaks <= end)])
+    piece = np.searchsorted(breaks, times, side="right") - 1
+    step, c = times - breaks[piece], function.coefs[piece]
+    amplitude, omega, phase = function.sine
+    values = c[:, 0] + step * (c[:, 1] + step * (c[:, 2] + step * c[:, 3]))
+    values = values + amplitude * np.sin(omega * times + phase)
+    k = int(np.argmin(values))
+    return float(values[k]), float(times[k])
+
+
 def evaluate(function: Piecewise, time: float) -> tuple[float, float, float]:
     """Value and first two derivatives of a compiled time function at ``time`` [s] (no
     build-up: that belongs to the case)."""

@@ -180,7 +180,44 @@ def cases():
 
         mutated(f"unstable.{name}", "unstable steps",
                 re.escape(f"simulation.time_step: {step} ") + beyond, unstable)  # fmt: skip
-    return out + _files()
+    return out + _vessel_forces() + _files()
+
+
+def _vessel_forces() -> list:
+    """A propeller or a fin added to buoy B with one bad key, and on a buoy at all (a point
+    body: they act on a rigid one)."""
+    out: list = []
+    propeller = {"model": "propeller", "diameter": 2.0, "rpm": 100.0,
+                 "open_water": {"kind": "b_series", "pitch_ratio": 1.0, "area_ratio": 0.7,
+                                "blades": 4}}  # fmt: skip
+    fin = {"model": "fin", "area": 2.0, "lift_slope": 3.0, "span_direction": [0.0, -1.0, 0.0],
+           "angle_deg": 5.0}  # fmt: skip
+    at = re.escape("bodies[7].external forces[4]")
+    for name, expect, model in [
+        ("wake_fraction", at + r"\.wake_fraction: Input should be less than 1 \(got 1\.2\)",
+         propeller | {"wake_fraction": 1.2}),
+        ("pitch_ratio", at + r"\.open_water\.pitch_ratio: Input should be less than or equal to "
+         r"1\.4 \(got 1\.6\)",
+         propeller | {"open_water": propeller["open_water"] | {"pitch_ratio": 1.6}}),
+        ("rpm_and_controller", at + r": give exactly one of 'rpm' \[rpm, time function\] or "
+         r"'controller'",
+         propeller | {"controller": {"kind": "surge_speed", "target": 3.0, "gain": 10.0}}),
+        ("curves_backwards", at + r"\.open_water: coefficients: advance ratios \[0\.5, 0\.2\] "
+         r"must be 2 or more, increasing strictly",
+         propeller | {"open_water": {"kind": "table",
+                                     "coefficients": [[0.5, 0.3, 0.04], [0.2, 0.4, 0.05]]}}),
+        ("fin_span_along_x", at + r": span_direction \[1\.0, 0\.0, 0\.0\] has no length or "
+         r"lies along the body's x axis", fin | {"span_direction": [1.0, 0.0, 0.0]}),
+        ("propeller_on_a_buoy", re.escape("bodies[7] (buoy_b).external forces[4]: model "
+                                          "'propeller' acts on a vessel: a 'rigid' body (this "
+                                          "one is 'point')"), propeller),
+    ]:  # fmt: skip
+
+        def add(data, model=model):
+            data["bodies"][7]["external forces"].append(model)
+
+        out.append(_mutated(f"vessel.{name}", "vessel forces", expect, add))
+    return out
 
 
 def _files() -> list:

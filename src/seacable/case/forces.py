@@ -18,6 +18,8 @@ from seacable.case.ship_forces import (
     Compensator,
     CrossFlow,
     CurrentLoad,
+    Fin,
+    Propeller,
     Rudder,
     ShortWing,
     Thruster,
@@ -323,6 +325,8 @@ ForceModel = Annotated[
     | Diffraction
     | Thruster
     | Rudder
+    | Propeller
+    | Fin
     | WindLoad
     | CurrentLoad
     | ShortWing

@@ -1,6 +1,7 @@
 """The force models of a ship manoeuvring in the horizontal plane (``external forces`` of a
-rigid body): thrusters and their speed controller, rudders with their autopilot and steering
-gear, wind and current loads from coefficient tables, the mean wave drift, a hull's current
+rigid body): thrusters and their speed controller, propellers from their open-water curves,
+rudders with their autopilot and steering gear, fins with their roll controller, wind and
+current loads from coefficient tables, the mean wave drift, a hull's current
 loads (``short-wing``, ``cross-flow``) and the tandem compensator. ``case.forces`` gathers them
 with the general models into the ``ForceModel`` union.
 
@@ -19,7 +20,7 @@ BodyPoint = str | Vector  # a point's name (``origin``: the reference point) or 
 # coordinates [m]
 
 
-# ---- thrusters and rudders -----------------------------------------------------------------
+# ---- thrusters, propellers, rudders and fins ------------------------------------------------
 class SpeedController(_Model):
     """A thruster's surge-speed controller: T = feedforward + gain (target - u) +
     integral_gain I, dI/dt = target - u, u the body's surge speed over ground [m/s]
@@ -87,32 +88,28 @@ class Autopilot(_Model):
     """[deg] Largest rudder angle the autopilot commands, to either side."""
 
 
-class SteeringGear(_Model):
+class _Gear(_Model):
+    """What turns a foil: its angle follows the command at most at ``max_rate_deg_s``, as a
+    first-order lag of ``time_constant`` within that rate, from 0 (forces.foil)."""
+
+    max_rate_deg_s: Pos
+    """[deg/s] Fastest rate at which the angle turns towards its command."""
+    time_constant: Pos = 0.1
+    """[s] Time constant T of the first-order lag towards the command, within that rate."""
+
+
+class SteeringGear(_Gear):
     """The rudder's steering gear: the angle follows the command (``angle_deg`` or the
     autopilot's) at most at ``max_rate_deg_s`` [deg/s] (SOLAS II-1/29: 35 deg on one side to
     30 deg on the other within 28 s, 2.3 deg/s), as a first-order lag of ``time_constant``
     [s] within that rate (the default, 0.1 s, is close to the pure rate limit of manoeuvring
     standards and only rounds the arrival on the command). The rudder starts amidships."""
 
-    max_rate_deg_s: Pos
-    """[deg/s] Fastest rate at which the rudder angle turns towards its command."""
-    time_constant: Pos = 0.1
-    """[s] Time constant T of the first-order lag towards the command, within that rate."""
 
+class _Foil(_Model):
+    """A foil's lift and drag law (forces.foil): C_L from the ``lift_slope`` up to the stall,
+    or C_L and C_D from ``coefficients``."""
 
-class Rudder(_Model):
-    """A rudder (forces.rudder): a foil of ``area`` [m^2] at ``point``, its lift perpendicular to
-    the water's flow past it and its drag along it, in the horizontal body plane; C_L from the
-    ``lift_slope`` [1/rad] up to ``stall_angle_deg`` (held beyond) with C_D = drag_coefficient
-    + C_L^2 / (pi aspect_ratio), or both from ``coefficients`` [[alpha_deg, C_L, C_D], ...].
-    The rudder angle (positive: trailing edge to port, turning the ship to port) from
-    ``angle_deg`` or the ``autopilot``, exactly one, through the ``steering_gear`` when given
-    (else at once). ``slipstream_factor`` multiplies the inflow's fore-and-aft component (a
-    propeller's wash)."""
-
-    model: Literal["rudder"]
-    point: BodyPoint = ORIGIN
-    """[m] Where the inflow is taken and the force acts: a point's name or body-frame [x, y, z]."""
     area: Pos
     """[m^2] Area A of the foil, on which C_L and C_D are taken."""
     lift_slope: Pos | None = None
@@ -125,6 +122,34 @@ class Rudder(_Model):
     """[-] Aspect ratio Lambda of the induced drag C_L^2 / (pi Lambda). Omitted: none."""
     coefficients: list[tuple[float, float, NonNeg]] | None = Field(default=None, min_length=2)
     """[deg, -, -] Rows [alpha_deg, C_L, C_D], alpha ascending within [-90, 90], held beyond."""
+
+    @model_validator(mode="after")
+    def _one_foil_law(self):
+        if (self.lift_slope is None) == (self.coefficients is None):
+            raise ValueError("give exactly one of 'lift_slope' [1/rad] or 'coefficients' "
+                             "[[alpha_deg, C_L, C_D], ...]")  # fmt: skip
+        if self.coefficients is not None:
+            alphas = [row[0] for row in self.coefficients]
+            if any(b <= a for a, b in zip(alphas, alphas[1:], strict=False)) or any(
+                    abs(a) > 90.0 for a in alphas):  # fmt: skip
+                raise ValueError(f"coefficients: angles of attack {alphas} must increase "
+                                 "strictly within [-90, 90] deg")  # fmt: skip
+        return self
+
+
+class Rudder(_Foil):
+    """A rudder (forces.rudder): a foil of ``area`` [m^2] at ``point``, its lift perpendicular to
+    the water's flow past it and its drag along it, in the horizontal body plane; C_L from the
+    ``lift_slope`` [1/rad] up to ``stall_angle_deg`` (held beyond) with C_D = drag_coefficient
+    + C_L^2 / (pi aspect_ratio), or both from ``coefficients`` [[alpha_deg, C_L, C_D], ...].
+    The rudder angle (positive: trailing edge to port, turning the ship to port) from
+    ``angle_deg`` or the ``autopilot``, exactly one, through the ``steering_gear`` when given
+    (else at once). ``slipstream_factor`` multiplies the inflow's fore-and-aft component (a
+    propeller's wash)."""
+
+    model: Literal["rudder"]
+    point: BodyPoint = ORIGIN
+    """[m] Where the inflow is taken and the force acts: a point's name or body-frame [x, y, z]."""
     slipstream_factor: Pos = 1.0
     """[-] Factor k on the inflow's fore-and-aft component (a propeller's wash)."""
     angle_deg: TimeFunction | None = None
@@ -135,19 +160,163 @@ class Rudder(_Model):
     """The gear the angle follows its command through. Omitted: the angle is the command."""
 
     @model_validator(mode="after")
-    def _one_of_each(self):
+    def _one_law(self):
         if (self.angle_deg is None) == (self.autopilot is None):
             raise ValueError("give exactly one of 'angle_deg' [deg, time function] or "
                              "'autopilot' ({heading_deg, gain, rate_gain})")  # fmt: skip
-        if (self.lift_slope is None) == (self.coefficients is None):
-            raise ValueError("give exactly one of 'lift_slope' [1/rad] or 'coefficients' "
-                             "[[alpha_deg, C_L, C_D], ...]")  # fmt: skip
-        if self.coefficients is not None:
-            alphas = [row[0] for row in self.coefficients]
-            if any(b <= a for a, b in zip(alphas, alphas[1:], strict=False)) or any(
-                    abs(a) > 90.0 for a in alphas):  # fmt: skip
-                raise ValueError(f"coefficients: angles of attack {alphas} must increase "
-                                 "strictly within [-90, 90] deg")  # fmt: skip
+        return self
+
+
+class PropellerController(SpeedController):
+    """A propeller's surge-speed controller, the thruster's law setting the rate of turn:
+    n = feedforward + gain (target - u) + integral_gain I, dI/dt = target - u, u the body's
+    surge speed over ground [m/s] (forces.speed_control), n within [0, max_rpm]; the integral
+    is held while a limit holds n (no wind-up)."""
+
+    gain: Pos
+    """[rpm s/m] Proportional gain K: revolutions per minute per m/s of speed error."""
+    integral_gain: NonNeg = 0.0
+    """[rpm/m] Integral gain K_i on the time integral I of the speed error."""
+    feedforward: TimeFunction = Constant(value=0.0)
+    """[rpm] Feed-forward rate n_ff, at best the rate that holds the ship at the target."""
+
+
+class BSeries(_Model):
+    """The Wageningen B-screw series' open-water curves, from Oosterveld and van Oossanen's
+    (1975) regression polynomials at a Reynolds number of 2e6 (forces.bseries), over their
+    range: J from 0 to where K_T vanishes (held beyond)."""
+
+    kind: Literal["b_series"]
+    pitch_ratio: Annotated[float, Field(ge=0.5, le=1.4)]
+    """[-] Pitch ratio P/D (at 0.7 of the radius), within the series' 0.5 to 1.4."""
+    area_ratio: Annotated[float, Field(ge=0.3, le=1.05)]
+    """[-] Expanded blade area ratio A_E/A_0, within the series' 0.30 to 1.05."""
+    blades: Annotated[int, Field(ge=2, le=7)]
+    """[-] Number of blades Z, within the series' 2 to 7."""
+
+
+class OpenWaterTable(_Model):
+    """A propeller's own open-water curves: rows [J, K_T, K_Q], J ascending (from 0, the
+    bollard pull, to where K_T vanishes, as an open-water test gives them), or a CSV file of
+    those three columns (a header line allowed); linear between rows and held at the first
+    and last beyond them, not extrapolated (forces.propeller)."""
+
+    kind: Literal["table"]
+    coefficients: list[tuple[float, float, float]] | str
+    """[-, -, -] Rows [J, K_T, K_Q], J ascending, or a CSV file's path (relative to the case)."""
+
+    @model_validator(mode="after")
+    def _ascending(self):
+        if isinstance(self.coefficients, list):
+            advances = [row[0] for row in self.coefficients]
+            if len(advances) < 2 or any(b <= a for a, b in zip(advances, advances[1:],
+                                                               strict=False)):  # fmt: skip
+                raise ValueError(f"coefficients: advance ratios {advances} must be 2 or more, "
+                                 "increasing strictly; give rows [J, K_T, K_Q] with J "
+                                 "ascending")  # fmt: skip
+        return self
+
+
+OpenWater = Annotated[BSeries | OpenWaterTable, Field(discriminator="kind")]
+
+
+class Propeller(_Model):
+    """A ship's propeller from its open-water curves (forces.propeller): at ``point``, along
+    the shaft ``direction``, the thrust (1 - t) rho n^2 D^4 K_T(J) and the shaft's torque
+    rho n^2 D^5 K_Q(J) / eta_R on the hull about the shaft (its sign by the ``rotation``),
+    J = (1 - w) u_a / (n D), u_a the propeller's speed through the water along its shaft
+    (the current at its depth taken away). The rate of turn n from the time function ``rpm``
+    or the ``controller``, exactly one, in [0, ``max_rpm``]: turning ahead only (a stopped
+    propeller gives neither thrust nor torque)."""
+
+    model: Literal["propeller"]
+    point: BodyPoint = ORIGIN
+    """[m] The propeller's centre: a point's name (``origin``: the reference point) or [x, y, z]."""
+    direction: Vector = (1.0, 0.0, 0.0)
+    """[-] The shaft's direction in the body frame, of the thrust turning ahead (normalised)."""
+    diameter: Pos
+    """[m] Diameter D of the propeller."""
+    open_water: OpenWater
+    """The open-water curves K_T(J), K_Q(J): the B-series' polynomials or a table."""
+    rpm: TimeFunction | None = None
+    """[rpm] Rate of turn n in revolutions per minute, 0 or more (turning ahead)."""
+    controller: PropellerController | None = None
+    """The surge-speed controller that sets the rate of turn, instead of ``rpm``."""
+    max_rpm: Pos | None = None
+    """[rpm] Largest rate of turn. Omitted: unlimited."""
+    rotation: Literal["right", "left"] = "right"
+    """Right-handed (clockwise seen from astern, turning ahead; heels the ship to port) or left."""
+    wake_fraction: Annotated[float, Field(ge=0.0, lt=1.0)] = 0.0
+    """[-] Taylor wake fraction w: the speed of advance is (1 - w) times the propeller's speed."""
+    thrust_deduction: Annotated[float, Field(ge=0.0, lt=1.0)] = 0.0
+    """[-] Thrust deduction t: the hull feels (1 - t) times the open-water thrust."""
+    relative_rotative_efficiency: Annotated[float, Field(gt=0.0, le=2.0)] = 1.0
+    """[-] eta_R: the torque behind the hull is the open-water torque over it."""
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.rpm is None) == (self.controller is None):
+            raise ValueError("give exactly one of 'rpm' [rpm, time function] or 'controller' "
+                             "({kind: surge_speed, target, gain})")  # fmt: skip
+        if not sum(v * v for v in self.direction) > 0.0:
+            raise ValueError(f"direction {list(self.direction)} has no length; give the "
+                             "shaft's body-frame direction such as [1, 0, 0] (ahead)")  # fmt: skip
+        return self
+
+
+class RollController(_Model):
+    """A fin's roll controller: fin angle = -sigma (gain phi + rate_gain p), limited to
+    +-max_angle_deg, phi the body's roll [rad], p its roll rate [rad/s], sigma the sign of the
+    roll moment a positive angle gives going ahead (forces.fin): positive gains oppose the
+    roll, on either side, going ahead (astern the lift reverses)."""
+
+    gain: Pos
+    """[-] K_p: degrees of fin angle per degree of roll."""
+    rate_gain: NonNeg = 0.0
+    """[s] K_d: fin angle [rad] per roll rate [rad/s]."""
+    max_angle_deg: Annotated[float, Field(gt=0, le=90)] = 25.0
+    """[deg] Largest fin angle the controller commands, to either side."""
+
+
+class FinActuator(_Gear):
+    """The fin's actuator: its angle follows the command (``angle_deg`` or the roll
+    controller's) at most at ``max_rate_deg_s`` [deg/s] (a stabiliser's fins turn at 20 to 40
+    deg/s), as a first-order lag of ``time_constant`` [s] within that rate, from 0."""
+
+
+class Fin(_Foil):
+    """A fin (forces.fin): a roll stabiliser's fin, or any foil fixed to the hull and turned
+    about its span, of ``area`` [m^2] at ``point``: lift and drag (the rudder's law: C_L from
+    ``lift_slope`` up to ``stall_angle_deg``, or ``coefficients``) on its velocity through the
+    water in the plane normal to ``span_direction``, rotation included. Angle 0: the chord
+    along the body's x; positive: turned about the span direction by the right-hand rule (a
+    starboard fin, span [0, -1, 0], leading edge up). The angle from ``angle_deg`` or the
+    ``roll_controller``, exactly one, through the ``actuator`` when given."""
+
+    model: Literal["fin"]
+    point: BodyPoint = ORIGIN
+    """[m] Where the inflow is taken and the force acts: a point's name or body-frame [x, y, z]."""
+    span_direction: Vector
+    """[-] From the fin's root to its tip, body frame: [0, -1, 0] starboard, [0, 1, 0] port."""
+    angle_deg: TimeFunction | None = None
+    """[deg] Fin angle (with an actuator, its command), about the span direction."""
+    roll_controller: RollController | None = None
+    """The roll controller that sets the fin angle, instead of ``angle_deg``."""
+    actuator: FinActuator | None = None
+    """What turns the fin at a limited rate. Omitted: the angle is the command."""
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        if (self.angle_deg is None) == (self.roll_controller is None):
+            raise ValueError("give exactly one of 'angle_deg' [deg, time function] or "
+                             "'roll_controller' ({gain, rate_gain, max_angle_deg})")  # fmt: skip
+        x, y, z = self.span_direction
+        if not y * y + z * z > 1e-12 * (x * x + y * y + z * z):
+            raise ValueError(f"span_direction {list(self.span_direction)} has no length or "
+                             "lies along the body's x axis (the flow going ahead would run "
+                             "along the span); give the direction from the fin's root to "
+                             "its tip across the flow, such as [0, -1, 0] for a starboard "
+                             "fin")  # fmt: skip
         return self
 
 

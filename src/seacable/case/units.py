@@ -6,8 +6,8 @@ import math
 from pathlib import Path
 
 from seacable import files
-from seacable.case.base import LARGEST_TABLE, Sine, instances
-from seacable.case.ship_forces import CurrentLoad, WindLoad
+from seacable.case.base import LARGEST_TABLE, Constant, Sine, instances
+from seacable.case.ship_forces import CurrentLoad, Propeller, WindLoad
 from seacable.case.system import LineType, PointBody, RigidBody, SystemCase
 from seacable.errors import SeacableError
 
@@ -15,6 +15,8 @@ LIGHTEST_BODY = 10.0  # [kg/m^3] a body's mass over its volume below this: tonne
 SOFTEST_LINE = 1e7  # [Pa] EA over the line's area pi d^2 / 4 below this: EA given in kN?
 DEEPEST_SEA = 11000.0  # [m] the deepest ocean
 LARGEST_COEFFICIENT = 20.0  # [-] OCIMF's wind and current coefficients are of order one
+SLOWEST_PROPELLER = 10.0  # [rpm] a ship's propeller turns faster (rev/s given as rpm?)
+WIDEST_PROPELLER = 15.0  # [m] the largest ships' propellers are about 11 m across (mm as m?)
 
 
 def unit_warnings(case: SystemCase) -> list[str]:
@@ -35,12 +37,29 @@ def unit_warnings(case: SystemCase) -> list[str]:
     for cls in (WindLoad, CurrentLoad):
         for where, load in instances(case, cls):
             out += _coefficients(where, load, case._base_dir)
+    out += _propellers(case)
     for where, sine in instances(case, Sine):
         if abs(sine.phase) > 2.0 * math.pi:
             out.append(
                 f"{where}.phase: {sine.phase:g} rad is more than a turn; phases are in radians "
                 f"({sine.phase:g} degrees would be {math.radians(sine.phase):.4g})"
             )
+    return out
+
+
+def _propellers(case: SystemCase) -> list[str]:
+    """A propeller's constant rpm slower than a ship's propeller turns, its diameter wider."""
+    out = []
+    for where, spec in instances(case, Propeller):
+        if isinstance(spec.rpm, Constant) and 0.0 < spec.rpm.value < SLOWEST_PROPELLER:
+            value = spec.rpm.value
+            out.append(f"{where}.rpm: {value:g} rpm is slower than a ship's propeller turns; "
+                       f"the unit is revolutions per minute ({value:g} rev/s would be "
+                       f"{60 * value:g})")  # fmt: skip
+        if spec.diameter > WIDEST_PROPELLER:
+            out.append(f"{where}.diameter: {spec.diameter:g} m is wider than any ship's "
+                       "propeller (about 11 m at most); diameters are in m "
+                       f"({spec.diameter:g} mm would be {spec.diameter / 1000:g})")  # fmt: skip
     return out
 
 

@@ -143,6 +143,16 @@ def relative_flow(arm, rot, vel, omega, fx, fy):
 
 
 @njit(inline="always", **JIT)
+def flow_at(point, pos, rot, vel, omega, current_z, current_u, current_v):
+    """The arm of the body-frame ``point`` [m] (earth frame, from the reference point) and the
+    water's flow past it in the body frame (``relative_flow``, the current at its elevation):
+    a rudder's, a fin's or a propeller's inflow is minus that flow."""
+    arm = turn(rot, point)
+    cu, cv = c3._current(current_z, current_u, current_v, pos[2] + arm[2])
+    return arm, relative_flow(arm, rot, vel, omega, cu, cv)
+
+
+@njit(inline="always", **JIT)
 def add(row, t, tf, rho, pos, rot, vel, omega, current_z, current_u, current_v, rhs):
     """The wind's or the current's load at P, in the earth frame, added to ``rhs``."""
     arm = turn(rot, (row[0], row[1], row[2]))

@@ -34,6 +34,8 @@ class ForceKind(IntEnum):
     WAVE_DRIFT = 19
     FLUID_INERTIA = 20
     ROD = 21
+    PROPELLER = 22
+    FIN = 23
 
 
 GRAVITY = int(ForceKind.GRAVITY)
@@ -58,6 +60,8 @@ COMPENSATOR = int(ForceKind.COMPENSATOR)
 WAVE_DRIFT = int(ForceKind.WAVE_DRIFT)
 FLUID_INERTIA = int(ForceKind.FLUID_INERTIA)
 ROD = int(ForceKind.ROD)
+PROPELLER = int(ForceKind.PROPELLER)
+FIN = int(ForceKind.FIN)
 MESH = (NON_LINEAR_HYDROSTATIC, NON_LINEAR_FROUDE_KRYLOV)  # the kinds whose row holds a mesh
 
 

@@ -1,5 +1,6 @@
 """A rudder of a vessel (``model: rudder``): lift and drag of a foil of area A [m^2] at a
-body-frame point P, in the horizontal body plane.
+body-frame point P, in the horizontal body plane (``forces.foil``: the foil's law, with its
+span down, a = -z, and its chord at zero angle ahead, c0 = +x).
 
 Rudder angle delta [rad]: positive with the trailing edge to port (+y), which turns a ship
 going ahead to port (a positive yaw rate, counter-clockwise seen from above) when the rudder is
@@ -32,10 +33,9 @@ state of the system, from 0 (amidships), that follows it as a rate-limited first
 T the gear's time constant [s], ``rate`` its largest turning rate [rad/s] (SOLAS II-1/29 asks
 for 35 deg on one side to 30 deg on the other within 28 s: 2.3 deg/s).
 
-Row: P (3), A, a, alpha_stall, C_D0, 1/(pi Lambda) (0: none), k, 1 with the autopilot, K_p,
-K_d, the largest |delta| [rad] (0: none), the table's rows n (0: the lift slope), the gear's
-rate [rad/s] (0: no gear) and T [s], then n rows (alpha [rad] ascending, C_L, C_D). Channel:
-delta, or psi_t [rad].
+Row: P (3), k, 1 with the autopilot, K_p, K_d, the largest |delta| [rad] (0: none), the gear's
+rate [rad/s] (0: no gear) and T [s], then the foil's block (``forces.foil``: A, a,
+alpha_stall, C_D0, 1/(pi Lambda), the table). Channel: delta, or psi_t [rad].
 """
 
 import math
@@ -44,13 +44,14 @@ from numba import njit
 
 from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn
-from seacable.forces.coefficients import relative_flow
-from seacable.kernels import chain3d as c3
+from seacable.forces import foil
+from seacable.forces.coefficients import flow_at
 from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import evaluate
 
-GEAR_RATE, GEAR_TIME = 14, 15
-HEADER = 16
+SLIPSTREAM, AUTOPILOT, GAIN, RATE_GAIN, LIMIT, GEAR_RATE, GEAR_TIME = 3, 4, 5, 6, 7, 8, 9
+FOIL = 10  # the foil's block
+SPAN, CHORD = (0.0, 0.0, -1.0), (1.0, 0.0, 0.0)
 
 
 def pack(point, area, lift_slope, stall_deg, drag, aspect_ratio, slipstream, autopilot,
@@ -62,13 +63,10 @@ def pack(point, area, lift_slope, stall_deg, drag, aspect_ratio, slipstream, aut
     None."""
     gains = autopilot or (0.0, 0.0)
     rate, lag = gear or (0.0, 0.0)
-    rows = [[math.radians(r[0]), float(r[1]), float(r[2])] for r in table or []]
-    return [*(float(v) for v in point), float(area), float(lift_slope or 0.0),
-            math.radians(stall_deg), float(drag),
-            1.0 / (math.pi * aspect_ratio) if aspect_ratio else 0.0, float(slipstream),
-            1.0 if autopilot else 0.0, float(gains[0]), float(gains[1]),
-            math.radians(max_angle_deg or 0.0), float(len(rows)), math.radians(rate),
-            float(lag), *(v for r in rows for v in r)]  # fmt: skip
+    return [*(float(v) for v in point), float(slipstream), 1.0 if autopilot else 0.0,
+            float(gains[0]), float(gains[1]), math.radians(max_angle_deg or 0.0),
+            math.radians(rate), float(lag),
+            *foil.pack(area, lift_slope, stall_deg, drag, aspect_ratio, table)]  # fmt: skip
 
 
 def state_count(row) -> int:
@@ -82,51 +80,19 @@ def angle(row, first, t, rot, omega, tf):
     autopilot's, limited."""
     breaks, coefs, count, sine, build_up = tf
     value, _, _ = evaluate(breaks, coefs, count, sine, build_up, first, t)
-    if row[9] != 0.0:
+    if row[AUTOPILOT] != 0.0:
         heading = math.atan2(rot[1, 0], rot[0, 0])
         error = value - heading
         error -= 2.0 * math.pi * math.floor((error + math.pi) / (2.0 * math.pi))  # [-pi, pi)
-        value = row[10] * error - row[11] * omega[2]
-    limit = row[12]
-    if limit > 0.0:
-        value = min(limit, max(-limit, value))
-    return value
+        value = row[GAIN] * error - row[RATE_GAIN] * omega[2]
+    return foil.limited(value, row[LIMIT])
 
 
 @njit(inline="always", **JIT)
 def rates(row, first, t, rot, omega, tf, y, state, ydot):
     """The steering gear's d delta/dt into ``ydot[state]``."""
     command = angle(row, first, t, rot, omega, tf)
-    rate = row[GEAR_RATE]
-    ydot[state] = min(rate, max(-rate, (command - y[state]) / row[GEAR_TIME]))
-
-
-@njit(inline="always", **JIT)
-def _table(row, n, column, alpha):
-    """Column ``column`` of the (alpha, C_L, C_D) table at ``alpha``, held beyond its ends."""
-    at = HEADER
-    if alpha <= row[at]:
-        return row[at + column]
-    last = at + 3 * (n - 1)
-    if alpha >= row[last]:
-        return row[last + column]
-    k = 0
-    while row[at + 3 * (k + 1)] <= alpha:
-        k += 1
-    a0, a1 = row[at + 3 * k], row[at + 3 * (k + 1)]
-    y0, y1 = row[at + 3 * k + column], row[at + 3 * (k + 1) + column]
-    return y0 + (y1 - y0) * (alpha - a0) / (a1 - a0)
-
-
-@njit(inline="always", **JIT)
-def coefficients(row, alpha):
-    """C_L and C_D at the angle of attack ``alpha`` [rad] (in [-pi/2, pi/2])."""
-    n = int(row[13])
-    if n > 0:
-        return _table(row, n, 1, alpha), _table(row, n, 2, alpha)
-    stall = row[5]
-    lift = row[4] * min(stall, max(-stall, alpha))
-    return lift, row[6] + row[7] * lift * lift
+    ydot[state] = foil.gear_rate(command, y[state], row[GEAR_RATE], row[GEAR_TIME])
 
 
 @njit(inline="always", **JIT)
@@ -134,23 +100,11 @@ def add(row, first, t, rho, pos, rot, vel, omega, current_z, current_u, current_
         state, rhs):  # fmt: skip
     """The rudder's lift and drag at P, in the earth frame, added to ``rhs`` (``y[state]``:
     the steering gear's angle; ``state`` -1: none)."""
-    arm = turn(rot, (row[0], row[1], row[2]))
-    cu, cv = c3._current(current_z, current_u, current_v, pos[2] + arm[2])
-    w = relative_flow(arm, rot, vel, omega, cu, cv)  # the water past P: -s
-    sx, sy = -w[0] * row[8], -w[1]
-    speed = math.sqrt(sx * sx + sy * sy)
-    if speed == 0.0:
-        return
+    # the water's flow past P, -s
+    arm, w = flow_at((row[0], row[1], row[2]), pos, rot, vel, omega, current_z, current_u,
+                     current_v)  # fmt: skip
     delta = y[state] if state >= 0 else angle(row, first, t, rot, omega, tf)
-    ex, ey = math.cos(delta), -math.sin(delta)
-    alpha = math.atan2(ex * sy - ey * sx, ex * sx + ey * sy)
-    if alpha > 0.5 * math.pi:
-        alpha -= math.pi
-    elif alpha < -0.5 * math.pi:
-        alpha += math.pi
-    lift, drag = coefficients(row, alpha)
-    scale = 0.5 * rho * speed * row[3]  # q A / V
-    fx = scale * (lift * sy - drag * sx)
-    fy = scale * (-lift * sx - drag * sy)
-    f0, f1, f2 = turn(rot, (fx, fy, 0.0))
+    inflow = (-w[0] * row[SLIPSTREAM], -w[1], -w[2])
+    fx, fy, fz = foil.force(row, FOIL, rho, inflow, SPAN, CHORD, delta)
+    f0, f1, f2 = turn(rot, (fx, fy, fz))
     add_force(arm, f0, f1, f2, rhs)

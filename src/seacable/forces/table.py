@@ -4,8 +4,16 @@ evaluated from one flat table (``forces.kinds``: row f acts on body ``body[f]``,
 from ``data[at[f]:]`` and its channels from ``first[f]`` on) by ``system.evaluation``'s
 ``add_all`` and ``state_rates``, compiled for the kinds a system holds."""
 
-from seacable.forces import radiation, rudder, servo, thruster
-from seacable.forces.kinds import COMPENSATOR, RADIATION_DAMPING, RUDDER, SERVO, THRUSTER
+from seacable.forces import fin, propeller, radiation, rudder, servo, thruster
+from seacable.forces.kinds import (
+    COMPENSATOR,
+    FIN,
+    PROPELLER,
+    RADIATION_DAMPING,
+    RUDDER,
+    SERVO,
+    THRUSTER,
+)
 
 # kinds evaluated after every other load of the system, which they need (system.kernel.rhs:
 # forces.compensator.apply_all), not by add_all, whatever their value (a kind added after
@@ -17,6 +25,8 @@ STATEFUL = {
     RADIATION_DAMPING: radiation.state_count,
     THRUSTER: thruster.state_count,
     RUDDER: rudder.state_count,
+    PROPELLER: propeller.state_count,
+    FIN: fin.state_count,
 }
 
 

@@ -1,9 +1,11 @@
 """A thruster or propeller of a vessel (``model: thruster``): a thrust T [N] along a body-frame
-direction d at a body-frame point P; its moment about the reference point is r_P x F.
+direction d at a body-frame point P; its moment about the reference point is r_P x F. (A
+propeller on its open-water curves, with its rate of turn, wake and torque, is ``model:
+propeller``, ``forces.propeller``.)
 
 d is a fixed unit vector (a propeller, a tunnel thruster) or, for an azimuth thruster,
 (cos a, sin a, 0) with a(t) the azimuth [rad] from the bow (+x) towards port (+y). T is a time
-function, or the surge-speed controller's proportional-integral law
+function, or the surge-speed controller's proportional-integral law (forces.speed_control)
 
     T = T_ff(t) + K (U(t) - u) + K_i I,        dI/dt = U(t) - u,        u = (R^T v)_x,
 
@@ -23,6 +25,7 @@ from numba import njit
 
 from seacable.bodies.dynamics import add_force
 from seacable.bodies.kinematics import turn
+from seacable.forces import speed_control
 from seacable.kernels.jit import JIT
 from seacable.kernels.timefn import evaluate
 
@@ -43,23 +46,14 @@ def pack(point, direction, azimuth: bool, controlled: bool, gain: float,
 
 def state_count(row) -> int:
     """The controller's integral I [m] when it has an integral gain; none otherwise."""
-    return 1 if row[CONTROLLED] != 0.0 and row[INTEGRAL_GAIN] > 0.0 else 0
+    return speed_control.state_count(row, CONTROLLED, INTEGRAL_GAIN)
 
 
 @njit(inline="always", **JIT)
 def _law(row, first, t, rot, vel, tf, y, state):
-    """T [N] before the limit, and the controller's error U - u [m/s] (0 without it)."""
-    breaks, coefs, count, sine, build_up = tf
-    value, _, _ = evaluate(breaks, coefs, count, sine, build_up, first, t)
-    if row[CONTROLLED] == 0.0:
-        return value, 0.0
-    surge = rot[0, 0] * vel[0] + rot[1, 0] * vel[1] + rot[2, 0] * vel[2]
-    feed, _, _ = evaluate(breaks, coefs, count, sine, build_up, first + 1, t)
-    error = value - surge
-    value = feed + row[GAIN] * error
-    if state >= 0:
-        value += row[INTEGRAL_GAIN] * y[state]
-    return value, error
+    """T [N] before its limits, and the controller's error U - u [m/s] (0 without it)."""
+    return speed_control.command(row, CONTROLLED, GAIN, INTEGRAL_GAIN, first, t, rot, vel, tf,
+                                 y, state)  # fmt: skip
 
 
 @njit(inline="always", **JIT)
@@ -75,11 +69,10 @@ def thrust(row, first, t, rot, vel, tf, y, state):
 @njit(inline="always", **JIT)
 def rates(row, first, t, rot, vel, tf, y, state, ydot):
     """dI/dt = U - u into ``ydot[state]``, 0 while the limit holds and the error pushes the
-    thrust further beyond it."""
+    thrust further beyond it (forces.speed_control)."""
     value, error = _law(row, first, t, rot, vel, tf, y, state)
-    limit = row[LIMIT]
-    held = limit > 0.0 and ((value >= limit and error > 0.0) or (value <= -limit and error < 0.0))
-    ydot[state] = 0.0 if held else error
+    limit = row[LIMIT] if row[LIMIT] > 0.0 else math.inf
+    ydot[state] = speed_control.integral_rate(value, error, -limit, limit)
 
 
 @njit(inline="always", **JIT)

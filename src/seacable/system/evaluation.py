@@ -33,11 +33,13 @@ from seacable.forces import (
     compensator,
     diffraction,
     drag,
+    fin,
     fluid_inertia,
     froude_krylov,
     hull_current,
     hydrostatic,
     linear,
+    propeller,
     radiation,
     rod,
     rudder,
@@ -54,12 +56,14 @@ from seacable.forces.kinds import (
     CURRENT,
     DIFFRACTION,
     DRAG,
+    FIN,
     FLUID_INERTIA,
     GRAVITY,
     LINEAR_DAMPING,
     LINEAR_STIFFNESS,
     NON_LINEAR_FROUDE_KRYLOV,
     NON_LINEAR_HYDROSTATIC,
+    PROPELLER,
     QUADRATIC_DAMPING,
     RADIATION_DAMPING,
     ROD,
@@ -103,6 +107,8 @@ F_DIFFRACTION = True
 F_WAVE_DRIFT = True
 F_THRUSTER = True
 F_RUDDER = True
+F_PROPELLER = True
+F_FIN = True  # fins (roll stabilisers)
 F_COEFFICIENTS = True  # wind and current coefficients
 F_HULL_CURRENT = True  # short-wing and cross-flow hull loads
 # END FLAGS
@@ -412,6 +418,12 @@ def add_all(
         elif F_RUDDER and k == RUDDER:
             rudder.add(row, first[f], t, rho, pos[b], rot[b], vel[b], omega[b], current_z,
                        current_u, current_v, tf, y, state[f], rhs[b])  # fmt: skip
+        elif F_PROPELLER and k == PROPELLER:
+            propeller.add(row, first[f], t, rho, pos[b], rot[b], vel[b], omega[b], current_z,
+                          current_u, current_v, tf, y, state[f], rhs[b])  # fmt: skip
+        elif F_FIN and k == FIN:
+            fin.add(row, first[f], t, rho, pos[b], rot[b], vel[b], omega[b], current_z,
+                    current_u, current_v, tf, y, state[f], rhs[b])  # fmt: skip
         elif F_COEFFICIENTS and (k == WIND or k == CURRENT):
             coefficients.add(row, t, tf, rho, pos[b], rot[b], vel[b], omega[b], current_z,
                              current_u, current_v, rhs[b])  # fmt: skip
@@ -443,6 +455,10 @@ def state_rates(t, y, kind, body, at, first, state, data, pos, rot, vel, omega, 
             thruster.rates(row, first[f], t, rot[b], vel[b], tf, y, state[f], ydot)
         elif F_RUDDER and k == RUDDER:
             rudder.rates(row, first[f], t, rot[b], omega[b], tf, y, state[f], ydot)
+        elif F_PROPELLER and k == PROPELLER:
+            propeller.rates(row, first[f], t, rot[b], vel[b], tf, y, state[f], ydot)
+        elif F_FIN and k == FIN:
+            fin.rates(row, first[f], t, rot[b], omega[b], tf, y, state[f], ydot)
 
 
 @inner

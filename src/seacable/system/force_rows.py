@@ -2,6 +2,7 @@
 by its model's ``pack`` (src/seacable/forces) into the flat rows and time-function channels of
 SystemParams (system.assemble lays them out)."""
 
+import logging
 import math
 from typing import Any
 
@@ -19,9 +20,12 @@ from seacable.forces import (
     coefficients,
     compensator,
     drag,
+    fin,
+    foil,
     hull_current,
     hydrostatic,
     linear,
+    propeller,
     rod,
     rudder,
     servo,
@@ -33,13 +37,20 @@ from seacable.forces.kinds import COMPENSATOR, kind_of
 from seacable.packing import channel, transported
 from seacable.system import hulls
 
+log = logging.getLogger(__name__)
+REVOLUTIONS = 1.0 / 60.0  # [rev/s] a revolution a minute
 
-def in_radians(function: tfn.Piecewise) -> tfn.Piecewise:
-    """A degree-valued time function in radians."""
-    k = math.pi / 180.0
+
+def scaled(function: tfn.Piecewise, k: float) -> tfn.Piecewise:
+    """A time function times ``k`` (into the unit the kernels take)."""
     amplitude, omega, phase = function.sine
     return tfn.Piecewise(function.breaks, function.coefs * k, (amplitude * k, omega, phase),
                          function.builds_up)  # fmt: skip
+
+
+def in_radians(function: tfn.Piecewise) -> tfn.Piecewise:
+    """A degree-valued time function in radians."""
+    return scaled(function, math.pi / 180.0)
 
 
 def offset(body, point: str) -> tuple[float, float, float]:
@@ -60,7 +71,8 @@ def force_row(case, layout, spec, body, rho, base_dir, channels, where, point) -
         for name in applied.CHANNELS:
             channels.append(channel(getattr(spec, name), base_dir, f"{where}.{name}"))
         return applied.pack(offset(body, spec.point), spec.frame == "body")
-    if isinstance(spec, sf.Thruster | sf.Rudder | sf.WindLoad | sf.CurrentLoad):
+    if isinstance(spec, sf.Thruster | sf.Rudder | sf.Propeller | sf.Fin | sf.WindLoad
+                  | sf.CurrentLoad):  # fmt: skip
         return _vessel_row(case, layout, spec, body, base_dir, channels, where)
     if isinstance(spec, sf.ShortWing | sf.CrossFlow):
         if not isinstance(body, RigidBody):
@@ -177,10 +189,15 @@ def _body_point(body, point, where: str) -> tuple[float, float, float]:
 
 
 def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[float]:
-    """The row and channels of a thruster, a rudder, or a wind or current load."""
+    """The row and channels of a thruster, a propeller, a rudder, a fin, or a wind or current
+    load."""
     if not isinstance(body, RigidBody):
         raise CaseError(f"{where}: model '{spec.model}' acts on a vessel: a 'rigid' body (this "
                         f"one is '{body.type}')")  # fmt: skip
+    if isinstance(spec, sf.Propeller):
+        return _propeller_row(case, spec, body, base_dir, channels, where)
+    if isinstance(spec, sf.Fin):
+        return _fin_row(spec, body, base_dir, channels, where)
     if isinstance(spec, sf.Thruster):
         law = spec.thrust if spec.controller is None else spec.controller.target
         channels.append(channel(law, base_dir, f"{where}.thrust"))
@@ -217,6 +234,55 @@ def _vessel_row(case, layout, spec, body, base_dir, channels, where) -> list[flo
         wind.air_density if is_wind and wind else 0.0,
         layout.wind_channel if is_wind else -1, table,
     )  # fmt: skip
+
+
+def _propeller_row(case, spec, body, base_dir, channels, where) -> list[float]:
+    """A propeller's row (forces.propeller) and its channels: n [rev/s] (or the target speed)
+    and the feed-forward n [rev/s]; a rate of turn below 0 during the run refused, a table of
+    curves that does not cover the run warned about."""
+    law = spec.controller
+    if law is None:
+        rate = channel(spec.rpm, base_dir, f"{where}.rpm")
+        low, when = tfn.lowest(rate, case.simulation.duration)
+        if low < 0.0:
+            raise CaseError(f"{where}.rpm: {low:g} rpm at t = {when:g} s; the propeller turns "
+                            "ahead only (rpm 0 or more: its curves are the first quadrant's); "
+                            "give rpm >= 0 throughout the run")  # fmt: skip
+        channels += [scaled(rate, REVOLUTIONS), tfn.constant(0.0)]
+    else:
+        channels.append(channel(law.target, base_dir, f"{where}.controller.target"))
+        feed = channel(law.feedforward, base_dir, f"{where}.controller.feedforward")
+        channels.append(scaled(feed, REVOLUTIONS))
+    try:
+        curves, notes = propeller.open_water(spec, base_dir)
+    except ValueError as exc:
+        raise CaseError(f"{where}.open_water: {exc}") from None
+    for note in notes:
+        log.warning(f"{where}.open_water: {note}")
+    gains = (law.gain * REVOLUTIONS, law.integral_gain * REVOLUTIONS) if law else None
+    return propeller.pack(
+        _body_point(body, spec.point, where), spec.direction, spec.diameter,
+        spec.wake_fraction, spec.thrust_deduction, spec.rotation == "right",
+        spec.relative_rotative_efficiency, gains,
+        spec.max_rpm * REVOLUTIONS if spec.max_rpm else None, curves,
+    )  # fmt: skip
+
+
+def _fin_row(spec, body, base_dir, channels, where) -> list[float]:
+    """A fin's row (forces.fin) and its channel: the angle [rad] (zero with the roll
+    controller)."""
+    pilot = spec.roll_controller
+    law = Constant(value=0.0) if pilot else spec.angle_deg
+    channels.append(in_radians(channel(law, base_dir, f"{where}.angle_deg")))
+    block = foil.pack(spec.area, spec.lift_slope, spec.stall_angle_deg, spec.drag_coefficient,
+                      spec.aspect_ratio, spec.coefficients)  # fmt: skip
+    gear = (gear.max_rate_deg_s, gear.time_constant) if (gear := spec.actuator) else None
+    try:
+        return fin.pack(_body_point(body, spec.point, where), spec.span_direction, block,
+                        (pilot.gain, pilot.rate_gain) if pilot else None,
+                        pilot.max_angle_deg if pilot else None, gear)  # fmt: skip
+    except ValueError as exc:
+        raise CaseError(f"{where}.{exc}") from None
 
 
 def _wave_drift_row(case, spec, body, base_dir, where: str) -> list[float]:

@@ -10,7 +10,6 @@ from scipy import sparse
 
 from seacable.bodies import kinematics
 from seacable.case import system as sch
-from seacable.forces.kinds import RUDDER
 from seacable.system import (
     coordinates,
     failures,
@@ -28,6 +27,7 @@ from seacable.system.force_rows import rods_at_rest
 from seacable.system.frequency import fastest_frequency  # noqa: F401 (the contract's)
 from seacable.system.initial import end_points, initial_state
 from seacable.system.variables import (  # noqa: F401 (the contract's)
+    ANGLES,
     AXES,
     BODY_NAMES,
     COMPENSATOR_VARIABLES,
@@ -162,11 +162,12 @@ def after_step(system: BuiltSystem, w: kernel.SystemWork, t: float, y: np.ndarra
 
 
 def _control_rows(system: BuiltSystem, states, out: dict) -> None:
-    """Each rudder's steering-gear angle [deg] and speed controller's integral [m]."""
+    """Each rudder's steering-gear angle and fin's actuator angle [deg], and speed controller's
+    integral [m]."""
     for b, body in enumerate(system.case.bodies):
         for s, name, kind in controls(system, b):
             values = states[:, s]
-            out[f"bodies/{body.name}/{name}"] = np.degrees(values) if kind == RUDDER else values
+            out[f"bodies/{body.name}/{name}"] = np.degrees(values) if kind in ANGLES else values
 
 
 def rows(times, states, system: BuiltSystem, w) -> tuple[dict, int]:

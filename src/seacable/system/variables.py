@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from seacable.case import system as sch
-from seacable.forces.kinds import RUDDER, THRUSTER
+from seacable.forces.kinds import FIN, PROPELLER, RUDDER, THRUSTER
 from seacable.system import rigid as rigid_kind
 from seacable.system.assemble import BuiltSystem
 
@@ -76,13 +76,21 @@ COMPENSATOR_VARIABLES = (
 CONTROL_STATES = {
     RUDDER: ("rudder_angle", "degree", "the rudder's angle (its steering gear's state)"),
     THRUSTER: ("speed_integral", "m", "the speed controller's integral of (target - u)"),
+    PROPELLER: (
+        "propeller_speed_integral",
+        "m",
+        "the propeller's speed controller's integral of (target - u)",
+    ),
+    FIN: ("fin_angle", "degree", "the fin's angle (its actuator's state)"),
 }
+ANGLES = (RUDDER, FIN)  # the control states that are angles (radians inside, degrees out)
 
 
 def controls(system: BuiltSystem, b: int) -> list[tuple[int, str, int]]:
     """(state, variable, kind) of each of body b's force models with a control state (a
-    rudder's steering gear, a speed controller's integral: forces.table.state_count), in the
-    body's order; the second of a kind is named with ``_2``, and so on."""
+    rudder's steering gear, a fin's actuator, a speed controller's integral:
+    forces.table.state_count), in the body's order; the second of a kind is named with
+    ``_2``, and so on."""
     p = system.params
     out: list[tuple[int, str, int]] = []
     seen: dict[int, int] = {}
@@ -236,8 +244,9 @@ def catalogue() -> list[tuple[str, str, dict]]:
         ("a point body", sch.PointBody), ("a rigid body", sch.RigidBody),
     ]  # fmt: skip
     arc = {k: {"arc_length": (("node",), "m", text)} for k, text in ARC_LENGTH.items()}
-    rudder, thruster = (
-        {CONTROL_STATES[k][0]: (("time",), *CONTROL_STATES[k][1:])} for k in (RUDDER, THRUSTER)
+    rudder, thruster, propeller, fin = (
+        {CONTROL_STATES[k][0]: (("time",), *CONTROL_STATES[k][1:])}
+        for k in (RUDDER, THRUSTER, PROPELLER, FIN)
     )
     return [
         ("the system", "/", dict(ENERGY_VARIABLES)),
@@ -246,6 +255,8 @@ def catalogue() -> list[tuple[str, str, dict]]:
         ("a body with a servo force", "bodies/<name>", dict(SERVO_VARIABLES)),
         ("a body with a rudder (its steering gear)", "bodies/<name>", rudder),
         ("a body with a thruster's speed controller", "bodies/<name>", thruster),
+        ("a body with a propeller's speed controller", "bodies/<name>", propeller),
+        ("a body with a fin (its actuator)", "bodies/<name>", fin),
         ("a body with a compensator", "bodies/<name>",
          {name: (("time",), unit, text) for name, unit, text in COMPENSATOR_VARIABLES}),
         ("a lumped-mass line", "lines/<name>",

@@ -56,6 +56,8 @@ FORCE_FLAG: dict[int, str | None] = {
     kinds.WAVE_DRIFT: "F_WAVE_DRIFT",
     kinds.THRUSTER: "F_THRUSTER",
     kinds.RUDDER: "F_RUDDER",
+    kinds.PROPELLER: "F_PROPELLER",
+    kinds.FIN: "F_FIN",
     kinds.WIND: "F_COEFFICIENTS",
     kinds.CURRENT: "F_COEFFICIENTS",
     kinds.SHORT_WING: "F_HULL_CURRENT",
