@@ -374,11 +374,18 @@ for _command in cli_sweep.COMMANDS:  # load cases (seacable.cli_sweep)
 def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation_center,
             depth: float, rho: float, yes: bool) -> None:  # fmt: skip
     """Compute the hydrodynamic database of the hull MESH_FILE (placed as floating, z up,
-    the waterline at z = 0) with Capytaine: pip install 'seacable[bem]'."""
+    the waterline at z = 0) with Capytaine: pip install 'seacable[bem]'. Its added mass at
+    infinite frequency is solved and written too. One frequency (--omega W W 1) gives a
+    database for wave excitation at W; radiation memory needs many."""
     first, last, count = omega
-    if not (first < last or (first == last and count == 1)):
-        _fail(f"--omega {first:g} {last:g} {count:g}: give first < last (or equal, with a count "
-              "of 1), e.g. --omega 0.1 3.0 30", EXIT_INPUT)  # fmt: skip
+    if count == 1 and first != last:
+        _fail(f"--omega {first:g} {last:g} 1: one frequency is first = last (--omega {first:g} "
+              f"{first:g} 1); several need a count above 1, e.g. --omega {first:g} {last:g} 30",
+              EXIT_INPUT)  # fmt: skip
+    if count > 1 and not first < last:
+        _fail(f"--omega {first:g} {last:g} {count:g}: give first < last for {count:g} "
+              "frequencies, e.g. --omega 0.1 3.0 30 (one frequency: --omega W W 1)",
+              EXIT_INPUT)  # fmt: skip
     angles = types.numbers(directions, "--directions")
     output = output or str(Path(mesh_file).with_suffix(".nc"))
     files.check_output(output, "netcdf", [mesh_file], title=files.HYDRODB)
@@ -390,8 +397,17 @@ def hydrodb(mesh_file: str, output: str | None, omega, directions: str, rotation
         _fail(str(exc), EXIT_INPUT)
     except meshes.MeshError as exc:
         _fail(str(exc), EXIT_INPUT)
-    click.echo(f"database of {len(db.omega)} frequencies and {len(db.directions)} directions "
-               f"written: {output}")  # fmt: skip
+    if len(db.omega) == 1:
+        click.echo(f"note: one frequency, {db.omega[0]:.6g} rad/s (period "
+                   f"{2 * math.pi / db.omega[0]:.10g} s): wave excitation at it only; radiation "
+                   "memory needs the damping over many frequencies", err=True)  # fmt: skip
+    click.echo(f"database of {_counted(len(db.omega), 'frequency', 'frequencies')} and "
+               f"{_counted(len(db.directions), 'direction', 'directions')} (and the added mass "
+               f"at infinite frequency) written: {output}")  # fmt: skip
+
+
+def _counted(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
 
 
 def _tree(results: seacable.Results, results_file: str) -> xr.DataTree:

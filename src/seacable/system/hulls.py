@@ -99,9 +99,10 @@ def radiation_row(db: hydrodb.HydroDB, spec, where: str) -> list[float]:
     ``memory_offsets``) or fitted by state spaces (``state_space_entries``); a kernel above 1 %
     of its peak at the cut-off is reported."""
     if len(db.omega) < 2:
-        raise CaseError(f"{where}: the radiation memory is made from the damping over "
-                        f"frequencies, and the database has {len(db.omega)}; give one computed "
-                        "at many (30 or more, to the damping's decay)")  # fmt: skip
+        raise CaseError(f"{where}: the radiation memory's retardation function is made from the "
+                        f"damping over frequencies, at least two, and {_named(db)} has one "
+                        f"({db.omega[0]:.6g} rad/s); give one computed at many (30 or more, to the "
+                        "damping's decay: seacable hydrodb --omega FIRST LAST COUNT)")  # fmt: skip
     count = int(round(spec.memory / spec.memory_step)) + 1
     times = np.arange(count) * spec.memory_step
     k = db.retardation(times, tail_power(spec))
@@ -142,10 +143,18 @@ def tail_power(spec) -> int | None:
 
 def infinite_added_mass(db: hydrodb.HydroDB, memory: float, step: float,
                         tail: int | None = None) -> np.ndarray:  # fmt: skip
-    """A_inf: the database's, or Ogilvie's estimate with K (its damping's tail of power
-    ``tail``, or none) over ``memory`` seconds sampled every ``step`` [s]."""
+    """A_inf: the database's (a solver's, seacable hydrodb's), or Ogilvie's estimate with K
+    (its damping's tail of power ``tail``, or none) over ``memory`` seconds sampled every
+    ``step`` [s]; a HydroDBError for a database of one frequency without it."""
     if db.infinite is not None:
         return db.infinite
+    if len(db.omega) < 2:
+        raise hydrodb.HydroDBError(
+            f"{_named(db)} has no added mass at infinite frequency, and Ogilvie's relation "
+            f"cannot estimate it from one frequency ({db.omega[0]:.6g} rad/s); give the body's "
+            "added_mass, or a database with added_mass_infinite (seacable hydrodb writes it) or "
+            "computed at many frequencies"
+        )
     times = np.arange(int(round(memory / step)) + 1) * step
     return db.ogilvie(times, tail_power=tail)[0]
 
@@ -165,17 +174,58 @@ def database_row(case, body, spec, base_dir, where: str) -> list[float]:
         return radiation_row(db, spec, where)
     wave = packing.wave_fields(case.environment, case.simulation.build_up)["wave"]
     try:
-        return diffraction.pack(db, wave, spec.froude_krylov)
+        return diffraction.pack(at_one_frequency(db, wave[waves.W]), wave, spec.froude_krylov)
     except hydrodb.HydroDBError as exc:
         raise CaseError(f"{where}: {exc}") from None
 
 
+ONE_FREQUENCY = 1e-4  # relative: a wave this close to a one-frequency database's is at it
+
+
+def at_one_frequency(db: hydrodb.HydroDB, omega) -> hydrodb.HydroDB:
+    """A database of several frequencies as it is; one of one frequency w0 serving waves at
+    w0 (``omega`` [rad/s], within ONE_FREQUENCY of it) as the same values at w0 (1 -+
+    ONE_FREQUENCY), between which forces.diffraction interpolates; a HydroDBError naming the
+    waves' frequencies otherwise (forces.diffraction would give them no force)."""
+    if len(db.omega) > 1:
+        return db
+    w0 = float(db.omega[0])
+    off = np.asarray(omega, dtype=float)[np.abs(np.asarray(omega) / w0 - 1.0) > ONE_FREQUENCY]
+    if len(off):
+        shown = ", ".join(f"{w:.6g}" for w in off[:4]) + (", ..." if len(off) > 4 else "")
+        raise hydrodb.HydroDBError(
+            f"{_named(db)} holds one frequency, {w0:.6g} rad/s (period "
+            f"{2 * math.pi / w0:.10g} s), and the waves have components at {shown} rad/s, "
+            "whose excitation it cannot give; use regular waves of that period, or a database "
+            "computed over the waves' frequencies (seacable hydrodb --omega FIRST LAST COUNT)"
+        )
+
+    def twice(values):
+        return None if values is None else np.repeat(values, 2, axis=0)
+
+    return replace(
+        db, omega=w0 * np.array([1.0 - ONE_FREQUENCY, 1.0 + ONE_FREQUENCY]),
+        added_mass=twice(db.added_mass), damping=twice(db.damping),
+        diffraction=twice(db.diffraction), froude_krylov=twice(db.froude_krylov),
+        excitation_total=twice(db.excitation_total),
+    )  # fmt: skip
+
+
+def _named(db: hydrodb.HydroDB) -> str:
+    """The database by its file (its ``source``: "format:path")."""
+    return f"hydrodynamic database '{db.source.split(':', 1)[-1]}'"
+
+
 def database_added_mass(body, base_dir, where: str, environment) -> np.ndarray:
-    """A_inf of the body's database, for a body with radiation damping and no added mass."""
+    """A_inf of the body's database, for a body with a database and no added mass (a
+    CaseError naming the file when it has neither A_inf nor the frequencies to estimate it)."""
     radiation = [f for f in body.external_forces if f.model == "radiation damping"]
     spec = radiation[0] if radiation else RadiationDamping(model="radiation damping")
-    return infinite_added_mass(body_database(body, base_dir, where, environment), spec.memory,
-                               spec.memory_step, tail_power(spec))  # fmt: skip
+    try:
+        return infinite_added_mass(body_database(body, base_dir, where, environment),
+                                   spec.memory, spec.memory_step, tail_power(spec))  # fmt: skip
+    except hydrodb.HydroDBError as exc:
+        raise CaseError(f"{where}.hydrodynamics.file: {exc}") from None
 
 
 def memory_offsets(kinds_: list[int], at: list[int], data: list[float]) -> None:
