@@ -95,7 +95,8 @@ def test_no_import_inside_functions_except_lazy_optional():
     lazy_ok |= {"capytaine"}  # the [bem] extra, loaded when a database is computed
     lazy_ok |= {"distributed"}  # the [dask] extra, loaded when a map runs on Dask
     lazy_ok |= {"plotly.offline"}  # the [report] extra, loaded when a report is written
-    lazy_ok |= {"matplotlib.colors", "matplotlib.patches"}  # the operability map's picture
+    # the operability map's picture: its cells and its legend's marks
+    lazy_ok |= {"matplotlib.colors", "matplotlib.patches", "matplotlib.lines"}
     # SciPy's slow imports, loaded where used (docs/architecture.md, "Compile time"): a run with
     # rk4, dopri5 or the implicit schemes needs none of them
     lazy_ok |= {"scipy", "scipy.integrate", "scipy.interpolate", "scipy.optimize"}

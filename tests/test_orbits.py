@@ -35,6 +35,7 @@ def _ship_state(cycle, k: int) -> np.ndarray:
     return np.array([x[k], y[k], psi[k], *rates])
 
 
+@pytest.mark.slow  # 13 s: make test-all runs it
 def test_a_cycle_near_its_hopf_point_is_found_and_is_the_systems_own_motion():
     """At 111 kN astern the equilibrium's oscillation grows at 5.4e-6 1/s (an e-folding every
     two days): 30 periods of motion (the former default) were far too short. The cycle is

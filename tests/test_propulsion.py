@@ -189,6 +189,7 @@ def test_a_constant_rate_of_turn_reaches_the_speed_where_thrust_meets_resistance
     assert np.all(np.diff(speed) > -1e-9)  # gathering way, without overshoot
 
 
+@pytest.mark.slow  # the thruster's controller law, shared (forces.speed_control); test-all
 @pytest.mark.parametrize("law", ["integral", "saturated"])
 def test_the_speed_controller_sets_the_rate_of_turn(law):
     """n = n_ff + K (U - u) + K_i I [rpm]: with the integral the ship settles on U = 3 m/s with
@@ -335,6 +336,7 @@ def test_a_roll_decay_at_speed_damps_faster_with_the_roll_controller():
     assert found[2] > 2.0 * found[1]
 
 
+@pytest.mark.slow  # the rudder's steering gear law, shared (forces.foil); test-all
 def test_the_fin_actuator_turns_at_its_rate():
     """A 10 deg command through an actuator of 4 deg/s and 0.1 s: the fin turns at 4 deg/s from
     0 until it is rate T from the command, then closes in as its lag (the rudder's gear);

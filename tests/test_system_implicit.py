@@ -156,7 +156,9 @@ def _worst(ds, reference) -> tuple[float, str]:
         ("catenary_mooring_line_surge", "newmark", 0.01, 6.0, 1e-5),
         ("two_buoys_moored_with_hawser", "newmark", 0.01, 2.0, 1e-4),  # a loop, point bodies
         ("platform_three_catenary_lines", "newmark", 0.01, 2.0, 1e-3),  # a 6-DOF rigid body
-        ("thesis_6_1_sim2_submerged_12_links", "newmark", 0.01, 2.0, 1e-3),  # planar links
+        pytest.param(
+            "thesis_6_1_sim2_submerged_12_links", "newmark", 0.01, 2.0, 1e-3, marks=pytest.mark.slow
+        ),  # planar links (and the two structures below)
         ("thesis_6_3_sim1_two_floating_structures", "newmark", 0.005, 2.0, 5e-3),
         ("rising_body_four_cables", "newmark", 0.005, 2.0, 1e-3),  # 3D rigid segments
     ],

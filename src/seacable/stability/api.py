@@ -29,6 +29,7 @@ from seacable.stability.datasets import (
     weather_of,
 )
 from seacable.stability.parameters import parameter as named_parameter
+from seacable.stability.parameters import unit
 from seacable.stability.plane import Plane, Weather
 
 # the most fixed steps ``periodic_orbit`` lets a motion run to settle on its cycle by default
@@ -199,7 +200,8 @@ def _with_cycles(ds: xr.Dataset, plane: Plane, found: list) -> xr.Dataset:
         special_criticality_by=("special", judged_by.astype(str)),
         special_hysteresis=("special", hysteresis),
         cycle_special=("cycle", np.array(rows["special"], dtype=int)),
-        cycle_parameter=("cycle", np.array(rows["parameter"], dtype=float)),
+        cycle_parameter=("cycle", np.array(rows["parameter"], dtype=float),
+                         {"units": unit(ds.attrs["parameter"])}),  # fmt: skip
         cycle_period=("cycle", np.array(rows["period"], dtype=float), {"units": "s"}),
         cycle_stable=("cycle", np.array(rows["stable"], dtype=bool)),
         cycle_multiplier=("cycle", np.array(rows["multiplier"], dtype=float)),
@@ -232,7 +234,7 @@ def _branches_dataset(plane, parameter, branches, weather) -> xr.Dataset:
             "parameter": (
                 "point",
                 np.concatenate([b.parameter for b in branches]) if branches else np.zeros(0),
-                {"long_name": parameter},
+                {"long_name": parameter, "units": unit(parameter)},
             ),  # fmt: skip
             "branch": ("point", index),
             "unstable": (
@@ -480,12 +482,12 @@ def curves(case: SystemCase | str, first: str, start: float, end: float, second:
             "first": (
                 "curve_point",
                 np.array([v for c in traced for v in c.first]),
-                {"long_name": first},
+                {"long_name": first, "units": unit(first)},
             ),  # fmt: skip
             "second": (
                 "curve_point",
                 np.array([v for c in traced for v in c.second]),
-                {"long_name": second},
+                {"long_name": second, "units": unit(second)},
             ),  # fmt: skip
             "frequency": (
                 "curve_point",

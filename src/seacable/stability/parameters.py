@@ -48,6 +48,17 @@ SETTINGS = {"distance": compensator.DISTANCE, "heading_deg": compensator.HEADING
 SCALES = {"distance": 1.0, "heading_deg": 1.0, "frequency": 1e-3,
           "heading_frequency": 1e-3, "max_ahead": 1e4, "max_astern": 1e4,
           "max_yaw_moment": 1e6}  # fmt: skip
+# the unit of each parameter, by its path's last name (``unit``)
+UNITS = {"speed": "m/s", "towards_deg": "deg", "height": "m", "unstretched_length": "m",
+         "stiffness": "N/m", "x": "m", "y": "m", "distance": "m", "heading_deg": "deg",
+         "frequency": "rad/s", "heading_frequency": "rad/s", "max_ahead": "N",
+         "max_astern": "N", "max_yaw_moment": "N m",
+         **{f"force_{a}": "N" for a in "xyz"}, **{f"moment_{a}": "N m" for a in "xyz"}}  # fmt: skip
+
+
+def unit(path: str) -> str:
+    """The unit of the parameter at ``path`` (module docstring; "" for a path that is none)."""
+    return UNITS.get(path.rsplit(".", 1)[-1], "")
 
 
 def _refuse(path: str, why: str) -> CaseError:

@@ -1,7 +1,8 @@
 """The bifurcation diagram of a continuation (``seacable.continuation``'s Dataset): each body's
-heading against the parameter, a solid line where the equilibrium is stable and a dashed one
-where it is not, the folds, branch points and Hopf points marked; with cycles, each limit
-cycle's least and largest heading (filled: stable, open: unstable)."""
+heading against the parameter (in its units), a solid line where the equilibrium is stable,
+drawn over a thin dashed one where it is not, the folds, branch points and Hopf points marked;
+with cycles, each limit cycle's least and largest heading (filled: stable, open: unstable).
+Only converged orbits are in the Dataset: a failed one is no result."""
 
 from pathlib import Path
 
@@ -31,9 +32,10 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
             heading = np.degrees(np.unwrap(np.radians(ds["heading"].values[at, j])))
             stable = ds["unstable"].values[at] == 0
             for lo, hi in _runs(stable):
-                style = "-" if stable[lo] else "--"
                 end = min(hi + 1, len(at))  # joined to the next run
-                ax.plot(mu[lo:end], heading[lo:end], style, color=f"C{k % 10}", lw=1.5)
+                look = ({"ls": "-", "lw": 2.0, "zorder": 3} if stable[lo]
+                        else {"ls": "--", "lw": 1.0, "alpha": 0.7, "zorder": 2})  # fmt: skip
+                ax.plot(mu[lo:end], heading[lo:end], color=f"C{k % 10}", **look)
         if "cycle" in ds.dims:  # the limit cycles' heading range: filled stable, open not
             stable = ds["cycle_stable"].values
             for edge in ("cycle_heading_low", "cycle_heading_high"):
@@ -48,7 +50,7 @@ def plot_bifurcation(ds: xr.Dataset, path) -> Path:
             if at.size:
                 ax.plot(ds["special_parameter"].values[at], ds["special_heading"].values[at, j],
                         marker, color=colour, ms=9, ls="none", label=kind)  # fmt: skip
-        ax.set_xlabel(ds.attrs.get("parameter", "parameter"))
+        ax.set_xlabel(_label(ds["parameter"], ds.attrs.get("parameter", "parameter")))
         ax.set_ylabel(f"{body} heading [deg]")
         ax.set_title(f"{body}: stable (solid), unstable (dashed)")
         if ax.get_legend_handles_labels()[0]:
@@ -71,13 +73,19 @@ def plot_curves(ds: xr.Dataset, path) -> Path:
                 color=CURVE_COLOURS.get(str(kind), "k"),
                 label=None if kind in seen else f"{kind} points")  # fmt: skip
         seen.add(kind)
-    ax.set_xlabel(ds.attrs.get("first", "first parameter"))
-    ax.set_ylabel(ds.attrs.get("second", "second parameter"))
+    ax.set_xlabel(_label(ds["first"], ds.attrs.get("first", "first parameter")))
+    ax.set_ylabel(_label(ds["second"], ds.attrs.get("second", "second parameter")))
     ax.set_title("where the equilibria fold or start to oscillate")
     ax.grid(alpha=0.3)
     if seen:
         ax.legend(fontsize=8)
     return save(fig, path)
+
+
+def _label(variable: xr.DataArray, name: str) -> str:
+    """An axis's label: the parameter's name and its units."""
+    units = variable.attrs.get("units", "")
+    return f"{name} [{units}]" if units else name
 
 
 def _runs(flags: np.ndarray) -> list[tuple[int, int]]:

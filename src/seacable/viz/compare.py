@@ -38,26 +38,49 @@ def plot_compare(ds: xr.Dataset, path) -> Path:
                            **style)  # fmt: skip
             series[1].plot(time, run["tension"].sel(tie=tie) / 1e3, label=f"{control}: {tie}",
                            **style)  # fmt: skip
-        series[2].plot(time, run["surge_force"] / 1e3, label=f"{control}: surge [kN]", **style)
-        series[2].plot(time, run["yaw_moment"] / 1e6, label=f"{control}: yaw [MN m]",
-                       **{**style, "alpha": 0.5})  # fmt: skip
+        series[2].plot(time, run["surge_force"] / 1e3, label=f"{control}: surge force",
+                       **style)  # fmt: skip
+    moment = series[2].twinx()
+    for control in controls:
+        style = STYLE.get(str(control), {})
+        moment.plot(time, ds["yaw_moment"].sel(control=control) / 1e6, lw=0.8, color="grey",
+                    ls=style.get("ls", "-"), label=f"{control}: yaw moment")  # fmt: skip
+    moment.set_ylabel("compensator's yaw moment [MN m] (grey)")
     clearance = ds["clearance"]
     if np.isfinite(clearance.values).any():
         twin = series[0].twinx()
         for control in controls:
             twin.plot(time, clearance.sel(control=control), lw=0.8, color="grey",
-                      ls=STYLE.get(str(control), {}).get("ls", "-"))  # fmt: skip
+                      ls=STYLE.get(str(control), {}).get("ls", "-"),
+                      label=f"{control}: hull clearance")  # fmt: skip
+        limit = float(ds.attrs.get("clearance_limit", 0.0))
+        if limit > 0.0:
+            twin.axhline(limit, color="k", lw=1.0, ls=":", label=f"clearance limit {limit:g} m")
         twin.set_ylabel("hull clearance [m] (grey)")
+        twin.legend(fontsize=7, loc="lower right")
+    for tie, newtons in _tension_limits(ds.attrs.get("tension_limits", "")):
+        series[1].axhline(newtons / 1e3, color="k", lw=1.0, ls=":",
+                          label=f"{tie} limit {newtons / 1e3:.4g} kN")  # fmt: skip
     for ax, label in zip(series, ("tie distance [m]", "tie tension [kN]",
-                                  "compensator: kN, MN m"), strict=True):  # fmt: skip
+                                  "compensator's surge force [kN]"), strict=True):  # fmt: skip
         ax.set_xlabel("time [s]")
         ax.set_ylabel(label)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left")
         ax.grid(alpha=0.3)
+    moment.legend(fontsize=7, loc="upper right")
     fig.suptitle(f"current {ds.attrs['current_speed']:g} m/s towards "
                  f"{ds.attrs['current_towards_deg']:g} deg, wind {ds.attrs['wind_speed']:g} m/s "
                  f"towards {ds.attrs['wind_towards_deg']:g} deg")  # fmt: skip
     return save(fig, path, tight=True)
+
+
+def _tension_limits(text: str) -> list[tuple[str, float]]:
+    """The ties' tension limits of a Dataset's attribute ("hawser 3e+06 N; ...")."""
+    out = []
+    for part in filter(None, (p.strip() for p in text.split(";"))):
+        name, value, _ = part.rsplit(" ", 2)
+        out.append((name, float(value)))
+    return out
 
 
 def plot_orbit(ds: xr.Dataset, path) -> Path:

@@ -1,9 +1,13 @@
-"""The picture of an operability map (``seacable.stability.operability``'s Dataset). On its
-grid: one panel per wind-to-current speed ratio (a row of them per control setting, when the
-map has both), the status of every pair of current and wind directions in colour. Of a table of
-states: each state a dot, coloured by its status, at the wind's direction relative to the
-current's against the wind speed, and in a second panel the waves' (when the table has waves)
-against their height; a dot's area grows with the state's probability."""
+"""The picture of an operability map (``seacable.stability.operability``'s Dataset). On its grid:
+one panel per wind-to-current speed ratio (a row of them per control setting, when the map has
+both), titled with the speeds [m/s], the status of every pair of current direction and wind
+direction relative to the current (what the ships answer to most) in colour, the states whose
+stable equilibrium breaks a limit but is not reached from the nominal places marked (their
+motion decides them); the limits in the title and each panel's least clearance and highest
+tension under it (the margins). Of a table of states: each state a dot, coloured by its status,
+at the wind's direction relative to the current's against the wind speed, and in a second panel
+the waves' (when the table has waves) against their height; a dot's area grows with the state's
+probability."""
 
 from pathlib import Path
 
@@ -37,22 +41,70 @@ def plot_operability(ds: xr.Dataset, path) -> Path:
     fig, axes = plt.subplots(len(controls), len(ratios), figsize=size, squeeze=False,
                              constrained_layout=True)  # fmt: skip
     cmap = ListedColormap([COLOURS[n] for n in names])
+    current = ds["current_towards_deg"].values
+    wind = ds["wind_towards_deg"].values
+    rows = _edges(current)
     for row, control in enumerate(controls):
         part = ds if control is None else ds.sel(control=control)
         for k, ratio in enumerate(ratios):
             ax = axes[row, k]
-            status = part["status"].isel(wind_current_ratio=k).values
-            codes = np.vectorize(names.index)(status)
-            ax.pcolormesh(_edges(ds["wind_towards_deg"].values),
-                          _edges(ds["current_towards_deg"].values), codes, cmap=cmap,
-                          vmin=-0.5, vmax=len(names) - 0.5, shading="flat")  # fmt: skip
-            ax.set_xlabel("wind towards [deg]")
+            panel = part.isel(wind_current_ratio=k)
+            codes = np.vectorize(names.index)(panel["status"].values)
+            unreached = panel["reached"].values == 0 if "reached" in panel else None
+            for i, towards in enumerate(current):  # each current direction's row of cells
+                relative = (wind - towards + 180.0) % 360.0 - 180.0
+                order = np.argsort(relative)
+                cells, edges = codes[i, order][None, :], _edges(relative[order])
+                for turn in (-360.0, 0.0, 360.0):  # the cells across +-180 deg on both sides
+                    ax.pcolormesh(edges + turn, rows[i : i + 2], cells, cmap=cmap, vmin=-0.5,
+                                  vmax=len(names) - 0.5, shading="flat")  # fmt: skip
+                if unreached is not None and unreached[i].any():
+                    ax.plot(relative[unreached[i]], np.full(unreached[i].sum(), towards), "x",
+                            color="k", ms=4, ls="none")  # fmt: skip
+            ax.set_xlim(-180.0, 180.0)
+            ax.set_xlabel("wind towards, from the current's direction [deg]")
             ax.set_ylabel("current towards [deg]")
-            ax.set_title(("" if control is None else f"{control}: ")
-                         + f"wind speed = {ratio:g} x current speed")  # fmt: skip
-    fig.legend(handles=[Patch(color=COLOURS[n], label=n) for n in names], loc="lower center",
-               ncol=len(names), bbox_to_anchor=(0.5, -0.08))  # fmt: skip
+            ax.set_title(("" if control is None else f"{control}: ") + _speeds(panel, ratio)
+                         + _margins(panel), fontsize=10)  # fmt: skip
+    handles: list = [Patch(color=COLOURS[n], label=n) for n in names]
+    if "reached" in ds and np.any(ds["reached"].values == 0):
+        from matplotlib.lines import Line2D
+
+        handles.append(Line2D([], [], marker="x", color="k", ls="none",
+                              label="equilibrium not reached: the motion decides"))  # fmt: skip
+    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 7),
+               bbox_to_anchor=(0.5, -0.08))  # fmt: skip
+    fig.suptitle(_limits(ds))
     return save(fig, path, tight=True)
+
+
+def _limits(ds: xr.Dataset) -> str:
+    """The map's limits, for its title."""
+    parts = [f"clearance {float(ds.attrs.get('clearance_limit', 0.0)):g} m"]
+    if ds.attrs.get("tension_limits"):
+        parts.append(str(ds.attrs["tension_limits"]))
+    simulated = float(ds.attrs.get("simulated", 0.0) or 0.0)
+    told = f"; each state simulated {simulated:g} s" if simulated else ""
+    return "limits: " + "; ".join(parts) + told
+
+
+def _speeds(panel: xr.Dataset, ratio: float) -> str:
+    """A panel's current and wind speeds [m/s] (the ratio alone for a map without them)."""
+    if "current_speed" not in panel:
+        return f"wind speed = {ratio:g} x current speed"
+    speed = float(np.nanmax(panel["current_speed"].values))
+    return f"current {speed:g} m/s, wind {ratio * speed:g} m/s ({ratio:g} x)"
+
+
+def _margins(panel: xr.Dataset) -> str:
+    """A panel's least clearance and highest tension over its states (a second line)."""
+    if "clearance" not in panel or "tension" not in panel:
+        return ""
+    clearance = panel["clearance"].values.astype(float)
+    tension = panel["tension"].values.astype(float)
+    least = np.nanmin(clearance) if np.isfinite(clearance).any() else np.nan
+    top = np.nanmax(tension) if np.isfinite(tension).any() else np.nan
+    return f"\nleast clearance {least:.3g} m, tension up to {top / 1e3:.4g} kN"
 
 
 SINGLE_WIDTH = 10.0  # [deg] the cell of a grid's only direction
@@ -106,4 +158,5 @@ def _plot_states(ds: xr.Dataset, path) -> Path:
                          + f"{part['status'].size} states")  # fmt: skip
     fig.legend(handles=[Patch(color=COLOURS[n], label=n) for n in COLOURS], loc="lower center",
                ncol=len(COLOURS), bbox_to_anchor=(0.5, -0.08))  # fmt: skip
+    fig.suptitle(_limits(ds))
     return save(fig, path, tight=True)

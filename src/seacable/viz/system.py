@@ -200,6 +200,8 @@ def _draw_range(ax, tree, last: int) -> None:
         ax.set_title("tension and curvature range along each line")
     if drawn:
         ax.legend(fontsize=7, loc="upper left" if bent else "best")
+    else:
+        _empty(ax, "no lines in this system")
 
 
 def _draw_end_tensions(ax, tree, last: int) -> None:
@@ -213,6 +215,13 @@ def _draw_end_tensions(ax, tree, last: int) -> None:
         if "tension" in ds and ds["tension"].ndim == 1:
             ax.plot(t, ds["tension"].values[:last] / 1e3, label=f"{name} (tie)")
     _finish(ax, "force of each line on its end points", "[kN]")
+    if not ax.lines:
+        _empty(ax, "no lines in this system")
+
+
+def _empty(ax, why: str) -> None:
+    """A panel with nothing to draw, saying why."""
+    ax.text(0.5, 0.5, why, ha="center", va="center", transform=ax.transAxes)
 
 
 def _draw_bodies(ax, tree, last: int, what: str) -> None:
@@ -233,8 +242,7 @@ def _draw_bodies(ax, tree, last: int, what: str) -> None:
     else:
         _finish(ax, "rotations of the rigid bodies", "[degree]")
     if not ax.lines:
-        ax.text(0.5, 0.5, "nothing moves here", ha="center", va="center",
-                transform=ax.transAxes)  # fmt: skip
+        _empty(ax, "nothing moves here")
 
 
 def _title(tree: xr.DataTree) -> str:
