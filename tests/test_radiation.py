@@ -127,3 +127,20 @@ def test_a_short_memory_is_reported_and_cvode_refused(tmp_path, caplog):
     assert "still" in caplog.text and "lengthen 'memory'" in caplog.text
     with pytest.raises(CaseError, match="SUNDIALS"):
         model.build(_case(path, 1.0, integrator="cvode"))
+
+
+def test_waves_outside_the_databases_frequencies_are_said_at_build(tmp_path, caplog):
+    """A wave beyond the database's frequencies (0.02 to 30 rad/s here) gets no excitation:
+    before, silently; now the build says so, naming the file, its range and the share of the
+    waves' energy. A wave inside says nothing."""
+    from seacable.system import model
+
+    path = tmp_path / "db.nc"
+    _database(path)
+    with caplog.at_level("WARNING", logger="seacable"):
+        model.build(_case(path, 1.0))
+    assert "get no excitation" not in caplog.text
+    with caplog.at_level("WARNING", logger="seacable"):
+        model.build(_case(path, 40.0, amplitude=0.01))
+    assert f"database '{path}' covers 0.02 to 30 rad/s" in caplog.text
+    assert "1 of the 1 wave components (100.0 % of the waves' energy" in caplog.text

@@ -6,10 +6,15 @@ to the body's heading at each evaluation, gives Re(X a_i e^{i theta_i}) with the
 phase at the body's reference point; the sum is turned into the earth frame. ``froude_krylov``
 adds the database's linear Froude-Krylov part (without ``non-linear Froude-Krylov``).
 
+A component outside the database's frequencies gets no excitation (none is known there); when
+those components carry more than ``OUTSIDE`` of the waves' energy, the build says so, naming
+the database, its range and the share, instead of dropping them silently.
+
 The row: [m directions (increasing, rad), n components, the directions, then per component
 and direction the six complex forces as (re, im) pairs].
 """
 
+import logging
 import math
 
 import numpy as np
@@ -17,10 +22,15 @@ import numpy as np
 from seacable.kernels import waves
 from seacable.kernels.jit import inner
 
+OUTSIDE = 0.01  # the share of the waves' energy outside a database's frequencies said at build
+log = logging.getLogger("seacable")
+
 
 def pack(db, wave: np.ndarray, froude_krylov: bool) -> list[float]:
     """The row for the components ``wave`` (kernels.waves rows) from a HydroDB at the body's
-    reference point."""
+    reference point (a warning when more than ``OUTSIDE`` of the waves' energy lies outside its
+    frequencies)."""
+    _say_outside(db, wave)
     x = db.excitation(froude_krylov)  # (n, m, 6)
     m = len(db.directions)
     out = [float(m), float(wave.shape[1]), *db.directions.tolist()]
@@ -34,6 +44,26 @@ def pack(db, wave: np.ndarray, froude_krylov: bool) -> list[float]:
                                  + 1j * np.interp(omega, db.omega, x[:, j, c].imag))  # fmt: skip
         out += np.stack([per.real, per.imag], axis=-1).ravel().tolist()
     return out
+
+
+def _say_outside(db, wave: np.ndarray) -> None:
+    """Warn when the components outside ``db``'s frequencies carry more than ``OUTSIDE`` of
+    the energy (a^2) of ``wave``."""
+    energy = wave[waves.A] ** 2
+    omega = wave[waves.W]
+    outside = (omega < db.omega[0]) | (omega > db.omega[-1])
+    total = float(energy.sum())
+    share = float(energy[outside].sum()) / total if total > 0.0 else 0.0
+    if share > OUTSIDE:
+        name = str(db.source).split(":", 1)[-1].strip()
+        log.warning(
+            "hydrodynamic database '%s' covers %.4g to %.4g rad/s: %d of the %d wave components "
+            "(%.1f %% of the waves' energy, %.4g to %.4g rad/s) lie outside it and get no "
+            "excitation; compute the database over the waves' frequencies (seacable hydrodb "
+            "--omega FIRST LAST COUNT) or cut the spectrum to its range",
+            name, db.omega[0], db.omega[-1], int(outside.sum()), omega.size, 100.0 * share,
+            float(omega[outside].min()), float(omega[outside].max()),
+        )  # fmt: skip
 
 
 @inner
