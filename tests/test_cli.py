@@ -192,6 +192,7 @@ def test_system_validate_statics_and_modes(tmp_path):
     assert result.exit_code == 0, result.output
     lines = result.output.splitlines()
     assert lines[0].startswith("mode  period [s]") and len(lines) == 5
+    assert lines[0].endswith("found by") and lines[1].endswith("linearised")
     single = tmp_path / "single.yaml"
     single.write_text(yaml.safe_dump(chain_case(n=8)))
     result = runner.invoke(main, ["statics", str(single)])

@@ -13,6 +13,7 @@ LAYER = {
     "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
     "simulation": 11, "analysis": 11, "stability": 11, "stats": 11,
+    "natural_periods": 10.8,
     "case.loader": 10, "results": 10, "case.reference": 9.5,
     "numerics": 8,
     "system": 7,
@@ -26,7 +27,7 @@ LAYER = {
     "case.legacy": 10,
     "case.legacy_sections": 9, "case.moordyn": 9, "case.moordyn_tables": 8.5,
     "case.forces": 2, "case.environment": 2, "case.sweep": 2, "case.fatigue": 2,
-    "case.ship_forces": 1.5,
+    "case.ship_forces": 1.5, "case.document": 1.5,
     "case.base": 1, "hydrodb_formats": 1,
     "kernels": 0, "errors": 0, "files": 0.5,
 }  # fmt: skip

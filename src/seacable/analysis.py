@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from seacable import natural_periods
 from seacable.case import loader
 from seacable.case.system import SystemCase
 from seacable.errors import CaseError, memory_check
@@ -34,16 +35,23 @@ def system_modes(case: SystemCase, count: int = 12, allow_large: bool = False) -
     line node) are linearised by central differences of the compiled right-hand side
     (``system.statics.jacobian``; rotations as small rotation vectors in the earth frame), and
     the eigenvalues of the first-order system give each mode's frequency and damping. The
-    ``count`` slowest oscillatory modes are returned, slowest first.
+    ``count`` slowest oscillatory modes are returned, slowest first; a mode that a body with a
+    hydrodynamic database moves most has its period at its own frequency's added mass A(w)
+    (iterated), the radiation memory's poles are listed apart, and a floating body that
+    nothing holds has its equilibrium in heave, roll and pitch and its other degrees of freedom
+    listed as free, without restoring (``seacable.natural_periods``).
 
     Returns
     -------
     xarray.Dataset
-        ``period`` [s] = 2 pi / |Im lambda|, ``frequency`` |lambda| [rad/s] (undamped
-        equivalent), ``damping_ratio`` -Re(lambda) / |lambda| (dimension ``mode``), and
+        ``period`` [s] = 2 pi / |Im lambda| (2 pi / w for a period at A(w), inf for a free
+        degree of freedom), ``frequency`` |lambda| [rad/s] (undamped equivalent),
+        ``damping_ratio`` -Re(lambda) / |lambda| (dimension ``mode``), ``method`` how each was
+        found (``linearised``, ``A(w) iterated``, ``free (no restoring)``, ``memory pole``), and
         ``shape`` (``mode``, ``coordinate``): the position part of each mode, real part with the
-        largest component 1; coordinate names ``body:surge`` ... ``body:yaw`` and
-        ``line:node k:x``; ``dominant`` names each mode's largest body coordinate (or line).
+        largest component 1 (zero for the free and memory rows); coordinate names
+        ``body:surge`` ... ``body:yaw`` and ``line:node k:x``; ``dominant`` names each mode's
+        largest body coordinate (or line; ``body:radiation memory`` for a memory pole).
 
     The eigenvalues are those of the whole dense matrix, which holds about 48 m^2 bytes for
     m rates (500 segments: 0.47 GB measured, 1,000: 1.9 GB in 87 s); beyond
@@ -63,38 +71,37 @@ def system_modes(case: SystemCase, count: int = 12, allow_large: bool = False) -
         "lines.NAME.sections[0].segments=...)",
         allow_large,
     )
-    derived = loader.derive_case(case, {"start": "static"})
-    assert isinstance(derived, SystemCase)  # derive_case keeps the form
-    built = system_model.build(derived, loader.case_base_dir(derived))
-    y = built.y0.copy()
-    y[built.params.n_q :] = 0.0
-    a, coords = system_statics.jacobian(built, y)
-    n = len(coords.kind)
-    values, vectors = np.linalg.eig(a)
-    keep = np.flatnonzero(values.imag > 1e-9 * np.maximum(1.0, np.abs(values)))
-    order = keep[np.argsort(np.abs(values[keep].imag))][:count]
+    state = natural_periods.equilibrium(case)
+    built = state.built
+    a, coords = system_statics.jacobian(built, state.y)
     names = _coordinate_names(built, coords)
-    shapes = vectors[:n, order].T
-    shapes = shapes / shapes[np.arange(len(order)), np.argmax(np.abs(shapes), axis=1)][:, None]
     # each coordinate's share of the mode's kinetic energy ranks it (a rotation in rad and a
     # translation in m compare through the body's inertia and mass)
     weight = np.sqrt(_inertia_diagonal(built, coords))
-    dominant = []
-    for shape in np.abs(shapes.real) * weight:
-        dominant.append(names[int(np.argmax(shape))].split(":node")[0])
-    lam = values[order]
+    found = natural_periods.find(state, a, coords, weight, count)
+    shapes = found.shape
+    dominant = [names[c].split(":node")[0] if c >= 0 else named
+                for c, named in zip(found.coordinate, found.named, strict=True)]  # fmt: skip
+    lam, natural = found.value, found.natural
+    with np.errstate(divide="ignore", invalid="ignore"):
+        period = np.where(natural > 0.0, 2 * np.pi / natural, np.inf)
+        damping = np.where(np.abs(lam) > 0.0, -lam.real / np.abs(lam), np.nan)
     return xr.Dataset(
         {
-            "period": ("mode", 2 * np.pi / np.abs(lam.imag), {"units": "s",
-                       "long_name": "damped period 2 pi / |Im lambda|"}),
+            "period": ("mode", period, {"units": "s", "long_name":
+                       "period: 2 pi / |Im lambda| (linearised, memory pole), 2 pi / w at "
+                       "A(w) (A(w) iterated), inf (free)"}),
             "frequency": ("mode", np.abs(lam), {"units": "rad/s",
                           "long_name": "undamped-equivalent angular frequency |lambda|"}),
-            "damping_ratio": ("mode", -lam.real / np.abs(lam), {"units": "1",
+            "damping_ratio": ("mode", damping, {"units": "1",
                               "long_name": "-Re(lambda) / |lambda|"}),
             "shape": (("mode", "coordinate"), shapes.real, {"units": "1",
                       "long_name": "position part of the mode, largest component 1"}),
             "dominant": ("mode", np.array(dominant, dtype=object), {"units": "1",
                          "long_name": "the body coordinate (or line) the mode moves most"}),
+            "method": ("mode", np.array(found.method, dtype=object), {"units": "1",
+                       "long_name": "how the period is found: linearised, A(w) iterated, "
+                       "memory pole, free (no restoring)"}),
         },
         coords={"coordinate": names},
     )  # fmt: skip

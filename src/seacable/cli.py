@@ -338,13 +338,17 @@ def statics(case_file: str, output: str | None, settings: tuple[str, ...]) -> No
 @_SET
 def modes(case_file: str, count: int, yes: bool, settings: tuple[str, ...]) -> None:
     """Natural modes of the system of CASE_FILE about its static equilibrium: period, damping
-    ratio and the coordinate each mode moves most."""
+    ratio, the coordinate each mode moves most and how the period is found (linearised; A(w)
+    iterated for a vessel with a hydrodynamic database; a radiation memory's pole; free, no
+    restoring, for a floating body that nothing holds)."""
     found = analysis.system_modes(_case(case_file, settings), count=count, allow_large=yes)
-    click.echo("mode  period [s]  damping ratio  moves most")
+    click.echo("mode  period [s]  damping ratio  moves most              found by")
     for k in range(found.sizes["mode"]):
+        ratio = found["damping_ratio"].values[k]
         click.echo(
             f"{k + 1:4d}  {found['period'].values[k]:10.4g}  "
-            f"{found['damping_ratio'].values[k]:13.3g}  {found['dominant'].values[k]}"
+            f"{'' if np.isnan(ratio) else f'{ratio:.3g}':>13}  "
+            f"{found['dominant'].values[k]:<22}  {found['method'].values[k]}"
         )
 
 

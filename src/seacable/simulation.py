@@ -393,6 +393,7 @@ def simulate(
         settings["warning"] = warning
     attrs = provenance(loader.case_text(case), settings)
     attrs.update(loader.record(case))
+    attrs.update(system.layout.facts)  # how the system was built (the added mass's point)
     variables = model.variables(system)
     sink = _Sink(output, model.sizes(system), model.coords(system), variables, attrs,
                  rows=1 + output_count(sim), inputs=loader.files_read(case))  # fmt: skip

@@ -27,6 +27,7 @@ from seacable.case.base import (
     Vector,
     _Model,
 )
+from seacable.case.document import ADDED_MASS, DocumentDynamics, one_way
 from seacable.case.forces import DATABASE_MODELS, MESH_MODELS, ForceModel, Matrix6
 
 Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_\- ]+$")]
@@ -189,47 +190,6 @@ class PointBody(_Dynamic):
         return points
 
 
-Row6 = tuple[float, float, float, float, float, float]
-DOCUMENT_ADDED_MASS = "added mass matrix at the center of buoyancy projected in the body frame"
-
-
-class DocumentMatrix(_Model):
-    """A 6x6 matrix as the ship-simulator document writes it: ``frame`` (the body's own name)
-    and ``row 1`` ... ``row 6``, in its body frame (x forward, y to starboard, z down) [kg,
-    kg m, kg m^2]."""
-
-    frame: Name
-    """Frame the matrix is projected in: the body's own name."""
-    row_1: Row6 = Field(alias="row 1")
-    """[kg; kg m] Surge row: the first three entries in kg, the last three in kg m."""
-    row_2: Row6 = Field(alias="row 2")
-    """[kg; kg m] Sway row: the first three entries in kg, the last three in kg m."""
-    row_3: Row6 = Field(alias="row 3")
-    """[kg; kg m] Heave row: the first three entries in kg, the last three in kg m."""
-    row_4: Row6 = Field(alias="row 4")
-    """[kg m; kg m^2] Roll row: the first three entries in kg m, the last three in kg m^2."""
-    row_5: Row6 = Field(alias="row 5")
-    """[kg m; kg m^2] Pitch row: the first three entries in kg m, the last three in kg m^2."""
-    row_6: Row6 = Field(alias="row 6")
-    """[kg m; kg m^2] Yaw row: the first three entries in kg m, the last three in kg m^2."""
-
-    def rows(self) -> np.ndarray:
-        return np.array([self.row_1, self.row_2, self.row_3, self.row_4, self.row_5,
-                         self.row_6], dtype=float)  # fmt: skip
-
-
-class DocumentDynamics(_Model):
-    """The ship-simulator document's ``dynamics`` block of a body, read as written: the
-    infinite-frequency added mass at the centre of buoyancy, in the document's body frame
-    (z down, y to starboard), turned into seacable's once (docs/conventions.md, "Vessels") and
-    moved to the reference point."""
-
-    added_mass: DocumentMatrix = Field(
-        alias="added mass matrix at the center of buoyancy projected in the body frame"
-    )
-    """Infinite-frequency added mass at the centre of buoyancy, in the document's body frame."""
-
-
 class RigidBody(_Dynamic):
     """Six degrees of freedom (or those of ``dofs``: a heaving buoy is ``[heave]``, a ship in
     the horizontal plane ``[surge, sway, yaw]``; the others are held at their initial values).
@@ -271,31 +231,41 @@ class RigidBody(_Dynamic):
     hydrodynamics: HydroDatabase | None = None
     """Hydrodynamic database, for radiation damping and diffraction."""
     dynamics: DocumentDynamics | None = None
-    """The ship-simulator document's ``dynamics`` block, its added mass (at the centre of
-    buoyancy, z down) instead of ``added_mass``."""
+    """The ship-simulator document's ``dynamics`` block, read as written (z down): its mass,
+    centre of inertia, rigid-body inertia and added mass instead of the body's own keys."""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _one_way(cls, data):
+        return one_way(data) if isinstance(data, dict) else data
 
     @model_validator(mode="after")
     def _document_dynamics(self):
+        """The document's block read: its values set in the body's own keys (frozen: set once,
+        here), its frames the body's own, its added mass's centre of buoyancy found."""
         if self.dynamics is None:
             return self
-        frame = self.dynamics.added_mass.frame
-        if frame != self.name:
-            raise ValueError(
-                f"dynamics.{DOCUMENT_ADDED_MASS}.frame: '{frame}' is not this body; the matrix "
-                f"is projected in the body's own frame: write frame: {self.name}"
+        self.dynamics.check_frames(self.name)
+        values = self.dynamics.seacable_values()
+        position = values.pop("position", None)
+        if position is not None:
+            assert self.hydrodynamics is not None  # document.one_way
+            object.__setattr__(
+                self, "hydrodynamics", self.hydrodynamics.model_copy(update={"position": position})
             )
-        given = [k for k in ("added_mass", "added_mass_point") if k in self.model_fields_set]
-        if given:
+        for key, value in values.items():
+            object.__setattr__(self, key, value)
+        if self.dynamics.added_mass is not None and not self.hull_floats():
             raise ValueError(
-                f"'{given[0]}' and the document's 'dynamics' block both give the added mass; "
-                "keep one of them"
-            )
-        if "centre_of_buoyancy" not in self.model_fields_set and self.mesh is None:
-            raise ValueError(
-                "the document's added mass is at the centre of buoyancy: give "
-                "'centre_of_buoyancy' [m, body frame, z up] or the hull's 'mesh'"
+                f"dynamics.{ADDED_MASS}: the matrix is at the still-water centre of buoyancy, "
+                "found from the hull: give the hull's 'mesh', or the point as "
+                "'centre_of_buoyancy' [m, body frame, z up]"
             )
         return self
+
+    def hull_floats(self) -> bool:
+        """True when the still-water centre of buoyancy is known: given, or the mesh's."""
+        return "centre_of_buoyancy" in self.model_fields_set or self.mesh is not None
 
     @field_validator("dofs")
     @classmethod
@@ -329,7 +299,8 @@ class RigidBody(_Dynamic):
         added mass that is not negative (its symmetric part)."""
         added = np.asarray(self.added_mass, dtype=float)
         added = np.diag(added) if added.ndim == 1 else added
-        if self.dofs and self.mass <= 0.0 and self.dynamics is None and not np.any(added[:3, :3]):
+        document_added = self.dynamics is not None and self.dynamics.added_mass is not None
+        if self.dofs and self.mass <= 0.0 and not document_added and not np.any(added[:3, :3]):
             raise ValueError(
                 f"mass {self.mass:g} kg: a rigid body that moves needs a mass (or an added "
                 "mass); give it in kg"

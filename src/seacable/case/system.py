@@ -17,11 +17,8 @@ from seacable.case.base import (
     _Model,
 )
 from seacable.case.bodies import (  # noqa: F401 (the case's bodies, as ``sch.`` reaches them)
-    DOCUMENT_ADDED_MASS,
     DOF_NAMES,
     Body,
-    DocumentDynamics,
-    DocumentMatrix,
     Dof,
     FixedBody,
     ImposedBody,
@@ -29,6 +26,11 @@ from seacable.case.bodies import (  # noqa: F401 (the case's bodies, as ``sch.``
     PointBody,
     RigidBody,
     Track,
+)
+from seacable.case.document import (  # noqa: F401 (the document's dynamics block, as above)
+    ADDED_MASS,
+    DocumentDynamics,
+    DocumentMatrix,
 )
 from seacable.case.environment import Environment
 from seacable.case.fatigue import API, Fatigue

@@ -57,6 +57,7 @@ class Layout:
     points: list[tuple[int, str]] = field(default_factory=list)  # (body, point name)
     point_index: dict = field(default_factory=dict)  # "body.point" -> index
     wind_channel: int = -1  # the wind's speed channel, its direction [rad] next (-1: none)
+    facts: dict = field(default_factory=dict)  # how it was built, for the results' attributes
 
 
 @dataclass(frozen=True)
@@ -219,7 +220,11 @@ def build(case: sch.SystemCase, base_dir=None) -> BuiltSystem:
             added = np.diag(added) if added.ndim == 1 else added
             arrays["body_added"][b] = transported(added, body.added_mass_point)
             if body.dynamics is not None:  # the ship-simulator document's block
-                arrays["body_added"][b] = hulls.document_added_mass(body, base_dir, where)
+                arrays["body_added"][b], note = hulls.document_added_mass(
+                    body, base_dir, where, env.water_density
+                )
+                points = layout.facts.get("added_mass_point")
+                layout.facts["added_mass_point"] = f"{points}\n{note}" if points else note
             if body.hydrodynamics is not None and not np.any(added):  # the database's A_inf
                 arrays["body_added"][b] = hulls.database_added_mass(body, base_dir, where, env)
             arrays["body_coriolis"][b] = CORIOLIS[body.coriolis]

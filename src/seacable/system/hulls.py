@@ -5,12 +5,13 @@ infinite-frequency added mass."""
 
 import logging
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from seacable import hydrodb, packing, realization, seastate
 from seacable.bodies import kinematics
+from seacable.case.document import Z_DOWN  # a z-down body frame (y to starboard) to ours
 from seacable.case.forces import RadiationDamping
 from seacable.errors import CaseError
 from seacable.forces import diffraction, radiation
@@ -21,8 +22,6 @@ from seacable.packing import transported
 
 log = logging.getLogger("seacable")
 TAIL = 0.01  # a retardation function above this part of its peak at the cut-off is reported
-
-Z_DOWN = np.diag([1.0, -1.0, -1.0])  # a z-down body frame (x, y to starboard, z down) to ours
 
 
 def _matrix(angles_deg) -> np.ndarray:
@@ -52,25 +51,111 @@ def body_mesh(body, base_dir, where: str) -> Mesh:
         raise CaseError(str(exc)) from None
 
 
-def document_added_mass(body, base_dir, where: str) -> np.ndarray:
+def document_added_mass(body, base_dir, where: str, rho: float) -> tuple[np.ndarray, str]:
     """The added mass of the ship-simulator document's ``dynamics`` block at the body's
     reference point, in seacable's body frame: turned from the document's z-down body frame
     (T A T, T = diag(Z_DOWN, Z_DOWN): a half turn about x, proper, so that angular motions
-    turn as linear ones) and moved from the centre of buoyancy (the body's
-    ``centre_of_buoyancy``, or its mesh's at the start pose)."""
-    turn = np.zeros((6, 6))
-    turn[:3, :3] = turn[3:, 3:] = Z_DOWN
-    added = turn @ body.dynamics.added_mass.rows() @ turn
+    turn as linear ones) and moved from the centre of buoyancy: the body's
+    ``centre_of_buoyancy``, or the still-water one of its mesh (``still_water``), whatever
+    pose the body starts in. Returns the matrix and a line saying which point was used."""
+    added = body.dynamics.added_mass.turned()
     if "centre_of_buoyancy" in body.model_fields_set:
         centre = np.asarray(body.centre_of_buoyancy, dtype=float)
+        how = "the body's centre_of_buoyancy"
     else:
-        rotation = _matrix(body.orientation_deg)
-        mesh = body_mesh(body, base_dir, where)
-        arm = np.asarray(hydrostatics(mesh, body.position, rotation).centre_of_buoyancy)
-        centre = rotation.T @ arm
-        log.info("%s: the document's added mass is moved from the mesh's centre of buoyancy "
-                 "(%.4g, %.4g, %.4g) m, body frame", where, *centre)  # fmt: skip
-    return transported(added, centre)
+        floating = still_water(body_mesh(body, base_dir, where), body.mass, rho,
+                               body.centre_of_gravity, where)  # fmt: skip
+        centre = floating.centre_of_buoyancy
+        how = (
+            "the still-water centre of buoyancy of its mesh (the hull at rest in calm water, "
+            f"carrying its weight: reference point at z = {floating.height:.6g} m, roll "
+            f"{floating.roll_deg:.6g} deg, pitch {floating.pitch_deg:.6g} deg)"
+        )
+    note = f"{body.name}: [{', '.join(f'{c:.10g}' for c in centre)}] m, body frame, {how}"
+    log.info("%s: the document's added mass is moved from %s", where, note)
+    return transported(added, centre), note
+
+
+@dataclass(frozen=True)
+class Floating:
+    """A hull at rest in calm water: its reference point's height [m], its roll and pitch
+    [deg] (yaw and the horizontal position do not matter), its centre of buoyancy in the body
+    frame [m]."""
+
+    height: float
+    roll_deg: float
+    pitch_deg: float
+    centre_of_buoyancy: np.ndarray
+
+
+FLOAT_TOLERANCE = 1e-12  # relative: buoyancy and weight, and their lever arms, balanced to this
+
+
+def still_water(mesh: Mesh, mass: float, rho: float, cog, where: str) -> Floating:
+    """The hull ``mesh`` floating free in calm water with the weight of ``mass`` [kg] at
+    ``cog`` (body frame [m]): the displaced volume mass / rho, the centre of buoyancy on the
+    centre of gravity's vertical (buoyancy and weight balance, so do their moments), its heave,
+    roll and pitch by Newton's method from upright at the draft that floats it (the
+    equilibrium nearest to upright). A CaseError naming ``where`` when the hull cannot float
+    with that mass or no equilibrium is found."""
+    if mass <= 0.0:
+        raise CaseError(f"{where}: the document's added mass is at the still-water centre of "
+                        f"buoyancy, where the hull floats carrying its weight, and its mass is "
+                        f"{mass:g} kg; give the mass, or 'centre_of_buoyancy'")  # fmt: skip
+    volume = mass / rho
+    size = float(np.ptp(mesh.vertices, axis=0).max())
+    gravity_centre = np.asarray(cog, dtype=float)
+
+    def residual(state):
+        height, roll, pitch = state
+        rotation = _matrix((math.degrees(roll), math.degrees(pitch), 0.0))
+        stat = hydrostatics(mesh, (0.0, 0.0, height), rotation)
+        arm = stat.volume * np.asarray(stat.centre_of_buoyancy) - volume * (
+            rotation @ gravity_centre
+        )
+        return np.array([stat.volume / volume - 1.0, *(arm[:2] / (volume * size))]), stat, rotation
+
+    state = np.array([_upright_height(mesh, volume, where), 0.0, 0.0])
+    steps = np.array([1e-6 * size, 1e-6, 1e-6])
+    for _ in range(60):
+        r, stat, rotation = residual(state)
+        if np.abs(r).max() <= FLOAT_TOLERANCE:
+            return Floating(float(state[0]), math.degrees(state[1]), math.degrees(state[2]),
+                            rotation.T @ np.asarray(stat.centre_of_buoyancy))  # fmt: skip
+        jacobian = np.column_stack([(residual(state + np.eye(3)[k] * steps[k])[0] - r) / steps[k]
+                                    for k in range(3)])  # fmt: skip
+        move = np.linalg.lstsq(jacobian, -r, rcond=None)[0]
+        limit = max(np.abs(move[1:]).max() / 0.2, abs(move[0]) / (0.1 * size), 1.0)
+        state = state + move / limit
+    raise CaseError(f"{where}: no still-water equilibrium of the hull near upright was found "
+                    f"(buoyancy and weight still off by {np.abs(r).max():.3g} after 60 Newton "
+                    "steps), for the document's added mass; check the mesh, the mass and the "
+                    "centre of gravity, or give 'centre_of_buoyancy'")  # fmt: skip
+
+
+def _upright_height(mesh: Mesh, volume: float, where: str) -> float:
+    """The height of the reference point at which the upright hull displaces ``volume``
+    [m^3] (bisection: the displaced volume falls as the hull rises)."""
+    low, high = -float(mesh.vertices[:, 2].max()), -float(mesh.vertices[:, 2].min())
+    submerged = hydrostatics(mesh, (0.0, 0.0, low))
+    if not submerged.closed():
+        raise CaseError(f"{where}: the hull is open above its waterline, and seacable finds the "
+                        "still-water draft of a closed hull only (the document's added mass is "
+                        "at the still-water centre of buoyancy); close the mesh, or give "
+                        "'centre_of_buoyancy'")  # fmt: skip
+    most = submerged.volume
+    if most < volume:
+        raise CaseError(f"{where}: the hull displaces {most:.6g} m^3 wholly submerged and its "
+                        f"weight needs {volume:.6g} m^3: it cannot float, and the document's "
+                        "added mass is at the still-water centre of buoyancy; check the mass "
+                        "and the mesh's scale, or give 'centre_of_buoyancy'")  # fmt: skip
+    for _ in range(60):
+        middle = 0.5 * (low + high)
+        if hydrostatics(mesh, (0.0, 0.0, middle)).volume > volume:
+            low = middle
+        else:
+            high = middle
+    return 0.5 * (low + high)
 
 
 def body_database(body, base_dir, where: str, environment) -> hydrodb.HydroDB:

@@ -42,30 +42,39 @@ WATERPLANE_DOFS = {"heave", "roll", "pitch"}
 WATERPLANE_MODELS = ("rod", "non-linear hydrostatic")  # the buoyancy of what the surface cuts
 
 
+def floats(body) -> bool:
+    """Whether ``body`` has the buoyancy of what the free surface cuts (a waterplane that may
+    hold it in heave, roll and pitch)."""
+    models = {f.model for f in getattr(body, "external_forces", ())}
+    return bool(models & set(WATERPLANE_MODELS)) or (
+        getattr(body, "shape", None) is not None and "buoyancy" in models
+    )
+
+
 def _holds(body) -> bool:
     if isinstance(body, sch.FixedBody | sch.ImposedBody) or not getattr(body, "dofs", True):
         return True  # held in space (a body without a free degree of freedom too)
-    models = {f.model for f in body.external_forces}
-    cut = bool(models & set(WATERPLANE_MODELS)) or (
-        getattr(body, "shape", None) is not None and "buoyancy" in models
-    )
-    if cut and set(body.dofs) <= WATERPLANE_DOFS:
+    if floats(body) and set(body.dofs) <= WATERPLANE_DOFS:
         return True  # held by its waterplane
     return any(isinstance(f, LinearStiffness) for f in body.external_forces)
 
 
+def unheld(case: sch.SystemCase) -> list[list[str]]:
+    """The groups of bodies (``groups``) that nothing holds: no static equilibrium."""
+    by_name = {body.name: body for body in case.bodies}
+    return [group for group in groups(case) if not any(_holds(by_name[n]) for n in group)]
+
+
 def check_held(case: sch.SystemCase) -> None:
     """Refuse a group of free bodies that nothing holds (for a static start)."""
-    by_name = {body.name: body for body in case.bodies}
-    for group in groups(case):
-        if not any(_holds(by_name[name]) for name in group):
-            raise CaseError(
-                f"bodies {group}: a group that nothing holds (no fixed or imposed body among "
-                "them, no linear_stiffness, no floating body free in heave, roll and pitch "
-                "only), so it has no static equilibrium; join it to a "
-                "fixed body with a line or a tie, give one of them a linear_stiffness, or use "
-                "start: as_given to let it drift"
-            )
+    for group in unheld(case):
+        raise CaseError(
+            f"bodies {group}: a group that nothing holds (no fixed or imposed body among "
+            "them, no linear_stiffness, no floating body free in heave, roll and pitch "
+            "only), so it has no static equilibrium; join it to a "
+            "fixed body with a line or a tie, give one of them a linear_stiffness, or use "
+            "start: as_given to let it drift"
+        )
 
 
 # ---- trees of rigid lines and the bodies they carry ----------------------------------------------
