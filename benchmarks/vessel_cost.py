@@ -7,7 +7,7 @@ radiation memory).
 1. The cost of one right-hand-side evaluation, split by what it evaluates: each case is built
    again without one of its parts (the hull mesh models, the radiation memory, the wave
    excitation, the lines), and the part's share is the time it takes away. A compiled loop
-   evaluates ``system.kernel.rhs`` ``--count`` times at the start state; each variant keeps its
+   evaluates ``system.kernel.evaluate`` ``--count`` times at the start state; each variant keeps its
    fastest of ``--repeat`` rounds (thread CPU time).
 2. How the cost grows: with the hull's triangles, the kernel's length (memory / memory_step)
    and the lines' segments.
@@ -17,8 +17,15 @@ radiation memory).
    generalized-alpha at 0.025 to 0.1 s (implicit, at steps of the size implicit codes take
    for moored vessels; Newton to 1e-9 of a segment, the default, and 1e-7, the example's),
    each with its fairlead-tension and heave errors against dopri5 at rtol 1e-9.
+4. Issue 43's FPSO (``--fpso-only``; also at the end of part 3): a box hull of 310 m x 58 m x
+   32 m at 20.5 m draught in 1,296 triangles in the barge's sea (180 components, 100 m of
+   water), with gravity, exact clipped hydrostatics and Froude-Krylov on the mesh, linear
+   heave, roll and pitch damping for the radiation it has no database for, and a spread
+   mooring's stiffness: its real-time factor with dopri5 at rtol 1e-6, and that of the same
+   case without the Froude-Krylov force, measured in the same run (their ratio is what the
+   force costs, whatever the machine's load).
 
-Run: python benchmarks/vessel_cost.py [--count N] [--repeat R] [--duration S]
+Run: python benchmarks/vessel_cost.py [--count N] [--repeat R] [--duration S] [--fpso-only]
 """
 
 import argparse
@@ -47,7 +54,7 @@ MESH_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov")
 def _loop(t, y, p, w, ydot, count):
     status = 0
     for _ in range(count):
-        status |= kernel.rhs(t, y, p, w, ydot)
+        status |= kernel.evaluate(t, y, p, w, ydot)
     return status
 
 
@@ -109,6 +116,43 @@ def _alone(raw: dict, panel: float, tmp: Path) -> dict:
         {"model": "linear_stiffness", "diagonal": [3e5, 3e5, 0, 0, 0, 1e8]},
     ]  # fmt: skip
     return raw
+
+
+def _fpso(raw: dict, tmp: Path, froude_krylov: bool = True) -> dict:
+    """Issue 43's FPSO (part 4 of the module docstring), with or without Froude-Krylov."""
+    raw = _without(raw, "lines")
+    hull = tmp / "fpso_1296.stl"
+    if not hull.exists():
+        meshes.write_stl(meshes.barge(310.0, 58.0, 32.0, 10.5), hull)  # 30 x 6 x 4 panels
+    fpso = _barge(raw)
+    del fpso["hydrodynamics"], fpso["points"]
+    mass = 1025.0 * 310.0 * 58.0 * 20.5  # kg: floating at 20.5 m
+    fpso.update(position=[0.0, 0.0, 16.0 - 20.5], mass=mass, mesh={"file": str(hull)},
+                inertia=[mass * 20.0**2, mass * 78.0**2, mass * 78.0**2])  # fmt: skip
+    fpso["external forces"] = [
+        {"model": "gravity"}, {"model": "non-linear hydrostatic"},
+        *([{"model": "non-linear Froude-Krylov"}] if froude_krylov else []),
+        {"model": "linear_damping", "diagonal": [0, 0, 5e7, 0, 7e9, 8e12]},  # about 5 %
+        {"model": "quadratic_damping", "diagonal": [1e6, 4e6, 0, 0, 0, 2e12]},
+        {"model": "linear_stiffness", "diagonal": [1e6, 1e6, 0, 0, 0, 1e10]},
+    ]  # fmt: skip
+    return raw
+
+
+def _fpso_realtime(raw: dict, args, tmp: Path) -> None:
+    """Part 4 of the module docstring."""
+    dopri5 = {"integrator": "dopri5", "rtol": 1e-6}
+    factors = []
+    for froude_krylov in (True, False):
+        case = _fpso(raw, tmp, froude_krylov)
+        cost = _evaluation(case, max(10, args.count // 40), args.repeat)
+        setup, factor, steps, evaluations, _ = _realtime(case, args.duration, dopri5)
+        factors.append(factor)
+        print(f"  FPSO, 1,296 triangles, {'with' if froude_krylov else 'without'} Froude-"
+              f"Krylov, dopri5 rtol 1e-6: {factor:6.2f} (CPU {(args.duration - SETUP) / factor:.1f}"
+              f" s; setup {setup:4.1f} s; {steps} steps, {evaluations} evaluations of "
+              f"{cost:.0f} us)")  # fmt: skip
+    print(f"  FPSO: Froude-Krylov on the mesh costs {factors[1] / factors[0]:.2f} times the run")
 
 
 def _evaluation(raw: dict, count: int, repeat: int) -> float:
@@ -179,12 +223,17 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=200.0)
     parser.add_argument("--realtime-only", action="store_true", help="only part 3")
     parser.add_argument("--costs-only", action="store_true", help="only parts 1 and 2")
+    parser.add_argument("--fpso-only", action="store_true", help="only part 4")
     args = parser.parse_args()
     logging.getLogger("seacable").setLevel(logging.ERROR)  # the example's kernel-tail warning
     tmp = Path(os.environ.get("TMPDIR", "/tmp")) / "seacable_vessel_cost"
     tmp.mkdir(exist_ok=True)
     raw = _raw()
     print(f"load average {os.getloadavg()[0]:.2f}; CPU time, fastest of {args.repeat}")
+    if args.fpso_only:
+        print(f"\nreal-time factor over {args.duration:g} s (beyond a {SETUP:g} s setup):")
+        _fpso_realtime(raw, args, tmp)
+        return
     if not args.realtime_only:
         _costs(raw, args, tmp)
     if not args.costs_only:
@@ -269,6 +318,7 @@ def _realtimes(raw: dict, args, tmp: Path) -> None:
     )
     print(f"  vessel alone, 3,052 triangles, dopri5 rtol 1e-6: {factor:6.2f} (setup {setup:4.1f}"
           f" s; {steps} steps, {evaluations} evaluations)")  # fmt: skip
+    _fpso_realtime(raw, args, tmp)
 
 
 if __name__ == "__main__":

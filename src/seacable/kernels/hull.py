@@ -1,10 +1,11 @@
 """A hull's triangle mesh clipped at the free surface, and integrals over its wetted part
 (numba).
 
-A mesh is one flat float row (``mesh_row``): ``[nv, nt, x_0, y_0, z_0, ..., i_0, j_0, k_0, ...]``,
-the vertices in the body frame relative to the body's reference point [m] and the triangles as
-vertex numbers, each wound anticlockwise seen from outside (its area vector
-S = (b - a) x (c - a) / 2 points out of the hull).
+A mesh is one flat float row (``mesh_row``): ``[nv, nt, x_0, y_0, z_0, ..., i_0, j_0, k_0, ...,
+e_0, f_0, g_0, ...]``, the vertices in the body frame relative to the body's reference point [m],
+the triangles as vertex numbers, each wound anticlockwise seen from outside (its area vector
+S = (b - a) x (c - a) / 2 points out of the hull), and each triangle's edges i-j, j-k, k-i as
+edge numbers (0 .. 3 nt - 1; an edge two triangles share has one number).
 
 Each step the vertices are placed in the earth frame (r = R v from the reference point at
 ``pos``), every triangle is cut by the plane z = ``level`` (its vertices' depths
@@ -36,9 +37,12 @@ INTEGRANDS = ("1", "x", "y", "z", "xx", "yy", "zz", "xy", "xz", "yz")
 def mesh_row(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """The flat row of a mesh: vertices (nv, 3) [m, body frame], triangles (nt, 3) int."""
     vertices = np.asarray(vertices, dtype=float)
-    triangles = np.asarray(triangles, dtype=np.int64)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
     head = [float(len(vertices)), float(len(triangles))]
-    return np.concatenate([head, vertices.ravel(), triangles.ravel().astype(float)])
+    ends = np.stack([triangles, np.roll(triangles, -1, axis=1)], axis=-1).reshape(-1, 2)
+    _, edges = np.unique(np.sort(ends, axis=1), axis=0, return_inverse=True)
+    return np.concatenate([head, vertices.ravel(), triangles.ravel().astype(float),
+                           edges.ravel().astype(float)])  # fmt: skip
 
 
 @inner
@@ -146,33 +150,62 @@ def add_hydrostatic(row, level, pos, rho, gravity, work, rhs):
 
 
 @njit(inline="always", **JIT)
+def _add_wave_load(p, m, s, rhs):
+    """-p/3 S and its moment m x (-p/3 S): one edge midpoint m's share of its triangle's load."""
+    p = p / 3.0
+    rhs[0] -= p * s[0]
+    rhs[1] -= p * s[1]
+    rhs[2] -= p * s[2]
+    rhs[3] -= p * (m[1] * s[2] - m[2] * s[1])
+    rhs[4] -= p * (m[2] * s[0] - m[0] * s[2])
+    rhs[5] -= p * (m[0] * s[1] - m[1] * s[0])
+
+
+@njit(inline="always", **JIT)
+def _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig):
+    """The incident wave's dynamic pressure at the arm ``m`` from ``pos``."""
+    return waves.pressure(wave, t, pos[0] + m[0], pos[1] + m[1], pos[2] + m[2], depth, stretch,
+                          rho_g, trig)  # fmt: skip
+
+
+@njit(inline="always", **JIT)
 def _add_wave_pressure(a, b, c, pos, wave, t, depth, stretch, rho_g, trig, rhs):
     """-int p n dA and its moment over triangle a b c (arms), p the incident wave's dynamic
     pressure at its three edge midpoints."""
     s = _area_vector(a, b, c)
     for m in (_mid(a, b), _mid(b, c), _mid(c, a)):
-        p = waves.pressure(wave, t, pos[0] + m[0], pos[1] + m[1], pos[2] + m[2], depth, stretch,
-                           rho_g, trig) / 3.0  # fmt: skip
-        rhs[0] -= p * s[0]
-        rhs[1] -= p * s[1]
-        rhs[2] -= p * s[2]
-        rhs[3] -= p * (m[1] * s[2] - m[2] * s[1])
-        rhs[4] -= p * (m[2] * s[0] - m[0] * s[2])
-        rhs[5] -= p * (m[0] * s[1] - m[1] * s[0])
+        _add_wave_load(_wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig), m, s, rhs)
 
 
 @inner
 def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs):
     """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
     the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
-    and moment."""
+    and moment. A wholly wet triangle's edge midpoints are those of its neighbours: the
+    pressure there is evaluated once per edge (``pressures``, NaN until then; the midpoint
+    0.5 (a + b) is the same float from either side, so the sum is the one triangle by
+    triangle); a cut triangle's parts take theirs."""
     if wave.shape[1] == 0:
         return
-    t0 = HEADER + 3 * int(row[0])
+    nv, nt = int(row[0]), int(row[1])
+    t0 = HEADER + 3 * nv
+    e0 = t0 + 3 * nt
     rho_g = rho * gravity
     trig = waves.scratch(wave)
-    for k in range(int(row[1])):
+    pressures = np.full(3 * nt, np.nan)
+    for k in range(nt):
         count, parts = _wet(row, t0, k, work)
+        corners = (int(row[t0 + 3 * k]), int(row[t0 + 3 * k + 1]), int(row[t0 + 3 * k + 2]))
+        if work[corners[0], 3] >= 0.0 and work[corners[1], 3] >= 0.0 and work[corners[2], 3] >= 0.0:
+            s = _area_vector(parts[0], parts[1], parts[2])
+            for side in range(3):
+                i, j = corners[side], corners[(side + 1) % 3]
+                m = _mid((work[i, 0], work[i, 1], work[i, 2]), (work[j, 0], work[j, 1], work[j, 2]))
+                e = int(row[e0 + 3 * k + side])
+                if np.isnan(pressures[e]):
+                    pressures[e] = _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig)
+                _add_wave_load(pressures[e], m, s, rhs)
+            continue
         if count >= 1:
             _add_wave_pressure(parts[0], parts[1], parts[2], pos, wave, t, depth, stretch, rho_g,
                                trig, rhs)  # fmt: skip
