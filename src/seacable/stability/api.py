@@ -200,8 +200,11 @@ def _with_cycles(ds: xr.Dataset, plane: Plane, found: list) -> xr.Dataset:
         special_criticality_by=("special", judged_by.astype(str)),
         special_hysteresis=("special", hysteresis),
         cycle_special=("cycle", np.array(rows["special"], dtype=int)),
-        cycle_parameter=("cycle", np.array(rows["parameter"], dtype=float),
-                         {"units": unit(ds.attrs["parameter"])}),  # fmt: skip
+        cycle_parameter=(
+            "cycle",
+            np.array(rows["parameter"], dtype=float),
+            {"units": unit(ds.attrs["parameter"])},
+        ),  # fmt: skip
         cycle_period=("cycle", np.array(rows["period"], dtype=float), {"units": "s"}),
         cycle_stable=("cycle", np.array(rows["stable"], dtype=bool)),
         cycle_multiplier=("cycle", np.array(rows["multiplier"], dtype=float)),

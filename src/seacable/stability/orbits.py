@@ -367,21 +367,20 @@ def _crossing_times(signal: np.ndarray, step: float) -> tuple[float, float, floa
 def clearance(outlines: list[np.ndarray]) -> float:
     """The least distance [m] between two convex outlines (earth-frame vertices (k, 2),
     counter-clockwise or not); 0 when they overlap."""
-    a, b = outlines
+    a, b = (np.asarray(o, dtype=float) for o in outlines)
     if _overlap(a, b):
         return 0.0
-    best = math.inf
-    for p_, poly in ((a, b), (b, a)):
-        for point in p_:
-            for i in range(len(poly)):
-                best = min(best, _segment_distance(point, poly[i], poly[(i + 1) % len(poly)]))
-    return best
+    return min(_nearest(a, b), _nearest(b, a))
 
 
-def _segment_distance(p_, a, b) -> float:
-    d = b - a
-    s = np.clip(np.dot(p_ - a, d) / max(np.dot(d, d), 1e-300), 0.0, 1.0)
-    return float(np.linalg.norm(p_ - (a + s * d)))
+def _nearest(points: np.ndarray, poly: np.ndarray) -> float:
+    """The least distance from ``points`` (p, 2) to the edges of the polygon ``poly`` (k, 2)."""
+    start = poly
+    edge = np.roll(poly, -1, axis=0) - start  # (k, 2)
+    offset = points[:, None, :] - start[None, :, :]  # (p, k, 2)
+    share = (offset * edge).sum(axis=-1) / np.maximum((edge * edge).sum(axis=-1), 1e-300)
+    gap = offset - np.clip(share, 0.0, 1.0)[..., None] * edge
+    return float(np.sqrt((gap * gap).sum(axis=-1)).min())
 
 
 def _overlap(a: np.ndarray, b: np.ndarray) -> bool:
