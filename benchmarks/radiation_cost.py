@@ -4,7 +4,7 @@ fit (``radiation damping`` with ``method: state_space``), on the shipped hemisph
 of freedom, K over ``--memory`` seconds sampled every ``--step``.
 
 Two figures per method: (1) one right-hand-side evaluation of the system
-(``system.kernel.rhs`` in a compiled loop, ``--count`` times), with the convolution's history
+(``system.kernel.evaluate`` in a compiled loop, ``--count`` times), with the convolution's history
 filled (``after_step`` recorded every sample time up to the evaluation's time, so that every
 sample enters the sum); (2) a 300 s run with rk4 at 0.01 s from a heave offset and a surge
 velocity. ``none``: the same without radiation, the rest's cost. Thread CPU time, the fastest
@@ -57,7 +57,7 @@ def case(method: str, memory: float, step: float, duration: float = 300.0):
 def _evaluations(t, y, p, w, ydot, count):
     status = 0
     for _ in range(count):
-        status |= kernel.rhs(t, y, p, w, ydot)
+        status |= kernel.evaluate(t, y, p, w, ydot)
     return status
 
 

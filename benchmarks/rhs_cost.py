@@ -11,7 +11,7 @@ on three catenary lines (a rigid body), so that a change for one line model can 
 slow the others.
 
 Each case's state is its initial state; a compiled loop of this file evaluates
-``system.kernel.rhs`` ``--count`` times, and (", in rk4") the integrator's own compiled chunk
+``system.kernel.evaluate`` ``--count`` times, and (", in rk4") the integrator's own compiled chunk
 takes ``--count`` / 4 steps of 0.1 ms (four evaluations a step, and the stages' arithmetic:
 what a run pays per evaluation; the two differ by how LLVM lays out each caller: after the
 two-ports' arrays were packed, this loop got slower and the runs faster); the dense model a
@@ -57,7 +57,7 @@ TIME = 0.1  # [s] the time the right-hand side is evaluated at
 def _direct(t, y, p, w, ydot, count):
     status = 0
     for _ in range(count):
-        status |= kernel.rhs(t, y, p, w, ydot)
+        status |= kernel.evaluate(t, y, p, w, ydot)
     return status
 
 
