@@ -320,3 +320,26 @@ def test_an_equilibrium_the_ships_do_not_reach_does_not_decide_and_compare_agree
     assert on["verdict"].item() == "safe"
     assert float(on["least_clearance"]) == pytest.approx(float(row["clearance"]), rel=1e-9)
     assert float(on["peak_tension"].max()) == pytest.approx(float(row["tension"]), rel=1e-9)
+
+
+def test_a_reached_equilibrium_is_simulated_from_itself_when_asked():
+    """With ``simulate`` from the equilibrium, a state whose equilibrium breaks a limit (here
+    the hawser's tension, over a 200 kN limit) and is reached from the nominal places is judged
+    by the motion from that equilibrium pushed by 1 m and 1 deg, as asked, not by the hour from
+    the nominal places that checked it was reached."""
+    from seacable.stability import operability as op
+
+    case = _example()
+    weather = Weather(0.8, 180.0, 15.0, 200.0)
+    limits = Limits(30.0, (("hawser", 2.0e5),))
+    row = operability(case, [weather], None, limits, 300.0, scheduler=None, headings=6)
+    assert int(row["reached"].values[0]) == 1 and row["status"].values[0] == "limit exceeded"
+    plane = Plane.of(case)
+    weather.apply(plane.built)
+    nominal = equilibria.relative(plane, plane.start()[:6])
+    best, _ = op.kept(plane, op.search(plane, 6), nominal)
+    push = np.concatenate([best.x, np.zeros(6)])
+    push[0:6:3] += 1.0
+    push[2:6:3] += np.radians(1.0)
+    least = op._motion(plane, push, 300.0, limits)[0]
+    assert float(row["clearance"].values[0]) == pytest.approx(least, rel=1e-12)

@@ -337,11 +337,12 @@ def _classify(plane: Plane, found: list, nominal: np.ndarray, limits: Limits,
                         if excess > 1.0 else "the compensator over its limits")  # fmt: skip
                 return _unreached(row, motion, limits, what, n, duration)
     if simulate:
-        if motion is None:  # from the equilibrium, pushed by 1 m and 1 deg
+        if not nominal_run:  # from the equilibrium, pushed by 1 m and 1 deg (not the reach run)
             push = state.copy()
             push[0 : 3 * n : 3] += 1.0
             push[2 : 3 * n : 3] += math.radians(1.0)
             motion = _motion(plane, push, simulate, limits)
+        assert motion is not None  # the nominal run's, or the one from the equilibrium
         least, highest, peak, _ = motion
         row["clearance"], row["tension"] = least, max(highest, row["tension"])
         excess = max(excess, peak)
