@@ -154,6 +154,7 @@ def _reference_load(mesh, pos, rot, wave, t, depth, stretch):
     return load
 
 
+@pytest.mark.slow  # its wrapper compiles every run (uncached); make test-all
 def test_the_kernel_against_a_plain_reference_on_random_poses_and_waves():
     """The kernel (each wholly wet triangle's edge pressures shared with its neighbours)
     against the integral written plainly, triangle by triangle, on a box and a sphere in

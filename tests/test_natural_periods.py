@@ -88,6 +88,7 @@ def test_heave_period_at_its_own_frequency_from_the_database():
     assert 0.0 < float(modes["damping_ratio"][heave]) < 0.5  # B33(w): radiation damps heave
 
 
+@pytest.mark.slow  # the rescaling's consistency; the periods' physics is tested above
 def test_the_linearisation_at_a_frequency_is_the_kernels_with_that_added_mass():
     """``_Frequency.matrix(w)``'s stiffness rows (M + A(w) - A_inf)^-1 M J equal the
     compiled Jacobian of the system whose added mass is A(w) (to 1e-6 of the largest)."""
@@ -109,6 +110,7 @@ def test_the_linearisation_at_a_frequency_is_the_kernels_with_that_added_mass():
     assert np.abs(ours - a[n : 2 * n, :n]).max() > 0.1 * np.abs(a[n : 2 * n, :n]).max()
 
 
+@pytest.mark.slow  # a state-space fit's own compile; make test-all
 def test_the_radiation_memorys_poles_are_listed_apart():
     """With the radiation memory as a state space, its states' poles are listed as memory
     poles (the eigenvalues of the fitted matrices), and the vessel's periods are those of the

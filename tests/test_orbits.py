@@ -62,6 +62,7 @@ def test_a_motion_that_never_settles_on_one_period_is_refused_with_what_it_did()
         seacable.periodic_orbit(shuttle_case("short-wing", thrust=50_000.0))
 
 
+@pytest.mark.slow  # its cycle costs 5 s; make test-all
 def test_shooting_from_a_bad_guess_damps_its_newton_steps(fishtailing):
     """Started on the cycle with half its period, shooting (undamped, it went to a period of
     -36.6 s or raised FloatingPointError from such guesses) never returns a negative period or
@@ -75,6 +76,7 @@ def test_shooting_from_a_bad_guess_damps_its_newton_steps(fishtailing):
         assert orbit.residual < 1e-8
 
 
+@pytest.mark.slow  # its cycle costs 5 s; make test-all
 def test_settle_tells_rest_from_a_cycle(fishtailing):
     """Below the Hopf point (120 kN astern) the equilibrium is stable: a push dies out and
     ``settle`` says "rest" or a vanishing amplitude; above it (the cycle at 0 kN) the amplitude

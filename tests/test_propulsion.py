@@ -260,6 +260,7 @@ def _foil_force(s, span, delta, lift_slope=3.0, stall_deg=35.0, drag=0.02):
     return 0.5 * RHO * speed * 4.0 * (cl * np.cross(span, plane) - drag * plane)
 
 
+@pytest.mark.slow  # the foil law at any span; the fin pair's closed form stays
 def test_a_fin_at_any_span_lifts_normal_to_its_inflow_and_a_rudder_is_one():
     """A fin slanted 45 deg down to starboard, moving and turning through a current: its force
     is the foil's law written here on its velocity through the water in the plane normal to

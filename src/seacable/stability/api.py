@@ -308,9 +308,12 @@ def periodic_orbit(case: SystemCase | str, weather: Weather | None = None,
     x0 = np.concatenate([start.x, np.zeros(n // 2)]) + 1e-2 * push
     # growing at Re(lambda) from 1 cm to a cycle of up to a few hundred metres, then settling
     # at about that rate (near a Hopf point both are slow): 40 e-foldings, 60 periods at least
-    longest = settle if settle is not None else max(60.0 * guess_period, 40.0 / lam[k].real)
-    longest = min(longest, SETTLE_STEPS * min(1.0, guess_period / 400))
     per = max(400, math.ceil(guess_period))  # steps a period: 1 s, or finer for short ones
+    longest = (
+        settle
+        if settle is not None
+        else min(max(60.0 * guess_period, 40.0 / lam[k].real), SETTLE_STEPS * guess_period / per)
+    )
     center = np.concatenate([start.x, np.zeros(n // 2)])
     # shooting starts once the motion is within 20 % of its cycle; where it does not converge
     # from there, the motion settles on (without that shortcut) and shooting tries again
