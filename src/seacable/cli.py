@@ -273,7 +273,7 @@ def validate(case_file: str, settings: tuple[str, ...]) -> None:
     if isinstance(case, SystemCase):
         _, warning = simulation.prepare(case)  # all a run checks before its first step
         kinds = ", ".join(f"{b.name} ({b.type})" for b in case.bodies)
-        models = ", ".join(f"{line.name} ({line.model})" for line in case.lines)
+        models = ", ".join(f"{line.name} ({line.model})" for line in case.lines) or "none"
         if warning:
             click.echo(f"warning: {warning}", err=True)
         _sweep_note(case)
