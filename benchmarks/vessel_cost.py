@@ -23,7 +23,15 @@ radiation memory).
    heave, roll and pitch damping for the radiation it has no database for, and a spread
    mooring's stiffness: its real-time factor with dopri5 at rtol 1e-6, and that of the same
    case without the Froude-Krylov force, measured in the same run (their ratio is what the
-   force costs, whatever the machine's load).
+   force costs, whatever the machine's load); then the same with the radiation memory and
+   diffraction of the barge's database (a cost, not a model of this hull).
+5. Issue 43's case as filed (``--fpso-only``): a moored FPSO of 1,296 triangles, 1,200 s
+   "with a database" against Froude-Krylov on the mesh. Its file was not kept: here, the
+   moored barge example with part 4's hull, mass and inertia, the three chains from the
+   FPSO's ends (the example's lines moved with their fairleads), the barge database's
+   radiation memory and diffraction (a cost, not a model of this hull), on the example's
+   integrator (generalized-alpha, 0.05 s, Newton to 1e-7): the excitation from the mesh
+   (clipped hydrostatics at the waves, Froude-Krylov) or from the database.
 
 Run: python benchmarks/vessel_cost.py [--count N] [--repeat R] [--duration S] [--fpso-only]
 """
@@ -53,8 +61,8 @@ MESH_MODELS = ("non-linear hydrostatic", "non-linear Froude-Krylov")
 @njit
 def _loop(t, y, p, w, ydot, count):
     status = 0
-    for _ in range(count):
-        status |= kernel.evaluate(t, y, p, w, ydot)
+    for i in range(count):  # each at its own time: a mesh is placed again (kernels.hull.place)
+        status |= kernel.evaluate(t + 1e-9 * i, y, p, w, ydot)
     return status
 
 
@@ -118,23 +126,69 @@ def _alone(raw: dict, panel: float, tmp: Path) -> dict:
     return raw
 
 
-def _fpso(raw: dict, tmp: Path, froude_krylov: bool = True) -> dict:
-    """Issue 43's FPSO (part 4 of the module docstring), with or without Froude-Krylov."""
+def _fpso(raw: dict, tmp: Path, froude_krylov: bool = True, memory: bool = False) -> dict:
+    """Issue 43's FPSO (part 4 of the module docstring), with or without Froude-Krylov, and
+    with the barge's database's radiation memory and diffraction (``memory``) in place of the
+    linear heave, roll and pitch damping."""
     raw = _without(raw, "lines")
     hull = tmp / "fpso_1296.stl"
     if not hull.exists():
         meshes.write_stl(meshes.barge(310.0, 58.0, 32.0, 10.5), hull)  # 30 x 6 x 4 panels
     fpso = _barge(raw)
-    del fpso["hydrodynamics"], fpso["points"]
+    del fpso["points"]
+    if not memory:
+        del fpso["hydrodynamics"]
     mass = 1025.0 * 310.0 * 58.0 * 20.5  # kg: floating at 20.5 m
     fpso.update(position=[0.0, 0.0, 16.0 - 20.5], mass=mass, mesh={"file": str(hull)},
                 inertia=[mass * 20.0**2, mass * 78.0**2, mass * 78.0**2])  # fmt: skip
+    radiation = (
+        [
+            {"model": "radiation damping", "memory": 25.0, "memory_step": 0.1},
+            {"model": "diffraction"},
+        ]
+        if memory
+        else [{"model": "linear_damping", "diagonal": [0, 0, 5e7, 0, 7e9, 8e12]}]
+    )
     fpso["external forces"] = [
         {"model": "gravity"}, {"model": "non-linear hydrostatic"},
         *([{"model": "non-linear Froude-Krylov"}] if froude_krylov else []),
-        {"model": "linear_damping", "diagonal": [0, 0, 5e7, 0, 7e9, 8e12]},  # about 5 %
+        *radiation,  # the linear damping: about 5 % of critical
         {"model": "quadratic_damping", "diagonal": [1e6, 4e6, 0, 0, 0, 2e12]},
         {"model": "linear_stiffness", "diagonal": [1e6, 1e6, 0, 0, 0, 1e10]},
+    ]  # fmt: skip
+    return raw
+
+
+def _fpso_moored(raw: dict, tmp: Path, froude_krylov: bool) -> dict:
+    """Issue 43's case as filed (part 5 of the module docstring): the moored barge of the
+    example with the FPSO's hull, mass and inertia (part 4), its fairleads at the FPSO's ends
+    and its anchors moved with them, the excitation the Froude-Krylov force on the mesh (and
+    the database's diffraction) or the database's (diffraction and Froude-Krylov)."""
+    raw = copy.deepcopy(raw)
+    hull = tmp / "fpso_1296.stl"
+    if not hull.exists():
+        meshes.write_stl(meshes.barge(310.0, 58.0, 32.0, 10.5), hull)  # 30 x 6 x 4 panels
+    fpso = _barge(raw)
+    mass = 1025.0 * 310.0 * 58.0 * 20.5  # kg: floating at 20.5 m
+    fpso.update(position=[0.0, 0.0, 16.0 - 20.5], mass=mass, mesh={"file": str(hull)},
+                inertia=[mass * 20.0**2, mass * 78.0**2, mass * 78.0**2])  # fmt: skip
+    shift = {"bow": (110.0, 0.0), "port": (-110.0, 17.0), "starboard": (-110.0, -17.0)}
+    for name, (dx, dy) in shift.items():  # the example's lines, from the FPSO's ends
+        x, y, _ = fpso["points"][f"fairlead_{name}"]
+        fpso["points"][f"fairlead_{name}"] = [x + dx, y + dy, 0.5]  # 4 m under the water
+        anchor = next(b for b in raw["bodies"] if b["name"] == f"anchor_{name}")
+        anchor["position"] = [anchor["position"][0] + dx, anchor["position"][1] + dy, -100.0]
+    excitation = [
+        {"model": "non-linear hydrostatic"}, {"model": "non-linear Froude-Krylov"},
+        {"model": "diffraction", "froude_krylov": False},
+    ] if froude_krylov else [
+        {"model": "non-linear hydrostatic", "free_surface": "still"},
+        {"model": "diffraction", "froude_krylov": True},
+    ]  # fmt: skip
+    fpso["external forces"] = [
+        {"model": "gravity"}, *excitation,
+        {"model": "radiation damping", "memory": 25.0, "memory_step": 0.1},
+        {"model": "quadratic_damping", "diagonal": [1e6, 4e6, 0, 0, 0, 2e12]},
     ]  # fmt: skip
     return raw
 
@@ -142,17 +196,42 @@ def _fpso(raw: dict, tmp: Path, froude_krylov: bool = True) -> dict:
 def _fpso_realtime(raw: dict, args, tmp: Path) -> None:
     """Part 4 of the module docstring."""
     dopri5 = {"integrator": "dopri5", "rtol": 1e-6}
+    for memory in (False, True):
+        factors = []
+        label = " + the barge's radiation memory and diffraction" if memory else ""
+        for froude_krylov in (True, False):
+            case = _fpso(raw, tmp, froude_krylov, memory)
+            cost = _evaluation(case, max(10, args.count // 40), args.repeat)
+            setup, factor, steps, evaluations, _ = _realtime(case, args.duration, dopri5)
+            factors.append(factor)
+            print(f"  FPSO, 1,296 triangles{label}, {'with' if froude_krylov else 'without'} "
+                  f"Froude-Krylov, dopri5 rtol 1e-6: {factor:6.2f} (CPU "
+                  f"{(args.duration - SETUP) / factor:.1f} s; setup {setup:4.1f} s; {steps} "
+                  f"steps, {evaluations} evaluations of {cost:.0f} us)")  # fmt: skip
+        print(
+            f"  FPSO{label}: Froude-Krylov on the mesh costs {factors[1] / factors[0]:.2f} "
+            "times the run"
+        )
+    implicit = {"integrator": "generalized_alpha", "time_step": 0.05, "newton_tolerance": 1e-7}
     factors = []
     for froude_krylov in (True, False):
-        case = _fpso(raw, tmp, froude_krylov)
+        case = _fpso_moored(raw, tmp, froude_krylov)
         cost = _evaluation(case, max(10, args.count // 40), args.repeat)
-        setup, factor, steps, evaluations, _ = _realtime(case, args.duration, dopri5)
+        setup, factor, steps, evaluations, results = _realtime(case, args.duration, implicit)
         factors.append(factor)
-        print(f"  FPSO, 1,296 triangles, {'with' if froude_krylov else 'without'} Froude-"
-              f"Krylov, dopri5 rtol 1e-6: {factor:6.2f} (CPU {(args.duration - SETUP) / factor:.1f}"
-              f" s; setup {setup:4.1f} s; {steps} steps, {evaluations} evaluations of "
-              f"{cost:.0f} us)")  # fmt: skip
-    print(f"  FPSO: Froude-Krylov on the mesh costs {factors[1] / factors[0]:.2f} times the run")
+        jacobians = int(results.dataset.attrs.get("solver_jacobian_evaluations", 0))
+        tension = _tension(results)
+        print(
+            f"  moored FPSO, {'Froude-Krylov on the mesh' if froude_krylov else 'database'}"
+            f", generalized-alpha 0.05 s, Newton 1e-7: {factor:6.2f} (CPU "
+            f"{(args.duration - SETUP) / factor:.1f} s; setup {setup:4.1f} s; {steps} steps, "
+            f"{evaluations} evaluations of {cost:.0f} us, {jacobians} Newton matrices; "
+            f"fairlead tensions {tension.min() / 1e3:.0f} to {tension.max() / 1e3:.0f} kN)"
+        )
+    print(
+        f"  moored FPSO: Froude-Krylov on the mesh costs {factors[1] / factors[0]:.2f} times "
+        "the run"
+    )
 
 
 def _evaluation(raw: dict, count: int, repeat: int) -> float:
@@ -223,7 +302,7 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=200.0)
     parser.add_argument("--realtime-only", action="store_true", help="only part 3")
     parser.add_argument("--costs-only", action="store_true", help="only parts 1 and 2")
-    parser.add_argument("--fpso-only", action="store_true", help="only part 4")
+    parser.add_argument("--fpso-only", action="store_true", help="only parts 4 and 5")
     args = parser.parse_args()
     logging.getLogger("seacable").setLevel(logging.ERROR)  # the example's kernel-tail warning
     tmp = Path(os.environ.get("TMPDIR", "/tmp")) / "seacable_vessel_cost"

@@ -120,8 +120,11 @@ def test_the_undisturbed_pressure_vanishes_on_the_wave_surface(tmp_path):
 @njit  # not cached: a cached copy would keep the kernels it was linked with
 def _kernel_load(row, pos, rot, wave, t, depth, stretch):
     """kernels.hull's Froude-Krylov load (its pressures shared by the edges' neighbours)."""
-    work, load = np.zeros((int(row[0]), 4)), np.zeros(6)
-    hull.place(row, pos, rot, wave, t, work)
+    work, load = (
+        np.zeros((int(row[0]) + 1, max(hull.PHASES + 2 * wave.shape[1], hull.KEY))),
+        np.zeros(6),
+    )
+    hull.place(row, 0, pos, rot, wave, t, work)
     hull.add_froude_krylov(row, pos, RHO, G, wave, t, depth, stretch, work, load)
     return load
 

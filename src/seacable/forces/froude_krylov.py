@@ -15,8 +15,8 @@ from seacable.kernels.jit import inner
 
 
 @inner
-def add(row, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
+def add(row, body, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
     if wave.shape[1] == 0:
         return
-    hull.place(row[MESH_AT:], pos, rot, wave, t, work)
+    hull.place(row[MESH_AT:], body, pos, rot, wave, t, work)
     hull.add_froude_krylov(row[MESH_AT:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)

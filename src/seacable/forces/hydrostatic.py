@@ -12,7 +12,7 @@ excitation that already holds the incident wave's pressure (``diffraction`` with
 
 The row: the level [m], 1 when clipped at still water whatever the waves, then the mesh's row
 (kernels.hull.mesh_row), its vertices in the body frame relative to the reference point.
-``work`` (nv, 4) is the hull workspace (kernels.hull.place).
+``work`` is the hull workspace (kernels.hull.place), ``body`` the body's number (its key).
 """
 
 from seacable.kernels import hull, waves
@@ -29,14 +29,14 @@ def pack(mesh_row, still: bool = False) -> list[float]:
 
 
 @inner
-def add(row, pos, rot, rho, gravity, wave, t, work, rhs):
+def add(row, body, pos, rot, rho, gravity, wave, t, work, rhs):
     surface = waves.still() if row[1] != 0.0 else wave
-    hull.place(row[MESH_AT:], pos, rot, surface, t, work)
+    hull.place(row[MESH_AT:], body, pos, rot, surface, t, work)
     hull.add_hydrostatic(row[MESH_AT:], row[0], pos, rho, gravity, work, rhs)
 
 
 @inner
-def potential(row, pos, rot, rho, gravity, still, work):
+def potential(row, body, pos, rot, rho, gravity, still, work):
     """The still-water potential [J] (``still``: an empty wave table)."""
-    hull.place(row[MESH_AT:], pos, rot, still, 0.0, work)
+    hull.place(row[MESH_AT:], body, pos, rot, still, 0.0, work)
     return rho * gravity * hull.hydrostatic_potential(row[MESH_AT:], row[0], pos, work)

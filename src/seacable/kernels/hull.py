@@ -30,6 +30,8 @@ from seacable.kernels import waves
 from seacable.kernels.jit import JIT, inner
 
 HEADER = 2  # nv, nt
+PHASES = 4  # where the vertices' half phases start in place's workspace
+KEY = 16  # the floats of the workspace's key row (place)
 # the integrands of surface_integrals, in this order
 INTEGRANDS = ("1", "x", "y", "z", "xx", "yy", "zz", "xy", "xz", "yz")
 
@@ -45,11 +47,32 @@ def mesh_row(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
                            edges.ravel().astype(float)])  # fmt: skip
 
 
+def workspace(vertices: int, components: int) -> np.ndarray:
+    """The workspace ``place`` fills for a mesh of up to ``vertices`` vertices in waves of
+    ``components`` components (``PHASES`` on)."""
+    return np.zeros((vertices + 1, max(PHASES + 2 * components, KEY)))
+
+
 @inner
-def place(row, pos, rot, wave, t, work):
-    """Each vertex's arm R v from the reference point (earth frame) into ``work[i, 0:3]`` and
-    its depth below the free surface, eta(x, y) - z (kernels.waves; 0 for still water), into
-    ``work[i, 3]``."""
+def place(row, body, pos, rot, wave, t, work):
+    """Each vertex's arm R v from the reference point (earth frame) into ``work[i, 0:3]``, its
+    depth below the free surface, eta(x, y) - z (kernels.waves; 0 for still water), into
+    ``work[i, 3]`` and, with waves, the cosines and sines of its components' half phases
+    into ``work[i, PHASES:PHASES + n]`` and ``work[i, PHASES + n:PHASES + 2 n]``
+    (kernels.waves.half_phases: ``add_froude_krylov`` takes its edge midpoints' from them).
+    ``work``'s last row keys the placement (``body``, t, the number of components, pos, rot):
+    a placement the same as the last is not repeated (the hydrostatics and the Froude-Krylov
+    force of one body share it; another body, time, pose or surface places again)."""
+    n = wave.shape[1]
+    key = work[work.shape[0] - 1]
+    same = key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n
+    for c in range(3):
+        same = same and key[4 + c] == pos[c]
+        for d in range(3):
+            same = same and key[7 + 3 * c + d] == rot[c, d]
+    if same:
+        return
+    key[0] = 0.0  # unset while the workspace changes
     trig = waves.scratch(wave)
     for i in range(int(row[0])):
         k = HEADER + 3 * i
@@ -57,14 +80,22 @@ def place(row, pos, rot, wave, t, work):
         for c in range(3):
             work[i, c] = rot[c, 0] * x + rot[c, 1] * y + rot[c, 2] * z
         eta = 0.0
-        if wave.shape[1] > 0:
-            eta = waves.elevation(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1], trig)
+        if n > 0:
+            eta = waves.half_phases(wave, t, pos[0] + work[i, 0], pos[1] + work[i, 1], trig,
+                                    work[i, PHASES : PHASES + n],
+                                    work[i, PHASES + n : PHASES + 2 * n])  # fmt: skip
         work[i, 3] = eta - pos[2] - work[i, 2]
+    key[1], key[2], key[3] = body, t, n
+    for c in range(3):
+        key[4 + c] = pos[c]
+        for d in range(3):
+            key[7 + 3 * c + d] = rot[c, d]
+    key[0] = 1.0
 
 
 @njit(inline="always", **JIT)
 def _wet(row, t0, t, work):
-    """Triangle t's wetted part: (count, parts) of ``clip``."""
+    """Triangle t's wetted part: (count, parts, turn) of ``clip``."""
     i, j, k = int(row[t0 + 3 * t]), int(row[t0 + 3 * t + 1]), int(row[t0 + 3 * t + 2])
     a = (work[i, 0], work[i, 1], work[i, 2])
     b = (work[j, 0], work[j, 1], work[j, 2])
@@ -74,7 +105,7 @@ def _wet(row, t0, t, work):
 
 @njit(inline="always", **JIT)
 def _cut(p, q, hp, hq):
-    """The point of the edge p-q where the depth is zero (hp >= 0 > hq or the reverse)."""
+    """The point of the edge p-q where the depth is zero (hp >= 0 > hq)."""
     s = hp / (hp - hq)
     return (p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1]), p[2] + s * (q[2] - p[2]))
 
@@ -82,28 +113,31 @@ def _cut(p, q, hp, hq):
 @njit(inline="always", **JIT)
 def clip(a, b, c, ha, hb, hc):
     """The part of triangle a b c where the depth h >= 0, as ``count`` triangles (0, 1 or 2)
-    of the same winding: (count, (a0, b0, c0, a1, b1, c1))."""
+    of the same winding: (count, (a0, b0, c0, a1, b1, c1), turn), the triangle turned by
+    ``turn`` (0, 1, 2: the vertex it starts from) so that a is the odd vertex out (one wet:
+    the part a pab pca; two: the quadrilateral pab b c pca split from pab). An edge is cut
+    from its wet end, so that the two triangles sharing it cut it at the same point."""
     wa, wb, wc = ha >= 0.0, hb >= 0.0, hc >= 0.0
     wet = int(wa) + int(wb) + int(wc)
     if wet == 3:
-        return 1, (a, b, c, a, b, c)
+        return 1, (a, b, c, a, b, c), 0
     if wet == 0:
-        return 0, (a, b, c, a, b, c)
-    # turn the triangle (keeping its winding) so that a is the odd vertex out
+        return 0, (a, b, c, a, b, c), 0
+    turn = 0
     if wet == 1:
         if wb:
-            a, b, c, ha, hb, hc = b, c, a, hb, hc, ha
+            a, b, c, ha, hb, hc, turn = b, c, a, hb, hc, ha, 1
         elif wc:
-            a, b, c, ha, hb, hc = c, a, b, hc, ha, hb
-        pab, pca = _cut(a, b, ha, hb), _cut(c, a, hc, ha)
-        return 1, (a, pab, pca, a, pab, pca)
+            a, b, c, ha, hb, hc, turn = c, a, b, hc, ha, hb, 2
+        pab, pca = _cut(a, b, ha, hb), _cut(a, c, ha, hc)
+        return 1, (a, pab, pca, a, pab, pca), turn
     if not wb:
-        a, b, c, ha, hb, hc = b, c, a, hb, hc, ha
+        a, b, c, ha, hb, hc, turn = b, c, a, hb, hc, ha, 1
     elif not wc:
-        a, b, c, ha, hb, hc = c, a, b, hc, ha, hb
+        a, b, c, ha, hb, hc, turn = c, a, b, hc, ha, hb, 2
     # a dry, b and c wet: the quadrilateral pab b c pca
-    pab, pca = _cut(a, b, ha, hb), _cut(c, a, hc, ha)
-    return 2, (pab, b, c, pab, c, pca)
+    pab, pca = _cut(b, a, hb, ha), _cut(c, a, hc, ha)
+    return 2, (pab, b, c, pab, c, pca), turn
 
 
 @njit(inline="always", **JIT)
@@ -142,7 +176,7 @@ def add_hydrostatic(row, level, pos, rho, gravity, work, rhs):
     depth0 = level - pos[2]  # the level's height above the reference point
     rho_g = rho * gravity
     for t in range(int(row[1])):
-        count, parts = _wet(row, t0, t, work)
+        count, parts, _ = _wet(row, t0, t, work)
         if count >= 1:
             _add_pressure(parts[0], parts[1], parts[2], depth0, rho_g, rhs)
         if count == 2:
@@ -169,23 +203,49 @@ def _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig):
 
 
 @njit(inline="always", **JIT)
-def _add_wave_pressure(a, b, c, pos, wave, t, depth, stretch, rho_g, trig, rhs):
-    """-int p n dA and its moment over triangle a b c (arms), p the incident wave's dynamic
-    pressure at its three edge midpoints."""
-    s = _area_vector(a, b, c)
-    for m in (_mid(a, b), _mid(b, c), _mid(c, a)):
-        _add_wave_load(_wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig), m, s, rhs)
+def _add_at(pressures, e, p, q, s, pos, wave, t, depth, stretch, rho_g, trig, rhs):
+    """The load of the midpoint of p and q (arms) for a part of area vector ``s``: on edge
+    ``e`` (its pressure evaluated once for the edge's two triangles), or on the waterline
+    (``e`` < 0: its own)."""
+    m = _mid(p, q)
+    if e < 0:
+        pressure = _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig)
+    else:
+        if np.isnan(pressures[e]):
+            pressures[e] = _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig)
+        pressure = pressures[e]
+    _add_wave_load(pressure, m, s, rhs)
+
+
+@njit(inline="always", **JIT)
+def _at_wet_edge(pressures, e, i, j, pos, wave, t, depth, stretch, rho_g, work, trig):
+    """The pressure at the midpoint of the wholly wet edge ``e`` from vertex i to j (its
+    components' cosines the products of the vertices' half phases, ``place``), evaluated once
+    for the edge's two triangles; and the midpoint (arm)."""
+    m = _mid((work[i, 0], work[i, 1], work[i, 2]), (work[j, 0], work[j, 1], work[j, 2]))
+    if np.isnan(pressures[e]):
+        n = wave.shape[1]
+        ci, si = work[i, PHASES : PHASES + n], work[i, PHASES + n : PHASES + 2 * n]
+        cj, sj = work[j, PHASES : PHASES + n], work[j, PHASES + n : PHASES + 2 * n]
+        cos_mid = trig[0]
+        for q in range(n):
+            cos_mid[q] = ci[q] * cj[q] - si[q] * sj[q]
+        pressures[e] = waves.pressure_given(wave, t, pos[2] + m[2], depth, stretch, rho_g, trig)
+    return pressures[e], m
 
 
 @inner
 def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs):
     """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
     the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
-    and moment. A wholly wet triangle's edge midpoints are those of its neighbours: the
-    pressure there is evaluated once per edge (``pressures``, NaN until then; the midpoint
-    0.5 (a + b) is the same float from either side, so the sum is the one triangle by
-    triangle); a cut triangle's parts take theirs."""
-    if wave.shape[1] == 0:
+    and moment. Each point is the midpoint of two parts at most and evaluated once
+    (``pressures`` per edge, NaN until then; a midpoint 0.5 (p + q) is the same float from
+    either side, so the sum is the one part by part): a wholly wet edge's midpoint, its
+    components' cosines the products of its vertices' half phases (``place``); a cut edge's,
+    between its wet vertex and its cut point (``clip`` cuts it at one point from either
+    side); a wet quadrilateral's diagonal's; only the waterline's midpoints serve one part."""
+    n = wave.shape[1]
+    if n == 0:
         return
     nv, nt = int(row[0]), int(row[1])
     t0 = HEADER + 3 * nv
@@ -194,24 +254,40 @@ def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs
     trig = waves.scratch(wave)
     pressures = np.full(3 * nt, np.nan)
     for k in range(nt):
-        count, parts = _wet(row, t0, k, work)
-        corners = (int(row[t0 + 3 * k]), int(row[t0 + 3 * k + 1]), int(row[t0 + 3 * k + 2]))
-        if work[corners[0], 3] >= 0.0 and work[corners[1], 3] >= 0.0 and work[corners[2], 3] >= 0.0:
-            s = _area_vector(parts[0], parts[1], parts[2])
-            for side in range(3):
-                i, j = corners[side], corners[(side + 1) % 3]
-                m = _mid((work[i, 0], work[i, 1], work[i, 2]), (work[j, 0], work[j, 1], work[j, 2]))
-                e = int(row[e0 + 3 * k + side])
-                if np.isnan(pressures[e]):
-                    pressures[e] = _wave_pressure(m, pos, wave, t, depth, stretch, rho_g, trig)
-                _add_wave_load(pressures[e], m, s, rhs)
+        count, parts, turn = _wet(row, t0, k, work)
+        if count == 0:
             continue
-        if count >= 1:
-            _add_wave_pressure(parts[0], parts[1], parts[2], pos, wave, t, depth, stretch, rho_g,
-                               trig, rhs)  # fmt: skip
-        if count == 2:
-            _add_wave_pressure(parts[3], parts[4], parts[5], pos, wave, t, depth, stretch, rho_g,
-                               trig, rhs)  # fmt: skip
+        # the corners and edges as clip turned them: a is the odd one out, ab the edge a-b
+        a, b, c = (int(row[t0 + 3 * k + turn]), int(row[t0 + 3 * k + (turn + 1) % 3]),
+                   int(row[t0 + 3 * k + (turn + 2) % 3]))  # fmt: skip
+        ab, bc, ca = (int(row[e0 + 3 * k + turn]), int(row[e0 + 3 * k + (turn + 1) % 3]),
+                      int(row[e0 + 3 * k + (turn + 2) % 3]))  # fmt: skip
+        if work[a, 3] >= 0.0 and work[b, 3] >= 0.0 and work[c, 3] >= 0.0:
+            s = _area_vector(parts[0], parts[1], parts[2])
+            for i, j, e in ((a, b, ab), (b, c, bc), (c, a, ca)):
+                p, m = _at_wet_edge(pressures, e, i, j, pos, wave, t, depth, stretch, rho_g,
+                                    work, trig)  # fmt: skip
+                _add_wave_load(p, m, s, rhs)
+        elif count == 1:  # a wet: the part a pab pca
+            pa, pab, pca = parts[0], parts[1], parts[2]
+            s = _area_vector(pa, pab, pca)
+            _add_at(pressures, ab, pa, pab, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
+            _add_at(pressures, -1, pab, pca, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
+            _add_at(pressures, ca, pca, pa, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
+        else:  # a dry: pab b c and pab c pca, sharing the diagonal pab c
+            pab, pb, pc, pca = parts[0], parts[1], parts[2], parts[5]
+            diagonal = _mid(pab, pc)
+            across = _wave_pressure(diagonal, pos, wave, t, depth, stretch, rho_g, trig)
+            s = _area_vector(pab, pb, pc)
+            _add_at(pressures, ab, pab, pb, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
+            p, m = _at_wet_edge(pressures, bc, b, c, pos, wave, t, depth, stretch, rho_g, work,
+                                trig)  # fmt: skip
+            _add_wave_load(p, m, s, rhs)
+            _add_wave_load(across, diagonal, s, rhs)
+            s = _area_vector(pab, pc, pca)
+            _add_wave_load(across, diagonal, s, rhs)
+            _add_at(pressures, ca, pc, pca, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
+            _add_at(pressures, -1, pca, pab, s, pos, wave, t, depth, stretch, rho_g, trig, rhs)
 
 
 @njit(inline="always", **JIT)
@@ -232,13 +308,13 @@ def surface_integrals(row, level, pos, rot, out):
     """``out`` (10, 3): int f n dA over the mesh's part below z = ``level``, f the
     ``INTEGRANDS`` of the arms from ``pos`` (earth axes)."""
     out[:, :] = 0.0
-    work = np.zeros((int(row[0]), 4))
-    place(row, pos, rot, waves.still(), 0.0, work)
+    work = np.zeros((int(row[0]) + 1, KEY))  # workspace(nv, 0)
+    place(row, 0, pos, rot, waves.still(), 0.0, work)
     for i in range(work.shape[0]):
         work[i, 3] += level
     t0 = HEADER + 3 * int(row[0])
     for t in range(int(row[1])):
-        count, parts = _wet(row, t0, t, work)
+        count, parts, _ = _wet(row, t0, t, work)
         if count >= 1:
             _add_moments(parts[0], parts[1], parts[2], out)
         if count == 2:
@@ -264,7 +340,7 @@ def hydrostatic_potential(row, level, pos, work):
     depth0 = level - pos[2]
     total = 0.0
     for t in range(int(row[1])):
-        count, parts = _wet(row, t0, t, work)
+        count, parts, _ = _wet(row, t0, t, work)
         if count >= 1:
             total += _add_potential(parts[0], parts[1], parts[2], depth0)
         if count == 2:

@@ -112,13 +112,19 @@ def stretched(z, eta, depth, stretch):
 def _phases(wave, t, x, y, trig):
     """cos theta_i and sin theta_i at (x, y) into ``trig[0, i]`` and ``trig[1, i]`` (row 2:
     the phases; kernels.trig, a vectorised loop); returns the elevation before the build-up's
-    ramp, sum a_i cos theta_i [m] (four interleaved sums)."""
+    ramp, sum a_i cos theta_i [m]."""
     n = wave.shape[1]
-    a, w, k, cb, sb, p = wave[A], wave[W], wave[K], wave[COS], wave[SIN], wave[PHASE]
-    theta, c = trig[2], trig[0]
+    k, w, cb, sb, p = wave[K], wave[W], wave[COS], wave[SIN], wave[PHASE]
+    theta = trig[2]
     for i in range(n):
         theta[i] = k[i] * (x * cb[i] + y * sb[i]) - w[i] * t + p[i]
     cos_sin(trig, n)
+    return _sum(wave[A], trig[0], n)
+
+
+@njit(inline="always", **JIT)
+def _sum(a, c, n):
+    """sum a_i c_i over i < n (four interleaved partial sums: a vectorised loop)."""
     s0 = s1 = s2 = s3 = 0.0
     m = n - n % 4
     for i in range(0, m, 4):
@@ -129,6 +135,26 @@ def _phases(wave, t, x, y, trig):
     for i in range(m, n):
         s0 += a[i] * c[i]
     return (s0 + s1) + (s2 + s3)
+
+
+@inner
+def half_phases(wave, t, x, y, trig, c, s):
+    """cos and sin of half of each component's phase at (x, y), theta_i / 2, into ``c`` and
+    ``s`` (n each): the phase being linear in x and y, e^{i theta} at the midpoint of two
+    points is the product of their e^{i theta / 2}, two products and a difference per
+    component where a cosine costs a polynomial (kernels.hull's edge midpoints). Returns the
+    elevation [m] at (x, y), the ramp's r times sum a_i (c_i^2 - s_i^2). ``trig``:
+    :func:`scratch`."""
+    n = wave.shape[1]
+    k, w, cb, sb, p = wave[K], wave[W], wave[COS], wave[SIN], wave[PHASE]
+    theta, cos_theta = trig[2], trig[3]
+    for i in range(n):
+        theta[i] = 0.5 * (k[i] * (x * cb[i] + y * sb[i]) - w[i] * t + p[i])
+    cos_sin(trig, n)
+    for i in range(n):
+        c[i], s[i] = trig[0, i], trig[1, i]
+        cos_theta[i] = trig[0, i] * trig[0, i] - trig[1, i] * trig[1, i]
+    return ramp(wave, t)[0] * _sum(wave[A], cos_theta, n)
 
 
 @inner
@@ -156,14 +182,22 @@ def pressure(wave, t, x, y, z, depth, stretch, rho_g, trig):
     callers integrate over the wetted part: points on its edges may lie a rounding above).
     ``trig``: :func:`scratch`. Each component's phase is evaluated once, for the elevation
     and the pressure."""
+    _phases(wave, t, x, y, trig)
+    return pressure_given(wave, t, z, depth, stretch, rho_g, trig)
+
+
+@inner
+def pressure_given(wave, t, z, depth, stretch, rho_g, trig):
+    """The dynamic pressure [Pa] at height z of a point whose components' cos theta_i are
+    in ``trig[0]`` (:func:`pressure`'s, from the point's phases or another way)."""
+    n = wave.shape[1]
+    a, group, c = wave[A], wave[GROUP], trig[0]
     r = ramp(wave, t)[0]
-    zs = stretched(z, r * _phases(wave, t, x, y, trig), depth, stretch)
+    zs = stretched(z, r * _sum(a, c, n), depth, stretch)
     groups = _depth_terms(wave, zs, depth, trig)
     scale, up, down = wave[COSH_SCALE], trig[3], trig[4]
     for j in range(groups):
         up[j] = (up[j] + down[j]) * scale[j]  # C
-    n = wave.shape[1]
-    a, group, c = wave[A], wave[GROUP], trig[0]
     s0 = s1 = 0.0
     m = n - n % 2
     for i in range(0, m, 2):

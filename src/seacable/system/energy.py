@@ -100,7 +100,7 @@ def _bodies(y, p, w, mesh):
             if mesh is None:  # no mesh: compiled without the hull's potential
                 continue
             row = p.force_data[p.force_at[f] :]
-            gravity += hydrostatic.potential(row, w.pos[b], w.rot[b], p.rho, p.gravity,
+            gravity += hydrostatic.potential(row, b, w.pos[b], w.rot[b], p.rho, p.gravity,
                                              waves.still(), w.hull)  # fmt: skip
         elif kind == LINEAR_STIFFNESS:
             row = p.force_data[p.force_at[f] :]

@@ -403,13 +403,13 @@ def add_all(
         elif F_SERVO and k == SERVO:
             servo.add(row, y, state[f], rhs[b])
         elif F_MESH and k == NON_LINEAR_HYDROSTATIC:
-            hydrostatic.add(row, pos[b], rot[b], rho, gravity, wave, t, hull, rhs[b])
+            hydrostatic.add(row, b, pos[b], rot[b], rho, gravity, wave, t, hull, rhs[b])
         elif F_RADIATION_DAMPING and k == RADIATION_DAMPING:
             radiation.add(row, t, y, state[f], rot[b], vel[b], omega[b], history, rhs[b])
         elif F_DIFFRACTION and k == DIFFRACTION:
             diffraction.add(row, t, wave, pos[b], rot[b], history[0 : memory.SCRATCH], rhs[b])
         elif F_MESH and k == NON_LINEAR_FROUDE_KRYLOV:
-            froude_krylov.add(row, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
+            froude_krylov.add(row, b, pos[b], rot[b], rho, gravity, wave, t, wave_depth,
                               wave_stretch, hull, rhs[b])  # fmt: skip
         elif F_WAVE_DRIFT and k == WAVE_DRIFT:
             wave_drift.add(row, t, wave, rot[b], rhs[b])

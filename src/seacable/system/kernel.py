@@ -23,7 +23,7 @@ from numba import njit
 from seacable.bodies import dynamics, kinematics
 from seacable.forces import compensator, hydrostatic, kinds, radiation
 from seacable.kernels import chain3d as c3
-from seacable.kernels import indirect, memory, records, surface, waves
+from seacable.kernels import hull, indirect, memory, records, surface, waves
 from seacable.kernels import lumped as lk
 from seacable.kernels.jit import JIT, inner
 from seacable.lines import lumped_mass, tip_joint
@@ -220,7 +220,7 @@ class _WorkFields(NamedTuple):
     nat_dot: np.ndarray  # its rates
     nat_work: np.ndarray  # (9, max n + 1) kernels.natural's workspace
     nat_out: np.ndarray  # (max n + 1, 4) a string's nodes: x, z from the pivot, strain, tension
-    hull: np.ndarray  # (largest mesh's vertices, 4) kernels.hull.place's workspace
+    hull: np.ndarray  # kernels.hull.place's workspace (hull.workspace, the largest mesh)
     trig: np.ndarray  # (kernels.waves.SCRATCH, wave components) the force models' wave scratch
     memory: np.ndarray  # a force model's scratch, then the radiation models' velocity
     # histories (kernels.memory)
@@ -264,7 +264,7 @@ def make_work(p: SystemParams) -> SystemWork:
         group=np.zeros((g + 2, g)),
         own_load=np.zeros((nb, 3)), scratch=np.zeros(168), imposed=np.zeros(18),
         nat=np.zeros(6 * nat), nat_dot=np.zeros(6 * nat), nat_work=np.zeros((9, nat)),
-        nat_out=np.zeros((nat, 4)), hull=np.zeros((_vertices(p), 4)),
+        nat_out=np.zeros((nat, 4)), hull=hull.workspace(_vertices(p), p.wave.shape[1]),
         trig=np.zeros((waves.SCRATCH, p.wave.shape[1])),
         memory=np.zeros(max(memory.SCRATCH, _memory(p))), models=np.zeros((nb, 6)),
         models_key=np.full(1 + 13 * nb + int(p.n_s), np.nan),
