@@ -259,6 +259,7 @@ class _Run:
         self.fsal[0] = 0
         if self.carry is not None:
             self.carry[1][0] = 0.0
+            self.carry[1][3] = 0.0  # the forces the last step ended with
 
     def _stiff_stepper(self) -> stiff.StiffStepper:
         sim = self.sim

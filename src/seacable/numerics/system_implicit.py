@@ -58,6 +58,12 @@ computes it (``chunk``: t0 + h may differ from it in the last bit), so that the 
 f(t0) finds the water kinematics its last residual recorded at that very time (kernels.lumped
 LAGGED).
 A Jacobian counts its residuals in the rhs evaluations.
+The forces f(t0, x0, v0) that generalized-alpha blends in at a step's start are those of the
+step before's last residual (its iterate before the last correction, which moved no
+position by more than the tolerance), not evaluated again: one residual a step less (the
+moored barge example over 100 s: 10,841 residuals against 12,700, 110 times real time against
+98; its bow fairlead's largest tension 728.390 kN against 728.353). After a failed step, a
+line's failure or new parameters they are evaluated.
 """
 
 import math
@@ -221,6 +227,7 @@ def _search(t1, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
         fraction *= 0.5
     a1[:] = trial
     res[:] = res_trial
+    vec[10][:nv] = ydot[p.n_q : p.n_q + nv]  # the forces at the new iterate
     return status, trial_merit, fraction < 1.0
 
 
@@ -332,19 +339,24 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     ``rows.size``): Newton's right-hand side, correction and scratch over every unknown, the
     rigid lines' auxiliary ones included (``rigid_newton.rhs``)."""
     q, fresh, mat, piv, raw, held = carry
-    a1, trend = q[0], q[1]
+    a1, trend, ends = q[0], q[1], q[2]
     nv = a1.shape[0]
     ya, ydot, d, res, da, z = vec[0], vec[1], vec[2][:nv], vec[6][:nv], vec[7][:nv], vec[8][:nv]
-    f0 = vec[9][:nv]
+    f0, f_iterate = vec[9][:nv], vec[10][:nv]
+    nq = p.n_q
     b = coef[1]
     f0[:] = 0.0
     if coef[4] != 0.0:  # generalized-alpha: the forces at the step's start, blended in
-        status = system_kernel.evaluate(t, y, p, w, ydot)
-        work[2] += 1
-        if status != OK:
-            work[3] += 1
-            return status
-        f0[:] = ydot[p.n_q : p.n_q + nv]
+        if fresh[3] == 1.0:  # the last step's, from its last residual
+            f0[:] = ends
+        else:
+            status = system_kernel.evaluate(t, y, p, w, ydot)
+            work[2] += 1
+            if status != OK:
+                work[3] += 1
+                return status
+            f0[:] = ydot[nq : nq + nv]
+    fresh[3] = 0.0  # until this step is accepted
     a1[:] = acc
     if fresh[2] == h:
         a1 += trend
@@ -352,6 +364,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     previous = math.inf
     status = _residual(t1, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
     work[2] += 1
+    f_iterate[:] = ydot[nq : nq + nv]
     rate = coef[2] / (b * h)  # a state's change per unit of rate against a position's
     merit = _merit(res, inc, rate)
     updates = 0
@@ -385,6 +398,9 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
             if system_kernel.accept(t1, ya, p, w) != 0:  # a line's failure
                 fresh[0] = 0.0  # Newton's matrix is not the new system's
+            else:  # the last residual's forces start the next step (module docstring)
+                ends[:] = f_iterate
+                fresh[3] = 1.0
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]
@@ -428,7 +444,7 @@ def chunk(
     ny = y.shape[0]
     nv = acc.shape[0]
     dt = output_interval / steps_per_output
-    vec = np.empty((10, ny))
+    vec = np.empty((11, ny))
     big = np.empty((3, rows.size))
     y_saved = np.empty(ny)
     acc_saved = np.empty(nv)
