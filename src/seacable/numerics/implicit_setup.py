@@ -167,11 +167,13 @@ def carry(system: model.BuiltSystem, lay: bordered.Bordered):
     """The arrays a run carries from step to step (``numerics.contract.ChunkIntegrator``, point
     5): [a1, the last step's change of acceleration, the forces at its end], [factors valid,
     their step length, the step length of that change, whether those forces are the current
-    state's], the factors and their row swaps, the matrix before its factorisation and the
-    seabed terms it holds for each lumped node (``system_implicit._seabed_terms``)."""
+    state's, the largest local tension error estimated so far and the largest tension
+    (``system_implicit._estimate``)], the factors and their row swaps, the matrix before its
+    factorisation and the seabed terms it holds for each lumped node
+    (``system_implicit._seabed_terms``)."""
     nv = int(system.params.n_v) + int(system.params.n_s)
     return (
-        np.zeros((3, nv)), np.zeros(4), np.zeros(lay.size),
+        np.zeros((3, nv)), np.zeros(6), np.zeros(lay.size),
         np.zeros(lay.order.shape[0], dtype=np.int64), np.zeros(lay.size),
         np.zeros((9, system.params.node_mass.shape[0])),
     )  # fmt: skip

@@ -64,6 +64,13 @@ position by more than the tolerance), not evaluated again: one residual a step l
 moored barge example over 100 s: 10,841 residuals against 12,700, 110 times real time against
 98; its bow fairlead's largest tension 728.390 kN against 728.353). After a failed step, a
 line's failure or new parameters they are evaluated.
+ESTIMATE: each accepted step estimates its local error as Zienkiewicz and Xie (1991) do for
+the Newmark family, (b - 1/6) h^2 (a1 - a0) in each position, and turns it into the lumped
+lines' tensions: EA / l times the difference of a segment's two nodes' estimates (its ends'
+points not estimated). A step too long for what it integrates (a line ringing after a
+seabed impact, a snap) shows as an acceleration that swings from step to step; the run's
+largest estimate against its largest tension is in the results, and beyond ESTIMATE_SHARE of
+it the run warns (``seacable.simulation``).
 """
 
 import math
@@ -229,6 +236,26 @@ def _search(t1, y, acc, a1, da, h, coef, p, w, inc, merit, vec, work):
     res[:] = res_trial
     vec[10][:nv] = ydot[p.n_q : p.n_q + nv]  # the forces at the new iterate
     return status, trial_merit, fraction < 1.0
+
+
+@inner
+def _estimate(change, h, coef, p, w, fresh):
+    """The step's local error in the lumped lines' tensions (module docstring, ESTIMATE):
+    fresh[4] its largest so far [N], fresh[5] the largest tension so far [N] (``w``: the
+    last residual's evaluation). ``change``: a1 - a0 of every velocity variable."""
+    c = abs(coef[1] - 1.0 / 6.0) * h * h
+    for li in range(p.line_n.shape[0]):
+        n, s0, c0, v0 = p.line_n[li], p.line_seg[li], p.line_node[li], p.line_v[li] - p.n_q
+        ex0 = ey0 = ez0 = 0.0  # node 0, an end: its point's motion, not estimated
+        for k in range(n):
+            ex = ey = ez = 0.0  # node n, the other end
+            if k + 1 < n:
+                v = v0 + 3 * k  # interior node k + 1
+                ex, ey, ez = c * change[v], c * change[v + 1], c * change[v + 2]
+            stretch = math.sqrt((ex - ex0) ** 2 + (ey - ey0) ** 2 + (ez - ez0) ** 2)
+            fresh[4] = max(fresh[4], p.seg_stiffness[s0 + k] / p.seg_length[s0 + k] * stretch)
+            fresh[5] = max(fresh[5], abs(w.nodes[lumped._T, c0 + k]))
+            ex0, ey0, ez0 = ex, ey, ez
 
 
 @njit(inline="always", **JIT)
@@ -404,6 +431,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
             y[:] = ya
             for i in range(nv):
                 trend[i] = a1[i] - acc[i]
+            _estimate(trend, h, coef, p, w, fresh)
             fresh[2] = h
             acc[:] = a1
             work[0] += 1
