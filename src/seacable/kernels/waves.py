@@ -35,6 +35,8 @@ kinematics' six sums are independent already).
 Callers allocate one scratch of ``SCRATCH`` rows per table (:func:`scratch`).
 """
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -43,6 +45,7 @@ from seacable.kernels.timefn import smoothstep
 from seacable.kernels.trig import cos_sin, exp_rows
 
 DEEP = 1e30  # the depth of deep water [m]
+NEGLIGIBLE = 2.0**-54  # below this share of e^{kz}, e^{-k(z + 2h)} changes no sum (_depth_terms)
 WHEELER, VERTICAL = 0, 1
 A, W, K, COS, SIN, PHASE, BUILD_UP, GROUP = range(8)  # per component
 NUMBER, COSH_SCALE, SINH_SCALE = range(8, 11)  # per distinct wave number
@@ -160,19 +163,27 @@ def half_phases(wave, t, x, y, trig, c, s):
 @inner
 def _depth_terms(wave, zs, depth, trig):
     """e^{k_j z} and e^{-k_j (z + 2h)} into ``trig[3, j]`` and ``trig[4, j]`` for the m
-    distinct wave numbers, at z = ``zs`` <= 0 (below the seabed, on it; the second is 0 in
-    deep water); returns m. C, D and E of the module docstring are their sum and difference
-    times the table's scales."""
+    distinct wave numbers, at z = ``zs`` <= 0 (below the seabed, on it); returns m. C, D and E
+    of the module docstring are their sum and difference times the table's scales. The second
+    is left 0 where it is below NEGLIGIBLE times the first (2 k (z + h) > -ln NEGLIGIBLE: the
+    wave numbers are sorted, so from some j on), where their sum and difference round to the
+    first: always in deep water."""
     n = wave.shape[1]
     m = int(wave[GROUP, n - 1]) + 1 if n > 0 else 0
     k = wave[NUMBER]
     zc = max(zs, -depth)
+    reach = -0.5 * math.log(NEGLIGIBLE) / (zc + depth) if zc + depth > 0.0 else math.inf
     below = -(zc + 2.0 * depth)
     up, down = trig[3], trig[4]
     for j in range(m):
         up[j] = k[j] * zc
         down[j] = k[j] * below
-    exp_rows(trig, 3, 5, m, 2)
+    felt = 0
+    while felt < m and k[felt] <= reach:
+        felt += 1
+    exp_rows(trig, 3, 4, m, 2)
+    exp_rows(trig, 4, 5, felt, 2)
+    down[felt:m] = 0.0
     return m
 
 
