@@ -35,8 +35,10 @@ For 20, 40, 80 and 160 segments:
   error against its own converged solution (dopri5, rtol 1e-9) stays within the larger of
   MoorDyn's own error (its chosen step against its converged run) and 1e-3 of the peak tension
   (equal accuracy, or 0.1 % where MoorDyn's error is smaller: the table gives both errors), and
-  rk4 at the largest stable step within the same bound; the fastest is reported, the others
-  too. Its fairlead moves exactly (the sine is evaluated at every stage).
+  rk4 at the largest stable step within the same bound (a step seacable refuses, rk4 beyond its
+  stability limit about the start, or one that diverges is a failed rung: the ladder goes on);
+  the fastest is reported, the others too. Its fairlead moves exactly (the sine is evaluated at
+  every stage).
 
 It prints both fairlead tensions at a few times, each code's error against its own converged
 run, their largest relative difference after the start-up (t >= 6 s), and the CPU time per
@@ -111,13 +113,21 @@ ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
 ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 (#) (name) (#) (#) (m) (-) (-)
 1  chain  1  2  {LENGTH}  {segments}  -
----------------------- OPTIONS ----------------------------------------------
+{options(dt, "RK2")}"""
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def options(dt, scheme):
+    """A deck's OPTIONS (and its closing line): the step ``dt`` [s] and time ``scheme``, the
+    seabed, the water and the initial-condition solve both races use."""
+    return f"""---------------------- OPTIONS ----------------------------------------------
 {dt!r}  dtM
-RK2  tScheme
+{scheme}  tScheme
 {SEABED_K / DIAMETER}  kbot
 {SEABED_C / DIAMETER}  cbot
 {DEPTH}  WtrDpth
-1025.0  rhoW
+1025.0  rho
 9.81  g
 1.0  dtIC
 100.0  TmaxIC
@@ -126,27 +136,24 @@ RK2  tScheme
 0  writeLog
 ------------------------- need this line ------------------------------------
 """
-    with open(path, "w") as f:
-        f.write(text)
 
 
 @contextlib.contextmanager
-def _quiet():
-    """MoorDyn-C writes its progress and errors to the C stdout and stderr: silence them."""
+def _quiet(log=os.devnull):
+    """MoorDyn-C writes its progress and errors to the C stdout and stderr: silence them (or
+    send them to the file ``log``, to read what it said)."""
     sys.stdout.flush()
     sys.stderr.flush()
-    saved = os.dup(1), os.dup(2)
-    null = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(null, 1)
-    os.dup2(null, 2)
+    saved, sink = (os.dup(1), os.dup(2)), os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC)
+    os.dup2(sink, 1)
+    os.dup2(sink, 2)
     try:
         yield
     finally:
         os.dup2(saved[0], 1)
         os.dup2(saved[1], 2)
-        os.close(null)
-        os.close(saved[0])
-        os.close(saved[1])
+        for fd in (sink, *saved):
+            os.close(fd)
 
 
 def run_moordyn(segments, dt, duration, ba, coupling=None):
@@ -321,23 +328,31 @@ def case(segments, duration, integrator, damping, time_step=None, **simulation):
     )
 
 
-def run_seacable(segments, duration, integrator, damping, time_step=None, **simulation):
-    """Fairlead tension every OUTPUT seconds, the CPU time of the stepping and of the start-up
-    (building the line and its equilibrium, a run of one output interval, kernels compiled
-    beforehand), and the work attributes."""
-    c = case(segments, duration, integrator, damping, time_step, **simulation)
-    warm = c.model_copy(update={"simulation": c.simulation.model_copy(update={"duration": OUTPUT})})
+def timed(c, limit=contextlib.nullcontext):
+    """A case's results, the CPU time of its stepping and of its start-up (a run of one output
+    interval, compiled beforehand: the stepping's time is the whole run's less that), the run
+    inside the context ``limit()``."""
+    once = {"duration": c.simulation.output_interval}
+    warm = c.model_copy(update={"simulation": c.simulation.model_copy(update=once)})
     seacable.simulate(warm)  # compile (or load from the cache) first
     start = CLOCK()
     seacable.simulate(warm)
     startup = CLOCK() - start
     start = CLOCK()
-    ds = seacable.simulate(c).dataset
-    cpu = CLOCK() - start
+    with limit():
+        ds = seacable.simulate(c).dataset
+    return ds, max(CLOCK() - start - startup, 1e-9), startup
+
+
+def run_seacable(segments, duration, integrator, damping, time_step=None, **simulation):
+    """Fairlead tension every OUTPUT seconds, the CPU time of the stepping and of the start-up
+    (building the line and its equilibrium, a run of one output interval, kernels compiled
+    beforehand), and the work attributes."""
+    ds, cpu, startup = timed(case(segments, duration, integrator, damping, time_step, **simulation))
     # the force of the line on the fairlead body (the end node's inertia included)
     force = np.sqrt(sum(ds[f"bodies/fairlead/line_force_{c}"] ** 2 for c in "xyz"))
     # drop t = 0: MoorDyn reports from the first step
-    return force.values[1:], max(cpu - startup, 1e-9), startup, ds.attrs
+    return force.values[1:], cpu, startup, ds.attrs
 
 
 def _error(tension, reference, times):
@@ -359,21 +374,28 @@ def _seacable_candidates(segments, duration, damping, reference, times, target):
     """The fastest seacable run within the target, and every run found: each configuration at
     the largest step of the ladder at which it is stable and within the target. Rows:
     (stepping cpu, configuration, dt, tension, error, start-up cpu)."""
-    found = []
+    found, refused = [], {}
     for name, settings in CONFIGURATIONS:
         integrator = name.split()[0]
         for dt in ladder(0.05, 2e-4):
+            # a step seacable refuses (rk4 beyond its stability limit about the start: a
+            # CaseError at load or simulate time) or that diverges is a failed rung: the
+            # ladder goes on to the next, smaller step
             try:
                 tension, cpu, startup, _ = run_seacable(
                     segments, duration, integrator, damping, dt, **settings
                 )
-            except seacable.SimulationDiverged:
-                tension = None
-            if tension is not None and (error := _error(tension, reference, times)) <= target:
+            except (seacable.CaseError, seacable.SimulationDiverged) as refusal:
+                refused[name] = f"{dt:.3g} s: {refusal}"
+                continue
+            if (error := _error(tension, reference, times)) <= target:
                 found.append((cpu, name, dt, tension, error, startup))
                 break
     if not found:
-        raise RuntimeError(f"no seacable run within {target:.2e} at {segments} segments")
+        last = "; ".join(f"{name} at {why}" for name, why in refused.items())
+        raise RuntimeError(
+            f"no seacable run within {target:.2e} at {segments} segments (last refused: {last})"
+        )
     return min(found, key=lambda row: row[0]), found
 
 
