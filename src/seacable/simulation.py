@@ -163,8 +163,10 @@ ESTIMATE_SHARE = 0.5  # an implicit run warns when its steps' local tension erro
 # (numerics.system_implicit, ESTIMATE) passes this share of the largest tension. The estimate
 # is not the error: against dopri5 at rtol 1e-9, the single-line race's runs
 # (benchmarks/vs_moordyn.py's line, 20 and 80 segments, 12.5 to 50 ms, spectral radius 0 and
-# 0.5) and the moored barge example at 0.05 s were off by 0.6 to 5 % of their estimate's share;
-# the race's runs beyond 0.5 were 0.9 to 4.9 % off, the example (0.26) 0.4 %.
+# 0.5) and the moored barge example at 0.05 s were off by 0.4 to 16 % of their estimate's share
+# (3.4 % or less where the share passed 0.05; the most where the error was 2e-4 of the peak);
+# the race's runs beyond 0.5 were 0.9 to 4.9 % off, the example (0.26) 0.4 %; on the spread
+# mooring of benchmarks/vs_moordyn_spread.py (50 segments) 14 % off at a share of 4.1.
 
 
 def _step_estimate(run) -> tuple[dict, str | None]:
