@@ -199,3 +199,34 @@ def test_each_edge_has_one_number():
             ends = frozenset((tri[k, side], tri[k, (side + 1) % 3]))
             assert by_ends.setdefault(ends, edges[k, side]) == edges[k, side]
     assert len(set(by_ends.values())) == len(by_ends) == 3 * nt // 2
+
+
+def test_two_hulls_in_one_system_get_each_its_own_placement(tmp_path):
+    """kernels.hull.place keys the hull workspace by body, time and pose (the hydrostatics and
+    the Froude-Krylov force of one body share a placement): two hulls of different meshes at
+    the same pose in one system, and one of them heeled, get each the loads it gets alone, to
+    the bit."""
+    forces = ["non-linear hydrostatic", "non-linear Froude-Krylov"]
+    one = _case(tmp_path, 6, 1.0, forces, heading=30.0)
+    data = one.model_dump(mode="json", by_alias=True, exclude_none=True)
+    box = data["bodies"][0]
+    path = tmp_path / "other.stl"
+    meshes.write_stl(meshes.box(0.6 * L, 1.3 * B, H, n=5), path, binary=False)
+    other = {**box, "name": "other", "mesh": {"file": str(path)}}
+    both = seacable.load_case({**data, "bodies": [box, other]})
+    alone = seacable.load_case({**data, "bodies": [other]})
+    for heel in ((0.0, 0.0, 0.0), (0.1, -0.05, 0.3)):
+        loads = []
+        for case in (both, one, alone):
+            built = model.build(case)
+            p, y = built.params, built.y0.copy()
+            for b, body in enumerate(case.bodies):
+                if body.name == "other":  # a rigid body's state: position, quaternion
+                    y[7 * b + 3 : 7 * b + 7] = kinematics.euler_quaternion(*heel)
+            w = kernel.make_work(p)
+            for t in (0.7, 0.7, 1.3):  # the same time twice: the placement kept, then another
+                kernel.rhs(t, y, p, w, np.zeros_like(y))
+            loads.append(w.load[: len(case.bodies)].copy())
+        assert np.array_equal(loads[0][0], loads[1][0])
+        assert np.array_equal(loads[0][1], loads[2][0])
+        assert not np.allclose(loads[0][0], loads[0][1])
