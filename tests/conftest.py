@@ -27,7 +27,7 @@ PYTHON_ONLY = (
     "cli.py", "cli_ships.py", "cli_sweep.py", "cli_types.py", "sweep.py", "cluster.py",
     "case/sweep.py",
     "report.py", "export.py", "fatigue.py", "case/fatigue.py", "sweep_summary.py",
-    "viz/", "results.py", "files.py", "simulation.py", "analysis.py", "stats.py",
+    "viz/", "results.py", "files.py", "simulation.py", "run_report.py", "analysis.py", "stats.py",
     "natural_periods.py",
     "case/loader.py", "case/reference.py",
     "case/document.py", "case/moordyn.py", "case/moordyn_tables.py",

@@ -12,7 +12,7 @@ LAYER = {
     "report": 12.8, "export": 12.8, "fatigue": 11.5,
     "viz": 12, "ahead": 12, "coupling": 12,
     "__init__": 12,
-    "simulation": 11, "analysis": 11, "stability": 11, "stats": 11,
+    "simulation": 11, "run_report": 10.9, "analysis": 11, "stability": 11, "stats": 11,
     "natural_periods": 10.8,
     "case.loader": 10, "results": 10, "case.reference": 9.5,
     "numerics": 8,

@@ -1,5 +1,5 @@
 """An implicit step too long for what it integrates is said, not silently accepted
-(numerics.system_implicit, ESTIMATE; seacable.simulation.ESTIMATE_SHARE): the single-line race's
+(numerics.system_implicit, ESTIMATE; seacable.run_report.ESTIMATE_SHARE): the single-line race's
 chain (benchmarks/vs_moordyn.py) at 80 segments, its touchdown ringing, over 12 s."""
 
 import logging
@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 import seacable
-from seacable import simulation
+from seacable import run_report
 
 
 def _line(time_step: float) -> seacable.SystemCase:
@@ -48,10 +48,10 @@ def test_a_step_that_does_not_resolve_the_line_warns_and_a_short_one_does_not(ca
         shares[step] = attrs["solver_tension_error_share"]
         warned = [r.message for r in caplog.records if "local error estimate" in r.message]
         if step == 0.025:
-            assert shares[step] > simulation.ESTIMATE_SHARE
+            assert shares[step] > run_report.ESTIMATE_SHARE
             assert len(warned) == 1 and "time_step 0.025 s" in warned[0]
             assert "local error estimate" in attrs["run_warnings"]
         else:
-            assert shares[step] < 0.5 * simulation.ESTIMATE_SHARE and not warned
+            assert shares[step] < 0.5 * run_report.ESTIMATE_SHARE and not warned
     assert shares[0.025] / shares[0.005] > 5.0
     assert np.isfinite(attrs["solver_tension_error_estimate"])

@@ -70,7 +70,7 @@ lines' tensions: EA / l times the difference of a segment's two nodes' estimates
 points not estimated). A step too long for what it integrates (a line ringing after a
 seabed impact, a snap) shows as an acceleration that swings from step to step; the run's
 largest estimate against its largest tension is in the results, and beyond ESTIMATE_SHARE of
-it the run warns (``seacable.simulation``).
+it the run warns (``seacable.run_report``).
 """
 
 import math
