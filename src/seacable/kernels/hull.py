@@ -230,7 +230,9 @@ def _at_wet_edge(pressures, e, i, j, pos, wave, t, depth, stretch, rho_g, work, 
         cos_mid = trig[0]
         for q in range(n):
             cos_mid[q] = ci[q] * cj[q] - si[q] * sj[q]
-        pressures[e] = waves.pressure_given(wave, t, pos[2] + m[2], depth, stretch, rho_g, trig)
+        eta = waves.cos_sum(wave, trig)
+        pressures[e] = waves.pressure_given(wave, t, pos[2] + m[2], eta, depth, stretch, rho_g,
+                                            trig)  # fmt: skip
     return pressures[e], m
 
 

@@ -126,6 +126,12 @@ def _phases(wave, t, x, y, trig):
 
 
 @njit(inline="always", **JIT)
+def cos_sum(wave, trig):
+    """sum a_i cos theta_i of the cosines in ``trig[0]``: the elevation before the ramp."""
+    return _sum(wave[A], trig[0], wave.shape[1])
+
+
+@njit(inline="always", **JIT)
 def _sum(a, c, n):
     """sum a_i c_i over i < n (four interleaved partial sums: a vectorised loop)."""
     s0 = s1 = s2 = s3 = 0.0
@@ -193,18 +199,18 @@ def pressure(wave, t, x, y, z, depth, stretch, rho_g, trig):
     callers integrate over the wetted part: points on its edges may lie a rounding above).
     ``trig``: :func:`scratch`. Each component's phase is evaluated once, for the elevation
     and the pressure."""
-    _phases(wave, t, x, y, trig)
-    return pressure_given(wave, t, z, depth, stretch, rho_g, trig)
+    return pressure_given(wave, t, z, _phases(wave, t, x, y, trig), depth, stretch, rho_g, trig)
 
 
 @inner
-def pressure_given(wave, t, z, depth, stretch, rho_g, trig):
+def pressure_given(wave, t, z, eta, depth, stretch, rho_g, trig):
     """The dynamic pressure [Pa] at height z of a point whose components' cos theta_i are
-    in ``trig[0]`` (:func:`pressure`'s, from the point's phases or another way)."""
+    in ``trig[0]`` (:func:`pressure`'s, from the point's phases or another way) and whose
+    elevation before the ramp is ``eta`` (:func:`cos_sum` of them)."""
     n = wave.shape[1]
     a, group, c = wave[A], wave[GROUP], trig[0]
     r = ramp(wave, t)[0]
-    zs = stretched(z, r * _sum(a, c, n), depth, stretch)
+    zs = stretched(z, r * eta, depth, stretch)
     groups = _depth_terms(wave, zs, depth, trig)
     scale, up, down = wave[COSH_SCALE], trig[3], trig[4]
     for j in range(groups):
