@@ -125,7 +125,7 @@ def _kernel_load(row, pos, rot, wave, t, depth, stretch):
         np.zeros(6),
     )
     hull.place(row, 0, pos, rot, wave, t, work)
-    hull.add_froude_krylov(row, pos, RHO, G, wave, t, depth, stretch, work, load)
+    hull.add_froude_krylov(row, RHO, G, wave, t, depth, stretch, work, load)
     return load
 
 
@@ -230,3 +230,42 @@ def test_two_hulls_in_one_system_get_each_its_own_placement(tmp_path):
         assert np.array_equal(loads[0][0], loads[1][0])
         assert np.array_equal(loads[0][1], loads[2][0])
         assert not np.allclose(loads[0][0], loads[0][1])
+
+
+def test_hull_loads_reused_within_the_reuse_distance_only(tmp_path):
+    """kernels.hull.place reuses the mesh loads computed on its last placement while a pose
+    moves no vertex by more than the key row's reuse distance (numerics.system_implicit sets
+    it within a Newton iteration): the loads are then those of the last placement to the bit;
+    a pose moved further, another time, or a reuse distance of 0 computes them afresh, the
+    same to the bit as a fresh workspace computes them."""
+    built = model.build(_case(tmp_path, 6, 1.0, ["non-linear hydrostatic",
+                                                 "non-linear Froude-Krylov"]))  # fmt: skip
+    p, y0 = built.params, built.y0.copy()
+    y0[3:7] = kinematics.euler_quaternion(0.05, -0.02, 0.1)
+
+    def loads(w, t, dx, turn=0.0):
+        y = y0.copy()
+        y[0] += dx
+        y[3:7] = kinematics.euler_quaternion(0.05 + turn, -0.02, 0.1)
+        kernel.rhs(t, y, p, w, np.zeros_like(y))
+        return w.load[0].copy()
+
+    def fresh(t, dx, turn=0.0):
+        return loads(kernel.make_work(p), t, dx, turn)
+
+    near = 1e-6
+    w = kernel.make_work(p)
+    w.hull[-1, hull.NEAR] = near
+    first = loads(w, 0.7, 0.0)
+    assert np.array_equal(first, fresh(0.7, 0.0))
+    # sqrt(3) |dx| <= near: the last placement's loads
+    assert np.array_equal(loads(w, 0.7, 0.5 * near), first)
+    assert not np.array_equal(fresh(0.7, 0.5 * near), first)
+    # a turn of 1e-9 rad moves the box's corners (11 m out) by 1.1e-8 m: reused; 2e-7 rad,
+    # 2.3e-6 m: placed again
+    assert np.array_equal(loads(w, 0.7, 0.0, 1e-9), first)
+    assert np.array_equal(loads(w, 0.7, 0.0, 2e-7), fresh(0.7, 0.0, 2e-7))
+    assert np.array_equal(loads(w, 0.7, 0.6 * near), fresh(0.7, 0.6 * near))
+    assert np.array_equal(loads(w, 0.8, 0.6 * near), fresh(0.8, 0.6 * near))
+    w.hull[-1, hull.NEAR] = 0.0
+    assert np.array_equal(loads(w, 0.8, 0.61 * near), fresh(0.8, 0.61 * near))

@@ -19,4 +19,4 @@ def add(row, body, pos, rot, rho, gravity, wave, t, depth, stretch, work, rhs):
     if wave.shape[1] == 0:
         return
     hull.place(row[MESH_AT:], body, pos, rot, wave, t, work)
-    hull.add_froude_krylov(row[MESH_AT:], pos, rho, gravity, wave, t, depth, stretch, work, rhs)
+    hull.add_froude_krylov(row[MESH_AT:], rho, gravity, wave, t, depth, stretch, work, rhs)

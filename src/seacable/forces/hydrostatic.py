@@ -32,7 +32,7 @@ def pack(mesh_row, still: bool = False) -> list[float]:
 def add(row, body, pos, rot, rho, gravity, wave, t, work, rhs):
     surface = waves.still() if row[1] != 0.0 else wave
     hull.place(row[MESH_AT:], body, pos, rot, surface, t, work)
-    hull.add_hydrostatic(row[MESH_AT:], row[0], pos, rho, gravity, work, rhs)
+    hull.add_hydrostatic(row[MESH_AT:], row[0], rho, gravity, work, rhs)
 
 
 @inner

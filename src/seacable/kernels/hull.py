@@ -31,7 +31,11 @@ from seacable.kernels.jit import JIT, inner
 
 HEADER = 2  # nv, nt
 PHASES = 4  # where the vertices' half phases start in place's workspace
-KEY = 16  # the floats of the workspace's key row (place)
+NEAR = 16  # where the key row holds the reuse distance [m] (``place``; set by its caller)
+RADIUS = 17  # the placed mesh's radius, its farthest vertex from the reference point [m]
+LOADS = 18  # where the key row's cached loads start: a flag and 6 floats per model
+HYDROSTATIC, FROUDE_KRYLOV = 0, 1  # the cached loads' slots
+KEY = LOADS + 14  # the floats of the workspace's key row (place)
 # the integrands of surface_integrals, in this order
 INTEGRANDS = ("1", "x", "y", "z", "xx", "yy", "zz", "xy", "xz", "yz")
 
@@ -60,23 +64,31 @@ def place(row, body, pos, rot, wave, t, work):
     ``work[i, 3]`` and, with waves, the cosines and sines of its components' half phases
     into ``work[i, PHASES:PHASES + n]`` and ``work[i, PHASES + n:PHASES + 2 n]``
     (kernels.waves.half_phases: ``add_froude_krylov`` takes its edge midpoints' from them).
-    ``work``'s last row keys the placement (``body``, t, the number of components, pos, rot):
-    a placement the same as the last is not repeated (the hydrostatics and the Froude-Krylov
-    force of one body share it; another body, time, pose or surface places again)."""
+    ``work``'s last row keys the placement (``body``, t, the number of components, pos, rot)
+    and caches the loads computed on it (``add_hydrostatic``, ``add_froude_krylov``): a
+    placement that would move no vertex by more than ``work[-1, NEAR]`` [m] from the last
+    (0, the default: the same pose) is not repeated and the loads computed on the last are
+    reused (the hydrostatics and the Froude-Krylov force of one body share it; another body,
+    time or surface, or a pose moved further, places again). The implicit integrators set
+    that distance within a step's Newton iteration (numerics.system_implicit, NEAR)."""
     n = wave.shape[1]
     key = work[work.shape[0] - 1]
-    same = key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n
-    for c in range(3):
-        same = same and key[4 + c] == pos[c]
-        for d in range(3):
-            same = same and key[7 + 3 * c + d] == rot[c, d]
-    if same:
-        return
+    if key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n:
+        moved = turned = 0.0
+        for c in range(3):
+            moved = max(moved, abs(key[4 + c] - pos[c]))
+            for d in range(3):
+                turned = max(turned, abs(key[7 + 3 * c + d] - rot[c, d]))
+        # |dpos + dR v| <= sqrt(3) max |dpos_c| + 3 max |dR_cd| |v|
+        if 1.7320508075688772 * moved + 3.0 * turned * key[RADIUS] <= key[NEAR]:
+            return
     key[0] = 0.0  # unset while the workspace changes
     trig = waves.scratch(wave)
+    radius = 0.0
     for i in range(int(row[0])):
         k = HEADER + 3 * i
         x, y, z = row[k], row[k + 1], row[k + 2]
+        radius = max(radius, x * x + y * y + z * z)
         for c in range(3):
             work[i, c] = rot[c, 0] * x + rot[c, 1] * y + rot[c, 2] * z
         eta = 0.0
@@ -90,7 +102,34 @@ def place(row, body, pos, rot, wave, t, work):
         key[4 + c] = pos[c]
         for d in range(3):
             key[7 + 3 * c + d] = rot[c, d]
+    key[RADIUS] = 1.000001 * np.sqrt(radius)  # above its rounding
+    key[LOADS] = key[LOADS + 7] = 0.0  # no load computed on it yet
     key[0] = 1.0
+
+
+@njit(inline="always", **JIT)
+def _cached(work, slot, rhs):
+    """Whether the load of ``slot`` was computed on the placement in ``work`` (``place``);
+    if so, it is added to ``rhs``. Otherwise the slot's floats are zeroed to receive it."""
+    key = work[work.shape[0] - 1]
+    at = LOADS + 7 * slot
+    if key[at] == 1.0:
+        for c in range(6):
+            rhs[c] += key[at + 1 + c]
+        return True
+    key[at + 1 : at + 7] = 0.0
+    return False
+
+
+@njit(inline="always", **JIT)
+def _keep(work, slot, rhs):
+    """The load just computed into ``slot``'s floats kept for the placement and added to
+    ``rhs``."""
+    key = work[work.shape[0] - 1]
+    at = LOADS + 7 * slot
+    key[at] = 1.0
+    for c in range(6):
+        rhs[c] += key[at + 1 + c]
 
 
 @njit(inline="always", **JIT)
@@ -168,10 +207,19 @@ def _add_pressure(a, b, c, depth0, rho_g, rhs):
 
 
 @inner
-def add_hydrostatic(row, level, pos, rho, gravity, work, rhs):
+def add_hydrostatic(row, level, rho, gravity, work, rhs):
     """The hydrostatic pressure rho g (level - z) integrated on the mesh's part under the free
     surface (``place`` first), added to the body's force and moment about its reference point
-    (earth frame)."""
+    (earth frame); computed once per placement (``place``)."""
+    if not _cached(work, HYDROSTATIC, rhs):
+        key = work[work.shape[0] - 1]
+        _hydrostatic(row, level, key[4:7], rho, gravity, work, key[LOADS + 1 : LOADS + 7])
+        _keep(work, HYDROSTATIC, rhs)
+
+
+@njit(inline="always", **JIT)
+def _hydrostatic(row, level, pos, rho, gravity, work, rhs):
+    """``add_hydrostatic``'s load on the placement of the reference point at ``pos``."""
     t0 = HEADER + 3 * int(row[0])
     depth0 = level - pos[2]  # the level's height above the reference point
     rho_g = rho * gravity
@@ -237,10 +285,22 @@ def _at_wet_edge(pressures, e, i, j, pos, wave, t, depth, stretch, rho_g, work, 
 
 
 @inner
-def add_froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs):
+def add_froude_krylov(row, rho, gravity, wave, t, depth, stretch, work, rhs):
     """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
     the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
-    and moment. Each point is the midpoint of two parts at most and evaluated once
+    and moment; computed once per placement (``place``)."""
+    if wave.shape[1] > 0 and not _cached(work, FROUDE_KRYLOV, rhs):
+        key = work[work.shape[0] - 1]
+        at = LOADS + 7 * FROUDE_KRYLOV
+        _froude_krylov(row, key[4:7], rho, gravity, wave, t, depth, stretch, work,
+                       key[at + 1 : at + 7])  # fmt: skip
+        _keep(work, FROUDE_KRYLOV, rhs)
+
+
+@njit(inline="always", **JIT)
+def _froude_krylov(row, pos, rho, gravity, wave, t, depth, stretch, work, rhs):
+    """``add_froude_krylov``'s load on the placement of the reference point at ``pos``. Each
+    point is the midpoint of two parts at most and evaluated once
     (``pressures`` per edge, NaN until then; a midpoint 0.5 (p + q) is the same float from
     either side, so the sum is the one part by part): a wholly wet edge's midpoint, its
     components' cosines the products of its vertices' half phases (``place``); a cut edge's,
