@@ -288,6 +288,22 @@ def _stale(largest, previous, limit, left):
     return needed > PATIENCE or needed > left
 
 
+@njit(inline="always", **JIT)
+def _inverse3(a, out):
+    """The inverse of the 3 x 3 matrix ``a`` (9 floats, row by row) into ``out`` (3, 3), by
+    its cofactors (np.linalg.inv called LAPACK, whose thread pool then spun on another core)."""
+    c00, c01 = a[4] * a[8] - a[5] * a[7], a[5] * a[6] - a[3] * a[8]
+    c02 = a[3] * a[7] - a[4] * a[6]
+    scale = 1.0 / (a[0] * c00 + a[1] * c01 + a[2] * c02)
+    out[0, 0], out[1, 0], out[2, 0] = c00 * scale, c01 * scale, c02 * scale
+    out[0, 1] = (a[2] * a[7] - a[1] * a[8]) * scale
+    out[1, 1] = (a[0] * a[8] - a[2] * a[6]) * scale
+    out[2, 1] = (a[1] * a[6] - a[0] * a[7]) * scale
+    out[0, 2] = (a[1] * a[5] - a[2] * a[4]) * scale
+    out[1, 2] = (a[2] * a[3] - a[0] * a[5]) * scale
+    out[2, 2] = (a[0] * a[4] - a[1] * a[3]) * scale
+
+
 @inner
 def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
     """The seabed law's terms in Newton's matrix at the state ``y`` (``w`` evaluated there):
@@ -303,6 +319,7 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
     grad = np.empty(12)
     m3 = np.empty(9)
     change = np.empty(9)
+    inverse = np.empty((3, 3))
     moved = False
     for li in range(p.line_n.shape[0]):
         c0, q0, v0 = p.line_node[li], p.line_q[li], p.line_v[li]
@@ -324,7 +341,7 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
                 continue
             moved = True
             lumped._node_mass_into(p.node_mass[k], w.nodes, k, m3)
-            inverse = np.linalg.inv(m3.reshape(3, 3))
+            _inverse3(m3, inverse)
             first = v - p.n_q
             for c in range(3):
                 col = first + c

@@ -179,7 +179,9 @@ def pattern(p: kernel.SystemParams, coords: Coordinates) -> sparse.csr_matrix:
         ends = [b for b in ends_all if b in moving]
         groups.append(ends)
         ends_cols = [body_cols[b] if b in moving else None for b in ends_all]
-        links += _lumped_links(li, int(p.line_n[li]) - 1, node_index, ends_cols)
+        c0, segments = int(p.line_node[li]), int(p.line_n[li])
+        bends = bool(np.any(p.node_bend[c0 + 1 : c0 + segments] != 0.0))
+        links += _lumped_links(li, segments - 1, node_index, ends_cols, 2 if bends else 1)
     for k in range(len(p.tie_from)):
         groups.append([b for b in (int(p.point_body[p.tie_from[k]]),
                                    int(p.point_body[p.tie_to[k]])) if b in moving])  # fmt: skip
@@ -217,12 +219,13 @@ def _solved_together(p, body_cols: dict[int, list[int]], out: sparse.csr_matrix)
     return ((out + extra) != 0).astype(float).tocsr()
 
 
-def _lumped_links(li: int, n_int: int, node_index: dict, ends_cols: list) -> list:
-    """A lumped line's links: each of its ``n_int`` interior nodes to the nodes within reach
-    along it (bending couples nodes two apart), and the nodes within reach of each end to and
-    from that end's body's columns (``ends_cols``: from and to; None for a body that does not
-    move)."""
-    reach = 2
+def _lumped_links(li: int, n_int: int, node_index: dict, ends_cols: list, reach: int) -> list:
+    """A lumped line's links: each of its ``n_int`` interior nodes to the nodes within
+    ``reach`` along it (a node's loads come from its two segments, 1; bending at a node moves
+    its two neighbours too, 2), and the nodes within reach of each end to and from that end's
+    body's columns (``ends_cols``: from and to; None for a body that does not move). A reach
+    of 1 narrows each line's band in Newton's matrix from 8 to 5 diagonals on either side:
+    its factorisation 2.5 times, its solve 1.6 times fewer operations."""
     links = []
     for j in range(n_int):
         near = [node_index[(li, k)] for k in range(max(0, j - reach), min(n_int, j + reach + 1))]
