@@ -258,14 +258,19 @@ def test_hull_loads_reused_within_the_reuse_distance_only(tmp_path):
     w.hull[-1, hull.NEAR] = near
     first = loads(w, 0.7, 0.0)
     assert np.array_equal(first, fresh(0.7, 0.0))
-    # sqrt(3) |dx| <= near: the last placement's loads
-    assert np.array_equal(loads(w, 0.7, 0.5 * near), first)
-    assert not np.array_equal(fresh(0.7, 0.5 * near), first)
+    # |dx| <= near: the last placement's loads
+    assert np.array_equal(loads(w, 0.7, 0.9 * near), first)
+    assert not np.array_equal(fresh(0.7, 0.9 * near), first)
     # a turn of 1e-9 rad moves the box's corners (11 m out) by 1.1e-8 m: reused; 2e-7 rad,
     # 2.3e-6 m: placed again
     assert np.array_equal(loads(w, 0.7, 0.0, 1e-9), first)
     assert np.array_equal(loads(w, 0.7, 0.0, 2e-7), fresh(0.7, 0.0, 2e-7))
-    assert np.array_equal(loads(w, 0.7, 0.6 * near), fresh(0.7, 0.6 * near))
-    assert np.array_equal(loads(w, 0.8, 0.6 * near), fresh(0.8, 0.6 * near))
+    assert np.array_equal(loads(w, 0.7, 1.2 * near), fresh(0.7, 1.2 * near))
+    assert np.array_equal(loads(w, 0.8, 1.2 * near), fresh(0.8, 1.2 * near))
     w.hull[-1, hull.NEAR] = 0.0
-    assert np.array_equal(loads(w, 0.8, 0.61 * near), fresh(0.8, 0.61 * near))
+    last = loads(w, 0.8, 1.21 * near)
+    assert np.array_equal(last, fresh(0.8, 1.21 * near))
+    # a pose that is not a number is placed again (all its triangles dry), never reused
+    w.hull[-1, hull.NEAR] = near
+    assert np.array_equal(loads(w, 0.8, math.nan), fresh(0.8, math.nan))
+    assert not np.array_equal(fresh(0.8, math.nan), last)

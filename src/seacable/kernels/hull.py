@@ -74,13 +74,13 @@ def place(row, body, pos, rot, wave, t, work):
     n = wave.shape[1]
     key = work[work.shape[0] - 1]
     if key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n:
-        moved = turned = 0.0
+        moved = turned = 0.0  # sums, not maxima: a NaN pose is never within reach
         for c in range(3):
-            moved = max(moved, abs(key[4 + c] - pos[c]))
+            moved += abs(key[4 + c] - pos[c])
             for d in range(3):
-                turned = max(turned, abs(key[7 + 3 * c + d] - rot[c, d]))
-        # |dpos + dR v| <= sqrt(3) max |dpos_c| + 3 max |dR_cd| |v|
-        if 1.7320508075688772 * moved + 3.0 * turned * key[RADIUS] <= key[NEAR]:
+                turned += abs(key[7 + 3 * c + d] - rot[c, d])
+        # |dpos + dR v| <= sum |dpos_c| + sum |dR_cd| |v|
+        if moved + turned * key[RADIUS] <= key[NEAR]:
             return
     key[0] = 0.0  # unset while the workspace changes
     trig = waves.scratch(wave)
