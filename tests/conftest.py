@@ -1,71 +1,16 @@
-"""Test-session set-up: never run on a stale numba cache.
+"""Test-session set-up: the shared code compiled once before the workers start.
 
-numba keys an on-disk cached function by its own source file only, so a cached integrator keeps
-an old copy of a kernel it inlined after the kernel's file is edited (a stale, possibly wrong
-build). Before the tests import seacable, the package's sources are hashed (but the top layers'
-Python-only modules, ``PYTHON_ONLY``); when the hash differs from the one recorded with the
-cache, the cached builds are deleted and compiled afresh.
-
-On several xdist workers, the shared code is then compiled once, in two processes, before the
-workers start (``pytest_sessionstart``, ``tests/warm_cache.py``).
+The package keeps its numba cache from going stale by itself (kernels.stamp: every cached build
+is stamped by all its compiled sources). On several xdist workers, the shared code is compiled
+once, in two processes, before the workers start (``pytest_sessionstart``,
+``tests/warm_cache.py``).
 """
 
-import hashlib
 import os
 import subprocess
 import sys
 from pathlib import Path
 
-PACKAGE = Path(__file__).resolve().parents[1] / "src" / "seacable"
-STAMP = PACKAGE / "__pycache__" / "numba-sources.sha256"
-
-
-# modules of the top layers (docs/architecture.md) that compiled code cannot reach: no
-# compiled function of their own, and the layer rule keeps every compiled module (and the
-# constants it reads) below them; a change in them leaves the cache valid
-PYTHON_ONLY = (
-    "cli.py", "cli_ships.py", "cli_sweep.py", "cli_types.py", "sweep.py", "cluster.py",
-    "case/sweep.py",
-    "report.py", "export.py", "fatigue.py", "case/fatigue.py", "sweep_summary.py",
-    "viz/", "results.py", "files.py", "simulation.py", "run_report.py", "analysis.py", "stats.py",
-    "natural_periods.py",
-    "case/loader.py", "case/reference.py",
-    "case/document.py", "case/moordyn.py", "case/moordyn_tables.py",
-    "coupling.py",
-    "system/utilisation.py", "system/variables.py",
-    "system/pseudo_time.py", "system/failures.py", "system/closed_form.py",
-    "forces/bseries.py",  # the B-series' coefficients: read when a row is packed, not compiled
-    "stability/api.py", "stability/operability.py", "stability/equilibria.py",
-    "stability/continuation.py", "stability/parameters.py", "stability/cycles.py",
-    "stability/two_parameter.py", "stability/compare.py", "stability/datasets.py",
-)  # fmt: skip
-
-
-def _sources_hash() -> str:
-    digest = hashlib.sha256()
-    for path in sorted(PACKAGE.rglob("*.py")):
-        name = path.relative_to(PACKAGE).as_posix()
-        text = path.read_bytes()
-        compiled = b"@njit" in text or b"@inner" in text or b"njit(" in text
-        if name.startswith(PYTHON_ONLY) and not compiled:
-            continue
-        digest.update(name.encode())
-        digest.update(text)
-    return digest.hexdigest()
-
-
-def _drop_stale_numba_cache() -> None:
-    current = _sources_hash()
-    if STAMP.exists() and STAMP.read_text() == current:
-        return
-    for pattern in ("*.nbi", "*.nbc"):
-        for cached in PACKAGE.rglob(pattern):
-            cached.unlink(missing_ok=True)
-    STAMP.parent.mkdir(exist_ok=True)
-    STAMP.write_text(current)
-
-
-_drop_stale_numba_cache()
 # the tests run on two busy workers (and tests/warm_cache.py in two processes): a compiling
 # helper process (kernels.helper) would only add its import and what both sides compile twice
 # (the suite from a fresh clone, cold: 587 s with helpers, 530 s without); tests/test_helper.py

@@ -274,3 +274,44 @@ def test_hull_loads_reused_within_the_reuse_distance_only(tmp_path):
     w.hull[-1, hull.NEAR] = near
     assert np.array_equal(loads(w, 0.8, math.nan), fresh(0.8, math.nan))
     assert not np.array_equal(fresh(0.8, math.nan), last)
+
+
+def test_froude_krylov_held_within_its_own_distance(tmp_path):
+    """The Froude-Krylov force keeps its own pose and reuse distance (``hull.FAR``, set by
+    numerics.system_implicit to the Newton tolerance): a pose that moves a vertex beyond the
+    placement's distance (``hull.NEAR``) is placed again and its clipped hydrostatics computed
+    afresh, while the Froude-Krylov force is the one computed on the pose it was held at, to
+    the bit, until the pose moves beyond its distance or the time changes."""
+    forces = ["non-linear hydrostatic", "non-linear Froude-Krylov"]
+    both = model.build(_case(tmp_path, 6, 1.0, forces))
+    alone = model.build(_case(tmp_path, 6, 1.0, forces[:1]))
+    far = 1e-6
+
+    def loads(built, w, t, dx):
+        y = built.y0.copy()
+        y[0] += dx
+        y[3:7] = kinematics.euler_quaternion(0.05, -0.02, 0.1)
+        kernel.rhs(t, y, built.params, w, np.zeros_like(y))
+        return w.load[0].copy()
+
+    def fresh(built, t, dx):
+        return loads(built, kernel.make_work(built.params), t, dx)
+
+    def froude_krylov(t, dx):  # the force on its own, by difference
+        return fresh(both, t, dx) - fresh(alone, t, dx)
+
+    w = kernel.make_work(both.params)
+    w.hull[-1, hull.FAR] = far  # NEAR stays 0: every other pose is placed again
+    assert np.array_equal(loads(both, w, 0.7, 0.0), fresh(both, 0.7, 0.0))
+    held = loads(both, w, 0.7, 0.9 * far)
+    assert not np.array_equal(held, fresh(both, 0.7, 0.9 * far))
+    expected = fresh(alone, 0.7, 0.9 * far) + froude_krylov(0.7, 0.0)
+    assert np.allclose(held, expected, rtol=0.0, atol=1e-9 * np.abs(expected).max())
+    # beyond the distance from where it was held, another time, or a distance of 0: afresh
+    assert np.array_equal(loads(both, w, 0.7, 2.1 * far), fresh(both, 0.7, 2.1 * far))
+    assert np.array_equal(loads(both, w, 0.8, 2.2 * far), fresh(both, 0.8, 2.2 * far))
+    w.hull[-1, hull.FAR] = 0.0
+    assert np.array_equal(loads(both, w, 0.8, 2.3 * far), fresh(both, 0.8, 2.3 * far))
+    # a pose that is not a number computes it afresh (nothing wet), never holds it
+    w.hull[-1, hull.FAR] = far
+    assert np.array_equal(loads(both, w, 0.8, math.nan), fresh(both, 0.8, math.nan))

@@ -74,7 +74,7 @@ def test_the_copy_of_a_set_of_kinds_is_written_once_under_a_name_of_its_sources(
     assert variants.variant(p) is found and path.stat().st_mtime_ns == stamp
     text = variants.source(variants.features(p))
     assert "LUMPED = True" in text and "PLANAR = False" in text and "F_MESH = False" in text
-    monkeypatch.setattr(variants, "_digest", ["an edited kernel"])
+    monkeypatch.setattr(variants.stamp, "_digest", ["an edited kernel"])
     monkeypatch.setenv("SEACABLE_CACHE_DIR", str(tmp_path))
     other = variants._module(variants.features(p))
     assert Path(other.__file__).parent == tmp_path

@@ -35,7 +35,9 @@ NEAR = 16  # where the key row holds the reuse distance [m] (``place``; set by i
 RADIUS = 17  # the placed mesh's radius, its farthest vertex from the reference point [m]
 LOADS = 18  # where the key row's cached loads start: a flag and 6 floats per model
 HYDROSTATIC, FROUDE_KRYLOV = 0, 1  # the cached loads' slots
-KEY = LOADS + 14  # the floats of the workspace's key row (place)
+FAR = LOADS + 14  # the Froude-Krylov force's own reuse distance [m] (``add_froude_krylov``)
+HELD = FAR + 1  # the pose (pos, then rot row by row) the Froude-Krylov force was computed at
+KEY = HELD + 12  # the floats of the workspace's key row (place)
 # the integrands of surface_integrals, in this order
 INTEGRANDS = ("1", "x", "y", "z", "xx", "yy", "zz", "xy", "xz", "yz")
 
@@ -70,18 +72,15 @@ def place(row, body, pos, rot, wave, t, work):
     (0, the default: the same pose) is not repeated and the loads computed on the last are
     reused (the hydrostatics and the Froude-Krylov force of one body share it; another body,
     time or surface, or a pose moved further, places again). The implicit integrators set
-    that distance within a step's Newton iteration (numerics.system_implicit, NEAR)."""
+    that distance within a step's Newton iteration (numerics.system_implicit, NEAR). The
+    Froude-Krylov force keeps the pose it was computed at and is held over placements of the
+    same body, time and surface within its own distance ``work[-1, FAR]``
+    (``add_froude_krylov``)."""
     n = wave.shape[1]
     key = work[work.shape[0] - 1]
-    if key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n:
-        moved = turned = 0.0  # sums, not maxima: a NaN pose is never within reach
-        for c in range(3):
-            moved += abs(key[4 + c] - pos[c])
-            for d in range(3):
-                turned += abs(key[7 + 3 * c + d] - rot[c, d])
-        # |dpos + dR v| <= sum |dpos_c| + sum |dR_cd| |v|
-        if moved + turned * key[RADIUS] <= key[NEAR]:
-            return
+    same = key[0] == 1.0 and key[1] == body and key[2] == t and key[3] == n
+    if same and _move(key, 4, pos, rot) <= key[NEAR]:
+        return
     key[0] = 0.0  # unset while the workspace changes
     trig = waves.scratch(wave)
     radius = 0.0
@@ -103,8 +102,24 @@ def place(row, body, pos, rot, wave, t, work):
         for d in range(3):
             key[7 + 3 * c + d] = rot[c, d]
     key[RADIUS] = 1.000001 * np.sqrt(radius)  # above its rounding
-    key[LOADS] = key[LOADS + 7] = 0.0  # no load computed on it yet
+    key[LOADS] = 0.0  # no load computed on it yet; the Froude-Krylov force's pose is its own
+    if not same:
+        key[LOADS + 7] = 0.0
     key[0] = 1.0
+
+
+@njit(inline="always", **JIT)
+def _move(key, at, pos, rot):
+    """A bound on how far the pose (pos, rot) moves a vertex of the placed mesh from the pose
+    kept in ``key[at:at + 12]``: |dpos + dR v| <= |dpos| + |dR|_F |v| (the Frobenius norm
+    bounds the matrix's; sums of squares, not maxima: a pose that is not a number is never
+    within reach)."""
+    moved = turned = 0.0
+    for c in range(3):
+        moved += (key[at + c] - pos[c]) ** 2
+        for d in range(3):
+            turned += (key[at + 3 + 3 * c + d] - rot[c, d]) ** 2
+    return np.sqrt(moved) + np.sqrt(turned) * key[RADIUS]
 
 
 @njit(inline="always", **JIT)
@@ -288,12 +303,19 @@ def _at_wet_edge(pressures, e, i, j, pos, wave, t, depth, stretch, rho_g, work, 
 def add_froude_krylov(row, rho, gravity, wave, t, depth, stretch, work, rhs):
     """The incident wave's dynamic pressure (kernels.waves) integrated on the mesh's part under
     the free surface (``place`` first) by the edge-midpoint rule, added to the body's force
-    and moment; computed once per placement (``place``)."""
-    if wave.shape[1] > 0 and not _cached(work, FROUDE_KRYLOV, rhs):
-        key = work[work.shape[0] - 1]
-        at = LOADS + 7 * FROUDE_KRYLOV
+    and moment; computed once per placement (``place``), and held while the placement's pose
+    moves no vertex by more than ``work[-1, FAR]`` [m] from the pose it was computed at (0,
+    the default: a new placement computes it again; numerics.system_implicit, FAR)."""
+    if wave.shape[1] == 0:
+        return
+    key = work[work.shape[0] - 1]
+    at = LOADS + 7 * FROUDE_KRYLOV
+    if key[at] == 1.0 and not _move(key, HELD, key[4:7], key[7:16].reshape((3, 3))) <= key[FAR]:
+        key[at] = 0.0  # moved further (or not a number)
+    if not _cached(work, FROUDE_KRYLOV, rhs):
         _froude_krylov(row, key[4:7], rho, gravity, wave, t, depth, stretch, work,
                        key[at + 1 : at + 7])  # fmt: skip
+        key[HELD : HELD + 12] = key[4:16]
         _keep(work, FROUDE_KRYLOV, rhs)
 
 

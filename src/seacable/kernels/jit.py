@@ -1,9 +1,11 @@
 """How seacable compiles: the options of every compiled function, and compiled functions without
 a Python entry.
 
-``JIT`` is given to every ``numba.njit``: compiled once and cached on disk; the numpy error model
-drops per-division zero checks; the safe fastmath flags allow fused multiply-adds and reciprocals
-but keep NaN/inf semantics (the divergence checks rely on them).
+``JIT`` is given to every ``numba.njit``: compiled once and cached on disk (stamped by the
+whole package's compiled sources, kernels.stamp: a kernel's change makes its callers' builds
+in other files stale too); the numpy error model drops per-division zero checks; the safe
+fastmath flags allow fused multiply-adds and reciprocals but keep NaN/inf semantics (the
+divergence checks rely on them).
 
 ``inner`` compiles a function that only compiled code calls. numba builds, for every compiled
 function, a CPython entry that unboxes its arguments from Python objects: code for each array

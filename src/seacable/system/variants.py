@@ -27,7 +27,7 @@ import numpy as np
 from numba import types
 
 from seacable.forces import kinds
-from seacable.kernels import helper, jit, records
+from seacable.kernels import helper, jit, records, stamp
 from seacable.system import evaluation, kernel, outputs
 
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -77,7 +77,6 @@ class Variant(NamedTuple):
 
 _variants: dict[tuple[str, ...], Variant] = {}
 _lock = threading.Lock()
-_digest: list[str] = []  # the package's compiled sources' digest, computed once a process
 _fallback: list[Path] = []  # the cache folder when no user folder can be written
 
 
@@ -141,20 +140,6 @@ def cache_folder() -> Path:
     return _fallback[0]
 
 
-def sources_digest() -> str:
-    """A digest of every package source that holds compiled code (what a copy of the evaluation
-    compiles in), computed once a process."""
-    if not _digest:
-        digest = hashlib.sha256(numba.__version__.encode())
-        for path in sorted(PACKAGE.rglob("*.py")):
-            text = path.read_bytes()
-            if b"@njit" in text or b"@inner" in text or b"njit(" in text or b"intrinsic" in text:
-                digest.update(path.relative_to(PACKAGE).as_posix().encode())
-                digest.update(text)
-        _digest.append(digest.hexdigest())
-    return _digest[0]
-
-
 def source(flags: tuple[str, ...]) -> str:
     """The template's text with its flags set: True for ``flags``, False for the others."""
     text = TEMPLATE.read_text()
@@ -169,7 +154,7 @@ def _module(flags: tuple[str, ...]) -> ModuleType:
     """The copy of the evaluation for ``flags``, written once (never rewritten: numba keys its
     cache by the file's time stamp) and imported."""
     text = source(flags)
-    digest = hashlib.sha256((sources_digest() + text).encode()).hexdigest()[:20]
+    digest = hashlib.sha256((stamp.sources_digest() + text).encode()).hexdigest()[:20]
     name = f"seacable_evaluation_{digest}"
     if name in sys.modules:
         return sys.modules[name]
