@@ -187,26 +187,33 @@ def segment_back(i, li, mi, w, m, b, s, pinned):
     m[5] += mt - ma * ez * ez - (k1z * h1z + k2z * h2z)
 
 
-@inner
-def _solve3(a, r):
-    """Solve the 3x3 system a x = r (a row-major, 9 values); returns x and the determinant."""
+@njit(inline="always", **JIT)
+def adjugate3(a):
+    """The determinant and the adjugate (9 floats, row by row: a^-1 = adjugate / det) of the
+    3x3 matrix ``a`` (row-major, 9 values), by cofactors."""
     c00 = a[4] * a[8] - a[5] * a[7]
     c01 = a[5] * a[6] - a[3] * a[8]
     c02 = a[3] * a[7] - a[4] * a[6]
     det = a[0] * c00 + a[1] * c01 + a[2] * c02
+    adjugate = (
+        c00, a[2] * a[7] - a[1] * a[8], a[1] * a[5] - a[2] * a[4],
+        c01, a[0] * a[8] - a[2] * a[6], a[2] * a[3] - a[0] * a[5],
+        c02, a[1] * a[6] - a[0] * a[7], a[0] * a[4] - a[1] * a[3],
+    )  # fmt: skip
+    return det, adjugate
+
+
+@inner
+def _solve3(a, r):
+    """Solve the 3x3 system a x = r (a row-major, 9 values); returns x and the determinant."""
+    det, m = adjugate3(a)
     x = np.zeros(3)
     if det == 0.0:
         return x, det
     inv = 1.0 / det
-    x[0] = (
-        c00 * r[0] + (a[2] * a[7] - a[1] * a[8]) * r[1] + (a[1] * a[5] - a[2] * a[4]) * r[2]
-    ) * inv
-    x[1] = (
-        c01 * r[0] + (a[0] * a[8] - a[2] * a[6]) * r[1] + (a[2] * a[3] - a[0] * a[5]) * r[2]
-    ) * inv
-    x[2] = (
-        c02 * r[0] + (a[1] * a[6] - a[0] * a[7]) * r[1] + (a[0] * a[4] - a[1] * a[3]) * r[2]
-    ) * inv
+    x[0] = (m[0] * r[0] + m[1] * r[1] + m[2] * r[2]) * inv
+    x[1] = (m[3] * r[0] + m[4] * r[1] + m[5] * r[2]) * inv
+    x[2] = (m[6] * r[0] + m[7] * r[1] + m[8] * r[2]) * inv
     return x, det
 
 

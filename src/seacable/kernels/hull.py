@@ -109,6 +109,16 @@ def place(row, body, pos, rot, wave, t, work):
 
 
 @njit(inline="always", **JIT)
+def reuse(work, near, far):
+    """Set the workspace's reuse distances [m], ``near`` of every load's placement (``place``)
+    and ``far`` of the Froude-Krylov force (``add_froude_krylov``); returns the last ones."""
+    key = work[work.shape[0] - 1]
+    last = (key[NEAR], key[FAR])
+    key[NEAR], key[FAR] = near, far
+    return last
+
+
+@njit(inline="always", **JIT)
 def _move(key, at, pos, rot):
     """A bound on how far the pose (pos, rot) moves a vertex of the placed mesh from the pose
     kept in ``key[at:at + 12]``: |dpos + dR v| <= |dpos| + |dR|_F |v| (the Frobenius norm

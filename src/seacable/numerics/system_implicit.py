@@ -102,7 +102,7 @@ import math
 import numpy as np
 from numba import njit
 
-from seacable.kernels import hull, lumped
+from seacable.kernels import chain3d, hull, lumped
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
 from seacable.numerics import bordered, rigid_newton
@@ -301,22 +301,6 @@ def _stale(largest, previous, limit, left):
     return needed > PATIENCE or needed > left
 
 
-@njit(inline="always", **JIT)
-def _inverse3(a, out):
-    """The inverse of the 3 x 3 matrix ``a`` (9 floats, row by row) into ``out`` (3, 3), by
-    its cofactors (np.linalg.inv called LAPACK, whose thread pool then spun on another core)."""
-    c00, c01 = a[4] * a[8] - a[5] * a[7], a[5] * a[6] - a[3] * a[8]
-    c02 = a[3] * a[7] - a[4] * a[6]
-    scale = 1.0 / (a[0] * c00 + a[1] * c01 + a[2] * c02)
-    out[0, 0], out[1, 0], out[2, 0] = c00 * scale, c01 * scale, c02 * scale
-    out[0, 1] = (a[2] * a[7] - a[1] * a[8]) * scale
-    out[1, 1] = (a[0] * a[8] - a[2] * a[6]) * scale
-    out[2, 1] = (a[1] * a[6] - a[0] * a[7]) * scale
-    out[0, 2] = (a[1] * a[5] - a[2] * a[4]) * scale
-    out[1, 2] = (a[2] * a[3] - a[0] * a[5]) * scale
-    out[2, 2] = (a[0] * a[4] - a[1] * a[3]) * scale
-
-
 @inner
 def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
     """The seabed law's terms in Newton's matrix at the state ``y`` (``w`` evaluated there):
@@ -332,7 +316,6 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
     grad = np.empty(12)
     m3 = np.empty(9)
     change = np.empty(9)
-    inverse = np.empty((3, 3))
     moved = False
     for li in range(p.line_n.shape[0]):
         c0, q0, v0 = p.line_node[li], p.line_q[li], p.line_v[li]
@@ -354,7 +337,8 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
                 continue
             moved = True
             lumped._node_mass_into(p.node_mass[k], w.nodes, k, m3)
-            _inverse3(m3, inverse)
+            det, adjugate = chain3d.adjugate3(m3)  # by cofactors: np.linalg.inv called LAPACK,
+            scale = 1.0 / det  # whose thread pool then spun on the other core
             first = v - p.n_q
             for c in range(3):
                 col = first + c
@@ -363,7 +347,7 @@ def _seabed_terms(y, h, coef, p, w, lay, held, raw, update):
                     if 0 <= r < 3:
                         total = 0.0
                         for e in range(3):
-                            total += inverse[r, e] * change[3 * e + c]
+                            total += adjugate[3 * r + e] * scale * change[3 * e + c]
                         raw[lay.nz_dest[z]] -= (1.0 - af) * total
     return moved
 
@@ -383,12 +367,10 @@ def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, 
             work[6] += 1
             return (OK if bordered.factor(lay, mat, piv) else NON_FINITE), updates + 1
     _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 0.0)
-    key = w.hull[w.hull.shape[0] - 1]
-    near, far = key[hull.NEAR], key[hull.FAR]
-    key[hull.NEAR] = key[hull.FAR] = 0.0  # the difference quotients: exact loads
+    near, far = hull.reuse(w.hull, 0.0, 0.0)  # the difference quotients: exact loads
     status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work,
                        rigid)  # fmt: skip
-    key[hull.NEAR], key[hull.FAR] = near, far
+    hull.reuse(w.hull, near, far)
     work[4] += 1
     raw[:] = mat
     if status == OK and not bordered.factor(lay, mat, piv):
@@ -529,9 +511,7 @@ def chunk(
     first_output = first_step // steps_per_output
     step = first_step - first_output * steps_per_output  # into its output interval
     j = np.int64(0)  # not a literal: record compiles once
-    key = w.hull[w.hull.shape[0] - 1]
-    key[hull.NEAR] = NEAR * tol  # module docstring, REUSE; 0 again on return
-    key[hull.FAR] = FAR * tol
+    hull.reuse(w.hull, NEAR * tol, FAR * tol)  # module docstring, REUSE; 0 again on return
     for _ in range(n_steps):
         t = step_time(first_output, output_interval, steps_per_output, step, dt)
         t_next = step_time(first_output, output_interval, steps_per_output, step + 1, dt)
@@ -553,10 +533,10 @@ def chunk(
             y[:] = y_saved
             acc[:] = acc_saved
             if parts >= MAX_SUBSTEPS:
-                key[hull.NEAR] = key[hull.FAR] = 0.0
+                hull.reuse(w.hull, 0.0, 0.0)
                 return j, status
             parts *= 2
         step += 1
         j = record(step, steps_per_output, first_output, output_interval, y, states, times, j)
-    key[hull.NEAR] = key[hull.FAR] = 0.0
+    hull.reuse(w.hull, 0.0, 0.0)
     return j, OK
