@@ -11,7 +11,7 @@ import numpy as np
 
 from seacable.bodies import kinematics
 from seacable.kernels import lumped
-from seacable.numerics import bordered, rigid_newton
+from seacable.numerics import bordered, lumped_newton, rigid_newton
 from seacable.system import coordinates, model, rigid
 from seacable.system import kernel as system_kernel
 
@@ -96,7 +96,7 @@ def increments(case, system: model.BuiltSystem) -> Increments:
 
 
 def layout(
-    system: model.BuiltSystem, inc: Increments, maximal: bool = True
+    system: model.BuiltSystem, inc: Increments, maximal: bool = True, written: bool = True
 ) -> tuple[bordered.Bordered, rigid_newton.RigidRows]:
     """Newton's matrix over the accelerations: the pattern of d(accelerations)/d(positions,
     velocities) folded onto the velocity variables (a position's column onto the velocity that
@@ -104,8 +104,10 @@ def layout(
     as the border; the rigid lines ``rigid_newton.eligible`` picks (and that couple to
     nothing else) written in maximal coordinates instead, with their auxiliary unknowns after
     the velocity variables (``rigid_newton.layout``; ``maximal=False``: none, every rigid
-    line's block dense, as before; benchmarks/implicit_cost.py compares the two). The
-    force models' states follow the velocity variables, each solved for its rate."""
+    line's block dense, as before; benchmarks/implicit_cost.py compares the two); the lumped
+    lines' columns ``lumped_newton.eligible`` picks written from their laws (``written=False``:
+    none, every column by differences). The force models' states follow the velocity
+    variables, each solved for its rate."""
     p = system.params
     nq, nv = int(p.n_q), int(p.n_v) + int(p.n_s)
     full = model.jacobian_sparsity(system).tocsr()[nq : nq + nv].tocoo()
@@ -130,17 +132,22 @@ def layout(
     for b in np.flatnonzero(p.body_kind == kinematics.DYNAMIC):
         v = int(p.body_v[b]) - nq
         body_v[v : v + (6 if p.body_rigid[b] else 3)] = True
-    return rigid_newton.layout(p, pattern.tocoo(), body_v, maximal)
+    pattern = pattern.tocoo()
+    if written:
+        lumped = lumped_newton.eligible(p, pattern)
+    else:
+        lumped = (np.zeros(0, dtype=np.int64), np.zeros(nv, dtype=np.int64))
+    return rigid_newton.layout(p, pattern, body_v, maximal, lumped)
 
 
 def newton(
-    case, system: model.BuiltSystem, maximal: bool = True
+    case, system: model.BuiltSystem, maximal: bool = True, written: bool = True
 ) -> tuple[Increments, bordered.Bordered, rigid_newton.RigidRows]:
     """What a system's implicit steps need besides its parameters (``rows.geo`` is carried
     from step to step with the kept factors: the geometry their right-hand side needs;
-    ``maximal``: see ``layout``)."""
+    ``maximal``, ``written``: see ``layout``)."""
     inc = increments(case, system)
-    return (inc, *layout(system, inc, maximal))
+    return (inc, *layout(system, inc, maximal, written))
 
 
 def frozen(p):

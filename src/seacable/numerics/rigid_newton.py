@@ -90,6 +90,8 @@ class RigidRows(NamedTuple):
     body_mass: np.ndarray  # (kb, 9) each body's translational mass: the right-hand side's
     # transformation must be the matrix's
     size: int  # unknowns of Newton's system: the velocity variables, then the auxiliary ones
+    lumped_line: np.ndarray  # the lumped lines with columns written from their laws, and
+    lumped_column: np.ndarray  # (size,) 1 for those columns (numerics.lumped_newton)
 
 
 def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
@@ -183,11 +185,15 @@ def body_pattern(
     return glob[rows[:count]], glob[cols[:count]]
 
 
-def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bordered, RigidRows]:
+def layout(
+    p, pattern, border: np.ndarray, maximal: bool, lumped: tuple[np.ndarray, np.ndarray]
+) -> tuple[bordered.Bordered, RigidRows]:
     """The layout of Newton's system with the eligible rigid lines (and the dynamic bodies
     they hang from) in maximal coordinates: their entries placed by ``entries`` and
     ``body_entries`` and left out of the differences (colour -1), each line's block ordered
-    link by link; ``maximal=False``: none."""
+    link by link; ``maximal=False``: none. ``lumped``: the lumped lines and the columns
+    (over the velocity variables) written from their laws (``lumped_newton.eligible``), left
+    out of the differences too."""
     nv, nq = pattern.shape[0], int(p.n_q)
     row, col = pattern.row, pattern.col
     lines, on_body = eligible(p) if maximal else ([], {})
@@ -237,9 +243,13 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
     rows_all = np.concatenate([row[kept], *[r for r, _ in parts]]).astype(np.int64)
     cols_all = np.concatenate([col[kept], *[c for _, c in parts]]).astype(np.int64)
     full = sparse.coo_matrix((np.ones(len(rows_all)), (rows_all, cols_all)), shape=(size, size))
-    rest = sparse.csr_matrix((np.ones(int(kept.sum())), (row[kept], col[kept])), shape=(nv, nv))
+    lumped_line, lumped_column = lumped
+    differenced = kept & (lumped_column[col] == 0)
+    rest = sparse.csr_matrix(
+        (np.ones(int(differenced.sum())), (row[differenced], col[differenced])), shape=(nv, nv)
+    )
     colours = np.full(size, -1, dtype=np.int64)
-    colours[:nv] = np.where(written, -1, coordinates.colour(rest))
+    colours[:nv] = np.where(written | (lumped_column != 0), -1, coordinates.colour(rest))
     border_all = np.zeros(size, dtype=bool)
     border_all[:nv] = border
     lay = bordered.structure(full, border_all, colours, np.array(key, dtype=np.int64))
@@ -258,7 +268,8 @@ def layout(p, pattern, border: np.ndarray, maximal: bool) -> tuple[bordered.Bord
         dest_at=np.concatenate([[0], np.cumsum([len(r) for r, _ in parts])]).astype(np.int64),
         dest=np.concatenate([np.zeros(0, np.int64), *dest]).astype(np.int64),
         geo=np.zeros(geo_at[-1]), geo_at=ints(geo_at), body_mass=np.zeros((len(bodies), 9)),
-        size=size,
+        size=size, lumped_line=ints(lumped_line),
+        lumped_column=np.concatenate([lumped_column, np.zeros(size - nv, np.int64)]),
     )  # fmt: skip
     return lay, rows
 
