@@ -1,13 +1,14 @@
 """Newton's matrix of the lumped lines written from their laws (numerics.lumped_newton): its
 columns equal the difference quotients of the residual, they are written only where every
-equation they reach is their line's, a matrix written so costs no residual, and the steps
-taken with it end where the steps with the differences end."""
+equation they reach is their line's, a matrix written so costs no residual, the steps
+taken with it end where the steps with the differences end, and the lines' blocks are
+factorised as 3 x 3 blocks (numerics.bordered's ``tri``)."""
 
 import numpy as np
 import pytest
 
 import seacable
-from seacable.numerics import implicit_setup, integrators, system_implicit
+from seacable.numerics import bordered, implicit_setup, integrators, system_implicit
 from seacable.system import kernel
 from seacable.system import model as system_model
 
@@ -212,3 +213,25 @@ def test_steps_with_written_columns_end_where_the_differences_end(band, buoy):
     nq = int(p.n_q)
     assert np.max(np.abs(finals[1][:nq] - finals[0][:nq])) < 1e-6  # [m]
     assert residuals[1] < residuals[0]
+
+
+def test_lumped_blocks_factorised_as_three_by_three_blocks():
+    """Both lines' blocks are factorised as 3 x 3 blocks without pivoting (bordered's
+    ``tri``), the buoy in the border: a solve with the factors equals a dense solve of the
+    same matrix to 1e-12."""
+    case = _case()
+    system, w, y, acc, coef = _moving(case)
+    dense, rows, _ = _matrix(case, system, w, y, acc, coef, written=True)
+    inc, lay, rows = implicit_setup.newton(case, system)
+    assert list(lay.tri) == [1, 1, 0]  # the two lines, then the border (the buoy)
+    mat = np.zeros(lay.size)
+    for col in range(dense.shape[0]):
+        for z in range(lay.nz_ptr[col], lay.nz_ptr[col + 1]):
+            mat[lay.nz_dest[z]] = dense[lay.nz_row[z], col]
+    piv = np.zeros(lay.order.shape[0], dtype=np.int64)
+    assert bordered.factor(lay, mat, piv)
+    rhs = np.random.default_rng(3).normal(size=dense.shape[0])
+    x, scratch = np.zeros_like(rhs), np.zeros_like(rhs)
+    bordered.solve(lay, mat, piv, rhs, x, scratch)
+    exact = np.linalg.solve(dense, rhs)
+    assert np.max(np.abs(x - exact)) <= 1e-12 * np.max(np.abs(exact))

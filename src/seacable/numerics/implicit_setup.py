@@ -137,7 +137,7 @@ def layout(
         lumped = lumped_newton.eligible(p, pattern)
     else:
         lumped = (np.zeros(0, dtype=np.int64), np.zeros(nv, dtype=np.int64))
-    return rigid_newton.layout(p, pattern, body_v, maximal, lumped)
+    return rigid_newton.layout(p, pattern, body_v, maximal, lumped, lumped_newton.unknowns(p, nv))
 
 
 def newton(

@@ -69,6 +69,36 @@ def eligible(p, pattern) -> tuple[np.ndarray, np.ndarray]:
     return np.array(lines, dtype=np.int64), column
 
 
+def destinations(p, lines: np.ndarray, column: np.ndarray, lay) -> np.ndarray:
+    """For each written column (an acceleration of node m's component c) the places in
+    ``lay``'s flat matrix of its entries in the rows of nodes m - 1, m, m + 1 (component r of
+    node m - 1 + d at [3 d + r]; -1 where there is none: the line's ends)."""
+    nq = int(p.n_q)
+    dest = np.full((len(column), 9), -1, dtype=np.int64)
+    for li in lines:
+        first = int(p.line_v[li]) - nq
+        for col in range(first, first + 3 * (int(p.line_n[li]) - 1)):
+            if not column[col]:
+                continue
+            top = first + 3 * ((col - first) // 3) - 3  # node m - 1's first row
+            for z in range(int(lay.nz_ptr[col]), int(lay.nz_ptr[col + 1])):
+                local = int(lay.nz_row[z]) - top
+                if 0 <= local < 9:
+                    dest[col, local] = lay.nz_dest[z]
+    return dest
+
+
+def unknowns(p, size: int) -> np.ndarray:
+    """A mask over ``size`` unknowns (the velocity variables first): the lumped lines'
+    interior nodes' (whose blocks of Newton's matrix are 3 x 3 block-tridiagonal:
+    ``bordered``'s ``tri``)."""
+    mask = np.zeros(size, dtype=bool)
+    for li in range(len(p.line_n)):
+        v = int(p.line_v[li]) - int(p.n_q)
+        mask[v : v + 3 * (int(p.line_n[li]) - 1)] = True
+    return mask
+
+
 @inner
 def _outer(out, at, ax, ay, az, bx, by, bz, scale):
     """out[at : at + 9] += scale a b^T (row-major)."""
@@ -208,10 +238,11 @@ def _near(m, n, seg, inv, bed, reach, rate, am, af, block, near):
 
 
 @njit(**JIT)
-def fill(y, h, coef, p, w, lines, column, lay, mat):
-    """Add the written columns of Newton's matrix (``lines``, ``column``: ``eligible``'s) into
-    ``mat`` (``lay``'s entries) at the state ``y`` whose residual ``w`` holds (its tensions,
-    tangents, the laws' branches, the water's velocity, the end points' velocities)."""
+def fill(y, h, coef, p, w, lines, column, dest, mat):
+    """Add the written columns of Newton's matrix (``lines``, ``column``: ``eligible``'s;
+    ``dest``: their entries' places, ``destinations``) into ``mat`` at the state ``y`` whose
+    residual ``w`` holds (its tensions, tangents, the laws' branches, the water's velocity,
+    the end points' velocities)."""
     b, g, am, af = coef[1], coef[2], coef[3], coef[4]
     most = 0
     for li in lines:
@@ -222,7 +253,6 @@ def fill(y, h, coef, p, w, lines, column, lay, mat):
     vel = np.empty((most + 1, 3))
     block = np.empty(9)
     near = np.empty((3, 9))
-    nz_ptr, nz_row, nz_dest = lay.nz_ptr, lay.nz_row, lay.nz_dest
     for li in lines:
         n = p.line_n[li]
         _segments(y, li, p, w, vel, seg)
@@ -234,7 +264,7 @@ def fill(y, h, coef, p, w, lines, column, lay, mat):
                 continue
             _near(m, n, seg, inv, bed, b * h * h, g * h, am, af, block, near)
             for c in range(3):
-                for z in range(nz_ptr[col0 + c], nz_ptr[col0 + c + 1]):
-                    local = nz_row[z] - col0 + 3  # node m - 1's first row: 0
-                    if 0 <= local < 9:
-                        mat[nz_dest[z]] += near[local // 3, 3 * (local % 3) + c]
+                for e in range(9):
+                    at = dest[col0 + c, e]
+                    if at >= 0:
+                        mat[at] += near[e // 3, 3 * (e % 3) + c]

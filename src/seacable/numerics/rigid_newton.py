@@ -40,7 +40,7 @@ from scipy import sparse
 from seacable.bodies import dynamics, kinematics
 from seacable.kernels import planar_chain as pc
 from seacable.kernels.jit import JIT, inner
-from seacable.numerics import bordered
+from seacable.numerics import bordered, lumped_newton
 from seacable.numerics import rigid_newton_3d as r3
 from seacable.numerics.rigid_derivatives import (
     DERIVATIVES,
@@ -91,7 +91,8 @@ class RigidRows(NamedTuple):
     # transformation must be the matrix's
     size: int  # unknowns of Newton's system: the velocity variables, then the auxiliary ones
     lumped_line: np.ndarray  # the lumped lines with columns written from their laws, and
-    lumped_column: np.ndarray  # (size,) 1 for those columns (numerics.lumped_newton)
+    lumped_column: np.ndarray  # (size,) 1 for those columns (numerics.lumped_newton), and
+    lumped_dest: np.ndarray  # (size, 9) their entries' places (lumped_newton.destinations)
 
 
 def eligible(p) -> tuple[list[int], dict[int, list[int]]]:
@@ -186,14 +187,20 @@ def body_pattern(
 
 
 def layout(
-    p, pattern, border: np.ndarray, maximal: bool, lumped: tuple[np.ndarray, np.ndarray]
+    p,
+    pattern,
+    border: np.ndarray,
+    maximal: bool,
+    lumped: tuple[np.ndarray, np.ndarray],
+    triple: np.ndarray,
 ) -> tuple[bordered.Bordered, RigidRows]:
     """The layout of Newton's system with the eligible rigid lines (and the dynamic bodies
     they hang from) in maximal coordinates: their entries placed by ``entries`` and
     ``body_entries`` and left out of the differences (colour -1), each line's block ordered
     link by link; ``maximal=False``: none. ``lumped``: the lumped lines and the columns
     (over the velocity variables) written from their laws (``lumped_newton.eligible``), left
-    out of the differences too."""
+    out of the differences too; ``triple``: the velocity variables whose blocks may be
+    factorised as 3 x 3 blocks (``bordered.structure``)."""
     nv, nq = pattern.shape[0], int(p.n_q)
     row, col = pattern.row, pattern.col
     lines, on_body = eligible(p) if maximal else ([], {})
@@ -252,7 +259,11 @@ def layout(
     colours[:nv] = np.where(written | (lumped_column != 0), -1, coordinates.colour(rest))
     border_all = np.zeros(size, dtype=bool)
     border_all[:nv] = border
-    lay = bordered.structure(full, border_all, colours, np.array(key, dtype=np.int64))
+    triple_all = np.zeros(size, dtype=bool)
+    triple_all[:nv] = triple
+    lay = bordered.structure(
+        full, border_all, colours, np.array(key, dtype=np.int64), triple_all & ~border_all
+    )
     col_of = np.repeat(np.arange(size), np.diff(lay.nz_ptr))
     place = sparse.csr_matrix((lay.nz_dest + 1, (lay.nz_row, col_of)), shape=(size, size))
     dest = [np.asarray(place[r, c]).ravel() - 1 for r, c in parts]
@@ -270,6 +281,10 @@ def layout(
         geo=np.zeros(geo_at[-1]), geo_at=ints(geo_at), body_mass=np.zeros((len(bodies), 9)),
         size=size, lumped_line=ints(lumped_line),
         lumped_column=np.concatenate([lumped_column, np.zeros(size - nv, np.int64)]),
+        lumped_dest=np.concatenate([
+            lumped_newton.destinations(p, lumped_line, lumped_column, lay),
+            np.full((size - nv, 9), -1, np.int64),
+        ]),
     )  # fmt: skip
     return lay, rows
 

@@ -44,7 +44,8 @@ of ``system.model.jacobian_sparsity``): a lumped line would cost about nine resi
 its length. Its interior nodes' columns are written from the laws instead
 (``numerics.lumped_newton``) wherever they reach only their line's equations (every node of a
 line without bending but those next to an end on a body with degrees of freedom), so that the
-differences are left with the bodies' columns and their neighbours'. It is laid out and factorised by ``numerics.bordered``: each line (or tree of rigid
+differences are left with the bodies' columns and their neighbours'. It is laid out and
+factorised by ``numerics.bordered``: each line (or tree of rigid
 lines) a banded block, the bodies' degrees of freedom the border, so a factorisation costs
 O(total unknowns) for lumped lines and natural strings plus the bodies' dense Schur complement.
 A rigid line's accelerations depend on all its angles (or directors): in them its block is
@@ -208,7 +209,8 @@ def _jacobian(t1, y0, acc, a1, h, coef, pj, w, inc, lay, rows, mat, r0, vec, wor
     f0 = vec[9][:nv]
     mat[:] = 0.0
     if rows.lumped_line.shape[0] > 0:
-        lumped_newton.fill(ya, h, coef, pj, w, rows.lumped_line, rows.lumped_column, lay, mat)
+        lumped_newton.fill(ya, h, coef, pj, w, rows.lumped_line, rows.lumped_column,
+                           rows.lumped_dest, mat)  # fmt: skip
     if (
         rigid is not None
         and rows.line.shape[0] > 0
