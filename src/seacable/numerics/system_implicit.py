@@ -57,13 +57,9 @@ others (trees of lines, lines held on a free body, turning bases) keep the dense
 factors are kept from step to step while they serve (modified Newton: rebuilt when, at the
 contraction the last two corrections show, more than ``PATIENCE`` iterations would still be
 needed, and whenever the step length changes), so most steps cost two or three residuals. A
-matrix with no difference quotient left (``_written``: lumped lines between fixed and imposed
-bodies) costs less than a residual and is built at every step's first iterate: kept, its
-iterations contracted by 0.1 to 0.3 (the touchdown nodes' contact and the lines' turning
-change it from step to step). On the spread mooring of benchmarks/vs_moordyn_spread.py (three
-lines of 50 segments, 0.1 s, Newton to 1e-9 of a segment) a step took 10.1 residuals (3.2 of
-them for 0.35 matrices) and 6.3 corrections with 0.8 updates of the seabed terms, now 3.6
-residuals and 3.5 corrections on 1.2 matrices: 254 against 152 microseconds.
+matrix with no difference quotient left (``lumped_newton.written``: lumped lines between
+fixed and imposed bodies) is built at every step's first iterate instead, and the iteration
+stops on the error its contraction estimates (``lumped_newton``'s docstring, WHOLE).
 Every residual of a step is evaluated at the step's end time as the next step's start time
 computes it (``chunk``: t0 + h may differ from it in the last bit), so that the next step's
 f(t0) finds the water kinematics its last residual recorded at that very time (kernels.lumped
@@ -375,30 +371,25 @@ def _matrix(t1, y, acc, a1, h, coef, p, pj, w, inc, lay, rows, carry, res, vec, 
     (``_seabed_terms``); when none changed, or otherwise, it is built afresh (``_jacobian``).
     Returns the status and the step's updates so far."""
     _, fresh, mat, piv, raw, held = carry
-    if fresh[0] != 0.0 and fresh[1] == h and updates < UPDATES and not _written(lay, rows):
+    written = lumped_newton.written(lay, rows)  # rebuilt rather than updated
+    if fresh[0] != 0.0 and fresh[1] == h and updates < UPDATES and not written:
         if _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 1.0):
             mat[:] = raw
             work[6] += 1
             return (OK if bordered.factor(lay, mat, piv) else NON_FINITE), updates + 1
-    _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 0.0)
+    if not written:
+        _seabed_terms(vec[0], h, coef, p, w, lay, held, raw, 0.0)
     near, far = hull.reuse(w.hull, 0.0, 0.0)  # the difference quotients: exact loads
     status = _jacobian(t1, y, acc, a1, h, coef, pj, w, inc, lay, rows, mat, res, vec, work,
                        rigid)  # fmt: skip
     hull.reuse(w.hull, near, far)
     work[4] += 1
-    raw[:] = mat
+    if not written:
+        raw[:] = mat  # kept for the seabed terms' updates
     if status == OK and not bordered.factor(lay, mat, piv):
         status = NON_FINITE
     fresh[0], fresh[1] = 1.0, h
     return status, updates
-
-
-@njit(inline="always", **JIT)
-def _written(lay, rows):
-    """Whether Newton's matrix is written from the laws alone (no difference quotient: the
-    lumped lines' columns, ``lumped_newton``, and the rigid lines' in maximal coordinates): it
-    costs less than a residual, and is built afresh at every step's first iterate."""
-    return lay.colour_ptr.shape[0] == 1 and rows.lumped_line.shape[0] > 0
 
 
 @inner
@@ -410,7 +401,7 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     is no smaller than the one before, when at the contraction of the last two more than
     PATIENCE iterations (or more than are left) would still be needed, or when a line search
     cut the step; rebuilt then, when the step length changes, and at the first iterate when it
-    is written whole from the laws (``_written``). A stale matrix has its lumped
+    is written whole from the laws (``lumped_newton.written``). A stale matrix has its lumped
     nodes' seabed terms brought to the current iterate instead (``_matrix``: analytic, node by
     node, then a factorisation; at most UPDATES times a step) when any changed: the contact's
     stiffness and the friction's dependence on the sliding speed change within millimetres and
@@ -442,7 +433,8 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
     a1[:] = acc
     if fresh[2] == h:
         a1 += trend
-    rebuild = _written(lay, rows)
+    written = lumped_newton.written(lay, rows)
+    rebuild = written
     previous = math.inf
     status = _residual(t1, y, acc, a1, h, coef, p, w, inc, ya, ydot, d, res, f0)
     work[2] += 1
@@ -475,13 +467,13 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
             work[3] += 1
             fresh[0] = 0.0
             return NON_FINITE
-        if b * h * h * largest <= tol:
+        if lumped_newton.converged(b * h * h * largest, largest / previous, tol, written):
             a1 -= da
             _state(y, acc, a1, h, coef, inc, ya, d, p.n_q)
             if system_kernel.accept(t1, ya, p, w) != 0:  # a line's failure
                 fresh[0] = 0.0  # Newton's matrix is not the new system's
             else:  # the last residual's forces start the next step (module docstring)
-                ends[:] = f_iterate
+                lumped_newton.ends(ends, f_iterate, da, res, coef, written)
                 fresh[3] = 1.0
             y[:] = ya
             for i in range(nv):
