@@ -327,6 +327,15 @@ def rates(system: BuiltSystem, y) -> np.ndarray:
     return np.abs(v) if len(v) else np.zeros(1)
 
 
+def _pairs(rows_at, rows_n, cols_at, cols_n) -> tuple[np.ndarray, np.ndarray]:
+    """Every (row, column) with the row in range(rows_at[k], rows_at[k] + rows_n[k]) and the
+    column in range(cols_at[k], cols_at[k] + cols_n[k]), for each k (integer arrays)."""
+    per = rows_n * cols_n
+    k = np.repeat(np.arange(len(per)), per)
+    offset = np.arange(int(per.sum())) - np.repeat(np.cumsum(per) - per, per)
+    return rows_at[k] + offset // cols_n[k], cols_at[k] + offset % cols_n[k]
+
+
 def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     """The pattern of d(ydot)/dy (SciPy's stiff integrators colour its columns): positions
     move with their velocities (a quaternion with its angular velocity and itself), every
@@ -336,29 +345,21 @@ def jacobian_sparsity(system: BuiltSystem) -> sparse.csc_matrix:
     coords_ = coordinates.coordinates(p)
     coupled = coordinates.pattern(p, coords_).tocoo()
     n = p.n_q + p.n_v + p.n_s
-    rows: list[int] = []
-    cols: list[int] = []
-
-    size = {1: 4, 3: 3}  # a quaternion, a director (and its rate)
-
-    def positions(i: int) -> range:
-        return range(coords_.q[i], coords_.q[i] + size.get(int(coords_.kind[i]), 1))
-
-    def velocities(i: int) -> range:
-        return range(coords_.v[i], coords_.v[i] + (3 if coords_.kind[i] == 3 else 1))
-
-    for i in range(len(coords_.kind)):
-        for k in positions(i):  # dq/dt from v (a quaternion: from omega and itself)
-            rows.extend([k] * len(velocities(i)))
-            cols.extend(velocities(i))
-            if coords_.kind[i] in size:
-                rows.extend([k] * len(positions(i)))
-                cols.extend(positions(i))
-    for i, j in zip(coupled.row, coupled.col, strict=True):
-        for v in velocities(i):
-            for k in (*positions(j), *velocities(j)):
-                rows.append(v)
-                cols.append(k)
+    kind = np.asarray(coords_.kind)
+    q, v = np.asarray(coords_.q, dtype=np.int64), np.asarray(coords_.v, dtype=np.int64)
+    # a quaternion's 4 positions, a director's 3 (and its 3 rates), else 1
+    n_q = np.where(kind == 1, 4, np.where(kind == 3, 3, 1)).astype(np.int64)
+    n_v = np.where(kind == 3, 3, 1).astype(np.int64)
+    own = (kind == 1) | (kind == 3)
+    i, j = coupled.row.astype(np.int64), coupled.col.astype(np.int64)
+    parts = [
+        _pairs(q, n_q, v, n_v),  # dq/dt from v (a quaternion: from omega and itself)
+        _pairs(q[own], n_q[own], q[own], n_q[own]),
+        _pairs(v[i], n_v[i], q[j], n_q[j]),  # an acceleration from coupled positions
+        _pairs(v[i], n_v[i], v[j], n_v[j]),  # ... and velocities
+    ]
+    rows: list[int] = np.concatenate([r for r, _ in parts]).tolist()
+    cols: list[int] = np.concatenate([c for _, c in parts]).tolist()
     for li in range(len(p.nat_n)):  # a natural string: each node with its neighbours
         block, nodes = (3 if p.nat_cartesian[li] else 2), int(p.nat_n[li]) + 1
         q0, v0 = int(p.nat_q[li]), int(p.nat_v[li])
