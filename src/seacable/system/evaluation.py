@@ -129,20 +129,39 @@ def evaluate(t, y, p, w, ydot):
     ``RuntimeError``), never evaluated without it. Its parts (``PARTS``) take the parameter and
     work tuples, and every call from a part takes the arrays it needs, none the tuples
     (docs/architecture.md, "Calls cost reference counts"); they are compiled apart, in two
-    processes at once where the machine has two cores (``system.variants``)."""
+    processes at once where the machine has two cores (``system.variants``). SKIPPED: a part
+    with nothing to do for this system is not called (each call takes and drops a reference to
+    every array of the two tuples, about 0.3 to 0.6 us): the bodies' masses, the force models'
+    loads and the bodies' equations when no body has a mass (fixed and imposed bodies) and no
+    force model or tie loads one (three lumped lines of two segments between an imposed and
+    fixed bodies: 4.8 -> 3.5 us an evaluation, 50 segments 10.8 -> 9.2 us)."""
     if _holds_more(p.line_n, p.rs_kind, p.nat_n, p.tie_from, p.compensator, p.group_member,
                    p.rs_tip_joint, p.n_s, p.wave, p.fail_line):  # fmt: skip
         raise RuntimeError("seacable: a system evaluated by a copy compiled without one of its "
                            "kinds (system.variants.bind gives each system its own)")  # fmt: skip
+    massive = _massive(p.body_kind) or RIGID or NATURAL
+    models = p.force_kind.shape[0] > 0 or COMPENSATORS or STATES
     status = _part(MOTIONS, t, y, p, w, ydot)
-    _part(MASSES, t, y, p, w, ydot)
+    if massive or models or TIES:  # else no load is added nor read: none to clear (SKIPPED)
+        _part(MASSES, t, y, p, w, ydot)
     if LUMPED or TIES:  # USED
         status = _worse(status, _part(LINES, t, y, p, w, ydot))
-    _part(MODELS, t, y, p, w, ydot)
+    if models:
+        _part(MODELS, t, y, p, w, ydot)
     if RIGID:
         status = _worse(status, _part(BACKWARD, t, y, p, w, ydot))
-    status = _worse(status, _part(SOLVE, t, y, p, w, ydot))
+    if massive or GROUPS:
+        status = _worse(status, _part(SOLVE, t, y, p, w, ydot))
     return status if kernel._finite(ydot) else NON_FINITE
+
+
+@njit(inline="always", **JIT)
+def _massive(kind):
+    """Whether any body has a mass that forces accelerate (``kinematics.has_mass``)."""
+    for b in range(kind.shape[0]):
+        if kinematics.has_mass(kind[b]):
+            return True
+    return False
 
 
 @njit(inline="always", **JIT)
