@@ -61,7 +61,7 @@ def _setup(model, n):
     implicit_setup.initial_acceleration(0.0, y, p, w, acc)
     inc, lay, rows = implicit_setup.newton(c, system)
     _, status = system_implicit.chunk(
-        0, y, acc, START, round(START / STEP), round(START / STEP), COEF, TOLERANCE, 20, p,
+        0, y, acc, START, round(START / STEP), 1, round(START / STEP), COEF, TOLERANCE, 20, p,
         implicit_setup.frozen(p), w, inc, lay, rows, implicit_setup.carry(system, lay),
         np.empty((1, len(y))), np.empty(1), _counters(), _rigid(rows),
     )  # fmt: skip
@@ -117,7 +117,7 @@ def measure(c, system, y0, maximal, steps, repeat):
         carried = implicit_setup.carry(system, lay)
         counters = _counters()
         done, status = system_implicit.chunk(
-            round(START / (STEP * steps)) * steps, y, a, STEP * steps, steps, steps, coef,
+            round(START / (STEP * steps)) * steps, y, a, STEP * steps, steps, 1, steps, coef,
             TOLERANCE, 20, p,
             pj, w, inc, lay, rows, carried, np.empty((1, ny)), np.empty(1), counters,
             _rigid(rows),

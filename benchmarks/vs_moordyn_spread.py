@@ -32,8 +32,10 @@ this process; times are its CPU time.
   between its ends); the tension is the magnitude of the line's force on its fairlead
   (``lines/<name>/from_force_*``, the end node's inertia included). Converged run: dopri5 at
   rtol 1e-9. generalized-alpha (defaults; and spectral radius 0 with Newton to 1e-7 of a
-  segment), newmark, theta, implicit_euler and rk4 run at the largest accurate step of the
-  ladder 0.1 s / k (a step seacable refuses, rk4 past its stability limit, or that diverges is
+  segment; and the defaults with Newton to 1e-7), newmark, theta, implicit_euler and rk4 run
+  at the largest accurate step of the ladder 0.1 s / k, the implicit schemes first at LONG
+  steps of several output intervals (the tensions between a step's ends interpolated,
+  numerics.dense) (a step seacable refuses, rk4 past its stability limit, or that diverges is
   a failed rung), dopri5 at the largest accurate rtol; cvode (a dense Jacobian) and SciPy's bdf,
   radau and lsoda at the smallest size only, each run stopped after SLOW seconds of CPU.
 
@@ -103,7 +105,9 @@ MD_CANDIDATES = (
 )  # fmt: skip
 NEWTON = {"newton_tolerance": 1e-7}
 SC_FIXED = (("generalized_alpha", {}), ("generalized_alpha r0", {"spectral_radius": 0.0, **NEWTON}),
-            ("newmark", {}), ("theta", {}), ("implicit_euler", {}), ("rk4", {}))  # fmt: skip
+            ("generalized_alpha 1e-7", NEWTON), ("newmark", {}), ("theta", {}),
+            ("implicit_euler", {}), ("rk4", {}))  # fmt: skip
+LONG = (0.5, 0.4, 0.3, 0.2)  # [s] the implicit schemes' steps tried first: several OUTPUTs
 SC_ADAPTIVE = ("dopri5", "cvode", "bdf", "radau", "lsoda")
 SC_SMALL_ONLY = ("cvode", "bdf", "radau", "lsoda")  # dense Jacobians or steps in Python
 RTOLS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 1e-6)
@@ -404,7 +408,8 @@ def seacable_setting(segments, name, duration, reference, times):
     adaptive = integrator in SC_ADAPTIVE
     limit = SLOW if integrator in SC_SMALL_ONLY else None
     why = "no accurate step"
-    for value in RTOLS if adaptive else ladder(0.1, 2e-4):
+    steps = (*(LONG if integrator != "rk4" else ()), *ladder(OUTPUT, 2e-4))
+    for value in RTOLS if adaptive else steps:
         knob = {"rtol": value} if adaptive else {"time_step": value}
         try:
             tension, cpu, startup = run_seacable(

@@ -104,7 +104,7 @@ def _moving(case, seconds=4.0):
     steps = round(seconds / STEP)
     work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
     _, status = system_implicit.chunk(
-        0, y, acc, STEP, 1, steps, coef, 1e-9, 10, p, implicit_setup.frozen(p), w, inc, lay,
+        0, y, acc, STEP, 1, 1, steps, coef, 1e-9, 10, p, implicit_setup.frozen(p), w, inc, lay,
         rows, implicit_setup.carry(system, lay), np.empty((steps, len(y))), np.empty(steps),
         work, None,
     )  # fmt: skip
@@ -203,7 +203,7 @@ def test_steps_with_written_columns_end_where_the_differences_end(band, buoy):
         work = np.zeros(len(integrators.WORK_NAMES), dtype=np.int64)
         steps = 80
         _, status = system_implicit.chunk(
-            80, y, acc, STEP, 1, steps, coef, 1e-9, 10, p, implicit_setup.frozen(p), w, inc,
+            80, y, acc, STEP, 1, 1, steps, coef, 1e-9, 10, p, implicit_setup.frozen(p), w, inc,
             lay, rows, implicit_setup.carry(system, lay), np.empty((steps, len(y))),
             np.empty(steps), work, None,
         )  # fmt: skip

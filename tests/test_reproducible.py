@@ -126,6 +126,13 @@ CASES = {
     "theta lumped": (_lumped_line, "theta", {"time_step": 0.01, "theta": 0.6}),
     "newmark lumped": (_lumped_line, "newmark", {"time_step": 0.01}),
     "generalized_alpha lumped": (_lumped_line, "generalized_alpha", {"time_step": 0.01}),
+    # steps of three output intervals, the last past the end (numerics.dense)
+    "generalized_alpha lumped long steps": (_lumped_line, "generalized_alpha", {"time_step": 0.3}),
+    "generalized_alpha lumped waves long steps": (
+        _lumped_line_in_waves,
+        "generalized_alpha",
+        {"time_step": 0.2},
+    ),  # fmt: skip
     "generalized_alpha lumped waves": (
         _lumped_line_in_waves,
         "generalized_alpha",

@@ -43,7 +43,7 @@ _CHUNK_SECONDS = 0.5  # wall time aimed at per compiled chunk (progress, Ctrl-C,
 
 
 # fixed-step implicit schemes of ``numerics.system_implicit``
-IMPLICIT = ("implicit_euler", "theta", "newmark", "generalized_alpha")
+IMPLICIT = schema.IMPLICIT_INTEGRATORS
 FIXED_STEP = ("rk4", *IMPLICIT)
 
 
@@ -160,6 +160,7 @@ class _Run:
         self.n_outputs = output_count(self.sim)
         self.done = 0
         self.into = 0  # fixed steps taken into the output interval under way
+        self.each = stability.outputs_per_step(self.sim)  # output intervals a step spans
         # state carried from chunk to chunk (numerics.contract, point 5): dopri5's
         # stages with a flag saying whether k[0] is the derivative at (t, y); the implicit
         # schemes' predictor and Newton factors
@@ -279,7 +280,8 @@ class _Run:
         sim = self.sim
         tol = sim.newton_tolerance * self.model.shortest_segment(self.system)
         return system_implicit.chunk(
-            first_step, y, self.acc, sim.output_interval, steps, count, _scheme(sim), tol,
+            first_step, y, self.acc, sim.output_interval, steps, self.each, count, _scheme(sim),
+            tol,
             sim.max_newton_iterations, implicit_setup.lagged(self.p),
             implicit_setup.frozen(self.p), self.w, *self.newton, carry, states, times, work,
             True if self.newton[2].line.shape[0] > 0 else None,
@@ -291,17 +293,26 @@ class _Run:
         about a second however long the interval), output intervals for the others."""
         return rk4_step(self.sim)[1] if self.sim.integrator in FIXED_STEP else 1
 
+    def covering(self, outputs: int) -> int:
+        """The units (``units``) that reach ``outputs`` output intervals from the start: an
+        implicit step may span several (``each``), the last one past the run's end."""
+        return -(-outputs // self.each) * self.units()
+
+    def position(self) -> int:
+        """The units done."""
+        return self.covering(self.done) + self.into
+
     def advance(self, count: int) -> int:
         """Integrate ``count`` units (``units``: fixed steps, or output intervals); returns the
         kernel status."""
         ny = self.y.shape[0]
         sim = self.sim
         per = self.units()
-        outputs = (self.into + count) // per  # the outputs this chunk reaches
+        outputs = (self.into + count) // per * self.each  # the outputs this chunk reaches
         states = np.empty((outputs, ny))
         times = np.empty(outputs)
         if sim.integrator in FIXED_STEP:
-            first = self.done * per + self.into  # the global step
+            first = self.position()  # the global step
             if sim.integrator == "rk4":
                 completed, status = integrators.rk4_chunk(
                     first, self.y, sim.output_interval, per, count, self.p, self.w, states,
@@ -322,6 +333,7 @@ class _Run:
                 self.magnitude, max_step, self.p, self.w, states, times, self.work, self.stages,
                 self.fsal, self.clock, self.budget,
             )  # fmt: skip
+        completed = min(completed, self.n_outputs - self.done)  # a last step past the end
         if completed:
             self.t = times[completed - 1]
             self.done += completed
@@ -450,12 +462,12 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
     chunk in which ``stop`` noted a signal (KeyboardInterrupt)."""
     if chunk_outputs is not None and chunk_outputs < 1:
         raise ValueError(f"chunk_outputs must be a positive integer or None, not {chunk_outputs}")
-    per = run.units()  # a chunk counts fixed steps, or output intervals (_Run.units)
-    chunk = (chunk_outputs or 1) * per if chunk_outputs else 1
-    refresh = run.refresh_every() * per
-    total = run.n_outputs * per
-    while run.done * per + run.into < total:
-        at = run.done * per + run.into
+    # a chunk counts fixed steps, or output intervals (_Run.units)
+    chunk = run.covering(chunk_outputs) if chunk_outputs else 1
+    refresh = run.covering(run.refresh_every())  # at a step's end (an implicit step may span
+    total = run.covering(run.n_outputs)  # several output intervals)
+    while run.position() < total:
+        at = run.position()
         count = min(chunk, total - at)
         if refresh:
             count = min(count, refresh - at % refresh)
@@ -472,7 +484,7 @@ def _loop(run: _Run, bar, chunk_outputs: int | None = None, stop: _Stop | None =
             return status
         if stop is not None and stop.signum:
             raise KeyboardInterrupt
-        reached = run.done * per + run.into
+        reached = run.position()
         if refresh and reached > at and reached % refresh == 0 and reached < total:
             run.refresh()  # once, as the chunk reaches the boundary (a cut dopri5 chunk may not)
         if chunk_outputs is None:

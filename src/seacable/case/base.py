@@ -420,7 +420,8 @@ class HullMesh(_Model):
 
 
 # ---- simulation ----------------------------------------------------------------------------------
-FIXED_STEP_INTEGRATORS = ("rk4", "implicit_euler", "theta", "newmark", "generalized_alpha")
+IMPLICIT_INTEGRATORS = ("implicit_euler", "theta", "newmark", "generalized_alpha")
+FIXED_STEP_INTEGRATORS = ("rk4", *IMPLICIT_INTEGRATORS)
 MOST_ROWS = 1e8  # output rows of one run: a hundred million rows of a single number is 800 MB
 MOST_STEPS = 1e10  # fixed steps of one run: at a microsecond a step, about three hours
 
@@ -440,7 +441,9 @@ class Simulation(_Model):
     newmark, generalized_alpha implicit, fixed step; bdf, radau, lsoda (SciPy) and cvode
     (SUNDIALS) adaptive, for stiff systems."""
     time_step: Pos | None = None
-    """[s] Fixed step of rk4 and the implicit schemes; it must divide ``output_interval``.
+    """[s] Fixed step of rk4 and the implicit schemes; it must divide ``output_interval``, or,
+    for an implicit scheme, be a whole number of output intervals (the outputs inside a step
+    are interpolated from its two ends: cubic in positions, their derivative the velocities).
     Omitted: the longest step of at most 0.01 s that divides it."""
     theta: float = Field(0.5, ge=0.5, le=1.0)
     """[-] Weight of the theta method: 1/2 the trapezoidal rule, 1 implicit Euler."""
@@ -499,12 +502,24 @@ class Simulation(_Model):
         """A fixed step must divide the output interval (outputs fall on steps): one that does
         within 1 % is rounded to the divisor, another is refused with the two nearest divisors
         (running silently at a step more than 1 % shorter would cost time the user did not ask
-        for, and a longer one could not be stable or accurate as they chose)."""
+        for, and a longer one could not be stable or accurate as they chose). An implicit
+        scheme's step may instead span whole output intervals (two or more), within 1 % too."""
         interval = info.data.get("output_interval")
+        integrator = info.data.get("integrator")
         if time_step is None or interval is None:
             return time_step
-        if info.data.get("integrator") not in FIXED_STEP_INTEGRATORS:
+        if integrator not in FIXED_STEP_INTEGRATORS:
             return time_step
+        if time_step > 1.5 * interval and integrator in IMPLICIT_INTEGRATORS:
+            spans = round(time_step / interval)
+            if abs(spans * interval - time_step) <= 0.01 * time_step:
+                return time_step
+            raise ValueError(
+                f"{time_step} s is not a whole number of output intervals ({interval} s): use "
+                f"time_step {math.floor(time_step / interval) * interval:.6g} or "
+                f"{math.ceil(time_step / interval) * interval:.6g} s (the outputs between a "
+                "step's ends are interpolated), or an output_interval that divides time_step"
+            )
         steps = max(1, math.ceil(interval / time_step - 1e-9))
         used = interval / steps
         if abs(used - time_step) <= 0.01 * time_step:
@@ -516,7 +531,9 @@ class Simulation(_Model):
             f"{time_step} s does not divide output_interval ({interval} s): the run would use "
             f"{used:.6g} s, {100 * (1 - used / time_step):.3g} % shorter. Use time_step "
             f"{valid}, or an output_interval that is a whole number of time steps"
-        )
+            + (" (an implicit integrator's step may span whole output intervals)"
+               if time_step > interval else "")
+        )  # fmt: skip
 
     @model_validator(mode="after")
     def _ordered(self):

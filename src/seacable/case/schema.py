@@ -18,6 +18,7 @@ from pydantic import (
 
 from seacable.case.base import (
     FIXED_STEP_INTEGRATORS,
+    IMPLICIT_INTEGRATORS,
     AccelerationPhase,
     AccelerationProfile,
     Constant,
@@ -482,6 +483,7 @@ __all__ = [
     "Current",
     "Environment",
     "FIXED_STEP_INTEGRATORS",
+    "IMPLICIT_INTEGRATORS",
     "FixedTop",
     "FloatingStructureBottom",
     "FloatingStructureTop",

@@ -24,7 +24,10 @@ class ChunkIntegrator(Protocol):
        runs in compiled code. A fixed-step chunk counts steps instead: ``n_steps`` from the
        global step ``first_step``, either of which may fall inside an output interval (a row at
        each output reached), so that the run loop can cut a long interval short (a signal is
-       answered within about a second whatever the output interval); dopri5's takes a budget
+       answered within about a second whatever the output interval); an implicit chunk's
+       step may instead span ``outputs_per_step`` whole intervals, each step then writing that
+       many rows, those inside it interpolated (``numerics.dense``; the run drops the rows a
+       last step writes past the duration); dopri5's takes a budget
        of steps, ``max_steps``, and stops inside an interval past it, its time in ``clock``
        for the next chunk to resume from.
     2. It returns ``(completed, status, ...)`` where ``completed`` is the number of output rows
@@ -34,8 +37,8 @@ class ChunkIntegrator(Protocol):
        linear solves.
     3. On a non-finite or singular evaluation it stops at once, leaves ``y`` at the last sound
        state of the completed rows and reports the status; it never raises.
-    4. Output times are hit exactly (fixed-step: an integer number of steps per interval;
-       adaptive: the step is clipped at each output time).
+    4. Output times are hit exactly (fixed-step: an integer number of steps per interval, or
+       of intervals per implicit step; adaptive: the step is clipped at each output time).
     5. Its results and work counters do not depend on how a run is cut into chunks (the run
        loop sizes chunks from wall time, so they would otherwise depend on machine load): every
        time is computed from global indices (output index times the interval, plus steps since

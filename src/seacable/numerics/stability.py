@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from seacable.case.base import FIXED_STEP_INTEGRATORS, Simulation
+from seacable.case.base import FIXED_STEP_INTEGRATORS, IMPLICIT_INTEGRATORS, Simulation
 from seacable.errors import CaseError
 from seacable.system.assemble import BuiltSystem
 from seacable.system.frequency import fastest_modes
@@ -35,7 +35,11 @@ NEAR_LIMIT = 0.6
 
 def rk4_step(sim: Simulation) -> tuple[float, int]:
     """The fixed step actually used (rk4 and the implicit schemes) [s] and the number of steps
-    per output interval."""
+    per output interval (1 for an implicit scheme's step of several output intervals:
+    ``outputs_per_step``)."""
+    outputs = outputs_per_step(sim)
+    if outputs > 1:
+        return outputs * sim.output_interval, 1
     wanted = (
         sim.time_step if sim.time_step is not None else min(DEFAULT_MAX_STEP, sim.output_interval)
     )
@@ -43,14 +47,29 @@ def rk4_step(sim: Simulation) -> tuple[float, int]:
     return sim.output_interval / steps, steps
 
 
+def outputs_per_step(sim: Simulation) -> int:
+    """Output intervals an implicit scheme's step spans (the nearest whole number to its
+    time_step over the output interval when that is at least 2; the schema's rule), the outputs
+    inside it interpolated (``numerics.dense``); 1 otherwise."""
+    if sim.integrator not in IMPLICIT_INTEGRATORS or sim.time_step is None:
+        return 1
+    return max(1, round(sim.time_step / sim.output_interval))
+
+
 def rounded_step(sim: Simulation) -> str | None:
-    """What the run does with a fixed time_step that divides the output interval only within
-    1 % (the schema's rule): it takes the divisor, and says so."""
+    """What the run does with a fixed time_step that divides the output interval (or that
+    an implicit scheme's step is a multiple of) only within 1 % (the schema's rule): it takes
+    that step, and says so."""
     if sim.integrator not in FIXED_STEP_INTEGRATORS or sim.time_step is None:
         return None
     used, steps = rk4_step(sim)
     if abs(used - sim.time_step) <= 1e-12 * sim.time_step:
         return None
+    if outputs_per_step(sim) > 1:
+        return (
+            f"simulation.time_step {sim.time_step:g} s is taken as {used:.6g} s, "
+            f"{outputs_per_step(sim)} output intervals ({sim.output_interval:g} s)"
+        )
     return (
         f"simulation.time_step {sim.time_step:g} s is taken as {used:.6g} s, the step that "
         f"divides output_interval ({sim.output_interval:g} s, {steps} per output)"

@@ -112,7 +112,7 @@ from numba import njit
 from seacable.kernels import chain3d, hull, lumped
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NEWTON_FAILED, NON_FINITE, OK
-from seacable.numerics import bordered, lumped_newton, rigid_newton
+from seacable.numerics import bordered, dense, lumped_newton, rigid_newton
 from seacable.numerics.integrators import record, step_time
 from seacable.system import kernel as system_kernel
 
@@ -495,12 +495,13 @@ def _step(t, t1, y, acc, h, coef, tol, max_iter, p, pj, w, inc, lay, rows, carry
 
 @njit(**JIT)
 def chunk(
-    first_step, y, acc, output_interval, steps_per_output, n_steps, coef, tol, max_iter, p,
-    pj, w, inc, lay, rows, carried, states, times, work, rigid,
+    first_step, y, acc, output_interval, steps_per_output, outputs_per_step, n_steps, coef, tol,
+    max_iter, p, pj, w, inc, lay, rows, carried, states, times, work, rigid,
 ):  # fmt: skip
     """Advance ``n_steps`` implicit steps ``output_interval / steps_per_output`` [s] from global
     step ``first_step`` (which may lie inside an output interval), a row in ``states`` at each
-    output reached.
+    output reached; or, ``outputs_per_step`` m > 1 (``steps_per_output`` 1), steps of m
+    output intervals, each giving m rows, those inside it interpolated (``numerics.dense``).
 
     ``acc`` holds the scheme's acceleration a0 at the start (the system's acceleration at the
     first call; the algorithmic one after), and is updated; ``pj`` is ``frozen(p)``, the
@@ -518,7 +519,8 @@ def chunk(
     pruned before typing)."""
     ny = y.shape[0]
     nv = acc.shape[0]
-    dt = output_interval / steps_per_output
+    m = outputs_per_step
+    dt = output_interval / steps_per_output if m == 1 else m * output_interval
     vec = np.empty((11, ny))
     big = np.empty((3, rows.size))
     y_saved = np.empty(ny)
@@ -528,8 +530,12 @@ def chunk(
     j = np.int64(0)  # not a literal: record compiles once
     hull.reuse(w.hull, NEAR * tol, FAR * tol)  # module docstring, REUSE; 0 again on return
     for _ in range(n_steps):
-        t = step_time(first_output, output_interval, steps_per_output, step, dt)
-        t_next = step_time(first_output, output_interval, steps_per_output, step + 1, dt)
+        if m == 1:
+            t = step_time(first_output, output_interval, steps_per_output, step, dt)
+            t_next = step_time(first_output, output_interval, steps_per_output, step + 1, dt)
+        else:  # as dense.record's output times
+            t = (first_output + step) * m * output_interval
+            t_next = (first_output + step + 1) * m * output_interval
         y_saved[:] = y
         acc_saved[:] = acc
         parts = 1
@@ -552,6 +558,10 @@ def chunk(
                 return j, status
             parts *= 2
         step += 1
-        j = record(step, steps_per_output, first_output, output_interval, y, states, times, j)
+        if m == 1:
+            j = record(step, steps_per_output, first_output, output_interval, y, states, times, j)
+        else:
+            j = dense.record(y_saved, y, dt, first_output + step - 1, m, output_interval,
+                             inc.q_of_v, inc.quat_q, inc.quat_v, p, states, times, j)  # fmt: skip
     hull.reuse(w.hull, 0.0, 0.0)
     return j, OK

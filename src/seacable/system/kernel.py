@@ -392,6 +392,14 @@ def body_forces(t, y, p, w, pos, vel, fraction, load):
 
 
 @njit(inline="always", **JIT)
+def projected(y, p):
+    """The state projected (unit quaternions, directors and tangents), as ``accept`` does, for
+    a state no step accepted (an output interpolated inside a step, ``numerics.dense``)."""
+    _bound(p.entries)
+    indirect.call2(p.entries[PROJECT], y, p)
+
+
+@njit(inline="always", **JIT)
 def accept(t, y, p, w):
     """An accepted step ending at (t, y): the state projected (unit quaternions, directors and
     tangents) and the radiation convolutions' histories recorded (``system.evaluation``'s
