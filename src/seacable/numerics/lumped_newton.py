@@ -116,9 +116,11 @@ def unknowns(p, size: int) -> np.ndarray:
     return mask
 
 
-@inner
+@njit(inline="always", **JIT)
 def _outer(out, at, ax, ay, az, bx, by, bz, scale):
-    """out[at : at + 9] += scale a b^T (row-major)."""
+    """out[at : at + 9] += scale a b^T (row-major). This and the other per-segment and
+    per-node helpers are inlined: called, each took and dropped a reference to its arrays
+    (a fill of three 50-segment lines 18.0 -> 14.0 us, of 20-segment ones 7.8 -> 5.9)."""
     out[at] += scale * ax * bx
     out[at + 1] += scale * ax * by
     out[at + 2] += scale * ax * bz
@@ -130,7 +132,7 @@ def _outer(out, at, ax, ay, az, bx, by, bz, scale):
     out[at + 8] += scale * az * bz
 
 
-@inner
+@njit(inline="always", **JIT)
 def _pull(stiffness, damping, length, tension, tx, ty, tz, stretched, dvx, dvy, dvz, out):
     """dP/d(x_b - x_a) into out[0:9] and dP/d(v_b - v_a) into out[9:18] (row-major, out zero
     before) of a taut segment (module docstring)."""
@@ -146,7 +148,7 @@ def _pull(stiffness, damping, length, tension, tx, ty, tz, stretched, dvx, dvy, 
     _outer(out, 9, tx, ty, tz, tx, ty, tz, axial * damping)
 
 
-@inner
+@njit(inline="always", **JIT)
 def _drag(normal, tangential, wet, rx, ry, rz, tx, ty, tz, out):
     """d(drag)/dr into out[18:27] (row-major, zero before) for the relative velocity r
     (module docstring)."""
@@ -224,7 +226,7 @@ def _nodes(y, li, p, w, vel, inv, bed):
             )  # fmt: skip
 
 
-@inner
+@njit(inline="always", **JIT)
 def _near(m, n, seg, inv, bed, reach, rate, am, af, block, near):
     """d res_j / d a1_m of the interior nodes j = m - 1, m, m + 1 next to node m into
     ``near[j - m + 1]`` (row-major 3 x 3; segment m - 1 joins nodes m - 1 and m, segment m
