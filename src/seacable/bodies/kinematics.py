@@ -33,6 +33,18 @@ def has_mass(kind):
     return kind == DYNAMIC or kind == TIP
 
 
+@inner
+def body_frame_velocity(y, q, v, scratch):
+    """A dynamic rigid body's body-frame velocity (R^T v, R^T w) from the state (its pose at
+    ``y[q:q + 7]``, its velocity at ``y[v:v + 6]``), into ``scratch[0:6]`` (its rotation in
+    ``scratch[12:21]``)."""
+    rot = scratch[12:21].reshape((3, 3))
+    rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot)
+    for c in range(3):
+        scratch[c] = rot[0, c] * y[v] + rot[1, c] * y[v + 1] + rot[2, c] * y[v + 2]
+        scratch[3 + c] = rot[0, c] * y[v + 3] + rot[1, c] * y[v + 4] + rot[2, c] * y[v + 5]
+
+
 @njit(**JIT)
 def rotation(qw, qx, qy, qz, out):
     """The rotation matrix of a unit quaternion, into ``out`` (3, 3)."""

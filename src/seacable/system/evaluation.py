@@ -80,7 +80,7 @@ from seacable.kernels import lumped as lk
 from seacable.kernels.jit import JIT, inner
 from seacable.kernels.status import NON_FINITE, OK, SINGULAR_CLOSURE
 from seacable.lines import natural_string, tie
-from seacable.system import kernel, rigid
+from seacable.system import failures, kernel, rigid
 
 # FLAGS: what this copy compiles (system.variants.features names each one; a copy sets them)
 LUMPED = True  # lumped-mass lines
@@ -525,7 +525,7 @@ def start_memory(t, y, p, w):
             p.fail_state[k] = np.nan
             for c in range(3):
                 p.body_free[p.fail_body[k], c] = 0.0
-            _attach(p, k, p.fail_orig[k])
+            failures.attach(p, k, p.fail_orig[k])
     return _histories(t, y, p, w, True)
 
 
@@ -549,32 +549,11 @@ def _failures(t, y, p, w):
                 _part(MOTIONS, t, y, p, w, w.rhs6)
             for j in range(p.fail_line.shape[0]):
                 if p.fail_group[j] == p.fail_group[k] and math.isnan(p.fail_state[j]):
-                    _release(t, y, p, w, j)
+                    failures.release(t, y, p, w, j)
             changed = np.int64(1)
     if changed:
         w.models_key[0] = np.nan  # the kept force models' loads are not this system's
     return changed
-
-
-@inner
-def _release(t, y, p, w, k):
-    """Failure row k's end onto its point body, placed and moving as the point it leaves."""
-    b, old = p.fail_body[k], p.fail_orig[k]
-    for c in range(3):
-        y[p.body_q[b] + c] = w.ppos[old, c]
-        y[p.body_v[b] + c] = w.pvel[old, c]
-        p.body_free[b, c] = 1.0
-    _attach(p, k, p.fail_point[k])
-    p.fail_state[k] = t
-
-
-@njit(inline="always", **JIT)
-def _attach(p, k, point):
-    """Failure row k's line end at ``point``."""
-    if p.fail_end[k] == 0:
-        p.line_from[p.fail_line[k]] = point
-    else:
-        p.line_to[p.fail_line[k]] = point
 
 
 @njit(inline="always", **JIT)
@@ -585,7 +564,8 @@ def _histories(t, y, p, w, start):
     if F_RADIATION_DAMPING:
         for f in range(p.force_kind.shape[0]):
             if _convolves(p, f):
-                _body_nu(y, p, p.force_body[f], w.memory)
+                b = p.force_body[f]
+                kinematics.body_frame_velocity(y, p.body_q[b], p.body_v[b], w.memory)
                 row = p.force_data[p.force_at[f] + radiation.MEMORY :]
                 if start:
                     memory.start(row, w.memory, t, w.memory[0:6])
@@ -599,15 +579,3 @@ def _convolves(p, f):
     """Force model f is a radiation convolution (forces.radiation), which keeps a history."""
     return (p.force_kind[f] == RADIATION_DAMPING
             and p.force_data[p.force_at[f]] == radiation.CONVOLUTION)  # fmt: skip
-
-
-@inner
-def _body_nu(y, p, b, scratch):
-    """A dynamic rigid body's body-frame velocity (R^T v, R^T w) from the state, into
-    ``scratch[0:6]`` (its rotation in ``scratch[12:21]``)."""
-    q, v = p.body_q[b], p.body_v[b]
-    rot = scratch[12:21].reshape((3, 3))
-    kinematics.rotation(y[q + 3], y[q + 4], y[q + 5], y[q + 6], rot)
-    for c in range(3):
-        scratch[c] = rot[0, c] * y[v] + rot[1, c] * y[v + 1] + rot[2, c] * y[v + 2]
-        scratch[3 + c] = rot[0, c] * y[v + 3] + rot[1, c] * y[v + 4] + rot[2, c] * y[v + 5]

@@ -23,8 +23,10 @@ release [s]).
 import math
 
 import numpy as np
+from numba import njit
 
 from seacable.case import system as sch
+from seacable.kernels.jit import JIT, inner
 from seacable.system import outputs
 
 FIELDS = ("fail_line", "fail_end", "fail_group", "fail_body", "fail_point", "fail_orig",
@@ -134,3 +136,25 @@ def fill(times, states, p, w, rows) -> int:
     finally:
         p.line_from[:], p.line_to[:], p.body_free[:] = kept
     return worst
+
+
+@inner
+def release(t, y, p, w, k):
+    """Failure row k's end onto its point body, placed and moving as the point it leaves (in
+    ``y`` and the parameters; ``w``: the points at (t, y)), at time ``t`` [s]."""
+    b, old = p.fail_body[k], p.fail_orig[k]
+    for c in range(3):
+        y[p.body_q[b] + c] = w.ppos[old, c]
+        y[p.body_v[b] + c] = w.pvel[old, c]
+        p.body_free[b, c] = 1.0
+    attach(p, k, p.fail_point[k])
+    p.fail_state[k] = t
+
+
+@njit(inline="always", **JIT)
+def attach(p, k, point):
+    """Failure row k's line end at ``point``."""
+    if p.fail_end[k] == 0:
+        p.line_from[p.fail_line[k]] = point
+    else:
+        p.line_to[p.fail_line[k]] = point
