@@ -30,8 +30,8 @@ benchmarks/vs_moordyn_spread.py (three lines on an imposed body) the matrix is b
 laws alone.
 
 WHOLE: a matrix written whole from the laws (``written``: no difference quotient left, no
-rigid line) costs less than two residuals (a compiled fill of 18 us and a factorisation of 5
-us against 11 us a residual, three lines of 50 segments), so ``system_implicit`` builds it at
+rigid line) costs less than two residuals (a compiled fill of 14 us and a factorisation of 5
+us against 9 us a residual, three lines of 50 segments), so ``system_implicit`` builds it at
 every step's first iterate (kept from step to step as a differenced one is, each iteration
 contracted by 0.1 to 0.3: the touchdown nodes' contact and the lines' turning change it), and,
 the iteration then contracting fast (a correction 3e-4 times the one before), stops as soon as
